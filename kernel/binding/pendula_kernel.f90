@@ -1,0 +1,106 @@
+! The thin layer that f2py wraps into the private extension pendula._kernel.
+! Plain subroutines, explicit-shape float64 arrays whose sizes derive from the
+! inputs, no derived types.  The Python layer (python/pendula) broadcasts,
+! checks arguments and maps status codes to exceptions and warnings.
+
+subroutine gsl_init()
+  use pendula_gsl_iface, only: pendula_gsl_init
+  implicit none
+  call pendula_gsl_init()
+end subroutine gsl_init
+
+subroutine ellipk_v(n, m, mc, k)
+  use pendula_elliptic, only: ellip_k
+  implicit none
+  integer, intent(in) :: n
+  double precision, intent(in) :: m(n), mc(n)
+  double precision, intent(out) :: k(n)
+  !f2py intent(hide), depend(m) :: n = len(m)
+  k = ellip_k(m, mc)
+end subroutine ellipk_v
+
+subroutine ellipe_v(n, m, mc, e)
+  use pendula_elliptic, only: ellip_e
+  implicit none
+  integer, intent(in) :: n
+  double precision, intent(in) :: m(n), mc(n)
+  double precision, intent(out) :: e(n)
+  !f2py intent(hide), depend(m) :: n = len(m)
+  e = ellip_e(m, mc)
+end subroutine ellipe_v
+
+subroutine ellipf_v(n, phi, m, mc, f)
+  use pendula_elliptic, only: ellip_f
+  implicit none
+  integer, intent(in) :: n
+  double precision, intent(in) :: phi(n), m(n), mc(n)
+  double precision, intent(out) :: f(n)
+  !f2py intent(hide), depend(phi) :: n = len(phi)
+  f = ellip_f(phi, m, mc)
+end subroutine ellipf_v
+
+subroutine ellipeinc_v(n, phi, m, mc, e)
+  use pendula_elliptic, only: ellip_einc
+  implicit none
+  integer, intent(in) :: n
+  double precision, intent(in) :: phi(n), m(n), mc(n)
+  double precision, intent(out) :: e(n)
+  !f2py intent(hide), depend(phi) :: n = len(phi)
+  e = ellip_einc(phi, m, mc)
+end subroutine ellipeinc_v
+
+subroutine nome_v(n, m, mc, q)
+  use pendula_elliptic, only: ellip_nome
+  implicit none
+  integer, intent(in) :: n
+  double precision, intent(in) :: m(n), mc(n)
+  double precision, intent(out) :: q(n)
+  !f2py intent(hide), depend(m) :: n = len(m)
+  q = ellip_nome(m, mc)
+end subroutine nome_v
+
+! Jacobi functions; nm = 1 means one parameter for all u (prepared once).
+subroutine ellipj_v(n, nm, u, m, mc, sn, cn, dn, am, status)
+  use pendula_elliptic, only: jacobi_plan, jacobi_prepare, jacobi_eval, jacobi_sncndn
+  implicit none
+  integer, intent(in) :: n, nm
+  double precision, intent(in) :: u(n), m(nm), mc(nm)
+  double precision, intent(out) :: sn(n), cn(n), dn(n), am(n)
+  integer, intent(out) :: status
+  !f2py intent(hide), depend(u) :: n = len(u)
+  !f2py intent(hide), depend(m) :: nm = len(m)
+  type(jacobi_plan) :: plan
+  status = 0
+  if (nm /= 1 .and. nm /= n) then
+    status = 1
+    return
+  end if
+  if (nm == 1) then
+    plan = jacobi_prepare(m(1), mc(1))
+    call jacobi_eval(plan, u, sn, cn, dn, am)
+  else
+    call jacobi_sncndn(u, m, mc, sn, cn, dn, am)
+  end if
+end subroutine ellipj_v
+
+subroutine gsl_elljac_v(n, u, m, sn, cn, dn, bad)
+  use pendula_gsl_iface, only: pendula_gsl_elljac
+  implicit none
+  integer, intent(in) :: n
+  double precision, intent(in) :: u(n), m(n)
+  double precision, intent(out) :: sn(n), cn(n), dn(n)
+  integer, intent(out) :: bad
+  !f2py intent(hide), depend(u) :: n = len(u)
+  bad = pendula_gsl_elljac(n, u, m, sn, cn, dn)
+end subroutine gsl_elljac_v
+
+subroutine gsl_kcomp_v(n, m, k, bad)
+  use pendula_gsl_iface, only: pendula_gsl_kcomp
+  implicit none
+  integer, intent(in) :: n
+  double precision, intent(in) :: m(n)
+  double precision, intent(out) :: k(n)
+  integer, intent(out) :: bad
+  !f2py intent(hide), depend(m) :: n = len(m)
+  bad = pendula_gsl_kcomp(n, m, k)
+end subroutine gsl_kcomp_v

@@ -1,0 +1,513 @@
+!> Elliptic integrals, the nome and the Jacobi elliptic functions.
+!>
+!> Every routine takes the parameter m together with its complement
+!> mc = 1 - m.  The complement is the primary variable: near the separatrix
+!> of the pendulum m = 1 - 1e-300 is representable only through mc, and no
+!> routine forms 1 - m by subtraction.  Callers pass both, consistent to
+!> rounding (the binding layer derives whichever one the user omitted).
+!>
+!> Methods (all derived here; see DLMF chapters 19 and 22):
+!>  * K(m): the arithmetic-geometric mean carried in double-double, closed by
+!>    the expansion AGM(A+c, A-c) = A (1 - t^2/4 - 5 t^4/64 - 11 t^6/256),
+!>    t = c/A, so that K is known to ~1e-30 relative.  The low part is what
+!>    lets the Jacobi functions reduce u = 1000 periods without losing digits.
+!>  * E(m), F(phi|m), E(phi|m): Carlson's symmetric integrals R_F and R_D by
+!>    duplication, in forms whose terms are all positive for 0 <= m <= 1
+!>    (no cancellation as m -> 1).
+!>  * sn, cn, dn, am: reduction of u by 2K in double-double, a quarter-period
+!>    shift to [0, K/2], a Maclaurin series at u / 2^N <= 1/16 and N
+!>    duplications.  The duplication runs on the complements 1 - cn, 1 - dn
+!>    while they are small and on cn, dn themselves afterwards; in both forms
+!>    every formula is a quotient of sums of positive terms on [0, K/2].
+!>  * the nome q(m): the Jacobi series in eps = (1 - mc^(1/4)) / (2 (1 + mc^(1/4)))
+!>    for m <= 1/2, and ln q ln q' = pi^2 with the complementary series above.
+module pendula_elliptic
+  use pendula_kinds, only: dp, i8, pi, pi_lo, half_pi, nan_dp, inf_dp
+  use pendula_dd, only: two_sum, fast_two_sum, two_prod, dd_sqrt
+  implicit none
+  private
+  public :: ellip_k, ellip_k_dd, ellip_e, ellip_f, ellip_einc, ellip_nome
+  public :: carlson_rf, carlson_rd
+  public :: jacobi_plan, jacobi_prepare, jacobi_eval, jacobi_sncndn
+  public :: jacobi_max_periods
+
+  !> Arguments beyond this many half periods cannot be reduced accurately
+  !> even with K in double-double; they give NaN.
+  real(dp), parameter :: jacobi_max_periods = 2.0_dp**48
+
+  !> Everything about one parameter m that the Jacobi functions need.
+  !> regime: -1 invalid, 0 for 0 <= m < 1, 1 for m = 1, 2 for m < 0
+  !> (imaginary-modulus transformation), 3 for m > 1 (reciprocal modulus).
+  type :: jacobi_plan
+    integer :: regime = -1
+    real(dp) :: m = 0.0_dp, mc = 1.0_dp       !< parameter of the core (0 <= m < 1)
+    real(dp) :: kh = 0.0_dp, kl = 0.0_dp      !< K of the core, double-double
+    real(dp) :: sqmc = 1.0_dp                 !< sqrt(mc) of the core
+    real(dp) :: sh = 1.0_dp, sl = 0.0_dp      !< argument scale (1, sqrt(1-m) or sqrt(m))
+    real(dp) :: cy(6) = 0.0_dp                 !< Maclaurin series of 1 - cn in u^2
+  end type jacobi_plan
+
+contains
+
+  ! ------------------------------------------------------------------
+  ! Complete integral of the first kind
+  ! ------------------------------------------------------------------
+
+  !> K(m) = pi / (2 AGM(1, sqrt(mc))) in double-double: K = kh + kl.
+  !> Valid for every mc >= 0 (m <= 1); mc = 0 gives +Inf, mc < 0 NaN.
+  elemental subroutine ellip_k_dd(mc, kh, kl)
+    real(dp), intent(in) :: mc
+    real(dp), intent(out) :: kh, kl
+    real(dp) :: a, al, b, bl, s, e, an, anl, p, pe, ah2, al2, c, t, corr, mh, ml, q, r
+    integer :: it
+
+    if (.not. (mc >= 0.0_dp)) then
+      kh = nan_dp; kl = 0.0_dp; return
+    else if (mc == 0.0_dp) then
+      kh = inf_dp; kl = 0.0_dp; return
+    else if (mc > huge(1.0_dp)) then
+      kh = 0.0_dp; kl = 0.0_dp; return
+    end if
+    a = 1.0_dp; al = 0.0_dp
+    call dd_sqrt(mc, 0.0_dp, b, bl)
+    do it = 1, 64
+      if (abs(a - b) <= 0.0009765625_dp * (a + b)) exit
+      call two_sum(a, b, s, e)
+      e = e + (al + bl)
+      call fast_two_sum(s, e, an, anl)
+      call two_prod(a, b, p, pe)
+      call fast_two_sum(p, pe + (a * bl + al * b), s, e)
+      call dd_sqrt(s, e, b, bl)
+      a = 0.5_dp * an; al = 0.5_dp * anl
+    end do
+    ! A = (a + b)/2 and c = (a - b)/2; a - b is exact (Sterbenz).
+    call two_sum(a, b, s, e)
+    e = e + (al + bl)
+    call fast_two_sum(s, e, ah2, al2)
+    ah2 = 0.5_dp * ah2; al2 = 0.5_dp * al2
+    c = 0.5_dp * ((a - b) + (al - bl))
+    t = c / ah2
+    corr = ah2 * t * t * (0.25_dp + t * t * (5.0_dp / 64.0_dp + t * t * (11.0_dp / 256.0_dp)))
+    call two_sum(ah2, -corr, s, e)
+    call fast_two_sum(s, e + al2, mh, ml)
+    ! K = pi / (2 M) in double-double
+    q = pi / (2.0_dp * mh)
+    call two_prod(2.0_dp * mh, q, p, pe)
+    r = ((pi - p) - pe) + (pi_lo - 2.0_dp * ml * q)
+    call fast_two_sum(q, r / (2.0_dp * mh), kh, kl)
+  end subroutine ellip_k_dd
+
+  !> Complete elliptic integral of the first kind K(m), m = 1 - mc.
+  elemental function ellip_k(m, mc) result(k)
+    real(dp), intent(in) :: m, mc
+    real(dp) :: k, kl
+    if (m /= m) then
+      k = nan_dp; return
+    end if
+    call ellip_k_dd(mc, k, kl)
+    k = k + kl
+  end function ellip_k
+
+  ! ------------------------------------------------------------------
+  ! Carlson's symmetric integrals
+  ! ------------------------------------------------------------------
+
+  !> R_F(x, y, z); NaN unless x, y, z >= 0 with at most one of them zero.
+  elemental function carlson_rf(x0, y0, z0) result(rf)
+    real(dp), intent(in) :: x0, y0, z0
+    real(dp) :: rf, x, y, z, a, a0, q, lam, sx, sy, sz, xx, yy, zz, e2, e3, f
+    integer :: it
+    if (.not. (x0 >= 0.0_dp .and. y0 >= 0.0_dp .and. z0 >= 0.0_dp)) then
+      rf = nan_dp; return
+    end if
+    if (min(x0 + y0, x0 + z0, y0 + z0) == 0.0_dp) then
+      rf = inf_dp; return
+    end if
+    if (max(x0, y0, z0) > huge(1.0_dp)) then
+      rf = 0.0_dp; return
+    end if
+    x = x0; y = y0; z = z0
+    a0 = (x + y + z) / 3.0_dp
+    a = a0
+    ! Carlson's bound: stop when 4^-n Q < |A|, Q = (3 r)^(-1/6) max|A0 - x|, r = 2^-56
+    q = 540.0_dp * max(abs(a0 - x), abs(a0 - y), abs(a0 - z))
+    f = 1.0_dp
+    do it = 1, 200
+      if (q * f < abs(a)) exit
+      sx = sqrt(x); sy = sqrt(y); sz = sqrt(z)
+      lam = sx * (sy + sz) + sy * sz
+      x = 0.25_dp * (x + lam); y = 0.25_dp * (y + lam); z = 0.25_dp * (z + lam)
+      a = 0.25_dp * (a + lam)
+      f = 0.25_dp * f
+    end do
+    xx = (a0 - x0) * f / a
+    yy = (a0 - y0) * f / a
+    zz = -(xx + yy)
+    e2 = xx * yy - zz * zz
+    e3 = xx * yy * zz
+    rf = (1.0_dp - e2 / 10.0_dp + e3 / 14.0_dp + e2 * e2 / 24.0_dp - 3.0_dp * e2 * e3 / 44.0_dp &
+         - 5.0_dp * e2**3 / 208.0_dp + 3.0_dp * e3 * e3 / 104.0_dp + e2 * e2 * e3 / 16.0_dp) / sqrt(a)
+  end function carlson_rf
+
+  !> R_D(x, y, z); NaN unless x, y >= 0 (not both zero) and z > 0.
+  elemental function carlson_rd(x0, y0, z0) result(rd)
+    real(dp), intent(in) :: x0, y0, z0
+    real(dp) :: rd, x, y, z, a, a0, q, lam, sx, sy, sz, xx, yy, zz, e2, e3, e4, e5, f, s, xy, zz2
+    integer :: it
+    if (.not. (x0 >= 0.0_dp .and. y0 >= 0.0_dp .and. z0 >= 0.0_dp)) then
+      rd = nan_dp; return
+    end if
+    if (z0 == 0.0_dp .or. x0 + y0 == 0.0_dp) then
+      rd = inf_dp; return
+    end if
+    if (max(x0, y0, z0) > huge(1.0_dp)) then
+      rd = 0.0_dp; return
+    end if
+    x = x0; y = y0; z = z0
+    a0 = (x + y + 3.0_dp * z) / 5.0_dp
+    a = a0
+    ! Carlson's bound: Q = (r/4)^(-1/6) max|A0 - x|, r = 2^-56
+    q = 820.0_dp * max(abs(a0 - x), abs(a0 - y), abs(a0 - z))
+    s = 0.0_dp
+    f = 1.0_dp
+    do it = 1, 200
+      if (q * f < abs(a)) exit
+      sx = sqrt(x); sy = sqrt(y); sz = sqrt(z)
+      lam = sx * (sy + sz) + sy * sz
+      s = s + f / (sz * (z + lam))
+      x = 0.25_dp * (x + lam); y = 0.25_dp * (y + lam); z = 0.25_dp * (z + lam)
+      a = 0.25_dp * (a + lam)
+      f = 0.25_dp * f
+    end do
+    xx = (a0 - x0) * f / a
+    yy = (a0 - y0) * f / a
+    zz = -(xx + yy) / 3.0_dp
+    xy = xx * yy
+    zz2 = zz * zz
+    e2 = xy - 6.0_dp * zz2
+    e3 = (3.0_dp * xy - 8.0_dp * zz2) * zz
+    e4 = 3.0_dp * (xy - zz2) * zz2
+    e5 = xy * zz2 * zz
+    rd = f * (1.0_dp - 3.0_dp * e2 / 14.0_dp + e3 / 6.0_dp + 9.0_dp * e2 * e2 / 88.0_dp &
+         - 3.0_dp * e4 / 22.0_dp - 9.0_dp * e2 * e3 / 52.0_dp + 3.0_dp * e5 / 26.0_dp) / (a * sqrt(a)) &
+         + 3.0_dp * s
+  end function carlson_rd
+
+  ! ------------------------------------------------------------------
+  ! E(m), F(phi|m), E(phi|m)
+  ! ------------------------------------------------------------------
+
+  !> Complete elliptic integral of the second kind E(m) for m <= 1.
+  !> E = (mc/3) (R_D(0, mc, 1) + R_D(0, 1, mc)) (DLMF 19.25.1), no cancellation.
+  elemental function ellip_e(m, mc) result(e)
+    real(dp), intent(in) :: m, mc
+    real(dp) :: e
+    if (m /= m .or. .not. (mc >= 0.0_dp)) then
+      e = nan_dp
+    else if (mc == 0.0_dp) then
+      e = 1.0_dp
+    else if (mc > huge(1.0_dp)) then
+      e = inf_dp
+    else
+      e = (mc / 3.0_dp) * (carlson_rd(0.0_dp, mc, 1.0_dp) + carlson_rd(0.0_dp, 1.0_dp, mc))
+    end if
+  end function ellip_e
+
+  !> phi = j pi + r with |r| <= pi/2, r = rh + rl computed with pi in
+  !> double-double; returns s = sin r and c = cos r (c >= 0) to full accuracy
+  !> even next to r = +-pi/2, where cos r is tiny.
+  elemental subroutine reduce_pi(phi, j, s, c)
+    real(dp), intent(in) :: phi
+    real(dp), intent(out) :: j, s, c
+    real(dp) :: p, e, rh, rl
+    j = anint(phi / pi)
+    call two_prod(j, pi, p, e)
+    call two_sum(phi - p, -e, rh, rl)       ! phi - p is exact near j pi (Sterbenz)
+    rl = rl - j * pi_lo
+    if (rh > half_pi .or. (rh == half_pi .and. rl > pi_lo / 2.0_dp)) then
+      j = j + 1.0_dp
+      call two_sum(rh - pi, rl - pi_lo, rh, e)
+      rl = e
+    else if (rh < -half_pi .or. (rh == -half_pi .and. rl < -pi_lo / 2.0_dp)) then
+      j = j - 1.0_dp
+      call two_sum(rh + pi, rl + pi_lo, rh, e)
+      rl = e
+    end if
+    s = sin(rh) + cos(rh) * rl
+    c = abs(cos(rh) - sin(rh) * rl)
+  end subroutine reduce_pi
+
+  !> Incomplete integral of the first kind F(phi|m) for any real phi.
+  elemental function ellip_f(phi, m, mc) result(f)
+    real(dp), intent(in) :: phi, m, mc
+    real(dp) :: f, j, s, c
+    if (phi /= phi .or. m /= m .or. mc /= mc .or. abs(phi) > huge(1.0_dp)) then
+      f = nan_dp; return
+    end if
+    call reduce_pi(phi, j, s, c)
+    f = f_reduced(s, c, mc)
+    if (j /= 0.0_dp) f = f + 2.0_dp * j * ellip_k(m, mc)
+  end function ellip_f
+
+  !> F on |r| <= pi/2 from s = sin r, c = cos r >= 0.
+  elemental function f_reduced(s, c, mc) result(f)
+    real(dp), intent(in) :: s, c, mc
+    real(dp) :: f, d2
+    if (mc == 0.0_dp) then
+      f = atanh(s)          ! inverse Gudermannian; +-Inf at |r| = pi/2
+      return
+    end if
+    d2 = c * c + mc * s * s
+    if (d2 < 0.0_dp) then
+      f = nan_dp            ! m > 1 beyond the real range
+    else
+      f = s * carlson_rf(c * c, d2, 1.0_dp)
+    end if
+  end function f_reduced
+
+  !> Incomplete integral of the second kind E(phi|m) for any real phi.
+  elemental function ellip_einc(phi, m, mc) result(ev)
+    real(dp), intent(in) :: phi, m, mc
+    real(dp) :: ev, j, s, c
+    if (phi /= phi .or. m /= m .or. mc /= mc .or. abs(phi) > huge(1.0_dp)) then
+      ev = nan_dp; return
+    end if
+    call reduce_pi(phi, j, s, c)
+    ev = einc_reduced(s, c, m, mc)
+    if (j /= 0.0_dp) ev = ev + 2.0_dp * j * ellip_e(m, mc)
+  end function ellip_einc
+
+  !> E on |r| <= pi/2 from s = sin r, c = cos r >= 0.
+  elemental function einc_reduced(s, c, m, mc) result(ev)
+    real(dp), intent(in) :: s, c, m, mc
+    real(dp) :: ev, d2, as, s3
+    if (mc == 0.0_dp) then
+      ev = s; return
+    end if
+    d2 = c * c + mc * s * s
+    if (d2 < 0.0_dp) then
+      ev = nan_dp; return
+    end if
+    as = abs(s)
+    s3 = as * as * as
+    if (m >= 0.0_dp .and. mc > 0.0_dp) then
+      ! E = mc F + (m mc / 3) s^3 R_D(c^2, 1, D^2) + m s c / D: positive terms
+      ev = mc * as * carlson_rf(c * c, d2, 1.0_dp) &
+           + (m * mc / 3.0_dp) * s3 * carlson_rd(c * c, 1.0_dp, d2) + m * as * c / sqrt(d2)
+    else
+      ev = as * carlson_rf(c * c, d2, 1.0_dp) - (m / 3.0_dp) * s3 * carlson_rd(c * c, d2, 1.0_dp)
+    end if
+    ev = sign(ev, s)
+  end function einc_reduced
+
+  ! ------------------------------------------------------------------
+  ! The nome
+  ! ------------------------------------------------------------------
+
+  !> Jacobi's series q = e + 2 e^5 + 15 e^9 + ... in e = m / (2 (1+r)^2 (1+r^2)), r = mc^(1/4).
+  elemental function nome_series(m, mc) result(q)
+    real(dp), intent(in) :: m, mc
+    real(dp) :: q, r, e, e4
+    r = sqrt(sqrt(mc))
+    e = m / (2.0_dp * (1.0_dp + r)**2 * (1.0_dp + r * r))
+    e4 = (e * e) * (e * e)
+    q = e * (1.0_dp + e4 * (2.0_dp + e4 * (15.0_dp + e4 * (150.0_dp + e4 * (1707.0_dp &
+        + e4 * (20910.0_dp + e4 * 268616.0_dp))))))
+  end function nome_series
+
+  !> The nome q(m) = exp(-pi K(mc)/K(m)) for 0 <= m <= 1.
+  elemental function ellip_nome(m, mc) result(q)
+    real(dp), intent(in) :: m, mc
+    real(dp) :: q
+    if (.not. (m >= 0.0_dp .and. mc >= 0.0_dp)) then
+      q = nan_dp
+    else if (mc == 0.0_dp) then
+      q = 1.0_dp
+    else if (m <= 0.5_dp) then
+      q = nome_series(m, mc)
+    else
+      q = exp(pi * pi / log(nome_series(mc, m)))
+    end if
+  end function ellip_nome
+
+  ! ------------------------------------------------------------------
+  ! Jacobi elliptic functions
+  ! ------------------------------------------------------------------
+
+  !> Precompute what the Jacobi functions need for the parameter m (= 1 - mc).
+  elemental function jacobi_prepare(m, mc) result(p)
+    real(dp), intent(in) :: m, mc
+    type(jacobi_plan) :: p
+    real(dp) :: cm, cmc
+    if (m /= m .or. mc /= mc .or. abs(m) > huge(1.0_dp) .or. abs(mc) > huge(1.0_dp)) then
+      p%regime = -1; return
+    end if
+    if (mc == 0.0_dp) then
+      p%regime = 1; return
+    else if (m >= 0.0_dp .and. mc > 0.0_dp) then
+      p%regime = 0
+      cm = m; cmc = mc
+    else if (m < 0.0_dp) then
+      ! sn(u|m) = sd(nu u|mu)/nu, cn = cd, dn = nd, mu = -m/mc, nu = sqrt(mc)
+      p%regime = 2
+      cm = -m / mc; cmc = 1.0_dp / mc
+      call dd_sqrt(mc, 0.0_dp, p%sh, p%sl)
+    else
+      ! sn(u|m) = sn(k u|1/m)/k, cn = dn(k u|1/m), dn = cn(k u|1/m), k = sqrt(m)
+      p%regime = 3
+      cm = 1.0_dp / m; cmc = -mc / m
+      call dd_sqrt(m, 0.0_dp, p%sh, p%sl)
+    end if
+    p%m = cm; p%mc = cmc
+    p%sqmc = sqrt(cmc)
+    call ellip_k_dd(cmc, p%kh, p%kl)
+    ! Maclaurin series of 1 - cn in t = u^2 (coefficients from data/gen_jacobi_series.py)
+    p%cy(1) = 0.5_dp
+    p%cy(2) = -(1.0_dp + 4.0_dp * cm) / 24.0_dp
+    p%cy(3) = (1.0_dp + cm * (44.0_dp + cm * 16.0_dp)) / 720.0_dp
+    p%cy(4) = -(1.0_dp + cm * (408.0_dp + cm * (912.0_dp + cm * 64.0_dp))) / 40320.0_dp
+    p%cy(5) = (1.0_dp + cm * (3688.0_dp + cm * (30768.0_dp + cm * (15808.0_dp + cm * 256.0_dp)))) &
+              / 3628800.0_dp
+    p%cy(6) = -(1.0_dp + cm * (33212.0_dp + cm * (870640.0_dp + cm * (1538560.0_dp &
+              + cm * (259328.0_dp + cm * 1024.0_dp))))) / 479001600.0_dp
+  end function jacobi_prepare
+
+  !> sn, cn, dn on 0 <= w <= K/2 for the core parameter (0 <= m < 1).
+  !>
+  !> Only one quantity is carried through the duplications: y = 1 - cn while
+  !> it is below 1/2, then cn itself.  sn and dn are derived from it at the end
+  !> (sn^2 = y (2 - y), dn^2 = 1 - m sn^2 = mc + m cn^2), so the three results
+  !> are always consistent with one slightly perturbed argument; that is what
+  !> keeps cd = cn/dn exact to rounding after the quarter-period shift.
+  pure subroutine jacobi_core(p, w, s, c, d)
+    type(jacobi_plan), intent(in) :: p
+    real(dp), intent(in) :: w
+    real(dp), intent(out) :: s, c, d
+    real(dp) :: u0, t, y, s2, d2, cc, den
+    integer :: n, i
+    logical :: direct
+
+    if (w <= 0.0_dp) then
+      s = 0.0_dp; c = 1.0_dp; d = 1.0_dp; return
+    end if
+    n = max(0, exponent(w) + 4)          ! u0 = w / 2^n <= 1/16
+    u0 = scale(w, -n)
+    t = u0 * u0
+    y = t * (p%cy(1) + t * (p%cy(2) + t * (p%cy(3) + t * (p%cy(4) + t * (p%cy(5) + t * p%cy(6))))))
+    i = 0
+    ! complement form: 1 - cn(2u) = 2 sn^2 dn^2 / (cn^2 + sn^2 dn^2)
+    do while (i < n .and. y <= 0.5_dp)
+      s2 = y * (2.0_dp - y)
+      c = 1.0_dp - y
+      d2 = 1.0_dp - p%m * s2
+      y = 2.0_dp * s2 * d2 / (c * c + s2 * d2)
+      i = i + 1
+    end do
+    c = 1.0_dp - y
+    direct = i < n
+    ! direct form: cn(2u) = (cn^4 - mc sn^4) / (cn^2 + sn^2 dn^2)
+    do while (i < n)
+      cc = c * c
+      s2 = (1.0_dp - c) * (1.0_dp + c)
+      d2 = p%mc + p%m * cc
+      den = cc + s2 * d2
+      c = (cc * cc - p%mc * s2 * s2) / den
+      i = i + 1
+    end do
+    if (direct) then
+      s2 = (1.0_dp - c) * (1.0_dp + c)
+    else
+      s2 = y * (2.0_dp - y)
+    end if
+    s = sqrt(s2)
+    d = sqrt(p%mc + p%m * c * c)
+  end subroutine jacobi_core
+
+  !> sn, cn, dn and the continuous amplitude am at u, for a prepared parameter.
+  elemental subroutine jacobi_eval(p, u, sn, cn, dn, am)
+    type(jacobi_plan), intent(in) :: p
+    real(dp), intent(in) :: u
+    real(dp), intent(out) :: sn, cn, dn, am
+    real(dp) :: xh, xl, j, pr, pe, r, w, s, c, d, sg, ar, tmp
+    logical :: shifted
+
+    if (p%regime < 0 .or. u /= u .or. abs(u) > huge(1.0_dp)) then
+      sn = nan_dp; cn = nan_dp; dn = nan_dp; am = nan_dp; return
+    end if
+    if (p%regime == 1) then
+      sn = tanh(u)
+      cn = 1.0_dp / cosh(u)
+      dn = cn
+      am = atan(sinh(u))
+      return
+    end if
+    ! argument of the core, in double-double
+    if (p%regime == 0) then
+      xh = u; xl = 0.0_dp
+    else
+      call two_prod(u, p%sh, pr, pe)
+      call fast_two_sum(pr, pe + u * p%sl, xh, xl)
+    end if
+    ! reduce by the half period 2K:  x = 2 K j + r, |r| <= K
+    if (abs(xh) <= p%kh) then
+      j = 0.0_dp
+      r = xh + xl
+    else
+      j = anint(xh / (2.0_dp * p%kh))
+      if (abs(j) > jacobi_max_periods) then
+        sn = nan_dp; cn = nan_dp; dn = nan_dp; am = nan_dp; return
+      end if
+      call two_prod(2.0_dp * j, p%kh, pr, pe)
+      r = ((xh - pr) - pe) + (xl - 2.0_dp * j * p%kl)
+    end if
+    sg = sign(1.0_dp, r)
+    w = abs(r)
+    shifted = w > 0.5_dp * p%kh
+    if (shifted) w = max(0.0_dp, (p%kh - w) + p%kl)
+    call jacobi_core(p, w, s, c, d)
+    if (shifted) then
+      ! sn(K - w) = cd(w), cn(K - w) = sqrt(mc) sd(w), dn(K - w) = sqrt(mc) nd(w)
+      tmp = s
+      s = c / d
+      c = p%sqmc * tmp / d
+      d = p%sqmc / d
+    end if
+    s = sg * s
+    ! amplitude of the reduced argument (cn >= 0 there, so it lies in [-pi/2, pi/2])
+    select case (p%regime)
+    case (0)
+      ar = atan2(s, c)
+    case (2)
+      ar = atan2(s / p%sh, c)
+    case default
+      ar = 0.0_dp
+    end select
+    ! sn and cn change sign with every half period; dn does not
+    if (mod(j, 2.0_dp) /= 0.0_dp) then
+      s = -s; c = -c
+    end if
+    select case (p%regime)
+    case (0)
+      sn = s; cn = c; dn = d
+    case (2)
+      sn = s / (d * p%sh); cn = c / d; dn = 1.0_dp / d
+    case default
+      sn = s / p%sh; cn = d; dn = c
+      am = asin(max(-1.0_dp, min(1.0_dp, sn)))
+      return
+    end select
+    if (j == 0.0_dp) then
+      am = ar
+    else
+      am = (j * pi + ar) + j * pi_lo
+    end if
+  end subroutine jacobi_eval
+
+  !> sn, cn, dn, am(u|m) in one call (prepares the parameter each time).
+  elemental subroutine jacobi_sncndn(u, m, mc, sn, cn, dn, am)
+    real(dp), intent(in) :: u, m, mc
+    real(dp), intent(out) :: sn, cn, dn, am
+    call jacobi_eval(jacobi_prepare(m, mc), u, sn, cn, dn, am)
+  end subroutine jacobi_sncndn
+
+end module pendula_elliptic

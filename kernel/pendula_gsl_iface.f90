@@ -1,0 +1,28 @@
+!> Fortran interfaces to the C glue in pendula_gsl.c.
+module pendula_gsl_iface
+  use, intrinsic :: iso_c_binding, only: c_int, c_double
+  implicit none
+  private
+  public :: pendula_gsl_init, pendula_gsl_elljac, pendula_gsl_kcomp
+
+  interface
+    subroutine pendula_gsl_init() bind(C, name="pendula_gsl_init")
+    end subroutine pendula_gsl_init
+
+    function pendula_gsl_elljac(n, u, m, sn, cn, dn) bind(C, name="pendula_gsl_elljac") result(bad)
+      import :: c_int, c_double
+      integer(c_int), value, intent(in) :: n
+      real(c_double), intent(in) :: u(*), m(*)
+      real(c_double), intent(out) :: sn(*), cn(*), dn(*)
+      integer(c_int) :: bad
+    end function pendula_gsl_elljac
+
+    function pendula_gsl_kcomp(n, m, k) bind(C, name="pendula_gsl_kcomp") result(bad)
+      import :: c_int, c_double
+      integer(c_int), value, intent(in) :: n
+      real(c_double), intent(in) :: m(*)
+      real(c_double), intent(out) :: k(*)
+      integer(c_int) :: bad
+    end function pendula_gsl_kcomp
+  end interface
+end module pendula_gsl_iface

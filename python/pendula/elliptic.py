@@ -1,0 +1,170 @@
+"""Elliptic integrals, the nome and the Jacobi elliptic functions.
+
+The parameter convention is m = k^2 (as in scipy.special and the DLMF).  Every
+function also takes the complementary parameter ``mc = 1 - m``; when it is
+given it is used instead of ``m``, so that parameters as close to 1 as
+m = 1 - 1e-300 (the pendulum next to its separatrix) are exact.  Nothing here
+forms 1 - m by subtraction when ``mc`` is known.
+
+All functions broadcast like numpy ufuncs, compute in float64 in the Fortran
+kernel (no per-element Python), and return NaN with a RuntimeWarning outside
+their domain.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _kernel
+from ._checks import as_float, flat, parameter, shaped, warn_domain
+
+__all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome"]
+
+
+def _unary(kfunc, name, m, mc):
+    m, mc = parameter(m, mc)
+    shape, (mf, mcf) = flat(m, mc)
+    out = kfunc(mf, mcf)
+    warn_domain(name, out, mf, mcf)
+    return shaped(out, shape)
+
+
+def _incomplete(kfunc, name, phi, m, mc):
+    phi = as_float(phi, "phi")
+    m, mc = parameter(m, mc)
+    shape, (pf, mf, mcf) = flat(phi, m, mc)
+    out = kfunc(pf, mf, mcf)
+    warn_domain(name, out, pf, mf, mcf)
+    return shaped(out, shape)
+
+
+def ellipk(m, mc=None):
+    """Complete elliptic integral of the first kind K(m).
+
+    Parameters
+    ----------
+    m : array_like
+        Parameter m = k^2, m <= 1.  May be None when `mc` is given.
+    mc : array_like, optional
+        Complementary parameter 1 - m; used instead of `m` when given.
+
+    Returns
+    -------
+    K : ndarray or float
+        K(m) = int_0^{pi/2} dt / sqrt(1 - m sin^2 t); +inf at m = 1, NaN
+        (with a RuntimeWarning) for m > 1.
+
+    Notes
+    -----
+    The arithmetic-geometric mean K = pi / (2 AGM(1, sqrt(mc))) carried in
+    double-double, so the result is within about 1 ulp for every mc > 0,
+    mc = 1e-300 included.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> float(pendula.ellipk(0.0))
+    1.5707963267948966
+    >>> float(pendula.ellipk(None, mc=1e-300))  # ln 4 + 150 ln 10
+    346.7741203402228
+    """
+    return _unary(_kernel.ellipk_v, "ellipk", m, mc)
+
+
+def ellipe(m, mc=None):
+    """Complete elliptic integral of the second kind E(m), m <= 1.
+
+    E(m) = int_0^{pi/2} sqrt(1 - m sin^2 t) dt, computed as
+    (mc/3) (R_D(0, mc, 1) + R_D(0, 1, mc)) (DLMF 19.25.1), a sum of positive
+    terms, so it stays accurate as m -> 1.  NaN with a RuntimeWarning for m > 1.
+    See :func:`ellipk` for the parameters.
+    """
+    return _unary(_kernel.ellipe_v, "ellipe", m, mc)
+
+
+def ellipf(phi, m, mc=None):
+    """Incomplete elliptic integral of the first kind F(phi|m).
+
+    Parameters
+    ----------
+    phi : array_like
+        Amplitude in radians, any real value (F(phi + j pi) = F(phi) + 2 j K).
+    m, mc : array_like
+        Parameter and its complement, as in :func:`ellipk`.  For m > 1 the
+        integral is real only while sin^2 phi <= 1/m; elsewhere NaN.
+    """
+    return _incomplete(_kernel.ellipf_v, "ellipf", phi, m, mc)
+
+
+def ellipeinc(phi, m, mc=None):
+    """Incomplete elliptic integral of the second kind E(phi|m).
+
+    For 0 <= m < 1 it uses E = mc F + (m mc/3) s^3 R_D(c^2, 1, D^2) + m s c / D
+    (s = sin phi, c = cos phi, D^2 = 1 - m s^2), whose terms are all positive,
+    so no digits cancel near m = 1.  See :func:`ellipf` for the parameters.
+    """
+    return _incomplete(_kernel.ellipeinc_v, "ellipeinc", phi, m, mc)
+
+
+def nome(m, mc=None):
+    """The nome q(m) = exp(-pi K(1-m) / K(m)) for 0 <= m <= 1.
+
+    Computed from Jacobi's series q = e + 2 e^5 + 15 e^9 + ... with
+    e = (1 - mc^(1/4)) / (2 (1 + mc^(1/4))) written without cancellation for
+    m <= 1/2, and from ln q ln q' = pi^2 with the complementary series for
+    m > 1/2, so q keeps its relative accuracy at both ends (q ~ m/16 as m -> 0,
+    q -> 1 as mc -> 0).
+    """
+    return _unary(_kernel.nome_v, "nome", m, mc)
+
+
+def ellipj(u, m, mc=None):
+    """Jacobi elliptic functions sn, cn, dn and the amplitude am of (u|m).
+
+    Parameters
+    ----------
+    u : array_like
+        Argument, any real value.  Arguments up to 2**48 half periods are
+        reduced with K in double-double, so the error does not grow with u.
+    m : array_like
+        Parameter m = k^2, any real value: m > 1 through the reciprocal-modulus
+        transformation, m < 0 through the imaginary-modulus transformation.
+        May be None when `mc` is given.
+    mc : array_like, optional
+        Complementary parameter 1 - m, used instead of `m` when given.
+
+    Returns
+    -------
+    sn, cn, dn, am : ndarray or float
+        For 0 <= m <= 1, `am` is the continuous (unwrapped) amplitude, monotone
+        in u: the angle of the rotating pendulum.  For m > 1 it is
+        asin(sn), which stays in [-pi/2, pi/2].
+
+    Notes
+    -----
+    When `m` is a scalar, everything that depends only on m (K in
+    double-double, the series coefficients) is computed once for the whole
+    array of u: that is the pendulum's case, many times at one energy.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> sn, cn, dn, am = pendula.ellipj(0.5, 0.3)
+    >>> round(float(sn), 15)
+    0.474215622711821
+    """
+    u = as_float(u, "u")
+    m, mc = parameter(m, mc)
+    if m.size == 1 and mc.size == 1:
+        shape = np.broadcast_shapes(u.shape, m.shape)
+        uf = np.ascontiguousarray(np.broadcast_to(u, shape), dtype=np.float64).reshape(-1)
+        mf = m.reshape(1).astype(np.float64)
+        mcf = mc.reshape(1).astype(np.float64)
+    else:
+        shape, (uf, mf, mcf) = flat(u, m, mc)
+    sn, cn, dn, am, status = _kernel.ellipj_v(uf, mf, mcf)
+    if status != 0:  # pragma: no cover - the sizes above always agree
+        raise RuntimeError("pendula kernel: ellipj_v got inconsistent sizes")
+    warn_domain("ellipj", sn, uf, np.broadcast_to(mf, uf.shape), np.broadcast_to(mcf, uf.shape),
+                what="outside the domain (or |u| beyond 2**48 half periods)")
+    return tuple(shaped(a, shape) for a in (sn, cn, dn, am))
