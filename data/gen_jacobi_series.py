@@ -23,3 +23,19 @@ for k in range(N-1):
 import math
 for k in range(2,15,2):
     print(k, [x*math.factorial(k) for x in c[k]], [x*math.factorial(k) for x in d[k]])
+
+# Series of T = tn^2 = sn^2/cn^2 in t = u^2: T = sum_k b_k(m) t^k (used by the kernel).
+def ser_div(A, B, n):  # power series A/B (coefficients are polynomials in m)
+    # B[0] = [1]
+    Q = []
+    for k in range(n):
+        r = A[k] if k < len(A) else [F(0)]
+        for i in range(1, k + 1):
+            r = padd(r, pscale(pmul(B[i], Q[k - i]), F(-1)))
+        Q.append(r)
+    return Q
+tn = ser_div(s, c, N)
+T = [mulser(tn, tn, k) for k in range(N)]
+print("tn^2 coefficients of u^(2k), as polynomials in m (low to high power):")
+for k in range(2, 15, 2):
+    print(k // 2, [str(x) for x in T[k]])

@@ -28,7 +28,7 @@ module pendula_elliptic
   private
   public :: ellip_k, ellip_k_dd, ellip_e, ellip_f, ellip_einc, ellip_nome
   public :: carlson_rf, carlson_rd
-  public :: jacobi_plan, jacobi_prepare, jacobi_eval, jacobi_sncndn
+  public :: jacobi_plan, jacobi_prepare, jacobi_eval, jacobi_eval_array, jacobi_sncndn
   public :: jacobi_max_periods
 
   !> Arguments beyond this many half periods cannot be reduced accurately
@@ -44,7 +44,9 @@ module pendula_elliptic
     real(dp) :: kh = 0.0_dp, kl = 0.0_dp      !< K of the core, double-double
     real(dp) :: sqmc = 1.0_dp                 !< sqrt(mc) of the core
     real(dp) :: sh = 1.0_dp, sl = 0.0_dp      !< argument scale (1, sqrt(1-m) or sqrt(m))
-    real(dp) :: cy(6) = 0.0_dp                 !< Maclaurin series of 1 - cn in u^2
+    real(dp) :: ct(6) = 0.0_dp                 !< Maclaurin series of tn^2 in u^2
+    integer :: ndbl = 0                        !< duplications that cover [0, K/2]
+    real(dp) :: inv2k = 0.0_dp                 !< 1 / (2K)
   end type jacobi_plan
 
 contains
@@ -361,147 +363,202 @@ contains
     p%m = cm; p%mc = cmc
     p%sqmc = sqrt(cmc)
     call ellip_k_dd(cmc, p%kh, p%kl)
-    ! Maclaurin series of 1 - cn in t = u^2 (coefficients from data/gen_jacobi_series.py)
-    p%cy(1) = 0.5_dp
-    p%cy(2) = -(1.0_dp + 4.0_dp * cm) / 24.0_dp
-    p%cy(3) = (1.0_dp + cm * (44.0_dp + cm * 16.0_dp)) / 720.0_dp
-    p%cy(4) = -(1.0_dp + cm * (408.0_dp + cm * (912.0_dp + cm * 64.0_dp))) / 40320.0_dp
-    p%cy(5) = (1.0_dp + cm * (3688.0_dp + cm * (30768.0_dp + cm * (15808.0_dp + cm * 256.0_dp)))) &
-              / 3628800.0_dp
-    p%cy(6) = -(1.0_dp + cm * (33212.0_dp + cm * (870640.0_dp + cm * (1538560.0_dp &
-              + cm * (259328.0_dp + cm * 1024.0_dp))))) / 479001600.0_dp
+    ! Maclaurin series of tn^2 = sn^2/cn^2 in t = u^2 (coefficients from
+    ! data/gen_jacobi_series.py); six terms reach 1e-17 relative at u <= 1/16.
+    p%ct(1) = 1.0_dp
+    p%ct(2) = (2.0_dp - cm) / 3.0_dp
+    p%ct(3) = (17.0_dp + cm * (-17.0_dp + cm * 2.0_dp)) / 45.0_dp
+    p%ct(4) = (62.0_dp + cm * (-93.0_dp + cm * (33.0_dp - cm))) / 315.0_dp
+    p%ct(5) = (1382.0_dp + cm * (-2764.0_dp + cm * (1641.0_dp + cm * (-259.0_dp + cm * 2.0_dp)))) &
+              / 14175.0_dp
+    p%ct(6) = (21844.0_dp + cm * (-54610.0_dp + cm * (45736.0_dp + cm * (-13994.0_dp &
+              + cm * (1028.0_dp - cm * 2.0_dp))))) / 467775.0_dp
+    p%ndbl = max(0, exponent(0.5_dp * p%kh) + 4)
+    p%inv2k = 0.5_dp / p%kh
   end function jacobi_prepare
 
-  !> sn, cn, dn on 0 <= w <= K/2 for the core parameter (0 <= m < 1).
-  !>
-  !> Only one quantity is carried through the duplications: y = 1 - cn while
-  !> it is below 1/2, then cn itself.  sn and dn are derived from it at the end
-  !> (sn^2 = y (2 - y), dn^2 = 1 - m sn^2 = mc + m cn^2), so the three results
-  !> are always consistent with one slightly perturbed argument; that is what
-  !> keeps cd = cn/dn exact to rounding after the quarter-period shift.
-  pure subroutine jacobi_core(p, w, s, c, d)
-    type(jacobi_plan), intent(in) :: p
-    real(dp), intent(in) :: w
-    real(dp), intent(out) :: s, c, d
-    real(dp) :: u0, t, y, s2, d2, cc, den
-    integer :: n, i
-    logical :: direct
+  !> Round to the nearest integer (ties to even) for |x| < 2^51, with plain
+  !> arithmetic so that loops using it vectorize (anint calls libm).
+  elemental function round_int(x) result(j)
+    real(dp), intent(in) :: x
+    real(dp) :: j
+    real(dp), parameter :: magic = 6755399441055744.0_dp   ! 2^52 + 2^51
+    j = (x + magic) - magic
+  end function round_int
 
-    if (w <= 0.0_dp) then
-      s = 0.0_dp; c = 1.0_dp; d = 1.0_dp; return
+  !> atan(x) for x >= 0 (including +Inf) without libm, so that it vectorizes:
+  !> x -> 1/x above 1, x -> (x-1)/(x+1) above tan(pi/8), one half-angle step
+  !> (|z| <= tan(pi/16)), then the Taylor series to z^25.  About 2 ulp.
+  elemental function atan_pos(x) result(a)
+    real(dp), intent(in) :: x
+    real(dp) :: a, z, z2, p
+    logical :: recip, shift
+    recip = x > 1.0_dp
+    z = merge(1.0_dp / x, x, recip)
+    shift = z > 0.41421356237309503_dp
+    z = merge((z - 1.0_dp) / (z + 1.0_dp), z, shift)
+    z = z / (1.0_dp + sqrt(1.0_dp + z * z))
+    z2 = z * z
+    p = 1.0_dp/25.0_dp
+    p = 1.0_dp/23.0_dp - z2 * p
+    p = 1.0_dp/21.0_dp - z2 * p
+    p = 1.0_dp/19.0_dp - z2 * p
+    p = 1.0_dp/17.0_dp - z2 * p
+    p = 1.0_dp/15.0_dp - z2 * p
+    p = 1.0_dp/13.0_dp - z2 * p
+    p = 1.0_dp/11.0_dp - z2 * p
+    p = 1.0_dp/9.0_dp - z2 * p
+    p = 1.0_dp/7.0_dp - z2 * p
+    p = 1.0_dp/5.0_dp - z2 * p
+    p = 1.0_dp/3.0_dp - z2 * p
+    a = 2.0_dp * (z - z * z2 * p)
+    a = merge(0.78539816339744831_dp + a, a, shift)
+    a = merge(half_pi - a, a, recip)
+  end function atan_pos
+
+  !> The Jacobi functions of an array of u at one prepared parameter.
+  !>
+  !> 1. reduce: x = u * scale = 2 K j + r (|r| <= K, double-double throughout),
+  !>    fold onto [0, K/2]: w = |r| or w = K - |r| (shifted);
+  !> 2. T = tn^2(w): Maclaurin series at w / 2^N <= 1/16, then N duplications
+  !>    tn^2(2u) = 4 T (1 + mc T) (1 + T) / (1 - mc T^2)^2.  N is fixed by K/2,
+  !>    every factor is positive on [0, K/2] (mc T^2 <= sqrt(mc)/4 at K/4), so
+  !>    nothing cancels;
+  !> 3. sn, cn, dn, am all from the one number T (and G = mc T after the
+  !>    shift), so whatever rounding does they stay consistent with one
+  !>    argument, and cd = cn/dn keeps full accuracy next to K.
+  !> The loops run over blocks with no data-dependent trip counts and no libm
+  !> calls except in the rare special regimes, so the compiler vectorizes them.
+  pure subroutine jacobi_eval_array(p, u, sn, cn, dn, am)
+    type(jacobi_plan), intent(in) :: p
+    real(dp), intent(in) :: u(:)
+    real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
+    integer, parameter :: blk = 256
+    real(dp), parameter :: splitter = 134217729.0_dp
+    real(dp) :: j(blk), r(blk), w(blk), t2(blk), sh(blk)
+    real(dp) :: kh, kl, halfk, sc, scl, inv2k, mc, cm, c1, c2, c3, c4, c5, c6, fac
+    real(dp) :: x, xh, xl, hi, lo, bh, bl, pr, pe, t, g, xx, inv, s, c, d, ar, half, odd
+    integer :: i0, nb, i, k, ndbl
+
+    if (p%regime /= 0 .and. p%regime /= 2 .and. p%regime /= 3) then
+      call jacobi_special(p, u, sn, cn, dn, am)
+      return
     end if
-    n = max(0, exponent(w) + 4)          ! u0 = w / 2^n <= 1/16
-    u0 = scale(w, -n)
-    t = u0 * u0
-    y = t * (p%cy(1) + t * (p%cy(2) + t * (p%cy(3) + t * (p%cy(4) + t * (p%cy(5) + t * p%cy(6))))))
-    i = 0
-    ! complement form: 1 - cn(2u) = 2 sn^2 dn^2 / (cn^2 + sn^2 dn^2)
-    do while (i < n .and. y <= 0.5_dp)
-      s2 = y * (2.0_dp - y)
-      c = 1.0_dp - y
-      d2 = 1.0_dp - p%m * s2
-      y = 2.0_dp * s2 * d2 / (c * c + s2 * d2)
-      i = i + 1
+    kh = p%kh; kl = p%kl; halfk = 0.5_dp * p%kh; inv2k = p%inv2k
+    sc = p%sh; scl = p%sl; mc = p%mc; cm = p%m; ndbl = p%ndbl
+    c1 = p%ct(1); c2 = p%ct(2); c3 = p%ct(3); c4 = p%ct(4); c5 = p%ct(5); c6 = p%ct(6)
+    fac = scale(1.0_dp, -ndbl)
+    ! Veltkamp split of the scale factor and of 2K, used by the exact products
+    t = splitter * sc; bh = t - (t - sc); bl = sc - bh
+
+    do i0 = 1, size(u), blk
+      nb = min(blk, size(u) - i0 + 1)
+      ! 1. reduction (Dekker products written out so that the loop vectorizes)
+      do i = 1, nb
+        x = u(i0 + i - 1)
+        xh = x * sc
+        t = splitter * x; hi = t - (t - x); lo = x - hi
+        xl = ((hi * bh - xh) + hi * bl + lo * bh) + lo * bl + x * scl
+        j(i) = round_int(xh * inv2k)
+        g = 2.0_dp * j(i)
+        pr = g * kh
+        t = splitter * g; hi = t - (t - g); lo = g - hi
+        t = splitter * kh; xx = t - (t - kh); s = kh - xx
+        pe = ((hi * xx - pr) + hi * s + lo * xx) + lo * s
+        r(i) = ((xh - pr) - pe) + (xl - g * kl)
+        w(i) = abs(r(i))
+        sh(i) = merge(1.0_dp, 0.0_dp, w(i) > halfk)
+        w(i) = merge(max(0.0_dp, (kh - w(i)) + kl), w(i), w(i) > halfk)
+      end do
+      ! 2. T = tn^2(w)
+      do i = 1, nb
+        t = w(i) * fac
+        t = t * t
+        t2(i) = t * (c1 + t * (c2 + t * (c3 + t * (c4 + t * (c5 + t * c6)))))
+      end do
+      do k = 1, ndbl
+        do i = 1, nb
+          g = mc * t2(i)
+          t2(i) = 4.0_dp * t2(i) * (1.0_dp + g) * (1.0_dp + t2(i)) / (1.0_dp - g * t2(i))**2
+        end do
+      end do
+      ! 3. sn, cn, dn, am of the core; sign of r; parity of j
+      do i = 1, nb
+        g = mc * t2(i)
+        xx = merge(g, t2(i), sh(i) > 0.0_dp)
+        inv = 1.0_dp / (1.0_dp + xx)
+        s = sqrt(merge(1.0_dp, t2(i), sh(i) > 0.0_dp) * inv)
+        c = sqrt(merge(g, 1.0_dp, sh(i) > 0.0_dp) * inv)
+        d = sqrt(merge(mc + g, 1.0_dp + g, sh(i) > 0.0_dp) * inv)
+        ar = atan_pos(sqrt(xx))
+        ar = merge(half_pi - ar, ar, sh(i) > 0.0_dp)
+        ! T underflows for |r| < 1e-154: there sn = am = r to all digits
+        s = merge(abs(r(i)), s, abs(r(i)) < 1.0e-100_dp)
+        ar = merge(abs(r(i)), ar, abs(r(i)) < 1.0e-100_dp)
+        s = sign(s, r(i))
+        ar = sign(ar, r(i))
+        half = 0.5_dp * j(i)
+        odd = merge(1.0_dp, 0.0_dp, round_int(half) /= half)
+        sn(i0 + i - 1) = s * (1.0_dp - 2.0_dp * odd)
+        cn(i0 + i - 1) = c * (1.0_dp - 2.0_dp * odd)
+        dn(i0 + i - 1) = d
+        am(i0 + i - 1) = (j(i) * pi + ar) + j(i) * pi_lo
+        ! reduced-argument amplitude kept in t2 for the m < 0 transformation
+        t2(i) = ar
+        w(i) = s
+        r(i) = c
+      end do
+      ! back from the core parameter to m
+      select case (p%regime)
+      case (2)   ! m < 0: sn = sd(nu u|mu)/nu, cn = cd, dn = nd
+        do i = i0, i0 + nb - 1
+          d = dn(i)
+          ar = atan2(w(i - i0 + 1) / sc, r(i - i0 + 1))
+          am(i) = (j(i - i0 + 1) * pi + ar) + j(i - i0 + 1) * pi_lo
+          sn(i) = sn(i) / (d * sc); cn(i) = cn(i) / d; dn(i) = 1.0_dp / d
+        end do
+      case (3)   ! m > 1: sn = sn(k u|1/m)/k, cn = dn, dn = cn; am = asin(sn)
+        do i = i0, i0 + nb - 1
+          s = sn(i) / sc
+          c = cn(i)
+          sn(i) = s; cn(i) = dn(i); dn(i) = c
+          am(i) = asin(max(-1.0_dp, min(1.0_dp, s)))
+        end do
+      end select
+      do i = 1, nb
+        x = u(i0 + i - 1)
+        if (x /= x .or. abs(x) > huge(1.0_dp) .or. abs(j(i)) > jacobi_max_periods) then
+          sn(i0 + i - 1) = nan_dp; cn(i0 + i - 1) = nan_dp
+          dn(i0 + i - 1) = nan_dp; am(i0 + i - 1) = nan_dp
+        end if
+      end do
     end do
-    c = 1.0_dp - y
-    direct = i < n
-    ! direct form: cn(2u) = (cn^4 - mc sn^4) / (cn^2 + sn^2 dn^2)
-    do while (i < n)
-      cc = c * c
-      s2 = (1.0_dp - c) * (1.0_dp + c)
-      d2 = p%mc + p%m * cc
-      den = cc + s2 * d2
-      c = (cc * cc - p%mc * s2 * s2) / den
-      i = i + 1
-    end do
-    if (direct) then
-      s2 = (1.0_dp - c) * (1.0_dp + c)
-    else
-      s2 = y * (2.0_dp - y)
-    end if
-    s = sqrt(s2)
-    d = sqrt(p%mc + p%m * c * c)
-  end subroutine jacobi_core
+  end subroutine jacobi_eval_array
 
   !> sn, cn, dn and the continuous amplitude am at u, for a prepared parameter.
   elemental subroutine jacobi_eval(p, u, sn, cn, dn, am)
     type(jacobi_plan), intent(in) :: p
     real(dp), intent(in) :: u
     real(dp), intent(out) :: sn, cn, dn, am
-    real(dp) :: xh, xl, j, pr, pe, r, w, s, c, d, sg, ar, tmp
-    logical :: shifted
+    real(dp) :: o(4, 1)
+    call jacobi_eval_array(p, [u], o(1, :), o(2, :), o(3, :), o(4, :))
+    sn = o(1, 1); cn = o(2, 1); dn = o(3, 1); am = o(4, 1)
+  end subroutine jacobi_eval
 
-    if (p%regime < 0 .or. u /= u .or. abs(u) > huge(1.0_dp)) then
-      sn = nan_dp; cn = nan_dp; dn = nan_dp; am = nan_dp; return
-    end if
-    if (p%regime == 1) then
+  !> m = 1 (tanh, sech, the Gudermannian) and the NaN cases.
+  elemental subroutine jacobi_special(p, u, sn, cn, dn, am)
+    type(jacobi_plan), intent(in) :: p
+    real(dp), intent(in) :: u
+    real(dp), intent(out) :: sn, cn, dn, am
+    if (p%regime == 1 .and. u == u) then
       sn = tanh(u)
       cn = 1.0_dp / cosh(u)
       dn = cn
       am = atan(sinh(u))
-      return
-    end if
-    ! argument of the core, in double-double
-    if (p%regime == 0) then
-      xh = u; xl = 0.0_dp
     else
-      call two_prod(u, p%sh, pr, pe)
-      call fast_two_sum(pr, pe + u * p%sl, xh, xl)
+      sn = nan_dp; cn = nan_dp; dn = nan_dp; am = nan_dp
     end if
-    ! reduce by the half period 2K:  x = 2 K j + r, |r| <= K
-    if (abs(xh) <= p%kh) then
-      j = 0.0_dp
-      r = xh + xl
-    else
-      j = anint(xh / (2.0_dp * p%kh))
-      if (abs(j) > jacobi_max_periods) then
-        sn = nan_dp; cn = nan_dp; dn = nan_dp; am = nan_dp; return
-      end if
-      call two_prod(2.0_dp * j, p%kh, pr, pe)
-      r = ((xh - pr) - pe) + (xl - 2.0_dp * j * p%kl)
-    end if
-    sg = sign(1.0_dp, r)
-    w = abs(r)
-    shifted = w > 0.5_dp * p%kh
-    if (shifted) w = max(0.0_dp, (p%kh - w) + p%kl)
-    call jacobi_core(p, w, s, c, d)
-    if (shifted) then
-      ! sn(K - w) = cd(w), cn(K - w) = sqrt(mc) sd(w), dn(K - w) = sqrt(mc) nd(w)
-      tmp = s
-      s = c / d
-      c = p%sqmc * tmp / d
-      d = p%sqmc / d
-    end if
-    s = sg * s
-    ! amplitude of the reduced argument (cn >= 0 there, so it lies in [-pi/2, pi/2])
-    select case (p%regime)
-    case (0)
-      ar = atan2(s, c)
-    case (2)
-      ar = atan2(s / p%sh, c)
-    case default
-      ar = 0.0_dp
-    end select
-    ! sn and cn change sign with every half period; dn does not
-    if (mod(j, 2.0_dp) /= 0.0_dp) then
-      s = -s; c = -c
-    end if
-    select case (p%regime)
-    case (0)
-      sn = s; cn = c; dn = d
-    case (2)
-      sn = s / (d * p%sh); cn = c / d; dn = 1.0_dp / d
-    case default
-      sn = s / p%sh; cn = d; dn = c
-      am = asin(max(-1.0_dp, min(1.0_dp, sn)))
-      return
-    end select
-    if (j == 0.0_dp) then
-      am = ar
-    else
-      am = (j * pi + ar) + j * pi_lo
-    end if
-  end subroutine jacobi_eval
+  end subroutine jacobi_special
 
   !> sn, cn, dn, am(u|m) in one call (prepares the parameter each time).
   elemental subroutine jacobi_sncndn(u, m, mc, sn, cn, dn, am)
