@@ -60,6 +60,14 @@ contains
   elemental subroutine ellip_k_dd(mc, kh, kl)
     real(dp), intent(in) :: mc
     real(dp), intent(out) :: kh, kl
+    call ellip_k_dd2(mc, 0.0_dp, kh, kl)
+  end subroutine ellip_k_dd
+
+  !> K for a complementary parameter given itself in double-double (mc + mcl):
+  !> the transformed parameters of m < 0 and m > 1 are not representable.
+  elemental subroutine ellip_k_dd2(mc, mcl, kh, kl)
+    real(dp), intent(in) :: mc, mcl
+    real(dp), intent(out) :: kh, kl
     real(dp) :: a, al, b, bl, s, e, an, anl, p, pe, ah2, al2, c, t, corr, mh, ml, q, r
     integer :: it
 
@@ -71,7 +79,7 @@ contains
       kh = 0.0_dp; kl = 0.0_dp; return
     end if
     a = 1.0_dp; al = 0.0_dp
-    call dd_sqrt(mc, 0.0_dp, b, bl)
+    call dd_sqrt(mc, mcl, b, bl)
     do it = 1, 64
       if (abs(a - b) <= 0.0009765625_dp * (a + b)) exit
       call two_sum(a, b, s, e)
@@ -97,7 +105,7 @@ contains
     call two_prod(2.0_dp * mh, q, p, pe)
     r = ((pi - p) - pe) + (pi_lo - 2.0_dp * ml * q)
     call fast_two_sum(q, r / (2.0_dp * mh), kh, kl)
-  end subroutine ellip_k_dd
+  end subroutine ellip_k_dd2
 
   !> Complete elliptic integral of the first kind K(m), m = 1 - mc.
   elemental function ellip_k(m, mc) result(k)
@@ -340,7 +348,7 @@ contains
   elemental function jacobi_prepare(m, mc) result(p)
     real(dp), intent(in) :: m, mc
     type(jacobi_plan) :: p
-    real(dp) :: cm, cmc
+    real(dp) :: cm, cmc, cmcl, pr, pe
     if (m /= m .or. mc /= mc .or. abs(m) > huge(1.0_dp) .or. abs(mc) > huge(1.0_dp)) then
       p%regime = -1; return
     end if
@@ -348,21 +356,25 @@ contains
       p%regime = 1; return
     else if (m >= 0.0_dp .and. mc > 0.0_dp) then
       p%regime = 0
-      cm = m; cmc = mc
+      cm = m; cmc = mc; cmcl = 0.0_dp
     else if (m < 0.0_dp) then
       ! sn(u|m) = sd(nu u|mu)/nu, cn = cd, dn = nd, mu = -m/mc, nu = sqrt(mc)
       p%regime = 2
       cm = -m / mc; cmc = 1.0_dp / mc
+      call two_prod(cmc, mc, pr, pe)
+      cmcl = ((1.0_dp - pr) - pe) / mc        ! 1/mc in double-double
       call dd_sqrt(mc, 0.0_dp, p%sh, p%sl)
     else
       ! sn(u|m) = sn(k u|1/m)/k, cn = dn(k u|1/m), dn = cn(k u|1/m), k = sqrt(m)
       p%regime = 3
       cm = 1.0_dp / m; cmc = -mc / m
+      call two_prod(cmc, m, pr, pe)
+      cmcl = ((-mc - pr) - pe) / m            ! -mc/m in double-double
       call dd_sqrt(m, 0.0_dp, p%sh, p%sl)
     end if
     p%m = cm; p%mc = cmc
     p%sqmc = sqrt(cmc)
-    call ellip_k_dd(cmc, p%kh, p%kl)
+    call ellip_k_dd2(cmc, cmcl, p%kh, p%kl)
     ! Maclaurin series of tn^2 = sn^2/cn^2 in t = u^2 (coefficients from
     ! data/gen_jacobi_series.py); six terms reach 1e-17 relative at u <= 1/16.
     p%ct(1) = 1.0_dp
