@@ -10,13 +10,13 @@ subroutine gsl_init()
 end subroutine gsl_init
 
 subroutine ellipk_v(n, m, mc, k)
-  use pendula_elliptic, only: ellip_k
+  use pendula_elliptic, only: ellip_k_array
   implicit none
   integer, intent(in) :: n
   double precision, intent(in) :: m(n), mc(n)
   double precision, intent(out) :: k(n)
   !f2py intent(hide), depend(m) :: n = len(m)
-  k = ellip_k(m, mc)
+  call ellip_k_array(m, mc, k)
 end subroutine ellipk_v
 
 subroutine ellipe_v(n, m, mc, e)
