@@ -28,7 +28,7 @@ module pendula_elliptic
   private
   public :: ellip_k, ellip_k_array, ellip_k_dd, ellip_e, ellip_f, ellip_einc, ellip_nome
   public :: carlson_rf, carlson_rd
-  public :: jacobi_plan, jacobi_prepare, jacobi_eval, jacobi_eval_array, jacobi_sncndn
+  public :: jacobi_plan, jacobi_prepare, jacobi_prepare_dd, jacobi_eval, jacobi_eval_array, jacobi_sncndn
   public :: jacobi_max_periods
 
   !> Arguments beyond this many half periods cannot be reduced accurately
@@ -393,6 +393,15 @@ contains
   elemental function jacobi_prepare(m, mc) result(p)
     real(dp), intent(in) :: m, mc
     type(jacobi_plan) :: p
+    p = jacobi_prepare_dd(m, mc, 0.0_dp)
+  end function jacobi_prepare
+
+  !> As jacobi_prepare, with the complement known in double-double (mc + mcl,
+  !> used for 0 <= m < 1): the pendulum's distance from its separatrix is a
+  !> product of two exact doubles, and its period over 1000 cycles needs it all.
+  elemental function jacobi_prepare_dd(m, mc, mcl) result(p)
+    real(dp), intent(in) :: m, mc, mcl
+    type(jacobi_plan) :: p
     real(dp) :: cm, cmc, cmcl, pr, pe
     if (m /= m .or. mc /= mc .or. abs(m) > huge(1.0_dp) .or. abs(mc) > huge(1.0_dp)) then
       p%regime = -1; return
@@ -401,7 +410,7 @@ contains
       p%regime = 1; return
     else if (m >= 0.0_dp .and. mc > 0.0_dp) then
       p%regime = 0
-      cm = m; cmc = mc; cmcl = 0.0_dp
+      cm = m; cmc = mc; cmcl = mcl
     else if (m < 0.0_dp) then
       ! sn(u|m) = sd(nu u|mu)/nu, cn = cd, dn = nd, mu = -m/mc, nu = sqrt(mc)
       p%regime = 2
@@ -432,7 +441,7 @@ contains
               + cm * (1028.0_dp - cm * 2.0_dp))))) / 467775.0_dp
     p%ndbl = max(0, exponent(0.5_dp * p%kh) + 4)
     p%inv2k = 0.5_dp / p%kh
-  end function jacobi_prepare
+  end function jacobi_prepare_dd
 
   !> Round to the nearest integer (ties to even) for |x| < 2^51, with plain
   !> arithmetic so that loops using it vectorize (anint calls libm).
@@ -486,13 +495,14 @@ contains
   !>    argument, and cd = cn/dn keeps full accuracy next to K.
   !> The loops run over blocks with no data-dependent trip counts and no libm
   !> calls except in the rare special regimes, so the compiler vectorizes them.
-  pure subroutine jacobi_eval_array(p, u, sn, cn, dn, am)
+  pure subroutine jacobi_eval_array(p, u, sn, cn, dn, am, ul)
     type(jacobi_plan), intent(in) :: p
     real(dp), intent(in) :: u(:)
+    real(dp), intent(in), optional :: ul(:)   !< low parts: the argument is u + ul
     real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
     integer, parameter :: blk = 256
     real(dp), parameter :: splitter = 134217729.0_dp
-    real(dp) :: j(blk), r(blk), w(blk), t2(blk), sh(blk)
+    real(dp) :: j(blk), r(blk), w(blk), t2(blk), sh(blk), ulb(blk)
     real(dp) :: kh, kl, halfk, sc, scl, inv2k, mc, cm, c1, c2, c3, c4, c5, c6, fac
     real(dp) :: x, xh, xl, hi, lo, bh, bl, pr, pe, t, g, xx, inv, s, c, d, ar, half, odd
     integer :: i0, nb, i, k, ndbl
@@ -510,12 +520,18 @@ contains
 
     do i0 = 1, size(u), blk
       nb = min(blk, size(u) - i0 + 1)
+      if (present(ul)) then
+        ulb(1:nb) = ul(i0:i0+nb-1)
+      else
+        ulb(1:nb) = 0.0_dp
+      end if
       ! 1. reduction (Dekker products written out so that the loop vectorizes)
       do i = 1, nb
         x = u(i0 + i - 1)
         xh = x * sc
         t = splitter * x; hi = t - (t - x); lo = x - hi
         xl = ((hi * bh - xh) + hi * bl + lo * bh) + lo * bl + x * scl
+        xl = xl + ulb(i) * sc
         j(i) = round_int(xh * inv2k)
         g = 2.0_dp * j(i)
         pr = g * kh

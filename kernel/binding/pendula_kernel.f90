@@ -104,3 +104,33 @@ subroutine gsl_kcomp_v(n, m, k, bad)
   !f2py intent(hide), depend(m) :: n = len(m)
   bad = pendula_gsl_kcomp(n, m, k)
 end subroutine gsl_kcomp_v
+
+! Exact motion of the conservative pendulum at the times t (status: 0 ok,
+! 1 bad eps, 2 bad theta0, 3 bad v0).
+subroutine exact_motion_v(n, theta0, v0, eps, t, theta, v, status)
+  use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_eval
+  implicit none
+  integer, intent(in) :: n
+  double precision, intent(in) :: theta0, v0, eps, t(n)
+  double precision, intent(out) :: theta(n), v(n)
+  integer, intent(out) :: status
+  !f2py intent(hide), depend(t) :: n = len(t)
+  type(pendulum_orbit) :: o
+  call orbit_setup(theta0, v0, eps, o, status)
+  if (status /= 0) return
+  call orbit_eval(o, t, theta, v)
+end subroutine exact_motion_v
+
+! Orbit facts: info = [regime, k, m, mc, period, theta_max, u0, mc_lo]
+subroutine exact_info_v(theta0, v0, eps, info, status)
+  use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_period, orbit_theta_max
+  implicit none
+  double precision, intent(in) :: theta0, v0, eps
+  double precision, intent(out) :: info(8)
+  integer, intent(out) :: status
+  type(pendulum_orbit) :: o
+  info = 0.0d0
+  call orbit_setup(theta0, v0, eps, o, status)
+  if (status /= 0) return
+  info = [dble(o%regime), o%k, o%m, o%mch, orbit_period(o), orbit_theta_max(o), o%u0, o%mcl]
+end subroutine exact_info_v

@@ -1,0 +1,206 @@
+!> The exact motion of the conservative pendulum theta'' + eps sin(theta) = 0.
+!>
+!> With k^2 = E / (2 eps) = sin^2(theta0/2) + (v0 / (2 sqrt(eps)))^2:
+!>  * libration (k < 1):  sin(theta/2) = k sn(u | k^2), theta = 2 atan2(k sn, dn),
+!>    v = 2 k sqrt(eps) cn, u = u0 + sqrt(eps) t;
+!>  * separatrix (k = 1): theta = 2 gd(u), v = 2 sqrt(eps) sech(u);
+!>  * rotation (k > 1):   theta = 2 am(u | 1/k^2), v = 2 k sqrt(eps) dn,
+!>    u = u0 + k sqrt(eps) t, the angle unwrapped and growing.
+!> The distance from the separatrix, mc = 1 - k^2 (or 1 - 1/k^2), is formed
+!> as (c - w)(c + w), c = cos(theta0/2), w = |v0| / (2 sqrt(eps)), in
+!> double-double, never as 1 - k^2: for theta0 = 0 it is exact, so v0 = 2 -
+!> 1e-12 and v0 = 2 + 1e-12 (eps = 1) keep every digit of their period.
+!> The phase u = u0 + rate t is carried in double-double too, so t of 1000
+!> periods loses nothing to the product.
+module pendula_exact
+  use pendula_kinds, only: dp, pi, pi_lo, two_pi, nan_dp, inf_dp
+  use pendula_dd, only: two_sum, fast_two_sum, two_prod, dd_sqrt
+  use pendula_elliptic, only: jacobi_plan, jacobi_prepare_dd, jacobi_eval_array, ellip_f
+  implicit none
+  private
+  public :: pendulum_orbit, orbit_setup, orbit_eval, orbit_period, orbit_theta_max
+
+  integer, parameter, public :: regime_libration = 0, regime_separatrix = 1, &
+                                regime_rotation = 2, regime_inverted = 3
+  integer, parameter, public :: orbit_ok = 0, orbit_bad_eps = 1, orbit_bad_theta0 = 2, &
+                                orbit_bad_v0 = 3
+
+  type :: pendulum_orbit
+    integer :: regime = regime_libration
+    real(dp) :: eps = 1.0_dp, sqh = 1.0_dp, sql = 0.0_dp  !< eps and sqrt(eps) (double-double)
+    real(dp) :: k = 0.0_dp                  !< modulus sqrt(E / (2 eps))
+    real(dp) :: m = 0.0_dp, mch = 1.0_dp, mcl = 0.0_dp  !< parameter of sn/am and its complement
+    real(dp) :: rateh = 1.0_dp, ratel = 0.0_dp  !< du/dt (double-double)
+    real(dp) :: u0 = 0.0_dp                 !< phase at t = 0
+    real(dp) :: offset = 0.0_dp             !< 2 pi n: the well of a libration
+    real(dp) :: dir = 1.0_dp                !< direction of a rotation or separatrix flight
+    real(dp) :: theta0 = 0.0_dp
+    type(jacobi_plan) :: plan
+  end type pendulum_orbit
+
+contains
+
+  !> Everything the exact solution needs for one initial state.
+  pure subroutine orbit_setup(theta0, v0, eps, o, status)
+    real(dp), intent(in) :: theta0, v0, eps
+    type(pendulum_orbit), intent(out) :: o
+    integer, intent(out) :: status
+    real(dp) :: n, p, e, th, tl, c0, s0, wh, wl, r, awh, awl, dh, dl, sh, sl, qh, ql
+    real(dp) :: k2h, k2l, a, b, kh, kl, phi0
+
+    status = orbit_ok
+    if (.not. (eps > 0.0_dp .and. eps <= huge(1.0_dp))) then
+      status = orbit_bad_eps; return
+    else if (.not. (abs(theta0) <= huge(1.0_dp))) then
+      status = orbit_bad_theta0; return
+    else if (.not. (abs(v0) <= huge(1.0_dp))) then
+      status = orbit_bad_v0; return
+    end if
+    o%eps = eps
+    o%theta0 = theta0
+    call dd_sqrt(eps, 0.0_dp, o%sqh, o%sql)
+    ! theta0 = 2 pi n + (th + tl), |th| <= pi, with pi in double-double
+    n = anint(theta0 / two_pi)
+    call two_prod(2.0_dp * n, pi, p, e)
+    call two_sum(theta0 - p, -e - 2.0_dp * n * pi_lo, th, tl)
+    s0 = sin(0.5_dp * th)
+    if (abs(th) > 0.5_dp * pi) then
+      ! cos(theta/2) = sin((pi - |theta|)/2), with pi - |theta| formed in double-double
+      c0 = sin(0.5_dp * ((pi - abs(th)) + (pi_lo - sign(1.0_dp, th) * tl)))
+    else
+      c0 = cos(0.5_dp * th)
+    end if
+    ! w = v0 / (2 sqrt(eps)) in double-double
+    wh = v0 / (2.0_dp * o%sqh)
+    call two_prod(2.0_dp * o%sqh, wh, p, e)
+    r = ((v0 - p) - e) - 2.0_dp * o%sql * wh
+    wl = r / (2.0_dp * o%sqh)
+    awh = abs(wh); awl = sign(1.0_dp, wh) * wl
+    ! d = c0 - |w| (exact when close), s = c0 + |w|
+    call two_sum(c0, -awh, dh, dl)
+    dl = dl - awl
+    call fast_two_sum(dh, dl, dh, dl)
+    call two_sum(c0, awh, sh, sl)
+    sl = sl + awl
+    ! k^2 = s0^2 + w^2 in double-double
+    call two_prod(s0, s0, a, e)
+    call two_prod(wh, wh, b, r)
+    call two_sum(a, b, k2h, k2l)
+    k2l = k2l + e + r + 2.0_dp * wh * wl
+
+    if (dh > 0.0_dp) then
+      ! libration: mc = (c0 - |w|)(c0 + |w|), m = k^2
+      o%regime = regime_libration
+      call two_prod(dh, sh, qh, e)
+      ql = e + dh * sl + dl * sh
+      call fast_two_sum(qh, ql, o%mch, o%mcl)
+      o%m = k2h
+      o%k = sqrt(k2h)
+      o%offset = two_pi * n
+      o%rateh = o%sqh; o%ratel = o%sql
+      phi0 = atan2(s0, wh)
+      o%u0 = ellip_f(phi0, o%m, o%mch)
+      o%plan = jacobi_prepare_dd(o%m, o%mch, o%mcl)
+    else if (dh == 0.0_dp .and. dl == 0.0_dp) then
+      o%k = 1.0_dp; o%m = 1.0_dp; o%mch = 0.0_dp; o%mcl = 0.0_dp
+      o%offset = two_pi * n
+      o%rateh = o%sqh; o%ratel = o%sql
+      if (wh == 0.0_dp) then
+        ! theta0 = +-pi with v0 = 0: the inverted equilibrium, forever
+        o%regime = regime_inverted
+        o%u0 = 0.0_dp
+      else
+        o%regime = regime_separatrix
+        o%dir = sign(1.0_dp, wh)
+        o%u0 = atanh(o%dir * s0)
+        o%plan = jacobi_prepare_dd(1.0_dp, 0.0_dp, 0.0_dp)
+      end if
+    else
+      ! rotation: parameter 1/k^2, complement (|w| - c0)(|w| + c0) / k^2
+      o%regime = regime_rotation
+      o%dir = sign(1.0_dp, wh)
+      call two_prod(-dh, sh, qh, e)
+      ql = e - dh * sl - dl * sh
+      call fast_two_sum(qh, ql, qh, ql)
+      ! divide by k^2 (double-double quotient)
+      a = qh / k2h
+      call two_prod(a, k2h, p, e)
+      b = (((qh - p) - e) + ql - a * k2l) / k2h
+      call fast_two_sum(a, b, o%mch, o%mcl)
+      o%m = 1.0_dp / k2h
+      call dd_sqrt(k2h, k2l, kh, kl)
+      o%k = kh
+      ! rate = k sqrt(eps) (double-double)
+      call two_prod(kh, o%sqh, p, e)
+      e = e + kh * o%sql + kl * o%sqh
+      call fast_two_sum(p, e, o%rateh, o%ratel)
+      o%u0 = ellip_f(0.5_dp * o%dir * theta0, o%m, o%mch)
+      o%plan = jacobi_prepare_dd(o%m, o%mch, o%mcl)
+    end if
+  end subroutine orbit_setup
+
+  !> theta(t) and v(t) at any times (before or after t = 0, in any order).
+  pure subroutine orbit_eval(o, t, theta, v)
+    type(pendulum_orbit), intent(in) :: o
+    real(dp), intent(in) :: t(:)
+    real(dp), intent(out) :: theta(:), v(:)
+    real(dp) :: uh(size(t)), ul(size(t)), sn(size(t)), cn(size(t)), dn(size(t)), am(size(t))
+    real(dp) :: p, e, s, f
+    integer :: i
+
+    if (o%regime == regime_inverted) then
+      theta = o%theta0
+      v = 0.0_dp
+      return
+    end if
+    do i = 1, size(t)
+      call two_prod(t(i), o%rateh, p, e)
+      e = e + t(i) * o%ratel
+      call two_sum(o%u0, p, s, f)
+      call fast_two_sum(s, f + e, uh(i), ul(i))
+    end do
+    call jacobi_eval_array(o%plan, uh, sn, cn, dn, am, ul)
+    select case (o%regime)
+    case (regime_libration)
+      theta = o%offset + 2.0_dp * atan2(o%k * sn, dn)
+      v = (2.0_dp * o%k * o%sqh) * cn
+    case (regime_separatrix)
+      theta = o%offset + o%dir * 2.0_dp * am
+      v = o%dir * (2.0_dp * o%sqh) * cn
+    case default
+      theta = o%dir * 2.0_dp * am
+      v = o%dir * (2.0_dp * o%k * o%sqh) * dn
+    end select
+  end subroutine orbit_eval
+
+  !> Period: 4K/sqrt(eps) for a libration, one full turn 2K(1/k^2)/(k sqrt(eps))
+  !> for a rotation, +Inf on the separatrix and at the inverted equilibrium.
+  pure function orbit_period(o) result(tp)
+    type(pendulum_orbit), intent(in) :: o
+    real(dp) :: tp
+    select case (o%regime)
+    case (regime_libration)
+      tp = 4.0_dp * (o%plan%kh + o%plan%kl) / o%sqh
+    case (regime_rotation)
+      tp = 2.0_dp * (o%plan%kh + o%plan%kl) / o%rateh
+    case default
+      tp = inf_dp
+    end select
+  end function orbit_period
+
+  !> Largest |theta - 2 pi n| reached: 2 atan2(k, sqrt(mc)) in libration, pi on
+  !> the separatrix, +Inf for a rotation (no turning point).
+  pure function orbit_theta_max(o) result(tm)
+    type(pendulum_orbit), intent(in) :: o
+    real(dp) :: tm
+    select case (o%regime)
+    case (regime_libration)
+      tm = 2.0_dp * atan2(o%k, sqrt(o%mch))
+    case (regime_separatrix, regime_inverted)
+      tm = pi
+    case default
+      tm = inf_dp
+    end select
+  end function orbit_theta_max
+
+end module pendula_exact
