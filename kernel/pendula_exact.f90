@@ -63,6 +63,14 @@ contains
     n = anint(theta0 / two_pi)
     call two_prod(2.0_dp * n, pi, p, e)
     call two_sum(theta0 - p, -e - 2.0_dp * n * pi_lo, th, tl)
+    ! the quotient may round across +-pi: keep the reduced angle inside [-pi, pi] exactly
+    if (th > pi .or. (th == pi .and. tl > pi_lo)) then
+      n = n + 1.0_dp
+    else if (th < -pi .or. (th == -pi .and. tl < -pi_lo)) then
+      n = n - 1.0_dp
+    end if
+    call two_prod(2.0_dp * n, pi, p, e)
+    call two_sum(theta0 - p, -e - 2.0_dp * n * pi_lo, th, tl)
     s0 = sin(0.5_dp * th)
     if (abs(th) > 0.5_dp * pi) then
       ! cos(theta/2) = sin((pi - |theta|)/2), with pi - |theta| formed in double-double
@@ -77,9 +85,8 @@ contains
     wl = r / (2.0_dp * o%sqh)
     awh = abs(wh); awl = sign(1.0_dp, wh) * wl
     ! d = c0 - |w| (exact when close), s = c0 + |w|
-    call two_sum(c0, -awh, dh, dl)
-    dl = dl - awl
-    call fast_two_sum(dh, dl, dh, dl)
+    call two_sum(c0, -awh, a, b)
+    call fast_two_sum(a, b - awl, dh, dl)
     call two_sum(c0, awh, sh, sl)
     sl = sl + awl
     ! k^2 = s0^2 + w^2 in double-double
@@ -119,9 +126,8 @@ contains
       ! rotation: parameter 1/k^2, complement (|w| - c0)(|w| + c0) / k^2
       o%regime = regime_rotation
       o%dir = sign(1.0_dp, wh)
-      call two_prod(-dh, sh, qh, e)
-      ql = e - dh * sl - dl * sh
-      call fast_two_sum(qh, ql, qh, ql)
+      call two_prod(-dh, sh, a, e)
+      call fast_two_sum(a, e - dh * sl - dl * sh, qh, ql)
       ! divide by k^2 (double-double quotient)
       a = qh / k2h
       call two_prod(a, k2h, p, e)

@@ -1,0 +1,374 @@
+"""Scenes: what to simulate, and nothing more.
+
+A scene is a small text file holding one Fortran namelist group ``&scene``::
+
+    &scene
+      name = 'near the separatrix from below'
+      eps = 1.0                 ! g / l  (or give g and length)
+      theta0 = 0.0, v0 = 1.999
+      t_end = 40.0, n_samples = 2001
+      outputs = 'theta_t', 'phase'
+      sweep = 'v0', sweep_values = 1.7, 1.8, 1.9, 1.95
+    /
+
+The same file is read by Python (:meth:`Scene.from_file`) and natively by the
+compiled batch executable ``pendula-run``.  A scene names the effects it wants
+by giving their parameters (``damping``, ``torque``, ``drive_amplitude`` ...);
+effects it does not name are not in the model, and a conservative rigid
+pendulum is answered by the exact solution.  A field that is unknown,
+misspelled, of the wrong type or out of range is an error that names it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import difflib
+import math
+import pathlib
+import re
+from dataclasses import dataclass, field, fields
+
+import numpy as np
+
+#: Trajectory columns and derived outputs a scene may ask for.
+OUTPUTS = ("trajectory", "theta_t", "v_t", "phase", "energy", "period", "omega", "theta_max",
+           "series", "spectrum")
+#: Methods (issue "Integrators" adds the numerical ones).
+METHODS = ("auto", "exact", "rk4", "verlet", "yoshida4", "yoshida6", "yoshida8", "gauss4", "gauss6",
+           "dopri5", "dop853", "gsl-rk8pd")
+CORDS = ("rigid", "flexible")
+GUIDES = ("none", "cycloid")
+GRAVITIES = ("uniform", "inverse-square")
+SWEEPABLE = ("v0", "theta0", "eps", "damping", "torque", "drive_amplitude", "drive_frequency")
+
+
+class SceneError(ValueError):
+    """A malformed scene; the message names the field (and the file and line)."""
+
+
+@dataclass(frozen=True)
+class Scene:
+    """One pendulum experiment.
+
+    Parameters
+    ----------
+    eps : float
+        g / l, the square of the small-oscillation angular frequency (> 0).
+        Alternatively give ``g`` and ``length``.
+    theta0, v0 : float
+        Initial angle (rad) and angular velocity (rad/s) at t = 0.
+    t_start, t_end : float
+        Time span of the output (may start before 0 and run backwards).
+    n_samples : int
+        Number of equally spaced output times.
+    damping, torque : float
+        Linear damping beta and constant torque tau:
+        theta'' + beta theta' + eps sin(theta) = tau.
+    drive_amplitude, drive_frequency, drive_phase : float
+        Periodic drive A cos(Omega t + phase) on the right-hand side.
+    cord, guide, gravity : str
+        Room for the flexible cord (Garfinkel), the cycloidal guide (Huygens)
+        and non-uniform gravity; 'rigid', 'none', 'uniform' mean absent.
+    method : str
+        'auto' (exact whenever the scene allows it), 'exact', or an integrator.
+    rtol, atol, dt : float
+        Tolerances of adaptive methods, step of fixed-step ones.
+    outputs : tuple of str
+        What to produce: see :data:`OUTPUTS`.
+    sweep, sweep_values : str, tuple of float
+        Optionally one field and the values it takes, one run per value.
+    name : str
+        A title for plots and file names.
+    """
+
+    eps: float = 1.0
+    theta0: float = 0.0
+    v0: float = 0.0
+    t_start: float = 0.0
+    t_end: float = 20.0
+    n_samples: int = 1001
+    damping: float = 0.0
+    torque: float = 0.0
+    drive_amplitude: float = 0.0
+    drive_frequency: float = 0.0
+    drive_phase: float = 0.0
+    cord: str = "rigid"
+    guide: str = "none"
+    gravity: str = "uniform"
+    method: str = "auto"
+    rtol: float = 1e-10
+    atol: float = 1e-12
+    dt: float = 0.0
+    outputs: tuple = ("trajectory",)
+    sweep: str = ""
+    sweep_values: tuple = ()
+    name: str = ""
+    g: float = field(default=math.nan, repr=False)
+    length: float = field(default=math.nan, repr=False)
+
+    def __post_init__(self):
+        _validate(self)
+
+    # -- construction -------------------------------------------------------
+    @classmethod
+    def from_file(cls, path) -> "Scene":
+        """Read a scene from a namelist file (group ``&scene``)."""
+        path = pathlib.Path(path)
+        try:
+            text = path.read_text()
+        except OSError as exc:
+            raise SceneError(f"{path}: cannot read scene file: {exc.strerror}") from None
+        return cls.from_namelist(text, source=str(path))
+
+    @classmethod
+    def from_namelist(cls, text: str, source: str = "<scene>") -> "Scene":
+        """Parse namelist text; errors name the source, the line and the field."""
+        values = parse_namelist(text, source)
+        try:
+            return cls(**values)
+        except SceneError as exc:
+            raise SceneError(f"{source}: {exc}") from None
+
+    def replace(self, **changes) -> "Scene":
+        """A copy with some fields changed (validated again)."""
+        return dataclasses.replace(self, **changes)
+
+    # -- what the scene asks for -------------------------------------------
+    @property
+    def effects(self) -> tuple[str, ...]:
+        """The effects this scene names, in a fixed order."""
+        out = []
+        if self.damping != 0.0:
+            out.append("damping")
+        if self.torque != 0.0:
+            out.append("torque")
+        if self.drive_amplitude != 0.0:
+            out.append("drive")
+        if self.cord != "rigid":
+            out.append("cord")
+        if self.guide != "none":
+            out.append("guide")
+        if self.gravity != "uniform":
+            out.append("gravity")
+        return tuple(out)
+
+    @property
+    def is_conservative_rigid(self) -> bool:
+        """True when the exact elliptic-function solution answers this scene."""
+        return not self.effects
+
+    def members(self) -> list["Scene"]:
+        """One scene per sweep value (the scene itself when there is no sweep)."""
+        if not self.sweep:
+            return [self]
+        return [self.replace(**{self.sweep: float(v)}, sweep="", sweep_values=()) for v in self.sweep_values]
+
+    def times(self) -> np.ndarray:
+        """The output times: n_samples points from t_start to t_end."""
+        return np.linspace(self.t_start, self.t_end, self.n_samples)
+
+    def to_namelist(self) -> str:
+        """The scene as namelist text (what from_namelist reads back)."""
+        lines = ["&scene"]
+        for f in fields(self):
+            v = getattr(self, f.name)
+            if f.name in ("g", "length"):
+                continue
+            if isinstance(v, tuple):
+                if not v:
+                    continue
+                lines.append(f"  {f.name} = " + ", ".join(_fmt(x) for x in v))
+            else:
+                lines.append(f"  {f.name} = {_fmt(v)}")
+        lines.append("/")
+        return "\n".join(lines) + "\n"
+
+
+def _fmt(v) -> str:
+    if isinstance(v, str):
+        return "'" + v.replace("'", "''") + "'"
+    if isinstance(v, bool):
+        return ".true." if v else ".false."
+    if isinstance(v, int):
+        return str(v)
+    return repr(float(v))
+
+
+# ---------------------------------------------------------------- validation
+
+_FLOATS = {"eps", "theta0", "v0", "t_start", "t_end", "damping", "torque", "drive_amplitude",
+           "drive_frequency", "drive_phase", "rtol", "atol", "dt", "g", "length"}
+_INTS = {"n_samples"}
+_STRS = {"cord", "guide", "gravity", "method", "sweep", "name"}
+_TUPLES = {"outputs": str, "sweep_values": float}
+
+
+def _validate(s: Scene) -> None:
+    set_ = object.__setattr__
+    for name in _FLOATS:
+        v = getattr(s, name)
+        if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
+            raise SceneError(f"field '{name}' must be a real number, got {v!r}")
+        set_(s, name, float(v))
+        if name not in ("g", "length") and not math.isfinite(float(v)):
+            raise SceneError(f"field '{name}' must be finite, got {v!r}")
+    v = s.n_samples
+    if isinstance(v, bool) or not isinstance(v, (int, np.integer)) and not (isinstance(v, float) and v.is_integer()):
+        raise SceneError(f"field 'n_samples' must be a whole number, got {v!r}")
+    set_(s, "n_samples", int(v))
+    for name in _STRS:
+        if not isinstance(getattr(s, name), str):
+            raise SceneError(f"field '{name}' must be a string, got {getattr(s, name)!r}")
+    for name, kind in _TUPLES.items():
+        v = getattr(s, name)
+        if isinstance(v, (str, float, int, np.floating)):
+            v = (v,)
+        v = tuple(np.asarray(v).tolist()) if isinstance(v, np.ndarray) else tuple(v)
+        for x in v:
+            ok = isinstance(x, str) if kind is str else (
+                isinstance(x, (int, float, np.integer, np.floating)) and not isinstance(x, bool))
+            if not ok:
+                raise SceneError(f"field '{name}' must be a list of "
+                                 f"{'strings' if kind is str else 'numbers'}, got {x!r}")
+        set_(s, name, tuple(kind(x) for x in v))
+    # g and length: both or neither, and then eps = g / length
+    if math.isnan(s.g) != math.isnan(s.length):
+        raise SceneError("fields 'g' and 'length' go together (eps = g / length): give both or neither")
+    if not math.isnan(s.g):
+        if not (s.g > 0 and s.length > 0 and math.isfinite(s.g) and math.isfinite(s.length)):
+            raise SceneError("fields 'g' and 'length' must be positive and finite")
+        set_(s, "eps", s.g / s.length)
+    if not s.eps > 0:
+        raise SceneError(f"field 'eps' must be positive (eps = g/l), got {s.eps!r}")
+    if s.n_samples < 1 or s.n_samples > 100_000_000:
+        raise SceneError(f"field 'n_samples' must be between 1 and 1e8, got {s.n_samples}")
+    if s.damping < 0:
+        raise SceneError(f"field 'damping' must be >= 0, got {s.damping!r}")
+    if s.drive_frequency < 0:
+        raise SceneError(f"field 'drive_frequency' must be >= 0, got {s.drive_frequency!r}")
+    if s.rtol <= 0 or s.atol < 0:
+        raise SceneError("fields 'rtol' must be > 0 and 'atol' >= 0")
+    if s.dt < 0:
+        raise SceneError(f"field 'dt' must be >= 0 (0: chosen by the method), got {s.dt!r}")
+    for name, allowed in (("cord", CORDS), ("guide", GUIDES), ("gravity", GRAVITIES), ("method", METHODS)):
+        if getattr(s, name) not in allowed:
+            raise SceneError(f"field '{name}' must be one of {', '.join(allowed)}; got {getattr(s, name)!r}"
+                             + _suggest(getattr(s, name), allowed))
+    for o in s.outputs:
+        if o not in OUTPUTS:
+            raise SceneError(f"field 'outputs': unknown output {o!r}; known: {', '.join(OUTPUTS)}"
+                             + _suggest(o, OUTPUTS))
+    if s.sweep:
+        if s.sweep not in SWEEPABLE:
+            raise SceneError(f"field 'sweep' must name one of {', '.join(SWEEPABLE)}; got {s.sweep!r}")
+        if not s.sweep_values:
+            raise SceneError("field 'sweep_values' is empty but 'sweep' names a field")
+        if not all(math.isfinite(x) for x in s.sweep_values):
+            raise SceneError("field 'sweep_values' must be finite numbers")
+    elif s.sweep_values:
+        raise SceneError("field 'sweep_values' is given but 'sweep' does not name a field")
+    if s.method == "exact" and s.effects:
+        raise SceneError(f"field 'method': 'exact' answers only the conservative rigid pendulum, "
+                         f"but the scene names {', '.join(s.effects)}")
+
+
+def _suggest(word, choices) -> str:
+    close = difflib.get_close_matches(str(word), list(choices), n=1)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+# ---------------------------------------------------------------- namelist
+
+_TOKEN = re.compile(r"""
+    (?P<str>'(?:[^']|'')*'|"(?:[^"]|"")*")
+  | (?P<logical>\.(?:true|false|t|f)\.)
+  | (?P<name>[A-Za-z_][A-Za-z0-9_]*)
+  | (?P<num>[+-]?(?:\d+\.?\d*|\.\d+)(?:[eEdD][+-]?\d+)?)
+  | (?P<eq>=)
+  | (?P<sep>,)
+  | (?P<end>/)
+  | (?P<group>&[A-Za-z_]+)
+  | (?P<space>\s+)
+  | (?P<comment>![^\n]*)
+""", re.VERBOSE | re.IGNORECASE)
+
+_FIELDS = {f.name for f in fields(Scene)}
+
+
+def parse_namelist(text: str, source: str = "<scene>") -> dict:
+    """The ``&scene`` group of a namelist as a dict of Scene fields.
+
+    Supports what the scenes use: scalars, comma- or blank-separated lists,
+    quoted strings, logicals, ``!`` comments.  Field names are case-insensitive
+    (as in Fortran).  Anything else is a SceneError naming line and field.
+    """
+    pos, line = 0, 1
+    tokens = []
+    while pos < len(text):
+        m = _TOKEN.match(text, pos)
+        if not m:
+            bad = text[pos:].split()[0] if text[pos:].split() else text[pos]
+            raise SceneError(f"{source}, line {line}: cannot read {bad!r}")
+        kind = m.lastgroup
+        if kind not in ("space", "comment"):
+            tokens.append((kind, m.group(), line))
+        line += m.group().count("\n")
+        pos = m.end()
+    if not tokens or tokens[0][0] != "group" or tokens[0][1].lower() != "&scene":
+        raise SceneError(f"{source}: a scene file must start with the group '&scene'")
+    if tokens[-1][0] != "end":
+        raise SceneError(f"{source}: the group '&scene' is not closed with '/'")
+    values: dict = {}
+    i = 1
+    body = tokens[1:-1]
+    while i - 1 < len(body):
+        kind, tok, ln = body[i - 1]
+        if kind == "sep":
+            i += 1
+            continue
+        if kind != "name":
+            raise SceneError(f"{source}, line {ln}: expected a field name, got {tok!r}")
+        key = tok.lower()
+        if key not in _FIELDS:
+            raise SceneError(f"{source}, line {ln}: unknown field '{tok}'" + _suggest(key, sorted(_FIELDS)))
+        if key in values:
+            raise SceneError(f"{source}, line {ln}: field '{key}' is given twice")
+        if i >= len(body) or body[i][0] != "eq":
+            raise SceneError(f"{source}, line {ln}: field '{key}' must be followed by '='")
+        i += 2
+        items = []
+        while i - 1 < len(body):
+            k2, t2, l2 = body[i - 1]
+            if k2 == "sep":
+                i += 1
+                continue
+            if k2 == "name" and i < len(body) and body[i][0] == "eq":
+                break
+            if k2 == "str":
+                q = t2[0]
+                items.append(t2[1:-1].replace(q + q, q))
+            elif k2 == "num":
+                items.append(float(t2.lower().replace("d", "e")) if re.search(r"[.eEdD]", t2) else int(t2))
+            elif k2 == "logical":
+                items.append(t2.lower() in (".true.", ".t."))
+            else:
+                raise SceneError(f"{source}, line {l2}: field '{key}': cannot read value {t2!r}")
+            i += 1
+        if not items:
+            raise SceneError(f"{source}, line {ln}: field '{key}' has no value")
+        if key in _TUPLES:
+            values[key] = tuple(items)
+        elif len(items) > 1:
+            raise SceneError(f"{source}, line {ln}: field '{key}' takes one value, got {len(items)}")
+        else:
+            v = items[0]
+            if key in _FLOATS and isinstance(v, int) and not isinstance(v, bool):
+                v = float(v)
+            if key in _FLOATS and not isinstance(v, float):
+                raise SceneError(f"{source}, line {ln}: field '{key}' must be a real number, got {v!r}")
+            if key in _STRS and not isinstance(v, str):
+                raise SceneError(f"{source}, line {ln}: field '{key}' must be a quoted string, got {v!r}")
+            if key in _INTS and not isinstance(v, int):
+                raise SceneError(f"{source}, line {ln}: field '{key}' must be a whole number, got {v!r}")
+            values[key] = v
+    return values
