@@ -1,0 +1,425 @@
+!> Scenes for the batch executables: the namelist group &scene, read natively.
+!>
+!> Each "name = value" assignment is read on its own through an internal
+!> namelist read, so that an unknown field, a misspelling or a value of the
+!> wrong type is reported with the field's name and its line; then the ranges
+!> are checked with the same rules as the Python layer (pendula/scene.py).
+module pendula_scene
+  use pendula_kinds, only: dp, nan_dp
+  implicit none
+  private
+  public :: scene_t, read_scene, scene_effects, scene_summary, max_sweep, max_outputs
+
+  integer, parameter :: max_sweep = 4096, max_outputs = 16
+
+  type :: scene_t
+    real(dp) :: eps = 1.0_dp, theta0 = 0.0_dp, v0 = 0.0_dp
+    real(dp) :: t_start = 0.0_dp, t_end = 20.0_dp
+    integer :: n_samples = 1001
+    real(dp) :: damping = 0.0_dp, torque = 0.0_dp
+    real(dp) :: drive_amplitude = 0.0_dp, drive_frequency = 0.0_dp, drive_phase = 0.0_dp
+    character(len=32) :: cord = 'rigid', guide = 'none', gravity = 'uniform', method = 'auto'
+    real(dp) :: rtol = 1.0e-10_dp, atol = 1.0e-12_dp, dt = 0.0_dp
+    character(len=16) :: outputs(max_outputs) = ''
+    character(len=32) :: sweep = ''
+    real(dp) :: sweep_values(max_sweep) = nan_dp
+    integer :: n_sweep = 0
+    character(len=256) :: name = ''
+  end type scene_t
+
+contains
+
+  !> Read and check a scene file.  status 0: ok; otherwise msg names the problem.
+  subroutine read_scene(path, sc, status, msg)
+    character(len=*), intent(in) :: path
+    type(scene_t), intent(out) :: sc
+    integer, intent(out) :: status
+    character(len=*), intent(out) :: msg
+    ! the namelist variables (same names as the fields)
+    real(dp) :: eps, theta0, v0, t_start, t_end, damping, torque, drive_amplitude, &
+                drive_frequency, drive_phase, rtol, atol, dt, g, length
+    integer :: n_samples
+    character(len=32) :: cord, guide, gravity, method, sweep
+    character(len=16) :: outputs(max_outputs)
+    real(dp) :: sweep_values(max_sweep)
+    character(len=256) :: name
+    namelist /scene/ eps, theta0, v0, t_start, t_end, n_samples, damping, torque, &
+      drive_amplitude, drive_frequency, drive_phase, cord, guide, gravity, method, rtol, atol, dt, &
+      outputs, sweep, sweep_values, name, g, length
+    character(len=:), allocatable :: text
+    character(len=4096) :: buf
+    character(len=512) :: iom
+    integer :: unit, ios, i, j, k, start, line, nseen
+    character(len=64) :: fname, seen(64)
+    logical :: inq
+    character(len=16), parameter :: known_fields(24) = [character(len=16) :: 'eps', 'theta0', 'v0', &
+      't_start', 't_end', 'n_samples', 'damping', 'torque', 'drive_amplitude', 'drive_frequency', &
+      'drive_phase', 'cord', 'guide', 'gravity', 'method', 'rtol', 'atol', 'dt', 'outputs', 'sweep', &
+      'sweep_values', 'name', 'g', 'length']
+
+    status = 0
+    msg = ''
+    eps = sc%eps; theta0 = sc%theta0; v0 = sc%v0; t_start = sc%t_start; t_end = sc%t_end
+    n_samples = sc%n_samples; damping = 0; torque = 0; drive_amplitude = 0; drive_frequency = 0
+    drive_phase = 0; cord = sc%cord; guide = sc%guide; gravity = sc%gravity; method = sc%method
+    rtol = sc%rtol; atol = sc%atol; dt = 0; outputs = ''; sweep = ''; sweep_values = nan_dp
+    name = ''; g = nan_dp; length = nan_dp
+
+    inquire(file=path, exist=inq)
+    if (.not. inq) then
+      status = 1; msg = trim(path) // ': cannot read scene file (no such file)'; return
+    end if
+    open(newunit=unit, file=path, status='old', action='read', access='stream', form='unformatted', &
+         iostat=ios)
+    if (ios /= 0) then
+      status = 1; msg = trim(path) // ': cannot open scene file'; return
+    end if
+    inquire(unit=unit, size=k)
+    allocate(character(len=max(k, 0)) :: text)
+    if (k > 0) read(unit, iostat=ios) text
+    close(unit)
+    call strip_comments(text)
+    ! the group: from '&scene' to the closing '/'
+    i = index(lower(text), '&scene')
+    if (i == 0) then
+      status = 1; msg = trim(path) // ': a scene file must start with the group ''&scene'''; return
+    end if
+    j = closing_slash(text, i + 6)
+    if (j == 0) then
+      status = 1; msg = trim(path) // ': the group ''&scene'' is not closed with ''/'''; return
+    end if
+    ! split the body into assignments at each "name =" outside quotes, read each alone
+    start = 0
+    nseen = 0
+    k = i + 6
+    do while (k < j)
+      call next_assignment(text, k, j, start, fname)
+      if (start == 0) exit
+      line = 1 + count_newlines(text(1:start))
+      if (any(seen(1:nseen) == fname)) then
+        status = 1
+        write(msg, '(a,i0,a)') trim(path) // ', line ', line, ': field ''' // trim(fname) // ''' is given twice'
+        return
+      end if
+      nseen = min(nseen + 1, size(seen))
+      seen(nseen) = fname
+      buf = '&scene ' // text(start:k - 1) // ' /'
+      read(buf, nml=scene, iostat=ios, iomsg=iom)
+      if (ios /= 0) then
+        status = 1
+        if (.not. any(known_fields == fname)) then
+          write(msg, '(a,i0,a)') trim(path) // ', line ', line, ': unknown field ''' // trim(fname) // ''''
+        else
+          write(msg, '(a,i0,a)') trim(path) // ', line ', line, ': field ''' // trim(fname) // &
+            ''': cannot read its value (' // trim(iom) // ')'
+        end if
+        return
+      end if
+    end do
+
+    sc%eps = eps; sc%theta0 = theta0; sc%v0 = v0; sc%t_start = t_start; sc%t_end = t_end
+    sc%n_samples = n_samples; sc%damping = damping; sc%torque = torque
+    sc%drive_amplitude = drive_amplitude; sc%drive_frequency = drive_frequency
+    sc%drive_phase = drive_phase; sc%cord = lower(cord); sc%guide = lower(guide)
+    sc%gravity = lower(gravity); sc%method = lower(method); sc%rtol = rtol; sc%atol = atol
+    sc%dt = dt; sc%outputs = outputs; sc%sweep = lower(sweep); sc%sweep_values = sweep_values
+    sc%name = name
+    sc%n_sweep = count(sweep_values == sweep_values)
+    call check(sc, g, length, status, msg)
+    if (status /= 0) msg = trim(path) // ': ' // trim(msg)
+  end subroutine read_scene
+
+  !> The same range rules as pendula/scene.py.
+  subroutine check(sc, g, length, status, msg)
+    type(scene_t), intent(inout) :: sc
+    real(dp), intent(in) :: g, length
+    integer, intent(out) :: status
+    character(len=*), intent(out) :: msg
+    character(len=16), parameter :: known_outputs(10) = [character(len=16) :: 'trajectory', 'theta_t', &
+      'v_t', 'phase', 'energy', 'period', 'omega', 'theta_max', 'series', 'spectrum']
+    character(len=16), parameter :: methods(12) = [character(len=16) :: 'auto', 'exact', 'rk4', 'verlet', &
+      'yoshida4', 'yoshida6', 'yoshida8', 'gauss4', 'gauss6', 'dopri5', 'dop853', 'gsl-rk8pd']
+    character(len=16), parameter :: sweepable(7) = [character(len=16) :: 'v0', 'theta0', 'eps', &
+      'damping', 'torque', 'drive_amplitude', 'drive_frequency']
+    integer :: i
+    status = 1
+    if ((g /= g) .neqv. (length /= length)) then
+      msg = 'fields ''g'' and ''length'' go together (eps = g / length): give both or neither'; return
+    end if
+    if (g == g) then
+      if (.not. (g > 0 .and. length > 0 .and. g <= huge(g) .and. length <= huge(g))) then
+        msg = 'fields ''g'' and ''length'' must be positive and finite'; return
+      end if
+      sc%eps = g / length
+    end if
+    if (.not. finite(sc%eps) .or. sc%eps <= 0) then
+      msg = 'field ''eps'' must be positive and finite (eps = g/l)'; return
+    end if
+    if (.not. (finite(sc%theta0) .and. finite(sc%v0) .and. finite(sc%t_start) .and. finite(sc%t_end))) then
+      msg = 'fields ''theta0'', ''v0'', ''t_start'', ''t_end'' must be finite'; return
+    end if
+    if (sc%n_samples < 1 .or. sc%n_samples > 100000000) then
+      msg = 'field ''n_samples'' must be between 1 and 1e8'; return
+    end if
+    if (.not. finite(sc%damping) .or. sc%damping < 0) then
+      msg = 'field ''damping'' must be >= 0'; return
+    end if
+    if (.not. (finite(sc%torque) .and. finite(sc%drive_amplitude) .and. finite(sc%drive_phase))) then
+      msg = 'fields ''torque'', ''drive_amplitude'', ''drive_phase'' must be finite'; return
+    end if
+    if (.not. finite(sc%drive_frequency) .or. sc%drive_frequency < 0) then
+      msg = 'field ''drive_frequency'' must be >= 0'; return
+    end if
+    if (.not. (sc%rtol > 0) .or. .not. (sc%atol >= 0)) then
+      msg = 'fields ''rtol'' must be > 0 and ''atol'' >= 0'; return
+    end if
+    if (.not. (sc%dt >= 0)) then
+      msg = 'field ''dt'' must be >= 0 (0: chosen by the method)'; return
+    end if
+    if (sc%cord /= 'rigid' .and. sc%cord /= 'flexible') then
+      msg = 'field ''cord'' must be one of rigid, flexible; got ''' // trim(sc%cord) // ''''; return
+    end if
+    if (sc%guide /= 'none' .and. sc%guide /= 'cycloid') then
+      msg = 'field ''guide'' must be one of none, cycloid; got ''' // trim(sc%guide) // ''''; return
+    end if
+    if (sc%gravity /= 'uniform' .and. sc%gravity /= 'inverse-square') then
+      msg = 'field ''gravity'' must be one of uniform, inverse-square; got ''' // trim(sc%gravity) // ''''
+      return
+    end if
+    if (.not. any(methods == sc%method)) then
+      msg = 'field ''method'': unknown method ''' // trim(sc%method) // ''''; return
+    end if
+    do i = 1, max_outputs
+      if (len_trim(sc%outputs(i)) == 0) cycle
+      if (.not. any(known_outputs == lower(sc%outputs(i)))) then
+        msg = 'field ''outputs'': unknown output ''' // trim(sc%outputs(i)) // ''''; return
+      end if
+      sc%outputs(i) = lower(sc%outputs(i))
+    end do
+    if (all(len_trim(sc%outputs) == 0)) sc%outputs(1) = 'trajectory'
+    if (len_trim(sc%sweep) > 0) then
+      if (.not. any(sweepable == sc%sweep)) then
+        msg = 'field ''sweep'' must name one of v0, theta0, eps, damping, torque, drive_amplitude, ' // &
+              'drive_frequency; got ''' // trim(sc%sweep) // ''''; return
+      end if
+      if (sc%n_sweep == 0) then
+        msg = 'field ''sweep_values'' is empty but ''sweep'' names a field'; return
+      end if
+      if (any(sc%sweep_values(1:sc%n_sweep) /= sc%sweep_values(1:sc%n_sweep)) .or. &
+          count(sc%sweep_values == sc%sweep_values) /= sc%n_sweep) then
+        msg = 'field ''sweep_values'' must be finite numbers, one after another'; return
+      end if
+    else if (sc%n_sweep > 0) then
+      msg = 'field ''sweep_values'' is given but ''sweep'' does not name a field'; return
+    end if
+    if (sc%method == 'exact' .and. len_trim(scene_effects(sc)) > 0) then
+      msg = 'field ''method'': ''exact'' answers only the conservative rigid pendulum, but the scene names ' &
+            // trim(scene_effects(sc)); return
+    end if
+    status = 0
+    msg = ''
+  end subroutine check
+
+  !> The effects a scene names, comma separated ('' when none).
+  pure function scene_effects(sc) result(s)
+    type(scene_t), intent(in) :: sc
+    character(len=128) :: s
+    s = ''
+    if (sc%damping /= 0) call add('damping')
+    if (sc%torque /= 0) call add('torque')
+    if (sc%drive_amplitude /= 0) call add('drive')
+    if (sc%cord /= 'rigid') call add('cord')
+    if (sc%guide /= 'none') call add('guide')
+    if (sc%gravity /= 'uniform') call add('gravity')
+  contains
+    pure subroutine add(w)
+      character(len=*), intent(in) :: w
+      if (len_trim(s) > 0) then
+        s = trim(s) // ', ' // w
+      else
+        s = w
+      end if
+    end subroutine add
+  end function scene_effects
+
+  !> One line per field, for the header of output files.
+  function scene_summary(sc) result(s)
+    type(scene_t), intent(in) :: sc
+    character(len=2048) :: s
+    character(len=1024) :: tmp
+    integer :: i
+    write(s, '(a, es24.16e3, a, es24.16e3, a, es24.16e3, a, es24.16e3, a, es24.16e3, a, i0)') &
+      'eps = ', sc%eps, ', theta0 = ', sc%theta0, ', v0 = ', sc%v0, ', t_start = ', sc%t_start, &
+      ', t_end = ', sc%t_end, ', n_samples = ', sc%n_samples
+    write(tmp, '(a, es24.16e3, a, es24.16e3, a, es24.16e3, a, es24.16e3, a, es24.16e3)') &
+      'damping = ', sc%damping, ', torque = ', sc%torque, ', drive_amplitude = ', sc%drive_amplitude, &
+      ', drive_frequency = ', sc%drive_frequency, ', drive_phase = ', sc%drive_phase
+    s = trim(s) // new_line('a') // '# ' // trim(tmp)
+    s = trim(s) // new_line('a') // '# cord = ' // trim(sc%cord) // ', guide = ' // trim(sc%guide) // &
+        ', gravity = ' // trim(sc%gravity) // ', method = ' // trim(sc%method)
+    tmp = ''
+    do i = 1, max_outputs
+      if (len_trim(sc%outputs(i)) > 0) tmp = trim(tmp) // ' ' // trim(sc%outputs(i))
+    end do
+    s = trim(s) // new_line('a') // '# outputs =' // trim(tmp)
+    if (sc%n_sweep > 0) then
+      write(tmp, '(a, i0, a)') 'sweep = ' // trim(sc%sweep) // ' over ', sc%n_sweep, ' values'
+      s = trim(s) // new_line('a') // '# ' // trim(tmp)
+    end if
+    if (len_trim(sc%name) > 0) s = trim(s) // new_line('a') // '# name = ' // trim(sc%name)
+  end function scene_summary
+
+  ! ------------------------------------------------------------ helpers
+
+  pure logical function finite(x)
+    real(dp), intent(in) :: x
+    finite = abs(x) <= huge(x)
+  end function finite
+
+  pure function lower(s) result(r)
+    character(len=*), intent(in) :: s
+    character(len=len(s)) :: r
+    integer :: i
+    r = s
+    do i = 1, len(s)
+      if (r(i:i) >= 'A' .and. r(i:i) <= 'Z') r(i:i) = achar(iachar(r(i:i)) + 32)
+    end do
+  end function lower
+
+  pure integer function count_newlines(s)
+    character(len=*), intent(in) :: s
+    integer :: i
+    count_newlines = 0
+    do i = 1, len(s)
+      if (s(i:i) == new_line('a')) count_newlines = count_newlines + 1
+    end do
+  end function count_newlines
+
+  !> Blank out '!' comments (outside quotes), keeping the newlines.
+  pure subroutine strip_comments(s)
+    character(len=*), intent(inout) :: s
+    integer :: i
+    character(len=1) :: q
+    logical :: incomment
+    q = ' '
+    incomment = .false.
+    do i = 1, len(s)
+      if (s(i:i) == new_line('a')) then
+        incomment = .false.
+        cycle
+      end if
+      if (incomment) then
+        s(i:i) = ' '
+      else if (q /= ' ') then
+        if (s(i:i) == q) q = ' '
+      else if (s(i:i) == '''' .or. s(i:i) == '"') then
+        q = s(i:i)
+      else if (s(i:i) == '!') then
+        incomment = .true.
+        s(i:i) = ' '
+      end if
+    end do
+  end subroutine strip_comments
+
+  !> Position of the '/' that closes the group (outside quotes), or 0.
+  pure integer function closing_slash(s, from)
+    character(len=*), intent(in) :: s
+    integer, intent(in) :: from
+    integer :: i
+    character(len=1) :: q
+    q = ' '
+    closing_slash = 0
+    do i = from, len(s)
+      if (q /= ' ') then
+        if (s(i:i) == q) q = ' '
+      else if (s(i:i) == '''' .or. s(i:i) == '"') then
+        q = s(i:i)
+      else if (s(i:i) == '/') then
+        closing_slash = i
+        return
+      end if
+    end do
+  end function closing_slash
+
+  !> From position k, find the next "name =" (outside quotes) and the end of
+  !> its value (the next "name =" or the closing slash at stop).  On return
+  !> start is where the name begins (0 if none) and k where the next begins.
+  pure subroutine next_assignment(s, k, stop, start, fname)
+    character(len=*), intent(in) :: s
+    integer, intent(inout) :: k
+    integer, intent(in) :: stop
+    integer, intent(out) :: start
+    character(len=*), intent(out) :: fname
+    integer :: i, e
+    start = 0
+    fname = ''
+    call find_name_eq(s, k, stop, i, e)
+    if (i == 0) then
+      k = stop
+      return
+    end if
+    start = i
+    fname = lower(s(i:e))
+    call find_name_eq(s, e + 1, stop, i, e)
+    if (i == 0) then
+      k = stop
+    else
+      k = i
+    end if
+  end subroutine next_assignment
+
+  !> First identifier followed by '=' at or after position from (outside quotes).
+  pure subroutine find_name_eq(s, from, stop, first, last)
+    character(len=*), intent(in) :: s
+    integer, intent(in) :: from, stop
+    integer, intent(out) :: first, last
+    integer :: i, j
+    character(len=1) :: q
+    q = ' '
+    first = 0
+    last = 0
+    i = from
+    do while (i < stop)
+      if (q /= ' ') then
+        if (s(i:i) == q) q = ' '
+        i = i + 1
+        cycle
+      end if
+      if (s(i:i) == '''' .or. s(i:i) == '"') then
+        q = s(i:i)
+        i = i + 1
+        cycle
+      end if
+      if (is_alpha(s(i:i)) .and. (i == 1 .or. .not. is_word(s(max(i - 1, 1):max(i - 1, 1))))) then
+        j = i
+        do while (j + 1 < stop .and. is_word(s(j + 1:j + 1)))
+          j = j + 1
+        end do
+        last = j
+        j = j + 1
+        do while (j < stop .and. (s(j:j) == ' ' .or. s(j:j) == new_line('a') .or. s(j:j) == achar(9) &
+                                  .or. s(j:j) == achar(13)))
+          j = j + 1
+        end do
+        if (j < stop .and. s(j:j) == '=') then
+          first = i
+          return
+        end if
+        i = last + 1
+        cycle
+      end if
+      i = i + 1
+    end do
+  end subroutine find_name_eq
+
+  pure logical function is_alpha(c)
+    character(len=1), intent(in) :: c
+    is_alpha = (c >= 'a' .and. c <= 'z') .or. (c >= 'A' .and. c <= 'Z') .or. c == '_'
+  end function is_alpha
+
+  pure logical function is_word(c)
+    character(len=1), intent(in) :: c
+    is_word = is_alpha(c) .or. (c >= '0' .and. c <= '9')
+  end function is_word
+
+end module pendula_scene
