@@ -11,7 +11,7 @@ PY := $(VENV)/bin/python
 APT_PKGS := gfortran libgsl-dev libfftw3-dev pkg-config python3-venv
 export PATH := $(CURDIR)/$(VENV)/bin:$(PATH)
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
-SOURCES := $(shell find kernel python -type f \( -name '*.f90' -o -name '*.c' -o -name '*.py' \)) meson.build pyproject.toml
+SOURCES := $(shell find kernel python data/scenes -type f \( -name "*.f90" -o -name "*.c" -o -name "*.py" -o -name "*.inc" -o -name "*.nml" \)) meson.build pyproject.toml
 
 .PHONY: demo test bench system-deps clean
 

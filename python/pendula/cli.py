@@ -1,6 +1,7 @@
 """The ``pendula`` command.
 
-    pendula demo                 the main job on its embedded default
+    pendula demo [-o out]        the main job: the default gallery of scenes, figures and tables
+    pendula run SCENE.nml        one scene: CSV and PNG into an output folder
     pendula bench [NAME ...]     benchmarks against scipy / GSL / numpy
     pendula accuracy elliptic    worst errors vs mpmath, beside scipy and GSL
 """
@@ -57,8 +58,47 @@ def print_elliptic_table() -> None:
         print(f"  {name:62s} {got:24.17g} {exact:24.17g} {err:9.1f}")
 
 
+def gallery_dir():
+    """The default gallery of scenes shipped with the package (data/scenes in the repository)."""
+    from importlib.resources import files
+
+    return files("pendula") / "scenes"
+
+
+def cmd_run(args) -> int:
+    from .run import run_scene
+    from .scene import Scene, SceneError
+
+    try:
+        scene = Scene.from_file(args.scene)
+    except SceneError as exc:
+        print(f"pendula run: {exc}", file=sys.stderr)
+        return 2
+    import pathlib
+
+    files = run_scene(scene, args.output, stem=pathlib.Path(args.scene).stem, progress=not args.quiet)
+    for f in files:
+        print(f)
+    return 0
+
+
 def cmd_demo(args) -> int:
+    import pathlib
+
+    from .run import run_scene
+    from .scene import Scene
+
     print_elliptic_table()
+    out = pathlib.Path(args.output)
+    scenes = sorted(p for p in gallery_dir().iterdir() if p.name.endswith(".nml"))
+    print(f"\nthe default gallery: {len(scenes)} scenes from the source notes -> {out.resolve()}")
+    written = []
+    for p in scenes:
+        scene = Scene.from_namelist(p.read_text(), source=p.name)
+        files = run_scene(scene, out, stem=p.name[:-4], progress=not args.quiet)
+        written += files
+        print(f"  {p.name:40s} {len(files)} file(s): " + ", ".join(f.name for f in files))
+    print(f"\n{len(written)} files written to {out.resolve()}")
     return 0
 
 
@@ -80,8 +120,15 @@ def cmd_bench(args) -> int:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="pendula", description="The nonlinear pendulum, exact and fast.")
     sub = parser.add_subparsers(dest="command", required=True)
-    p = sub.add_parser("demo", help="run the main job on its embedded default")
+    p = sub.add_parser("demo", help="run the main job on its embedded default (the gallery of the source notes)")
+    p.add_argument("-o", "--output", default="out", help="output folder (default: out)")
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress bars")
     p.set_defaults(func=cmd_demo)
+    p = sub.add_parser("run", help="run one scene file: CSV tables and PNG figures")
+    p.add_argument("scene", help="scene file (namelist group &scene)")
+    p.add_argument("-o", "--output", default="out", help="output folder (default: out)")
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress bars")
+    p.set_defaults(func=cmd_run)
     p = sub.add_parser("accuracy", help="measured accuracy against stored mpmath references")
     p.add_argument("what", choices=["elliptic"])
     p.add_argument("--reference", default="data/elliptic_reference.csv",

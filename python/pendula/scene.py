@@ -32,7 +32,7 @@ import numpy as np
 
 #: Trajectory columns and derived outputs a scene may ask for.
 OUTPUTS = ("trajectory", "theta_t", "v_t", "phase", "energy", "period", "omega", "theta_max",
-           "series", "spectrum")
+           "series", "lindstedt", "spectrum")
 #: Methods (issue "Integrators" adds the numerical ones).
 METHODS = ("auto", "exact", "rk4", "verlet", "yoshida4", "yoshida6", "yoshida8", "gauss4", "gauss6",
            "dopri5", "dop853", "gsl-rk8pd")

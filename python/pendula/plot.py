@@ -1,0 +1,160 @@
+"""Figures (matplotlib, Agg backend): what a person would rather look at than read.
+
+Each function takes computed data and a path, writes one PNG and returns the
+path.  matplotlib is needed only here (``pip install pendula[plot]``).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+
+def _plt():
+    try:
+        import matplotlib
+    except ImportError:  # pragma: no cover - depends on the environment
+        raise ImportError("pendula's figures need matplotlib: pip install 'pendula[plot]'") from None
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def _label(scene, value):
+    return f"{scene.sweep} = {value:.10g}" if scene.sweep else ""
+
+
+def _finish(fig, ax, title, path):
+    ax.set_title(title, fontsize=10)
+    ax.grid(True, alpha=0.3)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=7, loc="best")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    _plt().close(fig)
+    return path
+
+
+def time_series(scene, runs, path, which="theta"):
+    """theta(t) (or v(t)) of every member of a sweep, like the source's Fig. 5."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    for value, tr in runs:
+        ax.plot(tr.t, getattr(tr, which), lw=1.0, label=_label(scene, value))
+    ax.set_xlabel("t")
+    ax.set_ylabel("theta (rad)" if which == "theta" else "v = dtheta/dt (rad/s)")
+    if which == "theta":
+        lim = ax.get_ylim()
+        for k in range(math.floor(lim[0] / math.pi), math.ceil(lim[1] / math.pi) + 1):
+            if k % 2:
+                ax.axhline(k * math.pi, color="k", lw=0.5, ls=":")
+    method = runs[0][1].method if runs else ""
+    return _finish(fig, ax, f"{scene.name or which + '(t)'}   [eps = {scene.eps:g}, {method}]", path)
+
+
+def _wrapped(theta, v):
+    """theta folded into [-pi, pi), with a break (NaN) wherever it wraps."""
+    w = np.mod(theta + np.pi, 2 * np.pi) - np.pi
+    jump = np.abs(np.diff(w)) > np.pi
+    w = np.insert(w, np.nonzero(jump)[0] + 1, np.nan)
+    v = np.insert(v, np.nonzero(jump)[0] + 1, np.nan)
+    return w, v
+
+
+def phase_portrait(scene, runs, path):
+    """v against theta (folded into [-pi, pi)) for every member and its mirror
+    image (-theta, -v), with the separatrix v = +-2 sqrt(eps) cos(theta/2)."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(8, 5))
+    for value, tr in runs:
+        w, v = _wrapped(tr.theta, tr.v)
+        line, = ax.plot(w, v, lw=1.0, label=_label(scene, value))
+        if np.any(np.abs(tr.theta) > np.pi):
+            ax.plot(-w, -v, lw=1.0, color=line.get_color())
+    th = np.linspace(-math.pi, math.pi, 2000)
+    sep = 2 * math.sqrt(scene.eps) * np.abs(np.cos(th / 2))
+    ax.plot(th, sep, "k--", lw=0.8, label="separatrix")
+    ax.plot(th, -sep, "k--", lw=0.8)
+    ax.set_xlim(-math.pi, math.pi)
+    ax.set_xlabel("theta (rad)")
+    ax.set_ylabel("v (rad/s)")
+    return _finish(fig, ax, scene.name or "phase portrait", path)
+
+
+def energy_drift(scene, runs, path):
+    """Relative energy error (E - E0)/E0 along each run."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(8, 4))
+    for value, tr in runs:
+        e0 = tr.energy[np.argmin(np.abs(tr.t))]
+        ax.plot(tr.t, (tr.energy - e0) / (abs(e0) or 1.0), lw=0.8, label=_label(scene, value))
+    ax.set_xlabel("t")
+    ax.set_ylabel("(E - E0) / E0")
+    return _finish(fig, ax, scene.name or "energy", path)
+
+
+def orbit_curves(scene, values, table, path):
+    """omega, theta_max and period against the swept field (Figs. 8, 10, 13)."""
+    plt = _plt()
+    cols = [c for c in ("omega", "theta_max", "period") if c in table]
+    fig, axes = plt.subplots(len(cols), 1, figsize=(8, 2.8 * len(cols)), sharex=True, squeeze=False)
+    for ax, c in zip(axes[:, 0], cols):
+        y = np.asarray(table[c], dtype=float)
+        ax.plot(values, np.where(np.isfinite(y), y, np.nan), "o-", ms=2.5, lw=1.0, label=c)
+        if c == "theta_max" and scene.sweep == "v0":
+            ax.plot(values, 2 * np.asarray(values) / math.sqrt(scene.eps), "b:", lw=0.8,
+                    label="small-angle 2 v0/sqrt(eps)")
+            ax.set_ylim(0, 3.5)
+        ax.set_ylabel(c)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7)
+    axes[-1, 0].set_xlabel(scene.sweep)
+    axes[0, 0].set_title(scene.name or "orbits", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def critical_omega(scene, values, omega, path):
+    """omega against |v0 - 2 sqrt(eps)| near the separatrix (Figs. 9 and 12) with the asymptotes
+    (pi/2)/ln(4/sqrt(t)) below and pi/ln(4/sqrt(t)) above, t = |v0/sqrt(eps) - 2|."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    v = np.asarray(values) / math.sqrt(scene.eps)
+    t = np.abs(v - 2.0)
+    om = np.asarray(omega) / math.sqrt(scene.eps)
+    below, above = v < 2, v > 2
+    tt = np.logspace(np.log10(max(t[t > 0].min(), 1e-300)), np.log10(t.max()), 200)
+    ax.semilogx(t[below], om[below], "o", ms=4, label="exact, v0 < 2 (libration)")
+    ax.semilogx(t[above], om[above], "s", ms=4, label="exact, v0 > 2 (rotation)")
+    ax.semilogx(tt, (math.pi / 2) / np.log(4 / np.sqrt(tt)), "-", lw=0.8, label="(pi/2) / ln(4/sqrt(t))")
+    ax.semilogx(tt, math.pi / np.log(4 / np.sqrt(tt)), "-", lw=0.8, label="pi / ln(4/sqrt(t))")
+    ax.set_xlabel("t = |v0/sqrt(eps) - 2|")
+    ax.set_ylabel("omega / sqrt(eps)")
+    return _finish(fig, ax, scene.name or "critical behaviour of omega", path)
+
+
+def period_series_figure(theta0, exact, approximations, path):
+    """Relative error of the truncated period series against the exact period."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    for n, approx in approximations.items():
+        err = np.abs(approx / exact - 1)
+        ax.semilogy(theta0, np.where(err > 0, err, np.nan), lw=1.0, label=f"series to theta0^{2 * n}")
+    ax.set_xlabel("theta0 (rad), released from rest")
+    ax.set_ylabel("|T_series / T_exact - 1|")
+    return _finish(fig, ax, "period series against the exact period 4K/sqrt(eps)", path)
+
+
+def lindstedt_figure(amplitudes, errors, path):
+    """Max |theta_PL - theta_exact| over the run against the amplitude, per order."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    for order, err in errors.items():
+        ax.loglog(amplitudes, err, "o-", ms=3, lw=1.0, label=f"Poincare-Lindstedt order {order}")
+    ax.set_xlabel("amplitude a (rad)")
+    ax.set_ylabel("max |theta_PL(t) - theta(t)|, 0 <= t <= t_end")
+    return _finish(fig, ax, "Poincare-Lindstedt against the exact solution", path)
