@@ -6,7 +6,7 @@ module pendula_dd
   use pendula_kinds, only: dp
   implicit none
   private
-  public :: two_sum, fast_two_sum, two_prod, dd_mul_d, dd_sqrt
+  public :: two_sum, fast_two_sum, two_prod, dd_mul_d, dd_sqrt, dd_add, dd_mul, dd_sincos
 
   real(dp), parameter :: splitter = 134217729.0_dp   ! 2**27 + 1
 
@@ -70,5 +70,58 @@ contains
     corr = (((xh - p) - e) + xl) / (2.0_dp * r)
     call fast_two_sum(r, corr, rh, rl)
   end subroutine dd_sqrt
+
+  !> (rh + rl) = (ah + al) + (bh + bl) to double-double accuracy.
+  elemental subroutine dd_add(ah, al, bh, bl, rh, rl)
+    real(dp), intent(in) :: ah, al, bh, bl
+    real(dp), intent(out) :: rh, rl
+    real(dp) :: s, e, t, f, s2, t2
+    call two_sum(ah, bh, s, e)
+    call two_sum(al, bl, t, f)
+    call fast_two_sum(s, e + t, s2, t2)
+    call fast_two_sum(s2, t2 + f, rh, rl)
+  end subroutine dd_add
+
+  !> (rh + rl) = (ah + al) * (bh + bl) to double-double accuracy.
+  elemental subroutine dd_mul(ah, al, bh, bl, rh, rl)
+    real(dp), intent(in) :: ah, al, bh, bl
+    real(dp), intent(out) :: rh, rl
+    real(dp) :: p, e
+    call two_prod(ah, bh, p, e)
+    call fast_two_sum(p, e + (ah * bl + al * bh), rh, rl)
+  end subroutine dd_mul
+
+  !> sin and cos of x = xh + xl (|x| <= 2) in double-double, by the Taylor
+  !> series to x^45 (the last term is below 1e-40 there).
+  elemental subroutine dd_sincos(xh, xl, sh, sl, ch, cl)
+    real(dp), intent(in) :: xh, xl
+    real(dp), intent(out) :: sh, sl, ch, cl
+    real(dp) :: x2h, x2l, th, tl, uh, ul
+    integer :: k
+    call dd_mul(xh, xl, xh, xl, x2h, x2l)
+    ! Horner from the top: sin x = x (1 - x^2/(2 3) (1 - x^2/(4 5) (...)))
+    sh = 1.0_dp; sl = 0.0_dp
+    ch = 1.0_dp; cl = 0.0_dp
+    do k = 22, 1, -1
+      call dd_mul(x2h, x2l, sh, sl, th, tl)
+      call dd_div_d(th, tl, real((2 * k) * (2 * k + 1), dp), uh, ul)
+      call dd_add(1.0_dp, 0.0_dp, -uh, -ul, sh, sl)
+      call dd_mul(x2h, x2l, ch, cl, th, tl)
+      call dd_div_d(th, tl, real((2 * k - 1) * (2 * k), dp), uh, ul)
+      call dd_add(1.0_dp, 0.0_dp, -uh, -ul, ch, cl)
+    end do
+    call dd_mul(xh, xl, sh, sl, th, tl)
+    sh = th; sl = tl
+  end subroutine dd_sincos
+
+  !> (rh + rl) = (ah + al) / b to double-double accuracy.
+  elemental subroutine dd_div_d(ah, al, b, rh, rl)
+    real(dp), intent(in) :: ah, al, b
+    real(dp), intent(out) :: rh, rl
+    real(dp) :: q, p, e
+    q = ah / b
+    call two_prod(q, b, p, e)
+    call fast_two_sum(q, (((ah - p) - e) + al) / b, rh, rl)
+  end subroutine dd_div_d
 
 end module pendula_dd

@@ -26,7 +26,7 @@ module pendula_elliptic
   use pendula_dd, only: two_sum, fast_two_sum, two_prod, dd_sqrt
   implicit none
   private
-  public :: ellip_k, ellip_k_array, ellip_k_dd, ellip_e, ellip_f, ellip_einc, ellip_nome
+  public :: ellip_k, ellip_k_array, ellip_k_dd, ellip_e, ellip_f, ellip_f_sc, ellip_einc, ellip_nome
   public :: carlson_rf, carlson_rd
   public :: jacobi_plan, jacobi_prepare, jacobi_prepare_dd, jacobi_eval, jacobi_eval_array, jacobi_sncndn
   public :: jacobi_max_periods
@@ -303,6 +303,20 @@ contains
     f = f_reduced(s, c, mc)
     if (j /= 0.0_dp) f = f + 2.0_dp * j * ellip_k(m, mc)
   end function ellip_f
+
+  !> F(phi|m) from s = sin(phi) and c = cos(phi) (any quadrant of phi in
+  !> (-pi, pi]), without forming phi: next to a turning point of the
+  !> pendulum phi is pi/2 - tiny, and dF/dphi ~ 1/sqrt(mc) would amplify the
+  !> rounding of an atan2 by 1e16 when mc ~ 1e-32.
+  elemental function ellip_f_sc(s, c, m, mc) result(f)
+    real(dp), intent(in) :: s, c, m, mc
+    real(dp) :: f
+    if (c >= 0.0_dp) then
+      f = f_reduced(s, c, mc)
+    else
+      f = sign(2.0_dp * ellip_k(m, mc) - f_reduced(abs(s), -c, mc), s)
+    end if
+  end function ellip_f_sc
 
   !> F on |r| <= pi/2 from s = sin r, c = cos r >= 0.
   elemental function f_reduced(s, c, mc) result(f)

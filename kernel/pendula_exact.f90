@@ -14,8 +14,8 @@
 !> periods loses nothing to the product.
 module pendula_exact
   use pendula_kinds, only: dp, pi, pi_lo, two_pi, nan_dp, inf_dp
-  use pendula_dd, only: two_sum, fast_two_sum, two_prod, dd_sqrt
-  use pendula_elliptic, only: jacobi_plan, jacobi_prepare_dd, jacobi_eval_array, ellip_f
+  use pendula_dd, only: two_sum, fast_two_sum, two_prod, dd_sqrt, dd_add, dd_mul, dd_sincos
+  use pendula_elliptic, only: jacobi_plan, jacobi_prepare_dd, jacobi_eval_array, ellip_f, ellip_f_sc
   implicit none
   private
   public :: pendulum_orbit, orbit_setup, orbit_eval, orbit_period, orbit_theta_max
@@ -46,7 +46,7 @@ contains
     type(pendulum_orbit), intent(out) :: o
     integer, intent(out) :: status
     real(dp) :: n, p, e, th, tl, c0, s0, wh, wl, r, awh, awl, dh, dl, sh, sl, qh, ql
-    real(dp) :: k2h, k2l, a, b, kh, kl, phi0
+    real(dp) :: k2h, k2l, a, b, kh, kl, s0l, c0l
 
     status = orbit_ok
     if (.not. (eps > 0.0_dp .and. eps <= huge(1.0_dp))) then
@@ -71,42 +71,36 @@ contains
     end if
     call two_prod(2.0_dp * n, pi, p, e)
     call two_sum(theta0 - p, -e - 2.0_dp * n * pi_lo, th, tl)
-    s0 = sin(0.5_dp * th)
-    if (abs(th) > 0.5_dp * pi) then
-      ! cos(theta/2) = sin((pi - |theta|)/2), with pi - |theta| formed in double-double
-      c0 = sin(0.5_dp * ((pi - abs(th)) + (pi_lo - sign(1.0_dp, th) * tl)))
-    else
-      c0 = cos(0.5_dp * th)
-    end if
+    ! sin and cos of theta0/2 in double-double (cos >= 0 on the reduced angle)
+    call dd_sincos(0.5_dp * th, 0.5_dp * tl, s0, s0l, c0, c0l)
     ! w = v0 / (2 sqrt(eps)) in double-double
     wh = v0 / (2.0_dp * o%sqh)
     call two_prod(2.0_dp * o%sqh, wh, p, e)
     r = ((v0 - p) - e) - 2.0_dp * o%sql * wh
     wl = r / (2.0_dp * o%sqh)
     awh = abs(wh); awl = sign(1.0_dp, wh) * wl
-    ! d = c0 - |w| (exact when close), s = c0 + |w|
-    call two_sum(c0, -awh, a, b)
-    call fast_two_sum(a, b - awl, dh, dl)
-    call two_sum(c0, awh, sh, sl)
-    sl = sl + awl
+    ! d = c0 - |w| and s = c0 + |w|: the distance from the separatrix is d s
+    call dd_add(c0, c0l, -awh, -awl, dh, dl)
+    call dd_add(c0, c0l, awh, awl, sh, sl)
     ! k^2 = s0^2 + w^2 in double-double
-    call two_prod(s0, s0, a, e)
-    call two_prod(wh, wh, b, r)
-    call two_sum(a, b, k2h, k2l)
-    k2l = k2l + e + r + 2.0_dp * wh * wl
+    call dd_mul(s0, s0l, s0, s0l, a, e)
+    call dd_mul(wh, wl, wh, wl, b, r)
+    call dd_add(a, e, b, r, k2h, k2l)
 
     if (dh > 0.0_dp) then
       ! libration: mc = (c0 - |w|)(c0 + |w|), m = k^2
       o%regime = regime_libration
-      call two_prod(dh, sh, qh, e)
-      ql = e + dh * sl + dl * sh
-      call fast_two_sum(qh, ql, o%mch, o%mcl)
+      call dd_mul(dh, dl, sh, sl, o%mch, o%mcl)
       o%m = k2h
       o%k = sqrt(k2h)
       o%offset = two_pi * n
       o%rateh = o%sqh; o%ratel = o%sql
-      phi0 = atan2(s0, wh)
-      o%u0 = ellip_f(phi0, o%m, o%mch)
+      ! sn(u0) = s0/k, cn(u0) = w/k: F from sine and cosine, never from an angle
+      if (o%k > 0.0_dp) then
+        o%u0 = ellip_f_sc(s0 / o%k, wh / o%k, o%m, o%mch)
+      else
+        o%u0 = 0.0_dp
+      end if
       o%plan = jacobi_prepare_dd(o%m, o%mch, o%mcl)
     else if (dh == 0.0_dp .and. dl == 0.0_dp) then
       o%k = 1.0_dp; o%m = 1.0_dp; o%mch = 0.0_dp; o%mcl = 0.0_dp
@@ -126,8 +120,7 @@ contains
       ! rotation: parameter 1/k^2, complement (|w| - c0)(|w| + c0) / k^2
       o%regime = regime_rotation
       o%dir = sign(1.0_dp, wh)
-      call two_prod(-dh, sh, a, e)
-      call fast_two_sum(a, e - dh * sl - dl * sh, qh, ql)
+      call dd_mul(-dh, -dl, sh, sl, qh, ql)
       ! divide by k^2 (double-double quotient)
       a = qh / k2h
       call two_prod(a, k2h, p, e)

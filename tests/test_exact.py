@@ -1,0 +1,189 @@
+"""The exact motion of the conservative pendulum against independent references.
+
+data/exact_reference.csv (data/gen_exact_reference.py) holds mpmath values:
+'ode' rows from mpmath's Taylor ODE solver at 40 digits (independent of the
+elliptic formulas), 'jac' rows from mpmath's own Jacobi functions at 60+ digits
+(long times, the neighbourhood of the separatrix), 'per' rows the periods.
+
+Tolerances, with the reason: theta within 8 eps relative to max(1, |theta|),
+v within 8 eps relative to max(1, |v|), the period within 4 eps: every input
+is an exact double and the kernel carries the separatrix distance, sqrt(eps)
+and the phase in double-double, so nothing grows with t beyond a few roundings
+of the final values (measured worst: 3 eps).
+"""
+
+import csv
+import math
+
+import numpy as np
+import pytest
+
+import pendula
+from conftest import EPS
+
+
+def rows(data_dir, kind):
+    with (data_dir / "exact_reference.csv").open() as fh:
+        rd = csv.reader(ln for ln in fh if not ln.startswith("#"))
+        next(rd)
+        return [tuple(map(float, r[1:])) for r in rd if r[0] == kind]
+
+
+@pytest.mark.parametrize("kind", ["ode", "jac"])
+def test_theta_and_v_against_mpmath(data_dir, kind):
+    data = rows(data_dir, kind)
+    assert len(data) >= 12
+    worst = 0.0
+    for th0, v0, eps, t, th, v in data:
+        a, b = pendula.exact_motion(th0, v0, eps, [t])
+        worst = max(worst, abs(a[0] - th) / max(1, abs(th)) / EPS, abs(b[0] - v) / max(1, abs(v)) / EPS)
+    assert worst <= 8.0, worst
+
+
+def test_t_of_1000_periods_is_as_accurate_as_t_of_one(data_dir):
+    data = [r for r in rows(data_dir, "jac") if abs(r[3]) > 500 * pendula.orbit(*r[:3]).period]
+    assert len(data) >= 15
+    for th0, v0, eps, t, th, v in data:
+        a, b = pendula.exact_motion(th0, v0, eps, [t])
+        assert abs(a[0] - th) <= 8 * EPS * max(1, abs(th)) and abs(b[0] - v) <= 8 * EPS * max(1, abs(v))
+
+
+def test_period_against_4K_over_sqrt_eps_in_mpmath(data_dir):
+    for th0, v0, eps, _, per, _ in rows(data_dir, "per"):
+        assert abs(pendula.orbit(th0, v0, eps).period / per - 1) <= 4 * EPS
+
+
+def test_v0_2_exactly_approaches_pi_monotonically_forever():
+    t = np.concatenate([np.linspace(0, 40, 4001), [1e3, 1e6, 1e12]])
+    theta, v = pendula.exact_motion(0.0, 2.0, 1.0, t)
+    assert pendula.orbit(0.0, 2.0).regime == "separatrix"
+    assert np.all(np.diff(theta) >= 0) and np.all(theta <= np.pi) and np.all(v >= 0)
+    gd = 2 * np.arctan(np.sinh(np.minimum(t, 700.0)))   # theta = 2 gd(t) in closed form
+    assert np.abs(theta - gd).max() <= 4 * EPS
+    assert theta[-1] == np.pi
+
+
+def test_v0_2_minus_and_plus_1e_12_give_the_right_periods(data_dir):
+    below, above = pendula.orbit(0.0, 2.0 - 1e-12), pendula.orbit(0.0, 2.0 + 1e-12)
+    assert below.regime == "libration" and above.regime == "rotation"
+    ref = {r[1]: r[4] for r in rows(data_dir, "per")}
+    assert abs(below.period / ref[2.0 - 1e-12] - 1) <= 4 * EPS
+    assert abs(above.period / ref[2.0 + 1e-12] - 1) <= 4 * EPS
+    # the separatrix distance is formed without cancellation: mc = (1 - v0/2)(1 + v0/2) exactly
+    v0 = 2.0 - 1e-12
+    assert below.mc == pytest.approx((1 - v0 / 2) * (1 + v0 / 2), rel=2 * EPS)
+
+
+def test_critical_behaviour_of_omega_near_v0_2():
+    """omega ~ (pi/2)/ln(4/sqrt(t)) below, pi/ln(4/sqrt(t)) above (Suzuki & Suzuki 2.7, 3.3),
+    with corrections O(t ln t): the tolerance is 3 t ln(4/sqrt(t))."""
+    for t in [1e-6, 1e-9, 1e-12]:
+        v_lo, v_hi = 2.0 - t, 2.0 + t
+        t_lo, t_hi = 2.0 - v_lo, v_hi - 2.0    # the distances the doubles really have (exact)
+        lo, hi = pendula.orbit(0.0, v_lo).omega, pendula.orbit(0.0, v_hi).omega
+        L_lo, L_hi = math.log(4 / math.sqrt(t_lo)), math.log(4 / math.sqrt(t_hi))
+        assert lo * L_lo / (math.pi / 2) == pytest.approx(1, abs=3 * t * L_lo)
+        assert hi * L_hi / math.pi == pytest.approx(1, abs=3 * t * L_hi)
+        assert (hi * L_hi) / (lo * L_lo) == pytest.approx(2, abs=12 * t * L_lo)
+
+
+def test_released_at_the_double_nearest_pi_falls_off_the_top_like_cosh():
+    """pi is not a double: np.pi lies phi0 = 1.2246e-16 below it, so the pendulum
+    released there at rest is a libration with mc = sin^2(phi0/2) ~ 3.7e-33 and
+    leaves the top as pi - theta = phi0 cosh(t) (the linearisation is exact to
+    1e-16 relative while pi - theta < 1e-8).  The turning point is where the
+    phase is most sensitive (dF/dphi ~ 1e16): it must come out exactly K."""
+    phi0 = 1.2246467991473532e-16
+    o = pendula.orbit(np.pi, 0.0)
+    assert o.regime == "libration" and o.mc == pytest.approx(np.sin(phi0 / 2) ** 2, rel=1e-15)
+    t = np.array([0.0, 5.0, 10.0, 15.0, 20.0])
+    theta, v = pendula.exact_motion(np.pi, 0.0, 1.0, t)
+    assert np.allclose(np.pi - theta, phi0 * np.cosh(t), rtol=1e-6, atol=2 * EPS * np.pi)
+
+
+def test_energy_is_conserved_by_the_exact_path_over_a_million_periods():
+    """Libration: 16 eps.  Rotation: the angle after 1e6 turns is ~6e6 rad, whose
+    own spacing (1e-9) bounds what E(theta, v) can show: 4 spacings."""
+    for th0, v0 in [(0.0, 1.0), (0.3, 1.9), (0.0, 1.999999), (0.3, 1.99), (0.0, 2.5)]:
+        P = pendula.orbit(th0, v0).period
+        t = np.random.default_rng(0).uniform(-1e6 * P, 1e6 * P, 20000)
+        theta, v = pendula.exact_motion(th0, v0, 1.0, t)
+        E = pendula.energy(theta, v, 1.0)
+        E0 = pendula.energy(th0, v0, 1.0)
+        tol = 16 * EPS * max(E0, 1) + 4 * np.spacing(np.abs(theta).max())
+        assert np.abs(E - E0).max() <= tol
+
+
+def test_backward_time_and_negative_v0_are_mirror_images():
+    t = np.linspace(0, 20, 201)
+    a, va = pendula.exact_motion(0.4, 1.3, 1.0, t)
+    b, vb = pendula.exact_motion(0.4, -1.3, 1.0, -t)     # reversed motion
+    assert np.abs(a - b).max() <= 8 * EPS and np.abs(va + vb).max() <= 8 * EPS
+    c, vc = pendula.exact_motion(-0.4, -1.3, 1.0, t)    # reflected motion
+    assert np.abs(a + c).max() <= 8 * EPS and np.abs(va + vc).max() <= 8 * EPS
+
+
+def test_rotation_angle_is_continuous_and_grows():
+    t = np.linspace(0, 200, 20001)
+    theta, v = pendula.exact_motion(0.0, 2.0 + 1e-9, 1.0, t)
+    assert np.all(np.diff(theta) > 0) and theta[-1] > 10 * np.pi
+
+
+def test_theta0_anywhere_is_the_same_motion_in_another_well():
+    t = np.linspace(-5, 5, 101)
+    a, va = pendula.exact_motion(0.7, 0.2, 2.0, t)
+    th0 = 0.7 + 6 * np.pi            # rounds by up to half a spacing of 19.5
+    b, vb = pendula.exact_motion(th0, 0.2, 2.0, t)
+    c, vc = pendula.exact_motion(th0 - 6 * np.pi, 0.2, 2.0, t)
+    tol = 4 * np.spacing(th0)
+    assert np.abs(b - c - 6 * np.pi).max() <= tol and np.abs(vb - vc).max() <= 8 * EPS
+    assert np.abs(c - a).max() <= tol
+
+
+def test_theta_max_matches_2_arcsin_k():
+    for v0 in [0.1, 1.0, 1.9, 1.999999]:
+        assert pendula.orbit(0.0, v0).theta_max == pytest.approx(2 * math.asin(v0 / 2), rel=4 * EPS)
+
+
+def test_bad_states_are_value_errors():
+    with pytest.raises(ValueError, match="eps"):
+        pendula.orbit(0.0, 1.0, -1.0)
+    with pytest.raises(ValueError, match="theta0"):
+        pendula.exact_motion(np.inf, 1.0, 1.0, [0.0])
+    with pytest.raises(TypeError):
+        pendula.exact_motion(0.0, "fast", 1.0, [0.0])
+
+
+# ---------------------------------------------------------------- series
+
+def test_period_series_exact_fractions():
+    from fractions import Fraction as F
+    c = pendula.period_series(4)
+    assert c == (F(1), F(1, 16), F(11, 3072), F(173, 737280), F(22931, 1321205760))
+
+
+def test_period_series_converges_to_the_exact_period():
+    for th0 in [0.5, 1.0, 2.0]:
+        exact = pendula.orbit(th0, 0.0).period
+        errs = [abs(pendula.period_from_series(th0, n) / exact - 1) for n in (2, 5, 10, 20)]
+        assert errs == sorted(errs, reverse=True)
+    assert abs(pendula.period_from_series(1.0, 30) / pendula.orbit(1.0, 0.0).period - 1) <= 8 * EPS
+
+
+def test_poincare_lindstedt_third_order_is_the_textbook_form():
+    h, f = pendula.series.poincare_lindstedt_coefficients(3)
+    from fractions import Fraction as F
+    # theta = (a + a^3/192) cos wt - (a^3/192) cos 3wt, w = sqrt(eps) (1 - a^2/16)
+    assert h[0][1] == 1 and h[0][3] == F(1, 192) and h[1][3] == F(-1, 192)
+    assert f[2] == F(-1, 16)
+
+
+@pytest.mark.parametrize("order", [3, 5, 7])
+def test_poincare_lindstedt_error_scales_with_the_next_power_of_a(order):
+    t = np.linspace(0, 20, 2001)
+    errs = []
+    for a in (0.2, 0.1):
+        theta, _ = pendula.exact_motion(a, 0.0, 1.0, t)
+        errs.append(np.abs(pendula.poincare_lindstedt(a, t, 1.0, order) - theta).max())
+    # error ~ a^(order+2) (t-growing secular part included): halving a divides it by ~2^(order+2)
+    assert errs[0] / errs[1] == pytest.approx(2 ** (order + 2), rel=0.25)

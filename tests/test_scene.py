@@ -1,0 +1,151 @@
+"""Scenes: the namelist format (Python and the Fortran executable), validation
+that names the field, method selection, and the pendula-run executable."""
+
+import subprocess
+
+import numpy as np
+import pytest
+
+import pendula
+from pendula import Scene, SceneError
+from conftest import EPS, venv_bin
+
+GOOD = """! a comment before the group
+&scene
+  name = 'near the separatrix'   ! trailing comment
+  eps = 1.0, theta0 = 0.0
+  v0 = 1.9
+  t_start = -1.0, t_end = 3.0, n_samples = 9
+  outputs = 'trajectory', 'period'
+  sweep = 'v0', sweep_values = 1.5, 1.9 2.5
+/
+"""
+
+
+def test_namelist_round_trip():
+    s = Scene.from_namelist(GOOD)
+    assert s.v0 == 1.9 and s.sweep_values == (1.5, 1.9, 2.5) and s.n_samples == 9
+    assert s.outputs == ("trajectory", "period") and s.name == "near the separatrix"
+    assert Scene.from_namelist(s.to_namelist()) == s
+
+
+def test_g_and_length_give_eps():
+    s = Scene(g=9.81, length=2.0)
+    assert s.eps == 9.81 / 2.0
+    with pytest.raises(SceneError, match="'g' and 'length'"):
+        Scene(g=9.81)
+
+
+@pytest.mark.parametrize("text,field", [
+    ("&scene vv0 = 1.0 /", "unknown field 'vv0'"),
+    ("&scene v0 = 'fast' /", "field 'v0' must be a real number"),
+    ("&scene eps = -1.0 /", "field 'eps' must be positive"),
+    ("&scene n_samples = 2.5 /", "field 'n_samples' must be a whole number"),
+    ("&scene method = 'rk5' /", "field 'method'"),
+    ("&scene outputs = 'thetta_t' /", "did you mean 'theta_t'"),
+    ("&scene sweep = 'v0' /", "field 'sweep_values' is empty"),
+    ("&scene damping = -0.1 /", "field 'damping' must be >= 0"),
+    ("&scene v0 = 1.0, v0 = 2.0 /", "field 'v0' is given twice"),
+    ("&scene v0 = 1.0", "not closed"),
+    ("&other v0 = 1.0 /", "must start with the group '&scene'"),
+    ("&scene method = 'exact', damping = 0.1 /", "field 'method'"),
+])
+def test_malformed_scenes_name_the_field(text, field):
+    with pytest.raises(SceneError, match=field.replace("(", r"\(").replace(")", r"\)")):
+        Scene.from_namelist(text)
+
+
+def test_python_constructor_validates_too():
+    with pytest.raises(SceneError, match="'theta0'"):
+        Scene(theta0="a")
+    with pytest.raises(SceneError, match="'theta0' must be finite"):
+        Scene(theta0=np.inf)
+
+
+def test_conservative_scene_is_answered_exactly():
+    s = Scene(v0=1.5, t_start=3.0, t_end=-3.0, n_samples=7)
+    tr = pendula.simulate(s)
+    assert tr.method == "exact" and tr.t[0] == 3.0 and tr.t[-1] == -3.0
+    theta, v = pendula.exact_motion(0.0, 1.5, 1.0, tr.t)
+    assert np.array_equal(theta, tr.theta) and np.array_equal(v, tr.v)
+    assert np.abs(tr.energy - 1.125).max() <= 4 * EPS
+    assert pendula.period(s) == pendula.orbit(0.0, 1.5).period
+
+
+def test_effects_are_named_only_when_given():
+    assert Scene().effects == ()
+    assert Scene(damping=0.1, torque=0.2).effects == ("damping", "torque")
+    assert Scene(drive_amplitude=0.5, drive_frequency=1.0).effects == ("drive",)
+    with pytest.raises(ValueError, match="period"):
+        pendula.period(Scene(damping=0.1))
+
+
+def test_unimplemented_effects_raise_not_implemented():
+    with pytest.raises(NotImplementedError, match="cord"):
+        pendula.simulate(Scene(cord="flexible"))
+
+
+def test_members_of_a_sweep():
+    s = Scene.from_namelist(GOOD)
+    assert [m.v0 for m in s.members()] == [1.5, 1.9, 2.5]
+    assert all(m.sweep == "" for m in s.members())
+
+
+# ---------------------------------------------------------------- pendula-run
+
+def run(*args):
+    return subprocess.run([venv_bin("pendula-run"), *args], capture_output=True, text=True)
+
+
+def test_pendula_run_matches_python(tmp_path):
+    f = tmp_path / "s.nml"
+    f.write_text(GOOD)
+    out = tmp_path / "out.csv"
+    p = run(str(f), "-o", str(out))
+    assert p.returncode == 0, p.stderr
+    lines = out.read_text().splitlines()
+    assert lines[0].startswith("# pendula-run") and any("v0 =" in ln for ln in lines[:8])
+    data = np.array([[float(x) for x in ln.split(",")] for ln in lines if ln and not ln[0] in "#v"])
+    assert data.shape == (27, 5)
+    for value in (1.5, 1.9, 2.5):
+        rows = data[data[:, 0] == value]
+        theta, v = pendula.exact_motion(0.0, value, 1.0, rows[:, 1])
+        assert np.abs(rows[:, 2] - theta).max() <= 2 * EPS * max(1, np.abs(theta).max())
+        assert np.abs(rows[:, 3] - v).max() <= 2 * EPS * 3
+    orbits = (tmp_path / "out_orbits.csv").read_text().splitlines()
+    assert "period" in orbits[orbits.index(next(ln for ln in orbits if ln.startswith("theta0")))]
+    per = [float(ln.split(",")[5]) for ln in orbits if ln and ln[0] not in "#t"]
+    assert per == pytest.approx([pendula.orbit(0, v).period for v in (1.5, 1.9, 2.5)], rel=2 * EPS)
+
+
+@pytest.mark.parametrize("text,what", [
+    ("&scene\n eps = 1.0\n vv0 = 3\n/\n", "line 3: unknown field 'vv0'"),
+    ("&scene\n v0 = 'abc'\n/\n", "line 2: field 'v0': cannot read its value"),
+    ("&scene\n eps = -1.0\n/\n", "field 'eps' must be positive"),
+    ("&scene\n method = 'rk5'\n/\n", "field 'method'"),
+    ("&scene\n sweep = 'v0'\n/\n", "field 'sweep_values' is empty"),
+    ("&scene\n v0 = 1.0\n", "not closed"),
+])
+def test_pendula_run_rejects_bad_scenes_without_output(tmp_path, text, what):
+    f = tmp_path / "bad.nml"
+    f.write_text(text)
+    out = tmp_path / "out.csv"
+    p = run(str(f), "-o", str(out))
+    assert p.returncode == 2
+    assert what in p.stderr
+    assert not out.exists()
+
+
+def test_pendula_run_missing_file(tmp_path):
+    p = run(str(tmp_path / "nope.nml"))
+    assert p.returncode == 2 and "cannot read" in p.stderr
+
+
+def test_gallery_scenes_parse_in_python_and_fortran(tmp_path, data_dir):
+    scenes = sorted((data_dir / "scenes").glob("*.nml"))
+    assert len(scenes) >= 8
+    for f in scenes:
+        s = Scene.from_file(f)
+        p = run(str(f), "-o", str(tmp_path / (f.stem + ".csv")))
+        assert p.returncode == 0, (f.name, p.stderr)
+        assert s.sweep and len(s.sweep_values) >= 5
