@@ -466,35 +466,7 @@ contains
     j = (x + magic) - magic
   end function round_int
 
-  !> atan(x) for x >= 0 (including +Inf) without libm, so that it vectorizes:
-  !> x -> 1/x above 1, x -> (x-1)/(x+1) above tan(pi/8), one half-angle step
-  !> (|z| <= tan(pi/16)), then the Taylor series to z^25.  About 2 ulp.
-  elemental function atan_pos(x) result(a)
-    real(dp), intent(in) :: x
-    real(dp) :: a, z, z2, p
-    logical :: recip, shift
-    recip = x > 1.0_dp
-    z = merge(1.0_dp / x, x, recip)
-    shift = z > 0.41421356237309503_dp
-    z = merge((z - 1.0_dp) / (z + 1.0_dp), z, shift)
-    z = z / (1.0_dp + sqrt(1.0_dp + z * z))
-    z2 = z * z
-    p = 1.0_dp/25.0_dp
-    p = 1.0_dp/23.0_dp - z2 * p
-    p = 1.0_dp/21.0_dp - z2 * p
-    p = 1.0_dp/19.0_dp - z2 * p
-    p = 1.0_dp/17.0_dp - z2 * p
-    p = 1.0_dp/15.0_dp - z2 * p
-    p = 1.0_dp/13.0_dp - z2 * p
-    p = 1.0_dp/11.0_dp - z2 * p
-    p = 1.0_dp/9.0_dp - z2 * p
-    p = 1.0_dp/7.0_dp - z2 * p
-    p = 1.0_dp/5.0_dp - z2 * p
-    p = 1.0_dp/3.0_dp - z2 * p
-    a = 2.0_dp * (z - z * z2 * p)
-    a = merge(0.78539816339744831_dp + a, a, shift)
-    a = merge(half_pi - a, a, recip)
-  end function atan_pos
+  include 'pendula_atan.inc'
 
   !> The Jacobi functions of an array of u at one prepared parameter.
   !>

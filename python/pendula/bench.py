@@ -91,13 +91,27 @@ def bench_elliptic(n: int = 1_000_000, seed: int = 1) -> list[dict]:
     return results
 
 
-BENCHMARKS = {"elliptic": bench_elliptic}
+def bench_exact(n: int = 1_000_000, seed: int = 2) -> list[dict]:
+    """The exact pendulum path per sample against numpy.sin per sample (goal: at most 5x)."""
+    from . import exact_motion
+
+    t = np.sort(np.random.default_rng(seed).uniform(0.0, 1000.0, n))
+    rows = [
+        ("pendula.exact_motion (libration v0 = 1.9)", best_time(lambda: exact_motion(0.0, 1.9, 1.0, t))),
+        ("pendula.exact_motion (rotation v0 = 2.5)", best_time(lambda: exact_motion(0.0, 2.5, 1.0, t))),
+        ("pendula.exact_motion (v0 = 2 - 1e-12)", best_time(lambda: exact_motion(0.0, 2 - 1e-12, 1.0, t))),
+        ("numpy.sin(t)", best_time(lambda: np.sin(t))),
+    ]
+    return _report("Exact path theta(t), v(t) per sample, t in [0, 1000]", n, rows, "numpy.sin(t)")
+
+
+BENCHMARKS = {"elliptic": bench_elliptic, "exact": bench_exact}
 
 
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(prog="pendula bench", description=__doc__.splitlines()[0])
-    p.add_argument("which", nargs="*", default=["elliptic"], choices=sorted(BENCHMARKS),
-                   help="benchmarks to run (default: elliptic)")
+    p.add_argument("which", nargs="*", default=sorted(BENCHMARKS), choices=sorted(BENCHMARKS),
+                   help="benchmarks to run (default: all)")
     p.add_argument("-n", type=int, default=1_000_000, help="elements per array (default 10^6)")
     args = p.parse_args(argv)
     if args.n <= 0:
