@@ -3,7 +3,7 @@ module pendula_gsl_iface
   use, intrinsic :: iso_c_binding, only: c_int, c_double
   implicit none
   private
-  public :: pendula_gsl_init, pendula_gsl_elljac, pendula_gsl_kcomp
+  public :: pendula_gsl_init, pendula_gsl_elljac, pendula_gsl_kcomp, pendula_gsl_rk8pd
 
   interface
     subroutine pendula_gsl_init() bind(C, name="pendula_gsl_init")
@@ -24,5 +24,17 @@ module pendula_gsl_iface
       real(c_double), intent(out) :: k(*)
       integer(c_int) :: bad
     end function pendula_gsl_kcomp
+
+    function pendula_gsl_rk8pd(params, theta0, v0, n, tout, rtol, atol, theta, v, stats) &
+        bind(C, name="pendula_gsl_rk8pd") result(status)
+      import :: c_int, c_double
+      real(c_double), intent(in) :: params(6)
+      real(c_double), value, intent(in) :: theta0, v0
+      integer(c_int), value, intent(in) :: n
+      real(c_double), intent(in) :: tout(*)
+      real(c_double), value, intent(in) :: rtol, atol
+      real(c_double), intent(out) :: theta(*), v(*), stats(2)
+      integer(c_int) :: status
+    end function pendula_gsl_rk8pd
   end interface
 end module pendula_gsl_iface

@@ -167,6 +167,11 @@ contains
     write(u, '(a)') '# ' // trim(scene_summary(sc))
     if (len_trim(scene_effects(sc)) > 0) then
       write(u, '(a)') '# effects = ' // trim(scene_effects(sc))
+      if (sc%method == 'auto') then
+        write(u, '(a)') '# solver = dop853 (method auto: the scene names effects)'
+      else
+        write(u, '(a)') '# solver = ' // trim(sc%method)
+      end if
     else
       write(u, '(a)') '# effects = none (conservative rigid pendulum: exact solution)'
     end if

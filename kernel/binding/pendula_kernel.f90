@@ -134,3 +134,42 @@ subroutine exact_info_v(theta0, v0, eps, info, status)
   if (status /= 0) return
   info = [dble(o%regime), o%k, o%m, o%mch, orbit_period(o), orbit_theta_max(o), o%u0, o%mcl]
 end subroutine exact_info_v
+
+! Integrate a scene's model: method codes 1..9 (see pendula_integrators), 10 = GSL rk8pd.
+! t must be sorted ascending.  stats = [steps, accepted, rejected, rhs evaluations].
+subroutine integrate_v(n, method, params, theta0, v0, t, rtol, atol, dt, ev_kind, ev_level, &
+                       ev_dir, ev_terminal, max_ev, theta, v, stats, status, nev, tev, thev, vev)
+  use pendula_kinds, only: dp
+  use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate
+  use pendula_gsl_iface, only: pendula_gsl_rk8pd
+  implicit none
+  integer, intent(in) :: n, method, ev_kind, ev_dir, ev_terminal, max_ev
+  double precision, intent(in) :: params(6), theta0, v0, t(n), rtol, atol, dt, ev_level
+  double precision, intent(out) :: theta(n), v(n), stats(4)
+  integer, intent(out) :: status, nev
+  double precision, intent(out) :: tev(max_ev), thev(max_ev), vev(max_ev)
+  !f2py intent(hide), depend(t) :: n = len(t)
+  type(pendulum_model) :: m
+  type(event_spec) :: ev
+  type(run_stats) :: st
+  double precision :: gs(2)
+  tev = 0; thev = 0; vev = 0
+  nev = 0
+  if (method == 10) then
+    stats = 0
+    if (n > 0) then
+      if (t(1) < 0) then
+        status = 11
+        return
+      end if
+    end if
+    status = pendula_gsl_rk8pd(params, theta0, v0, n, t, rtol, atol, theta, v, gs)
+    if (status /= 0) status = 100 + status
+    stats = [gs(1), gs(1), 0.0d0, gs(2)]
+    return
+  end if
+  m = make_model(params(1), params(2), params(3), params(4), params(5), params(6))
+  ev%kind = ev_kind; ev%level = ev_level; ev%direction = ev_dir; ev%terminal = ev_terminal /= 0
+  call integrate(m, method, theta0, v0, t, rtol, atol, dt, theta, v, st, status, ev, nev, tev, thev, vev)
+  stats = [dble(st%nsteps), dble(st%naccept), dble(st%nreject), dble(st%nfev)]
+end subroutine integrate_v

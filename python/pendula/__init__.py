@@ -12,6 +12,10 @@ The pendulum
 ------------
 Scene, simulate, period, orbit, exact_motion, energy,
 period_series, period_from_series, poincare_lindstedt
+
+Integration and events
+----------------------
+simulate(scene, method=...), find_events, numerical_period
 """
 
 from . import _kernel as _k
@@ -20,6 +24,7 @@ _k.gsl_init()  # GSL must never abort the process: switch its handler off once
 del _k
 
 from .elliptic import ellipe, ellipeinc, ellipf, ellipj, ellipk, nome  # noqa: E402
+from .integrate import Events, find_events, numerical_period  # noqa: E402
 from .motion import Orbit, Trajectory, energy, exact_motion, orbit, period, simulate  # noqa: E402
 from .scene import Scene, SceneError  # noqa: E402
 from .series import period_from_series, period_series, poincare_lindstedt  # noqa: E402
@@ -28,4 +33,5 @@ __version__ = "0.1.0"
 
 __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Scene", "SceneError", "simulate", "period", "orbit", "exact_motion", "energy",
-           "Orbit", "Trajectory", "period_series", "period_from_series", "poincare_lindstedt"]
+           "Orbit", "Trajectory", "period_series", "period_from_series", "poincare_lindstedt",
+           "find_events", "numerical_period", "Events"]

@@ -173,7 +173,7 @@ def simulate(scene: Scene, t=None, method: str | None = None) -> Trajectory:
     if missing:
         raise NotImplementedError(f"pendula cannot simulate the effect(s) {', '.join(missing)} yet "
                                   f"(cord = {scene.cord!r}, guide = {scene.guide!r}, gravity = {scene.gravity!r})")
-    if method in ("auto", "exact") and scene.is_conservative_rigid:
+    if method in ("auto", "exact") and scene.is_conservative_rigid and not missing:
         theta, v = exact_motion(scene.theta0, scene.v0, scene.eps, t)
         return Trajectory(t, theta, v, energy(theta, v, scene.eps), "exact", scene)
     if method == "exact":

@@ -1,0 +1,676 @@
+!> Integrators for theta'' = -eps sin(theta) [- beta theta'] [+ tau] [+ A cos(Omega t + phase)].
+!>
+!> The right-hand side holds exactly the effects a scene names (flags set from
+!> nonzero coefficients); an absent effect is a branch not taken.
+!>
+!> Fixed step (dt): rk4; Stormer-Verlet and Yoshida's compositions of it
+!> (orders 4, 6, 8), built on the symmetric splitting
+!>   damping flow h/2 | kick h/2 | drift h | kick h/2 | damping flow h/2
+!> (the damping flow v -> v exp(-beta h/2) is exact, so the base method is
+!> symmetric and the compositions reach their order with damping too);
+!> Gauss-Legendre collocation with 2 and 3 stages (orders 4, 6), solved by
+!> fixed-point iteration until the increments stop decreasing.  All fixed-step
+!> methods add their increments with compensated (Kahan) summation.  Output
+!> at times between grid points: one extra step of the same method from the
+!> last grid point, branched off (the main trajectory keeps its step).
+!>
+!> Adaptive (rtol, atol): DOPRI5 (5(4), Shampine's 4th-order dense output,
+!> Hairer's PI step control) and DOP853 (8(5,3), 7th-order dense output with
+!> three extra stages, Hairer's controller).  Output at requested times comes
+!> from the dense output; steps are never shortened to hit them.  Events are
+!> located on the dense output: each accepted step is sampled at 4 interior
+!> points, so that two sign changes in one step are not missed, then refined
+!> by the Illinois method.
+module pendula_integrators
+  use pendula_kinds, only: dp, i8, nan_dp
+  implicit none
+  private
+  public :: pendulum_model, make_model, event_spec, run_stats, integrate, accel
+
+  include 'pendula_rk_tables.inc'
+
+  integer, parameter, public :: m_rk4 = 1, m_verlet = 2, m_yoshida4 = 3, m_yoshida6 = 4, &
+    m_yoshida8 = 5, m_gauss4 = 6, m_gauss6 = 7, m_dopri5 = 8, m_dop853 = 9
+  integer, parameter, public :: st_ok = 0, st_bad_step = 1, st_bad_tol = 2, st_bad_method = 3, &
+    st_step_underflow = 5, st_nonfinite = 6, st_no_dense = 9, st_stopped = 10
+
+  type :: pendulum_model
+    real(dp) :: eps = 1.0_dp, beta = 0.0_dp, tau = 0.0_dp
+    real(dp) :: amp = 0.0_dp, omega = 0.0_dp, phase = 0.0_dp
+    logical :: damped = .false., torqued = .false., driven = .false.
+  end type pendulum_model
+
+  !> kind 0: none; 1: g = v (turning points); 2: g = theta - level;
+  !> 3: g = sin((theta - level)/2) (theta passing level + 2 pi k, for rotations).
+  !> direction +1: only g rising through 0, -1: only falling, 0: both.
+  type :: event_spec
+    integer :: kind = 0
+    real(dp) :: level = 0.0_dp
+    integer :: direction = 0
+    logical :: terminal = .false.
+  end type event_spec
+
+  type :: run_stats
+    integer(i8) :: nsteps = 0, naccept = 0, nreject = 0, nfev = 0
+  end type run_stats
+
+contains
+
+  pure function make_model(eps, beta, tau, amp, omega, phase) result(m)
+    real(dp), intent(in) :: eps, beta, tau, amp, omega, phase
+    type(pendulum_model) :: m
+    m%eps = eps; m%beta = beta; m%tau = tau; m%amp = amp; m%omega = omega; m%phase = phase
+    m%damped = beta /= 0.0_dp
+    m%torqued = tau /= 0.0_dp
+    m%driven = amp /= 0.0_dp
+  end function make_model
+
+  !> theta'' for the effects the model names.
+  pure function accel(m, t, th, v) result(a)
+    type(pendulum_model), intent(in) :: m
+    real(dp), intent(in) :: t, th, v
+    real(dp) :: a
+    a = -m%eps * sin(th)
+    if (m%damped) a = a - m%beta * v
+    if (m%torqued) a = a + m%tau
+    if (m%driven) a = a + m%amp * cos(m%omega * t + m%phase)
+  end function accel
+
+  !> The position- and time-dependent force alone (the kick of the splitting).
+  pure function force(m, t, th) result(a)
+    type(pendulum_model), intent(in) :: m
+    real(dp), intent(in) :: t, th
+    real(dp) :: a
+    a = -m%eps * sin(th)
+    if (m%torqued) a = a + m%tau
+    if (m%driven) a = a + m%amp * cos(m%omega * t + m%phase)
+  end function force
+
+  !> y + e += d with compensation (Kahan): e carries what y could not hold.
+  elemental subroutine kahan_add(y, e, d)
+    real(dp), intent(inout) :: y, e
+    real(dp), intent(in) :: d
+    real(dp) :: dd, s
+    dd = d + e
+    s = y + dd
+    e = dd - (s - y)
+    y = s
+  end subroutine kahan_add
+
+  ! ====================================================================
+  ! Driver
+  ! ====================================================================
+
+  !> Integrate from (theta0, v0) at t = 0 to the output times tout, which must be
+  !> sorted ascending (negative times are reached by integrating backwards).
+  !> Events (adaptive methods only) are recorded in the forward direction.
+  subroutine integrate(m, method, theta0, v0, tout, rtol, atol, dt, theta, v, stats, status, &
+                       ev, nev, tev, thev, vev)
+    type(pendulum_model), intent(in) :: m
+    integer, intent(in) :: method
+    real(dp), intent(in) :: theta0, v0, tout(:), rtol, atol, dt
+    real(dp), intent(out) :: theta(:), v(:)
+    type(run_stats), intent(out) :: stats
+    integer, intent(out) :: status
+    type(event_spec), intent(in) :: ev
+    integer, intent(out) :: nev
+    real(dp), intent(out) :: tev(:), thev(:), vev(:)
+    integer :: n, ineg, k
+    logical :: adaptive
+
+    n = size(tout)
+    theta = nan_dp; v = nan_dp
+    nev = 0
+    status = st_ok
+    adaptive = method == m_dopri5 .or. method == m_dop853
+    if (method < m_rk4 .or. method > m_dop853) then
+      status = st_bad_method; return
+    end if
+    if (adaptive) then
+      if (.not. (rtol > 0.0_dp .and. atol >= 0.0_dp)) then
+        status = st_bad_tol; return
+      end if
+    else
+      if (.not. (dt > 0.0_dp)) then
+        status = st_bad_step; return
+      end if
+      if (ev%kind /= 0) then
+        status = st_no_dense; return
+      end if
+    end if
+    ! the first index with tout >= 0
+    ineg = 0
+    do k = 1, n
+      if (tout(k) < 0.0_dp) ineg = k
+    end do
+    ! forward: tout(ineg+1:n); backward: tout(ineg:1:-1)
+    if (ineg < n) then
+      call one_direction(tout(ineg + 1:n), theta(ineg + 1:n), v(ineg + 1:n), 1.0_dp, .true.)
+      if (status /= st_ok .and. status /= st_stopped) return
+    end if
+    if (ineg > 0 .and. status == st_ok) then
+      call one_direction(tout(ineg:1:-1), theta(ineg:1:-1), v(ineg:1:-1), -1.0_dp, .false.)
+    end if
+
+  contains
+
+    subroutine one_direction(ts, ths, vs, dir, with_events)
+      real(dp), intent(in) :: ts(:), dir
+      real(dp), intent(inout) :: ths(:), vs(:)
+      logical, intent(in) :: with_events
+      type(event_spec) :: e
+      e = ev
+      if (.not. with_events) e%kind = 0
+      select case (method)
+      case (m_dopri5, m_dop853)
+        call run_adaptive(m, method, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, &
+                          e, nev, tev, thev, vev)
+      case default
+        call run_fixed(m, method, theta0, v0, ts, dir * dt, ths, vs, stats, status)
+      end select
+    end subroutine one_direction
+
+  end subroutine integrate
+
+  ! ====================================================================
+  ! Fixed-step methods
+  ! ====================================================================
+
+  subroutine run_fixed(m, method, theta0, v0, ts, h, ths, vs, stats, status)
+    type(pendulum_model), intent(in) :: m
+    integer, intent(in) :: method
+    real(dp), intent(in) :: theta0, v0, ts(:), h
+    real(dp), intent(inout) :: ths(:), vs(:)
+    type(run_stats), intent(inout) :: stats
+    integer, intent(inout) :: status
+    real(dp) :: t, th, v, the, ve, zb(3, 2), bt, bthe, bv, bve
+    integer(i8) :: istep, nsteps
+    integer :: k, kout
+    real(dp) :: tend
+
+    if (size(ts) == 0) return
+    tend = ts(size(ts))
+    nsteps = int(abs(tend) / abs(h), i8) + 1
+    th = theta0; v = v0; the = 0.0_dp; ve = 0.0_dp
+    zb = 0.0_dp
+    kout = 1
+    do istep = 0, nsteps
+      t = real(istep, dp) * h
+      ! outputs in [t, t + h): one branched-off step of the needed length
+      do while (kout <= size(ts))
+        if (abs(ts(kout)) >= abs(t) + abs(h)) exit
+        bt = t; bthe = the; bve = ve
+        ths(kout) = th; vs(kout) = v
+        if (ts(kout) /= t) then
+          call fixed_step(m, method, bt, ts(kout) - t, ths(kout), bthe, vs(kout), bve, zb, stats)
+        end if
+        kout = kout + 1
+      end do
+      if (kout > size(ts)) exit
+      call fixed_step(m, method, t, h, th, the, v, ve, zb, stats)
+      stats%nsteps = stats%nsteps + 1
+      stats%naccept = stats%naccept + 1
+      if (.not. (abs(th) <= huge(th) .and. abs(v) <= huge(v))) then
+        status = st_nonfinite
+        return
+      end if
+    end do
+    do k = kout, size(ts)
+      ths(k) = th; vs(k) = v
+    end do
+  end subroutine run_fixed
+
+  !> One step of a fixed-step method from (t, th, v) with compensation terms.
+  subroutine fixed_step(m, method, t, h, th, the, v, ve, z, stats)
+    type(pendulum_model), intent(in) :: m
+    integer, intent(in) :: method
+    real(dp), intent(in) :: t, h
+    real(dp), intent(inout) :: th, the, v, ve, z(3, 2)
+    type(run_stats), intent(inout) :: stats
+    real(dp) :: k1t, k1v, k2t, k2v, k3t, k3v, k4t, k4v, tt
+    select case (method)
+    case (m_rk4)
+      k1t = v;                     k1v = accel(m, t, th, v)
+      k2t = v + 0.5_dp * h * k1v;  k2v = accel(m, t + 0.5_dp * h, th + 0.5_dp * h * k1t, k2t)
+      k3t = v + 0.5_dp * h * k2v;  k3v = accel(m, t + 0.5_dp * h, th + 0.5_dp * h * k2t, k3t)
+      k4t = v + h * k3v;           k4v = accel(m, t + h, th + h * k3t, k4t)
+      call kahan_add(th, the, h * (k1t + 2.0_dp * (k2t + k3t) + k4t) / 6.0_dp)
+      call kahan_add(v, ve, h * (k1v + 2.0_dp * (k2v + k3v) + k4v) / 6.0_dp)
+      stats%nfev = stats%nfev + 4
+    case (m_verlet)
+      tt = t
+      call verlet(m, tt, h, th, the, v, ve, stats)
+    case (m_yoshida4)
+      call compose(yo4_w)
+    case (m_yoshida6)
+      call compose(yo6_w)
+    case (m_yoshida8)
+      call compose(yo8_w)
+    case (m_gauss4)
+      call gauss_step(m, 2, g2_a, g2_b, g2_c, t, h, th, the, v, ve, z(1:2, :), stats)
+    case (m_gauss6)
+      call gauss_step(m, 3, g3_a, g3_b, g3_c, t, h, th, the, v, ve, z, stats)
+    end select
+  contains
+    !> Symmetric composition w_k ... w_1 w_0 w_1 ... w_k of the Verlet step.
+    subroutine compose(w)
+      real(dp), intent(in) :: w(0:)
+      integer :: kk
+      tt = t
+      do kk = ubound(w, 1), 1, -1
+        call verlet(m, tt, w(kk) * h, th, the, v, ve, stats)
+      end do
+      call verlet(m, tt, w(0) * h, th, the, v, ve, stats)
+      do kk = 1, ubound(w, 1)
+        call verlet(m, tt, w(kk) * h, th, the, v, ve, stats)
+      end do
+    end subroutine compose
+  end subroutine fixed_step
+
+  !> The symmetric base step: damping h/2, kick h/2, drift h, kick h/2, damping h/2.
+  subroutine verlet(m, t, h, th, the, v, ve, stats)
+    type(pendulum_model), intent(in) :: m
+    real(dp), intent(inout) :: t
+    real(dp), intent(in) :: h
+    real(dp), intent(inout) :: th, the, v, ve
+    type(run_stats), intent(inout) :: stats
+    real(dp) :: damp
+    if (m%damped) then
+      damp = exp(-0.5_dp * m%beta * h)
+      call kahan_add(v, ve, (damp - 1.0_dp) * (v + ve))
+    end if
+    call kahan_add(v, ve, 0.5_dp * h * force(m, t, th))
+    call kahan_add(th, the, h * v)
+    t = t + h
+    call kahan_add(v, ve, 0.5_dp * h * force(m, t, th))
+    if (m%damped) call kahan_add(v, ve, (damp - 1.0_dp) * (v + ve))
+    stats%nfev = stats%nfev + 2
+  end subroutine verlet
+
+  !> One Gauss-Legendre step by fixed-point iteration on the stage increments
+  !> z(i, :) = h sum_j a_ij f(y + z(j, :)), stopped when the increments stop
+  !> decreasing (or vanish), the round-off-limited rule of Hairer,
+  !> McLachlan & Razakarivony (2008), starting from z = 0.
+  subroutine gauss_step(m, s, a, b, c, t, h, th, the, v, ve, z, stats)
+    type(pendulum_model), intent(in) :: m
+    integer, intent(in) :: s
+    real(dp), intent(in) :: a(0:s-1, 0:s-1), b(0:s-1), c(0:s-1), t, h
+    real(dp), intent(inout) :: th, the, v, ve, z(s, 2)
+    type(run_stats), intent(inout) :: stats
+    real(dp) :: f(s, 2), znew(s, 2), d, dold, st, sv
+    integer :: it, i, j
+    z = 0.0_dp
+    dold = huge(1.0_dp)
+    do it = 1, 60
+      do i = 1, s
+        f(i, 1) = v + z(i, 2)
+        f(i, 2) = accel(m, t + c(i - 1) * h, th + z(i, 1), v + z(i, 2))
+      end do
+      stats%nfev = stats%nfev + s
+      do i = 1, s
+        st = 0.0_dp; sv = 0.0_dp
+        do j = 1, s
+          st = st + a(i - 1, j - 1) * f(j, 1)
+          sv = sv + a(i - 1, j - 1) * f(j, 2)
+        end do
+        znew(i, 1) = h * st
+        znew(i, 2) = h * sv
+      end do
+      d = maxval(abs(znew - z))
+      z = znew
+      if (d == 0.0_dp .or. (it > 2 .and. d >= dold)) exit
+      dold = d
+    end do
+    do i = 1, s
+      f(i, 1) = v + z(i, 2)
+      f(i, 2) = accel(m, t + c(i - 1) * h, th + z(i, 1), v + z(i, 2))
+    end do
+    stats%nfev = stats%nfev + s
+    st = 0.0_dp; sv = 0.0_dp
+    do i = 1, s
+      st = st + b(i - 1) * f(i, 1)
+      sv = sv + b(i - 1) * f(i, 2)
+    end do
+    call kahan_add(th, the, h * st)
+    call kahan_add(v, ve, h * sv)
+  end subroutine gauss_step
+
+  ! ====================================================================
+  ! Adaptive methods with dense output
+  ! ====================================================================
+
+  subroutine run_adaptive(m, method, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, &
+                          ev, nev, tev, thev, vev)
+    type(pendulum_model), intent(in) :: m
+    integer, intent(in) :: method
+    real(dp), intent(in) :: theta0, v0, ts(:), dir, rtol, atol
+    real(dp), intent(inout) :: ths(:), vs(:)
+    type(run_stats), intent(inout) :: stats
+    integer, intent(inout) :: status
+    type(event_spec), intent(in) :: ev
+    integer, intent(inout) :: nev
+    real(dp), intent(inout) :: tev(:), thev(:), vev(:)
+    real(dp) :: t, y(2), f0(2), ynew(2), fnew(2), h, err, hnew, fac, fac11, facold, tend, x
+    real(dp) :: k(2, 0:15), cont(2, 0:6), expo1, beta, facc1, facc2, safe, gprev, yy(2)
+    integer :: kout, order
+    logical :: last, reject, stop_now
+
+    if (size(ts) == 0) return
+    tend = ts(size(ts))
+    if (method == m_dop853) then
+      order = 8; expo1 = 1.0_dp / 8.0_dp; beta = 0.0_dp; facc1 = 1.0_dp / 0.333_dp; facc2 = 1.0_dp / 6.0_dp
+    else
+      order = 5; beta = 0.04_dp; expo1 = 0.2_dp - beta * 0.75_dp; facc1 = 5.0_dp; facc2 = 0.1_dp
+    end if
+    safe = 0.9_dp
+    facold = 1.0e-4_dp
+    t = 0.0_dp
+    y = [theta0, v0]
+    f0 = rhs(t, y)
+    stats%nfev = stats%nfev + 1
+    kout = 1
+    do while (kout <= size(ts))
+      if (ts(kout) /= 0.0_dp) exit
+      ths(kout) = y(1); vs(kout) = y(2)
+      kout = kout + 1
+    end do
+    if (kout > size(ts)) return
+    gprev = gfun(y)
+    h = dir * initial_step()
+    reject = .false.
+    last = .false.
+    do
+      if (abs(h) <= 16.0_dp * epsilon(1.0_dp) * max(1.0_dp, abs(t))) then
+        status = st_step_underflow; return
+      end if
+      if (dir * (t + h - tend) >= 0.0_dp) then
+        h = tend - t
+        last = .true.
+      end if
+      if (method == m_dop853) then
+        call step853(err)
+      else
+        call step5(err)
+      end if
+      stats%nsteps = stats%nsteps + 1
+      if (.not. (err == err) .or. .not. all(abs(ynew) <= huge(1.0_dp))) then
+        status = st_nonfinite; return
+      end if
+      fac11 = err**expo1
+      fac = fac11 / facold**beta
+      fac = max(facc2, min(facc1, fac / safe))
+      hnew = h / fac
+      if (err <= 1.0_dp) then
+        facold = max(err, 1.0e-4_dp)
+        stats%naccept = stats%naccept + 1
+        call dense_coefficients()
+        ! events inside [t, t + h]
+        stop_now = .false.
+        if (ev%kind /= 0) call locate_events(stop_now)
+        ! outputs inside (t, t + h]
+        do while (kout <= size(ts))
+          if (dir * (ts(kout) - (t + h)) > 0.0_dp) exit
+          if (stop_now .and. dir * (ts(kout) - tev(nev)) > 0.0_dp) exit
+          x = (ts(kout) - t) / h
+          yy = dense(x)
+          ths(kout) = yy(1); vs(kout) = yy(2)
+          kout = kout + 1
+        end do
+        if (stop_now) then
+          status = st_stopped
+          return
+        end if
+        t = t + h
+        y = ynew
+        f0 = fnew
+        if (last .or. kout > size(ts)) exit
+        if (abs(hnew) > abs(h) .and. reject) hnew = h
+        reject = .false.
+        h = hnew
+      else
+        stats%nreject = stats%nreject + 1
+        hnew = h / min(facc1, fac11 / safe)
+        reject = .true.
+        last = .false.
+        h = hnew
+      end if
+    end do
+
+  contains
+
+    function rhs(tt, yv) result(f)
+      real(dp), intent(in) :: tt, yv(2)
+      real(dp) :: f(2)
+      f(1) = yv(2)
+      f(2) = accel(m, tt, yv(1), yv(2))
+    end function rhs
+
+    function scale_of(a, b) result(sk)
+      real(dp), intent(in) :: a(2), b(2)
+      real(dp) :: sk(2)
+      sk = atol + rtol * max(abs(a), abs(b))
+    end function scale_of
+
+    !> Hairer's starting step: balance an explicit Euler step against f's change.
+    function initial_step() result(h0)
+      real(dp) :: h0, sk(2), dnf, dny, der2, der12, h1, y1(2), f1(2)
+      sk = atol + rtol * abs(y)
+      dnf = sum((f0 / sk)**2)
+      dny = sum((y / sk)**2)
+      if (dnf <= 1.0e-10_dp .or. dny <= 1.0e-10_dp) then
+        h0 = 1.0e-6_dp
+      else
+        h0 = sqrt(dny / dnf) * 0.01_dp
+      end if
+      h0 = min(h0, abs(tend))
+      y1 = y + dir * h0 * f0
+      f1 = rhs(dir * h0, y1)
+      stats%nfev = stats%nfev + 1
+      der2 = sqrt(sum(((f1 - f0) / sk)**2)) / h0
+      der12 = max(abs(der2), sqrt(dnf))
+      if (der12 <= 1.0e-15_dp) then
+        h1 = max(1.0e-6_dp, abs(h0) * 1.0e-3_dp)
+      else
+        h1 = (0.01_dp / der12)**(1.0_dp / order)
+      end if
+      h0 = min(100.0_dp * abs(h0), h1, abs(tend))
+    end function initial_step
+
+    subroutine step5(errn)
+      real(dp), intent(out) :: errn
+      real(dp) :: yst(2), e(2), sk(2)
+      integer :: s, jj
+      k(:, 0) = f0
+      do s = 1, 5
+        yst = y
+        do jj = 0, s - 1
+          yst = yst + h * d5_a(s, jj) * k(:, jj)
+        end do
+        k(:, s) = rhs(t + d5_c(s) * h, yst)
+      end do
+      ynew = y
+      do jj = 0, 5
+        ynew = ynew + h * d5_b(jj) * k(:, jj)
+      end do
+      fnew = rhs(t + h, ynew)
+      k(:, 6) = fnew
+      stats%nfev = stats%nfev + 6
+      e = 0.0_dp
+      do jj = 0, 6
+        e = e + h * d5_e(jj) * k(:, jj)
+      end do
+      sk = scale_of(y, ynew)
+      errn = sqrt(sum((e / sk)**2) / 2.0_dp)
+    end subroutine step5
+
+    subroutine step853(errn)
+      real(dp), intent(out) :: errn
+      real(dp) :: yst(2), e3(2), e5(2), sk(2), err5, err3, deno
+      integer :: s, jj
+      k(:, 0) = f0
+      do s = 1, 11
+        yst = y
+        do jj = 0, s - 1
+          yst = yst + h * d8_a(s, jj) * k(:, jj)
+        end do
+        k(:, s) = rhs(t + d8_c(s) * h, yst)
+      end do
+      ynew = y
+      do jj = 0, 11
+        ynew = ynew + h * d8_b(jj) * k(:, jj)
+      end do
+      fnew = rhs(t + h, ynew)
+      k(:, 12) = fnew
+      stats%nfev = stats%nfev + 12
+      e3 = 0.0_dp; e5 = 0.0_dp
+      do jj = 0, 12
+        e3 = e3 + d8_e3(jj) * k(:, jj)
+        e5 = e5 + d8_e5(jj) * k(:, jj)
+      end do
+      sk = scale_of(y, ynew)
+      err5 = sum((e5 / sk)**2)
+      err3 = sum((e3 / sk)**2)
+      deno = err5 + 0.01_dp * err3
+      if (deno <= 0.0_dp) deno = 1.0_dp
+      errn = abs(h) * err5 * sqrt(1.0_dp / (2.0_dp * deno))
+    end subroutine step853
+
+    !> Coefficients of the dense output on the accepted step [t, t + h].
+    subroutine dense_coefficients()
+      real(dp) :: yst(2), dy(2)
+      integer :: s, jj
+      if (method == m_dop853) then
+        do s = 13, 15
+          yst = y
+          do jj = 0, s - 1
+            yst = yst + h * d8_a(s, jj) * k(:, jj)
+          end do
+          k(:, s) = rhs(t + d8_c(s) * h, yst)
+        end do
+        stats%nfev = stats%nfev + 3
+        dy = ynew - y
+        cont(:, 0) = dy
+        cont(:, 1) = h * k(:, 0) - dy
+        cont(:, 2) = 2.0_dp * dy - h * (k(:, 0) + k(:, 12))
+        do s = 0, 3
+          yst = 0.0_dp
+          do jj = 0, 15
+            yst = yst + d8_d(s, jj) * k(:, jj)
+          end do
+          cont(:, 3 + s) = h * yst
+        end do
+      else
+        do s = 0, 3
+          yst = 0.0_dp
+          do jj = 0, 6
+            yst = yst + d5_p(jj, s) * k(:, jj)
+          end do
+          cont(:, s) = h * yst
+        end do
+      end if
+    end subroutine dense_coefficients
+
+    !> The state at t + x h, 0 <= x <= 1.
+    function dense(xx) result(yo)
+      real(dp), intent(in) :: xx
+      real(dp) :: yo(2)
+      integer :: s
+      if (xx == 1.0_dp) then
+        yo = ynew
+        return
+      end if
+      if (method == m_dop853) then
+        yo = 0.0_dp
+        do s = 6, 0, -1
+          yo = yo + cont(:, s)
+          if (mod(6 - s, 2) == 0) then
+            yo = yo * xx
+          else
+            yo = yo * (1.0_dp - xx)
+          end if
+        end do
+        yo = yo + y
+      else
+        yo = xx * (cont(:, 0) + xx * (cont(:, 1) + xx * (cont(:, 2) + xx * cont(:, 3))))
+        yo = yo + y
+      end if
+    end function dense
+
+    function gfun(yv) result(g)
+      real(dp), intent(in) :: yv(2)
+      real(dp) :: g
+      select case (ev%kind)
+      case (1)
+        g = yv(2)
+      case (2)
+        g = yv(1) - ev%level
+      case (3)
+        g = sin(0.5_dp * (yv(1) - ev%level))
+      case default
+        g = 0.0_dp
+      end select
+    end function gfun
+
+    !> Sample g at x = 1/4, 1/2, 3/4, 1 of the step; refine each sign change.
+    !> A zero at the start of the step (g exactly 0 there) is not a new root:
+    !> the sign carried is the last nonzero one.
+    subroutine locate_events(stop_now)
+      logical, intent(out) :: stop_now
+      real(dp) :: xa, xb, ga, gb, xr, gr, side
+      integer :: q, it
+      stop_now = .false.
+      xa = 0.0_dp
+      ga = gprev
+      do q = 1, 4
+        xb = 0.25_dp * q
+        gb = gfun(dense(xb))
+        if (ga /= 0.0_dp .and. (gb == 0.0_dp .or. sign(1.0_dp, ga) /= sign(1.0_dp, gb))) then
+          if (ev%direction == 0 .or. (ev%direction > 0 .and. ga < 0.0_dp) .or. &
+              (ev%direction < 0 .and. ga > 0.0_dp)) then
+            ! Illinois: regula falsi that halves the stale end's value
+            xr = xb; gr = gb
+            if (gb /= 0.0_dp) then
+              side = 0.0_dp
+              block
+                real(dp) :: lo, hi, glo, ghi
+                lo = xa; hi = xb; glo = ga; ghi = gb
+                do it = 1, 200
+                  xr = (lo * ghi - hi * glo) / (ghi - glo)
+                  gr = gfun(dense(xr))
+                  if (gr == 0.0_dp .or. abs(hi - lo) * abs(h) <= 4.0_dp * epsilon(1.0_dp) * &
+                      max(abs(t), abs(h))) exit
+                  if (sign(1.0_dp, gr) == sign(1.0_dp, ghi)) then
+                    hi = xr; ghi = gr
+                    if (side < 0.0_dp) glo = 0.5_dp * glo
+                    side = -1.0_dp
+                  else
+                    lo = xr; glo = gr
+                    if (side > 0.0_dp) ghi = 0.5_dp * ghi
+                    side = 1.0_dp
+                  end if
+                end do
+              end block
+            end if
+            if (nev < size(tev)) then
+              nev = nev + 1
+              tev(nev) = t + xr * h
+              yy = dense(xr)
+              thev(nev) = yy(1); vev(nev) = yy(2)
+            end if
+            if (ev%terminal) then
+              stop_now = .true.
+              return
+            end if
+          end if
+        end if
+        if (gb /= 0.0_dp) then
+          ga = gb
+        end if
+        xa = xb
+      end do
+      gprev = ga
+    end subroutine locate_events
+
+  end subroutine run_adaptive
+
+end module pendula_integrators
