@@ -28,6 +28,8 @@ module pendula_integrators
   public :: pendulum_model, make_model, event_spec, run_stats, integrate, accel
 
   include 'pendula_rk_tables.inc'
+  !> DOP853's A transposed, so that each stage's weights are contiguous
+  real(dp), parameter :: d8_at(0:15, 0:15) = transpose(d8_a)
 
   integer, parameter, public :: m_rk4 = 1, m_verlet = 2, m_yoshida4 = 3, m_yoshida6 = 4, &
     m_yoshida8 = 5, m_gauss4 = 6, m_gauss6 = 7, m_dopri5 = 8, m_dop853 = 9
@@ -353,7 +355,7 @@ contains
     real(dp) :: t, y(2), f0(2), ynew(2), fnew(2), h, err, hnew, fac, fac11, facold, tend, x
     real(dp) :: k(2, 0:15), cont(2, 0:6), expo1, beta, facc1, facc2, safe, gprev, yy(2)
     integer :: kout, order
-    logical :: last, reject, stop_now
+    logical :: last, reject, stop_now, need_dense
 
     if (size(ts) == 0) return
     tend = ts(size(ts))
@@ -403,7 +405,11 @@ contains
       if (err <= 1.0_dp) then
         facold = max(err, 1.0e-4_dp)
         stats%naccept = stats%naccept + 1
-        call dense_coefficients()
+        ! the dense output (3 more stages for DOP853) only when an output time
+        ! falls strictly inside the step, or events are being located
+        need_dense = ev%kind /= 0
+        if (kout <= size(ts)) need_dense = need_dense .or. dir * (ts(kout) - (t + h)) < 0.0_dp
+        if (need_dense) call dense_coefficients()
         ! events inside [t, t + h]
         stop_now = .false.
         if (ev%kind /= 0) call locate_events(stop_now)
@@ -505,28 +511,20 @@ contains
 
     subroutine step853(errn)
       real(dp), intent(out) :: errn
-      real(dp) :: yst(2), e3(2), e5(2), sk(2), err5, err3, deno
-      integer :: s, jj
+      real(dp) :: sk(2), err5, err3, deno, e3(2), e5(2)
+      integer :: st
       k(:, 0) = f0
-      do s = 1, 11
-        yst = y
-        do jj = 0, s - 1
-          yst = yst + h * d8_a(s, jj) * k(:, jj)
-        end do
-        k(:, s) = rhs(t + d8_c(s) * h, yst)
+      do st = 1, 11
+        k(:, st) = rhs(t + d8_c(st) * h, [y(1) + h * dot_product(d8_at(0:st-1, st), k(1, 0:st-1)), &
+                                          y(2) + h * dot_product(d8_at(0:st-1, st), k(2, 0:st-1))])
       end do
-      ynew = y
-      do jj = 0, 11
-        ynew = ynew + h * d8_b(jj) * k(:, jj)
-      end do
+      ynew(1) = y(1) + h * dot_product(d8_b, k(1, 0:11))
+      ynew(2) = y(2) + h * dot_product(d8_b, k(2, 0:11))
       fnew = rhs(t + h, ynew)
       k(:, 12) = fnew
       stats%nfev = stats%nfev + 12
-      e3 = 0.0_dp; e5 = 0.0_dp
-      do jj = 0, 12
-        e3 = e3 + d8_e3(jj) * k(:, jj)
-        e5 = e5 + d8_e5(jj) * k(:, jj)
-      end do
+      e3(1) = dot_product(d8_e3, k(1, 0:12)); e3(2) = dot_product(d8_e3, k(2, 0:12))
+      e5(1) = dot_product(d8_e5, k(1, 0:12)); e5(2) = dot_product(d8_e5, k(2, 0:12))
       sk = scale_of(y, ynew)
       err5 = sum((e5 / sk)**2)
       err3 = sum((e3 / sk)**2)
@@ -611,65 +609,113 @@ contains
       end select
     end function gfun
 
-    !> Sample g at x = 1/4, 1/2, 3/4, 1 of the step; refine each sign change.
+    !> Sample g at x = 1/4, 1/2, 3/4, 1 of the step.  In each quarter, a sign
+    !> change of g is a root; without one, a sign change of g' means g has an
+    !> extremum inside, which is located and checked, so that two roots close
+    !> together (theta grazing a level near a turning point) are both found.
     !> A zero at the start of the step (g exactly 0 there) is not a new root:
     !> the sign carried is the last nonzero one.
     subroutine locate_events(stop_now)
       logical, intent(out) :: stop_now
-      real(dp) :: xa, xb, ga, gb, xr, gr, side
-      integer :: q, it
+      real(dp) :: xa, xb, ga, gb, da, db, xm, gm
+      integer :: q
       stop_now = .false.
       xa = 0.0_dp
       ga = gprev
+      da = dgfun(0.0_dp)
       do q = 1, 4
         xb = 0.25_dp * q
         gb = gfun(dense(xb))
-        if (ga /= 0.0_dp .and. (gb == 0.0_dp .or. sign(1.0_dp, ga) /= sign(1.0_dp, gb))) then
-          if (ev%direction == 0 .or. (ev%direction > 0 .and. ga < 0.0_dp) .or. &
-              (ev%direction < 0 .and. ga > 0.0_dp)) then
-            ! Illinois: regula falsi that halves the stale end's value
-            xr = xb; gr = gb
-            if (gb /= 0.0_dp) then
-              side = 0.0_dp
-              block
-                real(dp) :: lo, hi, glo, ghi
-                lo = xa; hi = xb; glo = ga; ghi = gb
-                do it = 1, 200
-                  xr = (lo * ghi - hi * glo) / (ghi - glo)
-                  gr = gfun(dense(xr))
-                  if (gr == 0.0_dp .or. abs(hi - lo) * abs(h) <= 4.0_dp * epsilon(1.0_dp) * &
-                      max(abs(t), abs(h))) exit
-                  if (sign(1.0_dp, gr) == sign(1.0_dp, ghi)) then
-                    hi = xr; ghi = gr
-                    if (side < 0.0_dp) glo = 0.5_dp * glo
-                    side = -1.0_dp
-                  else
-                    lo = xr; glo = gr
-                    if (side > 0.0_dp) ghi = 0.5_dp * ghi
-                    side = 1.0_dp
-                  end if
-                end do
-              end block
-            end if
-            if (nev < size(tev)) then
-              nev = nev + 1
-              tev(nev) = t + xr * h
-              yy = dense(xr)
-              thev(nev) = yy(1); vev(nev) = yy(2)
-            end if
-            if (ev%terminal) then
-              stop_now = .true.
-              return
+        db = dgfun(xb)
+        if (ga /= 0.0_dp .and. gb /= 0.0_dp .and. sign(1.0_dp, ga) == sign(1.0_dp, gb) .and. &
+            da /= 0.0_dp .and. db /= 0.0_dp .and. sign(1.0_dp, da) /= sign(1.0_dp, db)) then
+          xm = root_of(2, xa, da, xb, db)
+          gm = gfun(dense(xm))
+          if (gm == 0.0_dp .or. sign(1.0_dp, gm) /= sign(1.0_dp, ga)) then
+            call record(xa, ga, xm, gm, stop_now)
+            if (stop_now) return
+            if (gm /= 0.0_dp) then
+              call record(xm, gm, xb, gb, stop_now)
+              if (stop_now) return
             end if
           end if
+        else
+          call record(xa, ga, xb, gb, stop_now)
+          if (stop_now) return
         end if
-        if (gb /= 0.0_dp) then
-          ga = gb
-        end if
+        if (gb /= 0.0_dp) ga = gb
         xa = xb
+        da = db
       end do
       gprev = ga
     end subroutine locate_events
+
+    !> If g changes sign (or reaches 0) from ga on [xa, xb], refine and store the event.
+    subroutine record(xa, ga, xb, gb, stop_now)
+      real(dp), intent(in) :: xa, ga, xb, gb
+      logical, intent(inout) :: stop_now
+      real(dp) :: xr
+      if (ga == 0.0_dp) return
+      if (gb /= 0.0_dp .and. sign(1.0_dp, ga) == sign(1.0_dp, gb)) return
+      if (ev%direction > 0 .and. ga > 0.0_dp) return
+      if (ev%direction < 0 .and. ga < 0.0_dp) return
+      xr = xb
+      if (gb /= 0.0_dp) xr = root_of(1, xa, ga, xb, gb)
+      if (nev < size(tev)) then
+        nev = nev + 1
+        tev(nev) = t + xr * h
+        yy = dense(xr)
+        thev(nev) = yy(1); vev(nev) = yy(2)
+      end if
+      if (ev%terminal) stop_now = .true.
+    end subroutine record
+
+    !> Root of g (which = 1) or of g' (which = 2) on [xa, xb] with a sign change:
+    !> the Illinois method (regula falsi halving the stale end's value).
+    function root_of(which, xa, fa, xb, fb) result(xr)
+      integer, intent(in) :: which
+      real(dp), intent(in) :: xa, fa, xb, fb
+      real(dp) :: xr, lo, hi, flo, fhi, fr, side
+      integer :: it
+      lo = xa; hi = xb; flo = fa; fhi = fb
+      side = 0.0_dp
+      xr = hi
+      do it = 1, 200
+        xr = (lo * fhi - hi * flo) / (fhi - flo)
+        if (which == 1) then
+          fr = gfun(dense(xr))
+        else
+          fr = dgfun(xr)
+        end if
+        if (fr == 0.0_dp .or. abs(hi - lo) * abs(h) <= 4.0_dp * epsilon(1.0_dp) * max(abs(t), abs(h))) exit
+        if (sign(1.0_dp, fr) == sign(1.0_dp, fhi)) then
+          hi = xr; fhi = fr
+          if (side < 0.0_dp) flo = 0.5_dp * flo
+          side = -1.0_dp
+        else
+          lo = xr; flo = fr
+          if (side > 0.0_dp) fhi = 0.5_dp * fhi
+          side = 1.0_dp
+        end if
+      end do
+    end function root_of
+
+    !> dg/dt along the dense output.
+    function dgfun(xx) result(dg)
+      real(dp), intent(in) :: xx
+      real(dp) :: dg, yv(2)
+      yv = dense(xx)
+      select case (ev%kind)
+      case (1)
+        dg = accel(m, t + xx * h, yv(1), yv(2))
+      case (2)
+        dg = yv(2)
+      case (3)
+        dg = 0.5_dp * cos(0.5_dp * (yv(1) - ev%level)) * yv(2)
+      case default
+        dg = 0.0_dp
+      end select
+    end function dgfun
 
   end subroutine run_adaptive
 

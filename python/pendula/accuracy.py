@@ -120,3 +120,180 @@ def print_report(rows: list[dict], markdown: bool = False) -> None:
     print(f"{'function':12s} {'region':52s} {'pendula':>9s} {'scipy':>9s} {'GSL':>9s}  unit")
     for r in rows:
         print(f"{r['function']:12s} {r['region']:52s} {r['pendula']:>9s} {r['scipy']:>9s} {r['GSL']:>9s}  {r['unit']}")
+
+
+# ====================================================================
+# What accuracy costs in time: the work-precision study of the integrators
+# ====================================================================
+
+WP_PROBLEMS = {
+    "libration v0 = 1.999": dict(theta0=0.0, v0=1.999, eps=1.0, t_end=100.0),
+    "rotation v0 = 2.5": dict(theta0=0.0, v0=2.5, eps=1.0, t_end=100.0),
+}
+WP_FIXED = {"rk4": [0.2, 0.1, 0.05, 0.025, 0.0125, 0.00625],
+            "verlet": [0.05, 0.025, 0.0125, 0.00625, 0.003125, 0.0015625],
+            "yoshida4": [0.2, 0.1, 0.05, 0.025, 0.0125, 0.00625],
+            "yoshida6": [0.4, 0.2, 0.1, 0.05, 0.025],
+            "yoshida8": [0.4, 0.2, 0.1, 0.05],
+            "gauss4": [0.2, 0.1, 0.05, 0.025, 0.0125],
+            "gauss6": [0.4, 0.2, 0.1, 0.05, 0.025]}
+WP_TOLS = [1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-13]
+WP_ADAPTIVE = ("dopri5", "dop853", "gsl-rk8pd")
+
+
+def work_precision(n_out: int = 201, repeat: int = 3, progress: bool = True) -> list[dict]:
+    """Global error in theta against the exact solution, and CPU time, for every
+    method over a range of steps or tolerances, on the two problems above."""
+    import time
+
+    from ._progress import Progress
+    from .integrate import integrate_scene
+    from .motion import exact_motion
+    from .scene import Scene
+
+    rows = []
+    total = len(WP_PROBLEMS) * (sum(len(v) for v in WP_FIXED.values()) + len(WP_TOLS) * len(WP_ADAPTIVE))
+    with Progress(total, "work-precision", enabled=progress) as bar:
+        for pname, p in WP_PROBLEMS.items():
+            t = np.linspace(0.0, p["t_end"], n_out)
+            exact, _ = exact_motion(p["theta0"], p["v0"], p["eps"], t)
+            runs = [(m, "dt", dt) for m, dts in WP_FIXED.items() for dt in dts]
+            runs += [(m, "rtol", tol) for m in WP_ADAPTIVE for tol in WP_TOLS]
+            for method, knob, value in runs:
+                kw = dict(dt=value) if knob == "dt" else dict(rtol=value, atol=value * 1e-2)
+                scene = Scene(theta0=p["theta0"], v0=p["v0"], eps=p["eps"], t_end=p["t_end"],
+                              method=method, **kw)
+                best = np.inf
+                for _ in range(repeat):
+                    t0 = time.process_time()
+                    tr = integrate_scene(scene, t, method)
+                    best = min(best, time.process_time() - t0)
+                err = float(np.max(np.abs(tr.theta - exact)))
+                rows.append({"problem": pname, "method": method, knob: value, "error": err, "seconds": best,
+                             "rhs_evaluations": tr.stats["rhs_evaluations"], "steps": tr.stats["steps"]})
+                bar.update(note=f"{method} {knob}={value:g}")
+    return rows
+
+
+def write_work_precision(rows: list[dict], outdir) -> list[pathlib.Path]:
+    """CSV of the study and one log-log diagram (error against CPU time) per problem."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    outdir = pathlib.Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    csv_path = outdir / "work_precision.csv"
+    with csv_path.open("w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["problem", "method", "dt", "rtol", "max_error_theta", "cpu_seconds", "rhs_evaluations", "steps"])
+        for r in rows:
+            w.writerow([r["problem"], r["method"], r.get("dt", ""), r.get("rtol", ""), repr(r["error"]),
+                        repr(r["seconds"]), r["rhs_evaluations"], r["steps"]])
+    files = [csv_path]
+    for pname in WP_PROBLEMS:
+        fig, ax = plt.subplots(figsize=(8, 5.5))
+        for method in list(WP_FIXED) + list(WP_ADAPTIVE):
+            sel = [r for r in rows if r["problem"] == pname and r["method"] == method]
+            if not sel:
+                continue
+            err = np.maximum([r["error"] for r in sel], 1e-17)
+            sec = np.maximum([r["seconds"] for r in sel], 1e-6)
+            style = "o-" if method in WP_ADAPTIVE else "s--"
+            ax.loglog(sec, err, style, ms=3.5, lw=1.0, label=method)
+        ax.set_xlabel("CPU time (s), best of 3")
+        ax.set_ylabel("max |theta - theta_exact| over the run")
+        ax.set_title(f"work-precision: {pname}, eps = 1, 0 <= t <= 100", fontsize=10)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7, ncol=2)
+        fig.tight_layout()
+        path = outdir / f"work_precision_{pname.split()[0]}.png"
+        fig.savefig(path, dpi=110)
+        plt.close(fig)
+        files.append(path)
+    return files
+
+
+def cheapest_table(rows: list[dict], targets=(1e-4, 1e-6, 1e-8, 1e-10, 1e-12)) -> list[tuple]:
+    """For each problem and target error, the method that reached it in the least time."""
+    out = []
+    for pname in WP_PROBLEMS:
+        for target in targets:
+            ok = [r for r in rows if r["problem"] == pname and r["error"] <= target]
+            if ok:
+                best = min(ok, key=lambda r: r["seconds"])
+                out.append((pname, target, best["method"], best.get("dt", best.get("rtol")), best["seconds"]))
+            else:
+                out.append((pname, target, "none reached it", None, None))
+    return out
+
+
+def long_run_energy(periods: float = 1e5, methods=("gauss6", "dop853"), progress: bool = True) -> dict:
+    """Energy error of a long run (v0 = 1, eps = 1: a libration of period 6.743) at
+    log-spaced times; returns per method the times, |E - E0| and the fitted growth
+    exponent of its RMS in log bins (Brouwer's law: 1/2 for Gauss with
+    compensated summation; 1 for the linear drift of a non-symplectic method)."""
+    import time
+
+    from .integrate import integrate_scene
+    from .motion import orbit
+    from .scene import Scene
+
+    P = orbit(0.0, 1.0, 1.0).period
+    t = np.unique(np.concatenate([np.geomspace(P, periods * P, 400), [0.0]]))
+    out = {}
+    for method in methods:
+        if method == "gauss6":
+            scene = Scene(v0=1.0, dt=P / 40, method=method, t_end=t[-1])
+        else:
+            scene = Scene(v0=1.0, rtol=1e-12, atol=1e-14, method=method, t_end=t[-1])
+        t0 = time.perf_counter()
+        tr = integrate_scene(scene, t, method)
+        el = time.perf_counter() - t0
+        dE = np.abs(tr.energy - 0.5)
+        # RMS of |dE| in 10 log bins of t, fitted against t on log-log axes
+        edges = np.geomspace(P, t[-1] * 1.0001, 11)
+        tc, rms = [], []
+        for a, b in zip(edges[:-1], edges[1:]):
+            sel = (t >= a) & (t < b)
+            if sel.any() and np.any(dE[sel] > 0):
+                tc.append(np.sqrt(a * b))
+                rms.append(np.sqrt(np.mean(dE[sel] ** 2)))
+        slope = float(np.polyfit(np.log(tc), np.log(rms), 1)[0]) if len(tc) > 2 else float("nan")
+        out[method] = {"t": t, "dE": dE, "exponent": slope, "seconds": el, "stats": tr.stats}
+        if progress:
+            print(f"long run {method}: {periods:.0e} periods in {el:.1f} s, |dE| max {dE.max():.2e}, "
+                  f"fitted growth exponent {slope:.2f}")
+    return out
+
+
+def write_long_run(res: dict, outdir, periods: float) -> list[pathlib.Path]:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    outdir = pathlib.Path(outdir)
+    fig, ax = plt.subplots(figsize=(8, 5))
+    for method, r in res.items():
+        sel = r["t"] > 0
+        ax.loglog(r["t"][sel], np.maximum(r["dE"][sel], 1e-18), ".", ms=2,
+                  label=f"{method}: growth exponent {r['exponent']:.2f}")
+    ax.set_xlabel("t")
+    ax.set_ylabel("|E(t) - E0|")
+    ax.set_title(f"energy error over {periods:.0e} periods (v0 = 1): Brouwer's law vs drift", fontsize=10)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    path = outdir / "long_run_energy.png"
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    csv_path = outdir / "long_run_energy.csv"
+    with csv_path.open("w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["method", "t", "abs_energy_error"])
+        for method, r in res.items():
+            for ti, e in zip(r["t"], r["dE"]):
+                w.writerow([method, repr(float(ti)), repr(float(e))])
+    return [path, csv_path]

@@ -4,6 +4,7 @@
     pendula run SCENE.nml        one scene: CSV and PNG into an output folder
     pendula bench [NAME ...]     benchmarks against scipy / GSL / numpy
     pendula accuracy elliptic    worst errors vs mpmath, beside scipy and GSL
+    pendula accuracy integrators work-precision diagram and long-run energy (CSV, PNG)
 """
 
 from __future__ import annotations
@@ -98,7 +99,9 @@ def cmd_demo(args) -> int:
         files = run_scene(scene, out, stem=p.name[:-4], progress=not args.quiet)
         written += files
         print(f"  {p.name:40s} {len(files)} file(s): " + ", ".join(f.name for f in files))
-    print(f"\n{len(written)} files written to {out.resolve()}")
+    print("\nwhat accuracy costs in time: the integrators against the exact solution")
+    integrator_study(out, 1e5, progress=not args.quiet)
+    print(f"\n{len(written)} gallery files and the integrator study written to {out.resolve()}")
     return 0
 
 
@@ -108,7 +111,24 @@ def cmd_accuracy(args) -> int:
 
         print_report(elliptic_report(args.reference), markdown=args.markdown)
         return 0
-    raise SystemExit(f"pendula accuracy: unknown study {args.what!r}")
+    return integrator_study(args.output, args.periods, progress=not args.quiet)
+
+
+def integrator_study(outdir, periods: float, progress: bool = True) -> int:
+    """The work-precision study and the long-run energy study; files into outdir."""
+    from .accuracy import cheapest_table, long_run_energy, work_precision, write_long_run, write_work_precision
+
+    rows = work_precision(progress=progress)
+    files = write_work_precision(rows, outdir)
+    print("cheapest method per target error (CPU time, this machine):")
+    for pname, target, method, knob, sec in cheapest_table(rows):
+        extra = f"({knob:g}, {sec * 1e3:.2f} ms)" if sec is not None else ""
+        print(f"  {pname:22s} error <= {target:7.0e}: {method} {extra}")
+    res = long_run_energy(periods, progress=progress)
+    files += write_long_run(res, outdir, periods)
+    for f in files:
+        print(f"  wrote {f}")
+    return 0
 
 
 def cmd_bench(args) -> int:
@@ -130,7 +150,10 @@ def main(argv=None) -> int:
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bars")
     p.set_defaults(func=cmd_run)
     p = sub.add_parser("accuracy", help="measured accuracy against stored mpmath references")
-    p.add_argument("what", choices=["elliptic"])
+    p.add_argument("what", choices=["elliptic", "integrators"])
+    p.add_argument("-o", "--output", default="out", help="output folder for the integrator study")
+    p.add_argument("--periods", type=float, default=1e5, help="length of the long energy run, in periods")
+    p.add_argument("-q", "--quiet", action="store_true")
     p.add_argument("--reference", default="data/elliptic_reference.csv",
                    help="reference CSV written by data/gen_elliptic_reference.py")
     p.add_argument("--markdown", action="store_true", help="print a Markdown table")
