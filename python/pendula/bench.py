@@ -105,7 +105,84 @@ def bench_exact(n: int = 1_000_000, seed: int = 2) -> list[dict]:
     return _report("Exact path theta(t), v(t) per sample, t in [0, 1000]", n, rows, "numpy.sin(t)")
 
 
-BENCHMARKS = {"elliptic": bench_elliptic, "exact": bench_exact}
+def bench_integrators(n: int = 0, seed: int = 0) -> list[dict]:
+    """DOP853 against scipy's solve_ivp DOP853 and GSL rk8pd; the cost of effects."""
+    import scipy.integrate as si
+
+    from . import Scene, exact_motion
+    from .integrate import integrate_scene
+
+    results = []
+    # 1. the same damped scene at the same tolerances, 201 outputs on [0, 100]
+    t = np.linspace(0.0, 100.0, 201)
+    sc = Scene(v0=2.3, damping=0.1, rtol=1e-10, atol=1e-12)
+
+    def rhs(tt, y):
+        return [y[1], -np.sin(y[0]) - 0.1 * y[1]]
+
+    ref = si.solve_ivp(rhs, (0, 100), [0.0, 2.3], method="DOP853", rtol=1e-10, atol=1e-12, t_eval=t)
+    mine = integrate_scene(sc, t, "dop853")
+    rows = [("pendula dop853 (damped, rtol 1e-10)", best_time(lambda: integrate_scene(sc, t, "dop853"))),
+            ("scipy solve_ivp DOP853, same tolerances", best_time(lambda: si.solve_ivp(
+                rhs, (0, 100), [0.0, 2.3], method="DOP853", rtol=1e-10, atol=1e-12, t_eval=t), repeat=3))]
+    print(f"\nDOP853 on a damped scene: pendula {mine.stats['steps']} steps, "
+          f"{mine.stats['rhs_evaluations']} rhs evaluations; scipy {ref.nfev} rhs evaluations; "
+          f"max |theta difference| {np.abs(mine.theta - ref.y[0]).max():.1e}")
+    results += _report_whole("DOP853 against scipy.integrate.solve_ivp(method='DOP853')", rows,
+                             "pendula dop853 (damped, rtol 1e-10)")
+    # 2. DOP853 against GSL rk8pd at equal final error (conservative, exact reference)
+    tt = np.array([0.0, 100.0])
+    exact = exact_motion(0.0, 1.999, 1.0, tt)[0][-1]
+    curves = {}
+    for method in ("dop853", "gsl-rk8pd"):
+        pts = []
+        for tol in np.geomspace(1e-6, 1e-14, 9):
+            s2 = Scene(v0=1.999, rtol=tol, atol=tol * 1e-2)
+            tr = integrate_scene(s2, tt, method)
+            e = abs(tr.theta[-1] - exact)
+            sec = best_time(lambda: integrate_scene(s2, tt, method), repeat=7)
+            pts.append((e, sec, tr.stats["rhs_evaluations"]))
+        curves[method] = sorted(pts)
+    print("\nDOP853 against GSL rk8pd at equal final error (v0 = 1.999, t = 100, exact reference):")
+    print(f"  {'error':>8s} {'pendula dop853 (us)':>20s} {'GSL rk8pd (us)':>16s} {'ratio GSL/pendula':>18s}")
+    for target in (1e-6, 1e-8, 1e-10):
+        ts = {}
+        for method, pts in curves.items():
+            e = np.log([p[0] for p in pts])
+            sec = np.log([p[1] for p in pts])
+            ts[method] = float(np.exp(np.interp(np.log(target), e, sec)))
+        print(f"  {target:8.0e} {ts['dop853'] * 1e6:20.1f} {ts['gsl-rk8pd'] * 1e6:16.1f} "
+              f"{ts['gsl-rk8pd'] / ts['dop853']:18.2f}")
+        results.append({"what": f"equal error {target:g}", "dop853_us": ts["dop853"] * 1e6,
+                        "gsl_us": ts["gsl-rk8pd"] * 1e6})
+    # 3. effects cost only when named
+    base = Scene(v0=1.9, rtol=1e-10, atol=1e-12, t_end=1000.0)
+    tt = np.array([0.0, 1000.0])
+    variants = [("gravity only (the conservative scene, numerically)", base),
+                ("gravity + damping", base.replace(damping=0.01)),
+                ("gravity + damping + torque + drive", base.replace(damping=0.01, torque=0.1,
+                                                                    drive_amplitude=0.1, drive_frequency=0.7))]
+    print("\nThe right-hand side holds only the effects a scene names (DOP853, rtol 1e-10, t = 1000):")
+    for name, scn in variants:
+        tr = integrate_scene(scn, tt, "dop853")
+        sec = best_time(lambda: integrate_scene(scn, tt, "dop853"), repeat=5)
+        per = sec / tr.stats["rhs_evaluations"] * 1e9
+        print(f"  {name:52s} {per:6.1f} ns per rhs evaluation ({tr.stats['rhs_evaluations']} evaluations)")
+        results.append({"what": name, "ns_per_rhs": per})
+    return results
+
+
+def _report_whole(title, rows, ref):
+    base = dict(rows)[ref]
+    print(f"\n{title}")
+    out = []
+    for name, tsec in rows:
+        print(f"  {name:44s} {tsec * 1e3:9.3f} ms {tsec / base:10.1f}x")
+        out.append({"what": name, "ms": tsec * 1e3, "ratio": tsec / base})
+    return out
+
+
+BENCHMARKS = {"elliptic": bench_elliptic, "exact": bench_exact, "integrators": bench_integrators}
 
 
 def main(argv=None) -> int:
