@@ -91,6 +91,16 @@ def main():
           name="Poincare-Lindstedt error vs amplitude", eps=1.0, v0=0.0, t_end=50.0, n_samples=2001,
           outputs=["lindstedt"], sweep="theta0",
           sweep_values=[0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 1.5, 2.0, 2.5])
+    scene("fig6_spectra_near_separatrix.nml",
+          "Suzuki & Suzuki sections 2.4 and 6: FFT power spectra of theta(t) (eight whole periods,\n"
+          "4096 samples each, one FFTW plan for the sweep): the odd harmonics multiply as v0 -> 2.",
+          name="Fig 6: spectra of theta(t), v0 -> 2", eps=1.0, theta0=0.0, n_samples=4096,
+          outputs=["spectrum"], sweep="v0", sweep_values=[0.5, 1.6, 1.9, 1.981, 1.9962, 1.9991, 1.999995])
+    scene("spectrum_damped.nml",
+          "The spectrum of a damped run (beta = 0.02, v0 = 1.9, 0 <= t <= 400, Hann window):\n"
+          "no line, the frequency drifts upward as the amplitude decays.",
+          name="spectrum of a damped pendulum", eps=1.0, v0=1.9, damping=0.02, t_end=400.0,
+          n_samples=8192, outputs=["spectrum", "theta_t"], sweep="damping", sweep_values=[0.005, 0.02])
 
 
 if __name__ == "__main__":

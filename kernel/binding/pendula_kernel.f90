@@ -173,3 +173,21 @@ subroutine integrate_v(n, method, params, theta0, v0, t, rtol, atol, dt, ev_kind
   call integrate(m, method, theta0, v0, t, rtol, atol, dt, theta, v, st, status, ev, nev, tev, thev, vev)
   stats = [dble(st%nsteps), dble(st%naccept), dble(st%nreject), dble(st%nfev)]
 end subroutine integrate_v
+
+! Power spectra of nsig signals of n samples (columns), one FFTW plan for all.
+! window: 0 none, 1 Hann; measure: 1 to plan with FFTW_MEASURE; nh must be n/2 + 1.
+subroutine spectra_v(n, nsig, signals, dt, window, measure, nh, omega, power, status)
+  use pendula_spectrum, only: power_spectra
+  implicit none
+  integer, intent(in) :: n, nsig, window, measure, nh
+  double precision, intent(in) :: signals(n, nsig), dt
+  double precision, intent(out) :: omega(nh), power(nh, nsig)
+  integer, intent(out) :: status
+  !f2py intent(hide), depend(signals) :: n = shape(signals, 0)
+  !f2py intent(hide), depend(signals) :: nsig = shape(signals, 1)
+  if (nh /= n / 2 + 1) then
+    status = 4
+    return
+  end if
+  call power_spectra(signals, dt, window, measure /= 0, omega, power, status)
+end subroutine spectra_v

@@ -16,6 +16,10 @@ period_series, period_from_series, poincare_lindstedt
 Integration and events
 ----------------------
 simulate(scene, method=...), find_events, numerical_period
+
+Spectra
+-------
+spectrum, spectra, fourier_series, odd_harmonics_above
 """
 
 from . import _kernel as _k
@@ -28,10 +32,12 @@ from .integrate import Events, find_events, numerical_period  # noqa: E402
 from .motion import Orbit, Trajectory, energy, exact_motion, orbit, period, simulate  # noqa: E402
 from .scene import Scene, SceneError  # noqa: E402
 from .series import period_from_series, period_series, poincare_lindstedt  # noqa: E402
+from .spectrum import Spectrum, fourier_series, odd_harmonics_above, spectra, spectrum  # noqa: E402
 
 __version__ = "0.1.0"
 
 __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Scene", "SceneError", "simulate", "period", "orbit", "exact_motion", "energy",
            "Orbit", "Trajectory", "period_series", "period_from_series", "poincare_lindstedt",
-           "find_events", "numerical_period", "Events"]
+           "find_events", "numerical_period", "Events",
+           "spectrum", "spectra", "Spectrum", "fourier_series", "odd_harmonics_above"]

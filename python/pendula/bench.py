@@ -182,7 +182,45 @@ def _report_whole(title, rows, ref):
     return out
 
 
-BENCHMARKS = {"elliptic": bench_elliptic, "exact": bench_exact, "integrators": bench_integrators}
+def bench_spectrum(n: int = 1 << 20, seed: int = 3) -> list[dict]:
+    """Power spectra of 2^20 samples: pendula (FFTW, one plan reused across a
+    sweep) against numpy.fft.rfft on the same signals, in one run."""
+    from . import spectra, spectrum
+
+    n = 1 << 20
+    rng = np.random.default_rng(seed)
+    t = np.arange(n) * 1e-3
+    one = rng.standard_normal(n)
+    sweep = rng.standard_normal((8, n))
+
+    def numpy_power(x):
+        a = 2 * np.abs(np.fft.rfft(x)) / x.size
+        return a * a
+
+    rows = [
+        ("pendula.spectrum, one signal of 2^20", best_time(lambda: spectrum(t, one))),
+        ("numpy.fft.rfft + |A|^2, one signal", best_time(lambda: numpy_power(one))),
+    ]
+    out = _report("Spectrum of 2^20 samples", n, rows, "pendula.spectrum, one signal of 2^20")
+    import time
+
+    t0 = time.perf_counter()
+    spectra(t, sweep, measure=True)
+    first = time.perf_counter() - t0
+    rows = [
+        ("pendula.spectra, 8 signals, one plan", best_time(lambda: spectra(t, sweep), repeat=3)),
+        ("same, FFTW_MEASURE (wisdom kept in process)", best_time(lambda: spectra(t, sweep, measure=True),
+                                                                  repeat=3)),
+        ("numpy.fft.rfft + |A|^2, 8 signals", best_time(lambda: [numpy_power(x) for x in sweep], repeat=3)),
+    ]
+    print(f"\n(the first FFTW_MEASURE call planned for {first:.1f} s; FFTW keeps that wisdom for the process)")
+    out += _report("A sweep of 8 spectra of 2^20 samples (ns per sample and signal / 8)", 8 * n, rows,
+                   "pendula.spectra, 8 signals, one plan")
+    return out
+
+
+BENCHMARKS = {"elliptic": bench_elliptic, "exact": bench_exact, "integrators": bench_integrators,
+              "spectrum": bench_spectrum}
 
 
 def main(argv=None) -> int:

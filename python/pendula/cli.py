@@ -2,6 +2,7 @@
 
     pendula demo [-o out]        the main job: the default gallery of scenes, figures and tables
     pendula run SCENE.nml        one scene: CSV and PNG into an output folder
+    pendula spectrum SCENE.nml   FFTW power spectra of a scene (CSV, log-power PNG)
     pendula bench [NAME ...]     benchmarks against scipy / GSL / numpy
     pendula accuracy elliptic    worst errors vs mpmath, beside scipy and GSL
     pendula accuracy integrators work-precision diagram and long-run energy (CSV, PNG)
@@ -131,6 +132,23 @@ def integrator_study(outdir, periods: float, progress: bool = True) -> int:
     return 0
 
 
+def cmd_spectrum(args) -> int:
+    import pathlib
+
+    from .run import run_scene
+    from .scene import Scene, SceneError
+
+    try:
+        scene = Scene.from_file(args.scene)
+    except SceneError as exc:
+        print(f"pendula spectrum: {exc}", file=sys.stderr)
+        return 2
+    scene = scene.replace(outputs=("spectrum",))
+    for f in run_scene(scene, args.output, stem=pathlib.Path(args.scene).stem, progress=not args.quiet):
+        print(f)
+    return 0
+
+
 def cmd_bench(args) -> int:
     from .bench import main as bench_main
 
@@ -158,6 +176,11 @@ def main(argv=None) -> int:
                    help="reference CSV written by data/gen_elliptic_reference.py")
     p.add_argument("--markdown", action="store_true", help="print a Markdown table")
     p.set_defaults(func=cmd_accuracy)
+    p = sub.add_parser("spectrum", help="power spectra of a scene's theta(t): CSV and a log-power PNG")
+    p.add_argument("scene", help="scene file (namelist group &scene)")
+    p.add_argument("-o", "--output", default="out", help="output folder (default: out)")
+    p.add_argument("-q", "--quiet", action="store_true")
+    p.set_defaults(func=cmd_spectrum)
     p = sub.add_parser("bench", help="benchmarks against scipy, GSL and numpy", add_help=False)
     p.add_argument("rest", nargs=argparse.REMAINDER)
     p.set_defaults(func=cmd_bench)

@@ -158,3 +158,24 @@ def lindstedt_figure(amplitudes, errors, path):
     ax.set_xlabel("amplitude a (rad)")
     ax.set_ylabel("max |theta_PL(t) - theta(t)|, 0 <= t <= t_end")
     return _finish(fig, ax, "Poincare-Lindstedt against the exact solution", path)
+
+
+def spectra_figure(scene, specs, labels, path):
+    """Log power against omega, one panel per member (the source's Fig. 6 family)."""
+    plt = _plt()
+    k = len(specs)
+    fig, axes = plt.subplots(k, 1, figsize=(8, 1.6 + 1.5 * k), sharex=True, squeeze=False)
+    wmax = 16 * max(s.fundamental for s in specs)
+    for ax, s, lab in zip(axes[:, 0], specs, labels):
+        sel = s.omega <= wmax
+        ax.semilogy(s.omega[sel], np.maximum(s.power[sel], 1e-32), lw=0.8)
+        ax.set_ylim(1e-30, 10)
+        ax.set_ylabel("|A|^2", fontsize=8)
+        ax.text(0.99, 0.85, lab, transform=ax.transAxes, ha="right", fontsize=8)
+        ax.grid(True, alpha=0.3)
+    axes[-1, 0].set_xlabel("omega (rad/s)")
+    axes[0, 0].set_title(scene.name or "power spectra of theta(t)", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path

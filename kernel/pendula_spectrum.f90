@@ -1,0 +1,88 @@
+!> Harmonic spectra with FFTW (its Fortran 2003 interface).
+!>
+!> One real-to-complex plan per signal length, made once on FFTW-aligned
+!> buffers and executed for every signal of a sweep (new-array execution is
+!> thread-safe in FFTW; planning is not, and happens once here).  Optional
+!> Hann window.  Amplitudes are normalised so that a sin(w t) sampled over a
+!> whole number of periods gives |A| = a in its bin: A_k = 2 X_k / sum(w),
+!> A_0 = X_0 / sum(w); the power is |A_k|^2.
+module pendula_spectrum
+  use, intrinsic :: iso_c_binding
+  use pendula_kinds, only: dp, two_pi
+  implicit none
+  private
+  public :: power_spectra
+
+  include 'fftw3.f03'
+
+  integer, parameter, public :: window_none = 0, window_hann = 1
+  integer, parameter, public :: spec_ok = 0, spec_too_short = 1, spec_bad_window = 2, &
+                                spec_no_memory = 3
+
+contains
+
+  !> Power spectra |A_k|^2 of the columns of signals (n samples, spacing dt each),
+  !> one plan for all.  omega(k) = 2 pi k / (n dt), k = 0 .. n/2.
+  subroutine power_spectra(signals, dt, window, measure, omega, power, status)
+    real(dp), intent(in) :: signals(:, :), dt
+    integer, intent(in) :: window
+    logical, intent(in) :: measure
+    real(dp), intent(out) :: omega(:), power(:, :)
+    integer, intent(out) :: status
+    type(c_ptr) :: plan, pin, pout
+    real(c_double), pointer :: buf(:)
+    complex(c_double_complex), pointer :: spec(:)
+    real(dp), allocatable :: w(:)
+    real(dp) :: wsum
+    integer :: n, nh, j, k
+    integer(c_int) :: flags
+
+    n = size(signals, 1)
+    nh = n / 2 + 1
+    status = spec_ok
+    if (n < 4) then
+      status = spec_too_short; return
+    end if
+    if (window /= window_none .and. window /= window_hann) then
+      status = spec_bad_window; return
+    end if
+    allocate(w(n))
+    if (window == window_hann) then
+      do k = 1, n
+        w(k) = 0.5_dp - 0.5_dp * cos(two_pi * real(k - 1, dp) / real(n, dp))   ! periodic Hann
+      end do
+    else
+      w = 1.0_dp
+    end if
+    wsum = sum(w)
+    pin = fftw_alloc_real(int(n, c_size_t))
+    pout = fftw_alloc_complex(int(nh, c_size_t))
+    if (.not. c_associated(pin) .or. .not. c_associated(pout)) then
+      status = spec_no_memory; return
+    end if
+    call c_f_pointer(pin, buf, [n])
+    call c_f_pointer(pout, spec, [nh])
+    flags = FFTW_ESTIMATE
+    if (measure) flags = FFTW_MEASURE
+    plan = fftw_plan_dft_r2c_1d(int(n, c_int), buf, spec, flags)
+    do k = 1, nh
+      omega(k) = two_pi * real(k - 1, dp) / (real(n, dp) * dt)
+    end do
+    do j = 1, size(signals, 2)
+      if (window == window_none) then
+        buf = signals(:, j)
+      else
+        buf = signals(:, j) * w
+      end if
+      call fftw_execute_dft_r2c(plan, buf, spec)
+      ! |A|^2 from the real and imaginary parts (no hypot), then |A|
+      power(:, j) = (4.0_dp / (wsum * wsum)) * (real(spec, dp)**2 + aimag(spec)**2)
+      power(1, j) = 0.25_dp * power(1, j)
+      if (mod(n, 2) == 0) power(nh, j) = 0.25_dp * power(nh, j)
+    end do
+    call fftw_destroy_plan(plan)
+    call fftw_free(pin)
+    call fftw_free(pout)
+  end subroutine power_spectra
+
+end module pendula_spectrum

@@ -1,0 +1,229 @@
+"""Harmonic spectra of theta(t) with FFTW, and the exact Fourier series.
+
+The libration theta(t) = 8 sum_n q^(n+1/2) / ((2n+1)(1 + q^(2n+1))) sin((2n+1) w t)
+has only odd harmonics of w = pi sqrt(eps) / (2K); as v0 -> 2 the nome q -> 1
+and more of them stand out (Suzuki & Suzuki, sections 2.4 and 6).  A rotation
+theta = w t + 4 sum_n q^n / (n (1 + q^(2n))) sin(n w t) has all of them.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _kernel
+from ._checks import as_float
+
+__all__ = ["Spectrum", "spectrum", "spectra", "fourier_series", "odd_harmonics_above"]
+
+_WINDOWS = {None: 0, "none": 0, "hann": 1}
+
+
+@dataclass
+class Spectrum:
+    """A one-sided power spectrum.
+
+    Attributes
+    ----------
+    omega : ndarray
+        Angular frequencies 2 pi k / (n dt), k = 0 .. n/2.
+    power : ndarray
+        |A_k|^2, with A_k normalised so that a sin(w t) over whole periods has |A| = a.
+    amplitude : ndarray
+        |A_k|.
+    window : str or None
+    """
+
+    omega: np.ndarray
+    power: np.ndarray
+    window: str | None
+
+    @property
+    def amplitude(self) -> np.ndarray:
+        """|A_k| = sqrt(power)."""
+        return np.sqrt(self.power)
+
+    @property
+    def fundamental(self) -> float:
+        """Angular frequency of the strongest non-constant line, refined by
+        quadratic interpolation of log power around the peak bin (exact when
+        the record spans a whole number of periods)."""
+        p = self.power
+        k = int(np.argmax(p[1:])) + 1
+        if 1 < k < p.size - 1 and p[k - 1] > 0 and p[k + 1] > 0 and p[k] > 0:
+            a, b, c = np.log(p[k - 1]), np.log(p[k]), np.log(p[k + 1])
+            den = a - 2 * b + c
+            delta = 0.5 * (a - c) / den if den != 0 else 0.0
+            # whole periods: the neighbours are at the numerical floor, no refinement
+            if max(p[k - 1], p[k + 1]) < 1e-20 * p[k]:
+                delta = 0.0
+        else:
+            delta = 0.0
+        dw = self.omega[1] - self.omega[0]
+        return float(self.omega[k] + delta * dw)
+
+    def harmonics(self, n: int) -> np.ndarray:
+        """Amplitudes of the first n odd harmonics w, 3w, 5w, ... of the fundamental
+        (the lines of a libration), read at the nearest bins."""
+        if not (isinstance(n, (int, np.integer)) and n >= 1):
+            raise ValueError(f"n must be a positive whole number, got {n!r}")
+        w = self.fundamental
+        dw = self.omega[1] - self.omega[0]
+        out = np.full(n, np.nan)
+        for j in range(n):
+            k = int(round((2 * j + 1) * w / dw))
+            if k < self.amplitude.size:
+                out[j] = self.amplitude[k]
+        return out
+
+
+def _uniform_step(t: np.ndarray) -> float:
+    if t.ndim != 1 or t.size < 4:
+        raise ValueError("t must be a 1-D array of at least 4 samples")
+    if not np.all(np.isfinite(t)):
+        raise ValueError("t must be finite")
+    d = np.diff(t)
+    dt = (t[-1] - t[0]) / (t.size - 1)
+    if not dt > 0 or np.abs(d - dt).max() > 1e-9 * abs(dt) * max(1.0, t.size / 1e3):
+        raise ValueError("t must be increasing with a uniform spacing (resample first)")
+    return float(dt)
+
+
+def spectra(t, signals, window: str | None = None, measure: bool = False) -> list[Spectrum]:
+    """Power spectra of many signals on one time grid: one FFTW plan, reused.
+
+    Parameters
+    ----------
+    t : array_like, shape (n,)
+        Uniformly spaced times.
+    signals : array_like, shape (m, n) or (n,)
+        NaN in a signal gives NaN in its spectrum (as numpy.fft does).
+    window : {None, 'hann'}
+    measure : bool
+        Plan with FFTW_MEASURE (slower planning, faster transforms; worth it
+        for long sweeps).
+    """
+    t = as_float(t, "t")
+    dt = _uniform_step(t)
+    x = as_float(signals, "signals")
+    if x.ndim == 1:
+        x = x[None, :]
+    if x.ndim != 2 or x.shape[1] != t.size:
+        raise ValueError(f"signals must have shape (m, {t.size}) to match t, got {x.shape}")
+    if window not in _WINDOWS:
+        raise ValueError(f"window must be None or 'hann', got {window!r}")
+    n = t.size
+    omega, power, status = _kernel.spectra_v(np.asfortranarray(x.T), dt, _WINDOWS[window],
+                                             int(bool(measure)), n // 2 + 1)
+    if status:
+        raise RuntimeError(f"pendula kernel: spectrum status {status}")
+    if not np.all(np.isfinite(power[:, 0])) and np.all(np.isfinite(x[0])):  # pragma: no cover
+        raise RuntimeError("pendula kernel: non-finite spectrum of a finite signal")
+    win = None if window in (None, "none") else window
+    return [Spectrum(omega, power[:, j], win) for j in range(x.shape[0])]
+
+
+def spectrum(t, theta, window: str | None = None) -> Spectrum:
+    """Power spectrum |A|^2 of theta(t) against angular frequency (FFTW).
+
+    Examples
+    --------
+    >>> import numpy as np, pendula
+    >>> T = pendula.orbit(0.0, 1.9).period
+    >>> t = np.arange(4096) * (8 * T / 4096)          # eight whole periods
+    >>> theta, v = pendula.exact_motion(0.0, 1.9, 1.0, t)
+    >>> s = pendula.spectrum(t, theta)
+    >>> round(s.fundamental * T / (2 * np.pi), 12)
+    1.0
+    """
+    return spectra(t, theta, window)[0]
+
+
+def fourier_series(theta0: float, v0: float, eps: float = 1.0, n: int = 10) -> tuple[float, np.ndarray]:
+    """The exact Fourier series of the orbit: (omega, amplitudes).
+
+    Libration: amplitudes b_j = 8 q^(j+1/2) / ((2j+1)(1 + q^(2j+1))) of the odd
+    harmonics (2j+1) omega, j = 0..n-1, omega = pi sqrt(eps) / (2K(k^2)).
+    Rotation: amplitudes c_j = 4 q^j / (j (1 + q^(2j))) of all harmonics j omega,
+    j = 1..n, omega = pi k sqrt(eps) / K(1/k^2), theta = omega t + sum c_j sin(j omega t).
+    q is the nome of the parameter (k^2 or 1/k^2).  (Phases: for an orbit through
+    theta = 0 at t = 0.)
+    """
+    from .elliptic import nome
+    from .motion import orbit
+
+    if not (isinstance(n, (int, np.integer)) and n >= 1):
+        raise ValueError(f"n must be a positive whole number, got {n!r}")
+    o = orbit(theta0, v0, eps)
+    if o.regime not in ("libration", "rotation"):
+        raise ValueError(f"the {o.regime} orbit has no Fourier series (infinite period)")
+    q = float(nome(o.m, o.mc))
+    j = np.arange(n, dtype=float)
+    if o.regime == "libration":
+        amps = 8 * q ** (j + 0.5) / ((2 * j + 1) * (1 + q ** (2 * j + 1)))
+    else:
+        j = j + 1
+        amps = 4 * q**j / (j * (1 + q ** (2 * j)))
+    return o.omega, amps
+
+
+def odd_harmonics_above(spec: Spectrum, threshold: float = 1e-6, n_max: int = 50) -> list[int]:
+    """The odd harmonics (1, 3, 5, ...) whose power exceeds threshold times the fundamental's."""
+    a = spec.harmonics(n_max)
+    p = a**2
+    return [2 * j + 1 for j in range(n_max) if np.isfinite(p[j]) and p[j] > threshold * p[0]]
+
+
+# ---------------------------------------------------------------- scene outputs
+
+def spectrum_outputs(scene, members, values, outdir, stem, progress=True):
+    """The 'spectrum' output of a scene: one FFTW plan for the whole sweep.
+
+    Conservative scenes are sampled over ``scene.n_samples`` points spanning a
+    whole number of periods (8, or what fits t_end), so the lines sit exactly
+    on bins; other scenes use the scene's own time grid.
+    """
+    import csv
+
+    from . import plot
+    from .motion import orbit, simulate
+    from .run import _header
+
+    rows, specs, labels, notes = [], [], [], []
+    n = scene.n_samples if scene.n_samples >= 64 else 4096
+    for value, m in zip(values, members):
+        if m.is_conservative_rigid:
+            o = orbit(m.theta0, m.v0, m.eps)
+            if not math.isfinite(o.period):
+                raise ValueError(f"{scene.sweep} = {value}: the separatrix has no spectrum (infinite period)")
+            periods = 8
+            tt = np.arange(n) * (periods * o.period / n)
+            tr = simulate(m, tt)
+            x = tr.theta - (o.omega * tt if o.regime == "rotation" else 0.0)
+            s = spectrum(tt, x)
+        else:
+            tt = np.linspace(m.t_start, m.t_end, n)
+            tr = simulate(m, tt)
+            s = spectrum(tt, tr.theta - tr.theta.mean(), window="hann")
+        specs.append(s)
+        labels.append(f"{scene.sweep} = {value:.10g}" if scene.sweep else "")
+        above = odd_harmonics_above(s)
+        notes.append(above)
+        rows.append([value, s.fundamental] + list(s.harmonics(8)))
+    with (outdir / f"{stem}_spectrum.csv").open("w", newline="") as fh:
+        for ln in _header(scene):
+            fh.write(ln + "\n")
+        fh.write("# harmonics above 1e-6 of the fundamental's power: "
+                 + "; ".join(f"{lab or 'run'}: {h}" for lab, h in zip(labels, notes)) + "\n")
+        w = csv.writer(fh)
+        w.writerow([scene.sweep or "run", "fundamental_omega"] + [f"A_{2 * j + 1}" for j in range(8)])
+        for r in rows:
+            w.writerow([repr(float(x)) for x in r])
+    files = [outdir / f"{stem}_spectrum.csv",
+             plot.spectra_figure(scene, specs, labels, outdir / f"{stem}_spectrum.png")]
+    for lab, h in zip(labels, notes):
+        print(f"    {stem}: {lab or 'run'}: odd harmonics above 1e-6 of the fundamental's power: "
+              f"{', '.join(str(x) for x in h)}")
+    return files
