@@ -28,7 +28,8 @@ module pendula_elliptic
   private
   public :: ellip_k, ellip_k_array, ellip_k_dd, ellip_e, ellip_f, ellip_f_sc, ellip_einc, ellip_nome
   public :: carlson_rf, carlson_rd
-  public :: jacobi_plan, jacobi_prepare, jacobi_prepare_dd, jacobi_eval, jacobi_eval_array, jacobi_sncndn
+  public :: jacobi_plan, jacobi_prepare, jacobi_prepare_dd, jacobi_eval, jacobi_eval_array, jacobi_sncndn, &
+            jacobi_eval_varm
   public :: jacobi_max_periods
 
   !> Arguments beyond this many half periods cannot be reduced accurately
@@ -487,23 +488,18 @@ contains
     real(dp), intent(in), optional :: ul(:)   !< low parts: the argument is u + ul
     real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
     integer, parameter :: blk = 256
-    real(dp), parameter :: splitter = 134217729.0_dp
-    real(dp) :: j(blk), r(blk), w(blk), t2(blk), sh(blk), ulb(blk)
-    real(dp) :: kh, kl, halfk, sc, scl, inv2k, mc, cm, c1, c2, c3, c4, c5, c6, fac
-    real(dp) :: x, xh, xl, hi, lo, bh, bl, pr, pe, t, g, xx, inv, s, c, d, ar, half, odd
-    integer :: i0, nb, i, k, ndbl
+    real(dp) :: ulb(blk), kh(blk), kl(blk), sc(blk), scl(blk), mc(blk), ct(blk, 6)
+    real(dp) :: j(blk), s(blk), c(blk), d
+    integer :: i0, nb, i, k
 
     if (p%regime /= 0 .and. p%regime /= 2 .and. p%regime /= 3) then
       call jacobi_special(p, u, sn, cn, dn, am)
       return
     end if
-    kh = p%kh; kl = p%kl; halfk = 0.5_dp * p%kh; inv2k = p%inv2k
-    sc = p%sh; scl = p%sl; mc = p%mc; cm = p%m; ndbl = p%ndbl
-    c1 = p%ct(1); c2 = p%ct(2); c3 = p%ct(3); c4 = p%ct(4); c5 = p%ct(5); c6 = p%ct(6)
-    fac = scale(1.0_dp, -ndbl)
-    ! Veltkamp split of the scale factor and of 2K, used by the exact products
-    t = splitter * sc; bh = t - (t - sc); bl = sc - bh
-
+    kh = p%kh; kl = p%kl; sc = p%sh; scl = p%sl; mc = p%mc
+    do k = 1, 6
+      ct(:, k) = p%ct(k)
+    end do
     do i0 = 1, size(u), blk
       nb = min(blk, size(u) - i0 + 1)
       if (present(ul)) then
@@ -511,88 +507,217 @@ contains
       else
         ulb(1:nb) = 0.0_dp
       end if
-      ! 1. reduction (Dekker products written out so that the loop vectorizes)
-      do i = 1, nb
-        x = u(i0 + i - 1)
-        xh = x * sc
-        t = splitter * x; hi = t - (t - x); lo = x - hi
-        xl = ((hi * bh - xh) + hi * bl + lo * bh) + lo * bl + x * scl
-        xl = xl + ulb(i) * sc
-        j(i) = round_int(xh * inv2k)
-        g = 2.0_dp * j(i)
-        pr = g * kh
-        t = splitter * g; hi = t - (t - g); lo = g - hi
-        t = splitter * kh; xx = t - (t - kh); s = kh - xx
-        pe = ((hi * xx - pr) + hi * s + lo * xx) + lo * s
-        r(i) = ((xh - pr) - pe) + (xl - g * kl)
-        w(i) = abs(r(i))
-        sh(i) = merge(1.0_dp, 0.0_dp, w(i) > halfk)
-        w(i) = merge(max(0.0_dp, (kh - w(i)) + kl), w(i), w(i) > halfk)
-      end do
-      ! 2. T = tn^2(w)
-      do i = 1, nb
-        t = w(i) * fac
-        t = t * t
-        t2(i) = t * (c1 + t * (c2 + t * (c3 + t * (c4 + t * (c5 + t * c6)))))
-      end do
-      do k = 1, ndbl
-        do i = 1, nb
-          g = mc * t2(i)
-          t2(i) = 4.0_dp * t2(i) * (1.0_dp + g) * (1.0_dp + t2(i)) / (1.0_dp - g * t2(i))**2
-        end do
-      end do
-      ! 3. sn, cn, dn, am of the core; sign of r; parity of j
-      do i = 1, nb
-        g = mc * t2(i)
-        xx = merge(g, t2(i), sh(i) > 0.0_dp)
-        inv = 1.0_dp / (1.0_dp + xx)
-        s = sqrt(merge(1.0_dp, t2(i), sh(i) > 0.0_dp) * inv)
-        c = sqrt(merge(g, 1.0_dp, sh(i) > 0.0_dp) * inv)
-        d = sqrt(merge(mc + g, 1.0_dp + g, sh(i) > 0.0_dp) * inv)
-        ar = atan_pos(sqrt(xx))
-        ar = merge(half_pi - ar, ar, sh(i) > 0.0_dp)
-        ! T underflows for |r| < 1e-154: there sn = am = r to all digits
-        s = merge(abs(r(i)), s, abs(r(i)) < 1.0e-100_dp)
-        ar = merge(abs(r(i)), ar, abs(r(i)) < 1.0e-100_dp)
-        s = sign(s, r(i))
-        ar = sign(ar, r(i))
-        half = 0.5_dp * j(i)
-        odd = merge(1.0_dp, 0.0_dp, round_int(half) /= half)
-        sn(i0 + i - 1) = s * (1.0_dp - 2.0_dp * odd)
-        cn(i0 + i - 1) = c * (1.0_dp - 2.0_dp * odd)
-        dn(i0 + i - 1) = d
-        am(i0 + i - 1) = (j(i) * pi + ar) + j(i) * pi_lo
-        ! reduced-argument amplitude kept in t2 for the m < 0 transformation
-        t2(i) = ar
-        w(i) = s
-        r(i) = c
-      end do
+      call jacobi_block(nb, u(i0:i0+nb-1), ulb, kh, kl, sc, scl, mc, ct, p%ndbl, &
+                        sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1), j, s, c)
       ! back from the core parameter to m
       select case (p%regime)
       case (2)   ! m < 0: sn = sd(nu u|mu)/nu, cn = cd, dn = nd
-        do i = i0, i0 + nb - 1
-          d = dn(i)
-          ar = atan2(w(i - i0 + 1) / sc, r(i - i0 + 1))
-          am(i) = (j(i - i0 + 1) * pi + ar) + j(i - i0 + 1) * pi_lo
-          sn(i) = sn(i) / (d * sc); cn(i) = cn(i) / d; dn(i) = 1.0_dp / d
+        do i = 1, nb
+          d = dn(i0 + i - 1)
+          am(i0 + i - 1) = (j(i) * pi + atan2(s(i) / p%sh, c(i))) + j(i) * pi_lo
+          sn(i0 + i - 1) = sn(i0 + i - 1) / (d * p%sh)
+          cn(i0 + i - 1) = cn(i0 + i - 1) / d
+          dn(i0 + i - 1) = 1.0_dp / d
         end do
       case (3)   ! m > 1: sn = sn(k u|1/m)/k, cn = dn, dn = cn; am = asin(sn)
         do i = i0, i0 + nb - 1
-          s = sn(i) / sc
-          c = cn(i)
-          sn(i) = s; cn(i) = dn(i); dn(i) = c
-          am(i) = asin(max(-1.0_dp, min(1.0_dp, s)))
+          d = cn(i)
+          sn(i) = sn(i) / p%sh
+          cn(i) = dn(i)
+          dn(i) = d
+          am(i) = asin(max(-1.0_dp, min(1.0_dp, sn(i))))
         end do
       end select
-      do i = 1, nb
-        x = u(i0 + i - 1)
-        if (x /= x .or. abs(x) > huge(1.0_dp) .or. abs(j(i)) > jacobi_max_periods) then
-          sn(i0 + i - 1) = nan_dp; cn(i0 + i - 1) = nan_dp
-          dn(i0 + i - 1) = nan_dp; am(i0 + i - 1) = nan_dp
-        end if
-      end do
     end do
   end subroutine jacobi_eval_array
+
+  !> The Jacobi functions of one block of up to 256 arguments, each with its
+  !> own core parameter (0 <= m < 1 given by mc, its K = kh + kl and series
+  !> ct), its own argument scale (sc + scl) and a common duplication count.
+  !>
+  !> 1. reduce: x = u * scale = 2 K j + r (|r| <= K, double-double throughout),
+  !>    fold onto [0, K/2]: w = |r| or w = K - |r| (shifted);
+  !> 2. T = tn^2(w): Maclaurin series at w / 2^N <= 1/16, then N duplications
+  !>    tn^2(2u) = 4 T (1 + mc T) (1 + T) / (1 - mc T^2)^2.  Every factor is
+  !>    positive on [0, K/2] (mc T^2 <= sqrt(mc)/4 at K/4), so nothing cancels;
+  !> 3. sn, cn, dn, am all from the one number T (and G = mc T after the
+  !>    shift), so whatever rounding does they stay consistent with one
+  !>    argument, and cd = cn/dn keeps full accuracy next to K.
+  !> The loops have no data-dependent trip counts and no libm calls, so the
+  !> compiler vectorizes them.  Also returned: j, and the core's signed sn and
+  !> cn before the half-period sign (for the m < 0 transformation).
+  pure subroutine jacobi_block(nb, u, ulb, kh, kl, sc, scl, mc, ct, ndbl, sn, cn, dn, am, j, sr, cr)
+    integer, intent(in) :: nb, ndbl
+    real(dp), intent(in) :: u(:), ulb(:), kh(:), kl(:), sc(:), scl(:), mc(:), ct(:, :)
+    real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:), j(:), sr(:), cr(:)
+    real(dp), parameter :: splitter = 134217729.0_dp
+    real(dp) :: r(nb), w(nb), t2(nb), sh(nb)
+    real(dp) :: x, xh, xl, hi, lo, bh, bl, pr, pe, t, g, xx, inv, s, c, d, ar, half, odd, fac, ss
+    integer :: i, k
+
+    fac = scale(1.0_dp, -ndbl)
+    ! 1. reduction (Dekker products written out so that the loop vectorizes)
+    do i = 1, nb
+      x = u(i)
+      t = splitter * sc(i); bh = t - (t - sc(i)); bl = sc(i) - bh
+      xh = x * sc(i)
+      t = splitter * x; hi = t - (t - x); lo = x - hi
+      xl = ((hi * bh - xh) + hi * bl + lo * bh) + lo * bl + x * scl(i)
+      xl = xl + ulb(i) * sc(i)
+      j(i) = round_int(xh * (0.5_dp / kh(i)))
+      g = 2.0_dp * j(i)
+      pr = g * kh(i)
+      t = splitter * g; hi = t - (t - g); lo = g - hi
+      t = splitter * kh(i); xx = t - (t - kh(i)); ss = kh(i) - xx
+      pe = ((hi * xx - pr) + hi * ss + lo * xx) + lo * ss
+      r(i) = ((xh - pr) - pe) + (xl - g * kl(i))
+      w(i) = abs(r(i))
+      sh(i) = merge(1.0_dp, 0.0_dp, w(i) > 0.5_dp * kh(i))
+      w(i) = merge(max(0.0_dp, (kh(i) - w(i)) + kl(i)), w(i), w(i) > 0.5_dp * kh(i))
+    end do
+    ! 2. T = tn^2(w)
+    do i = 1, nb
+      t = w(i) * fac
+      t = t * t
+      t2(i) = t * (ct(i, 1) + t * (ct(i, 2) + t * (ct(i, 3) + t * (ct(i, 4) + t * (ct(i, 5) &
+              + t * ct(i, 6))))))
+    end do
+    do k = 1, ndbl
+      do i = 1, nb
+        g = mc(i) * t2(i)
+        t2(i) = 4.0_dp * t2(i) * (1.0_dp + g) * (1.0_dp + t2(i)) / (1.0_dp - g * t2(i))**2
+      end do
+    end do
+    ! 3. sn, cn, dn, am of the core; sign of r; parity of j
+    do i = 1, nb
+      g = mc(i) * t2(i)
+      xx = merge(g, t2(i), sh(i) > 0.0_dp)
+      inv = 1.0_dp / (1.0_dp + xx)
+      s = sqrt(merge(1.0_dp, t2(i), sh(i) > 0.0_dp) * inv)
+      c = sqrt(merge(g, 1.0_dp, sh(i) > 0.0_dp) * inv)
+      d = sqrt(merge(mc(i) + g, 1.0_dp + g, sh(i) > 0.0_dp) * inv)
+      ar = atan_pos(sqrt(xx))
+      ar = merge(half_pi - ar, ar, sh(i) > 0.0_dp)
+      ! T underflows for |r| < 1e-154: there sn = am = r to all digits
+      s = merge(abs(r(i)), s, abs(r(i)) < 1.0e-100_dp)
+      ar = merge(abs(r(i)), ar, abs(r(i)) < 1.0e-100_dp)
+      s = sign(s, r(i))
+      ar = sign(ar, r(i))
+      sr(i) = s
+      cr(i) = c
+      half = 0.5_dp * j(i)
+      odd = merge(1.0_dp, 0.0_dp, round_int(half) /= half)
+      sn(i) = s * (1.0_dp - 2.0_dp * odd)
+      cn(i) = c * (1.0_dp - 2.0_dp * odd)
+      dn(i) = d
+      am(i) = (j(i) * pi + ar) + j(i) * pi_lo
+    end do
+    do i = 1, nb
+      x = u(i)
+      if (x /= x .or. abs(x) > huge(1.0_dp) .or. abs(j(i)) > jacobi_max_periods) then
+        sn(i) = nan_dp; cn(i) = nan_dp; dn(i) = nan_dp; am(i) = nan_dp
+      end if
+    end do
+  end subroutine jacobi_block
+
+  !> sn, cn, dn, am for arrays of u and of m (one parameter per argument).
+  !> The common case 0 <= m < 1 runs vectorized in blocks: K in double-double
+  !> by an AGM iterated until every element of the block has converged, the
+  !> series coefficients, and jacobi_block with the block's largest duplication
+  !> count; m < 0, m >= 1 and NaN take the scalar path.
+  pure subroutine jacobi_eval_varm(u, m, mc, sn, cn, dn, am)
+    real(dp), intent(in) :: u(:), m(:), mc(:)
+    real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
+    integer, parameter :: blk = 256
+    real(dp), parameter :: splitter = 134217729.0_dp
+    real(dp) :: pm(blk), pmc(blk), kh(blk), kl(blk), one(blk), zero(blk), ct(blk, 6)
+    real(dp) :: a(blk), al(blk), b(blk), bl(blk), j(blk), s(blk), c(blk)
+    logical :: ok(blk)
+    real(dp) :: x, y, sm, e, an, anl, p, pe, r, hi, lo, h2, l2, t, cc, tt, corr, mh, ml, q
+    integer :: i0, nb, i, it, ndbl
+
+    one = 1.0_dp; zero = 0.0_dp
+    do i0 = 1, size(u), blk
+      nb = min(blk, size(u) - i0 + 1)
+      do i = 1, nb
+        ok(i) = m(i0 + i - 1) >= 0.0_dp .and. mc(i0 + i - 1) > 0.0_dp .and. &
+                m(i0 + i - 1) <= 1.0_dp .and. mc(i0 + i - 1) <= 1.0_dp
+        pm(i) = merge(m(i0 + i - 1), 0.5_dp, ok(i))
+        pmc(i) = merge(mc(i0 + i - 1), 0.5_dp, ok(i))
+      end do
+      ! K = pi / (2 AGM(1, sqrt(mc))) in double-double, all elements together
+      do i = 1, nb
+        x = sqrt(pmc(i))
+        t = splitter * x; hi = t - (t - x); lo = x - hi
+        p = x * x
+        pe = ((hi * hi - p) + 2.0_dp * hi * lo) + lo * lo
+        a(i) = 1.0_dp; al(i) = 0.0_dp
+        b(i) = x; bl(i) = ((pmc(i) - p) - pe) / (2.0_dp * x)
+      end do
+      do it = 1, 64
+        if (all(abs(a(1:nb) - b(1:nb)) <= 0.0009765625_dp * (a(1:nb) + b(1:nb)))) exit
+        do i = 1, nb
+          ! a' = (a + b)/2
+          sm = a(i) + b(i); t = sm - a(i); e = (a(i) - (sm - t)) + (b(i) - t) + (al(i) + bl(i))
+          an = sm + e; anl = e - (an - sm)
+          ! b' = sqrt(a b)
+          x = a(i); y = b(i)
+          p = x * y
+          t = splitter * x; hi = t - (t - x); lo = x - hi
+          t = splitter * y; h2 = t - (t - y); l2 = y - h2
+          pe = ((hi * h2 - p) + hi * l2 + lo * h2) + lo * l2 + (x * bl(i) + al(i) * y)
+          sm = p + pe; pe = pe - (sm - p); p = sm
+          r = sqrt(p)
+          t = splitter * r; hi = t - (t - r); lo = r - hi
+          sm = r * r
+          e = ((hi * hi - sm) + 2.0_dp * hi * lo) + lo * lo
+          corr = (((p - sm) - e) + pe) / (2.0_dp * r)
+          b(i) = r + corr; bl(i) = corr - (b(i) - r)
+          a(i) = 0.5_dp * an; al(i) = 0.5_dp * anl
+        end do
+      end do
+      do i = 1, nb
+        ! A = (a + b)/2, c = (a - b)/2, M = A (1 - t^2/4 - 5 t^4/64 - 11 t^6/256)
+        sm = a(i) + b(i); t = sm - a(i); e = (a(i) - (sm - t)) + (b(i) - t) + (al(i) + bl(i))
+        h2 = 0.5_dp * (sm + e); l2 = 0.5_dp * (e - ((sm + e) - sm))
+        cc = 0.5_dp * ((a(i) - b(i)) + (al(i) - bl(i)))
+        tt = cc / h2
+        corr = h2 * tt * tt * (0.25_dp + tt * tt * (5.0_dp / 64.0_dp + tt * tt * (11.0_dp / 256.0_dp)))
+        mh = h2 - corr
+        ml = ((h2 - mh) - corr) + l2
+        sm = mh + ml; ml = ml - (sm - mh); mh = sm
+        ! K = pi / (2 M)
+        q = pi / (2.0_dp * mh)
+        x = 2.0_dp * mh
+        p = x * q
+        t = splitter * x; hi = t - (t - x); lo = x - hi
+        t = splitter * q; h2 = t - (t - q); l2 = q - h2
+        pe = ((hi * h2 - p) + hi * l2 + lo * h2) + lo * l2
+        r = ((pi - p) - pe) + (pi_lo - 2.0_dp * ml * q)
+        kh(i) = q + r / x
+        kl(i) = r / x - (kh(i) - q)
+      end do
+      ! series of tn^2 for each parameter
+      do i = 1, nb
+        x = pm(i)
+        ct(i, 1) = 1.0_dp
+        ct(i, 2) = (2.0_dp - x) / 3.0_dp
+        ct(i, 3) = (17.0_dp + x * (-17.0_dp + x * 2.0_dp)) / 45.0_dp
+        ct(i, 4) = (62.0_dp + x * (-93.0_dp + x * (33.0_dp - x))) / 315.0_dp
+        ct(i, 5) = (1382.0_dp + x * (-2764.0_dp + x * (1641.0_dp + x * (-259.0_dp + x * 2.0_dp)))) &
+                   / 14175.0_dp
+        ct(i, 6) = (21844.0_dp + x * (-54610.0_dp + x * (45736.0_dp + x * (-13994.0_dp &
+                   + x * (1028.0_dp - x * 2.0_dp))))) / 467775.0_dp
+      end do
+      ndbl = max(0, exponent(0.5_dp * maxval(kh(1:nb))) + 4)
+      call jacobi_block(nb, u(i0:i0+nb-1), zero, kh, kl, one, zero, pmc, ct, ndbl, &
+                        sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1), j, s, c)
+      do i = 1, nb
+        if (.not. ok(i)) call jacobi_sncndn(u(i0 + i - 1), m(i0 + i - 1), mc(i0 + i - 1), &
+          sn(i0 + i - 1), cn(i0 + i - 1), dn(i0 + i - 1), am(i0 + i - 1))
+      end do
+    end do
+  end subroutine jacobi_eval_varm
 
   !> sn, cn, dn and the continuous amplitude am at u, for a prepared parameter.
   elemental subroutine jacobi_eval(p, u, sn, cn, dn, am)

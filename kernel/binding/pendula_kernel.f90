@@ -61,7 +61,7 @@ end subroutine nome_v
 
 ! Jacobi functions; nm = 1 means one parameter for all u (prepared once).
 subroutine ellipj_v(n, nm, u, m, mc, sn, cn, dn, am, status)
-  use pendula_elliptic, only: jacobi_plan, jacobi_prepare, jacobi_eval_array, jacobi_sncndn
+  use pendula_elliptic, only: jacobi_plan, jacobi_prepare, jacobi_eval_array, jacobi_eval_varm
   implicit none
   integer, intent(in) :: n, nm
   double precision, intent(in) :: u(n), m(nm), mc(nm)
@@ -79,7 +79,7 @@ subroutine ellipj_v(n, nm, u, m, mc, sn, cn, dn, am, status)
     plan = jacobi_prepare(m(1), mc(1))
     call jacobi_eval_array(plan, u, sn, cn, dn, am)
   else
-    call jacobi_sncndn(u, m, mc, sn, cn, dn, am)
+    call jacobi_eval_varm(u, m, mc, sn, cn, dn, am)
   end if
 end subroutine ellipj_v
 
