@@ -353,7 +353,7 @@ contains
     integer, intent(inout) :: nev
     real(dp), intent(inout) :: tev(:), thev(:), vev(:)
     real(dp) :: t, y(2), f0(2), ynew(2), fnew(2), h, err, hnew, fac, fac11, facold, tend, x
-    real(dp) :: k(2, 0:15), cont(2, 0:6), expo1, beta, facc1, facc2, safe, gprev, yy(2)
+    real(dp) :: k(0:15, 2), cont(2, 0:6), expo1, beta, facc1, facc2, safe, gprev, yy(2)
     integer :: kout, order
     logical :: last, reject, stop_now, need_dense
 
@@ -486,24 +486,24 @@ contains
       real(dp), intent(out) :: errn
       real(dp) :: yst(2), e(2), sk(2)
       integer :: s, jj
-      k(:, 0) = f0
+      k(0, :) = f0
       do s = 1, 5
         yst = y
         do jj = 0, s - 1
-          yst = yst + h * d5_a(s, jj) * k(:, jj)
+          yst = yst + h * d5_a(s, jj) * k(jj, :)
         end do
-        k(:, s) = rhs(t + d5_c(s) * h, yst)
+        k(s, :) = rhs(t + d5_c(s) * h, yst)
       end do
       ynew = y
       do jj = 0, 5
-        ynew = ynew + h * d5_b(jj) * k(:, jj)
+        ynew = ynew + h * d5_b(jj) * k(jj, :)
       end do
       fnew = rhs(t + h, ynew)
-      k(:, 6) = fnew
+      k(6, :) = fnew
       stats%nfev = stats%nfev + 6
       e = 0.0_dp
       do jj = 0, 6
-        e = e + h * d5_e(jj) * k(:, jj)
+        e = e + h * d5_e(jj) * k(jj, :)
       end do
       sk = scale_of(y, ynew)
       errn = sqrt(sum((e / sk)**2) / 2.0_dp)
@@ -511,20 +511,22 @@ contains
 
     subroutine step853(errn)
       real(dp), intent(out) :: errn
-      real(dp) :: sk(2), err5, err3, deno, e3(2), e5(2)
+      real(dp) :: sk(2), err5, err3, deno, e3(2), e5(2), ths, vst
       integer :: st
-      k(:, 0) = f0
+      k(0, :) = f0
       do st = 1, 11
-        k(:, st) = rhs(t + d8_c(st) * h, [y(1) + h * dot_product(d8_at(0:st-1, st), k(1, 0:st-1)), &
-                                          y(2) + h * dot_product(d8_at(0:st-1, st), k(2, 0:st-1))])
+        ths = y(1) + h * dot_product(d8_at(0:st-1, st), k(0:st-1, 1))
+        vst = y(2) + h * dot_product(d8_at(0:st-1, st), k(0:st-1, 2))
+        k(st, 1) = vst
+        k(st, 2) = accel(m, t + d8_c(st) * h, ths, vst)
       end do
-      ynew(1) = y(1) + h * dot_product(d8_b, k(1, 0:11))
-      ynew(2) = y(2) + h * dot_product(d8_b, k(2, 0:11))
+      ynew(1) = y(1) + h * dot_product(d8_b, k(0:11, 1))
+      ynew(2) = y(2) + h * dot_product(d8_b, k(0:11, 2))
       fnew = rhs(t + h, ynew)
-      k(:, 12) = fnew
+      k(12, :) = fnew
       stats%nfev = stats%nfev + 12
-      e3(1) = dot_product(d8_e3, k(1, 0:12)); e3(2) = dot_product(d8_e3, k(2, 0:12))
-      e5(1) = dot_product(d8_e5, k(1, 0:12)); e5(2) = dot_product(d8_e5, k(2, 0:12))
+      e3(1) = dot_product(d8_e3, k(0:12, 1)); e3(2) = dot_product(d8_e3, k(0:12, 2))
+      e5(1) = dot_product(d8_e5, k(0:12, 1)); e5(2) = dot_product(d8_e5, k(0:12, 2))
       sk = scale_of(y, ynew)
       err5 = sum((e5 / sk)**2)
       err3 = sum((e3 / sk)**2)
@@ -541,19 +543,19 @@ contains
         do s = 13, 15
           yst = y
           do jj = 0, s - 1
-            yst = yst + h * d8_a(s, jj) * k(:, jj)
+            yst = yst + h * d8_a(s, jj) * k(jj, :)
           end do
-          k(:, s) = rhs(t + d8_c(s) * h, yst)
+          k(s, :) = rhs(t + d8_c(s) * h, yst)
         end do
         stats%nfev = stats%nfev + 3
         dy = ynew - y
         cont(:, 0) = dy
-        cont(:, 1) = h * k(:, 0) - dy
-        cont(:, 2) = 2.0_dp * dy - h * (k(:, 0) + k(:, 12))
+        cont(:, 1) = h * k(0, :) - dy
+        cont(:, 2) = 2.0_dp * dy - h * (k(0, :) + k(12, :))
         do s = 0, 3
           yst = 0.0_dp
           do jj = 0, 15
-            yst = yst + d8_d(s, jj) * k(:, jj)
+            yst = yst + d8_d(s, jj) * k(jj, :)
           end do
           cont(:, 3 + s) = h * yst
         end do
@@ -561,7 +563,7 @@ contains
         do s = 0, 3
           yst = 0.0_dp
           do jj = 0, 6
-            yst = yst + d5_p(jj, s) * k(:, jj)
+            yst = yst + d5_p(jj, s) * k(jj, :)
           end do
           cont(:, s) = h * yst
         end do

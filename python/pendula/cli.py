@@ -67,21 +67,31 @@ def gallery_dir():
     return files("pendula") / "scenes"
 
 
-def cmd_run(args) -> int:
+def _run_file(args, command: str, outputs: tuple | None = None) -> int:
+    """Read a scene file (errors name the field, exit 2), run it, list the files."""
+    import pathlib
+
     from .run import run_scene
     from .scene import Scene, SceneError
 
     try:
         scene = Scene.from_file(args.scene)
     except SceneError as exc:
-        print(f"pendula run: {exc}", file=sys.stderr)
+        print(f"pendula {command}: {exc}", file=sys.stderr)
         return 2
-    import pathlib
-
-    files = run_scene(scene, args.output, stem=pathlib.Path(args.scene).stem, progress=not args.quiet)
-    for f in files:
+    if outputs:
+        scene = scene.replace(outputs=outputs)
+    for f in run_scene(scene, args.output, stem=pathlib.Path(args.scene).stem, progress=not args.quiet):
         print(f)
     return 0
+
+
+def cmd_run(args) -> int:
+    return _run_file(args, "run")
+
+
+def cmd_spectrum(args) -> int:
+    return _run_file(args, "spectrum", outputs=("spectrum",))
 
 
 def cmd_demo(args) -> int:
@@ -129,23 +139,6 @@ def integrator_study(outdir, periods: float, progress: bool = True) -> int:
     files += write_long_run(res, outdir, periods)
     for f in files:
         print(f"  wrote {f}")
-    return 0
-
-
-def cmd_spectrum(args) -> int:
-    import pathlib
-
-    from .run import run_scene
-    from .scene import Scene, SceneError
-
-    try:
-        scene = Scene.from_file(args.scene)
-    except SceneError as exc:
-        print(f"pendula spectrum: {exc}", file=sys.stderr)
-        return 2
-    scene = scene.replace(outputs=("spectrum",))
-    for f in run_scene(scene, args.output, stem=pathlib.Path(args.scene).stem, progress=not args.quiet):
-        print(f)
     return 0
 
 
