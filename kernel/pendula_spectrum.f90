@@ -1,8 +1,9 @@
 !> Harmonic spectra with FFTW (its Fortran 2003 interface).
 !>
-!> One real-to-complex plan per signal length, made once on FFTW-aligned
-!> buffers and executed for every signal of a sweep (new-array execution is
-!> thread-safe in FFTW; planning is not, and happens once here).  Optional
+!> One real-to-complex plan per signal length, made once (the Python layer
+!> keeps it for later calls of the same length) and executed on fresh aligned
+!> buffers for every signal (new-array execution is thread-safe in FFTW;
+!> planning is not, and the caller serialises it).  Optional
 !> Hann window.  Amplitudes are normalised so that a sin(w t) sampled over a
 !> whole number of periods gives |A| = a in its bin: A_k = 2 X_k / sum(w),
 !> A_0 = X_0 / sum(w); the power is |A_k|^2.
@@ -11,7 +12,7 @@ module pendula_spectrum
   use pendula_kinds, only: dp, two_pi
   implicit none
   private
-  public :: power_spectra
+  public :: power_spectra, spectrum_plan, spectrum_plan_free
 
   include 'fftw3.f03'
 
@@ -21,12 +22,44 @@ module pendula_spectrum
 
 contains
 
-  !> Power spectra |A_k|^2 of the columns of signals (n samples, spacing dt each),
-  !> one plan for all.  omega(k) = 2 pi k / (n dt), k = 0 .. n/2.
-  subroutine power_spectra(signals, dt, window, measure, omega, power, status)
+  !> A real-to-complex plan for n samples, made on FFTW-aligned buffers (which
+  !> are freed again: FFTW executes the plan on any buffers with the same
+  !> alignment).  Returns the plan as an address (0 on failure).  Planning is
+  !> not thread-safe in FFTW: callers serialise it.
+  function spectrum_plan(n, measure) result(handle)
+    integer, intent(in) :: n
+    logical, intent(in) :: measure
+    integer(c_intptr_t) :: handle
+    type(c_ptr) :: plan, pin, pout
+    real(c_double), pointer :: buf(:)
+    complex(c_double_complex), pointer :: spec(:)
+    integer(c_int) :: flags
+    handle = 0
+    pin = fftw_alloc_real(int(n, c_size_t))
+    pout = fftw_alloc_complex(int(n / 2 + 1, c_size_t))
+    if (.not. c_associated(pin) .or. .not. c_associated(pout)) return
+    call c_f_pointer(pin, buf, [n])
+    call c_f_pointer(pout, spec, [n / 2 + 1])
+    flags = FFTW_ESTIMATE
+    if (measure) flags = FFTW_MEASURE
+    plan = fftw_plan_dft_r2c_1d(int(n, c_int), buf, spec, flags)
+    call fftw_free(pin)
+    call fftw_free(pout)
+    handle = transfer(plan, handle)
+  end function spectrum_plan
+
+  subroutine spectrum_plan_free(handle)
+    integer(c_intptr_t), intent(in) :: handle
+    if (handle /= 0) call fftw_destroy_plan(transfer(handle, c_null_ptr))
+  end subroutine spectrum_plan_free
+
+  !> Power spectra |A_k|^2 of the columns of signals (n samples, spacing dt each)
+  !> with a plan made by spectrum_plan for this n, reused for every column.
+  !> omega(k) = 2 pi k / (n dt), k = 0 .. n/2.
+  subroutine power_spectra(handle, signals, dt, window, omega, power, status)
+    integer(c_intptr_t), intent(in) :: handle
     real(dp), intent(in) :: signals(:, :), dt
     integer, intent(in) :: window
-    logical, intent(in) :: measure
     real(dp), intent(out) :: omega(:), power(:, :)
     integer, intent(out) :: status
     type(c_ptr) :: plan, pin, pout
@@ -35,7 +68,6 @@ contains
     real(dp), allocatable :: w(:)
     real(dp) :: wsum
     integer :: n, nh, j, k
-    integer(c_int) :: flags
 
     n = size(signals, 1)
     nh = n / 2 + 1
@@ -46,15 +78,19 @@ contains
     if (window /= window_none .and. window /= window_hann) then
       status = spec_bad_window; return
     end if
-    allocate(w(n))
+    if (handle == 0) then
+      status = spec_no_memory; return
+    end if
+    plan = transfer(handle, plan)
     if (window == window_hann) then
+      allocate(w(n))
       do k = 1, n
         w(k) = 0.5_dp - 0.5_dp * cos(two_pi * real(k - 1, dp) / real(n, dp))   ! periodic Hann
       end do
+      wsum = sum(w)
     else
-      w = 1.0_dp
+      wsum = real(n, dp)
     end if
-    wsum = sum(w)
     pin = fftw_alloc_real(int(n, c_size_t))
     pout = fftw_alloc_complex(int(nh, c_size_t))
     if (.not. c_associated(pin) .or. .not. c_associated(pout)) then
@@ -62,9 +98,6 @@ contains
     end if
     call c_f_pointer(pin, buf, [n])
     call c_f_pointer(pout, spec, [nh])
-    flags = FFTW_ESTIMATE
-    if (measure) flags = FFTW_MEASURE
-    plan = fftw_plan_dft_r2c_1d(int(n, c_int), buf, spec, flags)
     do k = 1, nh
       omega(k) = two_pi * real(k - 1, dp) / (real(n, dp) * dt)
     end do
@@ -75,12 +108,11 @@ contains
         buf = signals(:, j) * w
       end if
       call fftw_execute_dft_r2c(plan, buf, spec)
-      ! |A|^2 from the real and imaginary parts (no hypot), then |A|
+      ! |A|^2 from the real and imaginary parts (no hypot)
       power(:, j) = (4.0_dp / (wsum * wsum)) * (real(spec, dp)**2 + aimag(spec)**2)
       power(1, j) = 0.25_dp * power(1, j)
       if (mod(n, 2) == 0) power(nh, j) = 0.25_dp * power(nh, j)
     end do
-    call fftw_destroy_plan(plan)
     call fftw_free(pin)
     call fftw_free(pout)
   end subroutine power_spectra

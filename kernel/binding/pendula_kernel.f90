@@ -174,12 +174,32 @@ subroutine integrate_v(n, method, params, theta0, v0, t, rtol, atol, dt, ev_kind
   stats = [dble(st%nsteps), dble(st%naccept), dble(st%nreject), dble(st%nfev)]
 end subroutine integrate_v
 
-! Power spectra of nsig signals of n samples (columns), one FFTW plan for all.
-! window: 0 none, 1 Hann; measure: 1 to plan with FFTW_MEASURE; nh must be n/2 + 1.
-subroutine spectra_v(n, nsig, signals, dt, window, measure, nh, omega, power, status)
+! FFTW plans for n samples, kept by the Python layer as an address (0 = failure).
+subroutine spectrum_plan_v(n, measure, handle)
+  use, intrinsic :: iso_c_binding, only: c_intptr_t
+  use pendula_spectrum, only: spectrum_plan
+  implicit none
+  integer, intent(in) :: n, measure
+  integer(8), intent(out) :: handle
+  handle = int(spectrum_plan(n, measure /= 0), 8)
+end subroutine spectrum_plan_v
+
+subroutine spectrum_plan_free_v(handle)
+  use, intrinsic :: iso_c_binding, only: c_intptr_t
+  use pendula_spectrum, only: spectrum_plan_free
+  implicit none
+  integer(8), intent(in) :: handle
+  call spectrum_plan_free(int(handle, c_intptr_t))
+end subroutine spectrum_plan_free_v
+
+! Power spectra of nsig signals of n samples (columns) with the plan handle for n.
+! window: 0 none, 1 Hann; nh must be n/2 + 1.
+subroutine spectra_v(handle, n, nsig, signals, dt, window, nh, omega, power, status)
+  use, intrinsic :: iso_c_binding, only: c_intptr_t
   use pendula_spectrum, only: power_spectra
   implicit none
-  integer, intent(in) :: n, nsig, window, measure, nh
+  integer(8), intent(in) :: handle
+  integer, intent(in) :: n, nsig, window, nh
   double precision, intent(in) :: signals(n, nsig), dt
   double precision, intent(out) :: omega(nh), power(nh, nsig)
   integer, intent(out) :: status
@@ -189,5 +209,5 @@ subroutine spectra_v(n, nsig, signals, dt, window, measure, nh, omega, power, st
     status = 4
     return
   end if
-  call power_spectra(signals, dt, window, measure /= 0, omega, power, status)
+  call power_spectra(int(handle, c_intptr_t), signals, dt, window, omega, power, status)
 end subroutine spectra_v

@@ -8,7 +8,9 @@ theta = w t + 4 sum_n q^n / (n (1 + q^(2n))) sin(n w t) has all of them.
 
 from __future__ import annotations
 
+import atexit
 import math
+import threading
 from dataclasses import dataclass
 
 import numpy as np
@@ -19,6 +21,35 @@ from ._checks import as_float
 __all__ = ["Spectrum", "spectrum", "spectra", "fourier_series", "odd_harmonics_above"]
 
 _WINDOWS = {None: 0, "none": 0, "hann": 1}
+
+# FFTW plans by (length, measured): made once, kept for the process.  FFTW's
+# planner is not thread-safe, so creation is serialised; executing a plan is.
+_PLANS: dict[tuple[int, bool], int] = {}
+_PLAN_LOCK = threading.Lock()
+_MAX_PLANS = 16
+
+
+def _plan(n: int, measure: bool) -> int:
+    key = (n, bool(measure))
+    with _PLAN_LOCK:
+        handle = _PLANS.get(key)
+        if handle is None:
+            if len(_PLANS) >= _MAX_PLANS:
+                old = next(iter(_PLANS))
+                _kernel.spectrum_plan_free_v(_PLANS.pop(old))
+            handle = int(_kernel.spectrum_plan_v(n, int(bool(measure))))
+            if handle == 0:
+                raise MemoryError(f"FFTW could not plan a transform of {n} samples")
+            _PLANS[key] = handle
+        return handle
+
+
+@atexit.register
+def _free_plans() -> None:  # pragma: no cover - runs at interpreter exit
+    with _PLAN_LOCK:
+        for handle in _PLANS.values():
+            _kernel.spectrum_plan_free_v(handle)
+        _PLANS.clear()
 
 
 @dataclass
@@ -102,8 +133,9 @@ def spectra(t, signals, window: str | None = None, measure: bool = False) -> lis
         NaN in a signal gives NaN in its spectrum (as numpy.fft does).
     window : {None, 'hann'}
     measure : bool
-        Plan with FFTW_MEASURE (slower planning, faster transforms; worth it
-        for long sweeps).
+        Plan with FFTW_MEASURE (seconds of planning for 2^20 samples, then
+        faster transforms; worth it for long sweeps).  Plans are kept for the
+        process, per length, so only the first call of a length pays.
     """
     t = as_float(t, "t")
     dt = _uniform_step(t)
@@ -115,8 +147,8 @@ def spectra(t, signals, window: str | None = None, measure: bool = False) -> lis
     if window not in _WINDOWS:
         raise ValueError(f"window must be None or 'hann', got {window!r}")
     n = t.size
-    omega, power, status = _kernel.spectra_v(np.asfortranarray(x.T), dt, _WINDOWS[window],
-                                             int(bool(measure)), n // 2 + 1)
+    omega, power, status = _kernel.spectra_v(_plan(n, measure), np.asfortranarray(x.T), dt,
+                                             _WINDOWS[window], n // 2 + 1)
     if status:
         raise RuntimeError(f"pendula kernel: spectrum status {status}")
     if not np.all(np.isfinite(power[:, 0])) and np.all(np.isfinite(x[0])):  # pragma: no cover
