@@ -149,3 +149,45 @@ def test_gallery_scenes_parse_in_python_and_fortran(tmp_path, data_dir):
         p = run(str(f), "-o", str(tmp_path / (f.stem + ".csv")))
         assert p.returncode == 0, (f.name, p.stderr)
         assert s.sweep and len(s.sweep_values) >= 2
+
+
+def test_pendula_run_integrates_scenes_with_effects(tmp_path):
+    """The compiled runner uses the kernel's DOP853 for a damped scene and agrees
+    with the Python layer (same kernel, same tolerances: to rounding)."""
+    f = tmp_path / "damped.nml"
+    f.write_text("&scene\n v0 = 2.3, damping = 0.04, t_end = 50.0, n_samples = 11\n"
+                 " rtol = 1e-11, atol = 1e-13\n/\n")
+    out = tmp_path / "d.csv"
+    p = run(str(f), "-o", str(out))
+    assert p.returncode == 0, p.stderr
+    text = out.read_text()
+    assert "# effects = damping" in text and "# solver = dop853" in text
+    data = np.array([[float(x) for x in ln.split(",")] for ln in text.splitlines() if ln and ln[0] not in "#t"])
+    tr = pendula.simulate(Scene.from_file(f))
+    assert tr.method == "dop853"
+    assert np.abs(data[:, 1] - tr.theta).max() < 1e-12 and np.abs(data[:, 2] - tr.v).max() < 1e-12
+
+
+def test_pendula_run_fixed_step_needs_dt(tmp_path):
+    f = tmp_path / "rk.nml"
+    f.write_text("&scene\n v0 = 1.0, damping = 0.1, method = 'rk4'\n/\n")
+    p = run(str(f), "-o", str(tmp_path / "o.csv"))
+    assert p.returncode == 4 and "dt" in p.stderr
+
+
+def test_pendula_run_unimplemented_effect_exits_3(tmp_path):
+    f = tmp_path / "cord.nml"
+    f.write_text("&scene\n cord = 'flexible'\n/\n")
+    p = run(str(f), "-o", str(tmp_path / "o.csv"))
+    assert p.returncode == 3 and "not implemented" in p.stderr
+    assert not (tmp_path / "o.csv").exists()
+
+
+def test_cli_run_writes_tables_and_figures(tmp_path, data_dir):
+    from pendula.cli import main
+    assert main(["run", str(data_dir / "scenes" / "fig10_theta_max_vs_v0.nml"), "-o", str(tmp_path), "-q"]) == 0
+    assert (tmp_path / "fig10_theta_max_vs_v0_orbits.csv").exists()
+    assert (tmp_path / "fig10_theta_max_vs_v0_orbits.png").stat().st_size > 10_000
+    bad = tmp_path / "bad.nml"
+    bad.write_text("&scene vv0 = 1 /")
+    assert main(["run", str(bad), "-o", str(tmp_path)]) == 2
