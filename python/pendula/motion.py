@@ -76,12 +76,12 @@ def orbit(theta0: float, v0: float, eps: float = 1.0) -> Orbit:
     >>> import pendula
     >>> o = pendula.orbit(0.0, 1.0)          # libration, k = 1/2
     >>> round(o.period, 12)
-    6.743001419250
+    6.74300141925
     """
     info, status = _kernel.exact_info_v(_scalar(theta0, "theta0"), _scalar(v0, "v0"), _scalar(eps, "eps"))
     _check_status(status)
     regime, k, m, mc, per, tmax = _REGIMES[int(info[0])], *info[1:6]
-    omega = 0.0 if math.isinf(per) else 2 * math.pi / per
+    omega = 0.0 if math.isinf(per) else float(2 * math.pi / per)
     return Orbit(regime, float(k), float(m), float(mc), float(per), omega, float(tmax))
 
 
