@@ -185,7 +185,7 @@ contains
     real(dp), intent(inout) :: ths(:), vs(:)
     type(run_stats), intent(inout) :: stats
     integer, intent(inout) :: status
-    real(dp) :: t, th, v, the, ve, zb(3, 2), bt, bthe, bv, bve
+    real(dp) :: t, th, v, the, ve, zb(3, 2), bt, bthe, bve
     integer(i8) :: istep, nsteps
     integer :: k, kout
     real(dp) :: tend
