@@ -137,20 +137,26 @@ contains
 
   !> K for whole arrays: the fit's two polynomials in a loop that vectorizes,
   !> log in a loop of its own, the rare cases (m < 0, NaN, m >= 1) after.
-  pure subroutine ellip_k_array(m, mc, k)
-    real(dp), intent(in) :: m(:), mc(:)
+  pure subroutine ellip_k_array(m, k, mc)
+    real(dp), intent(in) :: m(:)
     real(dp), intent(out) :: k(:)
+    real(dp), intent(in), optional :: mc(:)   !< the complement; 1 - m when absent
     integer, parameter :: blk = 256
-    real(dp) :: lg(blk), x, p, q
+    real(dp) :: lg(blk), cb(blk), x, p, q
     integer :: i0, nb, i, d
     do i0 = 1, size(m), blk
       nb = min(blk, size(m) - i0 + 1)
+      if (present(mc)) then
+        cb(1:nb) = mc(i0:i0+nb-1)
+      else
+        cb(1:nb) = 1.0_dp - m(i0:i0+nb-1)
+      end if
       do i = 1, nb
-        x = mc(i0 + i - 1)
+        x = cb(i)
         lg(i) = log(merge(x, 1.0_dp, x > 0.0_dp .and. x <= 1.0_dp))
       end do
       do i = 1, nb
-        x = min(max(mc(i0 + i - 1), 0.0_dp), 1.0_dp)
+        x = min(max(cb(i), 0.0_dp), 1.0_dp)
         p = kfit_p(11); q = kfit_q(11)
         do d = 10, 0, -1
           p = p * x + kfit_p(d)
@@ -158,8 +164,9 @@ contains
         end do
         k(i0 + i - 1) = p - lg(i) * q
       end do
-      do i = i0, i0 + nb - 1
-        if (.not. (mc(i) > 0.0_dp .and. mc(i) <= 1.0_dp) .or. m(i) /= m(i)) k(i) = ellip_k(m(i), mc(i))
+      do i = 1, nb
+        if (.not. (cb(i) > 0.0_dp .and. cb(i) <= 1.0_dp) .or. m(i0 + i - 1) /= m(i0 + i - 1)) &
+          k(i0 + i - 1) = ellip_k(m(i0 + i - 1), cb(i))
       end do
     end do
   end subroutine ellip_k_array

@@ -9,24 +9,36 @@ subroutine gsl_init()
   call pendula_gsl_init()
 end subroutine gsl_init
 
-subroutine ellipk_v(n, m, mc, k)
+! The complete integrals and the nome.  mc holds the complement for every
+! element (nmc = n), or nmc = 1 and the kernel forms mc = 1 - m itself.
+subroutine ellipk_v(n, nmc, m, mc, k)
   use pendula_elliptic, only: ellip_k_array
   implicit none
-  integer, intent(in) :: n
-  double precision, intent(in) :: m(n), mc(n)
+  integer, intent(in) :: n, nmc
+  double precision, intent(in) :: m(n), mc(nmc)
   double precision, intent(out) :: k(n)
   !f2py intent(hide), depend(m) :: n = len(m)
-  call ellip_k_array(m, mc, k)
+  !f2py intent(hide), depend(mc) :: nmc = len(mc)
+  if (nmc == n) then
+    call ellip_k_array(m, k, mc)
+  else
+    call ellip_k_array(m, k)
+  end if
 end subroutine ellipk_v
 
-subroutine ellipe_v(n, m, mc, e)
+subroutine ellipe_v(n, nmc, m, mc, e)
   use pendula_elliptic, only: ellip_e
   implicit none
-  integer, intent(in) :: n
-  double precision, intent(in) :: m(n), mc(n)
+  integer, intent(in) :: n, nmc
+  double precision, intent(in) :: m(n), mc(nmc)
   double precision, intent(out) :: e(n)
   !f2py intent(hide), depend(m) :: n = len(m)
-  e = ellip_e(m, mc)
+  !f2py intent(hide), depend(mc) :: nmc = len(mc)
+  if (nmc == n) then
+    e = ellip_e(m, mc)
+  else
+    e = ellip_e(m, 1.0d0 - m)
+  end if
 end subroutine ellipe_v
 
 subroutine ellipf_v(n, phi, m, mc, f)
@@ -49,14 +61,19 @@ subroutine ellipeinc_v(n, phi, m, mc, e)
   e = ellip_einc(phi, m, mc)
 end subroutine ellipeinc_v
 
-subroutine nome_v(n, m, mc, q)
+subroutine nome_v(n, nmc, m, mc, q)
   use pendula_elliptic, only: ellip_nome
   implicit none
-  integer, intent(in) :: n
-  double precision, intent(in) :: m(n), mc(n)
+  integer, intent(in) :: n, nmc
+  double precision, intent(in) :: m(n), mc(nmc)
   double precision, intent(out) :: q(n)
   !f2py intent(hide), depend(m) :: n = len(m)
-  q = ellip_nome(m, mc)
+  !f2py intent(hide), depend(mc) :: nmc = len(mc)
+  if (nmc == n) then
+    q = ellip_nome(m, mc)
+  else
+    q = ellip_nome(m, 1.0d0 - m)
+  end if
 end subroutine nome_v
 
 ! Jacobi functions; nm = 1 means one parameter for all u (prepared once).

@@ -21,7 +21,18 @@ from ._checks import as_float, flat, parameter, shaped, warn_domain
 __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome"]
 
 
+_NO_MC = np.zeros(1)
+
+
 def _unary(kfunc, name, m, mc):
+    if mc is None and m is not None:
+        # the kernel forms mc = 1 - m itself: one pass less over the data
+        a = as_float(m, "m")
+        shape = a.shape
+        mf = np.ascontiguousarray(a.reshape(-1), dtype=np.float64)
+        out = kfunc(mf, _NO_MC if mf.size != 1 else np.array([1.0 - mf[0]]))
+        warn_domain(name, out, mf)
+        return shaped(out, shape)
     m, mc = parameter(m, mc)
     shape, (mf, mcf) = flat(m, mc)
     out = kfunc(mf, mcf)
