@@ -184,6 +184,13 @@ contains
       case (regime_separatrix)
         theta(i0:i0+nb-1) = o%offset + o%dir * 2.0_dp * am(1:nb)
         v(i0:i0+nb-1) = o%dir * (2.0_dp * o%sqh) * cn(1:nb)
+        ! t = +-Inf: the limits pi and -pi of the separatrix flight
+        do i = 1, nb
+          if (abs(t(i0 + i - 1)) > huge(1.0_dp)) then
+            theta(i0 + i - 1) = o%offset + o%dir * sign(pi, t(i0 + i - 1))
+            v(i0 + i - 1) = 0.0_dp
+          end if
+        end do
       case default
         theta(i0:i0+nb-1) = o%dir * 2.0_dp * am(1:nb)
         v(i0:i0+nb-1) = o%dir * (2.0_dp * o%k * o%sqh) * dn(1:nb)

@@ -187,3 +187,18 @@ def test_poincare_lindstedt_error_scales_with_the_next_power_of_a(order):
         errs.append(np.abs(pendula.poincare_lindstedt(a, t, 1.0, order) - theta).max())
     # error ~ a^(order+2) (t-growing secular part included): halving a divides it by ~2^(order+2)
     assert errs[0] / errs[1] == pytest.approx(2 ** (order + 2), rel=0.25)
+
+
+def test_infinite_and_nan_times():
+    """NaN in gives NaN out quietly; an infinite time has no angle (NaN and a
+    RuntimeWarning), except on the separatrix, where theta -> pi."""
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        theta, v = pendula.exact_motion(0.0, 1.0, 1.0, [np.nan])
+        assert np.isnan(theta[0]) and np.isnan(v[0])
+        theta, _ = pendula.exact_motion(0.0, 2.0, 1.0, [np.inf])
+        assert theta[0] == np.pi
+    with pytest.warns(RuntimeWarning, match="infinite"):
+        theta, _ = pendula.exact_motion(0.0, 1.0, 1.0, [np.inf])
+    assert np.isnan(theta[0])

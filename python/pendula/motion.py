@@ -107,9 +107,9 @@ def exact_motion(theta0: float, v0: float, eps: float, t) -> tuple[np.ndarray, n
     theta, v, status = _kernel.exact_motion_v(_scalar(theta0, "theta0"), _scalar(v0, "v0"),
                                               _scalar(eps, "eps"), tf)
     _check_status(status)
-    bad = ~np.isfinite(theta) & np.isfinite(tf)
+    bad = ~np.isfinite(theta) & ~np.isnan(tf)
     if np.any(bad):
-        warnings.warn(f"exact_motion: {int(bad.sum())} time(s) beyond 2**48 half periods gave NaN",
+        warnings.warn(f"exact_motion: {int(bad.sum())} time(s) infinite or beyond 2**48 half periods gave NaN",
                       RuntimeWarning, stacklevel=2)
     return theta.reshape(t.shape), v.reshape(t.shape)
 
