@@ -118,8 +118,14 @@ def cmd_demo(args) -> int:
 
 def cmd_accuracy(args) -> int:
     if args.what == "elliptic":
+        import pathlib
+
         from .accuracy import elliptic_report, print_report
 
+        if not pathlib.Path(args.reference).is_file():
+            print(f"pendula accuracy: reference file {args.reference!r} not found: run from the repository "
+                  "root or pass --reference (data/gen_elliptic_reference.py writes it)", file=sys.stderr)
+            return 2
         print_report(elliptic_report(args.reference), markdown=args.markdown)
         return 0
     return integrator_study(args.output, args.periods, progress=not args.quiet)
