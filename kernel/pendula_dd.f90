@@ -6,7 +6,7 @@ module pendula_dd
   use pendula_kinds, only: dp
   implicit none
   private
-  public :: two_sum, fast_two_sum, two_prod, dd_mul_d, dd_sqrt, dd_add, dd_mul, dd_sincos
+  public :: two_sum, fast_two_sum, two_prod, dd_sqrt, dd_add, dd_mul, dd_sincos
 
   real(dp), parameter :: splitter = 134217729.0_dp   ! 2**27 + 1
 
@@ -44,16 +44,6 @@ contains
     bl = b - bh
     e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
   end subroutine two_prod
-
-  !> (rh + rl) = (xh + xl) * y to double-double accuracy.
-  elemental subroutine dd_mul_d(xh, xl, y, rh, rl)
-    real(dp), intent(in) :: xh, xl, y
-    real(dp), intent(out) :: rh, rl
-    real(dp) :: p, e
-    call two_prod(xh, y, p, e)
-    e = e + xl * y
-    call fast_two_sum(p, e, rh, rl)
-  end subroutine dd_mul_d
 
   !> (rh + rl) = sqrt(xh + xl) to double-double accuracy, xh >= 0.
   elemental subroutine dd_sqrt(xh, xl, rh, rl)

@@ -44,13 +44,11 @@ module pendula_elliptic
   !> (imaginary-modulus transformation), 3 for m > 1 (reciprocal modulus).
   type :: jacobi_plan
     integer :: regime = -1
-    real(dp) :: m = 0.0_dp, mc = 1.0_dp       !< parameter of the core (0 <= m < 1)
+    real(dp) :: mc = 1.0_dp                   !< complement of the core parameter (0 <= m < 1)
     real(dp) :: kh = 0.0_dp, kl = 0.0_dp      !< K of the core, double-double
-    real(dp) :: sqmc = 1.0_dp                 !< sqrt(mc) of the core
     real(dp) :: sh = 1.0_dp, sl = 0.0_dp      !< argument scale (1, sqrt(1-m) or sqrt(m))
     real(dp) :: ct(6) = 0.0_dp                 !< Maclaurin series of tn^2 in u^2
     integer :: ndbl = 0                        !< duplications that cover [0, K/2]
-    real(dp) :: inv2k = 0.0_dp                 !< 1 / (2K)
   end type jacobi_plan
 
 contains
@@ -448,8 +446,7 @@ contains
       cmcl = ((-mc - pr) - pe) / m            ! -mc/m in double-double
       call dd_sqrt(m, 0.0_dp, p%sh, p%sl)
     end if
-    p%m = cm; p%mc = cmc
-    p%sqmc = sqrt(cmc)
+    p%mc = cmc
     call ellip_k_dd2(cmc, cmcl, p%kh, p%kl)
     ! Maclaurin series of tn^2 = sn^2/cn^2 in t = u^2 (coefficients from
     ! data/gen_jacobi_series.py); six terms reach 1e-17 relative at u <= 1/16.
@@ -462,7 +459,6 @@ contains
     p%ct(6) = (21844.0_dp + cm * (-54610.0_dp + cm * (45736.0_dp + cm * (-13994.0_dp &
               + cm * (1028.0_dp - cm * 2.0_dp))))) / 467775.0_dp
     p%ndbl = max(0, exponent(0.5_dp * p%kh) + 4)
-    p%inv2k = 0.5_dp / p%kh
   end function jacobi_prepare_dd
 
   !> Round to the nearest integer (ties to even) for |x| < 2^51, with plain

@@ -185,7 +185,7 @@ contains
     real(dp), intent(inout) :: ths(:), vs(:)
     type(run_stats), intent(inout) :: stats
     integer, intent(inout) :: status
-    real(dp) :: t, th, v, the, ve, zb(3, 2), bt, bthe, bve
+    real(dp) :: t, th, v, the, ve, bt, bthe, bve
     integer(i8) :: istep, nsteps
     integer :: k, kout
     real(dp) :: tend
@@ -194,7 +194,6 @@ contains
     tend = ts(size(ts))
     nsteps = int(abs(tend) / abs(h), i8) + 1
     th = theta0; v = v0; the = 0.0_dp; ve = 0.0_dp
-    zb = 0.0_dp
     kout = 1
     do istep = 0, nsteps
       t = real(istep, dp) * h
@@ -204,12 +203,12 @@ contains
         bt = t; bthe = the; bve = ve
         ths(kout) = th; vs(kout) = v
         if (ts(kout) /= t) then
-          call fixed_step(m, method, bt, ts(kout) - t, ths(kout), bthe, vs(kout), bve, zb, stats)
+          call fixed_step(m, method, bt, ts(kout) - t, ths(kout), bthe, vs(kout), bve, stats)
         end if
         kout = kout + 1
       end do
       if (kout > size(ts)) exit
-      call fixed_step(m, method, t, h, th, the, v, ve, zb, stats)
+      call fixed_step(m, method, t, h, th, the, v, ve, stats)
       stats%nsteps = stats%nsteps + 1
       stats%naccept = stats%naccept + 1
       if (.not. (abs(th) <= huge(th) .and. abs(v) <= huge(v))) then
@@ -223,11 +222,11 @@ contains
   end subroutine run_fixed
 
   !> One step of a fixed-step method from (t, th, v) with compensation terms.
-  subroutine fixed_step(m, method, t, h, th, the, v, ve, z, stats)
+  subroutine fixed_step(m, method, t, h, th, the, v, ve, stats)
     type(pendulum_model), intent(in) :: m
     integer, intent(in) :: method
     real(dp), intent(in) :: t, h
-    real(dp), intent(inout) :: th, the, v, ve, z(3, 2)
+    real(dp), intent(inout) :: th, the, v, ve
     type(run_stats), intent(inout) :: stats
     real(dp) :: k1t, k1v, k2t, k2v, k3t, k3v, k4t, k4v, tt
     select case (method)
@@ -249,9 +248,9 @@ contains
     case (m_yoshida8)
       call compose(yo8_w)
     case (m_gauss4)
-      call gauss_step(m, 2, g2_a, g2_b, g2_c, t, h, th, the, v, ve, z(1:2, :), stats)
+      call gauss_step(m, 2, g2_a, g2_b, g2_c, t, h, th, the, v, ve, stats)
     case (m_gauss6)
-      call gauss_step(m, 3, g3_a, g3_b, g3_c, t, h, th, the, v, ve, z, stats)
+      call gauss_step(m, 3, g3_a, g3_b, g3_c, t, h, th, the, v, ve, stats)
     end select
   contains
     !> Symmetric composition w_k ... w_1 w_0 w_1 ... w_k of the Verlet step.
@@ -293,13 +292,13 @@ contains
   !> z(i, :) = h sum_j a_ij f(y + z(j, :)), stopped when the increments stop
   !> decreasing (or vanish), the round-off-limited rule of Hairer,
   !> McLachlan & Razakarivony (2008), starting from z = 0.
-  subroutine gauss_step(m, s, a, b, c, t, h, th, the, v, ve, z, stats)
+  subroutine gauss_step(m, s, a, b, c, t, h, th, the, v, ve, stats)
     type(pendulum_model), intent(in) :: m
     integer, intent(in) :: s
     real(dp), intent(in) :: a(0:s-1, 0:s-1), b(0:s-1), c(0:s-1), t, h
-    real(dp), intent(inout) :: th, the, v, ve, z(s, 2)
+    real(dp), intent(inout) :: th, the, v, ve
     type(run_stats), intent(inout) :: stats
-    real(dp) :: f(s, 2), znew(s, 2), d, dold, st, sv
+    real(dp) :: z(s, 2), f(s, 2), znew(s, 2), d, dold, st, sv
     integer :: it, i, j
     z = 0.0_dp
     dold = huge(1.0_dp)
