@@ -53,9 +53,7 @@ def _run(scene, method, t_sorted, ev_kind=0, ev_level=0.0, ev_dir=0, terminal=Fa
         raise ValueError(f"method {method!r} is fixed-step: give the scene a step dt > 0")
     if method in ADAPTIVE and not (scene.rtol > 0 and scene.atol >= 0):
         raise ValueError("adaptive methods need rtol > 0 and atol >= 0")
-    missing = [e for e in scene.effects if e in ("cord", "guide", "gravity")]
-    if missing:
-        raise NotImplementedError(f"pendula cannot integrate the effect(s) {', '.join(missing)} yet")
+    scene.require_implemented()
     out = _kernel.integrate_v(CODES[method], _params(scene), scene.theta0, scene.v0, t_sorted,
                               scene.rtol, scene.atol, scene.dt, ev_kind, ev_level, ev_dir, int(terminal),
                               max_events)

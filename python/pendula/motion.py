@@ -152,10 +152,6 @@ class Trajectory:
         return np.column_stack([self.t, self.theta, self.v, self.energy])
 
 
-def _unimplemented_effects(scene: Scene) -> list[str]:
-    return [e for e in scene.effects if e in ("cord", "guide", "gravity")]
-
-
 def simulate(scene: Scene, t=None, method: str | None = None) -> Trajectory:
     """Run one scene at the times ``t`` (default: the scene's own output times).
 
@@ -169,11 +165,8 @@ def simulate(scene: Scene, t=None, method: str | None = None) -> Trajectory:
         raise TypeError(f"simulate expects a pendula.Scene, got {type(scene).__name__}")
     t = scene.times() if t is None else as_float(t, "t")
     method = method or scene.method
-    missing = _unimplemented_effects(scene)
-    if missing:
-        raise NotImplementedError(f"pendula cannot simulate the effect(s) {', '.join(missing)} yet "
-                                  f"(cord = {scene.cord!r}, guide = {scene.guide!r}, gravity = {scene.gravity!r})")
-    if method in ("auto", "exact") and scene.is_conservative_rigid and not missing:
+    scene.require_implemented()
+    if method in ("auto", "exact") and scene.is_conservative_rigid:
         theta, v = exact_motion(scene.theta0, scene.v0, scene.eps, t)
         return Trajectory(t, theta, v, energy(theta, v, scene.eps), "exact", scene)
     if method == "exact":

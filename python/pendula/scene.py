@@ -152,6 +152,15 @@ class Scene:
             out.append("gravity")
         return tuple(out)
 
+    def require_implemented(self) -> None:
+        """NotImplementedError naming the effects the scene format has room for
+        but pendula cannot simulate yet (the flexible cord, the cycloidal guide,
+        non-uniform gravity)."""
+        missing = [e for e in self.effects if e in ("cord", "guide", "gravity")]
+        if missing:
+            raise NotImplementedError(f"pendula cannot simulate the effect(s) {', '.join(missing)} yet "
+                                      f"(cord = {self.cord!r}, guide = {self.guide!r}, gravity = {self.gravity!r})")
+
     @property
     def is_conservative_rigid(self) -> bool:
         """True when the exact elliptic-function solution answers this scene."""

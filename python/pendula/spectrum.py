@@ -9,6 +9,7 @@ theta = w t + 4 sum_n q^n / (n (1 + q^(2n))) sin(n w t) has all of them.
 from __future__ import annotations
 
 import atexit
+import functools
 import math
 import threading
 from dataclasses import dataclass
@@ -76,7 +77,7 @@ class Spectrum:
         """|A_k| = sqrt(power)."""
         return np.sqrt(self.power)
 
-    @property
+    @functools.cached_property
     def fundamental(self) -> float:
         """Angular frequency of the strongest non-constant line, refined by
         quadratic interpolation of log power around the peak bin (exact when
@@ -100,13 +101,11 @@ class Spectrum:
         (the lines of a libration), read at the nearest bins."""
         if not (isinstance(n, (int, np.integer)) and n >= 1):
             raise ValueError(f"n must be a positive whole number, got {n!r}")
-        w = self.fundamental
         dw = self.omega[1] - self.omega[0]
+        bins = np.rint((2 * np.arange(n) + 1) * self.fundamental / dw).astype(np.int64)
         out = np.full(n, np.nan)
-        for j in range(n):
-            k = int(round((2 * j + 1) * w / dw))
-            if k < self.amplitude.size:
-                out[j] = self.amplitude[k]
+        inside = bins < self.power.size
+        out[inside] = np.sqrt(self.power[bins[inside]])
         return out
 
 
