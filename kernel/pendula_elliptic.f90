@@ -499,9 +499,11 @@ contains
       call jacobi_special(p, u, sn, cn, dn, am)
       return
     end if
-    kh = p%kh; kl = p%kl; sc = p%sh; scl = p%sl; mc = p%mc
+    ! the plan's constants as per-element arrays, only as long as the longest block
+    nb = min(blk, size(u))
+    kh(1:nb) = p%kh; kl(1:nb) = p%kl; sc(1:nb) = p%sh; scl(1:nb) = p%sl; mc(1:nb) = p%mc
     do k = 1, 6
-      ct(:, k) = p%ct(k)
+      ct(1:nb, k) = p%ct(k)
     end do
     do i0 = 1, size(u), blk
       nb = min(blk, size(u) - i0 + 1)

@@ -9,13 +9,13 @@
 program pendula_ellip
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit, input_unit
   use pendula_kinds, only: dp
-  use pendula_elliptic, only: jacobi_sncndn
+  use pendula_elliptic, only: jacobi_eval_varm
   use pendula_text, only: strip_comment, split_tokens, parse_real, max_tokens
   implicit none
   character(len=4096) :: line, path
   character(len=:), allocatable :: body
-  real(dp), allocatable :: u(:), m(:), mc(:), tmp(:,:)
-  real(dp) :: sn, cn, dn, am, x(3)
+  real(dp), allocatable :: u(:), m(:), mc(:), tmp(:,:), sn(:), cn(:), dn(:), am(:)
+  real(dp) :: x(3)
   integer :: unit, ios, lineno, nrows, ntok, i, first(max_tokens), last(max_tokens), nnan
   logical :: ok
 
@@ -68,12 +68,13 @@ program pendula_ellip
     end if
   end do
 
-  nnan = 0
+  ! all rows at once, through the kernel's vectorized path
+  allocate(sn(nrows), cn(nrows), dn(nrows), am(nrows))
+  call jacobi_eval_varm(u(1:nrows), m(1:nrows), mc(1:nrows), sn, cn, dn, am)
+  nnan = count(sn /= sn .and. u(1:nrows) == u(1:nrows) .and. m(1:nrows) == m(1:nrows))
   write(output_unit, '(a)') '# sn cn dn am'
   do i = 1, nrows
-    call jacobi_sncndn(u(i), m(i), mc(i), sn, cn, dn, am)
-    if (sn /= sn .and. u(i) == u(i) .and. m(i) == m(i)) nnan = nnan + 1
-    write(output_unit, '(4(es25.17e3,1x))') sn, cn, dn, am
+    write(output_unit, '(4(es25.17e3,1x))') sn(i), cn(i), dn(i), am(i)
   end do
   if (nnan > 0) write(error_unit, '(a,i0,a)') 'pendula-ellip: warning: ', nnan, &
     ' row(s) outside the domain (or u beyond 2**48 half periods) gave NaN'
