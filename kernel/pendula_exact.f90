@@ -21,7 +21,7 @@ module pendula_exact
   public :: pendulum_orbit, orbit_setup, orbit_eval, orbit_period, orbit_theta_max
 
   integer, parameter, public :: regime_libration = 0, regime_separatrix = 1, &
-                                regime_rotation = 2, regime_inverted = 3
+                                regime_rotation = 2
   integer, parameter, public :: orbit_ok = 0, orbit_bad_eps = 1, orbit_bad_theta0 = 2, &
                                 orbit_bad_v0 = 3
 
@@ -34,7 +34,6 @@ module pendula_exact
     real(dp) :: u0 = 0.0_dp                 !< phase at t = 0
     real(dp) :: offset = 0.0_dp             !< 2 pi n: the well of a libration
     real(dp) :: dir = 1.0_dp                !< direction of a rotation or separatrix flight
-    real(dp) :: theta0 = 0.0_dp
     type(jacobi_plan) :: plan
   end type pendulum_orbit
 
@@ -57,7 +56,6 @@ contains
       status = orbit_bad_v0; return
     end if
     o%eps = eps
-    o%theta0 = theta0
     call dd_sqrt(eps, 0.0_dp, o%sqh, o%sql)
     ! theta0 = 2 pi n + (th + tl), |th| <= pi, with pi in double-double
     n = anint(theta0 / two_pi)
@@ -103,19 +101,16 @@ contains
       end if
       o%plan = jacobi_prepare_dd(o%m, o%mch, o%mcl)
     else if (dh == 0.0_dp .and. dl == 0.0_dp) then
+      ! the separatrix.  cos(theta0/2) > 0 for every double theta0 (pi is not a
+      ! double), so |w| = cos(theta0/2) > 0 here: the inverted equilibrium at
+      ! rest cannot be given, and the flight always has a direction.
+      o%regime = regime_separatrix
       o%k = 1.0_dp; o%m = 1.0_dp; o%mch = 0.0_dp; o%mcl = 0.0_dp
       o%offset = two_pi * n
       o%rateh = o%sqh; o%ratel = o%sql
-      if (wh == 0.0_dp) then
-        ! theta0 = +-pi with v0 = 0: the inverted equilibrium, forever
-        o%regime = regime_inverted
-        o%u0 = 0.0_dp
-      else
-        o%regime = regime_separatrix
-        o%dir = sign(1.0_dp, wh)
-        o%u0 = atanh(o%dir * s0)
-        o%plan = jacobi_prepare_dd(1.0_dp, 0.0_dp, 0.0_dp)
-      end if
+      o%dir = sign(1.0_dp, wh)
+      o%u0 = atanh(o%dir * s0)
+      o%plan = jacobi_prepare_dd(1.0_dp, 0.0_dp, 0.0_dp)
     else
       ! rotation: parameter 1/k^2, complement (|w| - c0)(|w| + c0) / k^2
       o%regime = regime_rotation
@@ -150,11 +145,6 @@ contains
     real(dp), parameter :: splitter = 134217729.0_dp
     integer :: i, i0, nb
 
-    if (o%regime == regime_inverted) then
-      theta = o%theta0
-      v = 0.0_dp
-      return
-    end if
     rh = o%rateh; rl = o%ratel; u0 = o%u0
     f = splitter * rh; bh = f - (f - rh); bl = rh - bh
     do i0 = 1, size(t), blk
@@ -199,7 +189,7 @@ contains
   end subroutine orbit_eval
 
   !> Period: 4K/sqrt(eps) for a libration, one full turn 2K(1/k^2)/(k sqrt(eps))
-  !> for a rotation, +Inf on the separatrix and at the inverted equilibrium.
+  !> for a rotation, +Inf on the separatrix.
   pure function orbit_period(o) result(tp)
     type(pendulum_orbit), intent(in) :: o
     real(dp) :: tp
@@ -221,7 +211,7 @@ contains
     select case (o%regime)
     case (regime_libration)
       tm = 2.0_dp * atan2(o%k, sqrt(o%mch))
-    case (regime_separatrix, regime_inverted)
+    case (regime_separatrix)
       tm = pi
     case default
       tm = inf_dp

@@ -24,8 +24,8 @@ program pendula_run
   real(dp), allocatable :: t(:), theta(:), v(:), e(:), values(:)
   logical :: want_traj, want_orbit, swept
   integer :: nsteps, nrhs
-  character(len=10), parameter :: regime_names(0:3) = [character(len=10) :: 'libration', 'separatrix', &
-                                                       'rotation', 'inverted']
+  character(len=10), parameter :: regime_names(0:2) = [character(len=10) :: 'libration', 'separatrix', &
+                                                       'rotation']
 
   nargs = command_argument_count()
   path = ''

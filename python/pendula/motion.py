@@ -19,7 +19,7 @@ from .scene import Scene
 
 __all__ = ["Orbit", "Trajectory", "orbit", "exact_motion", "energy", "simulate", "period"]
 
-_REGIMES = {0: "libration", 1: "separatrix", 2: "rotation", 3: "inverted"}
+_REGIMES = {0: "libration", 1: "separatrix", 2: "rotation"}
 _STATUS = {1: "eps must be positive and finite", 2: "theta0 must be finite", 3: "v0 must be finite"}
 
 
@@ -30,8 +30,9 @@ class Orbit:
     Attributes
     ----------
     regime : str
-        'libration' (k < 1), 'separatrix' (k = 1), 'rotation' (k > 1) or
-        'inverted' (at rest upside down).
+        'libration' (k < 1), 'separatrix' (k = 1) or 'rotation' (k > 1).
+        (At rest upside down is not a state a double can give: np.pi lies
+        1.2e-16 below pi, so it is a libration that slowly falls off the top.)
     k : float
         Modulus sqrt(E / (2 eps)).
     m, mc : float
