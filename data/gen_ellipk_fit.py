@@ -2,7 +2,7 @@
 
 P and Q are polynomials of degree 11 fitted jointly by linear least squares in
 the relative error, on 600 Chebyshev nodes, at 40 digits with mpmath.  The
-coefficients, rounded to float64, are written to kernel/pendula_ellipk_fit.inc
+coefficients, rounded to float64, are written to kernel/elliptic/pendula_ellipk_fit.inc
 (a Fortran include file: generated here, committed, never edited by hand) and
 the fit is checked at 3000 + 43 points against mpmath at 400 digits.
 Measured: worst 0.21 eps relative for the fit itself (evaluation adds rounding).
@@ -15,7 +15,7 @@ import pathlib
 import mpmath as mp
 
 DEG = 11
-OUT = pathlib.Path(__file__).resolve().parents[1] / "kernel" / "pendula_ellipk_fit.inc"
+OUT = pathlib.Path(__file__).resolve().parents[1] / "kernel" / "elliptic" / "pendula_ellipk_fit.inc"
 
 
 def fit(d, npts=600):

@@ -1,4 +1,4 @@
-"""Write kernel/pendula_rk_tables.inc: the coefficient tables of the integrators.
+"""Write kernel/integrators/pendula_rk_tables.inc: the coefficient tables of the integrators.
 
 * DOP853 (Dormand & Prince; Hairer, Norsett & Wanner, Solving ODEs I, 2nd ed.):
   C, A (16 stages, the last 3 for dense output), B, the error weights E3, E5
@@ -22,7 +22,7 @@ import numpy as np
 from scipy.integrate._ivp import dop853_coefficients as d8
 from scipy.integrate._ivp.rk import RK45
 
-OUT = pathlib.Path(__file__).resolve().parents[1] / "kernel" / "pendula_rk_tables.inc"
+OUT = pathlib.Path(__file__).resolve().parents[1] / "kernel" / "integrators" / "pendula_rk_tables.inc"
 
 
 def arr(name, a):

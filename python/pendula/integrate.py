@@ -69,7 +69,8 @@ def _run(scene, method, t_sorted, ev_kind=0, ev_level=0.0, ev_dir=0, terminal=Fa
 
 def integrate_scene(scene: Scene, t, method: str = "auto"):
     """A Trajectory of the scene at the times t by the named method."""
-    from .motion import Trajectory, energy
+    from .models.rigid import energy
+    from .trajectory import Trajectory
 
     t = as_float(t, "t")
     if method == "auto":
@@ -144,7 +145,7 @@ def numerical_period(scene: Scene, periods: int = 20, method: str = "dop853") ->
     rotation: the mean time per turn (theta passing theta0 + 2 pi k).  The
     integration runs over ``periods`` estimated periods.
     """
-    from .motion import orbit
+    from .models.rigid import orbit
 
     if not scene.is_conservative_rigid:
         raise ValueError("numerical_period measures the period of a conservative orbit")

@@ -183,7 +183,7 @@ def fourier_series(theta0: float, v0: float, eps: float = 1.0, n: int = 10) -> t
     theta = 0 at t = 0.)
     """
     from .elliptic import nome
-    from .motion import orbit
+    from .models.rigid import orbit
 
     if not (isinstance(n, (int, np.integer)) and n >= 1):
         raise ValueError(f"n must be a positive whole number, got {n!r}")
@@ -219,7 +219,8 @@ def spectrum_outputs(scene, members, values, outdir, stem, progress=True):
     import csv
 
     from . import plot
-    from .motion import orbit, simulate
+    from .models.rigid import orbit
+    from .motion import simulate
     from .run import _header
 
     rows, specs, labels, notes = [], [], [], []

@@ -1,0 +1,122 @@
+"""The rigid pendulum: the exact solution of theta'' + eps sin(theta) = 0.
+
+The conservative rigid pendulum is answered exactly by Jacobi elliptic
+functions in every regime (see kernel/models/pendula_exact.f90 for the
+formulas).  This is the first model of pendula; the dispatcher
+(:func:`pendula.simulate`) sends a scene here whenever it names no effect.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import _kernel
+from .._checks import as_float
+
+__all__ = ["Orbit", "orbit", "exact_motion", "energy"]
+
+_REGIMES = {0: "libration", 1: "separatrix", 2: "rotation"}
+_STATUS = {1: "eps must be positive and finite", 2: "theta0 must be finite", 3: "v0 must be finite"}
+
+
+@dataclass(frozen=True)
+class Orbit:
+    """Facts about one conservative orbit, from the exact solution.
+
+    Attributes
+    ----------
+    regime : str
+        'libration' (k < 1), 'separatrix' (k = 1) or 'rotation' (k > 1).
+        (At rest upside down is not a state a double can give: np.pi lies
+        1.2e-16 below pi, so it is a libration that slowly falls off the top.)
+    k : float
+        Modulus sqrt(E / (2 eps)).
+    m, mc : float
+        Parameter of the Jacobi functions used (k^2 in libration, 1/k^2 in
+        rotation) and its complement, computed without cancellation.
+    period : float
+        4K(m)/sqrt(eps) in libration, the time of one full turn in rotation,
+        inf on the separatrix.
+    omega : float
+        2 pi / period (0 on the separatrix).
+    theta_max : float
+        Amplitude 2 arcsin(k) of a libration; pi on the separatrix; inf for a
+        rotation.
+    """
+
+    regime: str
+    k: float
+    m: float
+    mc: float
+    period: float
+    omega: float
+    theta_max: float
+
+
+def _check_status(status: int) -> None:
+    if status:
+        raise ValueError(_STATUS.get(status, f"pendula kernel status {status}"))
+
+
+def _scalar(x, name: str) -> float:
+    a = as_float(x, name)
+    if a.ndim != 0 and a.size != 1:
+        raise ValueError(f"{name} must be a single number, got shape {a.shape}")
+    return float(a.reshape(()))
+
+
+def orbit(theta0: float, v0: float, eps: float = 1.0) -> Orbit:
+    """Regime, modulus, period, frequency and amplitude of the orbit through (theta0, v0).
+
+    Examples
+    --------
+    >>> import pendula
+    >>> o = pendula.orbit(0.0, 1.0)          # libration, k = 1/2
+    >>> round(o.period, 12)
+    6.74300141925
+    """
+    info, status = _kernel.exact_info_v(_scalar(theta0, "theta0"), _scalar(v0, "v0"), _scalar(eps, "eps"))
+    _check_status(status)
+    regime, k, m, mc, per, tmax = _REGIMES[int(info[0])], *info[1:6]
+    omega = 0.0 if math.isinf(per) else float(2 * math.pi / per)
+    return Orbit(regime, float(k), float(m), float(mc), float(per), omega, float(tmax))
+
+
+def exact_motion(theta0: float, v0: float, eps: float, t) -> tuple[np.ndarray, np.ndarray]:
+    """theta(t) and v(t) of the conservative pendulum from the exact solution.
+
+    Parameters
+    ----------
+    theta0, v0 : float
+        State at t = 0 (any angle, any sign of v0).
+    eps : float
+        g / l > 0.
+    t : array_like
+        Times, in any order, before or after 0.
+
+    Returns
+    -------
+    theta, v : ndarray
+        The angle is continuous: it grows without bound in a rotation.
+    """
+    t = as_float(t, "t")
+    tf = np.ascontiguousarray(t, dtype=np.float64).reshape(-1)
+    theta, v, status = _kernel.exact_motion_v(_scalar(theta0, "theta0"), _scalar(v0, "v0"),
+                                              _scalar(eps, "eps"), tf)
+    _check_status(status)
+    bad = ~np.isfinite(theta) & ~np.isnan(tf)
+    if np.any(bad):
+        warnings.warn(f"exact_motion: {int(bad.sum())} time(s) infinite or beyond 2**48 half periods gave NaN",
+                      RuntimeWarning, stacklevel=2)
+    return theta.reshape(t.shape), v.reshape(t.shape)
+
+
+def energy(theta, v, eps: float = 1.0) -> np.ndarray:
+    """E = v^2/2 + eps (1 - cos theta), written as v^2/2 + 2 eps sin^2(theta/2) (no cancellation)."""
+    theta = as_float(theta, "theta")
+    v = as_float(v, "v")
+    return 0.5 * v * v + 2.0 * eps * np.sin(0.5 * theta) ** 2
