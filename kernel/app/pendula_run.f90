@@ -14,7 +14,7 @@ program pendula_run
   use pendula_kinds, only: dp, two_pi
   use pendula_scene, only: scene_t, read_scene, scene_effects, scene_summary, max_outputs
   use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_eval, orbit_period, orbit_theta_max
-  use pendula_simulate, only: simulate_scene, simulate_status_text
+  use pendula_simulate, only: simulate_scene, select_model, sim_ok
   implicit none
   character(len=4096) :: path, out, arg, orbit_out
   character(len=1024) :: msg
@@ -23,7 +23,8 @@ program pendula_run
   integer :: nargs, i, j, status, unit, ounit, nmem
   real(dp), allocatable :: t(:), theta(:), v(:), e(:), values(:)
   logical :: want_traj, want_orbit, swept
-  integer :: nsteps, nrhs
+  integer :: method
+  real(dp) :: stats(4)
   character(len=10), parameter :: regime_names(0:2) = [character(len=10) :: 'libration', 'separatrix', &
                                                        'rotation']
 
@@ -51,9 +52,8 @@ program pendula_run
 
   call read_scene(trim(path), sc, status, msg)
   if (status /= 0) call fail(trim(msg))
-  if (sc%cord /= 'rigid' .or. sc%guide /= 'none' .or. sc%gravity /= 'uniform') &
-    call fail(trim(path) // ': the effect(s) ' // trim(scene_effects(sc)) // &
-              ' are not implemented in pendula yet', 3)
+  call select_model(sc, i, status, msg)
+  if (status /= sim_ok) call fail(trim(path) // ': ' // trim(msg), 3)
 
   want_traj = .false.
   want_orbit = .false.
@@ -103,9 +103,8 @@ program pendula_run
     end if
     do i = 1, nmem
       member = member_of(sc, i)
-      call simulate_scene(member, t, theta, v, nsteps, nrhs, status)
-      if (status /= 0) call fail(trim(path) // ': ' // trim(simulate_status_text(status)), 4)
-      e = 0.5_dp * v * v + 2.0_dp * member%eps * sin(0.5_dp * theta)**2
+      call simulate_scene(member, t, theta, v, e, stats, method, status, msg)
+      if (status /= sim_ok) call fail(trim(path) // ': ' // trim(msg), 4)
       do j = 1, size(t)
         if (swept) then
           write(unit, '(es24.16e3,4(",",es24.16e3))') values(i), t(j), theta(j), v(j), e(j)

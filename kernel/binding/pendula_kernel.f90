@@ -152,6 +152,48 @@ subroutine exact_info_v(theta0, v0, eps, info, status)
   info = [dble(o%regime), o%k, o%m, o%mch, orbit_period(o), orbit_theta_max(o), o%u0, o%mcl]
 end subroutine exact_info_v
 
+! ---------------------------------------------------------------- dispatcher
+! Run a scene given as namelist text (the kernel reads and checks it with the
+! same rules as pendula-run), at the times t (sorted ascending when an
+! integrator answers).  method: the code of what answered (0 = exact path);
+! status 0 ok, otherwise msg says why (see pendula_simulate).
+subroutine simulate_v(text, n, t, theta, v, energy, stats, method, status, msg)
+  use pendula_scene, only: scene_t, parse_scene
+  use pendula_simulate, only: simulate_scene
+  implicit none
+  character(len=*), intent(in) :: text
+  integer, intent(in) :: n
+  double precision, intent(in) :: t(n)
+  double precision, intent(out) :: theta(n), v(n), energy(n), stats(4)
+  integer, intent(out) :: method, status
+  character(len=512), intent(out) :: msg
+  !f2py intent(hide), depend(t) :: n = len(t)
+  type(scene_t) :: sc
+  method = -1
+  theta = 0; v = 0; energy = 0; stats = 0
+  call parse_scene(text, '<scene>', sc, status, msg)
+  if (status /= 0) then
+    status = 100
+    return
+  end if
+  call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg)
+end subroutine simulate_v
+
+! The model registry, one model per line of `table` (fields separated by '|':
+! name, selector, effects, exact_with, path, implemented, summary).
+subroutine models_v(table)
+  use pendula_simulate, only: registry
+  implicit none
+  character(len=8192), intent(out) :: table
+  integer :: i
+  table = ''
+  do i = 1, size(registry)
+    table = trim(table) // trim(registry(i)%name) // '|' // trim(registry(i)%selector) // '|' // &
+      trim(registry(i)%effects) // '|' // trim(registry(i)%exact_with) // '|' // trim(registry(i)%path) // &
+      '|' // merge('yes', 'no ', registry(i)%implemented) // '|' // trim(registry(i)%summary) // new_line('a')
+  end do
+end subroutine models_v
+
 ! Integrate a scene's model: method codes 1..9 (see pendula_integrators), 10 = GSL rk8pd.
 ! t must be sorted ascending.  stats = [steps, accepted, rejected, rhs evaluations].
 subroutine integrate_v(n, method, params, theta0, v0, t, rtol, atol, dt, ev_kind, ev_level, &

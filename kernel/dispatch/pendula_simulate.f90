@@ -1,80 +1,201 @@
-!> Run one scene: the exact solution whenever the scene allows it, otherwise
-!> the integrator the scene names (or the cheapest one for its tolerance).
+!> The dispatcher: scene -> model -> exact path or integrator.
+!>
+!> Every way of running a scene goes through simulate_scene: pendula-run and
+!> the Python layer (through the binding's simulate_v) alike, so the decision
+!> is taken once.  A scene's fields select one model from the registry below;
+!> the model says whether its exact (closed-form) path answers the effects the
+!> scene names; otherwise the integrator the scene names (or, for 'auto', the
+!> cheapest one at the default tolerances: DOP853, see README) integrates the
+!> model's right-hand side.
+!>
+!> Adding a model: one module in kernel/models, one entry in `registry`, one
+!> case in simulate_scene (and one line in python/pendula/models/__init__.py).
 module pendula_simulate
   use pendula_kinds, only: dp
   use pendula_scene, only: scene_t, scene_effects
-  use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_eval
+  use pendula_rigid, only: rigid_has_exact, rigid_exact, rigid_energy
   use pendula_integrators, only: make_model, event_spec, run_stats, integrate, m_rk4, m_verlet, &
     m_yoshida4, m_yoshida6, m_yoshida8, m_gauss4, m_gauss6, m_dopri5, m_dop853
+  use pendula_gsl_iface, only: pendula_gsl_rk8pd
   implicit none
   private
-  public :: simulate_scene, simulate_status_text
+  public :: model_info_t, registry, select_model, method_code, simulate_scene, simulate_status_text
 
   integer, parameter, public :: sim_ok = 0, sim_bad_state = 1, sim_unsupported = 10, &
-    sim_needs_dt = 11, sim_unsorted = 12, sim_integrator_failed = 13
+    sim_needs_dt = 11, sim_unsorted = 12, sim_integrator_failed = 13, sim_not_implemented = 14, &
+    sim_model_clash = 15, sim_exact_refused = 16, sim_backward = 17, sim_gsl_failed = 18
+  !> method codes: the integrators' 1..9, then GSL's rk8pd and the exact path
+  integer, parameter, public :: m_gsl_rk8pd = 10, m_exact = 0
+
+  !> What a model is, for users (`pendula models`) and for the dispatcher.
+  type :: model_info_t
+    character(len=16) :: name = ''
+    !> the scene fields that select it
+    character(len=48) :: selector = ''
+    !> the effects it accepts, and those under which its exact path still answers
+    character(len=48) :: effects = '', exact_with = ''
+    !> 'exact', 'integrated' or 'hybrid' (exact pieces joined at events)
+    character(len=12) :: path = ''
+    logical :: implemented = .false.
+    character(len=72) :: summary = ''
+  end type model_info_t
+
+  integer, parameter, public :: mid_rigid = 1, mid_cord = 2, mid_cycloid = 3, mid_gravity = 4
+  type(model_info_t), parameter :: registry(4) = [ &
+    model_info_t('rigid', "cord='rigid' guide='none' gravity='uniform'", 'damping torque drive', &
+                 '(none)', 'exact', .true., 'rigid pendulum, Jacobi elliptic solution in every regime'), &
+    model_info_t('cord', "cord='flexible'", 'damping torque drive', '(none)', 'hybrid', .false., &
+                 'bob on a flexible cord (Garfinkel): circle, free flight, jerk'), &
+    model_info_t('cycloid', "guide='cycloid'", 'damping drive', 'damping drive', 'exact', .false., &
+                 'cycloidal guide (Huygens): isochronous, closed form'), &
+    model_info_t('gravity', "gravity='inverse-square'", 'damping torque drive', '(none)', 'integrated', &
+                 .false., 'non-uniform gravity: energy, quadrature period, integrators')]
 
 contains
 
-  subroutine simulate_scene(sc, t, theta, v, nsteps, nrhs, status)
+  !> The model a scene selects (status sim_model_clash when two are named;
+  !> sim_not_implemented, with msg, when the model is not built yet).
+  subroutine select_model(sc, id, status, msg)
+    type(scene_t), intent(in) :: sc
+    integer, intent(out) :: id, status
+    character(len=*), intent(out) :: msg
+    integer :: n
+    status = sim_ok
+    msg = ''
+    id = mid_rigid
+    n = 0
+    if (sc%cord /= 'rigid') then
+      id = mid_cord; n = n + 1
+    end if
+    if (sc%guide /= 'none') then
+      id = mid_cycloid; n = n + 1
+    end if
+    if (sc%gravity /= 'uniform') then
+      id = mid_gravity; n = n + 1
+    end if
+    if (n > 1) then
+      status = sim_model_clash
+      msg = 'the scene names more than one model (cord = ''' // trim(sc%cord) // ''', guide = ''' // &
+            trim(sc%guide) // ''', gravity = ''' // trim(sc%gravity) // '''); pendula runs one at a time'
+    else if (.not. registry(id)%implemented) then
+      status = sim_not_implemented
+      msg = 'the effect(s) ' // trim(scene_effects(sc)) // ' are not implemented in pendula yet (model ''' // &
+            trim(registry(id)%name) // ''': cord = ''' // trim(sc%cord) // ''', guide = ''' // &
+            trim(sc%guide) // ''', gravity = ''' // trim(sc%gravity) // ''')'
+    end if
+  end subroutine select_model
+
+  !> The code of a method name (-1: unknown).
+  pure integer function method_code(name)
+    character(len=*), intent(in) :: name
+    select case (trim(name))
+    case ('exact');    method_code = m_exact
+    case ('rk4');      method_code = m_rk4
+    case ('verlet');   method_code = m_verlet
+    case ('yoshida4'); method_code = m_yoshida4
+    case ('yoshida6'); method_code = m_yoshida6
+    case ('yoshida8'); method_code = m_yoshida8
+    case ('gauss4');   method_code = m_gauss4
+    case ('gauss6');   method_code = m_gauss6
+    case ('dopri5');   method_code = m_dopri5
+    case ('dop853');   method_code = m_dop853
+    case ('gsl-rk8pd'); method_code = m_gsl_rk8pd
+    case default;      method_code = -1
+    end select
+  end function method_code
+
+  !> Run one scene at the times t (sorted ascending when an integrator runs).
+  !> energy: the model's invariant along the path; stats = [steps, accepted,
+  !> rejected, rhs evaluations]; method: the code of what answered (m_exact
+  !> for the exact path).  msg explains a non-zero status.
+  subroutine simulate_scene(sc, t, theta, v, energy, stats, method, status, msg)
     type(scene_t), intent(in) :: sc
     real(dp), intent(in) :: t(:)
-    real(dp), intent(out) :: theta(:), v(:)
-    integer, intent(out) :: nsteps, nrhs, status
-    type(pendulum_orbit) :: o
+    real(dp), intent(out) :: theta(:), v(:), energy(:), stats(4)
+    integer, intent(out) :: method, status
+    character(len=*), intent(out) :: msg
+    integer :: id
+    theta = 0.0_dp
+    v = 0.0_dp
+    energy = 0.0_dp
+    stats = 0.0_dp
+    method = -1
+    call select_model(sc, id, status, msg)
+    if (status /= sim_ok) return
+    select case (id)
+    case (mid_rigid)
+      if (rigid_has_exact(sc%damping, sc%torque, sc%drive_amplitude) .and. &
+          (sc%method == 'auto' .or. sc%method == 'exact')) then
+        method = m_exact
+        call rigid_exact(sc%theta0, sc%v0, sc%eps, t, theta, v, status)
+        if (status /= 0) status = sim_bad_state
+      else if (sc%method == 'exact') then
+        status = sim_exact_refused
+      else
+        call integrate_model(sc, t, theta, v, stats, method, status)
+      end if
+      if (status == sim_ok) energy = rigid_energy(sc%eps, theta, v)
+    end select
+    if (status /= sim_ok) msg = simulate_status_text(status)
+  end subroutine simulate_scene
+
+  !> The scene's integrator on the rigid pendulum's force law with its effects.
+  subroutine integrate_model(sc, t, theta, v, stats, method, status)
+    type(scene_t), intent(in) :: sc
+    real(dp), intent(in) :: t(:)
+    real(dp), intent(out) :: theta(:), v(:), stats(4)
+    integer, intent(out) :: method, status
     type(event_spec) :: ev
     type(run_stats) :: st
-    integer :: method, nev
-    real(dp) :: tev(1), thev(1), vev(1)
-    nsteps = 0
-    nrhs = 0
-    if (len_trim(scene_effects(sc)) == 0 .and. (sc%method == 'auto' .or. sc%method == 'exact')) then
-      call orbit_setup(sc%theta0, sc%v0, sc%eps, o, status)
-      if (status /= 0) then
-        status = sim_bad_state
-        return
-      end if
-      call orbit_eval(o, t, theta, v)
-      status = sim_ok
-    else
-      ! 'auto' with effects: DOP853, the cheapest at the default tolerances (see README)
-      select case (trim(sc%method))
-      case ('rk4');      method = m_rk4
-      case ('verlet');   method = m_verlet
-      case ('yoshida4'); method = m_yoshida4
-      case ('yoshida6'); method = m_yoshida6
-      case ('yoshida8'); method = m_yoshida8
-      case ('gauss4');   method = m_gauss4
-      case ('gauss6');   method = m_gauss6
-      case ('dopri5');   method = m_dopri5
-      case ('dop853', 'auto', 'exact'); method = m_dop853
-      case default
-        status = sim_unsupported; return
-      end select
-      if (method <= m_gauss6 .and. .not. (sc%dt > 0.0_dp)) then
-        status = sim_needs_dt; return
-      end if
+    integer :: nev
+    real(dp) :: tev(1), thev(1), vev(1), params(6), gs(2)
+    method = method_code(sc%method)
+    if (sc%method == 'auto') method = m_dop853
+    if (method < 1) then
+      status = sim_unsupported; return
+    end if
+    if (method <= m_gauss6 .and. .not. (sc%dt > 0.0_dp)) then
+      status = sim_needs_dt; return
+    end if
+    if (size(t) > 1) then
       if (any(t(2:) < t(:size(t) - 1))) then
         status = sim_unsorted; return
       end if
-      call integrate(make_model(sc%eps, sc%damping, sc%torque, sc%drive_amplitude, sc%drive_frequency, &
-                                sc%drive_phase), method, sc%theta0, sc%v0, t, sc%rtol, sc%atol, sc%dt, &
-                     theta, v, st, status, ev, nev, tev, thev, vev)
-      nsteps = int(st%nsteps)
-      nrhs = int(st%nfev)
-      if (status /= 0) status = sim_integrator_failed
     end if
-  end subroutine simulate_scene
+    params = [sc%eps, sc%damping, sc%torque, sc%drive_amplitude, sc%drive_frequency, sc%drive_phase]
+    if (method == m_gsl_rk8pd) then
+      if (size(t) > 0) then
+        if (t(1) < 0.0_dp) then
+          status = sim_backward; return
+        end if
+      end if
+      status = pendula_gsl_rk8pd(params, sc%theta0, sc%v0, size(t), t, sc%rtol, sc%atol, theta, v, gs)
+      stats = [gs(1), gs(1), 0.0_dp, gs(2)]
+      if (status /= 0) status = sim_gsl_failed
+      return
+    end if
+    call integrate(make_model(params(1), params(2), params(3), params(4), params(5), params(6)), method, &
+                   sc%theta0, sc%v0, t, sc%rtol, sc%atol, sc%dt, theta, v, st, status, ev, nev, tev, thev, vev)
+    stats = [real(st%nsteps, dp), real(st%naccept, dp), real(st%nreject, dp), real(st%nfev, dp)]
+    if (status /= 0) status = sim_integrator_failed
+  end subroutine integrate_model
 
   function simulate_status_text(status) result(s)
     integer, intent(in) :: status
-    character(len=128) :: s
+    character(len=160) :: s
     select case (status)
     case (sim_ok);               s = 'ok'
     case (sim_bad_state);        s = 'invalid initial state'
-    case (sim_unsupported);      s = 'method not available in pendula-run (gsl-rk8pd: use the Python API)'
+    case (sim_unsupported);      s = 'field ''method'': unknown method'
     case (sim_needs_dt);         s = 'field ''dt'': fixed-step methods need dt > 0'
     case (sim_unsorted);         s = 'output times must be increasing for integrators'
     case (sim_integrator_failed); s = 'the integrator failed (step size underflow or non-finite state)'
+    case (sim_not_implemented);  s = 'the model the scene names is not implemented yet'
+    case (sim_model_clash);      s = 'the scene names more than one model'
+    case (sim_exact_refused);    s = 'field ''method'': ''exact'' answers only scenes whose model has an exact path &
+                                      &for the effects named'
+    case (sim_backward);         s = 'gsl-rk8pd integrates forward only: give times >= 0'
+    case (sim_gsl_failed);       s = 'GSL odeiv2 (rk8pd) failed'
     case default;                s = 'unknown failure'
     end select
   end function simulate_status_text

@@ -8,7 +8,7 @@ module pendula_scene
   use pendula_kinds, only: dp, nan_dp
   implicit none
   private
-  public :: scene_t, read_scene, scene_effects, scene_summary, max_sweep, max_outputs
+  public :: scene_t, read_scene, parse_scene, scene_effects, scene_summary, max_sweep, max_outputs
 
   integer, parameter :: max_sweep = 4096, max_outputs = 16
 
@@ -35,6 +35,35 @@ contains
     type(scene_t), intent(out) :: sc
     integer, intent(out) :: status
     character(len=*), intent(out) :: msg
+    character(len=:), allocatable :: text
+    integer :: unit, ios, k
+    logical :: inq
+    status = 0
+    msg = ''
+    inquire(file=path, exist=inq)
+    if (.not. inq) then
+      status = 1; msg = trim(path) // ': cannot read scene file (no such file)'; return
+    end if
+    open(newunit=unit, file=path, status='old', action='read', access='stream', form='unformatted', &
+         iostat=ios)
+    if (ios /= 0) then
+      status = 1; msg = trim(path) // ': cannot open scene file'; return
+    end if
+    inquire(unit=unit, size=k)
+    allocate(character(len=max(k, 0)) :: text)
+    if (k > 0) read(unit, iostat=ios) text
+    close(unit)
+    call parse_scene(text, path, sc, status, msg)
+  end subroutine read_scene
+
+  !> Parse and check the text of a scene (the group &scene); messages start
+  !> with source.  The Python layer hands scenes to the kernel this way, so
+  !> that both sides run one set of rules.
+  subroutine parse_scene(text_in, source, sc, status, msg)
+    character(len=*), intent(in) :: text_in, source
+    type(scene_t), intent(out) :: sc
+    integer, intent(out) :: status
+    character(len=*), intent(out) :: msg
     ! the namelist variables (same names as the fields)
     real(dp) :: eps, theta0, v0, t_start, t_end, damping, torque, drive_amplitude, &
                 drive_frequency, drive_phase, rtol, atol, dt, g, length
@@ -49,9 +78,8 @@ contains
     character(len=:), allocatable :: text
     character(len=4096) :: buf
     character(len=512) :: iom
-    integer :: unit, ios, i, j, k, start, line, nseen
+    integer :: ios, i, j, k, start, line, nseen
     character(len=64) :: fname, seen(64)
-    logical :: inq
     character(len=16), parameter :: known_fields(24) = [character(len=16) :: 'eps', 'theta0', 'v0', &
       't_start', 't_end', 'n_samples', 'damping', 'torque', 'drive_amplitude', 'drive_frequency', &
       'drive_phase', 'cord', 'guide', 'gravity', 'method', 'rtol', 'atol', 'dt', 'outputs', 'sweep', &
@@ -65,28 +93,16 @@ contains
     rtol = sc%rtol; atol = sc%atol; dt = 0; outputs = ''; sweep = ''; sweep_values = nan_dp
     name = ''; g = nan_dp; length = nan_dp
 
-    inquire(file=path, exist=inq)
-    if (.not. inq) then
-      status = 1; msg = trim(path) // ': cannot read scene file (no such file)'; return
-    end if
-    open(newunit=unit, file=path, status='old', action='read', access='stream', form='unformatted', &
-         iostat=ios)
-    if (ios /= 0) then
-      status = 1; msg = trim(path) // ': cannot open scene file'; return
-    end if
-    inquire(unit=unit, size=k)
-    allocate(character(len=max(k, 0)) :: text)
-    if (k > 0) read(unit, iostat=ios) text
-    close(unit)
+    text = text_in
     call strip_comments(text)
     ! the group: from '&scene' to the closing '/'
     i = index(lower(text), '&scene')
     if (i == 0) then
-      status = 1; msg = trim(path) // ': a scene file must start with the group ''&scene'''; return
+      status = 1; msg = trim(source) // ': a scene file must start with the group ''&scene'''; return
     end if
     j = closing_slash(text, i + 6)
     if (j == 0) then
-      status = 1; msg = trim(path) // ': the group ''&scene'' is not closed with ''/'''; return
+      status = 1; msg = trim(source) // ': the group ''&scene'' is not closed with ''/'''; return
     end if
     ! split the body into assignments at each "name =" outside quotes, read each alone
     start = 0
@@ -98,7 +114,7 @@ contains
       line = 1 + count_newlines(text(1:start))
       if (any(seen(1:nseen) == fname)) then
         status = 1
-        write(msg, '(a,i0,a)') trim(path) // ', line ', line, ': field ''' // trim(fname) // ''' is given twice'
+        write(msg, '(a,i0,a)') trim(source) // ', line ', line, ': field ''' // trim(fname) // ''' is given twice'
         return
       end if
       nseen = min(nseen + 1, size(seen))
@@ -108,9 +124,9 @@ contains
       if (ios /= 0) then
         status = 1
         if (.not. any(known_fields == fname)) then
-          write(msg, '(a,i0,a)') trim(path) // ', line ', line, ': unknown field ''' // trim(fname) // ''''
+          write(msg, '(a,i0,a)') trim(source) // ', line ', line, ': unknown field ''' // trim(fname) // ''''
         else
-          write(msg, '(a,i0,a)') trim(path) // ', line ', line, ': field ''' // trim(fname) // &
+          write(msg, '(a,i0,a)') trim(source) // ', line ', line, ': field ''' // trim(fname) // &
             ''': cannot read its value (' // trim(iom) // ')'
         end if
         return
@@ -126,8 +142,8 @@ contains
     sc%name = name
     sc%n_sweep = count(sweep_values == sweep_values)
     call check(sc, g, length, status, msg)
-    if (status /= 0) msg = trim(path) // ': ' // trim(msg)
-  end subroutine read_scene
+    if (status /= 0) msg = trim(source) // ': ' // trim(msg)
+  end subroutine parse_scene
 
   !> The same range rules as pendula/scene.py.
   subroutine check(sc, g, length, status, msg)

@@ -32,6 +32,7 @@ from .integrate import Events, find_events, numerical_period  # noqa: E402
 from .motion import Orbit, Trajectory, energy, exact_motion, orbit, period, simulate  # noqa: E402
 from .scene import Scene, SceneError  # noqa: E402
 from .series import period_from_series, period_series, poincare_lindstedt  # noqa: E402
+from .systems import ModelInfo, models  # noqa: E402
 from .spectrum import Spectrum, fourier_series, odd_harmonics_above, spectra, spectrum  # noqa: E402
 
 __version__ = "0.1.0"

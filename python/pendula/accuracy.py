@@ -53,7 +53,8 @@ def elliptic_report(reference: str | pathlib.Path) -> list[dict]:
     """Worst errors per function and region: pendula, scipy.special, GSL."""
     import scipy.special as sc
 
-    from . import _kernel, ellipe, ellipeinc, ellipf, ellipj, ellipk, nome
+    from . import _kernel
+    from .elliptic import ellipe, ellipeinc, ellipf, ellipj, ellipk, nome
 
     ref = _load(reference)
     out = []

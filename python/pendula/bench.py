@@ -50,7 +50,8 @@ def bench_elliptic(n: int = 1_000_000, seed: int = 1) -> list[dict]:
     """
     import scipy.special as sc
 
-    from . import _kernel, ellipj, ellipk
+    from . import _kernel
+    from .elliptic import ellipj, ellipk
 
     rng = np.random.default_rng(seed)
     u = rng.uniform(-10.0, 10.0, n)
@@ -93,7 +94,7 @@ def bench_elliptic(n: int = 1_000_000, seed: int = 1) -> list[dict]:
 
 def bench_exact(n: int = 1_000_000, seed: int = 2) -> list[dict]:
     """The exact pendulum path per sample against numpy.sin per sample (goal: at most 5x)."""
-    from . import exact_motion
+    from .systems.rigid import exact_motion
 
     t = np.sort(np.random.default_rng(seed).uniform(0.0, 1000.0, n))
     rows = [
@@ -109,7 +110,8 @@ def bench_integrators(n: int = 0, seed: int = 0) -> list[dict]:
     """DOP853 against scipy's solve_ivp DOP853 and GSL rk8pd; the cost of effects."""
     import scipy.integrate as si
 
-    from . import Scene, exact_motion
+    from .scene import Scene
+    from .systems.rigid import exact_motion
     from .integrate import integrate_scene
 
     results = []
@@ -185,7 +187,7 @@ def _report_whole(title, rows, ref):
 def bench_spectrum(n: int = 1 << 20, seed: int = 3) -> list[dict]:
     """Power spectra of 2^20 samples: pendula (FFTW, one plan reused across a
     sweep) against numpy.fft.rfft on the same signals, in one run."""
-    from . import spectra, spectrum
+    from .spectrum import spectra, spectrum
 
     n = 1 << 20
     rng = np.random.default_rng(seed)

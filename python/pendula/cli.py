@@ -19,7 +19,7 @@ import numpy as np
 
 def elliptic_table() -> list[tuple[str, float, float]]:
     """Hard cases of the elliptic kernel next to the exact values known in closed form."""
-    from . import ellipe, ellipj, ellipk
+    from .elliptic import ellipe, ellipj, ellipk
 
     rows = []
     gamma14 = math.gamma(0.25)
@@ -154,6 +154,24 @@ def cmd_bench(args) -> int:
     return bench_main(args.rest)
 
 
+def cmd_models(args) -> int:
+    """The models of the kernel's registry as a table."""
+    from .systems import models
+
+    rows = [("model", "selected by", "effects", "exact path with", "path", "ready")]
+    for m in models():
+        rows.append((m.name, m.selector, " ".join(m.effects) or "-",
+                     "no effect" if not m.exact_with and m.path != "integrated" else
+                     (" ".join(m.exact_with) if m.exact_with else "-"),
+                     m.path, "yes" if m.implemented else "not yet"))
+    widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]))]
+    for k, r in enumerate(rows):
+        print("  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip())
+        if k == 0:
+            print("  ".join("-" * w for w in widths))
+    return 0
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="pendula", description="The nonlinear pendulum, exact and fast.")
     sub = parser.add_subparsers(dest="command", required=True)
@@ -180,6 +198,8 @@ def main(argv=None) -> int:
     p.add_argument("-o", "--output", default="out", help="output folder (default: out)")
     p.add_argument("-q", "--quiet", action="store_true")
     p.set_defaults(func=cmd_spectrum)
+    p = sub.add_parser("models", help="the models pendula knows, the effects each accepts, which keep the exact path")
+    p.set_defaults(func=cmd_models)
     p = sub.add_parser("bench", help="benchmarks against scipy, GSL and numpy", add_help=False)
     p.add_argument("rest", nargs=argparse.REMAINDER)
     p.set_defaults(func=cmd_bench)

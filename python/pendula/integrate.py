@@ -16,6 +16,7 @@ import numpy as np
 from . import _kernel
 from ._checks import as_float
 from .scene import Scene
+from .systems import run
 
 __all__ = ["integrate_scene", "find_events", "numerical_period", "Events", "FIXED_STEP", "ADAPTIVE"]
 
@@ -68,29 +69,13 @@ def _run(scene, method, t_sorted, ev_kind=0, ev_level=0.0, ev_dir=0, terminal=Fa
 
 
 def integrate_scene(scene: Scene, t, method: str = "auto"):
-    """A Trajectory of the scene at the times t by the named method."""
-    from .models.rigid import energy
-    from .trajectory import Trajectory
-
-    t = as_float(t, "t")
-    if method == "auto":
-        method = choose_method(scene)
-        if method == "exact":
-            from .motion import simulate
-
-            return simulate(scene, t, "exact")
-    flat = np.ascontiguousarray(t, dtype=np.float64).reshape(-1)
-    if not np.all(np.isfinite(flat)):
-        raise ValueError("t must be finite")
-    order = np.argsort(flat, kind="stable")
-    theta_s, v_s, stats, *_ = _run(scene, method, np.ascontiguousarray(flat[order]))
-    theta = np.empty_like(flat)
-    v = np.empty_like(flat)
-    theta[order] = theta_s
-    v[order] = v_s
-    theta = theta.reshape(t.shape)
-    v = v.reshape(t.shape)
-    return Trajectory(t, theta, v, energy(theta, v, scene.eps), method, scene, stats)
+    """A Trajectory of the scene at the times t by the named method (the
+    kernel's dispatcher, as :func:`pendula.simulate` with ``method``)."""
+    if method not in CODES and method not in ("auto", "exact"):
+        raise ValueError(f"unknown method {method!r}; known: {', '.join(CODES)}, exact, auto")
+    if method in FIXED_STEP and not scene.dt > 0:
+        raise ValueError(f"method {method!r} is fixed-step: give the scene a step dt > 0")
+    return run(scene.replace(method=method), t)
 
 
 @dataclass
@@ -145,7 +130,7 @@ def numerical_period(scene: Scene, periods: int = 20, method: str = "dop853") ->
     rotation: the mean time per turn (theta passing theta0 + 2 pi k).  The
     integration runs over ``periods`` estimated periods.
     """
-    from .models.rigid import orbit
+    from .systems.rigid import orbit
 
     if not scene.is_conservative_rigid:
         raise ValueError("numerical_period measures the period of a conservative orbit")

@@ -1,6 +1,6 @@
 """The motion of a scene: simulate() and period().
 
-The conservative rigid pendulum is answered exactly (pendula.models.rigid);
+The conservative rigid pendulum is answered exactly (pendula.systems.rigid);
 scenes that name effects (damping, torque, drive, ...) go to the integrators.
 The rigid model's functions are re-exported here for compatibility.
 """
@@ -8,36 +8,53 @@ The rigid model's functions are re-exported here for compatibility.
 from __future__ import annotations
 
 from ._checks import as_float
-from .models.rigid import Orbit, energy, exact_motion, orbit
+from .systems.rigid import Orbit, energy, exact_motion, orbit
 from .scene import Scene
+from .systems import run
 from .trajectory import Trajectory
 
 __all__ = ["Orbit", "Trajectory", "orbit", "exact_motion", "energy", "simulate", "period"]
 
 
-def simulate(scene: Scene, t=None, method: str | None = None) -> Trajectory:
+def simulate(scene: Scene, t=None, method: str | None = None, rtol: float | None = None,
+             atol: float | None = None, dt: float | None = None) -> Trajectory:
     """Run one scene at the times ``t`` (default: the scene's own output times).
 
-    The initial state is at t = 0; the times need not start at 0 or be
-    increasing.  With method 'auto' (the default) a conservative rigid scene is
-    answered by the exact solution, never by an integrator.  A scene with a
-    sweep is run at its own (un-swept) values; use ``scene.members()`` for the
-    family.
+    The scene selects its model (see :func:`pendula.models`); the kernel's
+    dispatcher answers by the model's exact path whenever the scene allows it
+    (method 'auto', the default, or 'exact') and otherwise integrates with the
+    scene's method.  The initial state is at t = 0; the times need not start
+    at 0 or be increasing.  A scene with a sweep is run at its own (un-swept)
+    values; use ``scene.members()`` for the family.
+
+    Parameters
+    ----------
+    scene : Scene
+    t : array_like, optional
+        Output times (default ``scene.times()``).
+    method, rtol, atol, dt : optional
+        The solver's knobs, as scipy's ``solve_ivp`` takes them: each given
+        keyword overrides the scene's field of that name (the scene fields stay
+        for files and the batch programs).
+
+    Returns
+    -------
+    Trajectory
+
+    Examples
+    --------
+    >>> import pendula
+    >>> tr = pendula.simulate(pendula.Scene(v0=1.0, damping=0.1), [0.0, 1.0], rtol=1e-12, atol=1e-14)
+    >>> tr.method
+    'dop853'
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"simulate expects a pendula.Scene, got {type(scene).__name__}")
+    knobs = {k: v for k, v in (("method", method), ("rtol", rtol), ("atol", atol), ("dt", dt)) if v is not None}
+    if knobs:
+        scene = scene.replace(**knobs)
     t = scene.times() if t is None else as_float(t, "t")
-    method = method or scene.method
-    scene.require_implemented()
-    if method in ("auto", "exact") and scene.is_conservative_rigid:
-        theta, v = exact_motion(scene.theta0, scene.v0, scene.eps, t)
-        return Trajectory(t, theta, v, energy(theta, v, scene.eps), "exact", scene)
-    if method == "exact":
-        raise ValueError(f"method 'exact' answers only the conservative rigid pendulum; "
-                         f"the scene names {', '.join(scene.effects)}")
-    from .integrate import integrate_scene
-
-    return integrate_scene(scene, t, method)
+    return run(scene, t)
 
 
 def period(scene: Scene) -> float:

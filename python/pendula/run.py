@@ -6,16 +6,19 @@ a scene asking for 'omega' gets the exact orbit table and no trajectory.
 
 from __future__ import annotations
 
-import csv
 import math
 import pathlib
 import re
 
 import numpy as np
 
+from . import plot
+from ._files import staging, write_csv
 from ._progress import Progress
-from .motion import orbit, simulate
+from .motion import exact_motion, orbit, simulate
 from .scene import Scene
+from .series import period_from_series, poincare_lindstedt
+from .spectrum import odd_harmonics_above, spectrum
 
 TRAJECTORY_OUTPUTS = {"trajectory", "theta_t", "v_t", "phase", "energy"}
 ORBIT_OUTPUTS = {"period", "omega", "theta_max"}
@@ -26,36 +29,23 @@ def slug(text: str) -> str:
     return s or "scene"
 
 
-def _header(scene: Scene) -> list[str]:
-    lines = ["# pendula scene:"] + ["#   " + ln for ln in scene.to_namelist().splitlines()]
-    eff = ", ".join(scene.effects) or "none (conservative rigid pendulum: exact solution)"
-    return lines + [f"# effects = {eff}"]
-
-
-def _write_csv(path: pathlib.Path, scene: Scene, columns: list[str], rows) -> pathlib.Path:
-    """A table with the scene in its header.  A numeric array is written by
-    numpy in one call (17 significant digits, enough to round-trip); lists of
-    rows (which may hold words such as the regime) go through csv."""
-    with path.open("w", newline="") as fh:
-        for ln in _header(scene):
-            fh.write(ln + "\n")
-        if isinstance(rows, np.ndarray):
-            fh.write(",".join(columns) + "\n")
-            np.savetxt(fh, rows, delimiter=",", fmt="%.17g")
-            return path
-        w = csv.writer(fh)
-        w.writerow(columns)
-        for r in rows:
-            w.writerow([repr(float(x)) if not isinstance(x, str) else x for x in r])
-    return path
-
-
 def run_scene(scene: Scene, outdir, stem: str | None = None, progress: bool = True) -> list[pathlib.Path]:
-    """Compute the scene's outputs into ``outdir``; return the files written."""
-    from . import plot
+    """Compute the scene's outputs into ``outdir``; return the files written.
 
+    All or nothing: the files are made in a staging folder inside ``outdir``
+    and moved into place only when every output succeeded, so a failure
+    leaves no partial file (and does not touch an earlier run's files).
+    """
     outdir = pathlib.Path(outdir)
+    if outdir.exists() and not outdir.is_dir():
+        raise ValueError(f"output folder {str(outdir)!r} exists and is not a folder")
     outdir.mkdir(parents=True, exist_ok=True)
+    with staging(outdir) as stage:
+        made = _outputs(scene, stage, stem, progress)
+    return [outdir / f.name for f in made]
+
+
+def _outputs(scene: Scene, outdir: pathlib.Path, stem: str | None, progress: bool) -> list[pathlib.Path]:
     stem = stem or slug(scene.name)
     wanted = set(scene.outputs)
     members = scene.members()
@@ -72,7 +62,7 @@ def run_scene(scene: Scene, outdir, stem: str | None = None, progress: bool = Tr
             cols = ([scene.sweep] if scene.sweep else []) + ["t", "theta", "v", "energy"]
             rows = np.vstack([np.column_stack([np.full(tr.t.size, value), tr.as_array()])
                               if scene.sweep else tr.as_array() for value, tr in runs])
-            files.append(_write_csv(outdir / f"{stem}.csv", scene, cols, rows))
+            files.append(write_csv(outdir / f"{stem}.csv", scene, cols, rows))
         if "theta_t" in wanted:
             files.append(plot.time_series(scene, runs, outdir / f"{stem}_theta_t.png", "theta"))
         if "v_t" in wanted:
@@ -96,7 +86,7 @@ def run_scene(scene: Scene, outdir, stem: str | None = None, progress: bool = Tr
         rows = [([value] if scene.sweep else []) + [m.theta0, m.v0, m.eps, table["regime"][i], table["k"][i],
                                                      table["period"][i], table["omega"][i], table["theta_max"][i]]
                 for i, (value, m) in enumerate(zip(values, members))]
-        files.append(_write_csv(outdir / f"{stem}_orbits.csv", scene, cols, rows))
+        files.append(write_csv(outdir / f"{stem}_orbits.csv", scene, cols, rows))
         if scene.sweep:
             shown = {k: table[k] for k in ("omega", "theta_max", "period") if k in wanted}
             files.append(plot.orbit_curves(scene, values, shown, outdir / f"{stem}_orbits.png"))
@@ -109,16 +99,12 @@ def run_scene(scene: Scene, outdir, stem: str | None = None, progress: bool = Tr
     if "lindstedt" in wanted:
         files += _lindstedt_outputs(scene, members, values, outdir, stem, progress)
     if "spectrum" in wanted:
-        from .spectrum import spectrum_outputs
-
-        files += spectrum_outputs(scene, members, values, outdir, stem, progress)
+        files += _spectrum_outputs(scene, members, values, outdir, stem, progress)
     return files
 
 
 def _series_outputs(scene, members, values, outdir, stem):
     """The period series (orders 1, 2, 3, 5, 10) against the exact period, over theta0."""
-    from . import plot
-    from .series import period_from_series
 
     if scene.sweep != "theta0" or any(m.v0 != 0 for m in members):
         raise ValueError("output 'series' compares T(theta0) released from rest: sweep theta0 with v0 = 0")
@@ -128,15 +114,12 @@ def _series_outputs(scene, members, values, outdir, stem):
     approx = {n: period_from_series(theta0, n, scene.eps) for n in orders}
     rows = [[theta0[i], exact[i]] + [approx[n][i] for n in orders] for i in range(len(theta0))]
     cols = ["theta0", "T_exact"] + [f"T_series_{2 * n}" for n in orders]
-    return [_write_csv(outdir / f"{stem}_series.csv", scene, cols, rows),
+    return [write_csv(outdir / f"{stem}_series.csv", scene, cols, rows),
             plot.period_series_figure(theta0, exact, approx, outdir / f"{stem}_series.png")]
 
 
 def _lindstedt_outputs(scene, members, values, outdir, stem, progress):
     """Max error of Poincare-Lindstedt (orders 1, 3, 5, 7) against the exact solution, per amplitude."""
-    from . import plot
-    from .motion import exact_motion
-    from .series import poincare_lindstedt
 
     if scene.sweep != "theta0" or any(m.v0 != 0 for m in members):
         raise ValueError("output 'lindstedt' needs a sweep of theta0 (the amplitude) with v0 = 0")
@@ -151,5 +134,45 @@ def _lindstedt_outputs(scene, members, values, outdir, stem, progress):
             bar.update()
     rows = [[values[i]] + [errors[o][i] for o in orders] for i in range(len(values))]
     cols = ["amplitude"] + [f"max_error_order_{o}" for o in orders]
-    return [_write_csv(outdir / f"{stem}_lindstedt.csv", scene, cols, rows),
+    return [write_csv(outdir / f"{stem}_lindstedt.csv", scene, cols, rows),
             plot.lindstedt_figure(np.asarray(values), errors, outdir / f"{stem}_lindstedt.png")]
+
+
+def _spectrum_outputs(scene, members, values, outdir, stem, progress=True):
+    """The 'spectrum' output of a scene: one FFTW plan for the whole sweep.
+
+    Conservative scenes are sampled over ``scene.n_samples`` points spanning a
+    whole number of periods (8, or what fits t_end), so the lines sit exactly
+    on bins; other scenes use the scene's own time grid.
+    """
+    rows, specs, labels, notes = [], [], [], []
+    n = scene.n_samples if scene.n_samples >= 64 else 4096
+    for value, m in zip(values, members):
+        if m.is_conservative_rigid:
+            o = orbit(m.theta0, m.v0, m.eps)
+            if not math.isfinite(o.period):
+                raise ValueError(f"{scene.sweep} = {value}: the separatrix has no spectrum (infinite period)")
+            periods = 8
+            tt = np.arange(n) * (periods * o.period / n)
+            tr = simulate(m, tt)
+            x = tr.theta - (o.omega * tt if o.regime == "rotation" else 0.0)
+            s = spectrum(tt, x)
+        else:
+            tt = np.linspace(m.t_start, m.t_end, n)
+            tr = simulate(m, tt)
+            s = spectrum(tt, tr.theta - tr.theta.mean(), window="hann")
+        specs.append(s)
+        labels.append(f"{scene.sweep} = {value:.10g}" if scene.sweep else "")
+        above = odd_harmonics_above(s)
+        notes.append(above)
+        rows.append([value, s.fundamental] + list(s.harmonics(8)))
+    write_csv(outdir / f"{stem}_spectrum.csv", scene,
+              [scene.sweep or "run", "fundamental_omega"] + [f"A_{2 * j + 1}" for j in range(8)], rows,
+              notes=("harmonics above 1e-6 of the fundamental's power: "
+                     + "; ".join(f"{lab or 'run'}: {h}" for lab, h in zip(labels, notes)),))
+    files = [outdir / f"{stem}_spectrum.csv",
+             plot.spectra_figure(scene, specs, labels, outdir / f"{stem}_spectrum.png")]
+    for lab, h in zip(labels, notes):
+        print(f"    {stem}: {lab or 'run'}: odd harmonics above 1e-6 of the fundamental's power: "
+              f"{', '.join(str(x) for x in h)}")
+    return files

@@ -183,7 +183,7 @@ def fourier_series(theta0: float, v0: float, eps: float = 1.0, n: int = 10) -> t
     theta = 0 at t = 0.)
     """
     from .elliptic import nome
-    from .models.rigid import orbit
+    from .systems.rigid import orbit
 
     if not (isinstance(n, (int, np.integer)) and n >= 1):
         raise ValueError(f"n must be a positive whole number, got {n!r}")
@@ -205,57 +205,3 @@ def odd_harmonics_above(spec: Spectrum, threshold: float = 1e-6, n_max: int = 50
     a = spec.harmonics(n_max)
     p = a**2
     return [2 * j + 1 for j in range(n_max) if np.isfinite(p[j]) and p[j] > threshold * p[0]]
-
-
-# ---------------------------------------------------------------- scene outputs
-
-def spectrum_outputs(scene, members, values, outdir, stem, progress=True):
-    """The 'spectrum' output of a scene: one FFTW plan for the whole sweep.
-
-    Conservative scenes are sampled over ``scene.n_samples`` points spanning a
-    whole number of periods (8, or what fits t_end), so the lines sit exactly
-    on bins; other scenes use the scene's own time grid.
-    """
-    import csv
-
-    from . import plot
-    from .models.rigid import orbit
-    from .motion import simulate
-    from .run import _header
-
-    rows, specs, labels, notes = [], [], [], []
-    n = scene.n_samples if scene.n_samples >= 64 else 4096
-    for value, m in zip(values, members):
-        if m.is_conservative_rigid:
-            o = orbit(m.theta0, m.v0, m.eps)
-            if not math.isfinite(o.period):
-                raise ValueError(f"{scene.sweep} = {value}: the separatrix has no spectrum (infinite period)")
-            periods = 8
-            tt = np.arange(n) * (periods * o.period / n)
-            tr = simulate(m, tt)
-            x = tr.theta - (o.omega * tt if o.regime == "rotation" else 0.0)
-            s = spectrum(tt, x)
-        else:
-            tt = np.linspace(m.t_start, m.t_end, n)
-            tr = simulate(m, tt)
-            s = spectrum(tt, tr.theta - tr.theta.mean(), window="hann")
-        specs.append(s)
-        labels.append(f"{scene.sweep} = {value:.10g}" if scene.sweep else "")
-        above = odd_harmonics_above(s)
-        notes.append(above)
-        rows.append([value, s.fundamental] + list(s.harmonics(8)))
-    with (outdir / f"{stem}_spectrum.csv").open("w", newline="") as fh:
-        for ln in _header(scene):
-            fh.write(ln + "\n")
-        fh.write("# harmonics above 1e-6 of the fundamental's power: "
-                 + "; ".join(f"{lab or 'run'}: {h}" for lab, h in zip(labels, notes)) + "\n")
-        w = csv.writer(fh)
-        w.writerow([scene.sweep or "run", "fundamental_omega"] + [f"A_{2 * j + 1}" for j in range(8)])
-        for r in rows:
-            w.writerow([repr(float(x)) for x in r])
-    files = [outdir / f"{stem}_spectrum.csv",
-             plot.spectra_figure(scene, specs, labels, outdir / f"{stem}_spectrum.png")]
-    for lab, h in zip(labels, notes):
-        print(f"    {stem}: {lab or 'run'}: odd harmonics above 1e-6 of the fundamental's power: "
-              f"{', '.join(str(x) for x in h)}")
-    return files

@@ -1,0 +1,136 @@
+"""The physical systems (models) of pendula, one module per system.
+
+A scene's fields select one model; the model says which of the scene's
+effects it accepts and which keep an exact (closed-form) path.  The decision
+scene -> model -> exact path or integrator is taken once, in the kernel's
+dispatcher (kernel/dispatch/pendula_simulate.f90); :func:`run` hands it the
+scene and returns what it computed, and :func:`models` lists the registry.
+
+Adding a model: one kernel module (kernel/models), one registry entry and one
+case in the kernel's dispatcher, and one line in ``_COLUMNS`` below when the
+model returns more than theta, v and its invariant.
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import _kernel
+from .._checks import as_float
+from ..scene import Scene, SceneError
+from ..trajectory import Trajectory
+
+__all__ = ["ModelInfo", "models", "run", "METHOD_NAMES"]
+
+#: the kernel's method codes (kernel/dispatch/pendula_simulate.f90)
+METHOD_NAMES = {0: "exact", 1: "rk4", 2: "verlet", 3: "yoshida4", 4: "yoshida6", 5: "yoshida8",
+                6: "gauss4", 7: "gauss6", 8: "dopri5", 9: "dop853", 10: "gsl-rk8pd"}
+
+# kernel status -> exception type (the kernel's message is the text)
+_NOT_IMPLEMENTED = 14
+
+
+@dataclass(frozen=True)
+class ModelInfo:
+    """One model of the registry.
+
+    Attributes
+    ----------
+    name : str
+        The model's name ('rigid', 'cord', 'cycloid', 'gravity').
+    selector : str
+        The scene fields that select it.
+    effects : tuple of str
+        The effects it accepts (damping, torque, drive).
+    exact_with : tuple of str
+        The effects under which its exact path still answers (empty: exact
+        only without effects).
+    path : str
+        'exact' (closed form), 'hybrid' (exact pieces joined at events) or
+        'integrated'.
+    implemented : bool
+        False for a model the scene format names but pendula cannot run yet.
+    summary : str
+    """
+
+    name: str
+    selector: str
+    effects: tuple
+    exact_with: tuple
+    path: str
+    implemented: bool
+    summary: str
+
+
+def models() -> list[ModelInfo]:
+    """The models pendula knows, from the kernel's registry.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> [m.name for m in pendula.models()][0]
+    'rigid'
+    """
+    table = _kernel.models_v()
+    text = table.decode() if isinstance(table, bytes) else str(table)
+    out = []
+    for line in text.strip().splitlines():
+        name, sel, eff, exact, path, impl, summary = (f.strip() for f in line.split("|"))
+        words = lambda s: tuple(w for w in s.split() if w != "(none)")  # noqa: E731
+        out.append(ModelInfo(name, sel, words(eff), words(exact), path, impl == "yes", summary))
+    return out
+
+
+def run(scene: Scene, t) -> Trajectory:
+    """Run a scene through the kernel's dispatcher at the times t (any order).
+
+    Raises
+    ------
+    NotImplementedError
+        The scene selects a model pendula cannot run yet.
+    ValueError
+        The scene and the method disagree (a fixed-step method without dt,
+        'exact' with effects, ...), or the integrator failed.
+    """
+    t = as_float(t, "t")
+    flat = np.ascontiguousarray(t, dtype=np.float64).reshape(-1)
+    if not np.all(np.isfinite(flat)) and scene.effects:
+        raise ValueError("t must be finite")
+    order = np.argsort(flat, kind="stable")
+    sorted_t = np.ascontiguousarray(flat[order])
+    theta_s, v_s, e_s, stats, method, status, msg = _kernel.simulate_v(_kernel_text(scene), sorted_t)
+    msg = (msg.decode(errors="replace") if isinstance(msg, bytes) else str(msg)).strip()
+    if status == _NOT_IMPLEMENTED:
+        raise NotImplementedError(msg)
+    if status == 100:
+        raise SceneError(f"the kernel refused the scene: {msg}")
+    if status:
+        raise ValueError(f"{scene.method}: {msg}")
+    theta = np.empty_like(flat)
+    v = np.empty_like(flat)
+    e = np.empty_like(flat)
+    theta[order] = theta_s
+    v[order] = v_s
+    e[order] = e_s
+    theta, v, e = (a.reshape(t.shape) for a in (theta, v, e))
+    name = METHOD_NAMES[int(method)]
+    st = {} if method == 0 else {"steps": int(stats[0]), "accepted": int(stats[1]), "rejected": int(stats[2]),
+                                 "rhs_evaluations": int(stats[3]), "stopped_by_event": False}
+    bad = ~np.isfinite(theta) & ~np.isnan(t)
+    if np.any(bad):
+        warnings.warn(f"simulate: {int(bad.sum())} time(s) infinite or beyond the exact path's range gave NaN",
+                      RuntimeWarning, stacklevel=3)
+    return Trajectory(t, theta, v, e, name, scene, st)
+
+
+_SKIP = ("outputs", "sweep", "sweep_values", "name")
+
+
+def _kernel_text(scene: Scene) -> str:
+    """The scene as the kernel's dispatcher reads it (without the fields that
+    only say what to write: outputs, sweeps and the title)."""
+    return "\n".join(line for line in scene.to_namelist().splitlines()
+                     if line.split("=", 1)[0].strip() not in _SKIP) + "\n"

@@ -1,0 +1,68 @@
+"""The dispatcher: scene -> model -> exact path or integrator, decided once in the kernel."""
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import pendula
+from pendula import Scene
+
+
+def test_models_lists_the_registry():
+    ms = {m.name: m for m in pendula.models()}
+    assert list(ms)[0] == "rigid" and ms["rigid"].implemented and ms["rigid"].path == "exact"
+    assert set(ms["rigid"].effects) == {"damping", "torque", "drive"}
+    assert ms["rigid"].exact_with == ()  # exact only without effects
+    assert {"cord", "cycloid", "gravity"} <= set(ms)
+
+
+def test_models_command_prints_the_same_table():
+    out = subprocess.run([sys.executable, "-m", "pendula", "models"], capture_output=True, text=True, check=True)
+    lines = out.stdout.splitlines()
+    assert lines[0].split()[0] == "model"
+    names = [ln.split()[0] for ln in lines[2:]]
+    assert names == [m.name for m in pendula.models()]
+
+
+def test_conservative_rigid_scene_takes_the_exact_path():
+    tr = pendula.simulate(Scene(v0=1.0), [0.0, 1.0, -3.0])
+    th, v = pendula.exact_motion(0.0, 1.0, 1.0, [0.0, 1.0, -3.0])
+    assert tr.method == "exact" and tr.stats == {}
+    assert np.array_equal(tr.theta, th) and np.array_equal(tr.v, v)
+
+
+def test_scene_with_effects_is_integrated_by_its_method():
+    tr = pendula.simulate(Scene(v0=1.0, damping=0.1), [0.0, 2.0, 1.0])
+    assert tr.method == "dop853" and tr.stats["steps"] > 0
+    one = pendula.simulate(Scene(v0=1.0, damping=0.1), [1.0])
+    assert tr.theta[2] == pytest.approx(one.theta[0], rel=1e-9)
+
+
+@pytest.mark.parametrize("kw,field", [(dict(method="rk4", dt=0.01), "method"), (dict(rtol=1e-6), "rtol"),
+                                      (dict(atol=1e-9), "atol"), (dict(dt=0.02, method="gauss6"), "dt")])
+def test_solver_knobs_as_keywords_override_the_scene(kw, field):
+    s = Scene(v0=1.0, damping=0.1)
+    t = np.linspace(0.0, 5.0, 11)
+    by_kw = pendula.simulate(s, t, **kw)
+    by_scene = pendula.simulate(s.replace(**kw), t)
+    assert np.array_equal(by_kw.theta, by_scene.theta)
+    assert by_kw.scene == s.replace(**kw)
+
+
+def test_keyword_method_exact_refuses_effects():
+    with pytest.raises(ValueError, match="exact"):
+        pendula.simulate(Scene(v0=1.0, damping=0.1), [1.0], method="exact")
+
+
+def test_two_models_at_once_are_refused_by_name():
+    with pytest.raises((NotImplementedError, ValueError), match="cord|guide"):
+        pendula.simulate(Scene(cord="flexible", guide="cycloid"), [1.0])
+
+
+def test_gsl_peer_runs_through_the_dispatcher():
+    s = Scene(v0=1.0, damping=0.1, rtol=1e-11, atol=1e-13)
+    a = pendula.simulate(s, [0.0, 3.0], method="gsl-rk8pd")
+    b = pendula.simulate(s, [0.0, 3.0], method="dop853")
+    assert a.method == "gsl-rk8pd" and abs(a.theta[1] - b.theta[1]) < 1e-8
