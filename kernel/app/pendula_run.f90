@@ -7,20 +7,27 @@
 !> table goes to OUT with "_orbits" before ".csv" (or follows on standard
 !> output).  The header records the scene.  A bad scene is reported on
 !> standard error naming the field, the exit status is 2, and no output file
-!> is written.  Scenes whose effects need an integrator are run by the
-!> integrators of the kernel.
+!> is written.  Every scene goes through the kernel's dispatcher (the same
+!> as the Python layer's).  Files are written under a temporary name and
+!> renamed into place at the end: a failure leaves no partial or stray file.
+!> Exit status: 0 ok, 2 bad scene or arguments, 3 model not implemented,
+!> 4 the computation failed, 5 a write error.
 program pendula_run
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
+  use pendula_outfile, only: outfile_t, out_open, out_line, out_close, out_abandon
   use pendula_kinds, only: dp, two_pi
   use pendula_scene, only: scene_t, read_scene, scene_effects, scene_summary, max_outputs
   use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_eval, orbit_period, orbit_theta_max
   use pendula_simulate, only: simulate_scene, select_model, sim_ok
   implicit none
   character(len=4096) :: path, out, arg, orbit_out
+  character(len=512) :: line
+  type(outfile_t) :: f_out, f_orbit
   character(len=1024) :: msg
   type(scene_t) :: sc, member
   type(pendulum_orbit) :: o
-  integer :: nargs, i, j, status, unit, ounit, nmem
+  integer :: nargs, i, j, status, nmem
+  logical :: two_files
   real(dp), allocatable :: t(:), theta(:), v(:), e(:), values(:)
   logical :: want_traj, want_orbit, swept
   integer :: method
@@ -88,18 +95,27 @@ program pendula_run
     if (status /= 0) call fail(trim(path) // ': sweep value makes the initial state invalid (eps <= 0?)')
   end do
 
-  if (len_trim(out) > 0) then
-    open(newunit=unit, file=trim(out), status='replace', action='write', iostat=status)
-    if (status /= 0) call fail('cannot write "' // trim(out) // '"')
-  else
-    unit = output_unit
+  ! everything goes through the checked writer: OUT (or standard output, '-')
+  if (len_trim(out) == 0) out = '-'
+  call out_open(f_out, trim(out), status)
+  if (status /= 0) call fail_io('cannot write "' // trim(out) // '"', status)
+  two_files = want_traj .and. want_orbit .and. out /= '-'
+  if (two_files) then
+    ! beside OUT, in its folder: OUT without a final '.csv', then '_orbits.csv'
+    j = len_trim(out)
+    if (j > 4) then
+      if (out(j - 3:j) == '.csv') j = j - 4
+    end if
+    orbit_out = out(1:j) // '_orbits.csv'
+    call out_open(f_orbit, trim(orbit_out), status)
+    if (status /= 0) call fail_io('cannot write "' // trim(orbit_out) // '"', status)
   end if
   if (want_traj) then
-    call header(unit)
+    call header(f_out)
     if (swept) then
-      write(unit, '(a)') trim(sc%sweep) // ',t,theta,v,energy'
+      call out_line(f_out, trim(sc%sweep) // ',t,theta,v,energy')
     else
-      write(unit, '(a)') 't,theta,v,energy'
+      call out_line(f_out, 't,theta,v,energy')
     end if
     do i = 1, nmem
       member = member_of(sc, i)
@@ -107,39 +123,32 @@ program pendula_run
       if (status /= sim_ok) call fail(trim(path) // ': ' // trim(msg), 4)
       do j = 1, size(t)
         if (swept) then
-          write(unit, '(es24.16e3,4(",",es24.16e3))') values(i), t(j), theta(j), v(j), e(j)
+          write(line, '(es24.16e3,4(",",es24.16e3))') values(i), t(j), theta(j), v(j), e(j)
         else
-          write(unit, '(es24.16e3,3(",",es24.16e3))') t(j), theta(j), v(j), e(j)
+          write(line, '(es24.16e3,3(",",es24.16e3))') t(j), theta(j), v(j), e(j)
         end if
+        call out_line(f_out, line)
       end do
     end do
   end if
   if (want_orbit) then
-    ounit = unit
-    if (want_traj .and. len_trim(out) > 0) then
-      j = index(out, '.csv', back=.true.)
-      if (j > 0) then
-        orbit_out = out(1:j - 1) // '_orbits.csv'
-      else
-        orbit_out = trim(out) // '_orbits.csv'
-      end if
-      open(newunit=ounit, file=trim(orbit_out), status='replace', action='write', iostat=status)
-      if (status /= 0) call fail('cannot write "' // trim(orbit_out) // '"')
-    else if (want_traj) then
-      write(unit, '(a)') ''
+    if (two_files) then
+      call orbit_table(f_orbit)
+    else
+      if (want_traj) call out_line(f_out, '')
+      call orbit_table(f_out)
     end if
-    call header(ounit)
-    write(ounit, '(a)') 'theta0,v0,eps,regime,k,period,omega,theta_max'
-    do i = 1, nmem
-      member = member_of(sc, i)
-      call orbit_setup(member%theta0, member%v0, member%eps, o, status)
-      write(ounit, '(3(es24.16e3,","),a,4(",",es24.16e3))') member%theta0, member%v0, member%eps, &
-        trim(regime_names(o%regime)), o%k, orbit_period(o), merge(0.0_dp, two_pi / orbit_period(o), &
-        orbit_period(o) > huge(1.0_dp)), orbit_theta_max(o)
-    end do
-    if (ounit /= unit) close(ounit)
   end if
-  if (unit /= output_unit) close(unit)
+  ! written, made durable and renamed into place only now; errors are exit 5
+  if (two_files) then
+    call out_close(f_orbit, status)
+    if (status /= 0) call fail_io('cannot write "' // trim(orbit_out) // '"', status)
+  end if
+  call out_close(f_out, status)
+  if (status /= 0) then
+    if (out == '-') call fail_io('cannot write to standard output', status)
+    call fail_io('cannot write "' // trim(out) // '"', status)
+  end if
 
 contains
 
@@ -160,29 +169,65 @@ contains
     end select
   end function member_of
 
-  subroutine header(u)
-    integer, intent(in) :: u
-    write(u, '(a)') '# pendula-run ' // trim(path)
-    write(u, '(a)') '# ' // trim(scene_summary(sc))
+  subroutine orbit_table(f)
+    type(outfile_t), intent(inout) :: f
+    call header(f)
+    call out_line(f, 'theta0,v0,eps,regime,k,period,omega,theta_max')
+    do i = 1, nmem
+      member = member_of(sc, i)
+      call orbit_setup(member%theta0, member%v0, member%eps, o, status)
+      write(line, '(3(es24.16e3,","),a,4(",",es24.16e3))') member%theta0, member%v0, member%eps, &
+        trim(regime_names(o%regime)), o%k, orbit_period(o), merge(0.0_dp, two_pi / orbit_period(o), &
+        orbit_period(o) > huge(1.0_dp)), orbit_theta_max(o)
+      call out_line(f, line)
+    end do
+  end subroutine orbit_table
+
+  subroutine header(f)
+    type(outfile_t), intent(inout) :: f
+    character(len=:), allocatable :: summary
+    integer :: a, b
+    call out_line(f, '# pendula-run ' // trim(path))
+    ! the summary holds several lines: one out_line each
+    summary = '# ' // trim(scene_summary(sc)) // new_line('a')
+    a = 1
+    do
+      b = index(summary(a:), new_line('a'))
+      if (b == 0) exit
+      call out_line(f, summary(a:a + b - 2))
+      a = a + b
+    end do
     if (len_trim(scene_effects(sc)) > 0) then
-      write(u, '(a)') '# effects = ' // trim(scene_effects(sc))
+      call out_line(f, '# effects = ' // trim(scene_effects(sc)))
       if (sc%method == 'auto') then
-        write(u, '(a)') '# solver = dop853 (method auto: the scene names effects)'
+        call out_line(f, '# solver = dop853 (method auto: the scene names effects)')
       else
-        write(u, '(a)') '# solver = ' // trim(sc%method)
+        call out_line(f, '# solver = ' // trim(sc%method))
       end if
     else
-      write(u, '(a)') '# effects = none (conservative rigid pendulum: exact solution)'
+      call out_line(f, '# effects = none (conservative rigid pendulum: exact solution)')
     end if
   end subroutine header
 
+  subroutine fail_io(text, err)
+    character(len=*), intent(in) :: text
+    integer, intent(in) :: err
+    character(len=16) :: num
+    write(num, '(i0)') err
+    call fail(trim(text) // ' (errno ' // trim(num) // ')', 5)
+  end subroutine fail_io
+
+  !> Report on standard error, remove any temporary file, exit with code (default 2).
   subroutine fail(text, code)
     character(len=*), intent(in) :: text
     integer, intent(in), optional :: code
     write(error_unit, '(a)') 'pendula-run: ' // trim(text)
+    call out_abandon(f_out)
+    call out_abandon(f_orbit)
     if (present(code)) then
       if (code == 3) stop 3, quiet=.true.
       if (code == 4) stop 4, quiet=.true.
+      if (code == 5) stop 5, quiet=.true.
     end if
     stop 2, quiet=.true.
   end subroutine fail

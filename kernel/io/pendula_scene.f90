@@ -68,15 +68,17 @@ contains
     real(dp) :: eps, theta0, v0, t_start, t_end, damping, torque, drive_amplitude, &
                 drive_frequency, drive_phase, rtol, atol, dt, g, length
     integer :: n_samples
-    character(len=32) :: cord, guide, gravity, method, sweep
-    character(len=16) :: outputs(max_outputs)
-    real(dp) :: sweep_values(max_sweep)
-    character(len=256) :: name
+    ! one more element and one more character than the scene holds: a longer
+    ! list or string is refused with a message instead of being truncated
+    character(len=33) :: cord, guide, gravity, method, sweep
+    character(len=17) :: outputs(max_outputs + 1)
+    real(dp) :: sweep_values(max_sweep + 1)
+    character(len=257) :: name
     namelist /scene/ eps, theta0, v0, t_start, t_end, n_samples, damping, torque, &
       drive_amplitude, drive_frequency, drive_phase, cord, guide, gravity, method, rtol, atol, dt, &
       outputs, sweep, sweep_values, name, g, length
     character(len=:), allocatable :: text
-    character(len=4096) :: buf
+    character(len=:), allocatable :: buf
     character(len=512) :: iom
     integer :: ios, i, j, k, start, line, nseen
     character(len=64) :: fname, seen(64)
@@ -87,7 +89,7 @@ contains
 
     status = 0
     msg = ''
-    eps = sc%eps; theta0 = sc%theta0; v0 = sc%v0; t_start = sc%t_start; t_end = sc%t_end
+    eps = nan_dp; theta0 = sc%theta0; v0 = sc%v0; t_start = sc%t_start; t_end = sc%t_end
     n_samples = sc%n_samples; damping = 0; torque = 0; drive_amplitude = 0; drive_frequency = 0
     drive_phase = 0; cord = sc%cord; guide = sc%guide; gravity = sc%gravity; method = sc%method
     rtol = sc%rtol; atol = sc%atol; dt = 0; outputs = ''; sweep = ''; sweep_values = nan_dp
@@ -100,9 +102,20 @@ contains
     if (i == 0) then
       status = 1; msg = trim(source) // ': a scene file must start with the group ''&scene'''; return
     end if
+    if (verify(text(1:i - 1), ' ' // new_line('a') // achar(9) // achar(13)) > 0) then
+      status = 1; msg = trim(source) // ': a scene file must start with the group ''&scene'''; return
+    end if
     j = closing_slash(text, i + 6)
     if (j == 0) then
       status = 1; msg = trim(source) // ': the group ''&scene'' is not closed with ''/'''; return
+    end if
+    k = verify(text(j + 1:), ' ' // new_line('a') // achar(9) // achar(13))
+    if (k > 0) then
+      line = 1 + count_newlines(text(1:j + k))
+      status = 1
+      write(msg, '(a,i0,a)') trim(source) // ', line ', line, ': text after the end ''/'' of the group ' // &
+        '''&scene''; a scene file holds one group'
+      return
     end if
     ! split the body into assignments at each "name =" outside quotes, read each alone
     start = 0
@@ -119,6 +132,12 @@ contains
       end if
       nseen = min(nseen + 1, size(seen))
       seen(nseen) = fname
+      ios = index(text(start:k - 1), '=')
+      if (verify(text(start + ios:k - 1), ' ,' // new_line('a') // achar(9) // achar(13)) == 0) then
+        status = 1
+        write(msg, '(a,i0,a)') trim(source) // ', line ', line, ': field ''' // trim(fname) // ''' has no value'
+        return
+      end if
       buf = '&scene ' // text(start:k - 1) // ' /'
       read(buf, nml=scene, iostat=ios, iomsg=iom)
       if (ios /= 0) then
@@ -133,14 +152,40 @@ contains
       end if
     end do
 
+    if (count(sweep_values == sweep_values) > max_sweep) then
+      status = 1
+      write(msg, '(a,i0)') trim(source) // ': field ''sweep_values'' holds too many values; at most ', max_sweep
+      return
+    end if
+    if (any(len_trim(outputs) > len(sc%outputs)) .or. len_trim(outputs(max_outputs + 1)) > 0) then
+      status = 1
+      write(msg, '(a,i0,a,i0,a)') trim(source) // ': field ''outputs'': at most ', max_outputs, &
+        ' outputs of at most ', len(sc%outputs), ' characters'
+      return
+    end if
+    if (len_trim(name) > len(sc%name)) then
+      status = 1; msg = trim(source) // ': field ''name'' is longer than 256 characters'; return
+    end if
+    do i = 1, 5
+      select case (i)
+      case (1); fname = 'cord'; buf = cord
+      case (2); fname = 'guide'; buf = guide
+      case (3); fname = 'gravity'; buf = gravity
+      case (4); fname = 'method'; buf = method
+      case (5); fname = 'sweep'; buf = sweep
+      end select
+      if (len_trim(buf) > 32) then
+        status = 1; msg = trim(source) // ': field ''' // trim(fname) // ''' is longer than 32 characters'; return
+      end if
+    end do
     sc%eps = eps; sc%theta0 = theta0; sc%v0 = v0; sc%t_start = t_start; sc%t_end = t_end
     sc%n_samples = n_samples; sc%damping = damping; sc%torque = torque
     sc%drive_amplitude = drive_amplitude; sc%drive_frequency = drive_frequency
     sc%drive_phase = drive_phase; sc%cord = lower(cord); sc%guide = lower(guide)
     sc%gravity = lower(gravity); sc%method = lower(method); sc%rtol = rtol; sc%atol = atol
-    sc%dt = dt; sc%outputs = outputs; sc%sweep = lower(sweep); sc%sweep_values = sweep_values
+    sc%dt = dt; sc%outputs = outputs(1:max_outputs); sc%sweep = lower(sweep); sc%sweep_values = sweep_values(1:max_sweep)
     sc%name = name
-    sc%n_sweep = count(sweep_values == sweep_values)
+    sc%n_sweep = count(sweep_values(1:max_sweep) == sweep_values(1:max_sweep))
     call check(sc, g, length, status, msg)
     if (status /= 0) msg = trim(source) // ': ' // trim(msg)
   end subroutine parse_scene
@@ -166,7 +211,12 @@ contains
       if (.not. (g > 0 .and. length > 0 .and. g <= huge(g) .and. length <= huge(g))) then
         msg = 'fields ''g'' and ''length'' must be positive and finite'; return
       end if
+      if (sc%eps == sc%eps .and. sc%eps /= g / length) then
+        msg = 'fields ''eps'' and ''g'' / ''length'' contradict each other: give eps, or g and length'; return
+      end if
       sc%eps = g / length
+    else if (sc%eps /= sc%eps) then
+      sc%eps = 1.0_dp
     end if
     if (.not. finite(sc%eps) .or. sc%eps <= 0) then
       msg = 'field ''eps'' must be positive and finite (eps = g/l)'; return
@@ -225,6 +275,16 @@ contains
           count(sc%sweep_values == sc%sweep_values) /= sc%n_sweep) then
         msg = 'field ''sweep_values'' must be finite numbers, one after another'; return
       end if
+      select case (trim(sc%sweep))
+      case ('eps')
+        if (any(sc%sweep_values(1:sc%n_sweep) <= 0)) then
+          msg = 'field ''sweep_values'': eps must be > 0'; return
+        end if
+      case ('damping', 'drive_frequency')
+        if (any(sc%sweep_values(1:sc%n_sweep) < 0)) then
+          msg = 'field ''sweep_values'': ' // trim(sc%sweep) // ' must be >= 0'; return
+        end if
+      end select
     else if (sc%n_sweep > 0) then
       msg = 'field ''sweep_values'' is given but ''sweep'' does not name a field'; return
     end if

@@ -40,6 +40,12 @@ CORDS = ("rigid", "flexible")
 GUIDES = ("none", "cycloid")
 GRAVITIES = ("uniform", "inverse-square")
 SWEEPABLE = ("v0", "theta0", "eps", "damping", "torque", "drive_amplitude", "drive_frequency")
+#: Limits shared with the kernel's reader (kernel/io/pendula_scene.f90): longer
+#: lists and strings are refused with a message, never truncated.
+MAX_SWEEP = 4096
+MAX_OUTPUTS = 16
+STR_LIMITS = {"name": 256, "cord": 32, "guide": 32, "gravity": 32, "method": 32, "sweep": 32}
+OUTPUT_LIMIT = 16
 
 
 class SceneError(ValueError):
@@ -81,7 +87,7 @@ class Scene:
         A title for plots and file names.
     """
 
-    eps: float = 1.0
+    eps: float = math.nan  # not given: 1.0, or g / length when those are given
     theta0: float = 0.0
     v0: float = 0.0
     t_start: float = 0.0
@@ -130,7 +136,17 @@ class Scene:
             raise SceneError(f"{source}: {exc}") from None
 
     def replace(self, **changes) -> "Scene":
-        """A copy with some fields changed (validated again)."""
+        """A copy with some fields changed (validated again).
+
+        eps, g and length stay consistent: changing eps alone drops g and
+        length (eps is then what was given); changing g or length recomputes
+        eps from them.
+        """
+        if "eps" in changes and not ("g" in changes or "length" in changes):
+            changes.setdefault("g", math.nan)
+            changes.setdefault("length", math.nan)
+        elif ("g" in changes or "length" in changes) and "eps" not in changes:
+            changes["eps"] = math.nan
         return dataclasses.replace(self, **changes)
 
     # -- what the scene asks for -------------------------------------------
@@ -218,16 +234,24 @@ def _validate(s: Scene) -> None:
         v = getattr(s, name)
         if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
             raise SceneError(f"field '{name}' must be a real number, got {v!r}")
-        set_(s, name, float(v))
-        if name not in ("g", "length") and not math.isfinite(float(v)):
+        try:
+            set_(s, name, float(v))
+        except OverflowError:
+            raise SceneError(f"field '{name}' is too large for a double: {v!r}") from None
+        if name not in ("g", "length", "eps") and not math.isfinite(float(v)):
             raise SceneError(f"field '{name}' must be finite, got {v!r}")
     v = s.n_samples
     if isinstance(v, bool) or not isinstance(v, (int, np.integer)) and not (isinstance(v, float) and v.is_integer()):
         raise SceneError(f"field 'n_samples' must be a whole number, got {v!r}")
     set_(s, "n_samples", int(v))
     for name in _STRS:
-        if not isinstance(getattr(s, name), str):
-            raise SceneError(f"field '{name}' must be a string, got {getattr(s, name)!r}")
+        v = getattr(s, name)
+        if not isinstance(v, str):
+            raise SceneError(f"field '{name}' must be a string, got {v!r}")
+        if len(v) > STR_LIMITS[name]:
+            raise SceneError(f"field '{name}' is longer than {STR_LIMITS[name]} characters")
+        if name != "name":  # words are case-insensitive, as Fortran names are
+            set_(s, name, v.lower())
     for name, kind in _TUPLES.items():
         v = getattr(s, name)
         if isinstance(v, (str, float, int, np.floating)):
@@ -239,14 +263,29 @@ def _validate(s: Scene) -> None:
             if not ok:
                 raise SceneError(f"field '{name}' must be a list of "
                                  f"{'strings' if kind is str else 'numbers'}, got {x!r}")
-        set_(s, name, tuple(kind(x) for x in v))
-    # g and length: both or neither, and then eps = g / length
+        try:
+            set_(s, name, tuple(kind(x) for x in v))
+        except OverflowError:
+            raise SceneError(f"field '{name}' holds a number too large for a double") from None
+    if len(s.sweep_values) > MAX_SWEEP:
+        raise SceneError(f"field 'sweep_values' holds {len(s.sweep_values)} values; at most {MAX_SWEEP}")
+    if len(s.outputs) > MAX_OUTPUTS:
+        raise SceneError(f"field 'outputs' names {len(s.outputs)} outputs; at most {MAX_OUTPUTS}")
+    set_(s, "outputs", tuple(o.lower() for o in s.outputs))
+    # g and length: both or neither, and then eps = g / length (a given eps must agree)
     if math.isnan(s.g) != math.isnan(s.length):
         raise SceneError("fields 'g' and 'length' go together (eps = g / length): give both or neither")
     if not math.isnan(s.g):
         if not (s.g > 0 and s.length > 0 and math.isfinite(s.g) and math.isfinite(s.length)):
             raise SceneError("fields 'g' and 'length' must be positive and finite")
+        if not math.isnan(s.eps) and s.eps != s.g / s.length:
+            raise SceneError(f"fields 'eps' = {s.eps!r} and 'g' / 'length' = {s.g / s.length!r} contradict "
+                             "each other: give eps, or g and length")
         set_(s, "eps", s.g / s.length)
+    elif math.isnan(s.eps):
+        set_(s, "eps", 1.0)
+    if not math.isfinite(s.eps):
+        raise SceneError(f"field 'eps' must be finite, got {s.eps!r}")
     if not s.eps > 0:
         raise SceneError(f"field 'eps' must be positive (eps = g/l), got {s.eps!r}")
     if s.n_samples < 1 or s.n_samples > 100_000_000:
@@ -274,11 +313,22 @@ def _validate(s: Scene) -> None:
             raise SceneError("field 'sweep_values' is empty but 'sweep' names a field")
         if not all(math.isfinite(x) for x in s.sweep_values):
             raise SceneError("field 'sweep_values' must be finite numbers")
+        rule = _MEMBER_RULES.get(s.sweep)
+        if rule:
+            bad = [x for x in s.sweep_values if not rule[0](x)]
+            if bad:
+                raise SceneError(f"field 'sweep_values': {s.sweep} = {bad[0]!r} is out of range ({rule[1]})")
     elif s.sweep_values:
         raise SceneError("field 'sweep_values' is given but 'sweep' does not name a field")
     if s.method == "exact" and s.effects:
         raise SceneError(f"field 'method': 'exact' answers only the conservative rigid pendulum, "
                          f"but the scene names {', '.join(s.effects)}")
+
+
+#: the range rule of each sweepable field (the same as for the field itself)
+_MEMBER_RULES = {"eps": (lambda x: x > 0, "eps must be > 0"),
+                 "damping": (lambda x: x >= 0, "damping must be >= 0"),
+                 "drive_frequency": (lambda x: x >= 0, "drive_frequency must be >= 0")}
 
 
 def _suggest(word, choices) -> str:
@@ -289,7 +339,8 @@ def _suggest(word, choices) -> str:
 # ---------------------------------------------------------------- namelist
 
 _TOKEN = re.compile(r"""
-    (?P<str>'(?:[^']|'')*'|"(?:[^"]|"")*")
+    (?P<rep>\d+\*)
+  | (?P<str>'(?:[^']|'')*'|"(?:[^"]|"")*")
   | (?P<logical>\.(?:true|false|t|f)\.)
   | (?P<name>[A-Za-z_][A-Za-z0-9_]*)
   | (?P<num>[+-]?(?:\d+\.?\d*|\.\d+)(?:[eEdD][+-]?\d+)?)
@@ -325,8 +376,13 @@ def parse_namelist(text: str, source: str = "<scene>") -> dict:
         pos = m.end()
     if not tokens or tokens[0][0] != "group" or tokens[0][1].lower() != "&scene":
         raise SceneError(f"{source}: a scene file must start with the group '&scene'")
-    if tokens[-1][0] != "end":
+    ends = [k for k, tok in enumerate(tokens) if tok[0] == "end"]
+    if not ends:
         raise SceneError(f"{source}: the group '&scene' is not closed with '/'")
+    if ends[0] != len(tokens) - 1:
+        kind, tok, ln = tokens[ends[0] + 1]
+        raise SceneError(f"{source}, line {ln}: text after the end '/' of the group '&scene' ({tok!r}); "
+                         "a scene file holds one group")
     values: dict = {}
     i = 1
     body = tokens[1:-1]
@@ -346,13 +402,25 @@ def parse_namelist(text: str, source: str = "<scene>") -> dict:
             raise SceneError(f"{source}, line {ln}: field '{key}' must be followed by '='")
         i += 2
         items = []
+        repeat = 0
         while i - 1 < len(body):
             k2, t2, l2 = body[i - 1]
             if k2 == "sep":
+                if repeat:
+                    raise SceneError(f"{source}, line {l2}: field '{key}': a repeat count needs a value")
                 i += 1
                 continue
             if k2 == "name" and i < len(body) and body[i][0] == "eq":
                 break
+            if k2 == "rep":
+                if repeat:
+                    raise SceneError(f"{source}, line {l2}: field '{key}': cannot read value {t2!r}")
+                repeat = int(t2[:-1])
+                if not 1 <= repeat <= MAX_SWEEP:
+                    raise SceneError(f"{source}, line {l2}: field '{key}': repeat count {repeat} out of range")
+                i += 1
+                continue
+            n_before = len(items)
             if k2 == "str":
                 q = t2[0]
                 items.append(t2[1:-1].replace(q + q, q))
@@ -362,6 +430,9 @@ def parse_namelist(text: str, source: str = "<scene>") -> dict:
                 items.append(t2.lower() in (".true.", ".t."))
             else:
                 raise SceneError(f"{source}, line {l2}: field '{key}': cannot read value {t2!r}")
+            if repeat:
+                items.extend(items[n_before:] * (repeat - 1))
+                repeat = 0
             i += 1
         if not items:
             raise SceneError(f"{source}, line {ln}: field '{key}' has no value")
