@@ -95,6 +95,12 @@ contains
     rtol = sc%rtol; atol = sc%atol; dt = 0; outputs = ''; sweep = ''; sweep_values = nan_dp
     name = ''; g = nan_dp; length = nan_dp
 
+    k = utf8_error_at(text_in)
+    if (k > 0) then
+      status = 1
+      write(msg, '(a,i0,a)') trim(source) // ': not UTF-8 text (byte ', k, ' is not part of a UTF-8 character)'
+      return
+    end if
     text = text_in
     call strip_comments(text)
     ! the group: from '&scene' to the closing '/'
@@ -346,6 +352,37 @@ contains
   end function scene_summary
 
   ! ------------------------------------------------------------ helpers
+
+  !> 0 when s is valid UTF-8, otherwise the position of the first bad byte.
+  pure integer function utf8_error_at(s)
+    character(len=*), intent(in) :: s
+    integer :: i, b, n, j
+    utf8_error_at = 0
+    i = 1
+    do while (i <= len(s))
+      b = iachar(s(i:i))
+      if (b < 128) then
+        n = 0
+      else if (b >= 194 .and. b <= 223) then
+        n = 1
+      else if (b >= 224 .and. b <= 239) then
+        n = 2
+      else if (b >= 240 .and. b <= 244) then
+        n = 3
+      else
+        utf8_error_at = i; return
+      end if
+      if (i + n > len(s)) then
+        utf8_error_at = i; return
+      end if
+      do j = i + 1, i + n
+        if (iand(iachar(s(j:j)), 192) /= 128) then
+          utf8_error_at = j; return
+        end if
+      end do
+      i = i + n + 1
+    end do
+  end function utf8_error_at
 
   pure logical function finite(x)
     real(dp), intent(in) :: x

@@ -81,7 +81,20 @@ def _run_file(args, command: str, outputs: tuple | None = None) -> int:
         return 2
     if outputs:
         scene = scene.replace(outputs=outputs)
-    for f in run_scene(scene, args.output, stem=pathlib.Path(args.scene).stem, progress=not args.quiet):
+    # the exit codes of pendula-run: 3 model not implemented, 4 the computation
+    # failed, 5 a write error; a message, never a traceback, and no partial file
+    try:
+        files = run_scene(scene, args.output, stem=pathlib.Path(args.scene).stem, progress=not args.quiet)
+    except NotImplementedError as exc:
+        print(f"pendula {command}: {args.scene}: {exc}", file=sys.stderr)
+        return 3
+    except (ValueError, ArithmeticError, RuntimeError) as exc:
+        print(f"pendula {command}: {args.scene}: {exc}", file=sys.stderr)
+        return 4
+    except OSError as exc:
+        print(f"pendula {command}: cannot write into {args.output!r}: {exc.strerror or exc}", file=sys.stderr)
+        return 5
+    for f in files:
         print(f)
     return 0
 

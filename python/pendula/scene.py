@@ -121,9 +121,14 @@ class Scene:
         """Read a scene from a namelist file (group ``&scene``)."""
         path = pathlib.Path(path)
         try:
-            text = path.read_text()
+            data = path.read_bytes()
         except OSError as exc:
             raise SceneError(f"{path}: cannot read scene file: {exc.strerror}") from None
+        try:
+            text = data.decode("utf-8")
+        except UnicodeDecodeError as exc:
+            raise SceneError(f"{path}: not UTF-8 text (byte {exc.start + 1} is not part of a UTF-8 character)") \
+                from None
         return cls.from_namelist(text, source=str(path))
 
     @classmethod
