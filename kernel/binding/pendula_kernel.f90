@@ -179,6 +179,19 @@ subroutine simulate_v(text, n, t, theta, v, energy, stats, method, status, msg)
   call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg)
 end subroutine simulate_v
 
+! Read and check a scene's text with the kernel's rules (status 0 ok,
+! otherwise msg names the field); the scene corpus and fuzz tests compare
+! this reader with the Python one.
+subroutine scene_check_v(text, status, msg)
+  use pendula_scene, only: scene_t, parse_scene
+  implicit none
+  character(len=*), intent(in) :: text
+  integer, intent(out) :: status
+  character(len=512), intent(out) :: msg
+  type(scene_t) :: sc
+  call parse_scene(text, '<scene>', sc, status, msg)
+end subroutine scene_check_v
+
 ! The model registry, one model per line of `table` (fields separated by '|':
 ! name, selector, effects, exact_with, path, implemented, summary).
 subroutine models_v(table)

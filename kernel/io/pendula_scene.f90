@@ -80,7 +80,7 @@ contains
     character(len=:), allocatable :: text
     character(len=:), allocatable :: buf
     character(len=512) :: iom
-    integer :: ios, i, j, k, start, line, nseen
+    integer :: ios, i, j, k, start, line, nseen, jj, kk
     character(len=64) :: fname, seen(64)
     character(len=16), parameter :: known_fields(24) = [character(len=16) :: 'eps', 'theta0', 'v0', &
       't_start', 't_end', 'n_samples', 'damping', 'torque', 'drive_amplitude', 'drive_frequency', &
@@ -129,6 +129,17 @@ contains
     k = i + 6
     do while (k < j)
       call next_assignment(text, k, j, start, fname)
+      if (nseen == 0) then
+        ! nothing but blanks and commas may stand before the first "name ="
+        jj = merge(j, start, start == 0)
+        kk = verify(text(i + 6:jj - 1), ' ,' // new_line('a') // achar(9) // achar(13))
+        if (kk > 0) then
+          status = 1
+          write(msg, '(a,i0,a)') trim(source) // ', line ', 1 + count_newlines(text(1:i + 5 + kk)), &
+            ': expected a field name followed by ''='''
+          return
+        end if
+      end if
       if (start == 0) exit
       line = 1 + count_newlines(text(1:start))
       if (any(seen(1:nseen) == fname)) then
@@ -142,6 +153,13 @@ contains
       if (verify(text(start + ios:k - 1), ' ,' // new_line('a') // achar(9) // achar(13)) == 0) then
         status = 1
         write(msg, '(a,i0,a)') trim(source) // ', line ', line, ': field ''' // trim(fname) // ''' has no value'
+        return
+      end if
+      jj = bad_value_token(text(start + index(text(start:k - 1), '='):k - 1))
+      if (jj > 0) then
+        status = 1
+        write(msg, '(a,i0,a)') trim(source) // ', line ', line, ': field ''' // trim(fname) // &
+          ''': cannot read value ''' // token_at(text(start + index(text(start:k - 1), '='):k - 1), jj) // ''''
         return
       end if
       buf = '&scene ' // text(start:k - 1) // ' /'
@@ -352,6 +370,151 @@ contains
   end function scene_summary
 
   ! ------------------------------------------------------------ helpers
+
+  !> The lexicon of values both readers share (python/pendula/scene.py,
+  !> _TOKEN): numbers [+-]digits[.digits][(e|d)[+-]digits], quoted strings,
+  !> logicals .true./.false./.t./.f., a repeat count r* before a value, and
+  !> blanks or commas between them.  0 when s is made of these, otherwise the
+  !> position where the first bad token starts.
+  pure integer function bad_value_token(s) result(at)
+    character(len=*), intent(in) :: s
+    integer :: i, n, e
+    character(len=1) :: q
+    at = 0
+    i = 1
+    n = len(s)
+    do while (i <= n)
+      select case (s(i:i))
+      case (' ', ',', achar(9), achar(10), achar(13))
+        i = i + 1
+      case ('''', '"')
+        q = s(i:i)
+        e = i + 1
+        do
+          if (e > n) then
+            at = i; return
+          end if
+          if (s(e:e) == q) then
+            if (e < n) then
+              if (s(e + 1:e + 1) == q) then
+                e = e + 2; cycle
+              end if
+            end if
+            exit
+          end if
+          e = e + 1
+        end do
+        i = e + 1
+        if (.not. separated(i)) then
+          at = i; return
+        end if
+      case ('.')
+        e = logical_end(i)
+        if (e == 0) e = number_end(i)
+        if (e == 0) then
+          at = i; return
+        end if
+        i = e + 1
+        if (.not. separated(i)) then
+          at = i; return
+        end if
+      case default
+        e = number_end(i)
+        if (e == 0) then
+          at = i; return
+        end if
+        q = 'n'
+        if (verify(s(i:e), '0123456789') == 0) q = 'r'   ! digits only: may be a repeat count
+        i = e + 1
+        if (i <= n) then
+          if (s(i:i) == '*' .and. q == 'r') then
+            i = i + 1   ! a repeat count: the value follows at once
+            if (i > n) then
+              at = i - 1; return
+            end if
+            if (index(' ,', s(i:i)) > 0) then
+              at = i; return
+            end if
+            cycle
+          end if
+        end if
+        if (.not. separated(i)) then
+          at = i; return
+        end if
+      end select
+    end do
+  contains
+    pure logical function separated(k)
+      integer, intent(in) :: k
+      separated = .true.
+      if (k <= n) separated = index(' ,' // achar(9) // achar(10) // achar(13), s(k:k)) > 0
+    end function separated
+    pure integer function logical_end(k)
+      integer, intent(in) :: k
+      integer :: m
+      character(len=7), parameter :: words(4) = [character(len=7) :: '.true.', '.false.', '.t.', '.f.']
+      logical_end = 0
+      do m = 1, 4
+        if (k + len_trim(words(m)) - 1 <= n) then
+          if (lower(s(k:k + len_trim(words(m)) - 1)) == trim(words(m))) then
+            logical_end = k + len_trim(words(m)) - 1; return
+          end if
+        end if
+      end do
+    end function logical_end
+    !> end of the number starting at k (0: none)
+    pure integer function number_end(k)
+      integer, intent(in) :: k
+      integer :: m, d1, d2
+      number_end = 0
+      m = k
+      if (index('+-', s(m:m)) > 0) m = m + 1
+      d1 = digits(m)
+      m = m + d1
+      d2 = 0
+      if (m <= n) then
+        if (s(m:m) == '.') then
+          m = m + 1
+          d2 = digits(m)
+          m = m + d2
+        end if
+      end if
+      if (d1 + d2 == 0) return
+      if (m <= n) then
+        if (index('eEdD', s(m:m)) > 0) then
+          m = m + 1
+          if (m <= n) then
+            if (index('+-', s(m:m)) > 0) m = m + 1
+          end if
+          if (digits(m) == 0) return
+          m = m + digits(m)
+        end if
+      end if
+      number_end = m - 1
+    end function number_end
+    pure integer function digits(k)
+      integer, intent(in) :: k
+      digits = 0
+      do while (k + digits <= n)
+        if (index('0123456789', s(k + digits:k + digits)) == 0) exit
+        digits = digits + 1
+      end do
+    end function digits
+  end function bad_value_token
+
+  !> The token of s starting at k (up to a blank or a comma), for messages.
+  pure function token_at(s, k) result(t)
+    character(len=*), intent(in) :: s
+    integer, intent(in) :: k
+    character(len=:), allocatable :: t
+    integer :: e
+    e = scan(s(k:), ' ,' // achar(10))
+    if (e == 0) then
+      t = s(k:min(len(s), k + 40))
+    else
+      t = s(k:k + e - 2)
+    end if
+  end function token_at
 
   !> 0 when s is valid UTF-8, otherwise the position of the first bad byte.
   pure integer function utf8_error_at(s)

@@ -408,6 +408,8 @@ def parse_namelist(text: str, source: str = "<scene>") -> dict:
         i += 2
         items = []
         repeat = 0
+        if i - 1 < len(body) and body[i - 1][0] == "sep":
+            raise SceneError(f"{source}, line {ln}: field '{key}' has no value")
         while i - 1 < len(body):
             k2, t2, l2 = body[i - 1]
             if k2 == "sep":
@@ -416,6 +418,8 @@ def parse_namelist(text: str, source: str = "<scene>") -> dict:
                 i += 1
                 continue
             if k2 == "name" and i < len(body) and body[i][0] == "eq":
+                if repeat:
+                    raise SceneError(f"{source}, line {l2}: field '{key}': a repeat count needs a value")
                 break
             if k2 == "rep":
                 if repeat:

@@ -101,7 +101,7 @@ def run(scene: Scene, t) -> Trajectory:
         raise ValueError("t must be finite")
     order = np.argsort(flat, kind="stable")
     sorted_t = np.ascontiguousarray(flat[order])
-    theta_s, v_s, e_s, stats, method, status, msg = _kernel.simulate_v(_kernel_text(scene), sorted_t)
+    theta_s, v_s, e_s, stats, method, status, msg = _kernel.simulate_v(_kernel_text(scene).encode("utf-8"), sorted_t)
     msg = (msg.decode(errors="replace") if isinstance(msg, bytes) else str(msg)).strip()
     if status == _NOT_IMPLEMENTED:
         raise NotImplementedError(msg)
