@@ -443,6 +443,8 @@ def parse_namelist(text: str, source: str = "<scene>") -> dict:
                 items.extend(items[n_before:] * (repeat - 1))
                 repeat = 0
             i += 1
+        if repeat:
+            raise SceneError(f"{source}, line {ln}: field '{key}': a repeat count needs a value")
         if not items:
             raise SceneError(f"{source}, line {ln}: field '{key}' has no value")
         if key in _TUPLES:
