@@ -6,7 +6,7 @@ module pendula_dd
   use pendula_kinds, only: dp
   implicit none
   private
-  public :: two_sum, fast_two_sum, two_prod, dd_sqrt, dd_add, dd_mul, dd_sincos
+  public :: two_sum, fast_two_sum, two_prod, dd_sqrt, dd_add, dd_mul, dd_sincos, dd_div_d
 
   real(dp), parameter :: splitter = 134217729.0_dp   ! 2**27 + 1
 

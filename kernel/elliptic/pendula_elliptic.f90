@@ -332,7 +332,7 @@ contains
       f = atanh(s)          ! inverse Gudermannian; +-Inf at |r| = pi/2
       return
     end if
-    d2 = c * c + mc * s * s
+    d2 = edge_d2(s, c, mc)
     if (d2 < 0.0_dp) then
       f = nan_dp            ! m > 1 beyond the real range
     else
@@ -352,6 +352,17 @@ contains
     if (j /= 0.0_dp) ev = ev + 2.0_dp * j * ellip_e(m, mc)
   end function ellip_einc
 
+  !> D^2 = 1 - m s^2 = c^2 + mc s^2.  For m > 1 it vanishes at the edge of the
+  !> real domain |s| = 1/sqrt(m); a point inside the domain whose D^2 comes out
+  !> below zero only by the rounding of s, c and the sum is on the edge (0),
+  !> not outside it (NaN came out 1e-15 inside the edge).
+  elemental function edge_d2(s, c, mc) result(d2)
+    real(dp), intent(in) :: s, c, mc
+    real(dp) :: d2
+    d2 = c * c + mc * s * s
+    if (d2 < 0.0_dp .and. -d2 <= 4.0_dp * epsilon(1.0_dp) * (c * c - mc * s * s)) d2 = 0.0_dp
+  end function edge_d2
+
   !> E on |r| <= pi/2 from s = sin r, c = cos r >= 0.
   elemental function einc_reduced(s, c, m, mc) result(ev)
     real(dp), intent(in) :: s, c, m, mc
@@ -359,7 +370,7 @@ contains
     if (mc == 0.0_dp) then
       ev = s; return
     end if
-    d2 = c * c + mc * s * s
+    d2 = edge_d2(s, c, mc)
     if (d2 < 0.0_dp) then
       ev = nan_dp; return
     end if
@@ -369,6 +380,12 @@ contains
       ! E = mc F + (m mc / 3) s^3 R_D(c^2, 1, D^2) + m s c / D: positive terms
       ev = mc * as * carlson_rf(c * c, d2, 1.0_dp) &
            + (m * mc / 3.0_dp) * s3 * carlson_rd(c * c, 1.0_dp, d2) + m * as * c / sqrt(d2)
+    else if (m > 1.0_dp) then
+      ! DLMF 19.25.11 scaled by s^2: E = ((m - 1)/3) s^3 R_D(D^2, 1, c^2) + s D / c,
+      ! both terms positive for m > 1 (where c > 0 on the whole domain); the
+      ! form of 19.25.9 below subtracts two large terms next to the edge
+      ! |s| = 1/sqrt(m) (12 eps at phi = 1.566, m = 1.00001)
+      ev = (-mc / 3.0_dp) * s3 * carlson_rd(d2, 1.0_dp, c * c) + as * sqrt(d2) / c
     else
       ev = as * carlson_rf(c * c, d2, 1.0_dp) - (m / 3.0_dp) * s3 * carlson_rd(c * c, d2, 1.0_dp)
     end if
@@ -409,20 +426,46 @@ contains
   ! Jacobi elliptic functions
   ! ------------------------------------------------------------------
 
+  !> The parameter as a pair of double-doubles m = mh + ml, mc = mch + mcl with
+  !> m + mc = 1 exactly, from whichever of m and mc is the exact one.
+  !>
+  !> Callers pass both, one derived from the other by one rounded subtraction
+  !> (the binding forms mc = 1 - m when m is given, m = 1 - mc when mc is).
+  !> If fl(1 - m) reproduces mc, m may be the exact one and its complement is
+  !> 1 - m = mc + e exactly (two-sum); otherwise mc is, and m = 1 - mc = s + e.
+  !> (When both are consistent, e = 0 and either reading is the same.)  For
+  !> m = 0.1 the rounded 1 - m is 2.8e-17 off, which 2500 reductions by 2K
+  !> turned into 138 eps in sn: the low parts are what keep them.
+  elemental subroutine param_dd(m, mc, mh, ml, mch, mcl)
+    real(dp), intent(in) :: m, mc
+    real(dp), intent(out) :: mh, ml, mch, mcl
+    real(dp) :: s, e
+    call two_sum(1.0_dp, -m, s, e)
+    if (s == mc) then
+      mh = m; ml = 0.0_dp; mch = mc; mcl = e
+    else
+      call two_sum(1.0_dp, -mc, s, e)
+      mh = s; ml = e; mch = mc; mcl = 0.0_dp
+    end if
+  end subroutine param_dd
+
   !> Precompute what the Jacobi functions need for the parameter m (= 1 - mc).
   elemental function jacobi_prepare(m, mc) result(p)
     real(dp), intent(in) :: m, mc
     type(jacobi_plan) :: p
-    p = jacobi_prepare_dd(m, mc, 0.0_dp)
+    real(dp) :: mh, ml, mch, mcl
+    call param_dd(m, mc, mh, ml, mch, mcl)
+    p = jacobi_prepare_dd(mh, mch, mcl, ml)
   end function jacobi_prepare
 
   !> As jacobi_prepare, with the complement known in double-double (mc + mcl,
   !> used for 0 <= m < 1): the pendulum's distance from its separatrix is a
   !> product of two exact doubles, and its period over 1000 cycles needs it all.
-  elemental function jacobi_prepare_dd(m, mc, mcl) result(p)
+  elemental function jacobi_prepare_dd(m, mc, mcl, ml) result(p)
     real(dp), intent(in) :: m, mc, mcl
+    real(dp), intent(in), optional :: ml   !< low part of m (m + ml = 1 - (mc + mcl))
     type(jacobi_plan) :: p
-    real(dp) :: cm, cmc, cmcl, pr, pe
+    real(dp) :: cm, cmc, cmcl, pr, pe, mlow, qh, ql
     if (m /= m .or. mc /= mc .or. abs(m) > huge(1.0_dp) .or. abs(mc) > huge(1.0_dp)) then
       p%regime = -1; return
     end if
@@ -432,19 +475,21 @@ contains
       p%regime = 0
       cm = m; cmc = mc; cmcl = mcl
     else if (m < 0.0_dp) then
-      ! sn(u|m) = sd(nu u|mu)/nu, cn = cd, dn = nd, mu = -m/mc, nu = sqrt(mc)
+      ! sn(u|m) = sd(nu u|mu)/nu, cn = cd, dn = nd, mu = -m/mc, nu = sqrt(mc);
+      ! the core's complement 1/mc and the scale sqrt(mc) from mc + mcl
       p%regime = 2
-      cm = -m / mc; cmc = 1.0_dp / mc
-      call two_prod(cmc, mc, pr, pe)
-      cmcl = ((1.0_dp - pr) - pe) / mc        ! 1/mc in double-double
-      call dd_sqrt(mc, 0.0_dp, p%sh, p%sl)
+      cm = -m / mc
+      call dd_div(1.0_dp, 0.0_dp, mc, mcl, cmc, cmcl)
+      call dd_sqrt(mc, mcl, p%sh, p%sl)
     else
-      ! sn(u|m) = sn(k u|1/m)/k, cn = dn(k u|1/m), dn = cn(k u|1/m), k = sqrt(m)
+      ! sn(u|m) = sn(k u|1/m)/k, cn = dn(k u|1/m), dn = cn(k u|1/m), k = sqrt(m);
+      ! the core's complement -mc/m and the scale sqrt(m) from m + ml
       p%regime = 3
-      cm = 1.0_dp / m; cmc = -mc / m
-      call two_prod(cmc, m, pr, pe)
-      cmcl = ((-mc - pr) - pe) / m            ! -mc/m in double-double
-      call dd_sqrt(m, 0.0_dp, p%sh, p%sl)
+      mlow = 0.0_dp
+      if (present(ml)) mlow = ml
+      cm = 1.0_dp / m
+      call dd_div(-mc, -mcl, m, mlow, cmc, cmcl)
+      call dd_sqrt(m, mlow, p%sh, p%sl)
     end if
     p%mc = cmc
     call ellip_k_dd2(cmc, cmcl, p%kh, p%kl)
@@ -460,6 +505,17 @@ contains
               + cm * (1028.0_dp - cm * 2.0_dp))))) / 467775.0_dp
     p%ndbl = max(0, exponent(0.5_dp * p%kh) + 4)
   end function jacobi_prepare_dd
+
+  !> (ah + al) / (bh + bl) in double-double.
+  elemental subroutine dd_div(ah, al, bh, bl, qh, ql)
+    real(dp), intent(in) :: ah, al, bh, bl
+    real(dp), intent(out) :: qh, ql
+    real(dp) :: q1, p, pe, r
+    q1 = ah / bh
+    call two_prod(q1, bh, p, pe)
+    r = (((ah - p) - pe) + al - q1 * bl) / bh
+    call fast_two_sum(q1, r, qh, ql)
+  end subroutine dd_div
 
   !> Round to the nearest integer (ties to even) for |x| < 2^51, with plain
   !> arithmetic so that loops using it vectorize (anint calls libm).
@@ -557,7 +613,7 @@ contains
     real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:), j(:), sr(:), cr(:)
     real(dp), parameter :: splitter = 134217729.0_dp
     real(dp) :: r(nb), w(nb), t2(nb), sh(nb)
-    real(dp) :: x, xh, xl, hi, lo, bh, bl, pr, pe, t, g, xx, inv, s, c, d, ar, half, odd, fac, ss
+    real(dp) :: x, xh, xl, hi, lo, bh, bl, pr, pe, t, g, xx, inv, s, c, d, ar, half, odd, fac, ss, e1
     integer :: i, k
 
     fac = scale(1.0_dp, -ndbl)
@@ -575,10 +631,17 @@ contains
       t = splitter * g; hi = t - (t - g); lo = g - hi
       t = splitter * kh(i); xx = t - (t - kh(i)); ss = kh(i) - xx
       pe = ((hi * xx - pr) + hi * ss + lo * xx) + lo * ss
-      r(i) = ((xh - pr) - pe) + (xl - g * kl(i))
+      ! r = x - 2 j K kept in double-double (rh + rl): next to a turning point
+      ! the shifted argument K - |r| must not carry the rounding of r (eps K)
+      hi = xh - pr                       ! exact (Sterbenz)
+      lo = -pe
+      t = hi + lo; ss = t - hi; e1 = (hi - (t - ss)) + (lo - ss)
+      lo = xl - g * kl(i)
+      r(i) = t + lo; ss = r(i) - t; e1 = e1 + ((t - (r(i) - ss)) + (lo - ss))
       w(i) = abs(r(i))
       sh(i) = merge(1.0_dp, 0.0_dp, w(i) > 0.5_dp * kh(i))
-      w(i) = merge(max(0.0_dp, (kh(i) - w(i)) + kl(i)), w(i), w(i) > 0.5_dp * kh(i))
+      w(i) = merge(max(0.0_dp, (kh(i) - w(i)) + (kl(i) - sign(1.0_dp, r(i)) * e1)), w(i) + sign(1.0_dp, r(i)) * e1, &
+                   w(i) > 0.5_dp * kh(i))
     end do
     ! 2. T = tn^2(w)
     do i = 1, nb
@@ -635,7 +698,7 @@ contains
     real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
     integer, parameter :: blk = 256
     real(dp), parameter :: splitter = 134217729.0_dp
-    real(dp) :: pm(blk), pmc(blk), kh(blk), kl(blk), one(blk), zero(blk), ct(blk, 6)
+    real(dp) :: pm(blk), pmc(blk), pmcl(blk), kh(blk), kl(blk), one(blk), zero(blk), ct(blk, 6)
     real(dp) :: a(blk), al(blk), b(blk), bl(blk), j(blk), s(blk), c(blk)
     logical :: ok(blk)
     real(dp) :: x, y, sm, e, an, anl, p, pe, r, hi, lo, h2, l2, t, cc, tt, corr, mh, ml, q
@@ -649,6 +712,9 @@ contains
                 m(i0 + i - 1) <= 1.0_dp .and. mc(i0 + i - 1) <= 1.0_dp
         pm(i) = merge(m(i0 + i - 1), 0.5_dp, ok(i))
         pmc(i) = merge(mc(i0 + i - 1), 0.5_dp, ok(i))
+        ! the complement's low part when m is the exact one (see param_dd)
+        sm = 1.0_dp - pm(i); t = sm - 1.0_dp; e = (1.0_dp - (sm - t)) + (-pm(i) - t)
+        pmcl(i) = merge(e, 0.0_dp, sm == pmc(i))
       end do
       ! K = pi / (2 AGM(1, sqrt(mc))) in double-double, all elements together
       do i = 1, nb
@@ -657,7 +723,7 @@ contains
         p = x * x
         pe = ((hi * hi - p) + 2.0_dp * hi * lo) + lo * lo
         a(i) = 1.0_dp; al(i) = 0.0_dp
-        b(i) = x; bl(i) = ((pmc(i) - p) - pe) / (2.0_dp * x)
+        b(i) = x; bl(i) = (((pmc(i) - p) - pe) + pmcl(i)) / (2.0_dp * x)
       end do
       do it = 1, 64
         if (all(abs(a(1:nb) - b(1:nb)) <= 0.0009765625_dp * (a(1:nb) + b(1:nb)))) exit

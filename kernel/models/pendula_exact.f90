@@ -7,15 +7,17 @@
 !>  * rotation (k > 1):   theta = 2 am(u | 1/k^2), v = 2 k sqrt(eps) dn,
 !>    u = u0 + k sqrt(eps) t, the angle unwrapped and growing.
 !> The distance from the separatrix, mc = 1 - k^2 (or 1 - 1/k^2), is formed
-!> as (c - w)(c + w), c = cos(theta0/2), w = |v0| / (2 sqrt(eps)), in
-!> double-double, never as 1 - k^2: for theta0 = 0 it is exact, so v0 = 2 -
-!> 1e-12 and v0 = 2 + 1e-12 (eps = 1) keep every digit of their period.
+!> as (4 eps c^2 - v0^2) / (4 eps), c = cos(theta0/2), with v0^2 exact (a
+!> two-product) and c^2 in double-double, never as 1 - k^2 and never through
+!> sqrt(eps): for theta0 = 0 the numerator is exact, so v0 = 2 -+ 1e-15 keeps
+!> every digit of its period over 1e4 periods (through w = v0/(2 sqrt(eps)) in
+!> double-double, the 1e-32 of the square root alone cost 250 eps there).
 !> The phase u = u0 + rate t is carried in double-double too, so t of 1000
 !> periods loses nothing to the product.
 module pendula_exact
   use pendula_kinds, only: dp, pi, pi_lo, half_pi, two_pi, nan_dp, inf_dp
-  use pendula_dd, only: two_sum, fast_two_sum, two_prod, dd_sqrt, dd_add, dd_mul, dd_sincos
-  use pendula_elliptic, only: jacobi_plan, jacobi_prepare_dd, jacobi_eval_array, ellip_f, ellip_f_sc
+  use pendula_dd, only: two_sum, fast_two_sum, two_prod, dd_sqrt, dd_add, dd_mul, dd_sincos, dd_div_d
+  use pendula_elliptic, only: jacobi_plan, jacobi_prepare_dd, jacobi_eval_array, ellip_f_sc
   implicit none
   private
   public :: pendulum_orbit, orbit_setup, orbit_eval, orbit_period, orbit_theta_max
@@ -31,7 +33,8 @@ module pendula_exact
     real(dp) :: k = 0.0_dp                  !< modulus sqrt(E / (2 eps))
     real(dp) :: m = 0.0_dp, mch = 1.0_dp, mcl = 0.0_dp  !< parameter of sn/am and its complement
     real(dp) :: rateh = 1.0_dp, ratel = 0.0_dp  !< du/dt (double-double)
-    real(dp) :: u0 = 0.0_dp                 !< phase at t = 0
+    real(dp) :: vsh = 0.0_dp, vsl = 0.0_dp  !< velocity scale 2 k sqrt(eps) (double-double)
+    real(dp) :: u0 = 0.0_dp, u0l = 0.0_dp   !< phase at t = 0 (double-double)
     real(dp) :: offset = 0.0_dp             !< 2 pi n: the well of a libration
     real(dp) :: dir = 1.0_dp                !< direction of a rotation or separatrix flight
     type(jacobi_plan) :: plan
@@ -45,7 +48,7 @@ contains
     type(pendulum_orbit), intent(out) :: o
     integer, intent(out) :: status
     real(dp) :: n, p, e, th, tl, c0, s0, wh, wl, r, awh, awl, dh, dl, sh, sl, qh, ql
-    real(dp) :: k2h, k2l, a, b, kh, kl, s0l, c0l
+    real(dp) :: k2h, k2l, a, b, kh, kl, s0l, c0l, nh, nl
 
     status = orbit_ok
     if (.not. (eps > 0.0_dp .and. eps <= huge(1.0_dp))) then
@@ -77,30 +80,44 @@ contains
     r = ((v0 - p) - e) - 2.0_dp * o%sql * wh
     wl = r / (2.0_dp * o%sqh)
     awh = abs(wh); awl = sign(1.0_dp, wh) * wl
-    ! d = c0 - |w| and s = c0 + |w|: the distance from the separatrix is d s
-    call dd_add(c0, c0l, -awh, -awl, dh, dl)
-    call dd_add(c0, c0l, awh, awl, sh, sl)
+    ! the distance from the separatrix: N = 4 eps c0^2 - v0^2 (d = N / (4 eps));
+    ! where 4 eps or v0^2 would overflow, as 4 eps (c0 - |w|)(c0 + |w|)
+    if (eps < 1.0e300_dp .and. abs(v0) < 1.0e150_dp) then
+      call dd_mul(c0, c0l, c0, c0l, a, e)
+      call dd_mul(a, e, 4.0_dp * eps, 0.0_dp, a, e)
+      call two_prod(v0, v0, b, r)
+      call dd_add(a, e, -b, -r, nh, nl)
+      call dd_div_d(nh, nl, 4.0_dp * eps, nh, nl)
+    else
+      call dd_add(c0, c0l, -awh, -awl, dh, dl)
+      call dd_add(c0, c0l, awh, awl, sh, sl)
+      call dd_mul(dh, dl, sh, sl, nh, nl)
+    end if
+    ! now nh + nl = c0^2 - w^2 = 1 - k^2, signed
     ! k^2 = s0^2 + w^2 in double-double
     call dd_mul(s0, s0l, s0, s0l, a, e)
     call dd_mul(wh, wl, wh, wl, b, r)
     call dd_add(a, e, b, r, k2h, k2l)
 
-    if (dh > 0.0_dp) then
-      ! libration: mc = (c0 - |w|)(c0 + |w|), m = k^2
+    if (nh > 0.0_dp) then
+      ! libration: mc = 1 - k^2, m = k^2
       o%regime = regime_libration
-      call dd_mul(dh, dl, sh, sl, o%mch, o%mcl)
+      o%mch = nh; o%mcl = nl
       o%m = k2h
       o%k = sqrt(k2h)
+      ! v = 2 k sqrt(eps) cn with the scale in double-double (its rounding
+      ! would add 1.5 eps to v next to the turning points, where v is small)
+      call dd_sqrt(k2h, k2l, kh, kl)
+      call dd_mul(kh, kl, 2.0_dp * o%sqh, 2.0_dp * o%sql, o%vsh, o%vsl)
       o%offset = two_pi * n
       o%rateh = o%sqh; o%ratel = o%sql
-      ! sn(u0) = s0/k, cn(u0) = w/k: F from sine and cosine, never from an angle
-      if (o%k > 0.0_dp) then
-        o%u0 = ellip_f_sc(s0 / o%k, wh / o%k, o%m, o%mch)
-      else
-        o%u0 = 0.0_dp
-      end if
       o%plan = jacobi_prepare_dd(o%m, o%mch, o%mcl)
-    else if (dh == 0.0_dp .and. dl == 0.0_dp) then
+      ! sn(u0) = s0/k, cn(u0) = w/k, dn(u0) = cos(theta0/2): F from sine and
+      ! cosine, never from an angle, next to the nearest multiple of K
+      if (o%k > 0.0_dp) then
+        call phase_dd(s0 / o%k, wh / o%k, c0, o%plan%kh, o%plan%kl, o%m, o%mch, o%u0, o%u0l)
+      end if
+    else if (nh == 0.0_dp .and. nl == 0.0_dp) then
       ! the separatrix.  cos(theta0/2) > 0 for every double theta0 (pi is not a
       ! double), so |w| = cos(theta0/2) > 0 here: the inverted equilibrium at
       ! rest cannot be given, and the flight always has a direction.
@@ -112,10 +129,10 @@ contains
       o%u0 = atanh(o%dir * s0)
       o%plan = jacobi_prepare_dd(1.0_dp, 0.0_dp, 0.0_dp)
     else
-      ! rotation: parameter 1/k^2, complement (|w| - c0)(|w| + c0) / k^2
+      ! rotation: parameter 1/k^2, complement (k^2 - 1) / k^2
       o%regime = regime_rotation
       o%dir = sign(1.0_dp, wh)
-      call dd_mul(-dh, -dl, sh, sl, qh, ql)
+      qh = -nh; ql = -nl
       ! divide by k^2 (double-double quotient)
       a = qh / k2h
       call two_prod(a, k2h, p, e)
@@ -124,12 +141,16 @@ contains
       o%m = 1.0_dp / k2h
       call dd_sqrt(k2h, k2l, kh, kl)
       o%k = kh
+      call dd_mul(kh, kl, 2.0_dp * o%sqh, 2.0_dp * o%sql, o%vsh, o%vsl)
       ! rate = k sqrt(eps) (double-double)
       call two_prod(kh, o%sqh, p, e)
       e = e + kh * o%sql + kl * o%sqh
       call fast_two_sum(p, e, o%rateh, o%ratel)
-      o%u0 = ellip_f(0.5_dp * o%dir * theta0, o%m, o%mch)
       o%plan = jacobi_prepare_dd(o%m, o%mch, o%mcl)
+      ! theta = 2 pi n + dir 2 am(u): sn(u0) = dir sin(th/2), cn(u0) = cos(th/2),
+      ! dn(u0) = |w|/k, on the reduced angle (the turns are in the offset)
+      o%offset = two_pi * n
+      call phase_dd(o%dir * s0, c0, awh / kh, o%plan%kh, o%plan%kl, o%m, o%mch, o%u0, o%u0l)
     end if
   end subroutine orbit_setup
 
@@ -141,11 +162,11 @@ contains
     real(dp), intent(out) :: theta(:), v(:)
     integer, parameter :: blk = 512
     real(dp) :: uh(blk), ul(blk), sn(blk), cn(blk), dn(blk), am(blk)
-    real(dp) :: p, e, s, f, x, rh, rl, u0, ah, al, bh, bl, c2
+    real(dp) :: p, e, s, f, x, rh, rl, u0, u0l, ah, al, bh, bl
     real(dp), parameter :: splitter = 134217729.0_dp
     integer :: i, i0, nb
 
-    rh = o%rateh; rl = o%ratel; u0 = o%u0
+    rh = o%rateh; rl = o%ratel; u0 = o%u0; u0l = o%u0l
     f = splitter * rh; bh = f - (f - rh); bl = rh - bh
     do i0 = 1, size(t), blk
       nb = min(blk, size(t) - i0 + 1)
@@ -154,7 +175,7 @@ contains
         x = t(i0 + i - 1)
         p = x * rh
         f = splitter * x; ah = f - (f - x); al = x - ah
-        e = ((ah * bh - p) + ah * bl + al * bh) + al * bl + x * rl
+        e = ((ah * bh - p) + ah * bl + al * bh) + al * bl + x * rl + u0l
         s = u0 + p
         f = s - u0
         f = (u0 - (s - f)) + (p - f)
@@ -165,11 +186,10 @@ contains
       select case (o%regime)
       case (regime_libration)
         ! theta/2 = atan2(k sn, dn) with dn >= sqrt(mc) > 0: an atan that vectorizes
-        c2 = 2.0_dp * o%k * o%sqh
         do i = 1, nb
           x = o%k * sn(i) / dn(i)
           theta(i0 + i - 1) = o%offset + 2.0_dp * sign(atan_pos(abs(x)), x)
-          v(i0 + i - 1) = c2 * cn(i)
+          v(i0 + i - 1) = o%vsh * cn(i) + o%vsl * cn(i)
         end do
       case (regime_separatrix)
         theta(i0:i0+nb-1) = o%offset + o%dir * 2.0_dp * am(1:nb)
@@ -182,8 +202,8 @@ contains
           end if
         end do
       case default
-        theta(i0:i0+nb-1) = o%dir * 2.0_dp * am(1:nb)
-        v(i0:i0+nb-1) = o%dir * (2.0_dp * o%k * o%sqh) * dn(1:nb)
+        theta(i0:i0+nb-1) = o%offset + o%dir * 2.0_dp * am(1:nb)
+        v(i0:i0+nb-1) = o%dir * (o%vsh * dn(1:nb) + o%vsl * dn(1:nb))
       end select
     end do
   end subroutine orbit_eval
@@ -217,6 +237,39 @@ contains
       tm = inf_dp
     end select
   end function orbit_theta_max
+
+  !> The phase u0 (double-double) with sn(u0) = sn0, cn(u0) = cn0,
+  !> dn(u0) = dn0 > 0 for the parameter m (K = kh + kl, mc its complement).
+  !>
+  !> F is computed only for the part of u0 beyond the nearest multiple of K,
+  !> so its rounding is eps times that small part, never eps K: next to the
+  !> separatrix K is 20 or more, and a start at rest near the top (u0 = K) or a
+  !> libration run backward (u0 near 2K) lost 8 to 13 eps through it.
+  !>   u0 = j K + F(remainder): j = 0 and 2 use sn(2K - u) = sn(u),
+  !>   cn(2K - u) = -cn(u); j = 1 uses sn(K - u) = cd(u), cn(K - u) = k' sd(u).
+  pure subroutine phase_dd(sn0, cn0, dn0, kh, kl, m, mc, uh, ul)
+    real(dp), intent(in) :: sn0, cn0, dn0, kh, kl, m, mc
+    real(dp), intent(out) :: uh, ul
+    real(dp) :: sg, as, f0, f1, jk, ph, pl
+    sg = sign(1.0_dp, sn0)
+    as = abs(sn0)
+    ! from 0 (cn >= 0) or from 2K (cn < 0)
+    if (cn0 >= 0.0_dp) then
+      f0 = ellip_f_sc(as, cn0, m, mc); jk = 0.0_dp
+    else
+      f0 = -ellip_f_sc(as, -cn0, m, mc); jk = 2.0_dp
+    end if
+    ! from K: u0 = K - u1, sn(u1) = cn0/dn0, cn(u1) = sqrt(mc) |sn0| / dn0
+    f1 = ellip_f_sc(cn0 / dn0, sqrt(mc) * as / dn0, m, mc)
+    if (abs(f1) < abs(f0)) then
+      f0 = -f1; jk = 1.0_dp
+    end if
+    ! u0 = sg (jk K + f0), the multiple of K in double-double
+    call two_sum(jk * kh, f0, ph, pl)
+    pl = pl + jk * kl
+    call fast_two_sum(ph, pl, uh, ul)
+    uh = sg * uh; ul = sg * ul
+  end subroutine phase_dd
 
   include 'pendula_atan.inc'
 

@@ -299,3 +299,81 @@ def write_long_run(res: dict, outdir, periods: float) -> list[pathlib.Path]:
             for ti, e in zip(r["t"], r["dE"]):
                 w.writerow([method, repr(float(ti)), repr(float(e))])
     return [path, csv_path]
+
+
+# ---------------------------------------------------------------- random reference grids
+
+#: the error measure of the grids: max over outputs of |got - ref| / max(1, |ref|)
+#: (absolute for values below 1, relative above), in units of eps
+GRID_CLASSES = {
+    "jac": "sn, cn, dn", "k": "K(m)", "e": "E(m)", "nome": "q(m)", "f": "F(phi|m)", "einc": "E(phi|m)",
+    "exact": "theta(t), v(t)", "period": "period",
+}
+
+
+def load_grids(path) -> dict[str, np.ndarray]:
+    """The stored grid (data/reference_grids.csv.gz): class -> rows of inputs and reference values."""
+    import gzip
+
+    rows: dict[str, list] = {}
+    with gzip.open(path, "rt") as fh:
+        rd = csv.reader(line for line in fh if not line.startswith("#"))
+        next(rd)
+        for r in rd:
+            rows.setdefault(r[0], []).append([float(v) if v else np.nan for v in r[1:]])
+    return {k: np.array(v) for k, v in rows.items()}
+
+
+def grid_errors(cls: str, a: np.ndarray) -> np.ndarray:
+    """pendula's error (in eps) at every point of one class of the grid."""
+    import warnings
+
+    from .elliptic import ellipe, ellipeinc, ellipf, ellipj, ellipk, nome
+    from .systems.rigid import exact_motion, orbit
+
+    kind = cls.split("_")[0]
+    via_mc = cls.endswith("_mc")
+
+    def par(x):
+        return (None, x) if via_mc else (x, None)
+
+    def err(got, ref):
+        got = np.atleast_2d(np.asarray(got, dtype=float))
+        ref = np.atleast_2d(np.asarray(ref, dtype=float))
+        e = np.abs(got - ref) / np.maximum(1.0, np.abs(ref))
+        e[np.isnan(got) != np.isnan(ref)] = np.inf
+        return np.nan_to_num(e, nan=0.0).max(axis=0) / EPS
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        if kind == "jac":
+            res = []
+            for u, x in a[:, :2]:
+                m, mc = par(x)
+                res.append(ellipj(u, m, mc=mc)[:3])
+            return err(np.array(res).T, a[:, 4:7].T)
+        if kind in ("k", "e", "nome"):
+            f = {"k": ellipk, "e": ellipe, "nome": nome}[kind]
+            got = [f(*par(x)[:1], mc=par(x)[1]) if via_mc else f(x) for x in a[:, 0]]
+            return err(got, a[:, 4])
+        if kind in ("f", "einc"):
+            f = ellipf if kind == "f" else ellipeinc
+            got = [f(phi, None, mc=x) if via_mc else f(phi, x) for phi, x in a[:, :2]]
+            return err(got, a[:, 4])
+        if kind == "exact":
+            res = [np.concatenate(exact_motion(th0, v0, eps, [t])) for th0, v0, eps, t in a[:, :4]]
+            return err(np.array(res).T, a[:, 4:6].T)
+        if kind == "period":
+            return err([orbit(th0, v0, eps).period for th0, v0, eps in a[:, :3]], a[:, 4])
+    raise ValueError(f"unknown class {cls!r}")
+
+
+def grids_report(path) -> list[dict]:
+    """Worst error (eps) per class of the stored random grid."""
+    out = []
+    for cls, a in sorted(load_grids(path).items()):
+        e = grid_errors(cls, a)
+        k = int(np.argmax(e))
+        out.append({"class": cls, "what": GRID_CLASSES[cls.split("_")[0]], "points": len(a),
+                    "worst_eps": float(e[k]), "at": a[k, :4].tolist()})
+    return out

@@ -1,0 +1,262 @@
+"""Generate data/reference_grids.csv.gz: random reference points for every
+public function of pendula's elliptic kernel and exact motion, per regime,
+with values from mpmath at high precision (independent of pendula).
+
+Each class draws its points log-uniformly across its domain (never round
+numbers), from a fixed seed, so that a hole like "m = 0.2, u of a few
+thousand periods" cannot hide between grid lines.  Every value is computed at
+two precisions and must agree to 1e-30 relative (mpmath's ellipfun needs many
+more digits for large u next to m = 1), otherwise the point is recomputed at a
+higher precision.
+
+Classes (the parameter is given to pendula as the test says: "via m" or "via mc"):
+  jac_m_small    sn cn dn, 0 <= m < 0.5 via m, |u| up to 1e4 periods
+  jac_m_mid      sn cn dn, 0.5 <= m < 1 via m
+  jac_m_near1_m  sn cn dn, m = 1 - 10^-x via m (x in [1, 16])
+  jac_m_near1_mc sn cn dn, mc in [1e-300, 0.5] via mc
+  jac_m_neg      sn cn dn, m < 0 via m (|m| in [1e-12, 1e4])
+  jac_m_gt1_m    sn cn dn, m > 1 via m (m - 1 in [1e-15, 1e4])
+  jac_m_gt1_mc   sn cn dn, m > 1 via mc < 0
+  k_*, e_*       K and E in each regime of m <= 1 (via m and via mc)
+  nome_*         the nome, 0 <= m <= 1 via m and via mc
+  f_*, einc_*    F(phi|m), E(phi|m): |phi| up to 1e4 pi for m <= 1; m > 1 inside the domain
+  exact_*        theta(t), v(t): libration, rotation, near the separatrix (both sides),
+                 near the top (at rest and moving), wrapped starts (|theta0| > pi);
+                 each forward and backward in time, t up to 1e4 periods
+  period_*       periods of librations and rotations
+
+Usage:  python data/gen_reference_grids.py [--n 2000] [--jobs 2]   (about 20 min on 2 cores)
+"""
+
+import argparse
+import csv
+import gzip
+import math
+import multiprocessing as mpr
+import pathlib
+import random
+import sys
+
+import mpmath as mp
+
+OUT = pathlib.Path(__file__).with_name("reference_grids.csv.gz")
+COLUMNS = ["cls", "x0", "x1", "x2", "x3", "r0", "r1", "r2"]
+
+
+def loguni(rng, lo, hi):
+    return 10 ** rng.uniform(math.log10(lo), math.log10(hi))
+
+
+# ---------------------------------------------------------------- references
+
+def jac(u, m):
+    u, m = mp.mpf(u), mp.mpf(m)
+    return [mp.re(mp.ellipfun(f, u, m=m)) for f in ("sn", "cn", "dn")]
+
+
+def k2_of(theta0, v0, eps):
+    return mp.sin(mp.mpf(theta0) / 2) ** 2 + mp.mpf(v0) ** 2 / (4 * mp.mpf(eps))
+
+
+def am(u, m):
+    K = mp.ellipk(m)
+    sn, cn = mp.ellipfun("sn", u, m), mp.ellipfun("cn", u, m)
+    base = mp.atan2(sn, cn)
+    lin = mp.pi * u / (2 * K)
+    return base + 2 * mp.pi * mp.nint((lin - base) / (2 * mp.pi))
+
+
+def motion(theta0, v0, eps, t):
+    """theta(t), v(t) of theta'' = -eps sin theta from the closed form (as in gen_exact_reference)."""
+    th0, w0, e, t = mp.mpf(theta0), mp.mpf(v0), mp.mpf(eps), mp.mpf(t)
+    se = mp.sqrt(e)
+    k2 = k2_of(theta0, v0, eps)
+    n = mp.nint(th0 / (2 * mp.pi))
+    if k2 < 1:
+        k = mp.sqrt(k2)
+        phi0 = mp.atan2(mp.sin((th0 - 2 * mp.pi * n) / 2), w0 / (2 * se))
+        u = mp.ellipf(phi0, k2) + se * t
+        sn, cn, dn = (mp.ellipfun(f, u, k2) for f in ("sn", "cn", "dn"))
+        return [2 * mp.pi * n + 2 * mp.atan2(k * sn, dn), 2 * k * se * cn]
+    k = mp.sqrt(k2)
+    d = 1 if w0 > 0 else -1
+    m = 1 / k2
+    u = mp.ellipf(d * th0 / 2, m) + k * se * t
+    return [d * 2 * am(u, m), d * 2 * k * se * mp.ellipfun("dn", u, m)]
+
+
+def period(theta0, v0, eps):
+    k2 = k2_of(theta0, v0, eps)
+    e = mp.mpf(eps)
+    if k2 < 1:
+        return [4 * mp.ellipk(k2) / mp.sqrt(e)]
+    return [2 * mp.ellipk(1 / k2) / (mp.sqrt(k2) * mp.sqrt(e))]
+
+
+def param(x, via):
+    """The exact parameter m from what pendula is given (m itself, or 1 - mc)."""
+    return mp.mpf(x) if via == "m" else 1 - mp.mpf(x)
+
+
+def reference(cls, x):
+    kind = cls.split("_")[0]
+    via = "mc" if cls.endswith("_mc") else "m"
+    if kind == "jac":
+        return jac(x[0], param(x[1], via))
+    if kind == "k":
+        return [mp.ellipk(param(x[0], via))]
+    if kind == "e":
+        return [mp.ellipe(param(x[0], via))]
+    if kind == "nome":
+        m = param(x[0], via)
+        return [mp.exp(-mp.pi * mp.ellipk(1 - m) / mp.ellipk(m))]
+    if kind == "f":
+        return [mp.re(mp.ellipf(mp.mpf(x[0]), param(x[1], via)))]
+    if kind == "einc":
+        return [mp.re(mp.ellipe(mp.mpf(x[0]), param(x[1], via)))]
+    if kind == "exact":
+        return motion(*x[:4])
+    if kind == "period":
+        return period(*x[:3])
+    raise ValueError(cls)
+
+
+def stable(cls, x):
+    # enough digits to hold the parameter 1 - mc (mc down to 1e-300) and then 40 more
+    small = [abs(v) for v in x[:2] if v != 0] if cls.endswith("_mc") else []
+    dps = 40 + (int(-math.log10(min(small))) if small and min(small) < 1 else 0)
+    while True:
+        with mp.workdps(dps):
+            a = reference(cls, x)
+        with mp.workdps(2 * dps):
+            b = reference(cls, x)
+        if all(abs(p - q) <= mp.mpf("1e-30") * max(abs(q), mp.mpf("1e-300")) for p, q in zip(a, b)):
+            return [float(v) for v in b]
+        dps *= 2
+        if dps > 2000:
+            raise RuntimeError(f"{cls} {x}: mpmath does not settle")
+
+
+# ---------------------------------------------------------------- points
+
+def points(n, seed):
+    rng = random.Random(seed)
+    out = []
+
+    def u_for(m_exact):
+        # |u| log-uniform from 1e-3 to 1e4 periods (4K), random sign
+        K = float(mp.ellipk(m_exact)) if m_exact < 1 else float(mp.ellipk(1 / m_exact)) / math.sqrt(m_exact)
+        return rng.choice([-1, 1]) * loguni(rng, 1e-3, 4e4 * max(K, 1e-3))
+
+    for _ in range(n):
+        m = rng.uniform(0, 0.5) if rng.random() < 0.5 else loguni(rng, 1e-300, 0.5)
+        out.append(("jac_m_small", [u_for(m), m]))
+        m = rng.uniform(0.5, 1.0)
+        out.append(("jac_m_mid", [u_for(m), m]))
+        m = 1 - 10 ** -rng.uniform(1, 16)
+        out.append(("jac_m_near1_m", [u_for(m), m]))
+        mc = loguni(rng, 1e-300, 0.5)
+        K = math.log(4 / math.sqrt(mc)) + 1.0   # K(1 - mc) to within its scale
+        out.append(("jac_m_near1_mc", [rng.choice([-1, 1]) * loguni(rng, 1e-3, 4e4 * K), mc]))
+        m = -loguni(rng, 1e-12, 1e4)
+        out.append(("jac_m_neg", [u_for(m), m]))
+        m = 1 + loguni(rng, 1e-15, 1e4)
+        out.append(("jac_m_gt1_m", [u_for(m), m]))
+        mc = -loguni(rng, 1e-15, 1e4)
+        out.append(("jac_m_gt1_mc", [u_for(1 - mc), mc]))
+        # complete integrals and the nome
+        for fam in ("k", "e"):
+            out.append((f"{fam}_neg", [-loguni(rng, 1e-12, 1e6)]))
+            out.append((f"{fam}_small", [rng.uniform(0, 0.5) if rng.random() < 0.5 else loguni(rng, 1e-300, 0.5)]))
+            out.append((f"{fam}_mid", [rng.uniform(0.5, 1.0)]))
+            out.append((f"{fam}_near1_mc", [loguni(rng, 1e-300, 0.5)]))
+        out.append(("nome_m", [rng.uniform(0, 1) if rng.random() < 0.5 else loguni(rng, 1e-300, 1)]))
+        out.append(("nome_mc", [loguni(rng, 1e-300, 1)]))
+        # incomplete integrals
+        for fam in ("f", "einc"):
+            phi = rng.choice([-1, 1]) * loguni(rng, 1e-6, 1e4 * math.pi)
+            out.append((f"{fam}_m", [phi, rng.uniform(-10, 1) if rng.random() < 0.5 else 1 - loguni(rng, 1e-15, 1)]))
+            out.append((f"{fam}_near1_mc", [phi, loguni(rng, 1e-300, 0.5)]))
+            m = 1 + loguni(rng, 1e-12, 1e3)
+            edge = math.asin(1 / math.sqrt(m))
+            phi = rng.choice([-1, 1]) * edge * (1 - loguni(rng, 1e-15, 1))
+            out.append((f"{fam}_gt1_m", [phi, m]))
+        # the exact motion
+        eps = loguni(rng, 1e-3, 1e3)
+        se = math.sqrt(eps)
+        sgn = rng.choice([-1, 1])
+        # libration, rotation
+        th0 = rng.uniform(-math.pi, math.pi)
+        k2lo = math.sin(th0 / 2) ** 2
+        v0 = sgn * 2 * se * math.sqrt(max(0.0, rng.uniform(0, 1) - k2lo)) if k2lo < 1 else 0.0
+        out.append(("exact_libration", [th0, v0, eps]))
+        out.append(("exact_rotation", [th0, sgn * 2 * se * math.sqrt(1 + loguni(rng, 1e-3, 1e3)), eps]))
+        # next to the separatrix, below and above
+        d = loguni(rng, 1e-15, 1e-3)
+        out.append(("exact_near_separatrix", [0.0 if rng.random() < 0.5 else rng.uniform(-3, 3),
+                                              sgn * 2 * se * (1 + rng.choice([-1, 1]) * d), eps]))
+        # near the top: at rest or moving slowly
+        th0 = sgn * (math.pi - loguni(rng, 1e-15, 1e-2))
+        out.append(("exact_near_top", [th0, 0.0 if rng.random() < 0.5 else rng.choice([-1, 1]) * loguni(rng, 1e-12, 1e-2) * se, eps]))
+        # wrapped starts
+        th0 = rng.choice([-1, 1]) * rng.uniform(math.pi, 1e3)
+        out.append(("exact_wrapped", [th0, rng.uniform(-3, 3) * se, eps]))
+    rows = []
+    for cls, x in out:
+        if cls.startswith("exact"):
+            th0, v0, eps = x
+            with mp.workdps(30):
+                k2 = k2_of(th0, v0, eps)
+                if k2 == 1:
+                    continue
+                P = float(period(th0, v0, eps)[0])
+            for direction in (1, -1):
+                t = direction * loguni(rng, 1e-3, 1e4 * P)
+                rows.append((cls + ("_fwd" if direction > 0 else "_bwd"), [th0, v0, eps, t]))
+            rows.append(("period_" + ("libration" if k2 < 1 else "rotation"), [th0, v0, eps]))
+        else:
+            rows.append((cls, x))
+    return rows
+
+
+def work(item):
+    cls, x = item
+    try:
+        return cls, x, stable(cls, x)
+    except (ValueError, ZeroDivisionError, RuntimeError) as exc:
+        return cls, x, None
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--n", type=int, default=2000, help="points per class")
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--seed", type=int, default=20261123)
+    ap.add_argument("--out", default=str(OUT))
+    args = ap.parse_args(argv)
+    items = points(args.n, args.seed)
+    done = []
+    with mpr.Pool(args.jobs) as pool:
+        for k, res in enumerate(pool.imap(work, items, chunksize=16)):
+            done.append(res)
+            if k % 2000 == 0:
+                print(f"  {k}/{len(items)}", file=sys.stderr, flush=True)
+    with gzip.open(args.out, "wt", newline="") as fh:
+        fh.write(f"# generated by data/gen_reference_grids.py with mpmath {mp.__version__}, "
+                 f"seed {args.seed}, {args.n} draws per class\n")
+        w = csv.writer(fh)
+        w.writerow(COLUMNS)
+        skipped = 0
+        for cls, x, r in done:
+            if r is None:
+                skipped += 1
+                continue
+            xs = (list(x) + [""] * 4)[:4]
+            rs = (list(r) + [""] * 3)[:3]
+            w.writerow([cls] + [repr(float(v)) if v != "" else "" for v in xs]
+                       + [repr(float(v)) if v != "" else "" for v in rs])
+    print(f"wrote {len(done) - skipped} rows to {args.out} ({skipped} skipped)")
+
+
+if __name__ == "__main__":
+    main()
