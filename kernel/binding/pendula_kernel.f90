@@ -14,6 +14,7 @@ end subroutine gsl_init
 subroutine ellipk_v(n, nmc, m, mc, k)
   use pendula_elliptic, only: ellip_k_array
   implicit none
+  !f2py threadsafe
   integer, intent(in) :: n, nmc
   double precision, intent(in) :: m(n), mc(nmc)
   double precision, intent(out) :: k(n)
@@ -29,6 +30,7 @@ end subroutine ellipk_v
 subroutine ellipe_v(n, nmc, m, mc, e)
   use pendula_elliptic, only: ellip_e
   implicit none
+  !f2py threadsafe
   integer, intent(in) :: n, nmc
   double precision, intent(in) :: m(n), mc(nmc)
   double precision, intent(out) :: e(n)
@@ -44,6 +46,7 @@ end subroutine ellipe_v
 subroutine ellipf_v(n, phi, m, mc, f)
   use pendula_elliptic, only: ellip_f
   implicit none
+  !f2py threadsafe
   integer, intent(in) :: n
   double precision, intent(in) :: phi(n), m(n), mc(n)
   double precision, intent(out) :: f(n)
@@ -54,6 +57,7 @@ end subroutine ellipf_v
 subroutine ellipeinc_v(n, phi, m, mc, e)
   use pendula_elliptic, only: ellip_einc
   implicit none
+  !f2py threadsafe
   integer, intent(in) :: n
   double precision, intent(in) :: phi(n), m(n), mc(n)
   double precision, intent(out) :: e(n)
@@ -64,6 +68,7 @@ end subroutine ellipeinc_v
 subroutine nome_v(n, nmc, m, mc, q)
   use pendula_elliptic, only: ellip_nome
   implicit none
+  !f2py threadsafe
   integer, intent(in) :: n, nmc
   double precision, intent(in) :: m(n), mc(nmc)
   double precision, intent(out) :: q(n)
@@ -80,6 +85,7 @@ end subroutine nome_v
 subroutine ellipj_v(n, nm, u, m, mc, sn, cn, dn, am, status)
   use pendula_elliptic, only: jacobi_plan, jacobi_prepare, jacobi_eval_array, jacobi_eval_varm
   implicit none
+  !f2py threadsafe
   integer, intent(in) :: n, nm
   double precision, intent(in) :: u(n), m(nm), mc(nm)
   double precision, intent(out) :: sn(n), cn(n), dn(n), am(n)
@@ -127,6 +133,7 @@ end subroutine gsl_kcomp_v
 subroutine exact_motion_v(n, theta0, v0, eps, t, theta, v, status)
   use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_eval
   implicit none
+  !f2py threadsafe
   integer, intent(in) :: n
   double precision, intent(in) :: theta0, v0, eps, t(n)
   double precision, intent(out) :: theta(n), v(n)
@@ -157,13 +164,15 @@ end subroutine exact_info_v
 ! same rules as pendula-run), at the times t (sorted ascending when an
 ! integrator answers).  method: the code of what answered (0 = exact path);
 ! status 0 ok, otherwise msg says why (see pendula_simulate).
-subroutine simulate_v(text, n, t, theta, v, energy, stats, method, status, msg)
+subroutine simulate_v(text, n, t, cancel, theta, v, energy, stats, method, status, msg)
   use pendula_scene, only: scene_t, parse_scene
   use pendula_simulate, only: simulate_scene
   implicit none
+  !f2py threadsafe
   character(len=*), intent(in) :: text
   integer, intent(in) :: n
   double precision, intent(in) :: t(n)
+  integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: theta(n), v(n), energy(n), stats(4)
   integer, intent(out) :: method, status
   character(len=512), intent(out) :: msg
@@ -176,7 +185,7 @@ subroutine simulate_v(text, n, t, theta, v, energy, stats, method, status, msg)
     status = 100
     return
   end if
-  call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg)
+  call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel(1))
 end subroutine simulate_v
 
 ! Read and check a scene's text with the kernel's rules (status 0 ok,
@@ -210,13 +219,15 @@ end subroutine models_v
 ! Integrate a scene's model: method codes 1..9 (see pendula_integrators), 10 = GSL rk8pd.
 ! t must be sorted ascending.  stats = [steps, accepted, rejected, rhs evaluations].
 subroutine integrate_v(n, method, params, theta0, v0, t, rtol, atol, dt, ev_kind, ev_level, &
-                       ev_dir, ev_terminal, max_ev, theta, v, stats, status, nev, tev, thev, vev)
+                       ev_dir, ev_terminal, max_ev, cancel, theta, v, stats, status, nev, tev, thev, vev)
   use pendula_kinds, only: dp
   use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate
   use pendula_gsl_iface, only: pendula_gsl_rk8pd
   implicit none
   integer, intent(in) :: n, method, ev_kind, ev_dir, ev_terminal, max_ev
+  !f2py threadsafe
   double precision, intent(in) :: params(6), theta0, v0, t(n), rtol, atol, dt, ev_level
+  integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: theta(n), v(n), stats(4)
   integer, intent(out) :: status, nev
   double precision, intent(out) :: tev(max_ev), thev(max_ev), vev(max_ev)
@@ -242,7 +253,7 @@ subroutine integrate_v(n, method, params, theta0, v0, t, rtol, atol, dt, ev_kind
   end if
   m = make_model(params(1), params(2), params(3), params(4), params(5), params(6))
   ev%kind = ev_kind; ev%level = ev_level; ev%direction = ev_dir; ev%terminal = ev_terminal /= 0
-  call integrate(m, method, theta0, v0, t, rtol, atol, dt, theta, v, st, status, ev, nev, tev, thev, vev)
+  call integrate(m, method, theta0, v0, t, rtol, atol, dt, theta, v, st, status, ev, nev, tev, thev, vev, cancel(1))
   stats = [dble(st%nsteps), dble(st%naccept), dble(st%nreject), dble(st%nfev)]
 end subroutine integrate_v
 
@@ -270,6 +281,7 @@ subroutine spectra_v(handle, n, nsig, signals, dt, window, nh, omega, power, sta
   use, intrinsic :: iso_c_binding, only: c_intptr_t
   use pendula_spectrum, only: power_spectra
   implicit none
+  !f2py threadsafe
   integer(8), intent(in) :: handle
   integer, intent(in) :: n, nsig, window, nh
   double precision, intent(in) :: signals(n, nsig), dt

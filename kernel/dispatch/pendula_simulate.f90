@@ -15,7 +15,8 @@ module pendula_simulate
   use pendula_scene, only: scene_t, scene_effects
   use pendula_rigid, only: rigid_has_exact, rigid_exact, rigid_energy
   use pendula_integrators, only: make_model, event_spec, run_stats, integrate, m_rk4, m_verlet, &
-    m_yoshida4, m_yoshida6, m_yoshida8, m_gauss4, m_gauss6, m_dopri5, m_dop853
+    m_yoshida4, m_yoshida6, m_yoshida8, m_gauss4, m_gauss6, m_dopri5, m_dop853, st_too_many_steps, &
+    st_cancelled, max_steps
   use pendula_gsl_iface, only: pendula_gsl_rk8pd
   implicit none
   private
@@ -23,7 +24,8 @@ module pendula_simulate
 
   integer, parameter, public :: sim_ok = 0, sim_bad_state = 1, sim_unsupported = 10, &
     sim_needs_dt = 11, sim_unsorted = 12, sim_integrator_failed = 13, sim_not_implemented = 14, &
-    sim_model_clash = 15, sim_exact_refused = 16, sim_backward = 17, sim_gsl_failed = 18
+    sim_model_clash = 15, sim_exact_refused = 16, sim_backward = 17, sim_gsl_failed = 18, &
+    sim_too_many_steps = 19, sim_cancelled = 20
   !> method codes: the integrators' 1..9, then GSL's rk8pd and the exact path
   integer, parameter, public :: m_gsl_rk8pd = 10, m_exact = 0
 
@@ -108,8 +110,10 @@ contains
   !> energy: the model's invariant along the path; stats = [steps, accepted,
   !> rejected, rhs evaluations]; method: the code of what answered (m_exact
   !> for the exact path).  msg explains a non-zero status.
-  subroutine simulate_scene(sc, t, theta, v, energy, stats, method, status, msg)
+  subroutine simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel)
     type(scene_t), intent(in) :: sc
+    !> non-zero (set by another thread) stops an integration: status sim_cancelled
+    integer, intent(inout), volatile, optional :: cancel
     real(dp), intent(in) :: t(:)
     real(dp), intent(out) :: theta(:), v(:), energy(:), stats(4)
     integer, intent(out) :: method, status
@@ -132,7 +136,7 @@ contains
       else if (sc%method == 'exact') then
         status = sim_exact_refused
       else
-        call integrate_model(sc, t, theta, v, stats, method, status)
+        call integrate_model(sc, t, theta, v, stats, method, status, cancel)
       end if
       if (status == sim_ok) energy = rigid_energy(sc%eps, theta, v)
     end select
@@ -140,8 +144,9 @@ contains
   end subroutine simulate_scene
 
   !> The scene's integrator on the rigid pendulum's force law with its effects.
-  subroutine integrate_model(sc, t, theta, v, stats, method, status)
+  subroutine integrate_model(sc, t, theta, v, stats, method, status, cancel)
     type(scene_t), intent(in) :: sc
+    integer, intent(inout), volatile, optional :: cancel
     real(dp), intent(in) :: t(:)
     real(dp), intent(out) :: theta(:), v(:), stats(4)
     integer, intent(out) :: method, status
@@ -175,9 +180,15 @@ contains
       return
     end if
     call integrate(make_model(params(1), params(2), params(3), params(4), params(5), params(6)), method, &
-                   sc%theta0, sc%v0, t, sc%rtol, sc%atol, sc%dt, theta, v, st, status, ev, nev, tev, thev, vev)
+                   sc%theta0, sc%v0, t, sc%rtol, sc%atol, sc%dt, theta, v, st, status, ev, nev, tev, thev, vev, &
+                   cancel)
     stats = [real(st%nsteps, dp), real(st%naccept, dp), real(st%nreject, dp), real(st%nfev, dp)]
-    if (status /= 0) status = sim_integrator_failed
+    select case (status)
+    case (0)
+    case (st_too_many_steps); status = sim_too_many_steps
+    case (st_cancelled);      status = sim_cancelled
+    case default;             status = sim_integrator_failed
+    end select
   end subroutine integrate_model
 
   function simulate_status_text(status) result(s)
@@ -196,6 +207,10 @@ contains
                                       &for the effects named'
     case (sim_backward);         s = 'gsl-rk8pd integrates forward only: give times >= 0'
     case (sim_gsl_failed);       s = 'GSL odeiv2 (rk8pd) failed'
+    case (sim_too_many_steps)
+      write(s, '(a,es8.1,a)') 'the run needs more than', real(max_steps, dp), ' steps (the work limit): ' // &
+        'shorten the span (t), or give a larger dt or rtol'
+    case (sim_cancelled);        s = 'interrupted'
     case default;                s = 'unknown failure'
     end select
   end function simulate_status_text

@@ -269,6 +269,10 @@ contains
       e = 1.0_dp
     else if (mc > huge(1.0_dp)) then
       e = inf_dp
+    else if (mc < 1.0e-30_dp) then
+      ! E(1 - mc) = 1 + (mc/4)(ln(16/mc) - 1) + O(mc^2 ln mc): the Carlson form
+      ! overflows its intermediate 1/mc^(3/2) for subnormal mc
+      e = 1.0_dp + 0.25_dp * mc * (log(16.0_dp) - log(mc) - 1.0_dp)
     else
       e = (mc / 3.0_dp) * (carlson_rd(0.0_dp, mc, 1.0_dp) + carlson_rd(0.0_dp, 1.0_dp, mc))
     end if
@@ -407,6 +411,30 @@ contains
         + e4 * (20910.0_dp + e4 * 268616.0_dp))))))
   end function nome_series
 
+  !> ln of nome_series(m, mc) for 0 < m <= 1/2, without forming the series' value.
+  elemental function log_nome_series(m, mc) result(lq)
+    real(dp), intent(in) :: m, mc
+    real(dp) :: lq, r, e, e4
+    r = sqrt(sqrt(mc))
+    e = m / (2.0_dp * (1.0_dp + r)**2 * (1.0_dp + r * r))
+    e4 = (e * e) * (e * e)
+    lq = log(m) - log(2.0_dp * (1.0_dp + r)**2 * (1.0_dp + r * r)) &
+         + log1p_small(e4 * (2.0_dp + e4 * (15.0_dp + e4 * (150.0_dp + e4 * (1707.0_dp &
+         + e4 * (20910.0_dp + e4 * 268616.0_dp))))))
+  end function log_nome_series
+
+  !> log(1 + x) for 0 <= x < 0.1 (the tail of the nome series), accurate for tiny x.
+  elemental function log1p_small(x) result(y)
+    real(dp), intent(in) :: x
+    real(dp) :: y, u
+    u = 1.0_dp + x
+    if (u == 1.0_dp) then
+      y = x
+    else
+      y = log(u) * (x / (u - 1.0_dp))
+    end if
+  end function log1p_small
+
   !> The nome q(m) = exp(-pi K(mc)/K(m)) for 0 <= m <= 1.
   elemental function ellip_nome(m, mc) result(q)
     real(dp), intent(in) :: m, mc
@@ -418,7 +446,9 @@ contains
     else if (m <= 0.5_dp) then
       q = nome_series(m, mc)
     else
-      q = exp(pi * pi / log(nome_series(mc, m)))
+      ! ln q = pi^2 / ln q', with ln q' from the logarithm of the series' leading
+      ! factor, so that q' (~ mc/16) may underflow without q becoming 1
+      q = exp(pi * pi / log_nome_series(mc, m))
     end if
   end function ellip_nome
 

@@ -34,7 +34,14 @@ module pendula_integrators
   integer, parameter, public :: m_rk4 = 1, m_verlet = 2, m_yoshida4 = 3, m_yoshida6 = 4, &
     m_yoshida8 = 5, m_gauss4 = 6, m_gauss6 = 7, m_dopri5 = 8, m_dop853 = 9
   integer, parameter, public :: st_ok = 0, st_bad_step = 1, st_bad_tol = 2, st_bad_method = 3, &
-    st_step_underflow = 5, st_nonfinite = 6, st_no_dense = 9, st_stopped = 10
+    st_step_underflow = 5, st_nonfinite = 6, st_no_dense = 9, st_stopped = 10, &
+    st_too_many_steps = 7, st_cancelled = 8
+  !> The work limit of one call: steps of the integrator (fixed or adaptive).
+  !> A span that needs more (t = 1e15, dt = 1e-18, a drive at 1e300 rad/s) is
+  !> an error that says so, never a hang or a wrapped-around step count.
+  integer(i8), parameter, public :: max_steps = 100000000_i8
+  !> How often the cancel flag is read (steps).
+  integer(i8), parameter :: poll_every = 4096_i8
 
   type :: pendulum_model
     real(dp) :: eps = 1.0_dp, beta = 0.0_dp, tau = 0.0_dp
@@ -107,8 +114,10 @@ contains
   !> sorted ascending (negative times are reached by integrating backwards).
   !> Events (adaptive methods only) are recorded in the forward direction.
   subroutine integrate(m, method, theta0, v0, tout, rtol, atol, dt, theta, v, stats, status, &
-                       ev, nev, tev, thev, vev)
+                       ev, nev, tev, thev, vev, cancel)
     type(pendulum_model), intent(in) :: m
+    !> set to non-zero by another thread to stop the run (status st_cancelled)
+    integer, intent(inout), volatile, optional :: cancel
     integer, intent(in) :: method
     real(dp), intent(in) :: theta0, v0, tout(:), rtol, atol, dt
     real(dp), intent(out) :: theta(:), v(:)
@@ -119,6 +128,8 @@ contains
     real(dp), intent(out) :: tev(:), thev(:), vev(:)
     integer :: n, ineg, k
     logical :: adaptive
+    integer, volatile, target :: no_cancel
+    no_cancel = 0
 
     n = size(tout)
     theta = nan_dp; v = nan_dp
@@ -138,6 +149,16 @@ contains
       end if
       if (ev%kind /= 0) then
         status = st_no_dense; return
+      end if
+    end if
+    ! a run that certainly needs more than max_steps fails at once, not after
+    ! them: every method takes at least 4 steps per period of the fastest of
+    ! the small oscillation, the drive and the damping (t = 1e15, a drive at
+    ! 1e300 rad/s); a rotation turns at about |v0|
+    if (n > 0) then
+      if (.not. (max(abs(tout(1)), abs(tout(n))) * max(sqrt(m%eps), m%omega, m%beta, abs(v0)) &
+                 * (4.0_dp / 6.283185307179586_dp) < real(max_steps, dp))) then
+        status = st_too_many_steps; return
       end if
     end if
     ! the first index with tout >= 0
@@ -165,10 +186,19 @@ contains
       if (.not. with_events) e%kind = 0
       select case (method)
       case (m_dopri5, m_dop853)
-        call run_adaptive(m, method, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, &
-                          e, nev, tev, thev, vev)
+        if (present(cancel)) then
+          call run_adaptive(m, method, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, &
+                            e, nev, tev, thev, vev, cancel)
+        else
+          call run_adaptive(m, method, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, &
+                            e, nev, tev, thev, vev, no_cancel)
+        end if
       case default
-        call run_fixed(m, method, theta0, v0, ts, dir * dt, ths, vs, stats, status)
+        if (present(cancel)) then
+          call run_fixed(m, method, theta0, v0, ts, dir * dt, ths, vs, stats, status, cancel)
+        else
+          call run_fixed(m, method, theta0, v0, ts, dir * dt, ths, vs, stats, status, no_cancel)
+        end if
       end select
     end subroutine one_direction
 
@@ -178,8 +208,9 @@ contains
   ! Fixed-step methods
   ! ====================================================================
 
-  subroutine run_fixed(m, method, theta0, v0, ts, h, ths, vs, stats, status)
+  subroutine run_fixed(m, method, theta0, v0, ts, h, ths, vs, stats, status, cancel)
     type(pendulum_model), intent(in) :: m
+    integer, intent(inout), volatile :: cancel
     integer, intent(in) :: method
     real(dp), intent(in) :: theta0, v0, ts(:), h
     real(dp), intent(inout) :: ths(:), vs(:)
@@ -192,6 +223,10 @@ contains
 
     if (size(ts) == 0) return
     tend = ts(size(ts))
+    ! the step count is checked before it is formed: no integer overflow
+    if (.not. (abs(tend) / abs(h) < real(max_steps, dp))) then
+      status = st_too_many_steps; return
+    end if
     nsteps = int(abs(tend) / abs(h), i8) + 1
     th = theta0; v = v0; the = 0.0_dp; ve = 0.0_dp
     kout = 1
@@ -208,6 +243,11 @@ contains
         kout = kout + 1
       end do
       if (kout > size(ts)) exit
+      if (mod(istep, poll_every) == 0) then
+        if (cancel /= 0) then
+          status = st_cancelled; return
+        end if
+      end if
       call fixed_step(m, method, t, h, th, the, v, ve, stats)
       stats%nsteps = stats%nsteps + 1
       stats%naccept = stats%naccept + 1
@@ -341,8 +381,9 @@ contains
   ! ====================================================================
 
   subroutine run_adaptive(m, method, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, &
-                          ev, nev, tev, thev, vev)
+                          ev, nev, tev, thev, vev, cancel)
     type(pendulum_model), intent(in) :: m
+    integer, intent(inout), volatile :: cancel
     integer, intent(in) :: method
     real(dp), intent(in) :: theta0, v0, ts(:), dir, rtol, atol
     real(dp), intent(inout) :: ths(:), vs(:)
@@ -381,8 +422,18 @@ contains
     reject = .false.
     last = .false.
     do
-      if (abs(h) <= 16.0_dp * epsilon(1.0_dp) * max(1.0_dp, abs(t))) then
+      ! Hairer's test: the step no longer moves t (relative to t, so that a
+      ! span of 1e-15 from t = 0 is not an "underflow")
+      if (abs(h) <= 16.0_dp * epsilon(1.0_dp) * abs(t) .or. h == 0.0_dp) then
         status = st_step_underflow; return
+      end if
+      if (stats%nsteps >= max_steps) then
+        status = st_too_many_steps; return
+      end if
+      if (mod(stats%nsteps, poll_every) == 0) then
+        if (cancel /= 0) then
+          status = st_cancelled; return
+        end if
       end if
       if (dir * (t + h - tend) >= 0.0_dp) then
         h = tend - t

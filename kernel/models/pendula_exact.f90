@@ -25,7 +25,9 @@ module pendula_exact
   integer, parameter, public :: regime_libration = 0, regime_separatrix = 1, &
                                 regime_rotation = 2
   integer, parameter, public :: orbit_ok = 0, orbit_bad_eps = 1, orbit_bad_theta0 = 2, &
-                                orbit_bad_v0 = 3
+                                orbit_bad_v0 = 3, orbit_theta0_too_large = 4
+  !> the third part of pi (pi = pi + pi_lo + pi_lo2 to 160 bits)
+  real(dp), parameter :: pi_lo2 = -2.9947698097183397e-33_dp
 
   type :: pendulum_orbit
     integer :: regime = regime_libration
@@ -60,18 +62,25 @@ contains
     end if
     o%eps = eps
     call dd_sqrt(eps, 0.0_dp, o%sqh, o%sql)
-    ! theta0 = 2 pi n + (th + tl), |th| <= pi, with pi in double-double
+    ! theta0 = 2 pi n + (th + tl), |th| <= pi.  Beyond 2^52 the quotient n is
+    ! no longer an exact double and the angle cannot be reduced: status 4
+    if (abs(theta0) > 2.0_dp**52) then
+      status = orbit_theta0_too_large; return
+    end if
     n = anint(theta0 / two_pi)
-    call two_prod(2.0_dp * n, pi, p, e)
-    call two_sum(theta0 - p, -e - 2.0_dp * n * pi_lo, th, tl)
+    call reduce_2pi(theta0, n, th, tl)
+    ! 2 n pi_lo can be many radians for a large theta0 (39 at 1e18): reduce what is left
+    if (abs(th) > pi) then
+      n = n + anint(th / two_pi)
+      call reduce_2pi(theta0, n, th, tl)
+    end if
     ! the quotient may round across +-pi: keep the reduced angle inside [-pi, pi] exactly
     if (th > pi .or. (th == pi .and. tl > pi_lo)) then
       n = n + 1.0_dp
     else if (th < -pi .or. (th == -pi .and. tl < -pi_lo)) then
       n = n - 1.0_dp
     end if
-    call two_prod(2.0_dp * n, pi, p, e)
-    call two_sum(theta0 - p, -e - 2.0_dp * n * pi_lo, th, tl)
+    call reduce_2pi(theta0, n, th, tl)
     ! sin and cos of theta0/2 in double-double (cos >= 0 on the reduced angle)
     call dd_sincos(0.5_dp * th, 0.5_dp * tl, s0, s0l, c0, c0l)
     ! w = v0 / (2 sqrt(eps)) in double-double
@@ -133,11 +142,16 @@ contains
       o%regime = regime_rotation
       o%dir = sign(1.0_dp, wh)
       qh = -nh; ql = -nl
-      ! divide by k^2 (double-double quotient)
-      a = qh / k2h
-      call two_prod(a, k2h, p, e)
-      b = (((qh - p) - e) + ql - a * k2l) / k2h
-      call fast_two_sum(a, b, o%mch, o%mcl)
+      ! divide by k^2 (double-double quotient; for k^2 beyond 1e280 the
+      ! splitting of k^2 would overflow, and mc = 1 - 1/k^2 to all digits)
+      if (k2h > 1.0e280_dp) then
+        o%mch = 1.0_dp; o%mcl = -1.0_dp / k2h
+      else
+        a = qh / k2h
+        call two_prod(a, k2h, p, e)
+        b = (((qh - p) - e) + ql - a * k2l) / k2h
+        call fast_two_sum(a, b, o%mch, o%mcl)
+      end if
       o%m = 1.0_dp / k2h
       call dd_sqrt(k2h, k2l, kh, kl)
       o%k = kh
@@ -237,6 +251,20 @@ contains
       tm = inf_dp
     end select
   end function orbit_theta_max
+
+  !> th + tl = theta0 - 2 pi n with pi in three parts (2n and each part's
+  !> products exact through two-products).
+  pure subroutine reduce_2pi(theta0, n, th, tl)
+    real(dp), intent(in) :: theta0, n
+    real(dp), intent(out) :: th, tl
+    real(dp) :: p, e, q, f, s, r
+    call two_prod(2.0_dp * n, pi, p, e)
+    call two_prod(2.0_dp * n, pi_lo, q, f)
+    s = theta0 - p                     ! exact (Sterbenz) when n is the nearest quotient
+    call two_sum(s, -q, th, r)
+    tl = r - e - f - 2.0_dp * n * pi_lo2
+    call fast_two_sum(th, tl, th, tl)
+  end subroutine reduce_2pi
 
   !> The phase u0 (double-double) with sn(u0) = sn0, cn(u0) = cn0,
   !> dn(u0) = dn0 > 0 for the parameter m (K = kh + kl, mc its complement).

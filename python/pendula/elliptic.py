@@ -24,17 +24,26 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome"]
 _NO_MC = np.zeros(1)
 
 
+#: elements per kernel call: long arrays go in chunks, so that Ctrl-C is seen
+#: between them (each chunk runs with the GIL released, ~50 ms at most)
+CHUNK = 1 << 20
+
+
 def _unary(kfunc, name, m, mc):
     if mc is None and m is not None:
         # the kernel forms mc = 1 - m itself: one pass less over the data
         a = as_float(m, "m")
         shape = a.shape
+        if a.size == 0:
+            return np.empty(shape)
         mf = np.ascontiguousarray(a.reshape(-1), dtype=np.float64)
         out = kfunc(mf, _NO_MC if mf.size != 1 else np.array([1.0 - mf[0]]))
         warn_domain(name, out, mf)
         return shaped(out, shape)
     m, mc = parameter(m, mc)
     shape, (mf, mcf) = flat(m, mc)
+    if mf.size == 0:
+        return np.empty(shape)
     out = kfunc(mf, mcf)
     warn_domain(name, out, mf, mcf)
     return shaped(out, shape)
@@ -44,6 +53,8 @@ def _incomplete(kfunc, name, phi, m, mc):
     phi = as_float(phi, "phi")
     m, mc = parameter(m, mc)
     shape, (pf, mf, mcf) = flat(phi, m, mc)
+    if pf.size == 0:
+        return np.empty(shape)
     out = kfunc(pf, mf, mcf)
     warn_domain(name, out, pf, mf, mcf)
     return shaped(out, shape)
@@ -173,7 +184,18 @@ def ellipj(u, m, mc=None):
         mcf = mc.reshape(1).astype(np.float64)
     else:
         shape, (uf, mf, mcf) = flat(u, m, mc)
-    sn, cn, dn, am, status = _kernel.ellipj_v(uf, mf, mcf)
+    if uf.size == 0:
+        return tuple(np.empty(shape) for _ in range(4))
+    if uf.size <= CHUNK:
+        sn, cn, dn, am, status = _kernel.ellipj_v(uf, mf, mcf)
+    else:
+        sn, cn, dn, am = (np.empty(uf.size) for _ in range(4))
+        status = 0
+        for i in range(0, uf.size, CHUNK):
+            j = min(i + CHUNK, uf.size)
+            part = (mf, mcf) if mf.size == 1 else (mf[i:j], mcf[i:j])
+            sn[i:j], cn[i:j], dn[i:j], am[i:j], st = _kernel.ellipj_v(uf[i:j], *part)
+            status = status or st
     if status != 0:  # pragma: no cover - the sizes above always agree
         raise RuntimeError("pendula kernel: ellipj_v got inconsistent sizes")
     warn_domain("ellipj", sn, uf, np.broadcast_to(mf, uf.shape), np.broadcast_to(mcf, uf.shape),

@@ -9,9 +9,11 @@ theta = w t + 4 sum_n q^n / (n (1 + q^(2n))) sin(n w t) has all of them.
 from __future__ import annotations
 
 import atexit
+import contextlib
 import functools
 import math
 import threading
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -23,34 +25,55 @@ __all__ = ["Spectrum", "spectrum", "spectra", "fourier_series", "odd_harmonics_a
 
 _WINDOWS = {None: 0, "none": 0, "hann": 1}
 
-# FFTW plans by (length, measured): made once, kept for the process.  FFTW's
-# planner is not thread-safe, so creation is serialised; executing a plan is.
+# FFTW plans by (length, measured): made once, kept for the process (at most
+# _MAX_PLANS lengths).  FFTW's planner is not thread-safe, so creation and
+# destruction are serialised under one lock; executing a plan on fresh arrays
+# is thread-safe, and runs with the GIL released.  A plan is reference-counted
+# while in use: evicting it from the cache only marks it, and the last user
+# frees it, so no thread can execute a plan another one freed.
 _PLANS: dict[tuple[int, bool], int] = {}
+_USERS: dict[int, int] = {}      # handle -> threads using it now
+_RETIRED: set[int] = set()       # evicted while in use: freed by the last user
 _PLAN_LOCK = threading.Lock()
 _MAX_PLANS = 16
 
 
-def _plan(n: int, measure: bool) -> int:
+@contextlib.contextmanager
+def _plan(n: int, measure: bool):
     key = (n, bool(measure))
     with _PLAN_LOCK:
         handle = _PLANS.get(key)
         if handle is None:
             if len(_PLANS) >= _MAX_PLANS:
-                old = next(iter(_PLANS))
-                _kernel.spectrum_plan_free_v(_PLANS.pop(old))
+                old = _PLANS.pop(next(iter(_PLANS)))
+                if _USERS.get(old, 0):
+                    _RETIRED.add(old)
+                else:
+                    _kernel.spectrum_plan_free_v(old)
             handle = int(_kernel.spectrum_plan_v(n, int(bool(measure))))
             if handle == 0:
                 raise MemoryError(f"FFTW could not plan a transform of {n} samples")
             _PLANS[key] = handle
-        return handle
+        _USERS[handle] = _USERS.get(handle, 0) + 1
+    try:
+        yield handle
+    finally:
+        with _PLAN_LOCK:
+            _USERS[handle] -= 1
+            if not _USERS[handle]:
+                del _USERS[handle]
+                if handle in _RETIRED:
+                    _RETIRED.discard(handle)
+                    _kernel.spectrum_plan_free_v(handle)
 
 
 @atexit.register
 def _free_plans() -> None:  # pragma: no cover - runs at interpreter exit
     with _PLAN_LOCK:
-        for handle in _PLANS.values():
+        for handle in list(_PLANS.values()) + list(_RETIRED):
             _kernel.spectrum_plan_free_v(handle)
         _PLANS.clear()
+        _RETIRED.clear()
 
 
 @dataclass
@@ -83,6 +106,10 @@ class Spectrum:
         quadratic interpolation of log power around the peak bin (exact when
         the record spans a whole number of periods)."""
         p = self.power
+        if p.size < 3 or not np.any(p[1:] > 0) or not np.all(np.isfinite(p)):
+            warnings.warn("Spectrum.fundamental: the signal has no non-constant line (or is not finite): NaN",
+                          RuntimeWarning, stacklevel=2)
+            return math.nan
         k = int(np.argmax(p[1:])) + 1
         if 1 < k < p.size - 1 and p[k - 1] > 0 and p[k + 1] > 0 and p[k] > 0:
             a, b, c = np.log(p[k - 1]), np.log(p[k]), np.log(p[k + 1])
@@ -145,9 +172,11 @@ def spectra(t, signals, window: str | None = None, measure: bool = False) -> lis
         raise ValueError(f"signals must have shape (m, {t.size}) to match t, got {x.shape}")
     if window not in _WINDOWS:
         raise ValueError(f"window must be None or 'hann', got {window!r}")
+    if x.shape[0] == 0:
+        return []
     n = t.size
-    omega, power, status = _kernel.spectra_v(_plan(n, measure), np.asfortranarray(x.T), dt,
-                                             _WINDOWS[window], n // 2 + 1)
+    with _plan(n, measure) as handle:
+        omega, power, status = _kernel.spectra_v(handle, np.asfortranarray(x.T), dt, _WINDOWS[window], n // 2 + 1)
     if status:
         raise RuntimeError(f"pendula kernel: spectrum status {status}")
     if not np.all(np.isfinite(power[:, 0])) and np.all(np.isfinite(x[0])):  # pragma: no cover

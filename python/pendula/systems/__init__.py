@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import _kernel
+from .. import _interrupt, _kernel
 from .._checks import as_float
 from ..scene import Scene, SceneError
 from ..trajectory import Trajectory
@@ -101,7 +101,10 @@ def run(scene: Scene, t) -> Trajectory:
         raise ValueError("t must be finite")
     order = np.argsort(flat, kind="stable")
     sorted_t = np.ascontiguousarray(flat[order])
-    theta_s, v_s, e_s, stats, method, status, msg = _kernel.simulate_v(_kernel_text(scene).encode("utf-8"), sorted_t)
+    cancel = _interrupt.cancel_flag()
+    theta_s, v_s, e_s, stats, method, status, msg = _interrupt.call(
+        _kernel.simulate_v, _kernel_text(scene).encode("utf-8"), sorted_t, cancel, cancel=cancel,
+        long=bool(scene.effects) and _long_run(scene, sorted_t))
     msg = (msg.decode(errors="replace") if isinstance(msg, bytes) else str(msg)).strip()
     if status == _NOT_IMPLEMENTED:
         raise NotImplementedError(msg)
@@ -124,6 +127,18 @@ def run(scene: Scene, t) -> Trajectory:
         warnings.warn(f"simulate: {int(bad.sum())} time(s) infinite or beyond the exact path's range gave NaN",
                       RuntimeWarning, stacklevel=3)
     return Trajectory(t, theta, v, e, name, scene, st)
+
+
+def _long_run(scene: Scene, t: np.ndarray) -> bool:
+    """Could this integration take more than a fraction of a second?  (Then it
+    runs where Ctrl-C can stop it; short runs skip the thread's ~50 us.)"""
+    if t.size == 0:
+        return False
+    span = float(np.max(np.abs(t)))
+    if scene.dt > 0 and scene.method not in ("auto", "dop853", "dopri5", "gsl-rk8pd"):
+        return span / scene.dt > 1e5
+    rate = max(1.0, scene.eps ** 0.5, scene.drive_frequency, scene.damping)
+    return span * rate > 1e3 or scene.rtol < 1e-12
 
 
 _SKIP = ("outputs", "sweep", "sweep_values", "name")

@@ -19,8 +19,10 @@ from .._checks import as_float
 
 __all__ = ["Orbit", "orbit", "exact_motion", "energy"]
 
+_CHUNK = 1 << 20
 _REGIMES = {0: "libration", 1: "separatrix", 2: "rotation"}
-_STATUS = {1: "eps must be positive and finite", 2: "theta0 must be finite", 3: "v0 must be finite"}
+_STATUS = {1: "eps must be positive and finite", 2: "theta0 must be finite", 3: "v0 must be finite",
+           4: "theta0 beyond 2**52 (4.5e15) cannot be reduced modulo 2 pi in double precision"}
 
 
 @dataclass(frozen=True)
@@ -105,9 +107,15 @@ def exact_motion(theta0: float, v0: float, eps: float, t) -> tuple[np.ndarray, n
     """
     t = as_float(t, "t")
     tf = np.ascontiguousarray(t, dtype=np.float64).reshape(-1)
-    theta, v, status = _kernel.exact_motion_v(_scalar(theta0, "theta0"), _scalar(v0, "v0"),
-                                              _scalar(eps, "eps"), tf)
-    _check_status(status)
+    args = (_scalar(theta0, "theta0"), _scalar(v0, "v0"), _scalar(eps, "eps"))
+    if tf.size <= _CHUNK:
+        theta, v, status = _kernel.exact_motion_v(*args, tf)
+        _check_status(status)
+    else:  # chunks with the GIL released, so that Ctrl-C is seen between them
+        theta, v = np.empty_like(tf), np.empty_like(tf)
+        for i in range(0, tf.size, _CHUNK):
+            theta[i:i + _CHUNK], v[i:i + _CHUNK], status = _kernel.exact_motion_v(*args, tf[i:i + _CHUNK])
+            _check_status(status)
     bad = ~np.isfinite(theta) & ~np.isnan(tf)
     if np.any(bad):
         warnings.warn(f"exact_motion: {int(bad.sum())} time(s) infinite or beyond 2**48 half periods gave NaN",
@@ -119,4 +127,5 @@ def energy(theta, v, eps: float = 1.0) -> np.ndarray:
     """E = v^2/2 + eps (1 - cos theta), written as v^2/2 + 2 eps sin^2(theta/2) (no cancellation)."""
     theta = as_float(theta, "theta")
     v = as_float(v, "v")
+    eps = as_float(eps, "eps")
     return 0.5 * v * v + 2.0 * eps * np.sin(0.5 * theta) ** 2
