@@ -1,0 +1,200 @@
+"""Bad input and hard conditions (issue 11): no crash, no hang, no silent wrong
+number.  Each test is named for the class it keeps fixed."""
+
+import math
+import signal
+import subprocess
+import sys
+import threading
+import time
+import warnings
+
+import mpmath as mp
+import numpy as np
+import pytest
+
+import pendula
+from pendula import Scene
+
+EPS = np.finfo(float).eps
+
+
+# ------------------------------------------------------------ work limits (no hang, no wrapped count)
+
+def test_tiny_dt_is_an_error_naming_the_limit_not_a_wrapped_step_count():
+    for method in ("rk4", "verlet", "yoshida8", "gauss6"):
+        with pytest.raises(ValueError, match="dt|work limit"):
+            pendula.simulate(Scene(v0=1, damping=0.1, t_end=10, n_samples=3, dt=1e-18, method=method))
+
+
+@pytest.mark.parametrize("scene,t", [(Scene(v0=1, damping=0.1), [1e15]),
+                                     (Scene(v0=1, drive_amplitude=0.5, drive_frequency=1e300), None)])
+def test_hopeless_spans_fail_at_once_with_the_work_limit(scene, t):
+    with pytest.raises(ValueError, match="work limit"):
+        pendula.simulate(scene, t)
+
+
+def test_events_need_a_finite_end_and_a_sane_budget():
+    with pytest.raises(ValueError, match="t_end"):
+        pendula.find_events(Scene(v0=1), "turning", t_end=float("inf"))
+    with pytest.raises(ValueError, match="work limit"):
+        pendula.find_events(Scene(v0=1), "turning", t_end=1e15)
+    with pytest.raises(ValueError, match="max_events"):
+        pendula.find_events(Scene(v0=1), "turning", max_events=2**31)
+    with pytest.raises(TypeError, match="terminal"):
+        pendula.find_events(Scene(v0=1), "turning", terminal="no")
+
+
+def test_numerical_period_refuses_an_absurd_number_of_periods():
+    with pytest.raises(ValueError, match="periods"):
+        pendula.numerical_period(Scene(v0=1), periods=1e9)
+
+
+def test_long_call_stops_on_sigint():
+    code = ("import pendula\n"
+            "print('start', flush=True)\n"
+            "pendula.simulate(pendula.Scene(v0=1.0, damping=0.5, drive_amplitude=1.2,\n"
+            "                               drive_frequency=2 / 3), [3e6])\n")
+    p = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    assert p.stdout.readline().strip() == "start"
+    time.sleep(0.5)
+    p.send_signal(signal.SIGINT)
+    try:
+        _, err = p.communicate(timeout=30)   # a hang fails here
+    except subprocess.TimeoutExpired:
+        p.kill()
+        pytest.fail("the call did not stop on SIGINT")
+    assert p.returncode != 0 and "KeyboardInterrupt" in err
+
+
+# ------------------------------------------------------------ extreme parameters: right values, or NaN + warning
+
+def test_tiny_output_time_is_integrated_not_an_underflow():
+    tr = pendula.simulate(Scene(v0=1, damping=0.1), [1e-15])
+    assert abs(tr.theta[0] - 1e-15) <= 2 * EPS * 1e-15
+
+
+def test_complete_integrals_at_subnormal_mc():
+    assert pendula.ellipe(None, mc=1e-310) == 1.0
+    with mp.workdps(400):   # enough digits to hold 1 - 5e-324
+        q = mp.exp(-mp.pi * mp.ellipk(mp.mpf(5e-324)) / mp.ellipk(1 - mp.mpf(5e-324)))
+    assert abs(pendula.nome(None, mc=5e-324) - float(q)) <= 4 * EPS * float(q)
+
+
+def test_orbit_with_tiny_eps_is_a_fast_rotation_with_the_right_period():
+    o = pendula.orbit(0.0, 1.0, 1e-307)
+    # k^2 = 1/(4 eps) = 2.5e306: one turn takes 2 K(1/k^2) / (k sqrt(eps)) -> 2 (pi/2) / (1/2) = 2 pi
+    assert o.regime == "rotation" and abs(o.period - 2 * math.pi) <= 4 * EPS * 2 * math.pi
+
+
+def test_huge_theta0_is_reduced_or_refused_naming_theta0():
+    th, v = pendula.exact_motion(1e15, 0.0, 1.0, [0.0, 1.0])
+    with mp.workdps(60):
+        r = mp.fmod(mp.mpf(1e15), 2 * mp.pi)
+        r = r - 2 * mp.pi if r > mp.pi else r
+    th_r, v_r = pendula.exact_motion(float(r), 0.0, 1.0, [1.0])
+    assert v[0] == 0.0 and abs(v[1] - v_r[0]) <= 8 * EPS
+    with pytest.raises(ValueError, match="theta0"):
+        pendula.exact_motion(1e18, 0.0, 1.0, [1.0])
+
+
+def test_empty_in_empty_out():
+    e = np.array([])
+    for f in (pendula.ellipk, pendula.ellipe, pendula.nome):
+        assert f(e).shape == (0,)
+    for f in (pendula.ellipf, pendula.ellipeinc):
+        assert f(e, 0.5).shape == (0,)
+    assert all(a.shape == (0,) for a in pendula.ellipj(e, 0.5))
+    assert pendula.exact_motion(0.0, 1.0, 1.0, e)[0].shape == (0,)
+    assert pendula.simulate(Scene(v0=1, damping=0.1), e).theta.shape == (0,)
+    assert pendula.spectra(np.arange(64.0), np.empty((0, 64))) == []
+
+
+def test_signal_without_a_line_has_no_fundamental():
+    with pytest.warns(RuntimeWarning, match="no non-constant line"):
+        assert math.isnan(pendula.spectrum(np.arange(64.0), np.zeros(64)).fundamental)
+
+
+# ------------------------------------------------------------ unclear errors
+
+@pytest.mark.parametrize("eps", ["a", 1j, [1, [2]]])
+def test_energy_names_a_bad_eps(eps):
+    with pytest.raises(TypeError, match="eps"):
+        pendula.energy(0.0, 1.0, eps=eps)
+
+
+def test_scene_refuses_a_list_valued_method_naming_it():
+    with pytest.raises(ValueError, match="method"):
+        pendula.simulate(Scene(v0=1, damping=0.1), [1.0], method=["rk4"])
+
+
+# ------------------------------------------------------------ accuracy cliffs
+
+def test_numerical_period_near_the_separatrix_warns_or_is_right():
+    s = Scene(v0=2 - 1e-12)
+    exact = pendula.period(s)
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter("always")
+        got = pendula.numerical_period(s)
+    assert abs(got - exact) <= 1e-6 * exact or any(issubclass(x.category, RuntimeWarning) for x in w)
+
+
+# ------------------------------------------------------------ threads
+
+def _hammer(jobs, n_threads=4):
+    errors = []
+
+    def run(job):
+        try:
+            job()
+        except BaseException as exc:  # noqa: BLE001
+            errors.append(exc)
+
+    threads = [threading.Thread(target=run, args=(jobs[i % len(jobs)],)) for i in range(n_threads)]
+    old = sys.getswitchinterval()
+    sys.setswitchinterval(1e-6)
+    try:
+        for th in threads:
+            th.start()
+        for th in threads:
+            th.join()
+    finally:
+        sys.setswitchinterval(old)
+    assert not errors, errors
+
+
+def test_spectrum_from_threads_on_many_lengths_matches_serial():
+    rng = np.random.default_rng(5)
+    signals = {n: rng.standard_normal(n) for n in range(64, 90)}
+    serial = {n: pendula.spectrum(np.arange(n) * 0.1, x).power for n, x in signals.items()}
+
+    def job(lengths):
+        def go():
+            for _ in range(40):
+                for n in lengths:
+                    p = pendula.spectrum(np.arange(n) * 0.1, signals[n]).power
+                    assert np.array_equal(p, serial[n])
+        return go
+
+    _hammer([job([64]), job(list(range(65, 90))), job(list(range(89, 64, -1)))], n_threads=3)
+
+
+def test_ellipj_simulate_and_events_from_threads_match_serial():
+    rng = np.random.default_rng(6)
+    us = [rng.uniform(-1e3, 1e3, n) for n in (10, 1000, 50_000)]
+    ref_j = [pendula.ellipj(u, 0.7) for u in us]
+    scenes = [Scene(v0=1.0 + 0.1 * k, damping=0.05) for k in range(3)]
+    t = np.linspace(0, 50, 201)
+    ref_s = [pendula.simulate(s, t).theta for s in scenes]
+    ref_e = [pendula.find_events(s, "turning", t_end=40.0).t for s in scenes]
+
+    def go():
+        for _ in range(5):
+            for u, r in zip(us, ref_j):
+                assert all(np.array_equal(a, b) for a, b in zip(pendula.ellipj(u, 0.7), r))
+            for s, r in zip(scenes, ref_s):
+                assert np.array_equal(pendula.simulate(s, t).theta, r)
+            for s, r in zip(scenes, ref_e):
+                assert np.array_equal(pendula.find_events(s, "turning", t_end=40.0).t, r)
+
+    _hammer([go], n_threads=4)
