@@ -25,7 +25,7 @@ module pendula_exact
   integer, parameter, public :: regime_libration = 0, regime_separatrix = 1, &
                                 regime_rotation = 2
   integer, parameter, public :: orbit_ok = 0, orbit_bad_eps = 1, orbit_bad_theta0 = 2, &
-                                orbit_bad_v0 = 3, orbit_theta0_too_large = 4
+                                orbit_bad_v0 = 3, orbit_theta0_too_large = 4, orbit_too_fast = 5
   !> the third part of pi (pi = pi + pi_lo + pi_lo2 to 160 bits)
   real(dp), parameter :: pi_lo2 = -2.9947698097183397e-33_dp
 
@@ -53,7 +53,8 @@ contains
     real(dp) :: k2h, k2l, a, b, kh, kl, s0l, c0l, nh, nl
 
     status = orbit_ok
-    if (.not. (eps > 0.0_dp .and. eps <= huge(1.0_dp))) then
+    ! (eps above 1e300 leaves no room for the double-double splits of sqrt(eps))
+    if (.not. (eps > 0.0_dp .and. eps <= 1.0e300_dp)) then
       status = orbit_bad_eps; return
     else if (.not. (abs(theta0) <= huge(1.0_dp))) then
       status = orbit_bad_theta0; return
@@ -89,6 +90,10 @@ contains
     r = ((v0 - p) - e) - 2.0_dp * o%sql * wh
     wl = r / (2.0_dp * o%sqh)
     awh = abs(wh); awl = sign(1.0_dp, wh) * wl
+    ! k^2 = w^2 + ... must stay a double (with room for the double-double splits)
+    if (awh > 1.0e150_dp) then
+      status = orbit_too_fast; return
+    end if
     ! the distance from the separatrix: N = 4 eps c0^2 - v0^2 (d = N / (4 eps));
     ! where 4 eps or v0^2 would overflow, as 4 eps (c0 - |w|)(c0 + |w|)
     if (eps < 1.0e300_dp .and. abs(v0) < 1.0e150_dp) then
