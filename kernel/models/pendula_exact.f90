@@ -91,7 +91,7 @@ contains
     wl = r / (2.0_dp * o%sqh)
     awh = abs(wh); awl = sign(1.0_dp, wh) * wl
     ! k^2 = w^2 + ... must stay a double (with room for the double-double splits)
-    if (awh > 1.0e150_dp) then
+    if (awh > 1.0e154_dp) then
       status = orbit_too_fast; return
     end if
     ! the distance from the separatrix: N = 4 eps c0^2 - v0^2 (d = N / (4 eps));

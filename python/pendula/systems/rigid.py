@@ -23,7 +23,7 @@ _CHUNK = 1 << 20
 _REGIMES = {0: "libration", 1: "separatrix", 2: "rotation"}
 _STATUS = {1: "eps must be positive and at most 1e300", 2: "theta0 must be finite", 3: "v0 must be finite",
            4: "theta0 beyond 2**52 (4.5e15) cannot be reduced modulo 2 pi in double precision",
-           5: "v0 too large for this eps: |v0| / (2 sqrt(eps)) must stay below 1e150"}
+           5: "v0 too large for this eps: |v0| / (2 sqrt(eps)) must stay below 1e154"}
 
 
 @dataclass(frozen=True)
