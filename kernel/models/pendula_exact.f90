@@ -37,7 +37,7 @@ module pendula_exact
     real(dp) :: rateh = 1.0_dp, ratel = 0.0_dp  !< du/dt (double-double)
     real(dp) :: vsh = 0.0_dp, vsl = 0.0_dp  !< velocity scale 2 k sqrt(eps) (double-double)
     real(dp) :: u0 = 0.0_dp, u0l = 0.0_dp   !< phase at t = 0 (double-double)
-    real(dp) :: offset = 0.0_dp             !< 2 pi n: the well of a libration
+    real(dp) :: offset = 0.0_dp, offl = 0.0_dp  !< 2 pi n (double-double): the well or the turns
     real(dp) :: dir = 1.0_dp                !< direction of a rotation or separatrix flight
     type(jacobi_plan) :: plan
   end type pendulum_orbit
@@ -83,7 +83,19 @@ contains
     end if
     call reduce_2pi(theta0, n, th, tl)
     ! sin and cos of theta0/2 in double-double (cos >= 0 on the reduced angle)
-    call dd_sincos(0.5_dp * th, 0.5_dp * tl, s0, s0l, c0, c0l)
+    if (abs(th) <= half_pi) then
+      call dd_sincos(0.5_dp * th, 0.5_dp * tl, s0, s0l, c0, c0l)
+    else
+      ! next to the top cos(theta0/2) = sin((pi - |th|)/2) is tiny: form the
+      ! distance pi - |th| with pi in three parts (pi_hi - |th| is exact), so
+      ! that cos(theta0/2) keeps its relative accuracy (through pi in two
+      ! parts, 1e-33 / 1.5e-15 of it was lost: 450 eps after 7700 periods)
+      call two_sum(pi - abs(th), pi_lo, p, e)
+      e = e + (pi_lo2 - sign(1.0_dp, th) * tl)
+      call fast_two_sum(p, e, p, e)
+      call dd_sincos(0.5_dp * p, 0.5_dp * e, c0, c0l, s0, s0l)
+      s0 = sign(1.0_dp, th) * s0; s0l = sign(1.0_dp, th) * s0l
+    end if
     ! w = v0 / (2 sqrt(eps)) in double-double
     wh = v0 / (2.0_dp * o%sqh)
     call two_prod(2.0_dp * o%sqh, wh, p, e)
@@ -123,7 +135,8 @@ contains
       ! would add 1.5 eps to v next to the turning points, where v is small)
       call dd_sqrt(k2h, k2l, kh, kl)
       call dd_mul(kh, kl, 2.0_dp * o%sqh, 2.0_dp * o%sql, o%vsh, o%vsl)
-      o%offset = two_pi * n
+      call two_prod(2.0_dp * n, pi, o%offset, o%offl)
+      o%offl = o%offl + 2.0_dp * n * pi_lo
       o%rateh = o%sqh; o%ratel = o%sql
       o%plan = jacobi_prepare_dd(o%m, o%mch, o%mcl)
       ! sn(u0) = s0/k, cn(u0) = w/k, dn(u0) = cos(theta0/2): F from sine and
@@ -137,7 +150,8 @@ contains
       ! rest cannot be given, and the flight always has a direction.
       o%regime = regime_separatrix
       o%k = 1.0_dp; o%m = 1.0_dp; o%mch = 0.0_dp; o%mcl = 0.0_dp
-      o%offset = two_pi * n
+      call two_prod(2.0_dp * n, pi, o%offset, o%offl)
+      o%offl = o%offl + 2.0_dp * n * pi_lo
       o%rateh = o%sqh; o%ratel = o%sql
       o%dir = sign(1.0_dp, wh)
       o%u0 = atanh(o%dir * s0)
@@ -166,10 +180,15 @@ contains
       e = e + kh * o%sql + kl * o%sqh
       call fast_two_sum(p, e, o%rateh, o%ratel)
       o%plan = jacobi_prepare_dd(o%m, o%mch, o%mcl)
-      ! theta = 2 pi n + dir 2 am(u): sn(u0) = dir sin(th/2), cn(u0) = cos(th/2),
-      ! dn(u0) = |w|/k, on the reduced angle (the turns are in the offset)
-      o%offset = two_pi * n
+      ! theta = dir 2 am(u): sn = dir sin(th/2), cn = cos(th/2), dn = |w|/k on the
+      ! reduced angle, and the n turns of theta0 as 2 n K more phase (in
+      ! double-double): am then carries every turn itself, as j pi + a small
+      ! angle, and theta(t) is not the difference of two large numbers
       call phase_dd(o%dir * s0, c0, awh / kh, o%plan%kh, o%plan%kl, o%m, o%mch, o%u0, o%u0l)
+      call two_prod(o%dir * 2.0_dp * n, o%plan%kh, p, e)
+      e = e + o%dir * 2.0_dp * n * o%plan%kl
+      call two_sum(p, o%u0, p, r)
+      call fast_two_sum(p, (r + e) + o%u0l, o%u0, o%u0l)
     end if
   end subroutine orbit_setup
 
@@ -207,21 +226,21 @@ contains
         ! theta/2 = atan2(k sn, dn) with dn >= sqrt(mc) > 0: an atan that vectorizes
         do i = 1, nb
           x = o%k * sn(i) / dn(i)
-          theta(i0 + i - 1) = o%offset + 2.0_dp * sign(atan_pos(abs(x)), x)
+          theta(i0 + i - 1) = o%offset + (o%offl + 2.0_dp * sign(atan_pos(abs(x)), x))
           v(i0 + i - 1) = o%vsh * cn(i) + o%vsl * cn(i)
         end do
       case (regime_separatrix)
-        theta(i0:i0+nb-1) = o%offset + o%dir * 2.0_dp * am(1:nb)
+        theta(i0:i0+nb-1) = o%offset + (o%offl + o%dir * 2.0_dp * am(1:nb))
         v(i0:i0+nb-1) = o%dir * (2.0_dp * o%sqh) * cn(1:nb)
         ! t = +-Inf: the limits pi and -pi of the separatrix flight
         do i = 1, nb
           if (abs(t(i0 + i - 1)) > huge(1.0_dp)) then
-            theta(i0 + i - 1) = o%offset + o%dir * sign(pi, t(i0 + i - 1))
+            theta(i0 + i - 1) = o%offset + (o%offl + o%dir * sign(pi, t(i0 + i - 1)))
             v(i0 + i - 1) = 0.0_dp
           end if
         end do
       case default
-        theta(i0:i0+nb-1) = o%offset + o%dir * 2.0_dp * am(1:nb)
+        theta(i0:i0+nb-1) = o%offset + (o%offl + o%dir * 2.0_dp * am(1:nb))
         v(i0:i0+nb-1) = o%dir * (o%vsh * dn(1:nb) + o%vsl * dn(1:nb))
       end select
     end do
