@@ -201,6 +201,20 @@ subroutine scene_check_v(text, status, msg)
   call parse_scene(text, '<scene>', sc, status, msg)
 end subroutine scene_check_v
 
+! The cycloidal guide's geometry: the bob's path at the angles theta, and the
+! right cheek at the parameters phi (the left one is its mirror image).
+subroutine cycloid_geometry_v(n, r, theta, x, y, m, phi, cx, cy)
+  use pendula_cycloid, only: cycloid_path, cycloid_cheek
+  implicit none
+  integer, intent(in) :: n, m
+  double precision, intent(in) :: r, theta(n), phi(m)
+  double precision, intent(out) :: x(n), y(n), cx(m), cy(m)
+  !f2py intent(hide), depend(theta) :: n = len(theta)
+  !f2py intent(hide), depend(phi) :: m = len(phi)
+  call cycloid_path(r, theta, x, y)
+  call cycloid_cheek(r, phi, cx, cy)
+end subroutine cycloid_geometry_v
+
 ! The model registry, one model per line of `table` (fields separated by '|':
 ! name, selector, effects, exact_with, path, implemented, summary).
 subroutine models_v(table)

@@ -14,6 +14,7 @@ module pendula_simulate
   use pendula_kinds, only: dp
   use pendula_scene, only: scene_t, scene_effects
   use pendula_rigid, only: rigid_has_exact, rigid_exact, rigid_energy
+  use pendula_cycloid, only: cycloid_motion, cyc_ok, cyc_bad_param, cyc_beyond_cusp
   use pendula_integrators, only: make_model, event_spec, run_stats, integrate, m_rk4, m_verlet, &
     m_yoshida4, m_yoshida6, m_yoshida8, m_gauss4, m_gauss6, m_dopri5, m_dop853, st_too_many_steps, &
     st_cancelled, max_steps
@@ -25,7 +26,7 @@ module pendula_simulate
   integer, parameter, public :: sim_ok = 0, sim_bad_state = 1, sim_unsupported = 10, &
     sim_needs_dt = 11, sim_unsorted = 12, sim_integrator_failed = 13, sim_not_implemented = 14, &
     sim_model_clash = 15, sim_exact_refused = 16, sim_backward = 17, sim_gsl_failed = 18, &
-    sim_too_many_steps = 19, sim_cancelled = 20
+    sim_too_many_steps = 19, sim_cancelled = 20, sim_closed_form_only = 21, sim_beyond_cusp = 22
   !> method codes: the integrators' 1..9, then GSL's rk8pd and the exact path
   integer, parameter, public :: m_gsl_rk8pd = 10, m_exact = 0
 
@@ -48,8 +49,8 @@ module pendula_simulate
                  '(none)', 'exact', .true., 'rigid pendulum, Jacobi elliptic solution in every regime'), &
     model_info_t('cord', "cord='flexible'", 'damping torque drive', '(none)', 'hybrid', .false., &
                  'bob on a flexible cord (Garfinkel): circle, free flight, jerk'), &
-    model_info_t('cycloid', "guide='cycloid'", 'damping drive', 'damping drive', 'exact', .false., &
-                 'cycloidal guide (Huygens): isochronous, closed form'), &
+    model_info_t('cycloid', "guide='cycloid'", 'damping torque drive', 'damping torque drive', 'exact', &
+                 .true., 'cycloidal guide (Huygens): isochronous, closed form'), &
     model_info_t('gravity', "gravity='inverse-square'", 'damping torque drive', '(none)', 'integrated', &
                  .false., 'non-uniform gravity: energy, quadrature period, integrators')]
 
@@ -139,6 +140,20 @@ contains
         call integrate_model(sc, t, theta, v, stats, method, status, cancel)
       end if
       if (status == sim_ok) energy = rigid_energy(sc%eps, theta, v)
+    case (mid_cycloid)
+      ! a damped, driven harmonic oscillator in the arc length: never integrated
+      if (sc%method /= 'auto' .and. sc%method /= 'exact') then
+        status = sim_closed_form_only
+      else
+        method = m_exact
+        call cycloid_motion(sc%theta0, sc%v0, sc%eps, sc%guide_radius, sc%damping, sc%torque, &
+                            sc%drive_amplitude, sc%drive_frequency, sc%drive_phase, t, theta, v, energy, status)
+        select case (status)
+        case (cyc_ok)
+        case (cyc_beyond_cusp); status = sim_beyond_cusp
+        case default;           status = sim_bad_state
+        end select
+      end if
     end select
     if (status /= sim_ok) msg = simulate_status_text(status)
   end subroutine simulate_scene
@@ -211,6 +226,10 @@ contains
       write(s, '(a,es8.1,a)') 'the run needs more than', real(max_steps, dp), ' steps (the work limit): ' // &
         'shorten the span (t), or give a larger dt or rtol'
     case (sim_cancelled);        s = 'interrupted'
+    case (sim_closed_form_only); s = 'field ''method'': the cycloidal guide is answered in closed form; ' // &
+                                     'use ''auto'' or ''exact'''
+    case (sim_beyond_cusp);      s = 'the motion reaches the cusps of the cycloidal guide (|s| = 4R, ' // &
+                                     '|theta| = pi/2): start lower, slower, or drive less'
     case default;                s = 'unknown failure'
     end select
   end function simulate_status_text

@@ -25,6 +25,8 @@ module pendula_scene
     real(dp) :: sweep_values(max_sweep) = nan_dp
     integer :: n_sweep = 0
     character(len=256) :: name = ''
+    !> the cycloidal guide's generating radius R, in units of the length l
+    real(dp) :: guide_radius = 0.25_dp
   end type scene_t
 
 contains
@@ -66,7 +68,7 @@ contains
     character(len=*), intent(out) :: msg
     ! the namelist variables (same names as the fields)
     real(dp) :: eps, theta0, v0, t_start, t_end, damping, torque, drive_amplitude, &
-                drive_frequency, drive_phase, rtol, atol, dt, g, length
+                drive_frequency, drive_phase, rtol, atol, dt, g, length, guide_radius
     integer :: n_samples
     ! one more element and one more character than the scene holds: a longer
     ! list or string is refused with a message instead of being truncated
@@ -76,16 +78,16 @@ contains
     character(len=257) :: name
     namelist /scene/ eps, theta0, v0, t_start, t_end, n_samples, damping, torque, &
       drive_amplitude, drive_frequency, drive_phase, cord, guide, gravity, method, rtol, atol, dt, &
-      outputs, sweep, sweep_values, name, g, length
+      outputs, sweep, sweep_values, name, g, length, guide_radius
     character(len=:), allocatable :: text
     character(len=:), allocatable :: buf
     character(len=512) :: iom
     integer :: ios, i, j, k, start, line, nseen, jj, kk
     character(len=64) :: fname, seen(64)
-    character(len=16), parameter :: known_fields(24) = [character(len=16) :: 'eps', 'theta0', 'v0', &
+    character(len=16), parameter :: known_fields(25) = [character(len=16) :: 'eps', 'theta0', 'v0', &
       't_start', 't_end', 'n_samples', 'damping', 'torque', 'drive_amplitude', 'drive_frequency', &
       'drive_phase', 'cord', 'guide', 'gravity', 'method', 'rtol', 'atol', 'dt', 'outputs', 'sweep', &
-      'sweep_values', 'name', 'g', 'length']
+      'sweep_values', 'name', 'g', 'length', 'guide_radius']
 
     status = 0
     msg = ''
@@ -93,7 +95,7 @@ contains
     n_samples = sc%n_samples; damping = 0; torque = 0; drive_amplitude = 0; drive_frequency = 0
     drive_phase = 0; cord = sc%cord; guide = sc%guide; gravity = sc%gravity; method = sc%method
     rtol = sc%rtol; atol = sc%atol; dt = 0; outputs = ''; sweep = ''; sweep_values = nan_dp
-    name = ''; g = nan_dp; length = nan_dp
+    name = ''; g = nan_dp; length = nan_dp; guide_radius = sc%guide_radius
 
     k = utf8_error_at(text_in)
     if (k > 0) then
@@ -209,6 +211,7 @@ contains
     sc%gravity = lower(gravity); sc%method = lower(method); sc%rtol = rtol; sc%atol = atol
     sc%dt = dt; sc%outputs = outputs(1:max_outputs); sc%sweep = lower(sweep); sc%sweep_values = sweep_values(1:max_sweep)
     sc%name = name
+    sc%guide_radius = guide_radius
     sc%n_sweep = count(sweep_values(1:max_sweep) == sweep_values(1:max_sweep))
     call check(sc, g, length, status, msg)
     if (status /= 0) msg = trim(source) // ': ' // trim(msg)
@@ -262,6 +265,9 @@ contains
     end if
     if (.not. (sc%rtol > 0) .or. .not. (sc%atol >= 0)) then
       msg = 'fields ''rtol'' must be > 0 and ''atol'' >= 0'; return
+    end if
+    if (.not. (finite(sc%guide_radius) .and. sc%guide_radius > 0)) then
+      msg = 'field ''guide_radius'' must be positive and finite (R / l of the cycloidal guide)'; return
     end if
     if (.not. (sc%dt >= 0)) then
       msg = 'field ''dt'' must be >= 0 (0: chosen by the method)'; return

@@ -33,6 +33,7 @@ from .motion import Orbit, Trajectory, energy, exact_motion, orbit, period, simu
 from .scene import Scene, SceneError  # noqa: E402
 from .series import period_from_series, period_series, poincare_lindstedt  # noqa: E402
 from .systems import ModelInfo, models  # noqa: E402
+from .systems.cycloid import CycloidGeometry, cycloid_geometry, cycloid_period  # noqa: E402
 from .spectrum import Spectrum, fourier_series, odd_harmonics_above, spectra, spectrum  # noqa: E402
 
 __version__ = "0.1.0"
@@ -41,4 +42,5 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Scene", "SceneError", "simulate", "period", "orbit", "exact_motion", "energy",
            "Orbit", "Trajectory", "period_series", "period_from_series", "poincare_lindstedt",
            "find_events", "numerical_period", "Events",
-           "spectrum", "spectra", "Spectrum", "fourier_series", "odd_harmonics_above"]
+           "spectrum", "spectra", "Spectrum", "fourier_series", "odd_harmonics_above",
+           "models", "ModelInfo", "cycloid_geometry", "cycloid_period", "CycloidGeometry"]

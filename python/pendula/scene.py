@@ -83,6 +83,10 @@ class Scene:
         What to produce: see :data:`OUTPUTS`.
     sweep, sweep_values : str, tuple of float
         Optionally one field and the values it takes, one run per value.
+    guide_radius : float
+        With ``guide = 'cycloid'``: the generating radius R of the cheeks and
+        the bob's cycloid, in units of the length l (default 1/4: the rigid
+        pendulum's small-oscillation period).
     name : str
         A title for plots and file names.
     """
@@ -109,6 +113,7 @@ class Scene:
     sweep: str = ""
     sweep_values: tuple = ()
     name: str = ""
+    guide_radius: float = 0.25
     g: float = field(default=math.nan, repr=False)
     length: float = field(default=math.nan, repr=False)
 
@@ -175,9 +180,8 @@ class Scene:
 
     def require_implemented(self) -> None:
         """NotImplementedError naming the effects the scene format has room for
-        but pendula cannot simulate yet (the flexible cord, the cycloidal guide,
-        non-uniform gravity)."""
-        missing = [e for e in self.effects if e in ("cord", "guide", "gravity")]
+        but pendula cannot simulate yet (the flexible cord, non-uniform gravity)."""
+        missing = [e for e in self.effects if e in ("cord", "gravity")]
         if missing:
             raise NotImplementedError(f"pendula cannot simulate the effect(s) {', '.join(missing)} yet "
                                       f"(cord = {self.cord!r}, guide = {self.guide!r}, gravity = {self.gravity!r})")
@@ -227,7 +231,7 @@ def _fmt(v) -> str:
 # ---------------------------------------------------------------- validation
 
 _FLOATS = {"eps", "theta0", "v0", "t_start", "t_end", "damping", "torque", "drive_amplitude",
-           "drive_frequency", "drive_phase", "rtol", "atol", "dt", "g", "length"}
+           "drive_frequency", "drive_phase", "rtol", "atol", "dt", "g", "length", "guide_radius"}
 _INTS = {"n_samples"}
 _STRS = {"cord", "guide", "gravity", "method", "sweep", "name"}
 _TUPLES = {"outputs": str, "sweep_values": float}
@@ -301,6 +305,8 @@ def _validate(s: Scene) -> None:
         raise SceneError(f"field 'drive_frequency' must be >= 0, got {s.drive_frequency!r}")
     if s.rtol <= 0 or s.atol < 0:
         raise SceneError("fields 'rtol' must be > 0 and 'atol' >= 0")
+    if not s.guide_radius > 0:
+        raise SceneError(f"field 'guide_radius' must be positive (R / l of the cycloidal guide), got {s.guide_radius!r}")
     if s.dt < 0:
         raise SceneError(f"field 'dt' must be >= 0 (0: chosen by the method), got {s.dt!r}")
     for name, allowed in (("cord", CORDS), ("guide", GUIDES), ("gravity", GRAVITIES), ("method", METHODS)):
