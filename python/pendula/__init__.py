@@ -27,6 +27,7 @@ from . import _kernel as _k
 _k.gsl_init()  # GSL must never abort the process: switch its handler off once
 del _k
 
+from .density import angle_cdf, angle_density, arcsine_density  # noqa: E402
 from .elliptic import ellipe, ellipeinc, ellipf, ellipj, ellipk, nome  # noqa: E402
 from .integrate import Events, find_events, numerical_period  # noqa: E402
 from .motion import Orbit, Trajectory, energy, exact_motion, orbit, period, simulate  # noqa: E402
@@ -43,4 +44,5 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Orbit", "Trajectory", "period_series", "period_from_series", "poincare_lindstedt",
            "find_events", "numerical_period", "Events",
            "spectrum", "spectra", "Spectrum", "fourier_series", "odd_harmonics_above",
-           "models", "ModelInfo", "cycloid_geometry", "cycloid_period", "CycloidGeometry"]
+           "models", "ModelInfo", "cycloid_geometry", "cycloid_period", "CycloidGeometry",
+           "angle_density", "angle_cdf", "arcsine_density"]
