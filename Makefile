@@ -13,13 +13,17 @@ export PATH := $(CURDIR)/$(VENV)/bin:$(PATH)
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 SOURCES := $(shell find kernel python data/scenes -type f \( -name "*.f90" -o -name "*.c" -o -name "*.py" -o -name "*.inc" -o -name "*.nml" \)) meson.build pyproject.toml
 
-.PHONY: demo test bench system-deps clean
+.PHONY: demo test test-debug bench system-deps clean
 
 demo: $(VENV)/.installed
 	$(PY) -m pendula demo
 
 test: $(VENV)/.installed
 	$(PY) -m pytest -q tests
+
+# the debug variant (-fcheck=all; ASan and UBSan on the batch programs): see .ci/debug
+test-debug: $(VENV)/.installed
+	bash .ci/debug
 
 bench: $(VENV)/.installed
 	$(PY) -m pendula bench
@@ -42,4 +46,4 @@ $(VENV)/.installed: $(VENV)/.deps $(SOURCES) | system-deps
 	@touch $@
 
 clean:
-	rm -rf build out $(VENV)/.installed
+	rm -rf build build-asan build-debug out $(VENV)/.installed

@@ -9,6 +9,11 @@ where a measured, explained limit is stated beside it:
   double, so v carries an absolute error of ~0.6 eps of its scale
   2 k sqrt(eps) (up to 30 here), which is up to ~20 eps of a small |v|;
   theta is within 4 eps everywhere.
+* F(phi|m) for m > 1 next to the edge of its real domain |sin phi| =
+  1/sqrt(m): dF/dphi = 1/sqrt(1 - m sin^2 phi) is unbounded there, so the
+  problem itself amplifies the rounding of phi's sine and cosine; the bound
+  there is 4 eps plus F's condition number |phi F'(phi) / F| (E(phi|m) has
+  F' -> 0 at the edge and keeps 4 eps).
 * sn, cn, dn for m < 0: the imaginary-modulus transformation divides the
   core's sn by dn and by sqrt(1 - m) (two more roundings on ~1.5 eps each):
   measured 4.6 eps at m = -1343.
@@ -35,12 +40,24 @@ def test_the_grid_has_every_class_at_full_size():
     assert all(len(a) >= 1900 for a in GRIDS.values())
 
 
+def bounds(cls, a):
+    """The bound of each point: 4 eps (or the class's measured limit), plus, for F
+    beyond m = 1, F's own condition number at the point."""
+    b = np.full(len(a), float(LIMITS.get(cls, 4.0)))
+    if cls == "f_gt1_m":
+        phi, m, f = a[:, 0], a[:, 1], a[:, 4]
+        d = np.sqrt(np.maximum(1.0 - m * np.sin(phi) ** 2, 1e-300))
+        b += np.nan_to_num(np.abs(phi) / (d * np.maximum(np.abs(f), 1e-300)), nan=0.0)
+    return b
+
+
 @pytest.mark.parametrize("cls", sorted(GRIDS))
 def test_worst_error_of_the_class(cls):
-    err = grid_errors(cls, GRIDS[cls])
-    bound = LIMITS.get(cls, 4.0)
-    worst = int(np.argmax(err))
-    assert err[worst] <= bound, f"{cls}: {err[worst]:.3g} eps at {GRIDS[cls][worst, :4].tolist()}"
+    a = GRIDS[cls]
+    err = grid_errors(cls, a)
+    over = err / bounds(cls, a)
+    worst = int(np.argmax(over))
+    assert over[worst] <= 1.0, f"{cls}: {err[worst]:.3g} eps at {a[worst, :4].tolist()}"
 
 
 @pytest.mark.parametrize("cls", [c for c in sorted(GRIDS) if c.startswith("exact")])

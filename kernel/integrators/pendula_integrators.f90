@@ -466,7 +466,10 @@ contains
         ! outputs inside (t, t + h]
         do while (kout <= size(ts))
           if (dir * (ts(kout) - (t + h)) > 0.0_dp) exit
-          if (stop_now .and. dir * (ts(kout) - tev(nev)) > 0.0_dp) exit
+          ! (nested: Fortran's .and. need not short-circuit, and tev(0) does not exist)
+          if (stop_now) then
+            if (dir * (ts(kout) - tev(nev)) > 0.0_dp) exit
+          end if
           x = (ts(kout) - t) / h
           yy = dense(x)
           ths(kout) = yy(1); vs(kout) = yy(2)

@@ -92,8 +92,8 @@ contains
       ! parts, 1e-33 / 1.5e-15 of it was lost: 450 eps after 7700 periods)
       call two_sum(pi - abs(th), pi_lo, p, e)
       e = e + (pi_lo2 - sign(1.0_dp, th) * tl)
-      call fast_two_sum(p, e, p, e)
-      call dd_sincos(0.5_dp * p, 0.5_dp * e, c0, c0l, s0, s0l)
+      call fast_two_sum(p, e, qh, ql)
+      call dd_sincos(0.5_dp * qh, 0.5_dp * ql, c0, c0l, s0, s0l)
       s0 = sign(1.0_dp, th) * s0; s0l = sign(1.0_dp, th) * s0l
     end if
     ! w = v0 / (2 sqrt(eps)) in double-double
@@ -109,11 +109,11 @@ contains
     ! the distance from the separatrix: N = 4 eps c0^2 - v0^2 (d = N / (4 eps));
     ! where 4 eps or v0^2 would overflow, as 4 eps (c0 - |w|)(c0 + |w|)
     if (eps < 1.0e300_dp .and. abs(v0) < 1.0e150_dp) then
-      call dd_mul(c0, c0l, c0, c0l, a, e)
-      call dd_mul(a, e, 4.0_dp * eps, 0.0_dp, a, e)
+      call dd_mul(c0, c0l, c0, c0l, qh, ql)
+      call dd_mul(qh, ql, 4.0_dp * eps, 0.0_dp, a, e)
       call two_prod(v0, v0, b, r)
-      call dd_add(a, e, -b, -r, nh, nl)
-      call dd_div_d(nh, nl, 4.0_dp * eps, nh, nl)
+      call dd_add(a, e, -b, -r, qh, ql)
+      call dd_div_d(qh, ql, 4.0_dp * eps, nh, nl)
     else
       call dd_add(c0, c0l, -awh, -awl, dh, dl)
       call dd_add(c0, c0l, awh, awl, sh, sl)
@@ -187,8 +187,8 @@ contains
       call phase_dd(o%dir * s0, c0, awh / kh, o%plan%kh, o%plan%kl, o%m, o%mch, o%u0, o%u0l)
       call two_prod(o%dir * 2.0_dp * n, o%plan%kh, p, e)
       e = e + o%dir * 2.0_dp * n * o%plan%kl
-      call two_sum(p, o%u0, p, r)
-      call fast_two_sum(p, (r + e) + o%u0l, o%u0, o%u0l)
+      call two_sum(p, o%u0, qh, r)
+      call fast_two_sum(qh, (r + e) + o%u0l, o%u0, o%u0l)
     end if
   end subroutine orbit_setup
 
@@ -287,7 +287,9 @@ contains
     s = theta0 - p                     ! exact (Sterbenz) when n is the nearest quotient
     call two_sum(s, -q, th, r)
     tl = r - e - f - 2.0_dp * n * pi_lo2
-    call fast_two_sum(th, tl, th, tl)
+    call fast_two_sum(th, tl, s, r)
+    th = s
+    tl = r
   end subroutine reduce_2pi
 
   !> The phase u0 (double-double) with sn(u0) = sn0, cn(u0) = cn0,
