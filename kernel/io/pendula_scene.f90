@@ -70,12 +70,12 @@ contains
     real(dp) :: eps, theta0, v0, t_start, t_end, damping, torque, drive_amplitude, &
                 drive_frequency, drive_phase, rtol, atol, dt, g, length, guide_radius
     integer :: n_samples
-    ! one more element and one more character than the scene holds: a longer
+    ! one more element and far more characters than the scene holds: a longer
     ! list or string is refused with a message instead of being truncated
-    character(len=33) :: cord, guide, gravity, method, sweep
-    character(len=17) :: outputs(max_outputs + 1)
+    character(len=1024) :: cord, guide, gravity, method, sweep
+    character(len=1024) :: outputs(max_outputs + 1)
     real(dp) :: sweep_values(max_sweep + 1)
-    character(len=257) :: name
+    character(len=1024) :: name
     namelist /scene/ eps, theta0, v0, t_start, t_end, n_samples, damping, torque, &
       drive_amplitude, drive_frequency, drive_phase, cord, guide, gravity, method, rtol, atol, dt, &
       outputs, sweep, sweep_values, name, g, length, guide_radius
