@@ -228,3 +228,88 @@ subroutine spectra_v(handle, n, nsig, signals, dt, window, nh, omega, power, sta
   end if
   call power_spectra(int(handle, c_intptr_t), signals, dt, window, omega, power, status)
 end subroutine spectra_v
+
+! ====================================================================
+! Issue 13: Huygens' cycloidal pendulum, non-uniform gravity, the density of the angle
+! ====================================================================
+
+! The cycloidal pendulum in closed form.  params = [eps, beta, tau, amp, Omega, phase],
+! r = R / l.  status: see pendula_cycloid (0 ok, 1 bad eps/r, 3 bad state, 4 reaches a cusp).
+subroutine cycloid_run_v(n, params, r, theta0, v0, t, theta, v, s, sd, status)
+  use pendula_cycloid, only: cycloid_run
+  implicit none
+  integer, intent(in) :: n
+  double precision, intent(in) :: params(6), r, theta0, v0, t(n)
+  double precision, intent(out) :: theta(n), v(n), s(n), sd(n)
+  integer, intent(out) :: status
+  !f2py intent(hide), depend(t) :: n = len(t)
+  call cycloid_run(params(1), r, params(2), params(3), params(4), params(5), params(6), theta0, v0, t, &
+                   theta, v, s, sd, status)
+end subroutine cycloid_run_v
+
+! Potential V(theta) and acceleration -V'(theta) of a gravity field (kind 0, 1, 2; see pendula_gravity).
+subroutine gravity_field_v(n, kind, par, eps, theta, pot, acc, status)
+  use pendula_gravity, only: gravity_check, gravity_potential, gravity_accel
+  implicit none
+  integer, intent(in) :: n, kind
+  double precision, intent(in) :: par, eps, theta(n)
+  double precision, intent(out) :: pot(n), acc(n)
+  integer, intent(out) :: status
+  !f2py intent(hide), depend(theta) :: n = len(theta)
+  status = gravity_check(kind, par, eps)
+  pot = gravity_potential(kind, par, eps, theta)
+  acc = gravity_accel(kind, par, eps, theta)
+end subroutine gravity_field_v
+
+! The orbit in a gravity field: info = [regime, E, m, K, theta_max, period].
+subroutine gravity_orbit_v(kind, par, eps, theta0, v0, info, status)
+  use pendula_gravity, only: gravity_orbit
+  implicit none
+  integer, intent(in) :: kind
+  double precision, intent(in) :: par, eps, theta0, v0
+  double precision, intent(out) :: info(6)
+  integer, intent(out) :: status
+  integer :: regime
+  call gravity_orbit(kind, par, eps, theta0, v0, info(2), regime, info(3), info(4), info(5), info(6), status)
+  info(1) = regime
+end subroutine gravity_orbit_v
+
+! The integrand h(u) of t = int h du at the nodes u (regime 0 libration, 2 rotation).
+subroutine gravity_h_v(n, kind, par, eps, regime, m, e, u, h)
+  use pendula_gravity, only: gravity_h
+  implicit none
+  integer, intent(in) :: n, kind, regime
+  double precision, intent(in) :: par, eps, m, e, u(n)
+  double precision, intent(out) :: h(n)
+  !f2py intent(hide), depend(u) :: n = len(u)
+  h = gravity_h(kind, par, eps, regime, m, e, u)
+end subroutine gravity_h_v
+
+! integrate_v with a non-uniform gravity field (kind, par) in the model.
+subroutine integrate_gravity_v(n, method, params, gkind, gpar, theta0, v0, t, rtol, atol, dt, ev_kind, &
+                               ev_level, ev_dir, ev_terminal, max_ev, theta, v, stats, status, nev, tev, thev, vev)
+  use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate
+  use pendula_gravity, only: gravity_check
+  implicit none
+  integer, intent(in) :: n, method, gkind, ev_kind, ev_dir, ev_terminal, max_ev
+  double precision, intent(in) :: params(6), gpar, theta0, v0, t(n), rtol, atol, dt, ev_level
+  double precision, intent(out) :: theta(n), v(n), stats(4)
+  integer, intent(out) :: status, nev
+  double precision, intent(out) :: tev(max_ev), thev(max_ev), vev(max_ev)
+  !f2py intent(hide), depend(t) :: n = len(t)
+  type(pendulum_model) :: m
+  type(event_spec) :: ev
+  type(run_stats) :: st
+  tev = 0; thev = 0; vev = 0; theta = 0; v = 0; stats = 0
+  nev = 0
+  if (gravity_check(gkind, gpar, params(1)) /= 0) then
+    status = 20
+    return
+  end if
+  m = make_model(params(1), params(2), params(3), params(4), params(5), params(6))
+  m%gkind = gkind
+  m%gpar = gpar
+  ev%kind = ev_kind; ev%level = ev_level; ev%direction = ev_dir; ev%terminal = ev_terminal /= 0
+  call integrate(m, method, theta0, v0, t, rtol, atol, dt, theta, v, st, status, ev, nev, tev, thev, vev)
+  stats = [dble(st%nsteps), dble(st%naccept), dble(st%nreject), dble(st%nfev)]
+end subroutine integrate_gravity_v
