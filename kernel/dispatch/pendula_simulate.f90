@@ -4,14 +4,16 @@ module pendula_simulate
   use pendula_kinds, only: dp
   use pendula_scene, only: scene_t, scene_effects
   use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_eval
-  use pendula_integrators, only: make_model, event_spec, run_stats, integrate, m_rk4, m_verlet, &
+  use pendula_cycloid, only: cycloid_run, cycloid_omega2
+  use pendula_gravity, only: gk_uniform, gk_inverse_square, gk_linear, gravity_energy
+  use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate, m_rk4, m_verlet, &
     m_yoshida4, m_yoshida6, m_yoshida8, m_gauss4, m_gauss6, m_dopri5, m_dop853
   implicit none
   private
-  public :: simulate_scene, simulate_status_text
+  public :: simulate_scene, simulate_status_text, scene_energy
 
   integer, parameter, public :: sim_ok = 0, sim_bad_state = 1, sim_unsupported = 10, &
-    sim_needs_dt = 11, sim_unsorted = 12, sim_integrator_failed = 13
+    sim_needs_dt = 11, sim_unsorted = 12, sim_integrator_failed = 13, sim_cycloid_cusp = 14
 
 contains
 
@@ -25,8 +27,23 @@ contains
     type(run_stats) :: st
     integer :: method, nev
     real(dp) :: tev(1), thev(1), vev(1)
+    type(pendulum_model) :: model
+    real(dp), allocatable :: s(:), sd(:)
     nsteps = 0
     nrhs = 0
+    ! --- issue 13 hook: the cycloidal pendulum is closed form, never integrated ---
+    if (sc%guide == 'cycloid') then
+      allocate(s(size(t)), sd(size(t)))
+      call cycloid_run(sc%eps, sc%cycloid_radius, sc%damping, sc%torque, sc%drive_amplitude, &
+                       sc%drive_frequency, sc%drive_phase, sc%theta0, sc%v0, t, theta, v, s, sd, status)
+      if (status == 4) then
+        status = sim_cycloid_cusp
+      else if (status /= 0) then
+        status = sim_bad_state
+      end if
+      return
+    end if
+    ! --- end issue 13 hook ---
     if (len_trim(scene_effects(sc)) == 0 .and. (sc%method == 'auto' .or. sc%method == 'exact')) then
       call orbit_setup(sc%theta0, sc%v0, sc%eps, o, status)
       if (status /= 0) then
@@ -56,14 +73,41 @@ contains
       if (any(t(2:) < t(:size(t) - 1))) then
         status = sim_unsorted; return
       end if
-      call integrate(make_model(sc%eps, sc%damping, sc%torque, sc%drive_amplitude, sc%drive_frequency, &
-                                sc%drive_phase), method, sc%theta0, sc%v0, t, sc%rtol, sc%atol, sc%dt, &
+      model = make_model(sc%eps, sc%damping, sc%torque, sc%drive_amplitude, sc%drive_frequency, sc%drive_phase)
+      ! --- issue 13 hook: non-uniform gravity in the model ---
+      select case (trim(sc%gravity))
+      case ('inverse-square'); model%gkind = gk_inverse_square; model%gpar = sc%gravity_distance
+      case ('linear');         model%gkind = gk_linear;         model%gpar = sc%gravity_gradient
+      case default;            model%gkind = gk_uniform
+      end select
+      ! --- end issue 13 hook ---
+      call integrate(model, method, sc%theta0, sc%v0, t, sc%rtol, sc%atol, sc%dt, &
                      theta, v, st, status, ev, nev, tev, thev, vev)
       nsteps = int(st%nsteps)
       nrhs = int(st%nfev)
       if (status /= 0) status = sim_integrator_failed
     end if
   end subroutine simulate_scene
+
+  !> Issue 13 hook: the energy of the scene's model along (theta, v) (per m l^2):
+  !> rigid v^2/2 + V(theta) of its gravity field; on the cycloid s'^2/2 + w2 s^2/2 - tau s.
+  function scene_energy(sc, theta, v) result(e)
+    type(scene_t), intent(in) :: sc
+    real(dp), intent(in) :: theta(:), v(:)
+    real(dp) :: e(size(theta))
+    real(dp) :: r
+    if (sc%guide == 'cycloid') then
+      r = sc%cycloid_radius
+      e = 0.5_dp * (4.0_dp * r * cos(theta) * v)**2 + 0.5_dp * cycloid_omega2(sc%eps, r) * &
+          (4.0_dp * r * sin(theta))**2 - sc%torque * 4.0_dp * r * sin(theta)
+    else
+      select case (trim(sc%gravity))
+      case ('inverse-square'); e = gravity_energy(gk_inverse_square, sc%gravity_distance, sc%eps, theta, v)
+      case ('linear');         e = gravity_energy(gk_linear, sc%gravity_gradient, sc%eps, theta, v)
+      case default;            e = 0.5_dp * v * v + 2.0_dp * sc%eps * sin(0.5_dp * theta)**2
+      end select
+    end if
+  end function scene_energy
 
   function simulate_status_text(status) result(s)
     integer, intent(in) :: status
@@ -75,6 +119,7 @@ contains
     case (sim_needs_dt);         s = 'field ''dt'': fixed-step methods need dt > 0'
     case (sim_unsorted);         s = 'output times must be increasing for integrators'
     case (sim_integrator_failed); s = 'the integrator failed (step size underflow or non-finite state)'
+    case (sim_cycloid_cusp);     s = 'the cycloidal pendulum reaches a cusp (|s| > 4R, the ends of the cheeks)'
     case default;                s = 'unknown failure'
     end select
   end function simulate_status_text

@@ -34,10 +34,17 @@ from .scene import Scene, SceneError  # noqa: E402
 from .series import period_from_series, period_series, poincare_lindstedt  # noqa: E402
 from .spectrum import Spectrum, fourier_series, odd_harmonics_above, spectra, spectrum  # noqa: E402
 
+# issue 13: Huygens' cycloidal pendulum, non-uniform gravity, the density of the angle
+from . import models  # noqa: E402
+from .density import angle_cdf, angle_density, arcsine_density  # noqa: E402
+from .models.cycloid import cycloid_geometry  # noqa: E402
+from .models.gravity import gravity_orbit  # noqa: E402
+
 __version__ = "0.1.0"
 
 __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Scene", "SceneError", "simulate", "period", "orbit", "exact_motion", "energy",
            "Orbit", "Trajectory", "period_series", "period_from_series", "poincare_lindstedt",
            "find_events", "numerical_period", "Events",
-           "spectrum", "spectra", "Spectrum", "fourier_series", "odd_harmonics_above"]
+           "spectrum", "spectra", "Spectrum", "fourier_series", "odd_harmonics_above",
+           "angle_density", "angle_cdf", "arcsine_density", "cycloid_geometry", "gravity_orbit"]

@@ -54,9 +54,20 @@ def _run(scene, method, t_sorted, ev_kind=0, ev_level=0.0, ev_dir=0, terminal=Fa
     if method in ADAPTIVE and not (scene.rtol > 0 and scene.atol >= 0):
         raise ValueError("adaptive methods need rtol > 0 and atol >= 0")
     scene.require_implemented()
-    out = _kernel.integrate_v(CODES[method], _params(scene), scene.theta0, scene.v0, t_sorted,
-                              scene.rtol, scene.atol, scene.dt, ev_kind, ev_level, ev_dir, int(terminal),
-                              max_events)
+    if scene.guide == "cycloid":
+        raise ValueError("the cycloidal pendulum is solved in closed form, never integrated")
+    if scene.gravity != "uniform":  # issue 13 hook: the gravity field in the integrators' model
+        from .models.gravity import field_of
+
+        if method == "gsl-rk8pd":
+            raise ValueError("gsl-rk8pd does not take a non-uniform gravity field; use dop853")
+        out = _kernel.integrate_gravity_v(CODES[method], _params(scene), *field_of(scene), scene.theta0,
+                                          scene.v0, t_sorted, scene.rtol, scene.atol, scene.dt, ev_kind,
+                                          ev_level, ev_dir, int(terminal), max_events)
+    else:
+        out = _kernel.integrate_v(CODES[method], _params(scene), scene.theta0, scene.v0, t_sorted,
+                                  scene.rtol, scene.atol, scene.dt, ev_kind, ev_level, ev_dir, int(terminal),
+                                  max_events)
     theta, v, stats, status, nev, tev, thev, vev = out
     if status not in (0, 10):
         if status > 100:
@@ -90,6 +101,10 @@ def integrate_scene(scene: Scene, t, method: str = "auto"):
     v[order] = v_s
     theta = theta.reshape(t.shape)
     v = v.reshape(t.shape)
+    if scene.gravity != "uniform":  # issue 13 hook: the field's own energy
+        from .models.gravity import potential
+
+        return Trajectory(t, theta, v, 0.5 * v * v + potential(scene, theta), method, scene, stats)
     return Trajectory(t, theta, v, energy(theta, v, scene.eps), method, scene, stats)
 
 

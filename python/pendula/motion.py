@@ -29,6 +29,10 @@ def simulate(scene: Scene, t=None, method: str | None = None) -> Trajectory:
     t = scene.times() if t is None else as_float(t, "t")
     method = method or scene.method
     scene.require_implemented()
+    if scene.guide == "cycloid":  # issue 13 hook: closed form, never integrated
+        from .models.cycloid import simulate_cycloid
+
+        return simulate_cycloid(scene, t, method)
     if method in ("auto", "exact") and scene.is_conservative_rigid:
         theta, v = exact_motion(scene.theta0, scene.v0, scene.eps, t)
         return Trajectory(t, theta, v, energy(theta, v, scene.eps), "exact", scene)
@@ -47,6 +51,15 @@ def period(scene: Scene) -> float:
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"period expects a pendula.Scene, got {type(scene).__name__}")
+    # issue 13 hook: the cycloid (any amplitude) and non-uniform gravity (exact quadrature)
+    if set(scene.effects) <= {"guide", "torque"} and scene.guide == "cycloid":
+        from .models.cycloid import cycloid_period
+
+        return cycloid_period(scene)
+    if scene.effects == ("gravity",):
+        from .models.gravity import gravity_orbit
+
+        return gravity_orbit(scene).period
     if not scene.is_conservative_rigid:
         raise ValueError(f"period(scene) is the exact period of a conservative orbit; the scene names "
                          f"{', '.join(scene.effects)} (see pendula.numerical_period for event-based periods)")

@@ -1,0 +1,222 @@
+"""The density of the angle (source 003, task 5): how much of its time a
+conservative orbit spends near each angle.
+
+Over one period of a libration the bob passes every angle twice, so the
+time-averaged probability density is p(theta) = 2 / (T |theta'(theta)|) on
+[-theta_max, theta_max]; over one turn of a rotation it is 1 / (T |theta'|)
+on [-pi, pi).  The cumulative distribution is the time to reach theta over
+the period, an incomplete elliptic integral F: with sin(theta/2) =
+sqrt(m) sin(phi) (libration) or phi = theta/2 (rotation),
+
+    t(theta) = int_0^F(phi | m) h(u) du,
+
+where h is constant (1/sqrt(eps) in libration, sqrt(2/E) in rotation) for
+the rigid pendulum in uniform gravity, so that the CDF is exactly
+1/2 + 2 F(phi|m) / (4 K(m)) (libration) or 1/2 + F(theta/2 | m) / (2 K(m))
+(rotation): finite and accurate up to the turning points, where the density
+blows up.  In a non-uniform field h(u) is smooth, even and 2K-periodic (see
+pendula.models.gravity), and int_0^U h du is summed from its cosine series.
+For the cycloidal pendulum s = 4 R sin(theta) is harmonic in time, so s has
+the arcsine law at every amplitude: p(s) = 1 / (pi sqrt(A^2 - (s - s_c)^2)).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ._checks import as_float
+from .elliptic import ellipf
+
+__all__ = ["angle_density", "angle_cdf", "arcsine_density"]
+
+
+def arcsine_density(theta, theta_init):
+    """The linear limit (source 003): 1 / (pi sqrt(theta_init^2 - theta^2)) inside, 0 outside."""
+    theta = as_float(theta, "theta")
+    a = float(theta_init)
+    out = np.zeros_like(theta)
+    inside = np.abs(theta) < abs(a)
+    out[inside] = 1.0 / (math.pi * np.sqrt((abs(a) - np.abs(theta[inside])) * (abs(a) + np.abs(theta[inside]))))
+    return out
+
+
+def _check(scene):
+    from .scene import Scene
+
+    if not isinstance(scene, Scene):
+        raise TypeError(f"expected a pendula.Scene, got {type(scene).__name__}")
+    scene.require_implemented()
+    bad = [e for e in scene.effects if e in ("damping", "drive")]
+    if bad:
+        raise ValueError(f"the density of the angle is defined over the period of a conservative orbit; "
+                         f"the scene names {', '.join(bad)}")
+    if "torque" in scene.effects and scene.guide != "cycloid":
+        raise NotImplementedError("angle_density: the rigid pendulum with a constant torque is not "
+                                  "implemented (only the cycloid accepts torque here)")
+
+
+class _Model:
+    """What the density needs from one orbit: (density, cdf) callables."""
+
+    def __init__(self, scene):
+        _check(scene)
+        self.scene = scene
+        if scene.guide == "cycloid":
+            self._setup_cycloid()
+        else:
+            self._setup_energy()
+
+    # -- the cycloid: the arcsine law in s
+    def _setup_cycloid(self):
+        sc = self.scene
+        r = sc.cycloid_radius
+        w2 = sc.eps / (4 * r)
+        s0 = 4 * r * math.sin(sc.theta0)
+        sd0 = 4 * r * math.cos(sc.theta0) * sc.v0
+        self.r = r
+        self.centre = sc.torque / w2
+        self.amp = math.hypot(s0 - self.centre, sd0 / math.sqrt(w2))
+        if not self.amp > 0:
+            raise ValueError("the orbit is a point at rest: its density is a delta, not a function")
+        if abs(self.centre) + self.amp > 4 * r:
+            raise ValueError("the motion runs beyond a cusp (|s| > 4R, the ends of the cheeks)")
+        self.kind = "cycloid"
+
+    # -- rigid pendulum, uniform or non-uniform gravity: through F and the cosine series of h
+    def _setup_energy(self):
+        from .models.gravity import gravity_orbit, h_samples
+
+        sc = self.scene
+        o = gravity_orbit(sc)
+        if o.regime == "separatrix":
+            raise ValueError("on the separatrix the period is infinite: the density is a delta at the top")
+        if not o.m > 0:
+            raise ValueError("the orbit is a point at rest: its density is a delta, not a function")
+        self.orbit = o
+        self.kind = o.regime
+        if o.regime == "libration" and sc.v0 == 0.0:
+            self.mc = math.cos(0.5 * sc.theta0) ** 2     # exact complement when starting at rest
+        else:
+            self.mc = 1.0 - o.m
+        K = o.K
+        # cosine coefficients of h on its period 2K: doubling until the last ones are below rounding
+        n = 16
+        while True:
+            u = np.linspace(0.0, K, n + 1)
+            h = h_samples(sc, o, u)
+            c = np.fft.rfft(np.concatenate([h, h[-2:0:-1]])).real
+            a = c / n
+            a[0] *= 0.5
+            a[n] *= 0.5
+            if np.max(np.abs(a[3 * n // 4:])) <= 2 * np.finfo(float).eps * abs(a[0]) or n >= 1 << 16:
+                break
+            n *= 2
+        self.a = a
+        self.K = K
+        self.T = (4.0 if o.regime == "libration" else 2.0) * a[0] * K
+
+    def _time(self, U):
+        """int_0^U h du from the cosine series (U in [-K, K])."""
+        j = np.arange(1, self.a.size)
+        U = np.asarray(U, dtype=float)
+        s = (self.a[1:] * self.K / (j * math.pi)) * np.sin(np.multiply.outer(U, j) * (math.pi / self.K))
+        return self.a[0] * U + s.sum(axis=-1)
+
+    def _h(self, U):
+        j = np.arange(self.a.size)
+        return (self.a * np.cos(np.multiply.outer(np.asarray(U, dtype=float), j) * (math.pi / self.K))).sum(axis=-1)
+
+    def density(self, theta):
+        out = np.zeros_like(theta)
+        if self.kind == "cycloid":
+            r = self.r
+            x = 4 * r * np.sin(theta) - self.centre
+            inside = (np.abs(x) < self.amp) & (np.abs(theta) <= math.pi / 2)
+            xi = x[inside]
+            out[inside] = 4 * r * np.cos(theta[inside]) / (math.pi * np.sqrt((self.amp - xi) * (self.amp + xi)))
+            return out
+        if self.kind == "libration":
+            k = math.sqrt(self.orbit.m)
+            s = np.abs(np.sin(0.5 * theta))
+            inside = (np.abs(theta) < self.orbit.theta_max)
+            si = s[inside]
+            phi = np.arcsin(np.minimum(1.0, si / k))
+            U = ellipf(phi, self.orbit.m, self.mc)
+            out[inside] = self._h(U) / (self.T * np.sqrt((k - si) * (k + si)))
+            return out
+        # rotation: one turn on [-pi, pi)
+        w = np.remainder(theta + math.pi, 2 * math.pi) - math.pi
+        U = ellipf(0.5 * w, self.orbit.m, self.mc)
+        return self._h(U) / (2 * self.T * np.sqrt(1.0 - self.orbit.m * np.sin(0.5 * w) ** 2))
+
+    def cdf(self, theta):
+        if self.kind == "cycloid":
+            x = 4 * self.r * np.sin(np.clip(theta, -math.pi / 2, math.pi / 2)) - self.centre
+            out = 0.5 + np.arcsin(np.clip(x / self.amp, -1.0, 1.0)) / math.pi
+            out = np.where(theta > math.pi / 2, 1.0, np.where(theta < -math.pi / 2, 0.0, out))
+            return out
+        if self.kind == "libration":
+            k = math.sqrt(self.orbit.m)
+            s = np.abs(np.sin(0.5 * np.clip(theta, -self.orbit.theta_max, self.orbit.theta_max)))
+            phi = np.arcsin(np.minimum(1.0, s / k))
+            U = ellipf(phi, self.orbit.m, self.mc)
+            out = 0.5 + np.sign(theta) * 2.0 * self._time(U) / self.T
+            out = np.where(theta >= self.orbit.theta_max, 1.0, np.where(theta <= -self.orbit.theta_max, 0.0, out))
+            return np.clip(out, 0.0, 1.0)
+        # rotation: the CDF over [-pi, pi), continued by whole turns
+        turns = np.floor((theta + math.pi) / (2 * math.pi))
+        w = theta - 2 * math.pi * turns
+        U = ellipf(0.5 * w, self.orbit.m, self.mc)
+        return turns + 0.5 + self._time(U) / self.T
+
+
+def angle_density(scene, theta):
+    """The time-averaged probability density of the angle over one period.
+
+    Parameters
+    ----------
+    scene : Scene
+        A conservative scene: the rigid pendulum in uniform or non-uniform
+        gravity, or the cycloidal pendulum (torque allowed there).
+    theta : array_like
+        Angles.  Libration: the density lives on (-theta_max, theta_max) and
+        is 0 outside; rotation: over one turn, theta taken modulo 2 pi into
+        [-pi, pi); cycloid: theta is the angle of the free cord.
+
+    Returns
+    -------
+    ndarray
+        p(theta); it integrates to 1 over the orbit and is infinite (not
+        returned: the endpoints are excluded) at the turning points.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> sc = pendula.Scene(theta0=1e-3)
+    >>> p = float(pendula.angle_density(sc, 0.0))
+    >>> round(p * 3.141592653589793 * 1e-3, 6)      # the arcsine law 1/(pi theta0) at 0
+    1.0
+    """
+    theta = as_float(theta, "theta")
+    return _Model(scene).density(theta)
+
+
+def angle_cdf(scene, theta):
+    """The cumulative distribution of the angle over one period (see :func:`angle_density`).
+
+    Exact through the incomplete elliptic integral F, so it is finite and
+    accurate up to the turning points.  Libration: 0 below -theta_max, 1
+    above theta_max.  Rotation: the fraction of a turn from -pi, continued by
+    whole turns (so it increases by 1 per 2 pi).
+
+    Examples
+    --------
+    >>> import pendula
+    >>> sc = pendula.Scene(theta0=2.0)
+    >>> [round(float(x), 15) for x in pendula.angle_cdf(sc, [-2.0, 0.0, 2.0])]
+    [0.0, 0.5, 1.0]
+    """
+    theta = as_float(theta, "theta")
+    return _Model(scene).cdf(theta)
