@@ -261,28 +261,29 @@ subroutine gravity_field_v(n, kind, par, eps, theta, pot, acc, status)
   acc = gravity_accel(kind, par, eps, theta)
 end subroutine gravity_field_v
 
-! The orbit in a gravity field: info = [regime, E, m, K, theta_max, period].
+! The orbit in a gravity field: info = [regime, E, m, K, theta_max, period, mc].
 subroutine gravity_orbit_v(kind, par, eps, theta0, v0, info, status)
   use pendula_gravity, only: gravity_orbit
   implicit none
   integer, intent(in) :: kind
   double precision, intent(in) :: par, eps, theta0, v0
-  double precision, intent(out) :: info(6)
+  double precision, intent(out) :: info(7)
   integer, intent(out) :: status
   integer :: regime
-  call gravity_orbit(kind, par, eps, theta0, v0, info(2), regime, info(3), info(4), info(5), info(6), status)
+  call gravity_orbit(kind, par, eps, theta0, v0, info(2), regime, info(3), info(7), info(4), info(5), info(6), &
+                     status)
   info(1) = regime
 end subroutine gravity_orbit_v
 
 ! The integrand h(u) of t = int h du at the nodes u (regime 0 libration, 2 rotation).
-subroutine gravity_h_v(n, kind, par, eps, regime, m, e, u, h)
+subroutine gravity_h_v(n, kind, par, eps, regime, m, mc, e, u, h)
   use pendula_gravity, only: gravity_h
   implicit none
   integer, intent(in) :: n, kind, regime
-  double precision, intent(in) :: par, eps, m, e, u(n)
+  double precision, intent(in) :: par, eps, m, mc, e, u(n)
   double precision, intent(out) :: h(n)
   !f2py intent(hide), depend(u) :: n = len(u)
-  h = gravity_h(kind, par, eps, regime, m, e, u)
+  h = gravity_h(kind, par, eps, regime, m, mc, e, u)
 end subroutine gravity_h_v
 
 ! integrate_v with a non-uniform gravity field (kind, par) in the model.

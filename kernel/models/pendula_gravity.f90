@@ -130,11 +130,11 @@ contains
   !> The integrand h(u) of t = int h du at the nodes u (see the module header):
   !> regime gr_libration: m = w_m, h = sqrt(2/Q(m sn^2 u, m));
   !> gr_rotation: m = m_r, h = sqrt(2/(E H(sn^2 u))).
-  elemental function gravity_h(kind, par, eps, regime, m, e, u) result(h)
+  elemental function gravity_h(kind, par, eps, regime, m, mc, e, u) result(h)
     integer, intent(in) :: kind, regime
-    real(dp), intent(in) :: par, eps, m, e, u
+    real(dp), intent(in) :: par, eps, m, mc, e, u
     real(dp) :: h, sn, cn, dn, am, w, f1, de, hh
-    call jacobi_sncndn(u, m, 1.0_dp - m, sn, cn, dn, am)
+    call jacobi_sncndn(u, m, mc, sn, cn, dn, am)
     if (regime == gr_libration) then
       h = sqrt(2.0_dp / gravity_q(kind, par, eps, m * sn * sn, m))
     else
@@ -146,20 +146,21 @@ contains
     end if
   end function gravity_h
 
-  !> The orbit through (theta0, v0): energy, regime, the elliptic parameter m of the
+  !> The orbit through (theta0, v0): energy, regime, the elliptic parameter m (and its
+  !> complement mc, formed without cancellation near the separatrix) of the
   !> substitution, K(m), the amplitude theta_max (libration; pi on the separatrix,
   !> inf for rotation) and the period T (libration) or the time of one turn
   !> (rotation); inf on the separatrix.  The trapezoid rule on [0, K] is doubled
   !> from 4 panels until two successive sums agree to 2 ulps (at most 2^16 panels:
   !> otherwise gs_no_convergence and T = NaN).
-  pure subroutine gravity_orbit(kind, par, eps, theta0, v0, e, regime, m, kk, theta_max, period, status)
+  pure subroutine gravity_orbit(kind, par, eps, theta0, v0, e, regime, m, mc, kk, theta_max, period, status)
     integer, intent(in) :: kind
     real(dp), intent(in) :: par, eps, theta0, v0
-    real(dp), intent(out) :: e, m, kk, theta_max, period
+    real(dp), intent(out) :: e, m, mc, kk, theta_max, period
     integer, intent(out) :: regime, status
     real(dp) :: w0, f1, c, rho, s_old, s_new, scale
     integer :: n
-    e = nan_dp; m = nan_dp; kk = nan_dp; theta_max = nan_dp; period = nan_dp; regime = -1
+    e = nan_dp; m = nan_dp; mc = nan_dp; kk = nan_dp; theta_max = nan_dp; period = nan_dp; regime = -1
     status = gravity_check(kind, par, eps)
     if (status /= gs_ok) return
     if (.not. (abs(theta0) < huge(theta0) .and. abs(v0) < huge(v0))) then
@@ -184,16 +185,21 @@ contains
           m = e / (2.0_dp * eps)
         end select
       end if
+      ! 1 - m = (f(1) - E) / Q(m, 1), f(1) - E = Q(w0, 1) cos^2(theta0/2) - v0^2/2: no 1 - m cancellation
+      mc = (gravity_q(kind, par, eps, w0, 1.0_dp) * cos(0.5_dp * theta0)**2 - 0.5_dp * v0 * v0) / &
+           gravity_q(kind, par, eps, m, 1.0_dp)
       theta_max = 2.0_dp * asin(min(1.0_dp, sqrt(m)))
       scale = 4.0_dp
     else if (e > f1) then
       regime = gr_rotation
       m = f1 / e
+      mc = (0.5_dp * v0 * v0 - gravity_q(kind, par, eps, w0, 1.0_dp) * cos(0.5_dp * theta0)**2) / e
       theta_max = inf_dp
       scale = 2.0_dp
     else
       regime = gr_separatrix
       m = 1.0_dp
+      mc = 0.0_dp
       kk = inf_dp
       theta_max = pi
       period = kk
@@ -201,10 +207,10 @@ contains
     end if
     if (m == 0.0_dp) then            ! at rest at the bottom: the small-oscillation limit
       kk = 0.5_dp * pi
-      period = scale * kk * gravity_h(kind, par, eps, regime, m, e, 0.0_dp)
+      period = scale * kk * gravity_h(kind, par, eps, regime, m, mc, e, 0.0_dp)
       return
     end if
-    kk = ellip_k(m, 1.0_dp - m)
+    kk = ellip_k(m, mc)
     n = 4
     s_old = trap(n)
     do
@@ -224,9 +230,10 @@ contains
       real(dp) :: s, hu
       integer :: j
       hu = kk / np
-      s = 0.5_dp * (gravity_h(kind, par, eps, regime, m, e, 0.0_dp) + gravity_h(kind, par, eps, regime, m, e, kk))
+      s = 0.5_dp * (gravity_h(kind, par, eps, regime, m, mc, e, 0.0_dp) + &
+                    gravity_h(kind, par, eps, regime, m, mc, e, kk))
       do j = 1, np - 1
-        s = s + gravity_h(kind, par, eps, regime, m, e, j * hu)
+        s = s + gravity_h(kind, par, eps, regime, m, mc, e, j * hu)
       end do
       s = s * hu
     end function trap
@@ -238,7 +245,7 @@ contains
       hu = kk / np
       s = 0.0_dp
       do j = 1, np - 1, 2
-        s = s + gravity_h(kind, par, eps, regime, m, e, j * hu)
+        s = s + gravity_h(kind, par, eps, regime, m, mc, e, j * hu)
       end do
       s = s * hu
     end function mid

@@ -96,10 +96,7 @@ class _Model:
             raise ValueError("the orbit is a point at rest: its density is a delta, not a function")
         self.orbit = o
         self.kind = o.regime
-        if o.regime == "libration" and sc.v0 == 0.0:
-            self.mc = math.cos(0.5 * sc.theta0) ** 2     # exact complement when starting at rest
-        else:
-            self.mc = 1.0 - o.m
+        self.mc = o.mc
         K = o.K
         # cosine coefficients of h on its period 2K: doubling until the last ones are below rounding
         n = 16

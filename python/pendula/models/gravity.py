@@ -88,6 +88,8 @@ class GravityOrbit:
     m, K : float
         Parameter of the substitution (w_m = sin^2(theta_max/2) in libration,
         V(pi)/E in rotation) and K(m).
+    mc : float
+        1 - m, formed without cancellation (it sets K near the separatrix).
     theta_max : float
         Amplitude (pi on the separatrix, inf for a rotation).
     period : float
@@ -100,6 +102,7 @@ class GravityOrbit:
     K: float
     theta_max: float
     period: float
+    mc: float
 
 
 def gravity_orbit(scene) -> GravityOrbit:
@@ -116,12 +119,12 @@ def gravity_orbit(scene) -> GravityOrbit:
     info, status = _kernel.gravity_orbit_v(kind, par, scene.eps, scene.theta0, scene.v0)
     if status:
         raise ValueError(_STATUS.get(status, f"kernel status {status}"))
-    return GravityOrbit(_REGIMES[int(info[0])], *(float(x) for x in info[1:6]))
+    return GravityOrbit(_REGIMES[int(info[0])], *(float(x) for x in info[1:7]))
 
 
 def h_samples(scene, orb: GravityOrbit, u):
     """The integrand h(u) of t = int_0^U h du at the nodes u (libration or rotation)."""
     kind, par = field_of(scene)
     u = np.ascontiguousarray(u, dtype=np.float64)
-    return _kernel.gravity_h_v(kind, par, scene.eps, 0 if orb.regime == "libration" else 2, orb.m,
+    return _kernel.gravity_h_v(kind, par, scene.eps, 0 if orb.regime == "libration" else 2, orb.m, orb.mc,
                                orb.energy, u)
