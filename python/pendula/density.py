@@ -97,6 +97,8 @@ class _Model:
         self.orbit = o
         self.kind = o.regime
         self.mc = o.mc
+        # the amplitude: exactly |theta0| when starting at rest (the kernel's 2 asin(sqrt(m)) rounds)
+        self.thm = abs(sc.theta0) if sc.v0 == 0.0 and o.regime == "libration" else o.theta_max
         K = o.K
         # cosine coefficients of h on its period 2K: doubling until the last ones are below rounding
         n = 16
@@ -125,6 +127,14 @@ class _Model:
         j = np.arange(self.a.size)
         return (self.a * np.cos(np.multiply.outer(np.asarray(U, dtype=float), j) * (math.pi / self.K))).sum(axis=-1)
 
+    def _phi(self, theta):
+        """phi with sin(theta/2) = k sin(phi), and k cos(phi), from the angle difference
+        (k^2 cos^2 phi = sin((theta_m - theta)/2) sin((theta_m + theta)/2)), so that phi keeps
+        its accuracy at the turning points where arcsin(sin(theta/2)/k) would not."""
+        a = np.abs(theta)
+        kc = np.sqrt(np.maximum(0.0, np.sin(0.5 * (self.thm - a)) * np.sin(0.5 * (self.thm + a))))
+        return np.arctan2(np.sin(0.5 * a), kc), kc
+
     def density(self, theta):
         out = np.zeros_like(theta)
         if self.kind == "cycloid":
@@ -135,13 +145,10 @@ class _Model:
             out[inside] = 4 * r * np.cos(theta[inside]) / (math.pi * np.sqrt((self.amp - xi) * (self.amp + xi)))
             return out
         if self.kind == "libration":
-            k = math.sqrt(self.orbit.m)
-            s = np.abs(np.sin(0.5 * theta))
-            inside = (np.abs(theta) < self.orbit.theta_max)
-            si = s[inside]
-            phi = np.arcsin(np.minimum(1.0, si / k))
+            inside = np.abs(theta) < self.thm
+            phi, kc = self._phi(theta[inside])
             U = ellipf(phi, self.orbit.m, self.mc)
-            out[inside] = self._h(U) / (self.T * np.sqrt((k - si) * (k + si)))
+            out[inside] = self._h(U) / (self.T * kc)
             return out
         # rotation: one turn on [-pi, pi)
         w = np.remainder(theta + math.pi, 2 * math.pi) - math.pi
@@ -155,12 +162,10 @@ class _Model:
             out = np.where(theta > math.pi / 2, 1.0, np.where(theta < -math.pi / 2, 0.0, out))
             return out
         if self.kind == "libration":
-            k = math.sqrt(self.orbit.m)
-            s = np.abs(np.sin(0.5 * np.clip(theta, -self.orbit.theta_max, self.orbit.theta_max)))
-            phi = np.arcsin(np.minimum(1.0, s / k))
+            phi, _ = self._phi(np.clip(theta, -self.thm, self.thm))
             U = ellipf(phi, self.orbit.m, self.mc)
             out = 0.5 + np.sign(theta) * 2.0 * self._time(U) / self.T
-            out = np.where(theta >= self.orbit.theta_max, 1.0, np.where(theta <= -self.orbit.theta_max, 0.0, out))
+            out = np.where(theta >= self.thm, 1.0, np.where(theta <= -self.thm, 0.0, out))
             return np.clip(out, 0.0, 1.0)
         # rotation: the CDF over [-pi, pi), continued by whole turns
         turns = np.floor((theta + math.pi) / (2 * math.pi))
