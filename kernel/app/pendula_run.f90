@@ -167,7 +167,9 @@ contains
     write(u, '(a)') '# ' // trim(scene_summary(sc))
     if (len_trim(scene_effects(sc)) > 0) then
       write(u, '(a)') '# effects = ' // trim(scene_effects(sc))
-      if (sc%method == 'auto') then
+      if (sc%guide == 'cycloid') then   ! issue 13: closed form
+        write(u, '(a)') '# solver = exact (the cycloidal pendulum: a harmonic oscillator in s, closed form)'
+      else if (sc%method == 'auto') then
         write(u, '(a)') '# solver = dop853 (method auto: the scene names effects)'
       else
         write(u, '(a)') '# solver = ' // trim(sc%method)
