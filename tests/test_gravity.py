@@ -212,3 +212,12 @@ def test_pendula_run_gravity_scene_matches_python(tmp_path):
     tr = pendula.simulate(Scene.from_file(f), data[:, 0])     # the same kernel integrator
     assert np.abs(data[:, 1] - tr.theta).max() <= 1e-14
     assert np.abs(data[:, 3] - tr.energy).max() <= 1e-14
+
+
+def test_series_outputs_refuse_a_field(tmp_path):
+    # the period series and Poincare-Lindstedt of pendula are the uniform field's: no silent wrong numbers
+    from pendula.run import run_scene
+
+    sc = make("linear", 0.2, theta0=1.0, outputs=("series",), sweep="theta0", sweep_values=(0.5, 1.0))
+    with pytest.raises(ValueError, match="series"):
+        run_scene(sc, tmp_path, progress=False)

@@ -104,6 +104,9 @@ def run_scene(scene: Scene, outdir, stem: str | None = None, progress: bool = Tr
             if scene.sweep == "v0" and "omega" in wanted and np.all(np.abs(v - 2) < 0.5) and np.any(v != 2):
                 files.append(plot.critical_omega(scene, values, table["omega"], outdir / f"{stem}_critical.png"))
 
+    if wanted & {"series", "lindstedt"} and scene.effects:  # issue 13 guard: both are the uniform rigid pendulum's
+        raise ValueError("outputs series/lindstedt are the conservative rigid pendulum's in uniform gravity; "
+                         f"the scene names {', '.join(scene.effects)}")
     if "series" in wanted:
         files += _series_outputs(scene, members, values, outdir, stem)
     if "lindstedt" in wanted:
