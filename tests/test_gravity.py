@@ -221,3 +221,28 @@ def test_series_outputs_refuse_a_field(tmp_path):
     sc = make("linear", 0.2, theta0=1.0, outputs=("series",), sweep="theta0", sweep_values=(0.5, 1.0))
     with pytest.raises(ValueError, match="series"):
         run_scene(sc, tmp_path, progress=False)
+
+
+def test_orbit_tables_in_python_and_pendula_run_agree(tmp_path):
+    # period/theta_max outputs for gravity and cycloid scenes: the same kernel numbers on both paths
+    from pendula.run import run_scene
+
+    for text in ("&scene\n gravity = 'linear', gravity_gradient = 0.2, outputs = 'period', 'theta_max',\n"
+                 " sweep = 'v0', sweep_values = 0.5, 2.5\n/\n",
+                 "&scene\n guide = 'cycloid', torque = 0.05, outputs = 'period', 'theta_max',\n"
+                 " sweep = 'theta0', sweep_values = 0.5, 1.2\n/\n"):
+        f = tmp_path / "o.nml"
+        f.write_text(text)
+        sc = Scene.from_file(f)
+        files = run_scene(sc, tmp_path / "py", stem="o", progress=False)
+        py = [ln.split(",") for ln in files[0].read_text().splitlines() if ln and ln[0] not in "#tv"]
+        p = subprocess.run([venv_bin("pendula-run"), str(f)], capture_output=True, text=True)
+        assert p.returncode == 0, p.stderr
+        fo = [ln.split(",") for ln in p.stdout.splitlines() if ln and ln[0] not in "#t"]
+        assert len(py) == len(fo) == 2
+        for a, b in zip(py, fo):
+            assert a[-5].strip() == b[3].strip()                        # regime
+            for x, y in zip(a[-3:], b[-3:]):                            # period, omega, theta_max
+                assert float(x) == pytest.approx(float(y), rel=4 * EPS)
+        for m, row in zip(sc.members(), py):
+            assert float(row[-3]) == pytest.approx(pendula.period(m), rel=4 * EPS)

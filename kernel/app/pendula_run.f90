@@ -14,7 +14,7 @@ program pendula_run
   use pendula_kinds, only: dp, two_pi
   use pendula_scene, only: scene_t, read_scene, scene_effects, scene_summary, max_outputs
   use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_eval, orbit_period, orbit_theta_max
-  use pendula_simulate, only: simulate_scene, simulate_status_text, scene_energy
+  use pendula_simulate, only: simulate_scene, simulate_status_text, scene_energy, scene_orbit13
   implicit none
   character(len=4096) :: path, out, arg, orbit_out
   character(len=1024) :: msg
@@ -24,6 +24,9 @@ program pendula_run
   real(dp), allocatable :: t(:), theta(:), v(:), e(:), values(:)
   logical :: want_traj, want_orbit, swept
   integer :: nsteps, nrhs
+  logical :: has13                                   ! issue 13: cycloid / gravity orbit facts
+  integer :: reg13
+  real(dp) :: k13, per13, tmax13
   character(len=10), parameter :: regime_names(0:2) = [character(len=10) :: 'libration', 'separatrix', &
                                                        'rotation']
 
@@ -65,7 +68,8 @@ program pendula_run
       want_orbit = .true.
     end select
   end do
-  if (want_orbit .and. len_trim(scene_effects(sc)) > 0) &
+  call scene_orbit13(sc, has13, reg13, k13, per13, tmax13, status)   ! issue 13: cycloid, gravity orbits
+  if (want_orbit .and. len_trim(scene_effects(sc)) > 0 .and. .not. has13) &
     call fail(trim(path) // ': outputs period/omega/theta_max are exact-orbit facts; the scene names ' // &
               trim(scene_effects(sc)))
 
@@ -133,6 +137,13 @@ program pendula_run
     write(ounit, '(a)') 'theta0,v0,eps,regime,k,period,omega,theta_max'
     do i = 1, nmem
       member = member_of(sc, i)
+      call scene_orbit13(member, has13, reg13, k13, per13, tmax13, status)
+      if (has13) then   ! issue 13 hook
+        if (status /= 0) call fail(trim(path) // ': ' // trim(simulate_status_text(status)), 4)
+        write(ounit, '(3(es24.16e3,","),a,4(",",es24.16e3))') member%theta0, member%v0, member%eps, &
+          trim(regime_names(reg13)), k13, per13, merge(0.0_dp, two_pi / per13, per13 > huge(1.0_dp)), tmax13
+        cycle
+      end if
       call orbit_setup(member%theta0, member%v0, member%eps, o, status)
       write(ounit, '(3(es24.16e3,","),a,4(",",es24.16e3))') member%theta0, member%v0, member%eps, &
         trim(regime_names(o%regime)), o%k, orbit_period(o), merge(0.0_dp, two_pi / orbit_period(o), &

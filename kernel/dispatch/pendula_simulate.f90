@@ -1,16 +1,17 @@
 !> Run one scene: the exact solution whenever the scene allows it, otherwise
 !> the integrator the scene names (or the cheapest one for its tolerance).
 module pendula_simulate
-  use pendula_kinds, only: dp
+  use pendula_kinds, only: dp, nan_dp, two_pi
   use pendula_scene, only: scene_t, scene_effects
   use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_eval
   use pendula_cycloid, only: cycloid_run, cycloid_omega2
-  use pendula_gravity, only: gk_uniform, gk_inverse_square, gk_linear, gravity_energy
+  use pendula_gravity, only: gk_uniform, gk_inverse_square, gk_linear, gravity_energy, gravity_orbit, &
+    gr_libration, gr_rotation
   use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate, m_rk4, m_verlet, &
     m_yoshida4, m_yoshida6, m_yoshida8, m_gauss4, m_gauss6, m_dopri5, m_dop853
   implicit none
   private
-  public :: simulate_scene, simulate_status_text, scene_energy
+  public :: simulate_scene, simulate_status_text, scene_energy, scene_orbit13
 
   integer, parameter, public :: sim_ok = 0, sim_bad_state = 1, sim_unsupported = 10, &
     sim_needs_dt = 11, sim_unsorted = 12, sim_integrator_failed = 13, sim_cycloid_cusp = 14
@@ -108,6 +109,50 @@ contains
       end select
     end if
   end function scene_energy
+
+  !> Issue 13 hook: the orbit facts of a conservative cycloid scene (the guide, perhaps a torque)
+  !> or a scene whose only effect is non-uniform gravity.  has = .false. for any other scene.
+  !> k: sqrt(m) in libration, 1/sqrt(m) in rotation (the rigid pendulum's k in uniform gravity);
+  !> NaN on the cycloid (no modulus there).  status /= 0: the orbit reaches a cusp or bad input.
+  subroutine scene_orbit13(sc, has, regime, k, period, theta_max, status)
+    type(scene_t), intent(in) :: sc
+    logical, intent(out) :: has
+    integer, intent(out) :: regime, status
+    real(dp), intent(out) :: k, period, theta_max
+    real(dp) :: w2, r, s0, sd0, c, a, e, m, mc, kk
+    has = .false.; regime = 0; status = 0
+    k = nan_dp; period = nan_dp; theta_max = nan_dp
+    if (sc%guide == 'cycloid' .and. sc%damping == 0 .and. sc%drive_amplitude == 0) then
+      has = .true.
+      r = sc%cycloid_radius
+      w2 = cycloid_omega2(sc%eps, r)
+      s0 = 4.0_dp * r * sin(sc%theta0)
+      sd0 = 4.0_dp * r * cos(sc%theta0) * sc%v0
+      c = sc%torque / w2
+      a = hypot(s0 - c, sd0 / sqrt(w2))
+      period = two_pi / sqrt(w2)
+      if (abs(c) + a > 4.0_dp * r) then
+        status = sim_cycloid_cusp; return
+      end if
+      theta_max = asin((c + a) / (4.0_dp * r))
+    else if (trim(scene_effects(sc)) == 'gravity') then
+      has = .true.
+      select case (trim(sc%gravity))
+      case ('inverse-square')
+        call gravity_orbit(gk_inverse_square, sc%gravity_distance, sc%eps, sc%theta0, sc%v0, e, regime, m, mc, &
+                           kk, theta_max, period, status)
+      case default
+        call gravity_orbit(gk_linear, sc%gravity_gradient, sc%eps, sc%theta0, sc%v0, e, regime, m, mc, &
+                           kk, theta_max, period, status)
+      end select
+      if (status /= 0) then
+        status = sim_bad_state; return
+      end if
+      k = 1.0_dp
+      if (regime == gr_libration) k = sqrt(m)
+      if (regime == gr_rotation) k = 1.0_dp / sqrt(m)
+    end if
+  end subroutine scene_orbit13
 
   function simulate_status_text(status) result(s)
     integer, intent(in) :: status

@@ -83,12 +83,14 @@ def run_scene(scene: Scene, outdir, stem: str | None = None, progress: bool = Tr
             files.append(plot.energy_drift(scene, runs, outdir / f"{stem}_energy.png"))
 
     if wanted & ORBIT_OUTPUTS:
-        if scene.effects:
+        from .models.gravity import issue13_orbit  # issue 13 hook: cycloid and gravity orbits
+
+        if scene.effects and issue13_orbit(scene) is None:
             raise ValueError("outputs period/omega/theta_max are facts of the exact conservative orbit; "
                              f"the scene names {', '.join(scene.effects)}")
         table = {"period": [], "omega": [], "theta_max": [], "regime": [], "k": []}
         for member in members:
-            o = orbit(member.theta0, member.v0, member.eps)
+            o = issue13_orbit(member) or orbit(member.theta0, member.v0, member.eps)
             for key in table:
                 table[key].append(getattr(o, key))
         cols = ([scene.sweep] if scene.sweep else []) + ["theta0", "v0", "eps", "regime", "k", "period",

@@ -128,3 +128,29 @@ def h_samples(scene, orb: GravityOrbit, u):
     u = np.ascontiguousarray(u, dtype=np.float64)
     return _kernel.gravity_h_v(kind, par, scene.eps, 0 if orb.regime == "libration" else 2, orb.m, orb.mc,
                                orb.energy, u)
+
+
+def issue13_orbit(scene):
+    """The orbit facts (a :class:`pendula.Orbit`) of a conservative cycloid scene (the
+    guide, perhaps a torque) or of a scene whose only effect is non-uniform gravity;
+    None for any other scene.  k is sqrt(m) in libration and 1/sqrt(m) in rotation
+    (the rigid pendulum's k in uniform gravity); on the cycloid k, m, mc are NaN."""
+    from .rigid import Orbit
+
+    nan = math.nan
+    if scene.guide == "cycloid" and set(scene.effects) <= {"guide", "torque"}:
+        r = scene.cycloid_radius
+        w2 = scene.eps / (4 * r)
+        s0, sd0 = 4 * r * math.sin(scene.theta0), 4 * r * math.cos(scene.theta0) * scene.v0
+        c = scene.torque / w2
+        a = math.hypot(s0 - c, sd0 / math.sqrt(w2))
+        if abs(c) + a > 4 * r:
+            raise ValueError("the cycloidal pendulum's orbit runs beyond a cusp (|s| > 4R)")
+        T = 2 * math.pi / math.sqrt(w2)
+        return Orbit("libration", nan, nan, nan, T, 2 * math.pi / T, math.asin((c + a) / (4 * r)))
+    if scene.effects == ("gravity",):
+        o = gravity_orbit(scene)
+        k = math.sqrt(o.m) if o.regime == "libration" else (1 / math.sqrt(o.m) if o.regime == "rotation" else 1.0)
+        omega = 0.0 if math.isinf(o.period) else 2 * math.pi / o.period
+        return Orbit(o.regime, k, o.m, o.mc, o.period, omega, o.theta_max)
+    return None
