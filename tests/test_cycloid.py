@@ -204,3 +204,10 @@ def test_pendula_run_cycloid_scene_matches_python(tmp_path):
     bad.write_text("&scene\n guide = 'cycloid', method = 'rk4', dt = 0.1\n/\n")
     p = subprocess.run([venv_bin("pendula-run"), str(bad)], capture_output=True, text=True)
     assert p.returncode == 2 and "method" in p.stderr and "closed form" in p.stderr
+
+
+def test_non_finite_times_give_nan_with_a_warning():
+    sc = Scene(guide="cycloid", theta0=1.0)
+    with pytest.warns(RuntimeWarning, match="non-finite"):
+        tr = pendula.simulate(sc, [np.nan, np.inf, 1.0])
+    assert np.isnan(tr.theta[:2]).all() and np.isfinite(tr.theta[2])

@@ -185,3 +185,14 @@ def test_scenes_without_a_density_are_errors():
         angle_density(Scene(theta0=1.0, torque=0.1), 0.0)
     with pytest.raises(TypeError):
         angle_cdf("scene", 0.0)
+
+
+def test_nan_and_infinite_angles():
+    # NaN in, NaN out; beyond the amplitude the density is 0 and the CDF 0 or 1; nothing raises
+    sc = Scene(theta0=1.0)
+    assert np.array_equal(angle_cdf(sc, [-np.inf, np.inf, 5.0]), [0.0, 1.0, 1.0])
+    assert np.isnan(angle_cdf(sc, np.nan)) and np.isnan(angle_density(sc, np.nan))
+    assert angle_density(sc, np.array([])).size == 0
+    assert np.array_equal(angle_density(sc, [np.inf, -3.0]), [0.0, 0.0])
+    cy = Scene(guide="cycloid", theta0=1.0)
+    assert np.isnan(angle_cdf(cy, np.nan)) and np.isnan(angle_density(cy, np.nan))

@@ -143,12 +143,15 @@ class _Model:
             inside = (np.abs(x) < self.amp) & (np.abs(theta) <= math.pi / 2)
             xi = x[inside]
             out[inside] = 4 * r * np.cos(theta[inside]) / (math.pi * np.sqrt((self.amp - xi) * (self.amp + xi)))
+            out[np.isnan(theta)] = np.nan
             return out
         if self.kind == "libration":
             inside = np.abs(theta) < self.thm
-            phi, kc = self._phi(theta[inside])
-            U = ellipf(phi, self.orbit.m, self.mc)
-            out[inside] = self._h(U) / (self.T * kc)
+            if np.any(inside):
+                phi, kc = self._phi(theta[inside])
+                U = ellipf(phi, self.orbit.m, self.mc)
+                out[inside] = self._h(U) / (self.T * kc)
+            out[np.isnan(theta)] = np.nan
             return out
         # rotation: one turn on [-pi, pi)
         w = np.remainder(theta + math.pi, 2 * math.pi) - math.pi
@@ -160,13 +163,13 @@ class _Model:
             x = 4 * self.r * np.sin(np.clip(theta, -math.pi / 2, math.pi / 2)) - self.centre
             out = 0.5 + np.arcsin(np.clip(x / self.amp, -1.0, 1.0)) / math.pi
             out = np.where(theta > math.pi / 2, 1.0, np.where(theta < -math.pi / 2, 0.0, out))
-            return out
+            return np.where(np.isnan(theta), np.nan, out)
         if self.kind == "libration":
             phi, _ = self._phi(np.clip(theta, -self.thm, self.thm))
             U = ellipf(phi, self.orbit.m, self.mc)
             out = 0.5 + np.sign(theta) * 2.0 * self._time(U) / self.T
             out = np.where(theta >= self.thm, 1.0, np.where(theta <= -self.thm, 0.0, out))
-            return np.clip(out, 0.0, 1.0)
+            return np.where(np.isnan(theta), np.nan, np.clip(out, 0.0, 1.0))
         # rotation: the CDF over [-pi, pi), continued by whole turns
         turns = np.floor((theta + math.pi) / (2 * math.pi))
         w = theta - 2 * math.pi * turns

@@ -26,7 +26,8 @@ ADAPTIVE = ("dopri5", "dop853", "gsl-rk8pd")
 _STATUS = {1: "the step dt must be positive", 2: "rtol must be > 0 and atol >= 0", 3: "unknown method",
            5: "step size underflow (the problem may be singular or the tolerance unreachable)",
            6: "the state became non-finite", 9: "events need a method with dense output (dopri5, dop853)",
-           11: "gsl-rk8pd integrates forward only: give times >= 0"}
+           11: "gsl-rk8pd integrates forward only: give times >= 0",
+           20: "bad gravity field parameters (gravity_distance > 1, gravity_gradient < 0.5)"}
 _EVENT_KINDS = {"turning": 1, "theta": 2, "theta_mod_2pi": 3}
 
 

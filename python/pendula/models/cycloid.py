@@ -159,19 +159,25 @@ def cycloid_geometry(R: float = 0.25, n: int = 401) -> CycloidGeometry:
 
 
 def simulate_cycloid(scene, t, method: str = "auto"):
-    """The Trajectory of a cycloidal scene (closed form; called by pendula.simulate)."""
+    """The Trajectory of a cycloidal scene (closed form; called by pendula.simulate).
+
+    Its ``stats`` hold no work counts (nothing is integrated) but the path's own
+    coordinates: ``stats['s']`` and ``stats['sd']``, the arc length and its rate."""
     from ..trajectory import Trajectory
 
     if method not in ("auto", "exact"):
         raise ValueError(f"method {method!r}: the cycloidal pendulum is solved in closed form "
                          f"('auto' or 'exact'), never integrated")
     theta, v, s, sd = cycloid_motion(scene, t)
-    _warn_nan(v)
+    _warn_nan(as_float(t, "t"), v)
     return Trajectory(as_float(t, "t"), theta, v, cycloid_energy(scene, s, sd), "exact",
                       scene, {"s": s, "sd": sd})
 
 
-def _warn_nan(v):
-    if np.any(np.isnan(v)):
+def _warn_nan(t, v):
+    bad_t = ~np.isfinite(t)
+    if np.any(bad_t):
+        warnings.warn(f"cycloid: {int(bad_t.sum())} non-finite time(s) gave NaN", RuntimeWarning, stacklevel=3)
+    if np.any(np.isnan(v) & ~bad_t):
         warnings.warn("cycloid: theta' has no value at the instants the bob sits on a cusp (NaN there)",
                       RuntimeWarning, stacklevel=3)
