@@ -246,3 +246,14 @@ def test_orbit_tables_in_python_and_pendula_run_agree(tmp_path):
                 assert float(x) == pytest.approx(float(y), rel=4 * EPS)
         for m, row in zip(sc.members(), py):
             assert float(row[-3]) == pytest.approx(pendula.period(m), rel=4 * EPS)
+
+
+def test_point_mass_close_under_the_circle():
+    # d - 1 = delta puts a branch point of the integrand delta/2 from the real axis: the
+    # trapezoid needs ~K/delta panels.  delta = 1e-3: 1.1e-14 from the mpmath reference
+    # (the reference's own quadrature is strained here too: 1e-13 allowed).
+    sc = make("inverse-square", 1.001, theta0=1.0)
+    assert pendula.period(sc) == pytest.approx(period_ref("inverse-square", 1.001, 1.0, 1.0, 0.0), rel=1e-13)
+    # delta = 1e-6 needs more than 2^20 panels: a clear error naming the field, never a rough number
+    with pytest.raises(ValueError, match="gravity_distance"):
+        pendula.period(make("inverse-square", 1.000001, theta0=1.0))

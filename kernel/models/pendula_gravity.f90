@@ -151,8 +151,11 @@ contains
   !> substitution, K(m), the amplitude theta_max (libration; pi on the separatrix,
   !> inf for rotation) and the period T (libration) or the time of one turn
   !> (rotation); inf on the separatrix.  The trapezoid rule on [0, K] is doubled
-  !> from 4 panels until two successive sums agree to 2 ulps (at most 2^16 panels:
-  !> otherwise gs_no_convergence and T = NaN).
+  !> from 4 panels until two successive sums agree to 2 ulps (at most 2^20 panels:
+  !> otherwise gs_no_convergence and T = NaN).  Most orbits need 16 to 512 panels;
+  !> the inverse-square field with the mass close under the circle, d - 1 = delta,
+  !> puts a branch point of h at distance ~delta/2 from the real u axis and needs
+  !> ~K/delta panels: delta = 1e-4 takes 2^18, delta below ~2e-5 is refused.
   pure subroutine gravity_orbit(kind, par, eps, theta0, v0, e, regime, m, mc, kk, theta_max, period, status)
     integer, intent(in) :: kind
     real(dp), intent(in) :: par, eps, theta0, v0
@@ -217,7 +220,7 @@ contains
       n = 2 * n
       s_new = 0.5_dp * s_old + mid(n)
       if (abs(s_new - s_old) <= 2.0_dp * epsilon(1.0_dp) * abs(s_new)) exit
-      if (n >= 65536) then
+      if (n >= 1048576) then
         status = gs_no_convergence; period = nan_dp; return
       end if
       s_old = s_new
@@ -237,15 +240,20 @@ contains
       end do
       s = s * hu
     end function trap
-    !> the new midpoints' contribution when n/2 panels are halved to n
+    !> the new midpoints' contribution when n/2 panels are halved to n (compensated sum,
+    !> so that rounding does not stall the 2-ulp convergence test at 10^5 panels)
     pure function mid(np) result(s)
       integer, intent(in) :: np
-      real(dp) :: s, hu
+      real(dp) :: s, hu, c, y, tt
       integer :: j
       hu = kk / np
       s = 0.0_dp
+      c = 0.0_dp
       do j = 1, np - 1, 2
-        s = s + gravity_h(kind, par, eps, regime, m, mc, e, j * hu)
+        y = gravity_h(kind, par, eps, regime, m, mc, e, j * hu) - c
+        tt = s + y
+        c = (tt - s) - y
+        s = tt
       end do
       s = s * hu
     end function mid

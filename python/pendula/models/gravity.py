@@ -34,7 +34,8 @@ KINDS = {"uniform": 0, "inverse-square": 1, "linear": 2}
 _REGIMES = {0: "libration", 1: "separatrix", 2: "rotation"}
 _STATUS = {1: "bad field parameters (eps > 0; gravity_distance > 1; gravity_gradient < 0.5)",
            2: "theta0 and v0 must be finite",
-           3: "the period quadrature did not converge in 65536 panels"}
+           3: "the period quadrature did not converge in 2^20 panels (inverse-square field with the "
+              "mass closer than about 2e-5 l below the circle: gravity_distance - 1 too small)"}
 
 
 def field_of(scene) -> tuple[int, float]:
