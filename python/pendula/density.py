@@ -109,23 +109,39 @@ class _Model:
             a = c / n
             a[0] *= 0.5
             a[n] *= 0.5
-            if np.max(np.abs(a[3 * n // 4:])) <= 2 * np.finfo(float).eps * abs(a[0]) or n >= 1 << 16:
+            if np.max(np.abs(a[3 * n // 4:])) <= 2 * np.finfo(float).eps * abs(a[0]):
                 break
+            if n >= 1 << 20:
+                raise ValueError("the cosine series of the time integrand did not converge in 2^20 terms "
+                                 "(inverse-square field with the mass too close under the circle: "
+                                 "gravity_distance - 1 too small)")
             n *= 2
-        self.a = a
+        keep = np.nonzero(np.abs(a) > np.finfo(float).eps * 1e-3 * abs(a[0]))[0]
+        self.a = a[:keep[-1] + 1]          # the coefficients below rounding add nothing
         self.K = K
         self.T = (4.0 if o.regime == "libration" else 2.0) * a[0] * K
+
+    def _chunks(self, U, f):
+        """f over U in chunks that keep the outer products below ~4M elements"""
+        U = np.asarray(U, dtype=float)
+        flat = U.reshape(-1)
+        step = max(1, (1 << 22) // self.a.size)
+        out = np.concatenate([f(flat[i:i + step]) for i in range(0, flat.size, step)]) if flat.size else flat
+        return out.reshape(U.shape)
 
     def _time(self, U):
         """int_0^U h du from the cosine series (U in [-K, K])."""
         j = np.arange(1, self.a.size)
-        U = np.asarray(U, dtype=float)
-        s = (self.a[1:] * self.K / (j * math.pi)) * np.sin(np.multiply.outer(U, j) * (math.pi / self.K))
-        return self.a[0] * U + s.sum(axis=-1)
+        w = self.a[1:] * self.K / (j * math.pi)
+
+        def f(u):
+            return self.a[0] * u + (w * np.sin(np.multiply.outer(u, j) * (math.pi / self.K))).sum(axis=-1)
+
+        return self._chunks(U, f)
 
     def _h(self, U):
         j = np.arange(self.a.size)
-        return (self.a * np.cos(np.multiply.outer(np.asarray(U, dtype=float), j) * (math.pi / self.K))).sum(axis=-1)
+        return self._chunks(U, lambda u: (self.a * np.cos(np.multiply.outer(u, j) * (math.pi / self.K))).sum(axis=-1))
 
     def _phi(self, theta):
         """phi with sin(theta/2) = k sin(phi), and k cos(phi), from the angle difference
