@@ -211,3 +211,19 @@ def test_non_finite_times_give_nan_with_a_warning():
     with pytest.warns(RuntimeWarning, match="non-finite"):
         tr = pendula.simulate(sc, [np.nan, np.inf, 1.0])
     assert np.isnan(tr.theta[:2]).all() and np.isfinite(tr.theta[2])
+
+
+@pytest.mark.parametrize("body,name", [
+    ("guide = 'cycloid', theta0 = 1.6", "theta0"),
+    ("guide = 'cycloid', cycloid_radius = 0.0", "cycloid_radius"),
+    ("cycloid_radius = 0.3", "cycloid_radius"),
+    ("guide = 'cycloid', cord = 'flexible'", "cord"),
+    ("guide = 'cycloid', gravity = 'linear', gravity_gradient = 0.1", "gravity"),
+])
+def test_both_readers_refuse_the_same_cycloid_scenes(tmp_path, body, name):
+    f = tmp_path / "bad.nml"
+    f.write_text(f"&scene\n {body}\n/\n")
+    with pytest.raises(SceneError, match=name):
+        Scene.from_file(f)
+    p = subprocess.run([venv_bin("pendula-run"), str(f)], capture_output=True, text=True)
+    assert p.returncode == 2 and name in p.stderr, p.stderr
