@@ -227,3 +227,16 @@ def test_both_readers_refuse_the_same_cycloid_scenes(tmp_path, body, name):
         Scene.from_file(f)
     p = subprocess.run([venv_bin("pendula-run"), str(f)], capture_output=True, text=True)
     assert p.returncode == 2 and name in p.stderr, p.stderr
+
+
+def test_seed_involute_formula_4_22_slip():
+    # Source 003 (4.21) with L = 4R, evaluated by mpmath, is [0, -2R] + [R(p + sin p), -R(1 + cos p)]
+    # (the hanging cord reaches -4R at p = 0), not the printed (4.22) [0, -R] + [R(p - sin p), -R(1 + cos p)].
+    mp.mp.dps = 30
+    R = mp.mpf("0.7")
+    for p in (mp.mpf("0.3"), mp.mpf(2), mp.mpf(3)):
+        f = (4 * R - mp.quad(lambda x: 2 * R * mp.sin(x / 2), [0, p])) / (2 * R * mp.sin(p / 2))
+        g = (R * (p - mp.sin(p)) + f * R * (1 - mp.cos(p)), -R * (1 - mp.cos(p)) - f * R * mp.sin(p))
+        assert abs(g[0] - R * (p + mp.sin(p))) < 1e-25 and abs(g[1] - (-2 * R - R * (1 + mp.cos(p)))) < 1e-25
+        assert abs(g[1] - (-R - R * (1 + mp.cos(p)))) > 0.5 * R        # the printed shift is R short
+    mp.mp.dps = 15
