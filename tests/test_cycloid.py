@@ -240,3 +240,14 @@ def test_seed_involute_formula_4_22_slip():
         assert abs(g[0] - R * (p + mp.sin(p))) < 1e-25 and abs(g[1] - (-2 * R - R * (1 + mp.cos(p)))) < 1e-25
         assert abs(g[1] - (-R - R * (1 + mp.cos(p)))) > 0.5 * R        # the printed shift is R short
     mp.mp.dps = 15
+
+
+def test_sweep_beyond_the_cusp_is_refused_before_output(tmp_path):
+    f = tmp_path / "s.nml"
+    f.write_text("&scene\n guide = 'cycloid', sweep = 'theta0', sweep_values = 0.5, 1.7\n/\n")
+    sc = Scene.from_file(f)
+    with pytest.raises(SceneError, match="theta0"):
+        sc.members()
+    out = tmp_path / "o.csv"
+    p = subprocess.run([venv_bin("pendula-run"), str(f), "-o", str(out)], capture_output=True, text=True)
+    assert p.returncode == 2 and "theta0" in p.stderr and not out.exists()

@@ -11,7 +11,7 @@
 !> integrators of the kernel.
 program pendula_run
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
-  use pendula_kinds, only: dp, two_pi
+  use pendula_kinds, only: dp, two_pi, half_pi
   use pendula_scene, only: scene_t, read_scene, scene_effects, scene_summary, max_outputs
   use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_eval, orbit_period, orbit_theta_max
   use pendula_simulate, only: simulate_scene, simulate_status_text, scene_energy, scene_orbit13
@@ -90,6 +90,8 @@ program pendula_run
     member = member_of(sc, i)
     call orbit_setup(member%theta0, member%v0, member%eps, o, status)
     if (status /= 0) call fail(trim(path) // ': sweep value makes the initial state invalid (eps <= 0?)')
+    if (member%guide == 'cycloid' .and. .not. (abs(member%theta0) <= half_pi)) &   ! issue 13
+      call fail(trim(path) // ': field ''theta0'': a sweep value puts the cycloid beyond a cusp (|theta0| > pi/2)')
   end do
 
   if (len_trim(out) > 0) then
