@@ -1,139 +1,253 @@
-"""Huygens' cycloidal pendulum (Prusa & Tuma, section 4): closed form at every
-amplitude, checked against independent integrations of theta's own equation
-(scipy's solve_ivp, not pendula), geometry and the limits.
-
-Tolerances, with the reason: the closed form's theta = asin(s / 4R) carries
-a few eps of s; scipy's DOP853 at rtol 1e-13 is good to ~1e-11 over these
-spans; the small-amplitude agreement with the rigid pendulum is O(theta0^2)
-(the two periods differ by theta0^2/16 relative)."""
+"""Huygens' cycloidal pendulum (issue 13, source 003 section 4): closed form at
+every amplitude, checked against independent references (mpmath quadrature of
+the physics, mpmath's ODE solver, the rigid pendulum's exact solution)."""
 
 import math
+import subprocess
 
+import mpmath as mp
 import numpy as np
 import pytest
-from scipy.integrate import solve_ivp
 
 import pendula
-from pendula import Scene
+from pendula import Scene, SceneError
+from pendula.systems.cycloid import cycloid_motion, cycloid_period
 
-EPS = np.finfo(float).eps
+from conftest import EPS, venv_bin
 
-
-def theta_rhs(eps, r, beta=0.0, tau=0.0, amp=0.0, omega=0.0, phase=0.0):
-    """theta'' on the cycloid from s = 4R sin(theta), written in theta (independent of pendula)."""
-    w2 = eps / (4 * r)
-
-    def f(t, y):
-        th, v = y
-        force = tau + amp * math.cos(omega * t + phase)       # along the path, divided by 4R
-        # s'' = 4R (cos th th'' - sin th th'^2) = -w2 s - beta s' + 4R force
-        acc = (math.sin(th) * v * v - w2 * math.sin(th) - beta * math.cos(th) * v + force) / math.cos(th)
-        return [v, acc]
-    return f
+RNG = np.random.default_rng(1313)
 
 
-@pytest.mark.parametrize("theta0", [1e-6, 0.1, 0.7, 1.2, 1.5, 1.5707])
-def test_period_is_independent_of_the_amplitude_up_to_the_cusp(theta0):
-    s = Scene(guide="cycloid", theta0=theta0, eps=2.0)
-    T = pendula.cycloid_period(2.0)
-    t = np.array([0.0, T, 7 * T, 1000 * T])
-    tr = pendula.simulate(s, t)
-    # the state returns after every whole number of periods, to a few eps; at 1000 T
-    # the phase omega t carries the rounding of t = 1000 T itself (~1e-12 of a radian),
-    # which moves theta only at second order next to the turning point
-    # (theta = asin(s / 4R) is conditioned like 1 / cos(theta): next to the cusps the cord is
-    # horizontal and a few eps of s are eps / cos(theta) of theta)
-    assert np.all(np.abs(tr.theta[:3] - theta0) <= 8 * EPS / math.cos(theta0)), tr.theta - theta0
-    assert abs(tr.theta[3] - theta0) <= 1e-12 + 8 * EPS / math.cos(theta0)
+def amplitudes():
+    """log-uniform random amplitudes from 1e-6 to the cusp, and the cusp itself"""
+    a = np.exp(RNG.uniform(math.log(1e-6), math.log(math.pi / 2), 12))
+    return [*a, 1e-6, 1.0, math.pi / 2]
 
 
-def test_closed_form_agrees_with_an_independent_integration_at_large_amplitude():
-    th0, v0, eps, r = 1.3, 0.2, 1.5, 0.25
-    t = np.linspace(0, 15, 31)
-    tr = pendula.simulate(Scene(guide="cycloid", theta0=th0, v0=v0, eps=eps, guide_radius=r), t)
-    ref = solve_ivp(theta_rhs(eps, r), (0, 15), [th0, v0], method="DOP853", rtol=1e-13, atol=1e-15, t_eval=t)
-    assert np.abs(tr.theta - ref.y[0]).max() < 1e-10 and np.abs(tr.v - ref.y[1]).max() < 1e-9
+@pytest.mark.parametrize("r", [0.25, 0.1, 1.7])
+def test_period_independent_of_amplitude_to_the_cusp(r):
+    # s(t + k T) = s(t) for every amplitude: the motion is simple harmonic in s.
+    # Rounding: s is 4r sin(theta0) times cos(2 pi k) with an argument error of
+    # a few ulps of 2 pi k, second order at a maximum: a few eps of 4r.
+    for th0 in amplitudes():
+        sc = Scene(guide="cycloid", cycloid_radius=r, eps=2.3, theta0=th0)
+        T = cycloid_period(sc)
+        assert T == pytest.approx(4 * math.pi * math.sqrt(r / 2.3), rel=2 * EPS)
+        _, _, s, sd = cycloid_motion(sc, [0.0, T, 2 * T, 5 * T])
+        assert np.abs(s - s[0]).max() <= 8 * EPS * 4 * r
+        assert np.abs(sd).max() <= 8 * EPS * 4 * r * math.sqrt(2.3 / (4 * r)) * 5 * 2 * math.pi
 
 
-def test_damped_driven_torqued_guide_stays_closed_form_and_agrees():
-    kw = dict(damping=0.3, torque=0.05, drive_amplitude=0.1, drive_frequency=1.3, drive_phase=0.4)
-    th0, v0, eps, r = 0.5, -0.3, 1.0, 0.3
-    t = np.linspace(0, 25, 26)
-    tr = pendula.simulate(Scene(guide="cycloid", theta0=th0, v0=v0, eps=eps, guide_radius=r, **kw), t)
-    assert tr.method == "exact" and tr.stats == {}
-    f = theta_rhs(eps, r, 0.3, 0.05, 0.1, 1.3, 0.4)
-    ref = solve_ivp(f, (0, 25), [th0, v0], method="DOP853", rtol=1e-13, atol=1e-15, t_eval=t)
-    assert np.abs(tr.theta - ref.y[0]).max() < 1e-10
+def test_tautochrone_descent_time_from_every_height():
+    # Abel (section 4.2): the time to slide to the lowest point on the cycloid
+    # x = R(phi + sin phi), y = R(1 - cos phi) is the same from every height.
+    # Reference: the energy integral along the curve, by mpmath's tanh-sinh
+    # quadrature (it handles the inverse-square-root endpoint), at 30 digits.
+    mp.mp.dps = 30
+    R, g = mp.mpf("0.37"), mp.mpf("9.81")
+    for phi0 in [mp.mpf(x) for x in (1e-3, 0.3, 1.0, 2.0, 3.0, 3.14159)]:
+        y0 = R * (1 - mp.cos(phi0))
+
+        def dt(phi):
+            ds = R * mp.sqrt((1 + mp.cos(phi)) ** 2 + mp.sin(phi) ** 2)
+            drop = 2 * R * mp.sin((phi0 + phi) / 2) * mp.sin((phi0 - phi) / 2)   # y0 - y, no cancellation
+            return ds / mp.sqrt(2 * g * drop)
+
+        t_desc = mp.quad(dt, [0, phi0])
+        # tanh-sinh at 30 digits with the inverse-square-root endpoint: good to ~1e-17 here
+        assert abs(t_desc / (mp.pi * mp.sqrt(R / g)) - 1) < mp.mpf("1e-15")
+    mp.mp.dps = 15
+    # and the kernel's path reaches s = 0 at T/4 from every starting angle (at rest)
+    for th0 in amplitudes():
+        sc = Scene(guide="cycloid", theta0=th0, g=9.81, length=4 * 0.37)
+        T = cycloid_period(sc)
+        _, _, s, _ = cycloid_motion(sc, [T / 4])
+        assert abs(s[0]) <= 4 * EPS * 4 * sc.cycloid_radius
 
 
-def test_energy_is_conserved_without_effects():
-    tr = pendula.simulate(Scene(guide="cycloid", theta0=1.4, v0=0.1), np.linspace(-500, 500, 2001))
-    assert np.abs(tr.energy - tr.energy[1000]).max() <= 16 * EPS * tr.energy[1000]
+def test_small_amplitude_matches_rigid_pendulum_to_order_theta0_squared():
+    # R = l/4: the same small-oscillation frequency; over one period the phases
+    # part by 2 pi theta0^2/16, so |theta_cyc - theta_rigid| / theta0 ~ theta0^2.
+    rel = []
+    for th0 in (1e-1, 1e-2, 1e-3):
+        sc = Scene(guide="cycloid", theta0=th0, eps=1.0)
+        t = np.linspace(0, 2 * math.pi, 400)
+        th_c = pendula.simulate(sc, t).theta
+        th_r, _ = pendula.exact_motion(th0, 0.0, 1.0, t)
+        rel.append(np.abs(th_c - th_r).max() / th0)
+    for a, b in zip(rel, rel[1:]):
+        assert 80 < a / b < 120          # shrinks like theta0^2 (factor 100 per decade)
+    assert rel[-1] < 1e-6
 
 
-@pytest.mark.parametrize("height", [0.05, 0.3, 0.8, 1.2, 1.55])
-def test_tautochrone_descent_takes_a_quarter_period_from_every_height(height):
-    """Abel's tautochrone (section 4.2), measured by an independent integration
-    with an event at the lowest point."""
-    eps, r = 1.0, 0.25
-    ev = lambda t, y: y[0]  # noqa: E731
-    ev.terminal, ev.direction = True, -1
-    sol = solve_ivp(theta_rhs(eps, r), (0, 10), [height, 0.0], method="DOP853", rtol=1e-13, atol=1e-15,
-                    events=ev)
-    T = pendula.cycloid_period(eps, r)
-    assert abs(sol.t_events[0][0] - T / 4) < 1e-10
-    # and the closed form passes through the bottom exactly then
-    tr = pendula.simulate(Scene(guide="cycloid", theta0=height, eps=eps), [T / 4])
-    assert abs(tr.theta[0]) <= 4 * EPS
+@pytest.mark.parametrize("torque", [0.0, 0.05])
+def test_energy_conserved(torque):
+    # E = s'^2/2 + w2 s^2/2 - tau s is conserved; rounding of s and s' (a few
+    # ulps of 4r) allows a few eps of the energy scale w2 (4r)^2.
+    for th0 in amplitudes()[:-1]:
+        sc = Scene(guide="cycloid", theta0=th0 * 0.7, v0=0.1 * th0, torque=torque)
+        t = RNG.uniform(-50, 50, 200)
+        tr = pendula.simulate(sc, t)
+        e0 = pendula.simulate(sc, [0.0]).energy[0]
+        assert np.abs(tr.energy - e0).max() <= 16 * EPS * (0.5 * sc.eps + abs(torque))
 
 
-def test_small_amplitude_agrees_with_the_rigid_pendulum_to_second_order():
-    t = np.linspace(0, 30, 61)
-    diffs = []
-    for a in (0.02, 0.01):
-        cyc = pendula.simulate(Scene(guide="cycloid", theta0=a), t).theta
-        rig = pendula.simulate(Scene(theta0=a), t).theta
-        diffs.append(np.abs(cyc - rig).max() / a)
-    # relative difference O(a^2): halving a quarters it
-    assert 3.0 < diffs[0] / diffs[1] < 5.0 and diffs[0] < 1e-3
+@pytest.mark.parametrize("beta,tau,amp,om", [
+    (0.3, 0.0, 0.0, 0.0),            # under-damped
+    (2.0, 0.0, 0.0, 0.0),            # critical (w2 = 1, beta = 2)
+    (5.0, 0.02, 0.0, 0.0),           # over-damped, with torque
+    (0.1, 0.0, 0.05, 1.7),           # damped and driven
+    (0.0, 0.0, 0.01, 1.0),           # undamped exact resonance (secular)
+    (0.0, -0.03, 0.02, 0.63),        # undamped, driven off resonance, with torque
+])
+def test_damped_driven_against_mpmath_ode(beta, tau, amp, om):
+    # Reference: mpmath's Taylor ODE solver at 25 digits on s'' + beta s' + s = tau + A cos(om t + 0.4)
+    sc = Scene(guide="cycloid", theta0=0.3, v0=-0.2, damping=beta, torque=tau, drive_amplitude=amp,
+               drive_frequency=om, drive_phase=0.4)
+    r = sc.cycloid_radius
+    s0, v0 = 4 * r * math.sin(0.3), 4 * r * math.cos(0.3) * -0.2
+    mp.mp.dps = 25
+    f = mp.odefun(lambda t, y: [y[1], -beta * y[1] - y[0] + tau + amp * mp.cos(om * t + mp.mpf("0.4"))],
+                  0, [mp.mpf(s0), mp.mpf(v0)])
+    ts = [0.37, 1.9, 4.4, 7.0]
+    ref = [f(t) for t in ts]
+    mp.mp.dps = 15
+    _, _, s, sd = cycloid_motion(sc, ts)
+    for k in range(len(ts)):
+        # the initial state is rounded to doubles; cancellation between the steady and transient parts
+        # costs a few digits when the driven response is large: 1e-13 absolute on a scale of 4r = 1
+        assert abs(s[k] - float(ref[k][0])) <= 1e-13
+        assert abs(sd[k] - float(ref[k][1])) <= 1e-13
 
 
-def test_the_involute_of_the_cheek_is_the_path():
-    g = pendula.cycloid_geometry(0.25)
-    for th in (-1.4, -0.6, 0.0, 0.3, 1.1, 1.5):
-        x, y = g.cord(th)
-        # the free cord's end is the bob on the path, and the cord's total length is l = 4R
-        px = 0.25 * (2 * th + math.sin(2 * th))
-        py = -0.25 * (3 + math.cos(2 * th))
-        assert abs(x[-1] - px) <= 4 * EPS and abs(y[-1] - py) <= 4 * EPS
-        wrapped = np.sum(np.hypot(np.diff(x[:-1]), np.diff(y[:-1])))
-        free = math.hypot(x[-1] - x[-2], y[-1] - y[-2])
-        assert abs(wrapped + free - 1.0) < 1e-3   # polygonal arc of 64 points: 1e-3
+def test_involute_of_the_cheek_is_the_path():
+    # Section 4.3: unwrapping the cord (length 4R) from the cheek traces the path.
+    # The involute is rebuilt here from the cheek's points alone: arc length by
+    # mpmath quadrature of the cheek's speed, tangent by mpmath's derivative.
+    R = 0.8
+    geo = pendula.cycloid_geometry(R, n=201)
+    # the cheeks returned lie on x = R(p - sin p), y = R(3 + cos p)
+    p = np.linspace(0.0, math.pi, 201)
+    assert np.abs(geo.cheek_right - R * np.array([p - np.sin(p), 3 + np.cos(p)])).max() <= 8 * EPS * R
+    assert np.abs(geo.cheek_left[0] + geo.cheek_right[0]).max() == 0.0
+    mp.mp.dps = 30
+
+    def cheek(q):
+        return mp.matrix([R * (q - mp.sin(q)), R * (3 + mp.cos(q))])
+
+    for theta in RNG.uniform(0.01, math.pi / 2 - 0.01, 8):
+        q = mp.mpf(2 * theta)
+        d = mp.matrix([mp.diff(lambda z: cheek(z)[0], q), mp.diff(lambda z: cheek(z)[1], q)])
+        speed = mp.sqrt(d[0] ** 2 + d[1] ** 2)
+        arc = mp.quad(lambda z: mp.sqrt(mp.diff(lambda w: cheek(w)[0], z) ** 2
+                                        + mp.diff(lambda w: cheek(w)[1], z) ** 2), [0, q])
+        end = cheek(q) + (4 * R - arc) * d / speed
+        wrapped, contact, bob = geo.cord(float(theta))
+        assert abs(float(end[0]) - bob[0]) <= 8 * EPS * R and abs(float(end[1]) - bob[1]) <= 8 * EPS * R
+        assert abs(float(cheek(q)[0]) - contact[0]) <= 8 * EPS * R
+        # the bob is on the path returned by cycloid_geometry (phi = 2 theta)
+        assert bob[0] == pytest.approx(R * (2 * theta + math.sin(2 * theta)), abs=4 * EPS * R)
+    mp.mp.dps = 15
 
 
-def test_motion_beyond_the_cusps_is_an_error_naming_the_limit():
+def test_cusp_amplitude_is_allowed_beyond_is_an_error():
+    sc = Scene(guide="cycloid", theta0=math.pi / 2)
+    with pytest.warns(RuntimeWarning, match="cusp"):
+        tr = pendula.simulate(sc, [0.0, 1.0])
+    assert math.isnan(tr.v[0]) and math.isfinite(tr.v[1])
+    with pytest.raises(SceneError, match="theta0.*cusp"):
+        Scene(guide="cycloid", theta0=1.6)
     with pytest.raises(ValueError, match="cusp"):
-        pendula.simulate(Scene(guide="cycloid", theta0=1.5, v0=3.0), [1.0])
+        pendula.simulate(Scene(guide="cycloid", theta0=1.5, v0=2.0), np.linspace(0, 2, 201))
+    # an undamped resonant drive grows until it runs off the cheeks
     with pytest.raises(ValueError, match="cusp"):
-        # near resonance the steady amplitude 4R A / |omega0^2 - Omega^2| = 2 / 0.21 passes the cusps
-        pendula.simulate(Scene(guide="cycloid", theta0=0.1, drive_amplitude=2.0, drive_frequency=1.1), [1.0])
+        pendula.simulate(Scene(guide="cycloid", theta0=0.1, drive_amplitude=0.05, drive_frequency=1.0,
+                               t_end=200, n_samples=2001))
 
 
-def test_integrators_are_never_used_on_the_guide():
-    with pytest.raises(ValueError, match="closed form"):
-        pendula.simulate(Scene(guide="cycloid", theta0=0.3, method="dop853"), [1.0])
+def test_effects_without_meaning_on_the_guide_are_errors():
+    with pytest.raises(SceneError, match="cord"):
+        Scene(guide="cycloid", cord="flexible")
+    with pytest.raises(SceneError, match="gravity"):
+        Scene(guide="cycloid", gravity="linear", gravity_gradient=0.1)
+    with pytest.raises(SceneError, match="method.*closed form"):
+        Scene(guide="cycloid", method="rk4", dt=0.01)
+    with pytest.raises(SceneError, match="cycloid_radius"):
+        Scene(guide="cycloid", cycloid_radius=-1.0)
+    with pytest.raises(SceneError, match="cycloid_radius"):
+        Scene(cycloid_radius=0.3)
+    with pytest.raises(ValueError, match="never integrated"):
+        pendula.simulate(Scene(guide="cycloid", theta0=0.2), [1.0], method="dop853")
 
 
-def test_pendula_run_runs_the_guide(tmp_path):
-    import subprocess
+def test_torque_shifts_the_centre():
+    # a constant force along the path: the oscillation is centred on s = tau / w2
+    sc = Scene(guide="cycloid", torque=0.1, theta0=0.0)
+    T = cycloid_period(sc)
+    _, _, s, _ = cycloid_motion(sc, [T / 2])
+    assert s[0] == pytest.approx(2 * 0.1 / 1.0, rel=8 * EPS)
 
-    from conftest import venv_bin
 
+def test_pendula_run_cycloid_scene_matches_python(tmp_path):
     f = tmp_path / "c.nml"
-    f.write_text("&scene\n guide = 'cycloid', theta0 = 1.2, t_end = 3.0, n_samples = 4\n/\n")
-    p = subprocess.run([venv_bin("pendula-run"), str(f)], capture_output=True, text=True)
+    f.write_text("&scene\n guide = 'cycloid', cycloid_radius = 0.3, theta0 = 1.2, v0 = 0.1,\n"
+                 " damping = 0.05, t_end = 30, n_samples = 301\n/\n")
+    out = tmp_path / "o.csv"
+    p = subprocess.run([venv_bin("pendula-run"), str(f), "-o", str(out)], capture_output=True, text=True)
     assert p.returncode == 0, p.stderr
-    rows = [ln for ln in p.stdout.splitlines() if ln and not ln.startswith("#")][1:]
-    th = np.array([float(r.split(",")[1]) for r in rows])
-    py = pendula.simulate(Scene(guide="cycloid", theta0=1.2, t_end=3.0, n_samples=4)).theta
-    assert np.allclose(th, py, rtol=0, atol=1e-15)
+    data = np.array([[float(x) for x in ln.split(",")] for ln in out.read_text().splitlines()
+                     if ln and ln[0] not in "#t"])
+    tr = pendula.simulate(Scene.from_file(f), data[:, 0])   # the same kernel code at the same times
+    assert np.abs(data[:, 1] - tr.theta).max() <= 4 * EPS
+    assert np.abs(data[:, 3] - tr.energy).max() <= 1e-15
+    bad = tmp_path / "bad.nml"
+    bad.write_text("&scene\n guide = 'cycloid', method = 'rk4', dt = 0.1\n/\n")
+    p = subprocess.run([venv_bin("pendula-run"), str(bad)], capture_output=True, text=True)
+    assert p.returncode == 2 and "method" in p.stderr and "closed form" in p.stderr
+
+
+def test_non_finite_times_give_nan_with_a_warning():
+    sc = Scene(guide="cycloid", theta0=1.0)
+    with pytest.warns(RuntimeWarning, match="non-finite"):
+        tr = pendula.simulate(sc, [np.nan, np.inf, 1.0])
+    assert np.isnan(tr.theta[:2]).all() and np.isfinite(tr.theta[2])
+
+
+@pytest.mark.parametrize("body,name", [
+    ("guide = 'cycloid', theta0 = 1.6", "theta0"),
+    ("guide = 'cycloid', cycloid_radius = 0.0", "cycloid_radius"),
+    ("cycloid_radius = 0.3", "cycloid_radius"),
+    ("guide = 'cycloid', cord = 'flexible'", "cord"),
+    ("guide = 'cycloid', gravity = 'linear', gravity_gradient = 0.1", "gravity"),
+])
+def test_both_readers_refuse_the_same_cycloid_scenes(tmp_path, body, name):
+    f = tmp_path / "bad.nml"
+    f.write_text(f"&scene\n {body}\n/\n")
+    with pytest.raises(SceneError, match=name):
+        Scene.from_file(f)
+    p = subprocess.run([venv_bin("pendula-run"), str(f)], capture_output=True, text=True)
+    assert p.returncode == 2 and name in p.stderr, p.stderr
+
+
+def test_seed_involute_formula_4_22_slip():
+    # Source 003 (4.21) with L = 4R, evaluated by mpmath, is [0, -2R] + [R(p + sin p), -R(1 + cos p)]
+    # (the hanging cord reaches -4R at p = 0), not the printed (4.22) [0, -R] + [R(p - sin p), -R(1 + cos p)].
+    mp.mp.dps = 30
+    R = mp.mpf("0.7")
+    for p in (mp.mpf("0.3"), mp.mpf(2), mp.mpf(3)):
+        f = (4 * R - mp.quad(lambda x: 2 * R * mp.sin(x / 2), [0, p])) / (2 * R * mp.sin(p / 2))
+        g = (R * (p - mp.sin(p)) + f * R * (1 - mp.cos(p)), -R * (1 - mp.cos(p)) - f * R * mp.sin(p))
+        assert abs(g[0] - R * (p + mp.sin(p))) < 1e-25 and abs(g[1] - (-2 * R - R * (1 + mp.cos(p)))) < 1e-25
+        assert abs(g[1] - (-R - R * (1 + mp.cos(p)))) > 0.5 * R        # the printed shift is R short
+    mp.mp.dps = 15
+
+
+def test_sweep_beyond_the_cusp_is_refused_before_output(tmp_path):
+    f = tmp_path / "s.nml"
+    f.write_text("&scene\n guide = 'cycloid', sweep = 'theta0', sweep_values = 0.5, 1.7\n/\n")
+    sc = Scene.from_file(f)
+    with pytest.raises(SceneError, match="theta0"):
+        sc.members()
+    out = tmp_path / "o.csv"
+    p = subprocess.run([venv_bin("pendula-run"), str(f), "-o", str(out)], capture_output=True, text=True)
+    assert p.returncode == 2 and "theta0" in p.stderr and not out.exists()

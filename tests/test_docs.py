@@ -6,7 +6,8 @@ import importlib
 import pytest
 
 MODULES = ["pendula.elliptic", "pendula.motion", "pendula.series", "pendula.spectrum", "pendula.scene",
-           "pendula.integrate"]
+           "pendula.integrate",
+           "pendula.density", "pendula.systems.cycloid", "pendula.systems.gravity"]  # issue 13
 
 
 @pytest.mark.parametrize("name", MODULES)

@@ -15,10 +15,10 @@
 program pendula_run
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use pendula_outfile, only: outfile_t, out_open, out_line, out_close, out_abandon
-  use pendula_kinds, only: dp, two_pi
+  use pendula_kinds, only: dp, two_pi, half_pi
   use pendula_scene, only: scene_t, read_scene, scene_effects, scene_summary, max_outputs
   use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_eval, orbit_period, orbit_theta_max
-  use pendula_simulate, only: simulate_scene, select_model, sim_ok
+  use pendula_simulate, only: simulate_scene, select_model, sim_ok, simulate_status_text, scene_orbit13
   implicit none
   character(len=4096) :: path, out, arg, orbit_out
   character(len=512) :: line
@@ -32,6 +32,9 @@ program pendula_run
   logical :: want_traj, want_orbit, swept
   integer :: method
   real(dp) :: stats(4)
+  logical :: has13                                   ! cycloid / gravity orbit facts
+  integer :: reg13
+  real(dp) :: k13, per13, tmax13
   character(len=10), parameter :: regime_names(0:2) = [character(len=10) :: 'libration', 'separatrix', &
                                                        'rotation']
 
@@ -72,7 +75,8 @@ program pendula_run
       want_orbit = .true.
     end select
   end do
-  if (want_orbit .and. len_trim(scene_effects(sc)) > 0) &
+  call scene_orbit13(sc, has13, reg13, k13, per13, tmax13, status)   ! issue 13: cycloid, gravity orbits
+  if (want_orbit .and. len_trim(scene_effects(sc)) > 0 .and. .not. has13) &
     call fail(trim(path) // ': outputs period/omega/theta_max are exact-orbit facts; the scene names ' // &
               trim(scene_effects(sc)))
 
@@ -93,6 +97,8 @@ program pendula_run
     member = member_of(sc, i)
     call orbit_setup(member%theta0, member%v0, member%eps, o, status)
     if (status /= 0) call fail(trim(path) // ': sweep value makes the initial state invalid (eps <= 0?)')
+    if (member%guide == 'cycloid' .and. .not. (abs(member%theta0) <= half_pi)) &   ! issue 13
+      call fail(trim(path) // ': field ''theta0'': a sweep value puts the cycloid beyond a cusp (|theta0| > pi/2)')
   end do
 
   ! everything goes through the checked writer: OUT (or standard output, '-')
@@ -175,6 +181,14 @@ contains
     call out_line(f, 'theta0,v0,eps,regime,k,period,omega,theta_max')
     do i = 1, nmem
       member = member_of(sc, i)
+      call scene_orbit13(member, has13, reg13, k13, per13, tmax13, status)
+      if (has13) then   ! the cycloid and gravity models' orbit facts
+        if (status /= 0) call fail(trim(path) // ': ' // trim(simulate_status_text(status)), 4)
+        write(line, '(3(es24.16e3,","),a,4(",",es24.16e3))') member%theta0, member%v0, member%eps, &
+          trim(regime_names(reg13)), k13, per13, merge(0.0_dp, two_pi / per13, per13 > huge(1.0_dp)), tmax13
+        call out_line(f, line)
+        cycle
+      end if
       call orbit_setup(member%theta0, member%v0, member%eps, o, status)
       write(line, '(3(es24.16e3,","),a,4(",",es24.16e3))') member%theta0, member%v0, member%eps, &
         trim(regime_names(o%regime)), o%k, orbit_period(o), merge(0.0_dp, two_pi / orbit_period(o), &
@@ -199,7 +213,9 @@ contains
     end do
     if (len_trim(scene_effects(sc)) > 0) then
       call out_line(f, '# effects = ' // trim(scene_effects(sc)))
-      if (sc%method == 'auto') then
+      if (sc%guide == 'cycloid') then   ! closed form
+        call out_line(f, '# solver = exact (the cycloidal pendulum: a harmonic oscillator in s, closed form)')
+      else if (sc%method == 'auto') then
         call out_line(f, '# solver = dop853 (method auto: the scene names effects)')
       else
         call out_line(f, '# solver = ' // trim(sc%method))

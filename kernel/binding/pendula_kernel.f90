@@ -201,20 +201,6 @@ subroutine scene_check_v(text, status, msg)
   call parse_scene(text, '<scene>', sc, status, msg)
 end subroutine scene_check_v
 
-! The cycloidal guide's geometry: the bob's path at the angles theta, and the
-! right cheek at the parameters phi (the left one is its mirror image).
-subroutine cycloid_geometry_v(n, r, theta, x, y, m, phi, cx, cy)
-  use pendula_cycloid, only: cycloid_path, cycloid_cheek
-  implicit none
-  integer, intent(in) :: n, m
-  double precision, intent(in) :: r, theta(n), phi(m)
-  double precision, intent(out) :: x(n), y(n), cx(m), cy(m)
-  !f2py intent(hide), depend(theta) :: n = len(theta)
-  !f2py intent(hide), depend(phi) :: m = len(phi)
-  call cycloid_path(r, theta, x, y)
-  call cycloid_cheek(r, phi, cx, cy)
-end subroutine cycloid_geometry_v
-
 ! The model registry, one model per line of `table` (fields separated by '|':
 ! name, selector, effects, exact_with, path, implemented, summary).
 subroutine models_v(table)
@@ -232,15 +218,16 @@ end subroutine models_v
 
 ! Integrate a scene's model: method codes 1..9 (see pendula_integrators), 10 = GSL rk8pd.
 ! t must be sorted ascending.  stats = [steps, accepted, rejected, rhs evaluations].
-subroutine integrate_v(n, method, params, theta0, v0, t, rtol, atol, dt, ev_kind, ev_level, &
+subroutine integrate_v(n, method, params, gkind, gpar, theta0, v0, t, rtol, atol, dt, ev_kind, ev_level, &
                        ev_dir, ev_terminal, max_ev, cancel, theta, v, stats, status, nev, tev, thev, vev)
   use pendula_kinds, only: dp
   use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate
   use pendula_gsl_iface, only: pendula_gsl_rk8pd
+  use pendula_gravity, only: gravity_check
   implicit none
-  integer, intent(in) :: n, method, ev_kind, ev_dir, ev_terminal, max_ev
+  integer, intent(in) :: n, method, gkind, ev_kind, ev_dir, ev_terminal, max_ev
   !f2py threadsafe
-  double precision, intent(in) :: params(6), theta0, v0, t(n), rtol, atol, dt, ev_level
+  double precision, intent(in) :: params(6), gpar, theta0, v0, t(n), rtol, atol, dt, ev_level
   integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: theta(n), v(n), stats(4)
   integer, intent(out) :: status, nev
@@ -265,7 +252,13 @@ subroutine integrate_v(n, method, params, theta0, v0, t, rtol, atol, dt, ev_kind
     stats = [gs(1), gs(1), 0.0d0, gs(2)]
     return
   end if
+  if (gravity_check(gkind, gpar, params(1)) /= 0) then
+    status = 20
+    return
+  end if
   m = make_model(params(1), params(2), params(3), params(4), params(5), params(6))
+  m%gkind = gkind
+  m%gpar = gpar
   ev%kind = ev_kind; ev%level = ev_level; ev%direction = ev_dir; ev%terminal = ev_terminal /= 0
   call integrate(m, method, theta0, v0, t, rtol, atol, dt, theta, v, st, status, ev, nev, tev, thev, vev, cancel(1))
   stats = [dble(st%nsteps), dble(st%naccept), dble(st%nreject), dble(st%nfev)]
@@ -309,3 +302,61 @@ subroutine spectra_v(handle, n, nsig, signals, dt, window, nh, omega, power, sta
   end if
   call power_spectra(int(handle, c_intptr_t), signals, dt, window, omega, power, status)
 end subroutine spectra_v
+
+! ====================================================================
+! Issue 13: Huygens' cycloidal pendulum, non-uniform gravity, the density of the angle
+! ====================================================================
+
+! The cycloidal pendulum in closed form.  params = [eps, beta, tau, amp, Omega, phase],
+! r = R / l.  status: see pendula_cycloid (0 ok, 1 bad eps/r, 3 bad state, 4 reaches a cusp).
+subroutine cycloid_run_v(n, params, r, theta0, v0, t, theta, v, s, sd, status)
+  use pendula_cycloid, only: cycloid_run
+  implicit none
+  integer, intent(in) :: n
+  double precision, intent(in) :: params(6), r, theta0, v0, t(n)
+  double precision, intent(out) :: theta(n), v(n), s(n), sd(n)
+  integer, intent(out) :: status
+  !f2py intent(hide), depend(t) :: n = len(t)
+  call cycloid_run(params(1), r, params(2), params(3), params(4), params(5), params(6), theta0, v0, t, &
+                   theta, v, s, sd, status)
+end subroutine cycloid_run_v
+
+! Potential V(theta) and acceleration -V'(theta) of a gravity field (kind 0, 1, 2; see pendula_gravity).
+subroutine gravity_field_v(n, kind, par, eps, theta, pot, acc, status)
+  use pendula_gravity, only: gravity_check, gravity_potential, gravity_accel
+  implicit none
+  integer, intent(in) :: n, kind
+  double precision, intent(in) :: par, eps, theta(n)
+  double precision, intent(out) :: pot(n), acc(n)
+  integer, intent(out) :: status
+  !f2py intent(hide), depend(theta) :: n = len(theta)
+  status = gravity_check(kind, par, eps)
+  pot = gravity_potential(kind, par, eps, theta)
+  acc = gravity_accel(kind, par, eps, theta)
+end subroutine gravity_field_v
+
+! The orbit in a gravity field: info = [regime, E, m, K, theta_max, period, mc].
+subroutine gravity_orbit_v(kind, par, eps, theta0, v0, info, status)
+  use pendula_gravity, only: gravity_orbit
+  implicit none
+  integer, intent(in) :: kind
+  double precision, intent(in) :: par, eps, theta0, v0
+  double precision, intent(out) :: info(7)
+  integer, intent(out) :: status
+  integer :: regime
+  call gravity_orbit(kind, par, eps, theta0, v0, info(2), regime, info(3), info(7), info(4), info(5), info(6), &
+                     status)
+  info(1) = regime
+end subroutine gravity_orbit_v
+
+! The integrand h(u) of t = int h du at the nodes u (regime 0 libration, 2 rotation).
+subroutine gravity_h_v(n, kind, par, eps, regime, m, mc, e, u, h)
+  use pendula_gravity, only: gravity_h
+  implicit none
+  integer, intent(in) :: n, kind, regime
+  double precision, intent(in) :: par, eps, m, mc, e, u(n)
+  double precision, intent(out) :: h(n)
+  !f2py intent(hide), depend(u) :: n = len(u)
+  h = gravity_h(kind, par, eps, regime, m, mc, e, u)
+end subroutine gravity_h_v
+

@@ -11,22 +11,26 @@
 !> Adding a model: one module in kernel/models, one entry in `registry`, one
 !> case in simulate_scene (and one line in python/pendula/models/__init__.py).
 module pendula_simulate
-  use pendula_kinds, only: dp
+  use pendula_kinds, only: dp, nan_dp, two_pi
   use pendula_scene, only: scene_t, scene_effects
   use pendula_rigid, only: rigid_has_exact, rigid_exact, rigid_energy
-  use pendula_cycloid, only: cycloid_motion, cyc_ok, cyc_bad_param, cyc_beyond_cusp
-  use pendula_integrators, only: make_model, event_spec, run_stats, integrate, m_rk4, m_verlet, &
+  use pendula_cycloid, only: cycloid_run, cycloid_omega2, cy_ok, cy_reaches_cusp
+  use pendula_gravity, only: gk_uniform, gk_inverse_square, gk_linear, gravity_energy, gravity_orbit, &
+    gr_libration, gr_rotation
+  use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate, m_rk4, m_verlet, &
     m_yoshida4, m_yoshida6, m_yoshida8, m_gauss4, m_gauss6, m_dopri5, m_dop853, st_too_many_steps, &
     st_cancelled, max_steps
   use pendula_gsl_iface, only: pendula_gsl_rk8pd
   implicit none
   private
-  public :: model_info_t, registry, select_model, method_code, simulate_scene, simulate_status_text
+  public :: model_info_t, registry, select_model, method_code, simulate_scene, simulate_status_text, &
+            scene_energy, scene_orbit13
 
   integer, parameter, public :: sim_ok = 0, sim_bad_state = 1, sim_unsupported = 10, &
     sim_needs_dt = 11, sim_unsorted = 12, sim_integrator_failed = 13, sim_not_implemented = 14, &
     sim_model_clash = 15, sim_exact_refused = 16, sim_backward = 17, sim_gsl_failed = 18, &
-    sim_too_many_steps = 19, sim_cancelled = 20, sim_closed_form_only = 21, sim_beyond_cusp = 22
+    sim_too_many_steps = 19, sim_cancelled = 20, sim_closed_form_only = 21, sim_beyond_cusp = 22, &
+    sim_nonfinite_t = 23
   !> method codes: the integrators' 1..9, then GSL's rk8pd and the exact path
   integer, parameter, public :: m_gsl_rk8pd = 10, m_exact = 0
 
@@ -51,8 +55,8 @@ module pendula_simulate
                  'bob on a flexible cord (Garfinkel): circle, free flight, jerk'), &
     model_info_t('cycloid', "guide='cycloid'", 'damping torque drive', 'damping torque drive', 'exact', &
                  .true., 'cycloidal guide (Huygens): isochronous, closed form'), &
-    model_info_t('gravity', "gravity='inverse-square'", 'damping torque drive', '(none)', 'integrated', &
-                 .false., 'non-uniform gravity: energy, quadrature period, integrators')]
+    model_info_t('gravity', "gravity='inverse-square' or 'linear'", 'damping torque drive', '(none)', &
+                 'integrated', .true., 'non-uniform gravity: energy, quadrature period, integrators')]
 
 contains
 
@@ -146,13 +150,17 @@ contains
         status = sim_closed_form_only
       else
         method = m_exact
-        call cycloid_motion(sc%theta0, sc%v0, sc%eps, sc%guide_radius, sc%damping, sc%torque, &
-                            sc%drive_amplitude, sc%drive_frequency, sc%drive_phase, t, theta, v, energy, status)
-        select case (status)
-        case (cyc_ok)
-        case (cyc_beyond_cusp); status = sim_beyond_cusp
-        case default;           status = sim_bad_state
-        end select
+        call cycloid_path_motion(sc, t, theta, v, status)
+        if (status == sim_ok) energy = scene_energy(sc, theta, v)
+      end if
+    case (mid_gravity)
+      ! conservative and one-dimensional, but no closed form: the scene's integrator
+      ! on the field's force law (the period comes from the energy integral: scene_orbit13)
+      if (sc%method == 'exact') then
+        status = sim_exact_refused
+      else
+        call integrate_model(sc, t, theta, v, stats, method, status, cancel)
+        if (status == sim_ok) energy = scene_energy(sc, theta, v)
       end if
     end select
     if (status /= sim_ok) msg = simulate_status_text(status)
@@ -169,6 +177,7 @@ contains
     type(run_stats) :: st
     integer :: nev
     real(dp) :: tev(1), thev(1), vev(1), params(6), gs(2)
+    type(pendulum_model) :: model
     method = method_code(sc%method)
     if (sc%method == 'auto') method = m_dop853
     if (method < 1) then
@@ -177,12 +186,18 @@ contains
     if (method <= m_gauss6 .and. .not. (sc%dt > 0.0_dp)) then
       status = sim_needs_dt; return
     end if
+    if (.not. all(abs(t) <= huge(1.0_dp))) then
+      status = sim_nonfinite_t; return
+    end if
     if (size(t) > 1) then
       if (any(t(2:) < t(:size(t) - 1))) then
         status = sim_unsorted; return
       end if
     end if
     params = [sc%eps, sc%damping, sc%torque, sc%drive_amplitude, sc%drive_frequency, sc%drive_phase]
+    if (method == m_gsl_rk8pd .and. trim(sc%gravity) /= 'uniform') then
+      status = sim_unsupported; return
+    end if
     if (method == m_gsl_rk8pd) then
       if (size(t) > 0) then
         if (t(1) < 0.0_dp) then
@@ -194,9 +209,14 @@ contains
       if (status /= 0) status = sim_gsl_failed
       return
     end if
-    call integrate(make_model(params(1), params(2), params(3), params(4), params(5), params(6)), method, &
-                   sc%theta0, sc%v0, t, sc%rtol, sc%atol, sc%dt, theta, v, st, status, ev, nev, tev, thev, vev, &
-                   cancel)
+    model = make_model(params(1), params(2), params(3), params(4), params(5), params(6))
+    select case (trim(sc%gravity))
+    case ('inverse-square'); model%gkind = gk_inverse_square; model%gpar = sc%gravity_distance
+    case ('linear');         model%gkind = gk_linear;         model%gpar = sc%gravity_gradient
+    case default;            model%gkind = gk_uniform
+    end select
+    call integrate(model, method, sc%theta0, sc%v0, t, sc%rtol, sc%atol, sc%dt, theta, v, st, status, &
+                   ev, nev, tev, thev, vev, cancel)
     stats = [real(st%nsteps, dp), real(st%naccept, dp), real(st%nreject, dp), real(st%nfev, dp)]
     select case (status)
     case (0)
@@ -205,6 +225,87 @@ contains
     case default;             status = sim_integrator_failed
     end select
   end subroutine integrate_model
+
+  !> The cycloidal guide's closed form (kernel/models/pendula_cycloid.f90).
+  subroutine cycloid_path_motion(sc, t, theta, v, status)
+    type(scene_t), intent(in) :: sc
+    real(dp), intent(in) :: t(:)
+    real(dp), intent(out) :: theta(:), v(:)
+    integer, intent(out) :: status
+    real(dp), allocatable :: s(:), sd(:)
+    allocate(s(size(t)), sd(size(t)))
+    call cycloid_run(sc%eps, sc%cycloid_radius, sc%damping, sc%torque, sc%drive_amplitude, &
+                     sc%drive_frequency, sc%drive_phase, sc%theta0, sc%v0, t, theta, v, s, sd, status)
+    select case (status)
+    case (cy_ok);           status = sim_ok
+    case (cy_reaches_cusp); status = sim_beyond_cusp
+    case default;           status = sim_bad_state
+    end select
+  end subroutine cycloid_path_motion
+
+  !> Issue 13 hook: the energy of the scene's model along (theta, v) (per m l^2):
+  !> rigid v^2/2 + V(theta) of its gravity field; on the cycloid s'^2/2 + w2 s^2/2 - tau s.
+  function scene_energy(sc, theta, v) result(e)
+    type(scene_t), intent(in) :: sc
+    real(dp), intent(in) :: theta(:), v(:)
+    real(dp) :: e(size(theta))
+    real(dp) :: r
+    if (sc%guide == 'cycloid') then
+      r = sc%cycloid_radius
+      e = 0.5_dp * (4.0_dp * r * cos(theta) * v)**2 + 0.5_dp * cycloid_omega2(sc%eps, r) * &
+          (4.0_dp * r * sin(theta))**2 - sc%torque * 4.0_dp * r * sin(theta)
+    else
+      select case (trim(sc%gravity))
+      case ('inverse-square'); e = gravity_energy(gk_inverse_square, sc%gravity_distance, sc%eps, theta, v)
+      case ('linear');         e = gravity_energy(gk_linear, sc%gravity_gradient, sc%eps, theta, v)
+      case default;            e = 0.5_dp * v * v + 2.0_dp * sc%eps * sin(0.5_dp * theta)**2
+      end select
+    end if
+  end function scene_energy
+
+  !> Issue 13 hook: the orbit facts of a conservative cycloid scene (the guide, perhaps a torque)
+  !> or a scene whose only effect is non-uniform gravity.  has = .false. for any other scene.
+  !> k: sqrt(m) in libration, 1/sqrt(m) in rotation (the rigid pendulum's k in uniform gravity);
+  !> NaN on the cycloid (no modulus there).  status /= 0: the orbit reaches a cusp or bad input.
+  subroutine scene_orbit13(sc, has, regime, k, period, theta_max, status)
+    type(scene_t), intent(in) :: sc
+    logical, intent(out) :: has
+    integer, intent(out) :: regime, status
+    real(dp), intent(out) :: k, period, theta_max
+    real(dp) :: w2, r, s0, sd0, c, a, e, m, mc, kk
+    has = .false.; regime = 0; status = 0
+    k = nan_dp; period = nan_dp; theta_max = nan_dp
+    if (sc%guide == 'cycloid' .and. sc%damping == 0 .and. sc%drive_amplitude == 0) then
+      has = .true.
+      r = sc%cycloid_radius
+      w2 = cycloid_omega2(sc%eps, r)
+      s0 = 4.0_dp * r * sin(sc%theta0)
+      sd0 = 4.0_dp * r * cos(sc%theta0) * sc%v0
+      c = sc%torque / w2
+      a = hypot(s0 - c, sd0 / sqrt(w2))
+      period = two_pi / sqrt(w2)
+      if (abs(c) + a > 4.0_dp * r) then
+        status = sim_beyond_cusp; return
+      end if
+      theta_max = asin((c + a) / (4.0_dp * r))
+    else if (trim(scene_effects(sc)) == 'gravity') then
+      has = .true.
+      select case (trim(sc%gravity))
+      case ('inverse-square')
+        call gravity_orbit(gk_inverse_square, sc%gravity_distance, sc%eps, sc%theta0, sc%v0, e, regime, m, mc, &
+                           kk, theta_max, period, status)
+      case default
+        call gravity_orbit(gk_linear, sc%gravity_gradient, sc%eps, sc%theta0, sc%v0, e, regime, m, mc, &
+                           kk, theta_max, period, status)
+      end select
+      if (status /= 0) then
+        status = sim_bad_state; return
+      end if
+      k = 1.0_dp
+      if (regime == gr_libration) k = sqrt(m)
+      if (regime == gr_rotation) k = 1.0_dp / sqrt(m)
+    end if
+  end subroutine scene_orbit13
 
   function simulate_status_text(status) result(s)
     integer, intent(in) :: status
@@ -226,6 +327,7 @@ contains
       write(s, '(a,es8.1,a)') 'the run needs more than', real(max_steps, dp), ' steps (the work limit): ' // &
         'shorten the span (t), or give a larger dt or rtol'
     case (sim_cancelled);        s = 'interrupted'
+    case (sim_nonfinite_t);      s = 't must be finite for a scene that is integrated'
     case (sim_closed_form_only); s = 'field ''method'': the cycloidal guide is answered in closed form; ' // &
                                      'use ''auto'' or ''exact'''
     case (sim_beyond_cusp);      s = 'the motion reaches the cusps of the cycloidal guide (|s| = 4R, ' // &

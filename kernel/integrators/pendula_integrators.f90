@@ -23,6 +23,7 @@
 !> by the Illinois method.
 module pendula_integrators
   use pendula_kinds, only: dp, i8, nan_dp
+  use pendula_gravity, only: gravity_accel
   implicit none
   private
   public :: pendulum_model, make_model, event_spec, run_stats, integrate, accel
@@ -47,6 +48,9 @@ module pendula_integrators
     real(dp) :: eps = 1.0_dp, beta = 0.0_dp, tau = 0.0_dp
     real(dp) :: amp = 0.0_dp, omega = 0.0_dp, phase = 0.0_dp
     logical :: damped = .false., torqued = .false., driven = .false.
+    !> non-uniform gravity (issue 13): field kind and parameter of pendula_gravity; 0 = uniform
+    integer :: gkind = 0
+    real(dp) :: gpar = 0.0_dp
   end type pendulum_model
 
   !> kind 0: none; 1: g = v (turning points); 2: g = theta - level;
@@ -79,7 +83,11 @@ contains
     type(pendulum_model), intent(in) :: m
     real(dp), intent(in) :: t, th, v
     real(dp) :: a
-    a = -m%eps * sin(th)
+    if (m%gkind == 0) then
+      a = -m%eps * sin(th)
+    else
+      a = gravity_accel(m%gkind, m%gpar, m%eps, th)
+    end if
     if (m%damped) a = a - m%beta * v
     if (m%torqued) a = a + m%tau
     if (m%driven) a = a + m%amp * cos(m%omega * t + m%phase)
@@ -90,7 +98,11 @@ contains
     type(pendulum_model), intent(in) :: m
     real(dp), intent(in) :: t, th
     real(dp) :: a
-    a = -m%eps * sin(th)
+    if (m%gkind == 0) then
+      a = -m%eps * sin(th)
+    else
+      a = gravity_accel(m%gkind, m%gpar, m%eps, th)
+    end if
     if (m%torqued) a = a + m%tau
     if (m%driven) a = a + m%amp * cos(m%omega * t + m%phase)
   end function force

@@ -5,7 +5,7 @@
 !> wrong type is reported with the field's name and its line; then the ranges
 !> are checked with the same rules as the Python layer (pendula/scene.py).
 module pendula_scene
-  use pendula_kinds, only: dp, nan_dp
+  use pendula_kinds, only: dp, nan_dp, half_pi
   implicit none
   private
   public :: scene_t, read_scene, parse_scene, scene_effects, scene_summary, max_sweep, max_outputs
@@ -25,8 +25,8 @@ module pendula_scene
     real(dp) :: sweep_values(max_sweep) = nan_dp
     integer :: n_sweep = 0
     character(len=256) :: name = ''
-    !> the cycloidal guide's generating radius R, in units of the length l
-    real(dp) :: guide_radius = 0.25_dp
+    ! issue 13: the cycloidal guide (R / l) and the gravity fields' parameters
+    real(dp) :: cycloid_radius = 0.25_dp, gravity_distance = 0.0_dp, gravity_gradient = 0.0_dp
   end type scene_t
 
 contains
@@ -68,7 +68,8 @@ contains
     character(len=*), intent(out) :: msg
     ! the namelist variables (same names as the fields)
     real(dp) :: eps, theta0, v0, t_start, t_end, damping, torque, drive_amplitude, &
-                drive_frequency, drive_phase, rtol, atol, dt, g, length, guide_radius
+                drive_frequency, drive_phase, rtol, atol, dt, g, length, cycloid_radius, gravity_distance, &
+                gravity_gradient
     integer :: n_samples
     ! one more element and far more characters than the scene holds: a longer
     ! list or string is refused with a message instead of being truncated
@@ -78,16 +79,16 @@ contains
     character(len=1024) :: name
     namelist /scene/ eps, theta0, v0, t_start, t_end, n_samples, damping, torque, &
       drive_amplitude, drive_frequency, drive_phase, cord, guide, gravity, method, rtol, atol, dt, &
-      outputs, sweep, sweep_values, name, g, length, guide_radius
+      outputs, sweep, sweep_values, name, g, length, cycloid_radius, gravity_distance, gravity_gradient
     character(len=:), allocatable :: text
     character(len=:), allocatable :: buf
     character(len=512) :: iom
     integer :: ios, i, j, k, start, line, nseen, jj, kk
     character(len=64) :: fname, seen(64)
-    character(len=16), parameter :: known_fields(25) = [character(len=16) :: 'eps', 'theta0', 'v0', &
+    character(len=16), parameter :: known_fields(27) = [character(len=16) :: 'eps', 'theta0', 'v0', &
       't_start', 't_end', 'n_samples', 'damping', 'torque', 'drive_amplitude', 'drive_frequency', &
       'drive_phase', 'cord', 'guide', 'gravity', 'method', 'rtol', 'atol', 'dt', 'outputs', 'sweep', &
-      'sweep_values', 'name', 'g', 'length', 'guide_radius']
+      'sweep_values', 'name', 'g', 'length', 'cycloid_radius', 'gravity_distance', 'gravity_gradient']
 
     status = 0
     msg = ''
@@ -95,7 +96,8 @@ contains
     n_samples = sc%n_samples; damping = 0; torque = 0; drive_amplitude = 0; drive_frequency = 0
     drive_phase = 0; cord = sc%cord; guide = sc%guide; gravity = sc%gravity; method = sc%method
     rtol = sc%rtol; atol = sc%atol; dt = 0; outputs = ''; sweep = ''; sweep_values = nan_dp
-    name = ''; g = nan_dp; length = nan_dp; guide_radius = sc%guide_radius
+    name = ''; g = nan_dp; length = nan_dp
+    cycloid_radius = 0.25_dp; gravity_distance = 0.0_dp; gravity_gradient = 0.0_dp
 
     k = utf8_error_at(text_in)
     if (k > 0) then
@@ -211,7 +213,8 @@ contains
     sc%gravity = lower(gravity); sc%method = lower(method); sc%rtol = rtol; sc%atol = atol
     sc%dt = dt; sc%outputs = outputs(1:max_outputs); sc%sweep = lower(sweep); sc%sweep_values = sweep_values(1:max_sweep)
     sc%name = name
-    sc%guide_radius = guide_radius
+    sc%cycloid_radius = cycloid_radius; sc%gravity_distance = gravity_distance
+    sc%gravity_gradient = gravity_gradient
     sc%n_sweep = count(sweep_values(1:max_sweep) == sweep_values(1:max_sweep))
     call check(sc, g, length, status, msg)
     if (status /= 0) msg = trim(source) // ': ' // trim(msg)
@@ -266,9 +269,6 @@ contains
     if (.not. (sc%rtol > 0) .or. .not. (sc%atol >= 0)) then
       msg = 'fields ''rtol'' must be > 0 and ''atol'' >= 0'; return
     end if
-    if (.not. (finite(sc%guide_radius) .and. sc%guide_radius > 0)) then
-      msg = 'field ''guide_radius'' must be positive and finite (R / l of the cycloidal guide)'; return
-    end if
     if (.not. (sc%dt >= 0)) then
       msg = 'field ''dt'' must be >= 0 (0: chosen by the method)'; return
     end if
@@ -278,8 +278,8 @@ contains
     if (sc%guide /= 'none' .and. sc%guide /= 'cycloid') then
       msg = 'field ''guide'' must be one of none, cycloid; got ''' // trim(sc%guide) // ''''; return
     end if
-    if (sc%gravity /= 'uniform' .and. sc%gravity /= 'inverse-square') then
-      msg = 'field ''gravity'' must be one of uniform, inverse-square; got ''' // trim(sc%gravity) // ''''
+    if (sc%gravity /= 'uniform' .and. sc%gravity /= 'inverse-square' .and. sc%gravity /= 'linear') then
+      msg = 'field ''gravity'' must be one of uniform, inverse-square, linear; got ''' // trim(sc%gravity) // ''''
       return
     end if
     if (.not. any(methods == sc%method)) then
@@ -318,13 +318,64 @@ contains
     else if (sc%n_sweep > 0) then
       msg = 'field ''sweep_values'' is given but ''sweep'' does not name a field'; return
     end if
-    if (sc%method == 'exact' .and. len_trim(scene_effects(sc)) > 0) then
+    call check_issue13(sc, msg)
+    if (len_trim(msg) > 0) return
+    if (sc%method == 'exact' .and. len_trim(scene_effects(sc)) > 0 .and. sc%guide /= 'cycloid') then
       msg = 'field ''method'': ''exact'' answers only the conservative rigid pendulum, but the scene names ' &
             // trim(scene_effects(sc)); return
     end if
     status = 0
     msg = ''
   end subroutine check
+
+  !> Issue 13: the cycloidal guide and the gravity fields (same rules as scene.py).  msg = '' when fine.
+  subroutine check_issue13(sc, msg)
+    type(scene_t), intent(in) :: sc
+    character(len=*), intent(out) :: msg
+    msg = ''
+    if (.not. (sc%cycloid_radius > 0 .and. finite(sc%cycloid_radius))) then
+      msg = 'field ''cycloid_radius'' must be positive (R / l)'; return
+    end if
+    if (sc%guide /= 'cycloid' .and. sc%cycloid_radius /= 0.25_dp) then
+      msg = 'field ''cycloid_radius'' is used only with guide = ''cycloid'''; return
+    end if
+    if (.not. (finite(sc%gravity_distance) .and. finite(sc%gravity_gradient))) then
+      msg = 'fields ''gravity_distance'', ''gravity_gradient'' must be finite'; return
+    end if
+    if (sc%gravity == 'inverse-square') then
+      if (.not. (sc%gravity_distance > 1)) then
+        msg = 'field ''gravity_distance'' (D / l, the point mass below the pivot) must be > 1 with ' // &
+              'gravity = ''inverse-square'''; return
+      end if
+    else if (sc%gravity_distance /= 0) then
+      msg = 'field ''gravity_distance'' is used only with gravity = ''inverse-square'''; return
+    end if
+    if (sc%gravity == 'linear') then
+      if (.not. (sc%gravity_gradient < 0.5_dp)) then
+        msg = 'field ''gravity_gradient'' (kappa in g (1 - kappa h / l)) must be < 0.5 so that gravity ' // &
+              'points down at the top'; return
+      end if
+    else if (sc%gravity_gradient /= 0) then
+      msg = 'field ''gravity_gradient'' is used only with gravity = ''linear'''; return
+    end if
+    if (sc%guide == 'cycloid') then
+      if (sc%cord /= 'rigid') then
+        msg = 'field ''cord'': the cycloidal guide wraps an inextensible cord of length 4R; ' // &
+              'cord = ''flexible'' has no meaning on it'; return
+      end if
+      if (sc%gravity /= 'uniform') then
+        msg = 'field ''gravity'': the cycloidal guide is isochronous only in uniform gravity; ' // &
+              'non-uniform gravity with guide = ''cycloid'' is not a model of pendula'; return
+      end if
+      if (sc%method /= 'auto' .and. sc%method /= 'exact') then
+        msg = 'field ''method'': the cycloidal pendulum is solved in closed form (method ''auto'' or ' // &
+              '''exact''), never integrated'; return
+      end if
+      if (.not. (abs(sc%theta0) <= half_pi)) then
+        msg = 'field ''theta0'': on the cycloid |theta0| <= pi/2 (the cusps, |s| = 4R)'; return
+      end if
+    end if
+  end subroutine check_issue13
 
   !> The effects a scene names, comma separated ('' when none).
   pure function scene_effects(sc) result(s)

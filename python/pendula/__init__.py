@@ -34,8 +34,11 @@ from .motion import Orbit, Trajectory, energy, exact_motion, orbit, period, simu
 from .scene import Scene, SceneError  # noqa: E402
 from .series import period_from_series, period_series, poincare_lindstedt  # noqa: E402
 from .systems import ModelInfo, models  # noqa: E402
-from .systems.cycloid import CycloidGeometry, cycloid_geometry, cycloid_period  # noqa: E402
 from .spectrum import Spectrum, fourier_series, odd_harmonics_above, spectra, spectrum  # noqa: E402
+
+# issue 13: Huygens' cycloidal pendulum, non-uniform gravity, the density of the angle
+from .systems.cycloid import CycloidGeometry, cycloid_geometry, cycloid_period  # noqa: E402
+from .systems.gravity import gravity_orbit  # noqa: E402
 
 __version__ = "0.1.0"
 
@@ -44,5 +47,5 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Orbit", "Trajectory", "period_series", "period_from_series", "poincare_lindstedt",
            "find_events", "numerical_period", "Events",
            "spectrum", "spectra", "Spectrum", "fourier_series", "odd_harmonics_above",
-           "models", "ModelInfo", "cycloid_geometry", "cycloid_period", "CycloidGeometry",
+           "models", "ModelInfo", "cycloid_geometry", "cycloid_period", "gravity_orbit",
            "angle_density", "angle_cdf", "arcsine_density"]

@@ -110,6 +110,7 @@ def cmd_spectrum(args) -> int:
 def cmd_demo(args) -> int:
     import pathlib
 
+    from .demos.huygens import huygens_gallery
     from .run import run_scene
     from .scene import Scene
 
@@ -123,6 +124,7 @@ def cmd_demo(args) -> int:
         files = run_scene(scene, out, stem=p.name[:-4], progress=not args.quiet)
         written += files
         print(f"  {p.name:40s} {len(files)} file(s): " + ", ".join(f.name for f in files))
+    written += huygens_gallery(out)  # issue 13: Huygens' clock, non-uniform gravity, density of the angle
     print("\nwhat accuracy costs in time: the integrators against the exact solution")
     integrator_study(out, 1e5, progress=not args.quiet)
     print(f"\n{len(written)} gallery files and the integrator study written to {out.resolve()}")

@@ -1,21 +1,23 @@
-"""The time-averaged density of the angle (Prusa & Tuma, task 5).
+"""The density of the angle (source 003, task 5): how much of its time a
+conservative orbit spends near each angle.
 
-Over one period of a conservative orbit the pendulum spends the time
-dt = dtheta / |theta'(theta)| near each angle, so the angle's density is
-p(theta) = 2 / (T |theta'(theta)|) for a libration (on [-theta_max,
-theta_max] around its well) and 1 / (T |theta'|) over one turn of a rotation
-(theta taken modulo 2 pi in [-pi, pi)).  Its cumulative distribution is the
-fraction of the period spent below theta: the time to reach theta is an
-incomplete elliptic integral, so the CDF is exact through F and stays finite
-and accurate up to the turning points where the density blows up:
+Over one period of a libration the bob passes every angle twice, so the
+time-averaged probability density is p(theta) = 2 / (T |theta'(theta)|) on
+[-theta_max, theta_max]; over one turn of a rotation it is 1 / (T |theta'|)
+on [-pi, pi).  The cumulative distribution is the time to reach theta over
+the period, an incomplete elliptic integral F: with sin(theta/2) =
+sqrt(m) sin(phi) (libration) or phi = theta/2 (rotation),
 
-* libration:  CDF = (F(phi | k^2) + K) / (2K),  sin(phi) = sin(theta/2) / k;
-* rotation:   CDF = (F(theta/2 | 1/k^2) + K') / (2K'),  theta in [-pi, pi];
-* cycloidal guide: the arcsine law in s = 4R sin(theta) at every amplitude,
-  CDF = 1/2 + asin(s / A) / pi.
+    t(theta) = int_0^F(phi | m) h(u) du,
 
-In the small-amplitude limit the libration's density tends to the arcsine law
-1 / (pi sqrt(theta_max^2 - theta^2)) of the harmonic oscillator.
+where h is constant (1/sqrt(eps) in libration, sqrt(2/E) in rotation) for
+the rigid pendulum in uniform gravity, so that the CDF is exactly
+1/2 + 2 F(phi|m) / (4 K(m)) (libration) or 1/2 + F(theta/2 | m) / (2 K(m))
+(rotation): finite and accurate up to the turning points, where the density
+blows up.  In a non-uniform field h(u) is smooth, even and 2K-periodic (see
+pendula.systems.gravity), and int_0^U h du is summed from its cosine series.
+For the cycloidal pendulum s = 4 R sin(theta) is harmonic in time, so s has
+the arcsine law at every amplitude: p(s) = 1 / (pi sqrt(A^2 - (s - s_c)^2)).
 """
 
 from __future__ import annotations
@@ -25,151 +27,217 @@ import math
 import numpy as np
 
 from ._checks import as_float
-from .elliptic import ellipf, ellipk
-from .scene import Scene
-from .systems.rigid import orbit
+from .elliptic import ellipf
 
 __all__ = ["angle_density", "angle_cdf", "arcsine_density"]
 
 
-def _libration_parts(scene: Scene, theta):
-    """The orbit, theta in the scene's well, and k^2 - sin^2(theta/2) without
-    cancellation next to the turning points: sin((a - x)/2) sin((a + x)/2) + w^2
-    (a = theta0 in its well, w = v0 / (2 sqrt eps)); through 1 - (sin(x/2)/k)^2
-    the rounding of k alone cost 1e-10 of the CDF there."""
-    o = orbit(scene.theta0, scene.v0, scene.eps)
-    th = as_float(theta, "theta")
-    well = 2 * math.pi * round(scene.theta0 / (2 * math.pi))
-    x = th - well
-    a = scene.theta0 - well
-    w = scene.v0 / (2 * math.sqrt(scene.eps))
-    d2 = np.sin(0.5 * (a - x)) * np.sin(0.5 * (a + x)) + w * w
-    return o, x, d2
+def arcsine_density(theta, theta_init):
+    """The linear limit (source 003): 1 / (pi sqrt(theta_init^2 - theta^2)) inside, 0 outside."""
+    theta = as_float(theta, "theta")
+    a = float(theta_init)
+    out = np.zeros_like(theta)
+    inside = np.abs(theta) < abs(a)
+    out[inside] = 1.0 / (math.pi * np.sqrt((abs(a) - np.abs(theta[inside])) * (abs(a) + np.abs(theta[inside]))))
+    return out
 
 
-def _check(scene: Scene) -> str:
+def _check(scene):
+    from .scene import Scene
+
     if not isinstance(scene, Scene):
-        raise TypeError(f"expects a pendula.Scene, got {type(scene).__name__}")
+        raise TypeError(f"expected a pendula.Scene, got {type(scene).__name__}")
     scene.require_implemented()
-    if scene.guide == "cycloid":
-        if scene.damping or scene.torque or scene.drive_amplitude:
-            raise ValueError("the angle's density is that of a conservative orbit: the scene names "
-                             + ", ".join(e for e in scene.effects if e != "guide"))
-        return "cycloid"
-    if not scene.is_conservative_rigid:
-        raise ValueError("the angle's density is that of a conservative orbit: the scene names "
-                         + ", ".join(scene.effects))
-    o = orbit(scene.theta0, scene.v0, scene.eps)
-    if o.regime == "separatrix":
-        raise ValueError("the separatrix has no time-averaged density (its period is infinite: "
-                         "all the time is spent next to the top)")
-    if o.k == 0.0:
-        raise ValueError("at rest at the bottom the angle has no spread: its density is a point mass at 0")
-    return o.regime
+    bad = [e for e in scene.effects if e in ("damping", "drive")]
+    if bad:
+        raise ValueError(f"the density of the angle is defined over the period of a conservative orbit; "
+                         f"the scene names {', '.join(bad)}")
+    if "torque" in scene.effects and scene.guide != "cycloid":
+        raise NotImplementedError("angle_density: the rigid pendulum with a constant torque is not "
+                                  "implemented (only the cycloid accepts torque here)")
 
 
-def _cycloid_amplitude(scene: Scene):
-    c4 = 4 * scene.guide_radius
-    s0 = c4 * math.sin(scene.theta0)
-    sd0 = c4 * math.cos(scene.theta0) * scene.v0
-    w2 = scene.eps / c4
-    a = math.sqrt(s0 * s0 + sd0 * sd0 / w2)
-    if a > c4:
-        raise ValueError("the motion reaches the cusps of the cycloidal guide (|s| = 4R)")
-    if a == 0.0:
-        raise ValueError("at rest at the bottom the angle has no spread: its density is a point mass at 0")
-    return c4, a
+class _Model:
+    """What the density needs from one orbit: (density, cdf) callables."""
+
+    def __init__(self, scene):
+        _check(scene)
+        self.scene = scene
+        if scene.guide == "cycloid":
+            self._setup_cycloid()
+        else:
+            self._setup_energy()
+
+    # -- the cycloid: the arcsine law in s
+    def _setup_cycloid(self):
+        sc = self.scene
+        r = sc.cycloid_radius
+        w2 = sc.eps / (4 * r)
+        s0 = 4 * r * math.sin(sc.theta0)
+        sd0 = 4 * r * math.cos(sc.theta0) * sc.v0
+        self.r = r
+        self.centre = sc.torque / w2
+        self.amp = math.hypot(s0 - self.centre, sd0 / math.sqrt(w2))
+        if not self.amp > 0:
+            raise ValueError("the orbit is a point at rest: its density is a delta, not a function")
+        if abs(self.centre) + self.amp > 4 * r:
+            raise ValueError("the motion runs beyond a cusp (|s| > 4R, the ends of the cheeks)")
+        self.kind = "cycloid"
+
+    # -- rigid pendulum, uniform or non-uniform gravity: through F and the cosine series of h
+    def _setup_energy(self):
+        from .systems.gravity import gravity_orbit, h_samples
+
+        sc = self.scene
+        o = gravity_orbit(sc)
+        if o.regime == "separatrix":
+            raise ValueError("on the separatrix the period is infinite: the density is a delta at the top")
+        if not o.m > 0:
+            raise ValueError("the orbit is a point at rest: its density is a delta, not a function")
+        self.orbit = o
+        self.kind = o.regime
+        self.mc = o.mc
+        # the amplitude: exactly |theta0| when starting at rest (the kernel's 2 asin(sqrt(m)) rounds)
+        self.thm = abs(sc.theta0) if sc.v0 == 0.0 and o.regime == "libration" else o.theta_max
+        K = o.K
+        # cosine coefficients of h on its period 2K: doubling until the last ones are below rounding
+        n = 16
+        while True:
+            u = np.linspace(0.0, K, n + 1)
+            h = h_samples(sc, o, u)
+            c = np.fft.rfft(np.concatenate([h, h[-2:0:-1]])).real
+            a = c / n
+            a[0] *= 0.5
+            a[n] *= 0.5
+            if np.max(np.abs(a[3 * n // 4:])) <= 2 * np.finfo(float).eps * abs(a[0]):
+                break
+            if n >= 1 << 20:
+                raise ValueError("the cosine series of the time integrand did not converge in 2^20 terms "
+                                 "(inverse-square field with the mass too close under the circle: "
+                                 "gravity_distance - 1 too small)")
+            n *= 2
+        keep = np.nonzero(np.abs(a) > np.finfo(float).eps * 1e-3 * abs(a[0]))[0]
+        self.a = a[:keep[-1] + 1]          # the coefficients below rounding add nothing
+        self.K = K
+        self.T = (4.0 if o.regime == "libration" else 2.0) * a[0] * K
+
+    def _chunks(self, U, f):
+        """f over U in chunks that keep the outer products below ~4M elements"""
+        U = np.asarray(U, dtype=float)
+        flat = U.reshape(-1)
+        step = max(1, (1 << 22) // self.a.size)
+        out = np.concatenate([f(flat[i:i + step]) for i in range(0, flat.size, step)]) if flat.size else flat
+        return out.reshape(U.shape)
+
+    def _time(self, U):
+        """int_0^U h du from the cosine series (U in [-K, K])."""
+        j = np.arange(1, self.a.size)
+        w = self.a[1:] * self.K / (j * math.pi)
+
+        def f(u):
+            return self.a[0] * u + (w * np.sin(np.multiply.outer(u, j) * (math.pi / self.K))).sum(axis=-1)
+
+        return self._chunks(U, f)
+
+    def _h(self, U):
+        j = np.arange(self.a.size)
+        return self._chunks(U, lambda u: (self.a * np.cos(np.multiply.outer(u, j) * (math.pi / self.K))).sum(axis=-1))
+
+    def _phi(self, theta):
+        """phi with sin(theta/2) = k sin(phi), and k cos(phi), from the angle difference
+        (k^2 cos^2 phi = sin((theta_m - theta)/2) sin((theta_m + theta)/2)), so that phi keeps
+        its accuracy at the turning points where arcsin(sin(theta/2)/k) would not."""
+        a = np.abs(theta)
+        kc = np.sqrt(np.maximum(0.0, np.sin(0.5 * (self.thm - a)) * np.sin(0.5 * (self.thm + a))))
+        return np.arctan2(np.sin(0.5 * a), kc), kc
+
+    def density(self, theta):
+        out = np.zeros_like(theta)
+        if self.kind == "cycloid":
+            r = self.r
+            x = 4 * r * np.sin(theta) - self.centre
+            inside = (np.abs(x) < self.amp) & (np.abs(theta) <= math.pi / 2)
+            xi = x[inside]
+            out[inside] = 4 * r * np.cos(theta[inside]) / (math.pi * np.sqrt((self.amp - xi) * (self.amp + xi)))
+            out[np.isnan(theta)] = np.nan
+            return out
+        if self.kind == "libration":
+            inside = np.abs(theta) < self.thm
+            if np.any(inside):
+                phi, kc = self._phi(theta[inside])
+                U = ellipf(phi, self.orbit.m, self.mc)
+                out[inside] = self._h(U) / (self.T * kc)
+            out[np.isnan(theta)] = np.nan
+            return out
+        # rotation: one turn on [-pi, pi)
+        w = np.remainder(theta + math.pi, 2 * math.pi) - math.pi
+        U = ellipf(0.5 * w, self.orbit.m, self.mc)
+        return self._h(U) / (2 * self.T * np.sqrt(1.0 - self.orbit.m * np.sin(0.5 * w) ** 2))
+
+    def cdf(self, theta):
+        if self.kind == "cycloid":
+            x = 4 * self.r * np.sin(np.clip(theta, -math.pi / 2, math.pi / 2)) - self.centre
+            out = 0.5 + np.arcsin(np.clip(x / self.amp, -1.0, 1.0)) / math.pi
+            out = np.where(theta > math.pi / 2, 1.0, np.where(theta < -math.pi / 2, 0.0, out))
+            return np.where(np.isnan(theta), np.nan, out)
+        if self.kind == "libration":
+            phi, _ = self._phi(np.clip(theta, -self.thm, self.thm))
+            U = ellipf(phi, self.orbit.m, self.mc)
+            out = 0.5 + np.sign(theta) * 2.0 * self._time(U) / self.T
+            out = np.where(theta >= self.thm, 1.0, np.where(theta <= -self.thm, 0.0, out))
+            return np.where(np.isnan(theta), np.nan, np.clip(out, 0.0, 1.0))
+        # rotation: the CDF over [-pi, pi), continued by whole turns
+        turns = np.floor((theta + math.pi) / (2 * math.pi))
+        w = theta - 2 * math.pi * turns
+        U = ellipf(0.5 * w, self.orbit.m, self.mc)
+        return turns + 0.5 + self._time(U) / self.T
 
 
-def angle_density(scene: Scene, theta):
-    """The time-averaged density p(theta) of the scene's conservative orbit.
+def angle_density(scene, theta):
+    """The time-averaged probability density of the angle over one period.
 
     Parameters
     ----------
     scene : Scene
-        A conservative rigid pendulum (libration or rotation) or a
-        conservative cycloidal guide.
+        A conservative scene: the rigid pendulum in uniform or non-uniform
+        gravity, or the cycloidal pendulum (torque allowed there).
     theta : array_like
-        Angles; for a libration measured in the scene's own well (theta0's),
-        for a rotation taken modulo 2 pi.
+        Angles.  Libration: the density lives on (-theta_max, theta_max) and
+        is 0 outside; rotation: over one turn, theta taken modulo 2 pi into
+        [-pi, pi); cycloid: theta is the angle of the free cord.
 
     Returns
     -------
     ndarray
-        p(theta); 0 outside the range the orbit visits, +inf at a turning point.
+        p(theta); it integrates to 1 over the orbit and is infinite (not
+        returned: the endpoints are excluded) at the turning points.
 
     Examples
     --------
     >>> import pendula
-    >>> s = pendula.Scene(theta0=1.0)
-    >>> p = pendula.angle_density(s, [0.0, 0.5])
-    >>> bool(p[1] > p[0])              # more time near the turning points
-    True
+    >>> sc = pendula.Scene(theta0=1e-3)
+    >>> p = float(pendula.angle_density(sc, 0.0))
+    >>> round(p * 3.141592653589793 * 1e-3, 6)      # the arcsine law 1/(pi theta0) at 0
+    1.0
     """
-    kind = _check(scene)
-    th = as_float(theta, "theta")
-    with np.errstate(divide="ignore", invalid="ignore"):
-        if kind == "cycloid":
-            c4, a = _cycloid_amplitude(scene)
-            s = c4 * np.sin(th)
-            inside = (np.abs(th) < math.pi / 2) & (np.abs(s) <= a)
-            d = np.sqrt((a - s) * (a + s))
-            p = np.where(inside, c4 * np.cos(th) / (math.pi * d), 0.0)
-            return p[()] if p.ndim == 0 else p
-        o = orbit(scene.theta0, scene.v0, scene.eps)
-        if kind == "libration":
-            _, x, d2 = _libration_parts(scene, th)
-            K = float(ellipk(o.m, mc=o.mc))
-            p = np.where((np.abs(x) <= o.theta_max) & (d2 >= 0), 1.0 / (4 * K * np.sqrt(d2)), 0.0)
-        else:
-            Kr = float(ellipk(o.m, mc=o.mc))
-            x = np.remainder(th + math.pi, 2 * math.pi) - math.pi
-            p = 1.0 / (4 * Kr * np.sqrt(1.0 - o.m * np.sin(0.5 * x) ** 2))
-    return p[()] if np.ndim(p) == 0 else p
+    theta = as_float(theta, "theta")
+    return _Model(scene).density(theta)
 
 
-def angle_cdf(scene: Scene, theta):
-    """The fraction of one period the orbit spends at angles below theta (exact, through F).
+def angle_cdf(scene, theta):
+    """The cumulative distribution of the angle over one period (see :func:`angle_density`).
 
-    Same conventions as :func:`angle_density`; 0 below the orbit's range, 1
-    above it, and finite and accurate up to the turning points.
+    Exact through the incomplete elliptic integral F, so it is finite and
+    accurate up to the turning points.  Libration: 0 below -theta_max, 1
+    above theta_max.  Rotation: the fraction of a turn from -pi, continued by
+    whole turns (so it increases by 1 per 2 pi).
 
     Examples
     --------
     >>> import pendula
-    >>> s = pendula.Scene(theta0=1.0)
-    >>> float(pendula.angle_cdf(s, 0.0))     # symmetric: half the time on each side
-    0.5
+    >>> sc = pendula.Scene(theta0=2.0)
+    >>> [round(float(x), 15) for x in pendula.angle_cdf(sc, [-2.0, 0.0, 2.0])]
+    [0.0, 0.5, 1.0]
     """
-    kind = _check(scene)
-    th = as_float(theta, "theta")
-    if kind == "cycloid":
-        c4, a = _cycloid_amplitude(scene)
-        r = np.clip(c4 * np.sin(np.clip(th, -math.pi / 2, math.pi / 2)) / a, -1.0, 1.0)
-        out = 0.5 + np.arcsin(r) / math.pi
-        return out[()] if out.ndim == 0 else out
-    o = orbit(scene.theta0, scene.v0, scene.eps)
-    if kind == "libration":
-        _, x, d2 = _libration_parts(scene, th)
-        K = float(ellipk(o.m, mc=o.mc))
-        # phi from its sine and its cosine, the cosine without cancellation
-        inside = np.abs(x) < o.theta_max
-        sh = np.where(inside, np.sin(0.5 * x), np.sign(x) * o.k)
-        c = np.where(inside, np.sqrt(np.maximum(d2, 0.0)), 0.0) / o.k
-        phi = np.arctan2(sh / o.k, c)
-        out = (np.asarray(ellipf(phi, o.m, mc=o.mc)) + K) / (2 * K)
-    else:
-        Kr = float(ellipk(o.m, mc=o.mc))
-        x = np.clip(th, -math.pi, math.pi)
-        out = (np.asarray(ellipf(0.5 * x, o.m, mc=o.mc)) + Kr) / (2 * Kr)
-    out = np.clip(out, 0.0, 1.0)
-    return out[()] if out.ndim == 0 else out
-
-
-def arcsine_density(theta, amplitude: float):
-    """The harmonic oscillator's density 1 / (pi sqrt(a^2 - theta^2)) on (-a, a)."""
-    th = as_float(theta, "theta")
-    a = float(as_float(amplitude, "amplitude"))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        p = np.where(np.abs(th) < a, 1.0 / (math.pi * np.sqrt(np.maximum(a * a - th * th, 0.0))), 0.0)
-    return p[()] if p.ndim == 0 else p
+    theta = as_float(theta, "theta")
+    return _Model(scene).cdf(theta)

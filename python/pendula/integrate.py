@@ -18,6 +18,7 @@ from . import _interrupt, _kernel
 from ._checks import as_float
 from .scene import Scene
 from .systems import run
+from .systems.gravity import field_of
 from .systems.rigid import orbit
 
 __all__ = ["integrate_scene", "find_events", "numerical_period", "Events", "FIXED_STEP", "ADAPTIVE"]
@@ -31,7 +32,8 @@ _STATUS = {1: "the step dt must be positive", 2: "rtol must be > 0 and atol >= 0
            6: "the state became non-finite", 9: "events need a method with dense output (dopri5, dop853)",
            7: "the run needs more than 1e8 steps (the work limit): shorten the span, or give a larger dt or rtol",
            8: "interrupted",
-           11: "gsl-rk8pd integrates forward only: give times >= 0"}
+           11: "gsl-rk8pd integrates forward only: give times >= 0",
+           20: "bad gravity field parameters (gravity_distance > 1, gravity_gradient < 0.5)"}
 _EVENT_KINDS = {"turning": 1, "theta": 2, "theta_mod_2pi": 3}
 #: the most events one call records (memory: 24 bytes each)
 MAX_EVENTS = 10_000_000
@@ -61,10 +63,15 @@ def _run(scene, method, t_sorted, ev_kind=0, ev_level=0.0, ev_dir=0, terminal=Fa
     if method in ADAPTIVE and not (scene.rtol > 0 and scene.atol >= 0):
         raise ValueError("adaptive methods need rtol > 0 and atol >= 0")
     scene.require_implemented()
+    if scene.guide == "cycloid":
+        raise ValueError("the cycloidal pendulum is solved in closed form, never integrated")
+    if scene.gravity != "uniform" and method == "gsl-rk8pd":
+        raise ValueError("gsl-rk8pd does not take a non-uniform gravity field; use dop853")
     cancel = _interrupt.cancel_flag()
     span = float(np.max(np.abs(t_sorted))) if t_sorted.size else 0.0
-    out = _interrupt.call(_kernel.integrate_v, CODES[method], _params(scene), scene.theta0, scene.v0, t_sorted,
-                          scene.rtol, scene.atol, scene.dt, ev_kind, ev_level, ev_dir, int(terminal),
+    gkind, gpar = field_of(scene)
+    out = _interrupt.call(_kernel.integrate_v, CODES[method], _params(scene), gkind, gpar, scene.theta0, scene.v0,
+                          t_sorted, scene.rtol, scene.atol, scene.dt, ev_kind, ev_level, ev_dir, int(terminal),
                           max_events, cancel, cancel=cancel, long=span * max(1.0, scene.eps ** 0.5) > 1e3)
     theta, v, stats, status, nev, tev, thev, vev = out
     if status not in (0, 10):

@@ -11,6 +11,8 @@ from ._checks import as_float
 from .systems.rigid import Orbit, energy, exact_motion, orbit
 from .scene import Scene
 from .systems import run
+from .systems.cycloid import cycloid_period
+from .systems.gravity import gravity_orbit
 from .trajectory import Trajectory
 
 __all__ = ["Orbit", "Trajectory", "orbit", "exact_motion", "energy", "simulate", "period"]
@@ -64,6 +66,11 @@ def period(scene: Scene) -> float:
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"period expects a pendula.Scene, got {type(scene).__name__}")
+    # issue 13 hook: the cycloid (any amplitude) and non-uniform gravity (exact quadrature)
+    if set(scene.effects) <= {"guide", "torque"} and scene.guide == "cycloid":
+        return cycloid_period(scene)
+    if scene.effects == ("gravity",):
+        return gravity_orbit(scene).period
     if not scene.is_conservative_rigid:
         raise ValueError(f"period(scene) is the exact period of a conservative orbit; the scene names "
                          f"{', '.join(scene.effects)} (see pendula.numerical_period for event-based periods)")

@@ -19,6 +19,7 @@ from .motion import exact_motion, orbit, simulate
 from .scene import Scene
 from .series import period_from_series, poincare_lindstedt
 from .spectrum import odd_harmonics_above, spectrum
+from .systems.gravity import issue13_orbit
 
 TRAJECTORY_OUTPUTS = {"trajectory", "theta_t", "v_t", "phase", "energy"}
 ORBIT_OUTPUTS = {"period", "omega", "theta_max"}
@@ -73,12 +74,12 @@ def _outputs(scene: Scene, outdir: pathlib.Path, stem: str | None, progress: boo
             files.append(plot.energy_drift(scene, runs, outdir / f"{stem}_energy.png"))
 
     if wanted & ORBIT_OUTPUTS:
-        if scene.effects:
+        if scene.effects and issue13_orbit(scene) is None:
             raise ValueError("outputs period/omega/theta_max are facts of the exact conservative orbit; "
                              f"the scene names {', '.join(scene.effects)}")
         table = {"period": [], "omega": [], "theta_max": [], "regime": [], "k": []}
         for member in members:
-            o = orbit(member.theta0, member.v0, member.eps)
+            o = issue13_orbit(member) or orbit(member.theta0, member.v0, member.eps)
             for key in table:
                 table[key].append(getattr(o, key))
         cols = ([scene.sweep] if scene.sweep else []) + ["theta0", "v0", "eps", "regime", "k", "period",
@@ -94,6 +95,9 @@ def _outputs(scene: Scene, outdir: pathlib.Path, stem: str | None, progress: boo
             if scene.sweep == "v0" and "omega" in wanted and np.all(np.abs(v - 2) < 0.5) and np.any(v != 2):
                 files.append(plot.critical_omega(scene, values, table["omega"], outdir / f"{stem}_critical.png"))
 
+    if wanted & {"series", "lindstedt"} and scene.effects:  # issue 13 guard: both are the uniform rigid pendulum's
+        raise ValueError("outputs series/lindstedt are the conservative rigid pendulum's in uniform gravity; "
+                         f"the scene names {', '.join(scene.effects)}")
     if "series" in wanted:
         files += _series_outputs(scene, members, values, outdir, stem)
     if "lindstedt" in wanted:

@@ -38,7 +38,7 @@ METHODS = ("auto", "exact", "rk4", "verlet", "yoshida4", "yoshida6", "yoshida8",
            "dopri5", "dop853", "gsl-rk8pd")
 CORDS = ("rigid", "flexible")
 GUIDES = ("none", "cycloid")
-GRAVITIES = ("uniform", "inverse-square")
+GRAVITIES = ("uniform", "inverse-square", "linear")
 SWEEPABLE = ("v0", "theta0", "eps", "damping", "torque", "drive_amplitude", "drive_frequency")
 #: Limits shared with the kernel's reader (kernel/io/pendula_scene.f90): longer
 #: lists and strings are refused with a message, never truncated.
@@ -83,12 +83,19 @@ class Scene:
         What to produce: see :data:`OUTPUTS`.
     sweep, sweep_values : str, tuple of float
         Optionally one field and the values it takes, one run per value.
-    guide_radius : float
-        With ``guide = 'cycloid'``: the generating radius R of the cheeks and
-        the bob's cycloid, in units of the length l (default 1/4: the rigid
-        pendulum's small-oscillation period).
     name : str
         A title for plots and file names.
+    cycloid_radius : float
+        With guide = 'cycloid': R / l, the radius of the circle generating the
+        cheeks and the path (default 1/4: the small-oscillation frequency of
+        the rigid pendulum of length l).  The cord is 4R long.
+    gravity_distance : float
+        With gravity = 'inverse-square': D / l > 1, the distance of the
+        attracting point mass below the pivot (g is the strength at the
+        lowest point of the circle; uniform as D -> infinity).
+    gravity_gradient : float
+        With gravity = 'linear': kappa < 1/2 in g(h) = g (1 - kappa h / l),
+        h the height above the lowest point (uniform at kappa = 0).
     """
 
     eps: float = math.nan  # not given: 1.0, or g / length when those are given
@@ -113,9 +120,12 @@ class Scene:
     sweep: str = ""
     sweep_values: tuple = ()
     name: str = ""
-    guide_radius: float = 0.25
     g: float = field(default=math.nan, repr=False)
     length: float = field(default=math.nan, repr=False)
+    # issue 13: the cycloidal guide and non-uniform gravity
+    cycloid_radius: float = 0.25
+    gravity_distance: float = 0.0
+    gravity_gradient: float = 0.0
 
     def __post_init__(self):
         _validate(self)
@@ -180,8 +190,8 @@ class Scene:
 
     def require_implemented(self) -> None:
         """NotImplementedError naming the effects the scene format has room for
-        but pendula cannot simulate yet (the flexible cord, non-uniform gravity)."""
-        missing = [e for e in self.effects if e in ("cord", "gravity")]
+        but pendula cannot simulate yet (the flexible cord)."""
+        missing = [e for e in self.effects if e in ("cord",)]
         if missing:
             raise NotImplementedError(f"pendula cannot simulate the effect(s) {', '.join(missing)} yet "
                                       f"(cord = {self.cord!r}, guide = {self.guide!r}, gravity = {self.gravity!r})")
@@ -231,7 +241,8 @@ def _fmt(v) -> str:
 # ---------------------------------------------------------------- validation
 
 _FLOATS = {"eps", "theta0", "v0", "t_start", "t_end", "damping", "torque", "drive_amplitude",
-           "drive_frequency", "drive_phase", "rtol", "atol", "dt", "g", "length", "guide_radius"}
+           "drive_frequency", "drive_phase", "rtol", "atol", "dt", "g", "length",
+           "cycloid_radius", "gravity_distance", "gravity_gradient"}
 _INTS = {"n_samples"}
 _STRS = {"cord", "guide", "gravity", "method", "sweep", "name"}
 _TUPLES = {"outputs": str, "sweep_values": float}
@@ -305,8 +316,6 @@ def _validate(s: Scene) -> None:
         raise SceneError(f"field 'drive_frequency' must be >= 0, got {s.drive_frequency!r}")
     if s.rtol <= 0 or s.atol < 0:
         raise SceneError("fields 'rtol' must be > 0 and 'atol' >= 0")
-    if not s.guide_radius > 0:
-        raise SceneError(f"field 'guide_radius' must be positive (R / l of the cycloidal guide), got {s.guide_radius!r}")
     if s.dt < 0:
         raise SceneError(f"field 'dt' must be >= 0 (0: chosen by the method), got {s.dt!r}")
     for name, allowed in (("cord", CORDS), ("guide", GUIDES), ("gravity", GRAVITIES), ("method", METHODS)):
@@ -331,7 +340,8 @@ def _validate(s: Scene) -> None:
                 raise SceneError(f"field 'sweep_values': {s.sweep} = {bad[0]!r} is out of range ({rule[1]})")
     elif s.sweep_values:
         raise SceneError("field 'sweep_values' is given but 'sweep' does not name a field")
-    if s.method == "exact" and s.effects:
+    _validate_issue13(s)
+    if s.method == "exact" and s.effects and s.guide != "cycloid":
         raise SceneError(f"field 'method': 'exact' answers only the conservative rigid pendulum, "
                          f"but the scene names {', '.join(s.effects)}")
 
@@ -340,6 +350,39 @@ def _validate(s: Scene) -> None:
 _MEMBER_RULES = {"eps": (lambda x: x > 0, "eps must be > 0"),
                  "damping": (lambda x: x >= 0, "damping must be >= 0"),
                  "drive_frequency": (lambda x: x >= 0, "drive_frequency must be >= 0")}
+
+
+def _validate_issue13(s: Scene) -> None:
+    """The cycloidal guide and the gravity fields (issue 13); same rules in pendula_scene.f90."""
+    if not s.cycloid_radius > 0:
+        raise SceneError(f"field 'cycloid_radius' must be positive (R / l), got {s.cycloid_radius!r}")
+    if s.guide != "cycloid" and s.cycloid_radius != 0.25:
+        raise SceneError("field 'cycloid_radius' is used only with guide = 'cycloid'")
+    if s.gravity == "inverse-square":
+        if not s.gravity_distance > 1:
+            raise SceneError("field 'gravity_distance' (D / l, the point mass below the pivot) must be > 1 "
+                             f"with gravity = 'inverse-square', got {s.gravity_distance!r}")
+    elif s.gravity_distance != 0.0:
+        raise SceneError("field 'gravity_distance' is used only with gravity = 'inverse-square'")
+    if s.gravity == "linear":
+        if not s.gravity_gradient < 0.5:
+            raise SceneError("field 'gravity_gradient' (kappa in g (1 - kappa h / l)) must be < 0.5 "
+                             f"so that gravity points down at the top, got {s.gravity_gradient!r}")
+    elif s.gravity_gradient != 0.0:
+        raise SceneError("field 'gravity_gradient' is used only with gravity = 'linear'")
+    if s.guide == "cycloid":
+        if s.cord != "rigid":
+            raise SceneError("field 'cord': the cycloidal guide wraps an inextensible cord of length 4R; "
+                             "cord = 'flexible' has no meaning on it")
+        if s.gravity != "uniform":
+            raise SceneError("field 'gravity': the cycloidal guide is isochronous only in uniform gravity; "
+                             "non-uniform gravity with guide = 'cycloid' is not a model of pendula")
+        if s.method not in ("auto", "exact"):
+            raise SceneError(f"field 'method': the cycloidal pendulum is solved in closed form "
+                             f"(method 'auto' or 'exact'), never integrated; got {s.method!r}")
+        if not abs(s.theta0) <= math.pi / 2:
+            raise SceneError(f"field 'theta0': on the cycloid |theta0| <= pi/2 (the cusps, |s| = 4R), "
+                             f"got {s.theta0!r}")
 
 
 def _suggest(word, choices) -> str:

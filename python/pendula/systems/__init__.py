@@ -97,8 +97,6 @@ def run(scene: Scene, t) -> Trajectory:
     """
     t = as_float(t, "t")
     flat = np.ascontiguousarray(t, dtype=np.float64).reshape(-1)
-    if not np.all(np.isfinite(flat)) and scene.effects:
-        raise ValueError("t must be finite")
     order = np.argsort(flat, kind="stable")
     sorted_t = np.ascontiguousarray(flat[order])
     cancel = _interrupt.cancel_flag()
@@ -122,9 +120,14 @@ def run(scene: Scene, t) -> Trajectory:
     name = METHOD_NAMES[int(method)]
     st = {} if method == 0 else {"steps": int(stats[0]), "accepted": int(stats[1]), "rejected": int(stats[2]),
                                  "rhs_evaluations": int(stats[3]), "stopped_by_event": False}
-    bad = ~np.isfinite(theta) & ~np.isnan(t)
-    if np.any(bad):
-        warnings.warn(f"simulate: {int(bad.sum())} time(s) infinite or beyond the exact path's range gave NaN",
+    nan_out = ~(np.isfinite(theta) & np.isfinite(v)) & ~np.isnan(t)
+    if np.any(nan_out & ~np.isfinite(t)):
+        warnings.warn(f"simulate: {int(np.sum(nan_out & ~np.isfinite(t)))} non-finite time(s) gave NaN",
+                      RuntimeWarning, stacklevel=3)
+    if np.any(nan_out & np.isfinite(t)):
+        warnings.warn(f"simulate: {int(np.sum(nan_out & np.isfinite(t)))} value(s) at finite times are NaN: the "
+                      "state has no value there (at a cusp of the cycloidal guide the cord is horizontal and v "
+                      "is undefined; beyond 2**48 half periods the exact path cannot reduce its phase)",
                       RuntimeWarning, stacklevel=3)
     return Trajectory(t, theta, v, e, name, scene, st)
 

@@ -1,0 +1,262 @@
+!> Non-uniform gravity (source 003, task 4): the pendulum of length l in a
+!> conservative field that is not uniform, still one-dimensional:
+!>   theta'' = -V'(theta),   E = theta'^2 / 2 + V(theta),   V(0) = 0,
+!> in units of m l^2, with eps = g / l and g the field strength at the lowest
+!> point of the circle.  Both fields depend on theta through w = sin^2(theta/2)
+!> only (V = f(w)) and reduce to the uniform field f = 2 eps w in a limit:
+!>
+!>  kind 1, 'inverse-square': a point mass at distance D = d l below the pivot
+!>    (d > 1).  With rho^2 = (d-1)^2 + 4 d w (the bob's distance to it, in l),
+!>    f = eps (d-1)^2 (1/(d-1) - 1/rho) = eps 4 d (d-1) w / (rho (rho + d - 1)),
+!>    theta'' = -eps d (d-1)^2 sin(theta) / rho^3.   Uniform as d -> infinity.
+!>  kind 2, 'linear': g falls off linearly with height h = l (1 - cos theta)
+!>    above the lowest point, g(h) = g (1 - kappa h / l), kappa < 1/2 (so the
+!>    field still points down at the top):  f = 2 eps (w - kappa w^2),
+!>    theta'' = -eps (1 - 2 kappa w) sin(theta).   Uniform at kappa = 0.
+!>  kind 0: uniform, f = 2 eps w.
+!>
+!> The period.  Libration (E < f(1)) with amplitude w_m = sin^2(theta_m/2):
+!> sin(theta/2) = sqrt(w_m) sin(phi) turns E - V = Q (w_m - w), Q the divided
+!> difference (f(w_m) - f(w)) / (w_m - w) > 0, into
+!>   dt = sqrt(2/Q) dphi / sqrt(1 - w_m sin^2 phi),
+!> and phi = am(u | w_m) removes the last square root: dt = sqrt(2/Q) du.  So
+!>   t(theta) = int_0^F(phi | w_m) h(u) du,   h(u) = sqrt(2 / Q(w_m sn^2 u, w_m)),
+!> with no endpoint singularity left, and h even and 2K-periodic in u: the
+!> trapezoid rule on [0, K] converges geometrically (for the uniform field h
+!> is constant and T = 4 K / sqrt(eps) comes out exactly).  T = 4 int_0^K h du.
+!> Rotation (E > f(1)): with m_r = f(1)/E, E - f(w) = E (1 - m_r w) H(w), H
+!> = ((E - f(1)) + Q(w,1)(1-w)) / ((E - f(1)) + f(1)(1-w)) > 0 smooth, and
+!> theta/2 = am(u | m_r):  t(theta) = int_0^F(theta/2 | m_r) sqrt(2/(E H)) du,
+!> one turn T = 2 int_0^K.
+!> Plain-argument procedures only (no scene type).
+module pendula_gravity
+  use pendula_kinds, only: dp, nan_dp, inf_dp, pi
+  use pendula_elliptic, only: ellip_k, jacobi_sncndn
+  implicit none
+  private
+  public :: gravity_check, gravity_f, gravity_q, gravity_potential, gravity_accel, gravity_energy, &
+    gravity_orbit, gravity_h
+
+  integer, parameter, public :: gk_uniform = 0, gk_inverse_square = 1, gk_linear = 2
+  integer, parameter, public :: gr_libration = 0, gr_separatrix = 1, gr_rotation = 2
+  integer, parameter, public :: gs_ok = 0, gs_bad_param = 1, gs_bad_state = 2, gs_no_convergence = 3
+
+contains
+
+  !> status of the field's parameters: gs_ok or gs_bad_param.
+  pure function gravity_check(kind, par, eps) result(status)
+    integer, intent(in) :: kind
+    real(dp), intent(in) :: par, eps
+    integer :: status
+    status = gs_bad_param
+    if (.not. (eps > 0.0_dp .and. eps < huge(eps))) return
+    select case (kind)
+    case (gk_uniform)
+    case (gk_inverse_square)
+      if (.not. (par > 1.0_dp .and. par < huge(par))) return
+    case (gk_linear)
+      if (.not. (par < 0.5_dp .and. par > -huge(par))) return
+    case default
+      return
+    end select
+    status = gs_ok
+  end function gravity_check
+
+  !> V as a function of w = sin^2(theta/2).
+  elemental function gravity_f(kind, par, eps, w) result(f)
+    integer, intent(in) :: kind
+    real(dp), intent(in) :: par, eps, w
+    real(dp) :: f, rho
+    select case (kind)
+    case (gk_inverse_square)
+      rho = sqrt((par - 1.0_dp)**2 + 4.0_dp * par * w)
+      f = eps * 4.0_dp * par * (par - 1.0_dp) * w / (rho * (rho + par - 1.0_dp))
+    case (gk_linear)
+      f = 2.0_dp * eps * (w - par * w * w)
+    case default
+      f = 2.0_dp * eps * w
+    end select
+  end function gravity_f
+
+  !> The divided difference (f(wm) - f(w)) / (wm - w), formed without cancellation.
+  elemental function gravity_q(kind, par, eps, w, wm) result(q)
+    integer, intent(in) :: kind
+    real(dp), intent(in) :: par, eps, w, wm
+    real(dp) :: q, rho, rhom
+    select case (kind)
+    case (gk_inverse_square)
+      rho = sqrt((par - 1.0_dp)**2 + 4.0_dp * par * w)
+      rhom = sqrt((par - 1.0_dp)**2 + 4.0_dp * par * wm)
+      q = eps * (par - 1.0_dp)**2 * 4.0_dp * par / (rho * rhom * (rho + rhom))
+    case (gk_linear)
+      q = 2.0_dp * eps * (1.0_dp - par * (w + wm))
+    case default
+      q = 2.0_dp * eps
+    end select
+  end function gravity_q
+
+  elemental function gravity_potential(kind, par, eps, theta) result(v)
+    integer, intent(in) :: kind
+    real(dp), intent(in) :: par, eps, theta
+    real(dp) :: v
+    v = gravity_f(kind, par, eps, sin(0.5_dp * theta)**2)
+  end function gravity_potential
+
+  !> theta'' = -V'(theta)
+  elemental function gravity_accel(kind, par, eps, theta) result(a)
+    integer, intent(in) :: kind
+    real(dp), intent(in) :: par, eps, theta
+    real(dp) :: a, rho, w
+    select case (kind)
+    case (gk_inverse_square)
+      w = sin(0.5_dp * theta)**2
+      rho = sqrt((par - 1.0_dp)**2 + 4.0_dp * par * w)
+      a = -eps * par * (par - 1.0_dp)**2 * sin(theta) / rho**3
+    case (gk_linear)
+      w = sin(0.5_dp * theta)**2
+      a = -eps * (1.0_dp - 2.0_dp * par * w) * sin(theta)
+    case default
+      a = -eps * sin(theta)
+    end select
+  end function gravity_accel
+
+  elemental function gravity_energy(kind, par, eps, theta, v) result(e)
+    integer, intent(in) :: kind
+    real(dp), intent(in) :: par, eps, theta, v
+    real(dp) :: e
+    e = 0.5_dp * v * v + gravity_potential(kind, par, eps, theta)
+  end function gravity_energy
+
+  !> The integrand h(u) of t = int h du at the nodes u (see the module header):
+  !> regime gr_libration: m = w_m, h = sqrt(2/Q(m sn^2 u, m));
+  !> gr_rotation: m = m_r, h = sqrt(2/(E H(sn^2 u))).
+  elemental function gravity_h(kind, par, eps, regime, m, mc, e, u) result(h)
+    integer, intent(in) :: kind, regime
+    real(dp), intent(in) :: par, eps, m, mc, e, u
+    real(dp) :: h, sn, cn, dn, am, w, f1, de, hh
+    call jacobi_sncndn(u, m, mc, sn, cn, dn, am)
+    if (regime == gr_libration) then
+      h = sqrt(2.0_dp / gravity_q(kind, par, eps, m * sn * sn, m))
+    else
+      w = sn * sn
+      f1 = gravity_f(kind, par, eps, 1.0_dp)
+      de = e - f1
+      hh = (de + gravity_q(kind, par, eps, w, 1.0_dp) * cn * cn) / (de + f1 * cn * cn)
+      h = sqrt(2.0_dp / (e * hh))
+    end if
+  end function gravity_h
+
+  !> The orbit through (theta0, v0): energy, regime, the elliptic parameter m (and its
+  !> complement mc, formed without cancellation near the separatrix) of the
+  !> substitution, K(m), the amplitude theta_max (libration; pi on the separatrix,
+  !> inf for rotation) and the period T (libration) or the time of one turn
+  !> (rotation); inf on the separatrix.  The trapezoid rule on [0, K] is doubled
+  !> from 4 panels until two successive sums agree to 2 ulps (at most 2^20 panels:
+  !> otherwise gs_no_convergence and T = NaN).  Most orbits need 16 to 512 panels;
+  !> the inverse-square field with the mass close under the circle, d - 1 = delta,
+  !> puts a branch point of h at distance ~delta/2 from the real u axis and needs
+  !> ~K/delta panels: delta = 1e-4 takes 2^18, delta below ~2e-5 is refused.
+  pure subroutine gravity_orbit(kind, par, eps, theta0, v0, e, regime, m, mc, kk, theta_max, period, status)
+    integer, intent(in) :: kind
+    real(dp), intent(in) :: par, eps, theta0, v0
+    real(dp), intent(out) :: e, m, mc, kk, theta_max, period
+    integer, intent(out) :: regime, status
+    real(dp) :: w0, f1, c, rho, s_old, s_new, scale
+    integer :: n
+    e = nan_dp; m = nan_dp; mc = nan_dp; kk = nan_dp; theta_max = nan_dp; period = nan_dp; regime = -1
+    status = gravity_check(kind, par, eps)
+    if (status /= gs_ok) return
+    if (.not. (abs(theta0) < huge(theta0) .and. abs(v0) < huge(v0))) then
+      status = gs_bad_state; return
+    end if
+    w0 = sin(0.5_dp * theta0)**2
+    e = 0.5_dp * v0 * v0 + gravity_f(kind, par, eps, w0)
+    f1 = gravity_f(kind, par, eps, 1.0_dp)
+    if (e < f1) then
+      regime = gr_libration
+      if (v0 == 0.0_dp) then
+        m = w0                       ! exactly, when starting at rest
+      else
+        select case (kind)           ! invert f(m) = E without cancellation
+        case (gk_inverse_square)
+          c = e / (eps * (par - 1.0_dp))
+          rho = (par - 1.0_dp) / (1.0_dp - c)
+          m = (rho - (par - 1.0_dp)) * (rho + par - 1.0_dp) / (4.0_dp * par)
+        case (gk_linear)
+          m = e / (eps * (1.0_dp + sqrt(1.0_dp - 2.0_dp * par * e / eps)))
+        case default
+          m = e / (2.0_dp * eps)
+        end select
+      end if
+      ! 1 - m = (f(1) - E) / Q(m, 1), f(1) - E = Q(w0, 1) cos^2(theta0/2) - v0^2/2: no 1 - m cancellation
+      mc = (gravity_q(kind, par, eps, w0, 1.0_dp) * cos(0.5_dp * theta0)**2 - 0.5_dp * v0 * v0) / &
+           gravity_q(kind, par, eps, m, 1.0_dp)
+      theta_max = 2.0_dp * asin(min(1.0_dp, sqrt(m)))
+      scale = 4.0_dp
+    else if (e > f1) then
+      regime = gr_rotation
+      m = f1 / e
+      mc = (0.5_dp * v0 * v0 - gravity_q(kind, par, eps, w0, 1.0_dp) * cos(0.5_dp * theta0)**2) / e
+      theta_max = inf_dp
+      scale = 2.0_dp
+    else
+      regime = gr_separatrix
+      m = 1.0_dp
+      mc = 0.0_dp
+      kk = inf_dp
+      theta_max = pi
+      period = kk
+      return
+    end if
+    if (m == 0.0_dp) then            ! at rest at the bottom: the small-oscillation limit
+      kk = 0.5_dp * pi
+      period = scale * kk * gravity_h(kind, par, eps, regime, m, mc, e, 0.0_dp)
+      return
+    end if
+    kk = ellip_k(m, mc)
+    n = 4
+    s_old = trap(n)
+    do
+      n = 2 * n
+      s_new = 0.5_dp * s_old + mid(n)
+      if (abs(s_new - s_old) <= 2.0_dp * epsilon(1.0_dp) * abs(s_new)) exit
+      if (n >= 1048576) then
+        status = gs_no_convergence; period = nan_dp; return
+      end if
+      s_old = s_new
+    end do
+    period = scale * s_new
+  contains
+    !> trapezoid sum on [0, K] with n panels
+    pure function trap(np) result(s)
+      integer, intent(in) :: np
+      real(dp) :: s, hu
+      integer :: j
+      hu = kk / np
+      s = 0.5_dp * (gravity_h(kind, par, eps, regime, m, mc, e, 0.0_dp) + &
+                    gravity_h(kind, par, eps, regime, m, mc, e, kk))
+      do j = 1, np - 1
+        s = s + gravity_h(kind, par, eps, regime, m, mc, e, j * hu)
+      end do
+      s = s * hu
+    end function trap
+    !> the new midpoints' contribution when n/2 panels are halved to n (compensated sum,
+    !> so that rounding does not stall the 2-ulp convergence test at 10^5 panels)
+    pure function mid(np) result(s)
+      integer, intent(in) :: np
+      real(dp) :: s, hu, c, y, tt
+      integer :: j
+      hu = kk / np
+      s = 0.0_dp
+      c = 0.0_dp
+      do j = 1, np - 1, 2
+        y = gravity_h(kind, par, eps, regime, m, mc, e, j * hu) - c
+        tt = s + y
+        c = (tt - s) - y
+        s = tt
+      end do
+      s = s * hu
+    end function mid
+  end subroutine gravity_orbit
+
+end module pendula_gravity

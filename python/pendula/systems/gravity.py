@@ -1,0 +1,157 @@
+"""Non-uniform gravity (source 003, task 4): the rigid pendulum in a
+conservative field that is not uniform.
+
+Fields (scene ``gravity``), each parameterised so that g is the strength at the
+lowest point of the circle and each reducing to the uniform field in a limit:
+
+- 'inverse-square': a point mass at D = ``gravity_distance`` * l below the
+  pivot (D > l): V = eps (d-1)^2 (1/(d-1) - 1/rho), rho the bob's distance to
+  the mass in units of l; uniform as d -> infinity.
+- 'linear': g(h) = g (1 - kappa h / l), h the height above the lowest point,
+  kappa = ``gravity_gradient`` < 1/2: V = eps (u - kappa u^2 / 2), u = 1 - cos
+  theta; uniform at kappa = 0.
+
+The motion is conservative and one-dimensional: integrated (energy is the
+check of every integration) and, for the period, the exact quadrature of the
+energy integral after the substitution sin(theta/2) = sqrt(w_m) sn(u | w_m),
+which removes the inverse-square-root endpoints (kernel/models/pendula_gravity.f90).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import _kernel
+from .._checks import as_float
+
+__all__ = ["KINDS", "field_of", "potential", "acceleration", "gravity_orbit", "GravityOrbit",
+           "small_oscillation_omega"]
+
+KINDS = {"uniform": 0, "inverse-square": 1, "linear": 2}
+_REGIMES = {0: "libration", 1: "separatrix", 2: "rotation"}
+_STATUS = {1: "bad field parameters (eps > 0; gravity_distance > 1; gravity_gradient < 0.5)",
+           2: "theta0 and v0 must be finite",
+           3: "the period quadrature did not converge in 2^20 panels (inverse-square field with the "
+              "mass closer than about 2e-5 l below the circle: gravity_distance - 1 too small)"}
+
+
+def field_of(scene) -> tuple[int, float]:
+    """(kernel kind, parameter) of the scene's gravity field."""
+    kind = KINDS[scene.gravity]
+    par = {0: 0.0, 1: scene.gravity_distance, 2: scene.gravity_gradient}[kind]
+    return kind, float(par)
+
+
+def _field(scene, theta):
+    kind, par = field_of(scene)
+    theta = as_float(theta, "theta")
+    flat = np.ascontiguousarray(theta, dtype=np.float64).reshape(-1)
+    pot, acc, status = _kernel.gravity_field_v(kind, par, scene.eps, flat)
+    if status:
+        raise ValueError(_STATUS[1])
+    return pot.reshape(theta.shape), acc.reshape(theta.shape)
+
+
+def potential(scene, theta):
+    """V(theta) per m l^2 of the scene's field (V(0) = 0)."""
+    return _field(scene, theta)[0]
+
+
+def acceleration(scene, theta):
+    """theta'' = -V'(theta) of the scene's field (no other effects)."""
+    return _field(scene, theta)[1]
+
+
+def small_oscillation_omega(scene) -> float:
+    """sqrt(V''(0)).  Linear field: V''(0) = eps.  Inverse-square: V''(0) =
+    eps d / (d - 1), larger than eps although g is the same at the bottom: the
+    field lines converge on the point mass, so a displaced bob is also pulled
+    sideways towards the axis."""
+    kind, par = field_of(scene)
+    if kind == 1:
+        return math.sqrt(scene.eps * par / (par - 1.0))
+    return math.sqrt(scene.eps)
+
+
+@dataclass(frozen=True)
+class GravityOrbit:
+    """The orbit through the scene's initial state in its gravity field.
+
+    Attributes
+    ----------
+    regime : str
+        'libration', 'separatrix' or 'rotation'.
+    energy : float
+        E = v0^2/2 + V(theta0).
+    m, K : float
+        Parameter of the substitution (w_m = sin^2(theta_max/2) in libration,
+        V(pi)/E in rotation) and K(m).
+    mc : float
+        1 - m, formed without cancellation (it sets K near the separatrix).
+    theta_max : float
+        Amplitude (pi on the separatrix, inf for a rotation).
+    period : float
+        Period of the libration, time of one turn of a rotation, inf on the separatrix.
+    """
+
+    regime: str
+    energy: float
+    m: float
+    K: float
+    theta_max: float
+    period: float
+    mc: float
+
+
+def gravity_orbit(scene) -> GravityOrbit:
+    """Energy, regime, amplitude and period of the scene's orbit (exact quadrature).
+
+    Examples
+    --------
+    >>> import pendula
+    >>> o = pendula.gravity_orbit(pendula.Scene(gravity='linear', gravity_gradient=0.2, theta0=1.0))
+    >>> o.regime, round(o.theta_max, 15)
+    ('libration', 1.0)
+    """
+    kind, par = field_of(scene)
+    info, status = _kernel.gravity_orbit_v(kind, par, scene.eps, scene.theta0, scene.v0)
+    if status:
+        raise ValueError(_STATUS.get(status, f"kernel status {status}"))
+    return GravityOrbit(_REGIMES[int(info[0])], *(float(x) for x in info[1:7]))
+
+
+def h_samples(scene, orb: GravityOrbit, u):
+    """The integrand h(u) of t = int_0^U h du at the nodes u (libration or rotation)."""
+    kind, par = field_of(scene)
+    u = np.ascontiguousarray(u, dtype=np.float64)
+    return _kernel.gravity_h_v(kind, par, scene.eps, 0 if orb.regime == "libration" else 2, orb.m, orb.mc,
+                               orb.energy, u)
+
+
+def issue13_orbit(scene):
+    """The orbit facts (a :class:`pendula.Orbit`) of a conservative cycloid scene (the
+    guide, perhaps a torque) or of a scene whose only effect is non-uniform gravity;
+    None for any other scene.  k is sqrt(m) in libration and 1/sqrt(m) in rotation
+    (the rigid pendulum's k in uniform gravity); on the cycloid k, m, mc are NaN."""
+    from .rigid import Orbit
+
+    nan = math.nan
+    if scene.guide == "cycloid" and set(scene.effects) <= {"guide", "torque"}:
+        r = scene.cycloid_radius
+        w2 = scene.eps / (4 * r)
+        s0, sd0 = 4 * r * math.sin(scene.theta0), 4 * r * math.cos(scene.theta0) * scene.v0
+        c = scene.torque / w2
+        a = math.hypot(s0 - c, sd0 / math.sqrt(w2))
+        if abs(c) + a > 4 * r:
+            raise ValueError("the cycloidal pendulum's orbit runs beyond a cusp (|s| > 4R)")
+        T = 2 * math.pi / math.sqrt(w2)
+        return Orbit("libration", nan, nan, nan, T, 2 * math.pi / T, math.asin((c + a) / (4 * r)))
+    if scene.effects == ("gravity",):
+        o = gravity_orbit(scene)
+        k = math.sqrt(o.m) if o.regime == "libration" else (1 / math.sqrt(o.m) if o.regime == "rotation" else 1.0)
+        omega = 0.0 if math.isinf(o.period) else 2 * math.pi / o.period
+        return Orbit(o.regime, k, o.m, o.mc, o.period, omega, o.theta_max)
+    return None
