@@ -39,6 +39,9 @@ import sys
 
 import mpmath as mp
 
+sys.path.insert(0, str(pathlib.Path(__file__).parent))
+from gen_exact_reference import closed_form, k2_of  # noqa: E402  (the same closed form, one copy)
+
 OUT = pathlib.Path(__file__).with_name("reference_grids.csv.gz")
 COLUMNS = ["cls", "x0", "x1", "x2", "x3", "r0", "r1", "r2"]
 
@@ -54,35 +57,9 @@ def jac(u, m):
     return [mp.re(mp.ellipfun(f, u, m=m)) for f in ("sn", "cn", "dn")]
 
 
-def k2_of(theta0, v0, eps):
-    return mp.sin(mp.mpf(theta0) / 2) ** 2 + mp.mpf(v0) ** 2 / (4 * mp.mpf(eps))
-
-
-def am(u, m):
-    K = mp.ellipk(m)
-    sn, cn = mp.ellipfun("sn", u, m), mp.ellipfun("cn", u, m)
-    base = mp.atan2(sn, cn)
-    lin = mp.pi * u / (2 * K)
-    return base + 2 * mp.pi * mp.nint((lin - base) / (2 * mp.pi))
-
-
 def motion(theta0, v0, eps, t):
-    """theta(t), v(t) of theta'' = -eps sin theta from the closed form (as in gen_exact_reference)."""
-    th0, w0, e, t = mp.mpf(theta0), mp.mpf(v0), mp.mpf(eps), mp.mpf(t)
-    se = mp.sqrt(e)
-    k2 = k2_of(theta0, v0, eps)
-    n = mp.nint(th0 / (2 * mp.pi))
-    if k2 < 1:
-        k = mp.sqrt(k2)
-        phi0 = mp.atan2(mp.sin((th0 - 2 * mp.pi * n) / 2), w0 / (2 * se))
-        u = mp.ellipf(phi0, k2) + se * t
-        sn, cn, dn = (mp.ellipfun(f, u, k2) for f in ("sn", "cn", "dn"))
-        return [2 * mp.pi * n + 2 * mp.atan2(k * sn, dn), 2 * k * se * cn]
-    k = mp.sqrt(k2)
-    d = 1 if w0 > 0 else -1
-    m = 1 / k2
-    u = mp.ellipf(d * th0 / 2, m) + k * se * t
-    return [d * 2 * am(u, m), d * 2 * k * se * mp.ellipfun("dn", u, m)]
+    """theta(t), v(t) from the closed form of data/gen_exact_reference.py."""
+    return list(closed_form(theta0, v0, eps, t))
 
 
 def period(theta0, v0, eps):

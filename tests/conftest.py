@@ -19,3 +19,19 @@ def venv_bin(name: str) -> str:
     if not p.exists():
         pytest.fail(f"{name} is not installed in {p.parent}: pip install . should have put it there")
     return str(p)
+
+
+def pendula_run_table(tmp_path, body: str):
+    """Run pendula-run on a scene of the given body; return (its table as an array, the scene file)."""
+    import subprocess
+
+    import numpy as np
+
+    f = tmp_path / "scene.nml"
+    f.write_text("&scene\n" + body + "\n/\n")
+    out = tmp_path / "o.csv"
+    p = subprocess.run([venv_bin("pendula-run"), str(f), "-o", str(out)], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    data = np.array([[float(x) for x in ln.split(",")] for ln in out.read_text().splitlines()
+                     if ln and ln[0] not in "#t"])
+    return data, f

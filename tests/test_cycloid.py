@@ -13,7 +13,7 @@ import pendula
 from pendula import Scene, SceneError
 from pendula.systems.cycloid import cycloid_motion, cycloid_period
 
-from conftest import EPS, venv_bin
+from conftest import EPS, pendula_run_table, venv_bin
 
 RNG = np.random.default_rng(1313)
 
@@ -189,14 +189,7 @@ def test_torque_shifts_the_centre():
 
 
 def test_pendula_run_cycloid_scene_matches_python(tmp_path):
-    f = tmp_path / "c.nml"
-    f.write_text("&scene\n guide = 'cycloid', cycloid_radius = 0.3, theta0 = 1.2, v0 = 0.1,\n"
-                 " damping = 0.05, t_end = 30, n_samples = 301\n/\n")
-    out = tmp_path / "o.csv"
-    p = subprocess.run([venv_bin("pendula-run"), str(f), "-o", str(out)], capture_output=True, text=True)
-    assert p.returncode == 0, p.stderr
-    data = np.array([[float(x) for x in ln.split(",")] for ln in out.read_text().splitlines()
-                     if ln and ln[0] not in "#t"])
+    data, f = pendula_run_table(tmp_path, " guide = 'cycloid', cycloid_radius = 0.3, theta0 = 1.2, v0 = 0.1,\n damping = 0.05, t_end = 30, n_samples = 301")
     tr = pendula.simulate(Scene.from_file(f), data[:, 0])   # the same kernel code at the same times
     assert np.abs(data[:, 1] - tr.theta).max() <= 4 * EPS
     assert np.abs(data[:, 3] - tr.energy).max() <= 1e-15

@@ -14,7 +14,7 @@ import pendula
 from pendula import Scene, SceneError
 from pendula.systems.gravity import gravity_orbit, potential, small_oscillation_omega
 
-from conftest import EPS, venv_bin
+from conftest import EPS, pendula_run_table, venv_bin
 
 RNG = np.random.default_rng(4242)
 
@@ -203,14 +203,7 @@ def test_bad_fields_are_errors_naming_the_field(tmp_path):
 
 
 def test_pendula_run_gravity_scene_matches_python(tmp_path):
-    f = tmp_path / "g.nml"
-    f.write_text("&scene\n gravity = 'inverse-square', gravity_distance = 2.0, theta0 = 2.5,\n"
-                 " t_end = 20, n_samples = 201, method = 'dop853'\n/\n")
-    out = tmp_path / "o.csv"
-    p = subprocess.run([venv_bin("pendula-run"), str(f), "-o", str(out)], capture_output=True, text=True)
-    assert p.returncode == 0, p.stderr
-    data = np.array([[float(x) for x in ln.split(",")] for ln in out.read_text().splitlines()
-                     if ln and ln[0] not in "#t"])
+    data, f = pendula_run_table(tmp_path, " gravity = 'inverse-square', gravity_distance = 2.0, theta0 = 2.5,\n t_end = 20, n_samples = 201, method = 'dop853'")
     tr = pendula.simulate(Scene.from_file(f), data[:, 0])     # the same kernel integrator
     assert np.abs(data[:, 1] - tr.theta).max() <= 1e-14
     assert np.abs(data[:, 3] - tr.energy).max() <= 1e-14

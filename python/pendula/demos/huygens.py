@@ -26,6 +26,17 @@ from ..scene import Scene
 __all__ = ["huygens_gallery", "gravity_period_table"]
 
 
+
+def _finish(plt, fig, ax, title, path, legend_size=8):
+    """Legend, grid, title; save the figure to path and close it; return the path."""
+    ax.legend(fontsize=legend_size)
+    ax.grid(alpha=0.3)
+    ax.set_title(title, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
 def _plt():
     from ..plot import _plt as p
 
@@ -111,13 +122,8 @@ def huygens_gallery(outdir) -> list[pathlib.Path]:
     ax.plot(amps, np.array(Tr) / (2 * math.pi), label="rigid pendulum (exact)")
     ax.set_xlabel("amplitude theta0 (rad; the cusp at pi/2)")
     ax.set_ylabel("T sqrt(g/l) / 2 pi")
-    ax.legend(fontsize=8)
-    ax.grid(alpha=0.3)
-    ax.set_title("The cycloid is isochronous; the circle is not", fontsize=10)
-    fig.tight_layout()
-    files.append(out / "huygens_period.png")
-    fig.savefig(files[-1], dpi=110)
-    plt.close(fig)
+    files.append(_finish(plt, fig, ax, "The cycloid is isochronous; the circle is not",
+                         out / "huygens_period.png", legend_size=8))
 
     # --- non-uniform gravity: period against amplitude
     rows = gravity_period_table()
@@ -136,13 +142,8 @@ def huygens_gallery(outdir) -> list[pathlib.Path]:
     ax.set_yscale("log")
     ax.set_xlabel("amplitude theta0 (rad)")
     ax.set_ylabel("T omega0 / 2 pi  (omega0^2 = V''(0))")
-    ax.legend(fontsize=7)
-    ax.grid(alpha=0.3)
-    ax.set_title("Period against amplitude in non-uniform gravity (exact quadrature)", fontsize=10)
-    fig.tight_layout()
-    files.append(out / "gravity_period.png")
-    fig.savefig(files[-1], dpi=110)
-    plt.close(fig)
+    files.append(_finish(plt, fig, ax, "Period against amplitude in non-uniform gravity (exact quadrature)",
+                         out / "gravity_period.png", legend_size=7))
 
     # --- the density of the angle: a few amplitudes, the arcsine law, a histogram on top
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
@@ -163,13 +164,8 @@ def huygens_gallery(outdir) -> list[pathlib.Path]:
     ax.set_ylim(0, 3)
     ax.set_xlabel("theta / theta0")
     ax.set_ylabel("theta0 p(theta)")
-    ax.legend(fontsize=7)
-    ax.grid(alpha=0.3)
-    ax.set_title("The density of the angle over a period", fontsize=10)
-    fig.tight_layout()
-    files.append(out / "angle_density_gallery.png")
-    fig.savefig(files[-1], dpi=110)
-    plt.close(fig)
+    files.append(_finish(plt, fig, ax, "The density of the angle over a period",
+                         out / "angle_density_gallery.png", legend_size=7))
     np.savetxt(out / "angle_density_gallery.csv", np.array(table), delimiter=",", header="theta0,theta,density,cdf",
                comments="")
     files.append(out / "angle_density_gallery.csv")
