@@ -41,3 +41,8 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Orbit", "Trajectory", "period_series", "period_from_series", "poincare_lindstedt",
            "find_events", "numerical_period", "Events",
            "spectrum", "spectra", "Spectrum", "fourier_series", "odd_harmonics_above"]
+
+# ---- flexible cord (Garfinkel, seed 000) ----
+from .models.cord import cord_state, flip_map, flip_sequence  # noqa: E402
+
+__all__ += ["flip_map", "cord_state", "flip_sequence"]

@@ -29,6 +29,12 @@ def simulate(scene: Scene, t=None, method: str | None = None) -> Trajectory:
     t = scene.times() if t is None else as_float(t, "t")
     method = method or scene.method
     scene.require_implemented()
+    # ---- flexible cord (Garfinkel): its own model, exact where the physics allows -----------
+    if scene.cord == "flexible":
+        from .models.cord import simulate_cord
+
+        return simulate_cord(scene.replace(method=method), t)
+    # ---- end flexible cord ----------------------------------------------------------------
     if method in ("auto", "exact") and scene.is_conservative_rigid:
         theta, v = exact_motion(scene.theta0, scene.v0, scene.eps, t)
         return Trajectory(t, theta, v, energy(theta, v, scene.eps), "exact", scene)
