@@ -25,6 +25,9 @@ module pendula_scene
     real(dp) :: sweep_values(max_sweep) = nan_dp
     integer :: n_sweep = 0
     character(len=256) :: name = ''
+    ! flexible cord (kernel/models/pendula_cord.f90 when it exists; python/pendula/models/cord.py)
+    real(dp) :: restitution = 0.0_dp, min_flight = 0.0_dp
+    integer :: max_flips = 100000
   end type scene_t
 
 contains
@@ -43,19 +46,21 @@ contains
     character(len=16) :: outputs(max_outputs)
     real(dp) :: sweep_values(max_sweep)
     character(len=256) :: name
+    real(dp) :: restitution, min_flight
+    integer :: max_flips
     namelist /scene/ eps, theta0, v0, t_start, t_end, n_samples, damping, torque, &
       drive_amplitude, drive_frequency, drive_phase, cord, guide, gravity, method, rtol, atol, dt, &
-      outputs, sweep, sweep_values, name, g, length
+      outputs, sweep, sweep_values, name, g, length, restitution, max_flips, min_flight
     character(len=:), allocatable :: text
     character(len=4096) :: buf
     character(len=512) :: iom
     integer :: unit, ios, i, j, k, start, line, nseen
     character(len=64) :: fname, seen(64)
     logical :: inq
-    character(len=16), parameter :: known_fields(24) = [character(len=16) :: 'eps', 'theta0', 'v0', &
+    character(len=16), parameter :: known_fields(27) = [character(len=16) :: 'eps', 'theta0', 'v0', &
       't_start', 't_end', 'n_samples', 'damping', 'torque', 'drive_amplitude', 'drive_frequency', &
       'drive_phase', 'cord', 'guide', 'gravity', 'method', 'rtol', 'atol', 'dt', 'outputs', 'sweep', &
-      'sweep_values', 'name', 'g', 'length']
+      'sweep_values', 'name', 'g', 'length', 'restitution', 'max_flips', 'min_flight']
 
     status = 0
     msg = ''
@@ -64,6 +69,7 @@ contains
     drive_phase = 0; cord = sc%cord; guide = sc%guide; gravity = sc%gravity; method = sc%method
     rtol = sc%rtol; atol = sc%atol; dt = 0; outputs = ''; sweep = ''; sweep_values = nan_dp
     name = ''; g = nan_dp; length = nan_dp
+    restitution = sc%restitution; max_flips = sc%max_flips; min_flight = sc%min_flight
 
     inquire(file=path, exist=inq)
     if (.not. inq) then
@@ -124,6 +130,7 @@ contains
     sc%gravity = lower(gravity); sc%method = lower(method); sc%rtol = rtol; sc%atol = atol
     sc%dt = dt; sc%outputs = outputs; sc%sweep = lower(sweep); sc%sweep_values = sweep_values
     sc%name = name
+    sc%restitution = restitution; sc%max_flips = max_flips; sc%min_flight = min_flight
     sc%n_sweep = count(sweep_values == sweep_values)
     call check(sc, g, length, status, msg)
     if (status /= 0) msg = trim(path) // ': ' // trim(msg)
@@ -175,6 +182,15 @@ contains
     end if
     if (.not. (sc%dt >= 0)) then
       msg = 'field ''dt'' must be >= 0 (0: chosen by the method)'; return
+    end if
+    if (.not. (sc%restitution >= 0 .and. sc%restitution < 1)) then
+      msg = 'field ''restitution'' must be in [0, 1)'; return
+    end if
+    if (sc%max_flips < 0 .or. sc%max_flips > 100000000) then
+      msg = 'field ''max_flips'' must be between 0 and 1e8'; return
+    end if
+    if (.not. (finite(sc%min_flight) .and. sc%min_flight >= 0)) then
+      msg = 'field ''min_flight'' must be >= 0'; return
     end if
     if (sc%cord /= 'rigid' .and. sc%cord /= 'flexible') then
       msg = 'field ''cord'' must be one of rigid, flexible; got ''' // trim(sc%cord) // ''''; return

@@ -320,8 +320,9 @@ def simulate_cord(scene, t):
 
     The Trajectory gains x, y, r (the bob's position in units of l; r < 1 in
     flight) and ``flips``: a dict of arrays t_leave, theta_leave, t_return,
-    theta_return, xi_before, xi_after, one entry per flip in time order
-    (xi_before at departure, xi_after after the jerk).  ``stats`` holds
+    theta_return, xi_before, xi_after, v_leave, v_return, one entry per flip in
+    time order (xi_before at departure, xi_after after the jerk, v_return the
+    angular velocity after the jerk).  ``stats`` holds
     'flips', 'stop_reason' ('t_end', 'max_flips' or 'min_flight') and the
     integrator's work.
     """
@@ -357,7 +358,8 @@ def simulate_cord(scene, t):
     X = np.full(n, np.nan)
     Y = np.full(n, np.nan)
     R = np.full(n, np.nan)
-    logs = {k: [] for k in ("t_leave", "theta_leave", "t_return", "theta_return", "xi_before", "xi_after")}
+    logs = {k: [] for k in ("t_leave", "theta_leave", "t_return", "theta_return", "xi_before", "xi_after",
+                                 "v_leave", "v_return")}
     stats = {"steps": 0, "rhs_evaluations": 0}
     t_end = float(ts[-1]) if n else 0.0
     tc, thc, vc, vr = 0.0, float(scene.theta0), float(scene.v0), 0.0
@@ -378,7 +380,7 @@ def simulate_cord(scene, t):
         tension = vc * vc + eps * math.cos(thc)
         leave = None
         if vr < 0.0 or tension <= 0.0:
-            leave = (tc, thc, vc, vr < 0.0 or tension < 0.0)
+            leave = (tc, thc, vc, vr < 0.0 or tension < 0.0, None)
         elif exact:
             xi = float(xi_of(thc, vc, eps))
             if 0.0 < xi < 1.0:
@@ -391,7 +393,10 @@ def simulate_cord(scene, t):
                     dt_dep = 0.0
                 th1 = s * (TWO_PI * k + math.acos(-xi))
                 v1 = s * math.sqrt(eps * xi)
-                leave = (tc + dt_dep, th1, v1, False)
+                # the departure point from xi itself (cos theta1 = -xi exactly, no acos round trip)
+                sq = math.sqrt((1.0 - xi) * (1.0 + xi))
+                pu = (xi, (s * sq, xi), (-v1 * xi, v1 * s * sq))
+                leave = (tc + dt_dep, th1, v1, False, pu)
             j = n if leave is None else int(np.searchsorted(ts, leave[0], side="right"))
             if j > i:
                 th, v = exact_motion(thc, vc, eps, ts[i:j] - tc)
@@ -406,7 +411,7 @@ def simulate_cord(scene, t):
             stats["steps"] += int(st[0])
             stats["rhs_evaluations"] += int(st[3])
             if ev is not None:
-                leave = (ev[0], ev[1], ev[2], False)
+                leave = (ev[0], ev[1], ev[2], False, None)
                 j_lim = int(np.searchsorted(ts, ev[0], side="right"))
             m = j_lim - i
             if m > 0:
@@ -418,9 +423,13 @@ def simulate_cord(scene, t):
             stop = "max_flips"
             break
         # ---- the flight
-        t1, th1, v1, general = leave
-        p = (math.sin(th1), -math.cos(th1))
-        u = (v1 * math.cos(th1) + vr * p[0], v1 * math.sin(th1) + vr * p[1])  # tangential + radial
+        t1, th1, v1, general, pu = leave
+        if pu is None:
+            p = (math.sin(th1), -math.cos(th1))
+            u = (v1 * math.cos(th1) + vr * p[0], v1 * math.sin(th1) + vr * p[1])  # tangential + radial
+            xi_b = float((v1 * v1 + vr * vr - 2 * eps * math.cos(th1)) / (3 * eps))
+        else:
+            xi_b, p, u = pu
         tau = _flight_time(p, u, g, tangential=not general)
         if not math.isfinite(tau):  # tension zero but rising: stays on the circle
             tc, thc, vc, vr = t1, th1, v1, 0.0
@@ -434,8 +443,6 @@ def simulate_cord(scene, t):
         if tau < scene.min_flight / math.sqrt(eps):
             stop = "min_flight"
             break
-        xi_b = float(xi_of(th1, v1 + 0.0, eps)) if vr == 0.0 else float(
-            (v1 * v1 + vr * vr - 2 * eps * math.cos(th1)) / (3 * eps))
         _, th2, v2, vr2 = _land(p, u, g, tau, th1 + 0.0, e)
         j = int(np.searchsorted(ts, t1 + tau, side="right"))
         if j > i:
@@ -450,6 +457,8 @@ def simulate_cord(scene, t):
         logs["t_return"].append(t1 + tau)
         logs["theta_return"].append(th2)
         logs["xi_before"].append(xi_b)
+        logs["v_leave"].append(v1)
+        logs["v_return"].append(v2)
         logs["xi_after"].append(float((v2 * v2 + vr2 * vr2 - 2 * eps * math.cos(th2)) / (3 * eps)))
         tc, thc, vc, vr = t1 + tau, th2, v2, vr2
         if tc > t_end:
