@@ -143,7 +143,9 @@ def test_pendula_run_missing_file(tmp_path):
 
 
 def test_gallery_scenes_parse_in_python_and_fortran(tmp_path, data_dir):
-    scenes = sorted((data_dir / "scenes").glob("*.nml"))
+    # the flexible-cord scenes (cord_*.nml) run in Python only: pendula-run has no cord model yet
+    # (tests/test_cord.py checks that they run and that pendula-run refuses them by name)
+    scenes = sorted(p for p in (data_dir / "scenes").glob("*.nml") if not p.name.startswith("cord_"))
     assert len(scenes) >= 8
     for f in scenes:
         s = Scene.from_file(f)

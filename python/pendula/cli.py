@@ -110,6 +110,7 @@ def cmd_demo(args) -> int:
         files = run_scene(scene, out, stem=p.name[:-4], progress=not args.quiet)
         written += files
         print(f"  {p.name:40s} {len(files)} file(s): " + ", ".join(f.name for f in files))
+    from .demos.cord import cord_demo; written += cord_demo(out, gallery_dir(), quiet=args.quiet)  # flexible cord
     print("\nwhat accuracy costs in time: the integrators against the exact solution")
     integrator_study(out, 1e5, progress=not args.quiet)
     print(f"\n{len(written)} gallery files and the integrator study written to {out.resolve()}")
