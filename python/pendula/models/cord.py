@@ -46,7 +46,6 @@ import numpy as np
 
 from .. import _kernel
 from .._checks import as_float
-from ..elliptic import ellipf
 from .rigid import energy, exact_motion
 
 __all__ = ["flip_map", "cord_state", "flip_sequence", "simulate_cord", "flip_once", "xi_of"]
@@ -84,7 +83,8 @@ def _finv_upper(y):
         mid = 0.5 * (lo + hi)
         if mid <= lo or mid >= hi:
             break
-        if float(flip_map(mid)) < y:
+        w = mid * (1.0 - mid) * (1.0 + mid)
+        if mid - (64.0 / 3.0) * w * w * w < y:  # f(mid), the same expression as flip_map
             lo = mid
         else:
             hi = mid
@@ -186,29 +186,30 @@ def xi_of(theta, v, eps):
 
 # ------------------------------------------------------------ the engine
 
-def _time_from_bottom(phi, xi, eps):
-    """Time for the rigid motion of energy xi to go from theta = 0 to theta = phi
-    moving forward (|phi| inside the arc reached): the incomplete integral F."""
+def _time_to_departure(phi, xi, eps):
+    """Time for the rigid motion of energy xi (0 < xi < 1) to go forward from the angle phi
+    (inside the taut arc, |phi| < theta1) to the departure point theta1 = arccos(-xi).
+
+    Time from the bottom to an angle is the incomplete integral F: in libration
+    (c^2 = (3 xi + 2)/4 <= 1) sin(phi/2) = c sin(psi), t = F(psi | c^2)/omega;
+    in rotation t = F(phi/2 | 1/c^2)/(omega c).  Both values come from one
+    kernel call, with the complementary parameter formed without cancellation;
+    at the departure point sin psi and cos psi = xi^1/2/(2c) are exact in xi
+    (no loss as xi -> 0, where the departure nears the turning point).
+    """
     c2 = (3.0 * xi + 2.0) / 4.0  # c^2 = E / (2 eps l)
     w = math.sqrt(eps)
-    if c2 <= 1.0:  # libration (or the separatrix): sin(phi/2) = c sin(psi)
-        s = math.sin(0.5 * phi) / math.sqrt(c2)
-        psi = math.asin(max(-1.0, min(1.0, s)))
-        return float(ellipf(psi, c2)) / w
-    c = math.sqrt(c2)
-    return float(ellipf(0.5 * phi, 1.0 / c2)) / (w * c)
-
-
-def _departure_time(xi, eps):
-    """Time from theta = 0 to the departure point theta1 = arccos(-xi) (0 < xi < 1)."""
-    c2 = (3.0 * xi + 2.0) / 4.0
-    w = math.sqrt(eps)
     if c2 <= 1.0:
-        # sin psi = sin(theta1/2)/c, cos psi = sqrt(xi)/(2c): no cancellation near xi -> 0
-        psi = math.atan2(math.sqrt(0.5 * (1.0 + xi)), 0.5 * math.sqrt(xi))
-        return float(ellipf(psi, c2)) / w
-    theta1 = math.acos(-xi)
-    return float(ellipf(0.5 * theta1, 1.0 / c2)) / (w * math.sqrt(c2))
+        s = math.sin(0.5 * phi) / math.sqrt(c2)
+        psi0 = math.asin(max(-1.0, min(1.0, s)))
+        psi1 = math.atan2(math.sqrt(0.5 * (1.0 + xi)), 0.5 * math.sqrt(xi))
+        f = _kernel.ellipf_v(np.array([psi1, psi0]), np.array([c2, c2]),
+                             np.full(2, (2.0 - 3.0 * xi) / 4.0))
+        return (f[0] - f[1]) / w
+    m = 1.0 / c2
+    mc = (3.0 * xi - 2.0) / (3.0 * xi + 2.0)
+    f = _kernel.ellipf_v(np.array([0.5 * math.acos(-xi), 0.5 * phi]), np.array([m, m]), np.array([mc, mc]))
+    return (f[0] - f[1]) / (w * math.sqrt(c2))
 
 
 def _flight_time(p, u, g, tangential):
@@ -388,7 +389,7 @@ def simulate_cord(scene, t):
                 phi = s * thc
                 k = round(phi / TWO_PI)
                 phi0 = phi - TWO_PI * k
-                dt_dep = _departure_time(xi, eps) - _time_from_bottom(phi0, xi, eps)
+                dt_dep = _time_to_departure(phi0, xi, eps)
                 if dt_dep < 0:  # rounding at a point on the departure boundary itself
                     dt_dep = 0.0
                 th1 = s * (TWO_PI * k + math.acos(-xi))
