@@ -11,7 +11,9 @@ circle
     the motion is the exact elliptic solution (:func:`pendula.exact_motion`)
     and the departure point and time are closed forms of the energy
     xi = (v^2 - 2 eps cos theta) / (3 eps): cos theta1 = -xi, and the time to
-    reach it is an incomplete elliptic integral F (no root search).  With
+    reach it is an incomplete elliptic integral F (no root search).  This
+    conservative case runs whole in the kernel (kernel/models/pendula_cord.f90,
+    ``cord_run``; binding ``cord_run_v``), about 1 us per flip.  With
     damping, torque or drive the circle is integrated by the scene's adaptive
     method (dopri5/dop853) and the departure is located as an event of the
     tension (event kind 4 of the kernel integrators).  Fixed-step methods have
@@ -46,7 +48,7 @@ import numpy as np
 
 from .. import _kernel
 from .._checks import as_float
-from .rigid import energy, exact_motion
+from .rigid import energy
 
 __all__ = ["flip_map", "cord_state", "flip_sequence", "simulate_cord", "flip_once", "xi_of"]
 
@@ -186,32 +188,6 @@ def xi_of(theta, v, eps):
 
 # ------------------------------------------------------------ the engine
 
-def _time_to_departure(phi, xi, eps):
-    """Time for the rigid motion of energy xi (0 < xi < 1) to go forward from the angle phi
-    (inside the taut arc, |phi| < theta1) to the departure point theta1 = arccos(-xi).
-
-    Time from the bottom to an angle is the incomplete integral F: in libration
-    (c^2 = (3 xi + 2)/4 <= 1) sin(phi/2) = c sin(psi), t = F(psi | c^2)/omega;
-    in rotation t = F(phi/2 | 1/c^2)/(omega c).  Both values come from one
-    kernel call, with the complementary parameter formed without cancellation;
-    at the departure point sin psi and cos psi = xi^1/2/(2c) are exact in xi
-    (no loss as xi -> 0, where the departure nears the turning point).
-    """
-    c2 = (3.0 * xi + 2.0) / 4.0  # c^2 = E / (2 eps l)
-    w = math.sqrt(eps)
-    if c2 <= 1.0:
-        s = math.sin(0.5 * phi) / math.sqrt(c2)
-        psi0 = math.asin(max(-1.0, min(1.0, s)))
-        psi1 = math.atan2(math.sqrt(0.5 * (1.0 + xi)), 0.5 * math.sqrt(xi))
-        f = _kernel.ellipf_v(np.array([psi1, psi0]), np.array([c2, c2]),
-                             np.full(2, (2.0 - 3.0 * xi) / 4.0))
-        return (f[0] - f[1]) / w
-    m = 1.0 / c2
-    mc = (3.0 * xi - 2.0) / (3.0 * xi + 2.0)
-    f = _kernel.ellipf_v(np.array([0.5 * math.acos(-xi), 0.5 * phi]), np.array([m, m]), np.array([mc, mc]))
-    return (f[0] - f[1]) / (w * math.sqrt(c2))
-
-
 def _flight_time(p, u, g, tangential):
     """Smallest positive root of |p + u tau + g tau^2/2|^2 = 1 (|p| = 1).
 
@@ -316,6 +292,36 @@ def _integrate_segment(scene, method, t0, theta0, v0, t_out):
     return th, v, ev, st
 
 
+_LOG = ("t_leave", "theta_leave", "t_return", "theta_return", "xi_before", "xi_after", "v_leave", "v_return")
+_STOPS = {0: "t_end", 1: "max_flips", 2: "min_flight"}
+_CORD_STATUS = {1: "eps must be positive and finite", 2: "theta0 and v0 must be finite",
+                3: "t must be finite and >= 0", 4: "restitution must be in [0, 1)"}
+
+
+def _exact_run(scene, t, ts, back):
+    """The conservative case: the compiled path (kernel/models/pendula_cord.f90, cord_run)."""
+    from ..trajectory import Trajectory
+
+    cap = max(1, min(scene.max_flips, 65536))
+    while True:
+        th, v, x, y, r, fl, nf, stop, status = _kernel.cord_run_v(
+            cap, scene.eps, scene.theta0, scene.v0, scene.restitution, scene.max_flips, scene.min_flight, ts)
+        if status:
+            raise ValueError(_CORD_STATUS.get(status, f"cord kernel status {status}"))
+        if not (stop == 1 and nf == cap and cap < scene.max_flips):
+            break
+        cap = min(scene.max_flips, 8 * cap)  # the flip log was full: run again with room
+    nan_after = int(np.count_nonzero(np.isnan(th)))
+    if nan_after:
+        warnings.warn(f"flexible cord: the run stopped ({_STOPS[int(stop)]}) at flip {nf}; "
+                      f"{nan_after} later output time(s) are NaN", RuntimeWarning, stacklevel=4)
+    theta, vv = back(th), back(v)
+    flips = {k: fl[i, :nf].copy() for i, k in enumerate(_LOG)}
+    stats = {"flips": int(nf), "stop_reason": _STOPS[int(stop)]}
+    return Trajectory(t, theta, vv, energy(theta, vv, scene.eps), "exact", scene, stats,
+                      x=back(x), y=back(y), r=back(r), flips=flips)
+
+
 def simulate_cord(scene, t):
     """A Trajectory of a flexible-cord scene at the times t (>= 0, any order).
 
@@ -354,6 +360,14 @@ def simulate_cord(scene, t):
     order = np.argsort(flat, kind="stable")
     ts = flat[order]
     n = ts.size
+    inv = np.empty(n, dtype=np.intp)
+    inv[order] = np.arange(n)
+
+    def back(a):
+        return a[inv].reshape(t.shape)
+
+    if exact:
+        return _exact_run(scene, t, np.ascontiguousarray(ts), back)
     TH = np.full(n, np.nan)
     V = np.full(n, np.nan)
     X = np.full(n, np.nan)
@@ -381,27 +395,7 @@ def simulate_cord(scene, t):
         tension = vc * vc + eps * math.cos(thc)
         leave = None
         if vr < 0.0 or tension <= 0.0:
-            leave = (tc, thc, vc, vr < 0.0 or tension < 0.0, None)
-        elif exact:
-            xi = float(xi_of(thc, vc, eps))
-            if 0.0 < xi < 1.0:
-                s = 1.0 if vc > 0 else -1.0
-                phi = s * thc
-                k = round(phi / TWO_PI)
-                phi0 = phi - TWO_PI * k
-                dt_dep = _time_to_departure(phi0, xi, eps)
-                if dt_dep < 0:  # rounding at a point on the departure boundary itself
-                    dt_dep = 0.0
-                th1 = s * (TWO_PI * k + math.acos(-xi))
-                v1 = s * math.sqrt(eps * xi)
-                # the departure point from xi itself (cos theta1 = -xi exactly, no acos round trip)
-                sq = math.sqrt((1.0 - xi) * (1.0 + xi))
-                pu = (xi, (s * sq, xi), (-v1 * xi, v1 * s * sq))
-                leave = (tc + dt_dep, th1, v1, False, pu)
-            j = n if leave is None else int(np.searchsorted(ts, leave[0], side="right"))
-            if j > i:
-                th, v = exact_motion(thc, vc, eps, ts[i:j] - tc)
-                fill_circle(j, th, v)
+            leave = (tc, thc, vc, vr < 0.0 or tension < 0.0)
         else:
             j_lim = n
             t_req = ts[i:] if i < n else np.array([tc])
@@ -412,7 +406,7 @@ def simulate_cord(scene, t):
             stats["steps"] += int(st[0])
             stats["rhs_evaluations"] += int(st[3])
             if ev is not None:
-                leave = (ev[0], ev[1], ev[2], False, None)
+                leave = (ev[0], ev[1], ev[2], False)
                 j_lim = int(np.searchsorted(ts, ev[0], side="right"))
             m = j_lim - i
             if m > 0:
@@ -424,18 +418,13 @@ def simulate_cord(scene, t):
             stop = "max_flips"
             break
         # ---- the flight
-        t1, th1, v1, general, pu = leave
-        if pu is None:
-            p = (math.sin(th1), -math.cos(th1))
-            u = (v1 * math.cos(th1) + vr * p[0], v1 * math.sin(th1) + vr * p[1])  # tangential + radial
-            xi_b = float((v1 * v1 + vr * vr - 2 * eps * math.cos(th1)) / (3 * eps))
-        else:
-            xi_b, p, u = pu
+        t1, th1, v1, general = leave
+        p = (math.sin(th1), -math.cos(th1))
+        u = (v1 * math.cos(th1) + vr * p[0], v1 * math.sin(th1) + vr * p[1])  # tangential + radial
+        xi_b = float((v1 * v1 + vr * vr - 2 * eps * math.cos(th1)) / (3 * eps))
         tau = _flight_time(p, u, g, tangential=not general)
         if not math.isfinite(tau):  # tension zero but rising: stays on the circle
             tc, thc, vc, vr = t1, th1, v1, 0.0
-            if exact:
-                raise RuntimeError("flexible cord: departure without a flight (internal)")
             continue
         if general and vr < 0.0 and tau < max(scene.min_flight, 1e-9) / math.sqrt(eps):
             vr = 0.0  # a springy cord's bounces shorter than the threshold: absorbed, the cord stays taut
@@ -469,13 +458,7 @@ def simulate_cord(scene, t):
                       f"{n - i} later output time(s) are NaN", RuntimeWarning, stacklevel=3)
     stats["flips"] = nflips
     stats["stop_reason"] = stop
-    inv = np.empty(n, dtype=np.intp)
-    inv[order] = np.arange(n)
-
-    def back(a):
-        return a[inv].reshape(t.shape)
-
     theta, v = back(TH), back(V)
     flips = {k: np.array(vals, dtype=float) for k, vals in logs.items()}
-    return Trajectory(t, theta, v, energy(theta, v, eps), "exact" if exact else method, scene, stats,
+    return Trajectory(t, theta, v, energy(theta, v, eps), method, scene, stats,
                       x=back(X), y=back(Y), r=back(R), flips=flips)
