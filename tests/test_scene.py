@@ -143,8 +143,8 @@ def test_pendula_run_missing_file(tmp_path):
 
 
 def test_gallery_scenes_parse_in_python_and_fortran(tmp_path, data_dir):
-    # the flexible-cord scenes (cord_*.nml) run in Python only: pendula-run has no cord model yet
-    # (tests/test_cord.py checks that they run and that pendula-run refuses them by name)
+    # the flexible-cord scenes (cord_*.nml) are single runs, not sweeps: tests/test_cord.py runs them
+    # in Python and through pendula-run
     scenes = sorted(p for p in (data_dir / "scenes").glob("*.nml") if not p.name.startswith("cord_"))
     assert len(scenes) >= 8
     for f in scenes:
@@ -179,8 +179,8 @@ def test_pendula_run_fixed_step_needs_dt(tmp_path):
 
 
 def test_pendula_run_unimplemented_effect_exits_3(tmp_path):
-    f = tmp_path / "cord.nml"
-    f.write_text("&scene\n cord = 'flexible'\n/\n")
+    f = tmp_path / "guide.nml"  # (the flexible cord is implemented: tests/test_cord.py)
+    f.write_text("&scene\n guide = 'cycloid'\n/\n")
     p = run(str(f), "-o", str(tmp_path / "o.csv"))
     assert p.returncode == 3 and "not implemented" in p.stderr
     assert not (tmp_path / "o.csv").exists()

@@ -51,7 +51,7 @@ program pendula_run
 
   call read_scene(trim(path), sc, status, msg)
   if (status /= 0) call fail(trim(msg))
-  if (sc%cord /= 'rigid' .or. sc%guide /= 'none' .or. sc%gravity /= 'uniform') &
+  if (sc%guide /= 'none' .or. sc%gravity /= 'uniform') &
     call fail(trim(path) // ': the effect(s) ' // trim(scene_effects(sc)) // &
               ' are not implemented in pendula yet', 3)
 
@@ -88,6 +88,12 @@ program pendula_run
     if (status /= 0) call fail(trim(path) // ': sweep value makes the initial state invalid (eps <= 0?)')
   end do
 
+  ! ---- flexible cord (Garfinkel): its own table (x, y, r) and flip log; kernel/models/pendula_cord.f90 ----
+  if (sc%cord == 'flexible') then
+    call run_cord()
+    stop
+  end if
+  ! ---- end flexible cord ----
   if (len_trim(out) > 0) then
     open(newunit=unit, file=trim(out), status='replace', action='write', iostat=status)
     if (status /= 0) call fail('cannot write "' // trim(out) // '"')
@@ -143,6 +149,79 @@ program pendula_run
   if (unit /= output_unit) close(unit)
 
 contains
+
+  !> The flexible cord: table [sweep,]t,theta,v,energy,x,y,r to OUT, the flip log to OUT_flips.csv
+  !> (or following the table on standard output).  Conservative scenes only (exit 3 otherwise).
+  subroutine run_cord()
+    use pendula_cord, only: cord_run_all
+    real(dp), allocatable :: x(:), y(:), r(:), flips(:, :), log(:)
+    integer :: u, fu, k, m, nfl, stp, st
+    character(len=4096) :: flips_out
+    character(len=10), parameter :: stops(0:2) = [character(len=10) :: 't_end', 'max_flips', 'min_flight']
+    if (sc%damping /= 0 .or. sc%torque /= 0 .or. sc%drive_amplitude /= 0) &
+      call fail(trim(path) // ': a flexible cord with damping, torque or drive runs in Python only ' // &
+                '(pendula.simulate)', 3)
+    if (sc%method /= 'auto' .and. sc%method /= 'exact') &
+      call fail(trim(path) // ': field ''method'': a conservative flexible cord is run exactly (auto or exact)')
+    if (sc%t_start < 0 .or. sc%t_end < sc%t_start) &
+      call fail(trim(path) // ': field ''t_start'': a flexible cord runs forward only (0 <= t_start <= t_end)')
+    allocate(x(size(t)), y(size(t)), r(size(t)), log(0))
+    if (len_trim(out) > 0) then
+      open(newunit=u, file=trim(out), status='replace', action='write', iostat=st)
+      if (st /= 0) call fail('cannot write "' // trim(out) // '"')
+      k = index(out, '.csv', back=.true.)
+      if (k > 1) then
+        flips_out = out(1:k - 1) // '_flips.csv'
+      else
+        flips_out = trim(out) // '_flips.csv'
+      end if
+      open(newunit=fu, file=trim(flips_out), status='replace', action='write', iostat=st)
+      if (st /= 0) call fail('cannot write "' // trim(flips_out) // '"')
+    else
+      u = output_unit; fu = output_unit
+    end if
+    call header(u)
+    write(u, '(a)') '# flexible cord: exact circle phases, parabolic flights, inelastic jerk (restitution = ' // &
+      trim(fmt_real(sc%restitution)) // ')'
+    if (swept) then
+      write(u, '(a)') trim(sc%sweep) // ',t,theta,v,energy,x,y,r'
+    else
+      write(u, '(a)') 't,theta,v,energy,x,y,r'
+    end if
+    do m = 1, nmem
+      member = member_of(sc, m)
+      call cord_run_all(member%eps, member%theta0, member%v0, member%restitution, member%max_flips, &
+                        member%min_flight, t, theta, v, x, y, r, flips, nfl, stp, st)
+      if (st /= 0) call fail(trim(path) // ': the flexible-cord run failed (invalid state or times)', 4)
+      e = 0.5_dp * v * v + 2.0_dp * member%eps * sin(0.5_dp * theta)**2
+      do k = 1, size(t)
+        if (swept) write(u, '(es24.16e3,",")', advance='no') values(m)
+        write(u, '(es24.16e3,6(",",es24.16e3))') t(k), theta(k), v(k), e(k), x(k), y(k), r(k)
+      end do
+      log = [log, [(real(m, dp), flips(:, k), real(stp, dp), k = 1, nfl)]]
+      if (nfl == 0) log = [log, real(m, dp), [(0.0_dp, k = 1, 8)], real(stp, dp) - 100.0_dp]
+    end do
+    if (fu == u) write(u, '(a)') ''
+    write(fu, '(a)') '# pendula-run flip log ' // trim(path)
+    write(fu, '(a)') 'member,t_leave,theta_leave,t_return,theta_return,xi_before,xi_after,v_leave,v_return,' // &
+      'run_stop_reason'
+    do k = 1, size(log) / 10
+      if (log(10 * k) < -50) then  ! a member without flips: one line naming its stop reason only
+        write(fu, '(i0,a)') nint(log(10 * k - 9)), ',,,,,,,,,' // trim(stops(nint(log(10 * k) + 100)))
+      else
+        write(fu, '(i0,8(",",es24.16e3),",",a)') nint(log(10 * k - 9)), log(10 * k - 8:10 * k - 1), &
+          trim(stops(nint(log(10 * k))))
+      end if
+    end do
+    if (u /= output_unit) close(u)
+    if (fu /= output_unit) close(fu)
+  end subroutine run_cord
+
+  function fmt_real(xv) result(s)
+    real(dp), intent(in) :: xv
+    character(len=32) :: s
+    write(s, '(g0)') xv
+  end function fmt_real
 
   function member_of(s, k) result(m)
     type(scene_t), intent(in) :: s

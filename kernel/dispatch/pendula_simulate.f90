@@ -27,6 +27,12 @@ contains
     real(dp) :: tev(1), thev(1), vev(1)
     nsteps = 0
     nrhs = 0
+    ! ---- flexible cord (Garfinkel): kernel/models/pendula_cord.f90; conservative case only ----
+    if (sc%cord == 'flexible') then
+      call simulate_cord(sc, t, theta, v, status)
+      return
+    end if
+    ! ---- end flexible cord ----
     if (len_trim(scene_effects(sc)) == 0 .and. (sc%method == 'auto' .or. sc%method == 'exact')) then
       call orbit_setup(sc%theta0, sc%v0, sc%eps, o, status)
       if (status /= 0) then
@@ -78,5 +84,25 @@ contains
     case default;                s = 'unknown failure'
     end select
   end function simulate_status_text
+
+  !> The flexible cord through the dispatcher: theta and v only (pendula-run writes x, y, r and the
+  !> flip log itself).  Damping, torque or drive with a flexible cord: sim_unsupported (Python only).
+  subroutine simulate_cord(sc, t, theta, v, status)
+    use pendula_cord, only: cord_run_all
+    type(scene_t), intent(in) :: sc
+    real(dp), intent(in) :: t(:)
+    real(dp), intent(out) :: theta(:), v(:)
+    integer, intent(out) :: status
+    real(dp), allocatable :: x(:), y(:), r(:), flips(:, :)
+    integer :: nflips, stop_reason
+    if (sc%damping /= 0.0_dp .or. sc%torque /= 0.0_dp .or. sc%drive_amplitude /= 0.0_dp .or. &
+        .not. (sc%method == 'auto' .or. sc%method == 'exact')) then
+      status = sim_unsupported; return
+    end if
+    allocate(x(size(t)), y(size(t)), r(size(t)))
+    call cord_run_all(sc%eps, sc%theta0, sc%v0, sc%restitution, sc%max_flips, sc%min_flight, t, theta, v, &
+                      x, y, r, flips, nflips, stop_reason, status)
+    if (status /= 0) status = merge(sim_unsorted, sim_bad_state, status == 3)
+  end subroutine simulate_cord
 
 end module pendula_simulate

@@ -17,7 +17,7 @@ module pendula_cord
   use pendula_elliptic, only: ellip_f
   implicit none
   private
-  public :: flip_map, cord_run
+  public :: flip_map, cord_run, cord_run_all
   !> status codes of cord_run
   integer, parameter, public :: cord_ok = 0, cord_bad_eps = 1, cord_bad_state = 2, cord_bad_times = 3, &
     cord_bad_restitution = 4
@@ -259,5 +259,26 @@ contains
       end if
     end do
   end subroutine cord_run
+
+  !> cord_run with a flip log that grows as needed (up to max_flips entries).
+  pure subroutine cord_run_all(eps, theta0, v0, restitution, max_flips, min_flight, t, theta, v, x, y, r, &
+                               flips, nflips, stop_reason, status)
+    real(dp), intent(in) :: eps, theta0, v0, restitution, min_flight, t(:)
+    integer, intent(in) :: max_flips
+    real(dp), intent(out) :: theta(:), v(:), x(:), y(:), r(:)
+    real(dp), allocatable, intent(out) :: flips(:, :)
+    integer, intent(out) :: nflips, stop_reason, status
+    integer :: cap
+    cap = max(1, min(max(max_flips, 0), 65536))
+    do
+      if (allocated(flips)) deallocate(flips)
+      allocate(flips(8, cap))
+      call cord_run(eps, theta0, v0, restitution, max_flips, min_flight, t, theta, v, x, y, r, &
+                    flips, nflips, stop_reason, status)
+      if (status /= cord_ok .or. stop_reason /= cord_stop_max_flips .or. nflips < cap &
+          .or. cap >= max_flips) exit
+      cap = int(min(int(max_flips, kind(1_8)), 8_8 * cap))
+    end do
+  end subroutine cord_run_all
 
 end module pendula_cord
