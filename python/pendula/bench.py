@@ -248,7 +248,7 @@ def bench_cord(n: int = 10_000, seed: int = 4) -> list[dict]:
         t_sim = best_time(lambda: simulate(sc), repeat=3)
     xs = tr.flips["xi_before"]
     t_map = best_time(lambda: flip_map(xs))
-    rows = _report("Flexible cord: one flip", nf, [("pendula.simulate, one run of flips (Python loop)", t_sim),
+    rows = _report("Flexible cord: one flip", nf, [("pendula.simulate, one run of flips (kernel cord_run)", t_sim),
                                                    ("pendula.flip_map, closed form (numpy)", t_map)],
                    "pendula.flip_map, closed form (numpy)")
     t0 = time.perf_counter()
