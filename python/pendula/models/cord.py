@@ -60,7 +60,8 @@ TWO_PI = 2.0 * math.pi
 def flip_map(xi):
     """Garfinkel's flip map f (seed eqs. 14-15), vectorised.
 
-    f(x) = x - (64/3) [x (1 - x^2)]^3 for 0 <= x <= 1, and f(x) = x outside.
+    f(x) = x - (64/3) [x (1 - x^2)]^3 for 0 <= x <= 1, and f(x) = x outside
+    (the kernel's elemental ``flip_map``, kernel/models/pendula_cord.f90).
 
     Examples
     --------
@@ -71,9 +72,7 @@ def flip_map(xi):
     1.5
     """
     x = as_float(xi, "xi")
-    inside = (x >= 0.0) & (x <= 1.0)
-    w = x * (1.0 - x) * (1.0 + x)
-    out = np.where(inside, x - (64.0 / 3.0) * w ** 3, x)
+    out = _kernel.cord_flip_map_v(np.ascontiguousarray(x, dtype=np.float64).reshape(-1)).reshape(x.shape)
     return out if out.ndim else out[()]
 
 
