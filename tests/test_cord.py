@@ -340,3 +340,20 @@ def test_damped_state_one_many_flips_no_event_storm():
     np.testing.assert_allclose(fl["xi_after"], flip_map(fl["xi_before"]), rtol=0, atol=1e-9)
     # the end: the energy falls below 0 and the bob oscillates on the circle, taut (r = 1)
     assert fl["xi_after"][-1] < 0.0005 and np.all(tr.r[np.isfinite(tr.r)] <= 1 + 1e-15)
+
+
+@pytest.mark.parametrize("text, field", [("restitution = 1.0", "restitution"), ("restitution = -0.5", "restitution"),
+                                         ("max_flips = -3", "max_flips"), ("min_flight = -1e-3", "min_flight")])
+def test_bad_cord_fields_in_both_readers(tmp_path, text, field):
+    import subprocess
+
+    from conftest import venv_bin
+
+    body = f"&scene\n cord = 'flexible', v0 = 2.0\n {text}\n/\n"
+    with pytest.raises(ValueError, match=field):
+        Scene.from_namelist(body)
+    f = tmp_path / "bad.nml"
+    f.write_text(body)
+    p = subprocess.run([venv_bin("pendula-run"), str(f), "-o", str(tmp_path / "o.csv")], capture_output=True,
+                       text=True)
+    assert p.returncode == 2 and field in p.stderr and not (tmp_path / "o.csv").exists()
