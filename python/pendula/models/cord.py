@@ -50,7 +50,7 @@ from .. import _kernel
 from .._checks import as_float
 from .rigid import energy
 
-__all__ = ["flip_map", "cord_state", "flip_sequence", "simulate_cord", "flip_once", "xi_of"]
+__all__ = ["flip_map", "cord_state", "flip_sequence", "simulate_cord", "xi_of"]
 
 TWO_PI = 2.0 * math.pi
 
@@ -234,20 +234,6 @@ def _flight_time(p, u, g, tangential):
         else:
             hi = mid
     return 0.5 * (lo + hi)
-
-
-def flip_once(theta1, v1, eps, restitution=0.0, tangential=True):
-    """One flight from the circle point theta1 with angular velocity v1, and the jerk.
-
-    Returns (tau, theta2, v2, vr_after) where tau is the flight time, theta2
-    the re-entry angle (continuous with theta1), v2 the angular velocity after
-    the jerk and vr_after the radial velocity left by a springy cord (<= 0).
-    """
-    p = (math.sin(theta1), -math.cos(theta1))
-    u = (v1 * math.cos(theta1), v1 * math.sin(theta1))
-    g = (0.0, -eps)
-    tau = _flight_time(p, u, g, tangential)
-    return _land(p, u, g, tau, theta1, restitution) if math.isfinite(tau) else (tau, theta1, v1, 0.0)
 
 
 def _land(p, u, g, tau, theta_ref, restitution):
