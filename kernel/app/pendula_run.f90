@@ -23,6 +23,7 @@ program pendula_run
   character(len=4096) :: path, out, arg, orbit_out
   character(len=512) :: line
   type(outfile_t) :: f_out, f_orbit
+  character(len=512), allocatable :: log_rows(:)
   character(len=1024) :: msg
   type(scene_t) :: sc, member
   type(pendulum_orbit) :: o
@@ -101,6 +102,11 @@ program pendula_run
       call fail(trim(path) // ': field ''theta0'': a sweep value puts the cycloid beyond a cusp (|theta0| > pi/2)')
   end do
 
+  ! the flexible cord writes its own table (with x, y, r) and a flip log
+  if (sc%cord == 'flexible') then
+    call run_cord()
+    stop
+  end if
   ! everything goes through the checked writer: OUT (or standard output, '-')
   if (len_trim(out) == 0) out = '-'
   call out_open(f_out, trim(out), status)
@@ -158,6 +164,9 @@ program pendula_run
 
 contains
 
+  !> The flexible cord: table [sweep,]t,theta,v,energy,x,y,r to OUT, the flip log to OUT_flips.csv
+  !> (or following the table on standard output).  Conservative scenes only (exit 3 otherwise).
+
   function member_of(s, k) result(m)
     type(scene_t), intent(in) :: s
     integer, intent(in) :: k
@@ -174,6 +183,95 @@ contains
     case ('drive_frequency'); m%drive_frequency = s%sweep_values(k)
     end select
   end function member_of
+
+  !> The flexible cord: its table (t, theta, v, energy, x, y, r) and its flip log
+  !> (OUT_flips.csv beside OUT, or following on standard output), through the
+  !> checked writer like every other output.
+  subroutine run_cord()
+    use pendula_cord, only: cord_run_all
+    real(dp), allocatable :: x(:), y(:), r(:), flips(:, :)
+    type(outfile_t) :: f_flips
+    integer :: k, m, nfl, stp, st
+    logical :: two
+    character(len=4096) :: flips_out
+    character(len=64) :: pre
+    character(len=10), parameter :: stops(0:2) = [character(len=10) :: 't_end', 'max_flips', 'min_flight']
+    if (sc%damping /= 0 .or. sc%torque /= 0 .or. sc%drive_amplitude /= 0) &
+      call fail(trim(path) // ': a flexible cord with damping, torque or drive runs in Python only ' // &
+                '(pendula.simulate)', 3)
+    if (sc%method /= 'auto' .and. sc%method /= 'exact') &
+      call fail(trim(path) // ': field ''method'': a conservative flexible cord is run exactly (auto or exact)')
+    if (sc%t_start < 0 .or. sc%t_end < sc%t_start) &
+      call fail(trim(path) // ': field ''t_start'': a flexible cord runs forward only (0 <= t_start <= t_end)')
+    allocate(x(size(t)), y(size(t)), r(size(t)))
+    if (len_trim(out) == 0) out = '-'
+    call out_open(f_out, trim(out), st)
+    if (st /= 0) call fail_io('cannot write "' // trim(out) // '"', st)
+    two = out /= '-'
+    if (two) then
+      k = len_trim(out)
+      if (k > 4) then
+        if (out(k - 3:k) == '.csv') k = k - 4
+      end if
+      flips_out = out(1:k) // '_flips.csv'
+      call out_open(f_flips, trim(flips_out), st)
+      if (st /= 0) call fail_io('cannot write "' // trim(flips_out) // '"', st)
+    end if
+    call header(f_out)
+    write(line, '(a, f0.6, a)') '# flexible cord: exact circle phases, parabolic flights, jerk (restitution = ', &
+      sc%restitution, ')'
+    call out_line(f_out, line)
+    if (swept) then
+      call out_line(f_out, trim(sc%sweep) // ',t,theta,v,energy,x,y,r')
+    else
+      call out_line(f_out, 't,theta,v,energy,x,y,r')
+    end if
+    allocate(log_rows(0))
+    do m = 1, nmem
+      member = member_of(sc, m)
+      call cord_run_all(member%eps, member%theta0, member%v0, member%restitution, member%max_flips, &
+                        member%min_flight, t, theta, v, x, y, r, flips, nfl, stp, st)
+      if (st /= 0) call fail(trim(path) // ': the flexible-cord run failed (invalid state or times)', 4)
+      e = 0.5_dp * v * v + 2.0_dp * member%eps * sin(0.5_dp * theta)**2
+      pre = ''
+      if (swept) write(pre, '(es24.16e3,",")') values(m)
+      do k = 1, size(t)
+        write(line, '(es24.16e3,6(",",es24.16e3))') t(k), theta(k), v(k), e(k), x(k), y(k), r(k)
+        call out_line(f_out, trim(pre) // adjustl(line))
+      end do
+      ! the flip log: one line per flip, or one line naming the stop reason of a member without flips
+      if (nfl == 0) then
+        write(line, '(i0,a)') m, ',,,,,,,,,' // trim(stops(stp))
+        log_rows = [character(len=512) :: log_rows, line]
+      end if
+      do k = 1, nfl
+        write(line, '(i0,8(",",es24.16e3),",",a)') m, flips(:, k), trim(stops(stp))
+        log_rows = [character(len=512) :: log_rows, line]
+      end do
+    end do
+    if (.not. two) then
+      call out_line(f_out, '')
+      call flip_log(f_out)
+    else
+      call flip_log(f_flips)
+      call out_close(f_flips, st)
+      if (st /= 0) call fail_io('cannot write "' // trim(flips_out) // '"', st)
+    end if
+    call out_close(f_out, st)
+    if (st /= 0) call fail_io('cannot write "' // trim(out) // '"', st)
+  end subroutine run_cord
+
+  !> The flip log of the flexible cord's runs (rows gathered in log_rows).
+  subroutine flip_log(f)
+    type(outfile_t), intent(inout) :: f
+    integer :: i
+    call out_line(f, '# pendula-run flip log ' // trim(path))
+    call out_line(f, 'member,t_leave,theta_leave,t_return,theta_return,xi_before,xi_after,v_leave,v_return,' // &
+      'run_stop_reason')
+    do i = 1, size(log_rows)
+      call out_line(f, log_rows(i))
+    end do
+  end subroutine flip_log
 
   subroutine orbit_table(f)
     type(outfile_t), intent(inout) :: f

@@ -303,7 +303,7 @@ subroutine spectra_v(handle, n, nsig, signals, dt, window, nh, omega, power, sta
   call power_spectra(int(handle, c_intptr_t), signals, dt, window, omega, power, status)
 end subroutine spectra_v
 
-! ====================================================================
+! =============================================================
 ! Issue 13: Huygens' cycloidal pendulum, non-uniform gravity, the density of the angle
 ! ====================================================================
 
@@ -360,3 +360,29 @@ subroutine gravity_h_v(n, kind, par, eps, regime, m, mc, e, u, h)
   h = gravity_h(kind, par, eps, regime, m, mc, e, u)
 end subroutine gravity_h_v
 
+! ==================== flexible cord (Garfinkel): kernel/models/pendula_cord.f90 ====================
+! Garfinkel's flip map, elementwise.
+subroutine cord_flip_map_v(n, x, f)
+  use pendula_cord, only: flip_map
+  implicit none
+  integer, intent(in) :: n
+  double precision, intent(in) :: x(n)
+  double precision, intent(out) :: f(n)
+  !f2py intent(hide), depend(x) :: n = len(x)
+  f = flip_map(x)
+end subroutine cord_flip_map_v
+
+! A conservative flexible-cord run at sorted times t >= 0; flips(8, maxf): t_leave, theta_leave,
+! t_return, theta_return, xi_before, xi_after, v_leave, v_return.
+subroutine cord_run_v(n, maxf, eps, theta0, v0, restitution, max_flips, min_flight, t, theta, v, x, y, r, &
+                      flips, nflips, stop_reason, status)
+  use pendula_cord, only: cord_run
+  implicit none
+  integer, intent(in) :: n, maxf, max_flips
+  double precision, intent(in) :: eps, theta0, v0, restitution, min_flight, t(n)
+  double precision, intent(out) :: theta(n), v(n), x(n), y(n), r(n), flips(8, maxf)
+  integer, intent(out) :: nflips, stop_reason, status
+  !f2py intent(hide), depend(t) :: n = len(t)
+  call cord_run(eps, theta0, v0, restitution, max_flips, min_flight, t, theta, v, x, y, r, flips, &
+                nflips, stop_reason, status)
+end subroutine cord_run_v

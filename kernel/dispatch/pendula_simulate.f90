@@ -30,7 +30,7 @@ module pendula_simulate
     sim_needs_dt = 11, sim_unsorted = 12, sim_integrator_failed = 13, sim_not_implemented = 14, &
     sim_model_clash = 15, sim_exact_refused = 16, sim_backward = 17, sim_gsl_failed = 18, &
     sim_too_many_steps = 19, sim_cancelled = 20, sim_closed_form_only = 21, sim_beyond_cusp = 22, &
-    sim_nonfinite_t = 23
+    sim_nonfinite_t = 23, sim_cord_effects = 24
   !> method codes: the integrators' 1..9, then GSL's rk8pd and the exact path
   integer, parameter, public :: m_gsl_rk8pd = 10, m_exact = 0
 
@@ -51,7 +51,7 @@ module pendula_simulate
   type(model_info_t), parameter :: registry(4) = [ &
     model_info_t('rigid', "cord='rigid' guide='none' gravity='uniform'", 'damping torque drive', &
                  '(none)', 'exact', .true., 'rigid pendulum, Jacobi elliptic solution in every regime'), &
-    model_info_t('cord', "cord='flexible'", 'damping torque drive', '(none)', 'hybrid', .false., &
+    model_info_t('cord', "cord='flexible'", 'damping torque drive', '(none)', 'hybrid', .true., &
                  'bob on a flexible cord (Garfinkel): circle, free flight, jerk'), &
     model_info_t('cycloid', "guide='cycloid'", 'damping torque drive', 'damping torque drive', 'exact', &
                  .true., 'cycloidal guide (Huygens): isochronous, closed form'), &
@@ -144,6 +144,13 @@ contains
         call integrate_model(sc, t, theta, v, stats, method, status, cancel)
       end if
       if (status == sim_ok) energy = rigid_energy(sc%eps, theta, v)
+    case (mid_cord)
+      ! circle (exact elliptic arcs), free flight (parabola), jerk: all closed form without
+      ! effects.  With damping, torque or drive the circle phases are integrated with the
+      ! tension event, a loop that lives in python/pendula/systems/cord.py for now
+      call simulate_cord(sc, t, theta, v, status)
+      if (status == sim_ok) energy = rigid_energy(sc%eps, theta, v)
+      method = m_exact
     case (mid_cycloid)
       ! a damped, driven harmonic oscillator in the arc length: never integrated
       if (sc%method /= 'auto' .and. sc%method /= 'exact') then
@@ -225,6 +232,25 @@ contains
     case default;             status = sim_integrator_failed
     end select
   end subroutine integrate_model
+
+  !> The flexible cord without effects (kernel/models/pendula_cord.f90).
+  subroutine simulate_cord(sc, t, theta, v, status)
+    use pendula_cord, only: cord_run_all
+    type(scene_t), intent(in) :: sc
+    real(dp), intent(in) :: t(:)
+    real(dp), intent(out) :: theta(:), v(:)
+    integer, intent(out) :: status
+    real(dp), allocatable :: x(:), y(:), r(:), flips(:, :)
+    integer :: nflips, stop_reason
+    if (sc%damping /= 0.0_dp .or. sc%torque /= 0.0_dp .or. sc%drive_amplitude /= 0.0_dp .or. &
+        .not. (sc%method == 'auto' .or. sc%method == 'exact')) then
+      status = sim_cord_effects; return
+    end if
+    allocate(x(size(t)), y(size(t)), r(size(t)))
+    call cord_run_all(sc%eps, sc%theta0, sc%v0, sc%restitution, sc%max_flips, sc%min_flight, t, theta, v, &
+                      x, y, r, flips, nflips, stop_reason, status)
+    if (status /= 0) status = merge(sim_unsorted, sim_bad_state, status == 3)
+  end subroutine simulate_cord
 
   !> The cycloidal guide's closed form (kernel/models/pendula_cycloid.f90).
   subroutine cycloid_path_motion(sc, t, theta, v, status)
@@ -328,6 +354,8 @@ contains
         'shorten the span (t), or give a larger dt or rtol'
     case (sim_cancelled);        s = 'interrupted'
     case (sim_nonfinite_t);      s = 't must be finite for a scene that is integrated'
+    case (sim_cord_effects);     s = 'the flexible cord with damping, torque or drive runs in the Python ' // &
+                                     'layer only (pendula.simulate); pendula-run answers it without effects'
     case (sim_closed_form_only); s = 'field ''method'': the cycloidal guide is answered in closed form; ' // &
                                      'use ''auto'' or ''exact'''
     case (sim_beyond_cusp);      s = 'the motion reaches the cusps of the cycloidal guide (|s| = 4R, ' // &
@@ -335,5 +363,8 @@ contains
     case default;                s = 'unknown failure'
     end select
   end function simulate_status_text
+
+  !> The flexible cord through the dispatcher: theta and v only (pendula-run writes x, y, r and the
+  !> flip log itself).  Damping, torque or drive with a flexible cord: sim_unsupported (Python only).
 
 end module pendula_simulate

@@ -54,7 +54,8 @@ module pendula_integrators
   end type pendulum_model
 
   !> kind 0: none; 1: g = v (turning points); 2: g = theta - level;
-  !> 3: g = sin((theta - level)/2) (theta passing level + 2 pi k, for rotations).
+  !> 3: g = sin((theta - level)/2) (theta passing level + 2 pi k, for rotations);
+  !> 4: g = v**2 + eps cos(theta), the cord tension / (m l) (flexible cord: it slackens at g = 0).
   !> direction +1: only g rising through 0, -1: only falling, 0: both.
   type :: event_spec
     integer :: kind = 0
@@ -671,6 +672,8 @@ contains
         g = yv(1) - ev%level
       case (3)
         g = sin(0.5_dp * (yv(1) - ev%level))
+      case (4)
+        g = yv(2)**2 + m%eps * cos(yv(1))
       case default
         g = 0.0_dp
       end select
@@ -779,6 +782,8 @@ contains
         dg = yv(2)
       case (3)
         dg = 0.5_dp * cos(0.5_dp * (yv(1) - ev%level)) * yv(2)
+      case (4)
+        dg = yv(2) * (2.0_dp * accel(m, t + xx * h, yv(1), yv(2)) - m%eps * sin(yv(1)))
       case default
         dg = 0.0_dp
       end select

@@ -27,6 +27,9 @@ module pendula_scene
     character(len=256) :: name = ''
     ! issue 13: the cycloidal guide (R / l) and the gravity fields' parameters
     real(dp) :: cycloid_radius = 0.25_dp, gravity_distance = 0.0_dp, gravity_gradient = 0.0_dp
+    ! the flexible cord (kernel/models/pendula_cord.f90)
+    real(dp) :: restitution = 0.0_dp, min_flight = 0.0_dp
+    integer :: max_flips = 100000
   end type scene_t
 
 contains
@@ -69,8 +72,8 @@ contains
     ! the namelist variables (same names as the fields)
     real(dp) :: eps, theta0, v0, t_start, t_end, damping, torque, drive_amplitude, &
                 drive_frequency, drive_phase, rtol, atol, dt, g, length, cycloid_radius, gravity_distance, &
-                gravity_gradient
-    integer :: n_samples
+                gravity_gradient, restitution, min_flight
+    integer :: n_samples, max_flips
     ! one more element and far more characters than the scene holds: a longer
     ! list or string is refused with a message instead of being truncated
     character(len=1024) :: cord, guide, gravity, method, sweep
@@ -79,16 +82,18 @@ contains
     character(len=1024) :: name
     namelist /scene/ eps, theta0, v0, t_start, t_end, n_samples, damping, torque, &
       drive_amplitude, drive_frequency, drive_phase, cord, guide, gravity, method, rtol, atol, dt, &
-      outputs, sweep, sweep_values, name, g, length, cycloid_radius, gravity_distance, gravity_gradient
+      outputs, sweep, sweep_values, name, g, length, cycloid_radius, gravity_distance, gravity_gradient, &
+      restitution, max_flips, min_flight
     character(len=:), allocatable :: text
     character(len=:), allocatable :: buf
     character(len=512) :: iom
     integer :: ios, i, j, k, start, line, nseen, jj, kk
     character(len=64) :: fname, seen(64)
-    character(len=16), parameter :: known_fields(27) = [character(len=16) :: 'eps', 'theta0', 'v0', &
+    character(len=16), parameter :: known_fields(30) = [character(len=16) :: 'eps', 'theta0', 'v0', &
       't_start', 't_end', 'n_samples', 'damping', 'torque', 'drive_amplitude', 'drive_frequency', &
       'drive_phase', 'cord', 'guide', 'gravity', 'method', 'rtol', 'atol', 'dt', 'outputs', 'sweep', &
-      'sweep_values', 'name', 'g', 'length', 'cycloid_radius', 'gravity_distance', 'gravity_gradient']
+      'sweep_values', 'name', 'g', 'length', 'cycloid_radius', 'gravity_distance', 'gravity_gradient', &
+      'restitution', 'max_flips', 'min_flight']
 
     status = 0
     msg = ''
@@ -98,6 +103,7 @@ contains
     rtol = sc%rtol; atol = sc%atol; dt = 0; outputs = ''; sweep = ''; sweep_values = nan_dp
     name = ''; g = nan_dp; length = nan_dp
     cycloid_radius = 0.25_dp; gravity_distance = 0.0_dp; gravity_gradient = 0.0_dp
+    restitution = 0.0_dp; max_flips = 100000; min_flight = 0.0_dp
 
     k = utf8_error_at(text_in)
     if (k > 0) then
@@ -215,6 +221,7 @@ contains
     sc%name = name
     sc%cycloid_radius = cycloid_radius; sc%gravity_distance = gravity_distance
     sc%gravity_gradient = gravity_gradient
+    sc%restitution = restitution; sc%max_flips = max_flips; sc%min_flight = min_flight
     sc%n_sweep = count(sweep_values(1:max_sweep) == sweep_values(1:max_sweep))
     call check(sc, g, length, status, msg)
     if (status /= 0) msg = trim(source) // ': ' // trim(msg)
@@ -271,6 +278,15 @@ contains
     end if
     if (.not. (sc%dt >= 0)) then
       msg = 'field ''dt'' must be >= 0 (0: chosen by the method)'; return
+    end if
+    if (.not. (sc%restitution >= 0 .and. sc%restitution < 1)) then
+      msg = 'field ''restitution'' must be in [0, 1)'; return
+    end if
+    if (sc%max_flips < 0 .or. sc%max_flips > 100000000) then
+      msg = 'field ''max_flips'' must be between 0 and 1e8'; return
+    end if
+    if (.not. (finite(sc%min_flight) .and. sc%min_flight >= 0)) then
+      msg = 'field ''min_flight'' must be >= 0'; return
     end if
     if (sc%cord /= 'rigid' .and. sc%cord /= 'flexible') then
       msg = 'field ''cord'' must be one of rigid, flexible; got ''' // trim(sc%cord) // ''''; return

@@ -16,7 +16,7 @@ import tempfile
 
 import numpy as np
 
-__all__ = ["scene_header", "atomic_path", "staging", "write_csv"]
+__all__ = ["scene_header", "atomic_path", "staging", "write_csv", "gallery_dir"]
 
 
 def scene_header(scene) -> list[str]:
@@ -87,3 +87,10 @@ def write_csv(path, scene, columns: list[str], rows, notes: tuple = ()) -> pathl
         fh.flush()
         os.fsync(fh.fileno())
     return path
+
+
+def gallery_dir():
+    """The default gallery of scenes shipped with the package (data/scenes in the repository)."""
+    from importlib.resources import files
+
+    return files("pendula") / "scenes"

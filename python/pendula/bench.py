@@ -228,8 +228,40 @@ def bench_spectrum(n: int = 1 << 20, seed: int = 3) -> list[dict]:
     return out
 
 
+# ---- flexible cord (Garfinkel) ----
+def bench_cord(n: int = 10_000, seed: int = 4) -> list[dict]:
+    """Time per simulated flip (departure, flight, re-entry, jerk) against the closed-form map.
+
+    One run of 10^4 flips in state k = 1 (xi(0) = 0.2), the map f evaluated
+    at the 10^4 energies of that run, and the whole Table 2 experiment.
+    """
+    import warnings
+
+    from .demos.cord import table2
+    from .systems.cord import flip_map
+    from .motion import simulate
+    from .scene import Scene
+
+    nf = min(int(n), 10_000)
+    sc = Scene(cord="flexible", v0=(3 * 0.2 + 2) ** 0.5, t_end=1e12, n_samples=2, max_flips=nf)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        tr = simulate(sc)
+        t_sim = best_time(lambda: simulate(sc), repeat=3)
+    xs = tr.flips["xi_before"]
+    t_map = best_time(lambda: flip_map(xs))
+    rows = _report("Flexible cord: one flip", nf, [("pendula.simulate, one run of flips (kernel cord_run)", t_sim),
+                                                   ("pendula.flip_map, closed form (numpy)", t_map)],
+                   "pendula.flip_map, closed form (numpy)")
+    t0 = time.perf_counter()
+    table2()
+    t_tab = time.perf_counter() - t0
+    print(f"  Table 2 experiment (13 runs, k(0) = 0..12, plus circulation): {t_tab * 1e3:.0f} ms")
+    return rows + [{"what": "table2", "seconds": t_tab}]
+
+
 BENCHMARKS = {"elliptic": bench_elliptic, "exact": bench_exact, "integrators": bench_integrators,
-              "spectrum": bench_spectrum}
+              "spectrum": bench_spectrum, "cord": bench_cord}
 
 
 def main(argv=None) -> int:

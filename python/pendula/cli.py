@@ -16,6 +16,8 @@ import sys
 
 import numpy as np
 
+from ._files import gallery_dir
+
 
 def elliptic_table() -> list[tuple[str, float, float]]:
     """Hard cases of the elliptic kernel next to the exact values known in closed form."""
@@ -58,13 +60,6 @@ def print_elliptic_table() -> None:
     for name, got, exact in rows:
         err = abs(got - exact) / (eps * max(1.0, abs(exact)))
         print(f"  {name:62s} {got:24.17g} {exact:24.17g} {err:9.1f}")
-
-
-def gallery_dir():
-    """The default gallery of scenes shipped with the package (data/scenes in the repository)."""
-    from importlib.resources import files
-
-    return files("pendula") / "scenes"
 
 
 def _run_file(args, command: str, outputs: tuple | None = None) -> int:
@@ -110,6 +105,7 @@ def cmd_spectrum(args) -> int:
 def cmd_demo(args) -> int:
     import pathlib
 
+    from .demos.cord import cord_demo
     from .demos.huygens import huygens_gallery
     from .run import run_scene
     from .scene import Scene
@@ -125,6 +121,7 @@ def cmd_demo(args) -> int:
         written += files
         print(f"  {p.name:40s} {len(files)} file(s): " + ", ".join(f.name for f in files))
     written += huygens_gallery(out)  # issue 13: Huygens' clock, non-uniform gravity, density of the angle
+    written += cord_demo(out, gallery_dir(), quiet=args.quiet)  # the flexible cord (Garfinkel)
     print("\nwhat accuracy costs in time: the integrators against the exact solution")
     integrator_study(out, 1e5, progress=not args.quiet)
     print(f"\n{len(written)} gallery files and the integrator study written to {out.resolve()}")

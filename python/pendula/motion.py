@@ -11,6 +11,7 @@ from ._checks import as_float
 from .systems.rigid import Orbit, energy, exact_motion, orbit
 from .scene import Scene
 from .systems import run
+from .systems.cord import simulate_cord
 from .systems.cycloid import cycloid_period
 from .systems.gravity import gravity_orbit
 from .trajectory import Trajectory
@@ -56,6 +57,10 @@ def simulate(scene: Scene, t=None, method: str | None = None, rtol: float | None
     if knobs:
         scene = scene.replace(**knobs)
     t = scene.times() if t is None else as_float(t, "t")
+    if scene.cord == "flexible":
+        # the flexible cord's own driver: the kernel's exact circle-flight-jerk path, or (with
+        # damping, torque or drive) the integrator with the tension event between exact flights
+        return simulate_cord(scene, t)
     return run(scene, t)
 
 

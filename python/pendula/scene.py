@@ -96,6 +96,11 @@ class Scene:
     gravity_gradient : float
         With gravity = 'linear': kappa < 1/2 in g(h) = g (1 - kappa h / l),
         h the height above the lowest point (uniform at kappa = 0).
+    restitution, max_flips, min_flight : float, int, float
+        Flexible cord only: coefficient of restitution of the jerk (0 <= e < 1,
+        0 = Garfinkel's inelastic jerk), the most flips simulated (0 <= n <= 1e8),
+        and the shortest flight simulated, in units of 1/sqrt(eps) (>= 0): the run
+        stops there (later output times are NaN, the stop reason is in the stats).
     """
 
     eps: float = math.nan  # not given: 1.0, or g / length when those are given
@@ -126,6 +131,10 @@ class Scene:
     cycloid_radius: float = 0.25
     gravity_distance: float = 0.0
     gravity_gradient: float = 0.0
+    # flexible cord (systems/cord.py)
+    restitution: float = 0.0
+    max_flips: int = 100000
+    min_flight: float = 0.0
 
     def __post_init__(self):
         _validate(self)
@@ -190,8 +199,8 @@ class Scene:
 
     def require_implemented(self) -> None:
         """NotImplementedError naming the effects the scene format has room for
-        but pendula cannot simulate yet (the flexible cord)."""
-        missing = [e for e in self.effects if e in ("cord",)]
+        but pendula cannot simulate yet (none at present: the registry's models all run)."""
+        missing = [e for e in self.effects if e == "cord" and self.cord != "flexible"]
         if missing:
             raise NotImplementedError(f"pendula cannot simulate the effect(s) {', '.join(missing)} yet "
                                       f"(cord = {self.cord!r}, guide = {self.guide!r}, gravity = {self.gravity!r})")
@@ -242,8 +251,8 @@ def _fmt(v) -> str:
 
 _FLOATS = {"eps", "theta0", "v0", "t_start", "t_end", "damping", "torque", "drive_amplitude",
            "drive_frequency", "drive_phase", "rtol", "atol", "dt", "g", "length",
-           "cycloid_radius", "gravity_distance", "gravity_gradient"}
-_INTS = {"n_samples"}
+           "cycloid_radius", "gravity_distance", "gravity_gradient", "restitution", "min_flight"}
+_INTS = {"n_samples", "max_flips"}
 _STRS = {"cord", "guide", "gravity", "method", "sweep", "name"}
 _TUPLES = {"outputs": str, "sweep_values": float}
 
@@ -264,6 +273,10 @@ def _validate(s: Scene) -> None:
     if isinstance(v, bool) or not isinstance(v, (int, np.integer)) and not (isinstance(v, float) and v.is_integer()):
         raise SceneError(f"field 'n_samples' must be a whole number, got {v!r}")
     set_(s, "n_samples", int(v))
+    v = s.max_flips
+    if isinstance(v, bool) or not isinstance(v, (int, np.integer)) and not (isinstance(v, float) and v.is_integer()):
+        raise SceneError(f"field 'max_flips' must be a whole number, got {v!r}")
+    set_(s, "max_flips", int(v))
     for name in _STRS:
         v = getattr(s, name)
         if not isinstance(v, str):
@@ -318,6 +331,12 @@ def _validate(s: Scene) -> None:
         raise SceneError("fields 'rtol' must be > 0 and 'atol' >= 0")
     if s.dt < 0:
         raise SceneError(f"field 'dt' must be >= 0 (0: chosen by the method), got {s.dt!r}")
+    if not 0.0 <= s.restitution < 1.0:
+        raise SceneError(f"field 'restitution' must be in [0, 1), got {s.restitution!r}")
+    if not 0 <= s.max_flips <= 100_000_000:
+        raise SceneError(f"field 'max_flips' must be between 0 and 1e8, got {s.max_flips}")
+    if s.min_flight < 0:
+        raise SceneError(f"field 'min_flight' must be >= 0, got {s.min_flight!r}")
     for name, allowed in (("cord", CORDS), ("guide", GUIDES), ("gravity", GRAVITIES), ("method", METHODS)):
         if getattr(s, name) not in allowed:
             raise SceneError(f"field '{name}' must be one of {', '.join(allowed)}; got {getattr(s, name)!r}"
@@ -341,7 +360,8 @@ def _validate(s: Scene) -> None:
     elif s.sweep_values:
         raise SceneError("field 'sweep_values' is given but 'sweep' does not name a field")
     _validate_issue13(s)
-    if s.method == "exact" and s.effects and s.guide != "cycloid":
+    if s.method == "exact" and [e for e in s.effects
+                                if e != "guide" and not (e == "cord" and s.cord == "flexible")]:
         raise SceneError(f"field 'method': 'exact' answers only the conservative rigid pendulum, "
                          f"but the scene names {', '.join(s.effects)}")
 

@@ -27,6 +27,12 @@ class Trajectory:
     stats : dict
         Work done: steps, right-hand-side evaluations, rejected steps (empty
         for the exact solution).
+    x, y, r : ndarray or None
+        Flexible cord only: the bob's position (pivot at the origin, y up) and
+        distance from the pivot, in units of the cord length (r < 1 in flight).
+    flips : dict or None
+        Flexible cord only: arrays t_leave, theta_leave, t_return,
+        theta_return, xi_before, xi_after, one entry per flip in time order.
     """
 
     t: np.ndarray
@@ -36,6 +42,11 @@ class Trajectory:
     method: str
     scene: Scene
     stats: dict = field(default_factory=dict)
+    # flexible cord (systems/cord.py): the bob's position in units of l, and the flip log
+    x: np.ndarray | None = None
+    y: np.ndarray | None = None
+    r: np.ndarray | None = None
+    flips: dict | None = None
 
     def as_array(self) -> np.ndarray:
         """Columns t, theta, v, energy."""

@@ -1,0 +1,284 @@
+!> The pendulum on a flexible cord (Garfinkel 1957): compiled path of the
+!> conservative case (no damping, torque or drive), the same physics as
+!> python/pendula/models/cord.py.  Units: lengths in l, pivot at the origin,
+!> y up, the bob at (sin theta, -cos theta) on the circle, gravity eps = g/l.
+!>
+!> circle: the exact elliptic solution (pendula_exact); departure where the
+!>   tension v**2 + eps cos(theta) vanishes, cos theta1 = -xi, reached after a
+!>   time given by the incomplete integral F (closed form, no root search).
+!> flight: the parabola; re-entry at the root of the remaining factor of
+!>   |p(tau)|**2 - 1 (tau = -4 u.g/|g|**2 for a tangential departure; after a
+!>   springy jerk, the smallest positive root of a cubic, isolated between the
+!>   roots of its derivative and bisected).
+!> jerk: the radial velocity removed (reversed times e, the restitution).
+module pendula_cord
+  use pendula_kinds, only: dp, nan_dp
+  use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_eval
+  use pendula_elliptic, only: ellip_f
+  implicit none
+  private
+  public :: flip_map, cord_run, cord_run_all
+  !> status codes of cord_run
+  integer, parameter, public :: cord_ok = 0, cord_bad_eps = 1, cord_bad_state = 2, cord_bad_times = 3, &
+    cord_bad_restitution = 4
+  !> stop reasons
+  integer, parameter, public :: cord_stop_t_end = 0, cord_stop_max_flips = 1, cord_stop_min_flight = 2
+  real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
+
+contains
+
+  !> Garfinkel's flip map: x - (64/3) (x (1 - x**2))**3 on [0, 1], x elsewhere.
+  elemental function flip_map(x) result(f)
+    real(dp), intent(in) :: x
+    real(dp) :: f, w
+    if (x >= 0.0_dp .and. x <= 1.0_dp) then
+      w = x * (1.0_dp - x) * (1.0_dp + x)
+      f = x - (64.0_dp / 3.0_dp) * w * w * w
+    else
+      f = x
+    end if
+  end function flip_map
+
+  !> Time from the angle phi (|phi| < theta1, moving forward) to theta1 = arccos(-xi), 0 < xi < 1.
+  pure function time_to_departure(phi, xi, eps) result(dt)
+    real(dp), intent(in) :: phi, xi, eps
+    real(dp) :: dt, c2, s, psi0, psi1, m, mc
+    c2 = (3.0_dp * xi + 2.0_dp) / 4.0_dp
+    if (c2 <= 1.0_dp) then
+      s = max(-1.0_dp, min(1.0_dp, sin(0.5_dp * phi) / sqrt(c2)))
+      psi0 = asin(s)
+      psi1 = atan2(sqrt(0.5_dp * (1.0_dp + xi)), 0.5_dp * sqrt(xi))
+      mc = (2.0_dp - 3.0_dp * xi) / 4.0_dp
+      dt = (ellip_f(psi1, c2, mc) - ellip_f(psi0, c2, mc)) / sqrt(eps)
+    else
+      m = 1.0_dp / c2
+      mc = (3.0_dp * xi - 2.0_dp) / (3.0_dp * xi + 2.0_dp)
+      dt = (ellip_f(0.5_dp * acos(-xi), m, mc) - ellip_f(0.5_dp * phi, m, mc)) / (sqrt(eps) * sqrt(c2))
+    end if
+    dt = max(dt, 0.0_dp)
+  end function time_to_departure
+
+  !> Smallest positive root of c1 + c2 t + c3 t**2 + c4 t**3 with c1 < 0 < c4: the real roots
+  !> of the derivative split (0, inf) into monotone pieces; the first piece whose ends differ
+  !> in sign holds the root, found by bisection to the last bit.
+  pure function first_root(c1, c2, c3, c4) result(t)
+    real(dp), intent(in) :: c1, c2, c3, c4
+    real(dp) :: t, a, b, disc, q, r1, r2, pts(4), lo, hi, mid
+    integer :: np_, k, it
+    np_ = 1
+    pts(1) = 0.0_dp
+    a = 3.0_dp * c4
+    b = 2.0_dp * c3
+    disc = b * b - 4.0_dp * a * c2
+    if (disc > 0.0_dp) then
+      q = -0.5_dp * (b + sign(sqrt(disc), b))
+      r1 = q / a
+      r2 = c2 / q
+      if (q == 0.0_dp) r2 = -r1
+      if (min(r1, r2) > 0.0_dp) then
+        np_ = np_ + 1; pts(np_) = min(r1, r2)
+      end if
+      if (max(r1, r2) > 0.0_dp) then
+        np_ = np_ + 1; pts(np_) = max(r1, r2)
+      end if
+    end if
+    ! a point beyond every root: Cauchy's bound
+    np_ = np_ + 1
+    pts(np_) = 1.0_dp + max(abs(c1), abs(c2), abs(c3)) / c4
+    t = nan_dp
+    do k = 1, np_ - 1
+      lo = pts(k); hi = pts(k + 1)
+      if (poly(hi) < 0.0_dp) cycle
+      if (poly(lo) >= 0.0_dp .and. lo > 0.0_dp) then
+        t = lo; return
+      end if
+      do it = 1, 2000
+        mid = 0.5_dp * (lo + hi)
+        if (mid <= lo .or. mid >= hi) exit
+        if (poly(mid) < 0.0_dp) then
+          lo = mid
+        else
+          hi = mid
+        end if
+      end do
+      t = 0.5_dp * (lo + hi)
+      return
+    end do
+  contains
+    pure function poly(x) result(p)
+      real(dp), intent(in) :: x
+      real(dp) :: p
+      p = c1 + x * (c2 + x * (c3 + x * c4))
+    end function poly
+  end function first_root
+
+  !> Simulate a conservative flexible-cord pendulum at the sorted times t (>= 0).
+  !> flips(:, k) = t_leave, theta_leave, t_return, theta_return, xi_before, xi_after,
+  !> v_leave, v_return; at most min(max_flips, size(flips, 2)) flips.  Output times
+  !> after a stop (max_flips, min_flight) are NaN; stop_reason says which.
+  pure subroutine cord_run(eps, theta0, v0, restitution, max_flips, min_flight, t, theta, v, x, y, r, &
+                           flips, nflips, stop_reason, status)
+    real(dp), intent(in) :: eps, theta0, v0, restitution, min_flight, t(:)
+    integer, intent(in) :: max_flips
+    real(dp), intent(out) :: theta(:), v(:), x(:), y(:), r(:), flips(:, :)
+    integer, intent(out) :: nflips, stop_reason, status
+    type(pendulum_orbit) :: o
+    real(dp) :: tc, thc, vc, vr, xi, s, phi, phi0, dtd, sq, t1, th1, v1, xib, tau, tension
+    real(dp) :: p(2), u(2), g(2), c1, c2, c3, c4, pe(2), w(2), th2, v2, vr2, ct, st, rr, kk, tt
+    integer :: n, i, j, ost, cap
+    logical :: leaving, general
+
+    n = size(t)
+    theta = nan_dp; v = nan_dp; x = nan_dp; y = nan_dp; r = nan_dp
+    flips = nan_dp
+    nflips = 0; stop_reason = cord_stop_t_end; status = cord_ok
+    if (.not. (eps > 0.0_dp .and. eps <= huge(eps))) then
+      status = cord_bad_eps; return
+    end if
+    if (.not. (abs(theta0) <= huge(eps) .and. abs(v0) <= huge(eps))) then
+      status = cord_bad_state; return
+    end if
+    if (.not. (restitution >= 0.0_dp .and. restitution < 1.0_dp)) then
+      status = cord_bad_restitution; return
+    end if
+    do i = 1, n
+      if (.not. (t(i) >= 0.0_dp .and. t(i) <= huge(eps))) then
+        status = cord_bad_times; return
+      end if
+      if (i > 1) then
+        if (t(i) < t(i - 1)) then
+          status = cord_bad_times; return
+        end if
+      end if
+    end do
+    cap = min(max_flips, size(flips, 2))
+    g = [0.0_dp, -eps]
+    c4 = 0.25_dp * eps * eps
+    tc = 0.0_dp; thc = theta0; vc = v0; vr = 0.0_dp
+    i = 1
+    do
+      ! ---- the circle (or an immediate flight)
+      tension = vc * vc + eps * cos(thc)
+      leaving = .false.
+      general = .false.
+      xib = nan_dp
+      if (vr < 0.0_dp .or. tension <= 0.0_dp) then
+        leaving = .true.; general = vr < 0.0_dp .or. tension < 0.0_dp
+        t1 = tc; th1 = thc; v1 = vc
+        p = [sin(th1), -cos(th1)]
+        u = [v1 * cos(th1) + vr * p(1), v1 * sin(th1) + vr * p(2)]
+        xib = (v1 * v1 + vr * vr - 2.0_dp * eps * cos(th1)) / (3.0_dp * eps)
+      else
+        xi = (vc * vc - 2.0_dp * eps * cos(thc)) / (3.0_dp * eps)
+        if (xi > 0.0_dp .and. xi < 1.0_dp) then
+          s = sign(1.0_dp, vc)
+          phi = s * thc
+          kk = anint(phi / two_pi)
+          phi0 = phi - two_pi * kk
+          dtd = time_to_departure(phi0, xi, eps)
+          t1 = tc + dtd
+          th1 = s * (two_pi * kk + acos(-xi))
+          v1 = s * sqrt(eps * xi)
+          sq = sqrt((1.0_dp - xi) * (1.0_dp + xi))
+          p = [s * sq, xi]
+          u = [-v1 * xi, v1 * s * sq]
+          xib = xi
+          leaving = .true.
+        end if
+        j = i
+        do while (j <= n)
+          if (leaving .and. t(j) > t1) exit
+          j = j + 1
+        end do
+        if (j > i) then
+          call orbit_setup(thc, vc, eps, o, ost)
+          call orbit_eval(o, t(i:j - 1) - tc, theta(i:j - 1), v(i:j - 1))
+          x(i:j - 1) = sin(theta(i:j - 1)); y(i:j - 1) = -cos(theta(i:j - 1)); r(i:j - 1) = 1.0_dp
+          i = j
+        end if
+      end if
+      if (.not. leaving) exit
+      if (n > 0) then
+        if (t1 > t(n)) exit
+      end if
+      if (nflips >= cap) then
+        stop_reason = cord_stop_max_flips; exit
+      end if
+      ! ---- the flight
+      c3 = u(1) * g(1) + u(2) * g(2)
+      if (.not. general) then
+        if (c3 >= 0.0_dp) then  ! zero tension but rising: no flight (only at a grazing start)
+          tc = t1; thc = th1; vc = v1; vr = 0.0_dp
+          if (tension <= 0.0_dp) exit
+          cycle
+        end if
+        tau = -c3 / c4
+      else
+        c1 = 2.0_dp * (p(1) * u(1) + p(2) * u(2))
+        c2 = u(1) * u(1) + u(2) * u(2) + p(1) * g(1) + p(2) * g(2)
+        if (c1 < 0.0_dp) then
+          tau = first_root(c1, c2, c3, c4)
+        else  ! tangential with negative tension: the quadratic c2 + c3 tau + c4 tau**2
+          tau = (-c3 + sqrt(c3 * c3 - 4.0_dp * c4 * c2)) / (2.0_dp * c4)
+        end if
+        if (vr < 0.0_dp .and. tau < max(min_flight, 1.0e-9_dp) / sqrt(eps)) then
+          vr = 0.0_dp; tc = t1; thc = th1; vc = v1  ! a bounce below the threshold: absorbed
+          cycle
+        end if
+      end if
+      if (tau < min_flight / sqrt(eps)) then
+        stop_reason = cord_stop_min_flight; exit
+      end if
+      pe = p + u * tau + 0.5_dp * g * tau * tau
+      w = u + g * tau
+      th2 = atan2(pe(1), -pe(2))
+      th2 = th2 + two_pi * anint((th1 - th2) / two_pi)
+      rr = hypot(pe(1), pe(2))
+      ct = -pe(2) / rr; st = pe(1) / rr
+      v2 = w(1) * ct + w(2) * st
+      vr2 = -restitution * (w(1) * st - w(2) * ct)
+      do while (i <= n)
+        if (t(i) > t1 + tau) exit
+        tt = t(i) - t1
+        x(i) = p(1) + u(1) * tt + 0.5_dp * g(1) * tt * tt
+        y(i) = p(2) + u(2) * tt + 0.5_dp * g(2) * tt * tt
+        r(i) = hypot(x(i), y(i))
+        theta(i) = atan2(x(i), -y(i))
+        theta(i) = theta(i) + two_pi * anint((th1 - theta(i)) / two_pi)
+        if (r(i) > 0.0_dp) then
+          v(i) = (x(i) * (u(2) + g(2) * tt) - y(i) * (u(1) + g(1) * tt)) / (r(i) * r(i))
+        end if
+        i = i + 1
+      end do
+      nflips = nflips + 1
+      flips(:, nflips) = [t1, th1, t1 + tau, th2, xib, &
+                          (v2 * v2 + vr2 * vr2 - 2.0_dp * eps * cos(th2)) / (3.0_dp * eps), v1, v2]
+      tc = t1 + tau; thc = th2; vc = v2; vr = vr2
+      if (n > 0) then
+        if (tc > t(n)) exit
+      end if
+    end do
+  end subroutine cord_run
+
+  !> cord_run with a flip log that grows as needed (up to max_flips entries).
+  pure subroutine cord_run_all(eps, theta0, v0, restitution, max_flips, min_flight, t, theta, v, x, y, r, &
+                               flips, nflips, stop_reason, status)
+    real(dp), intent(in) :: eps, theta0, v0, restitution, min_flight, t(:)
+    integer, intent(in) :: max_flips
+    real(dp), intent(out) :: theta(:), v(:), x(:), y(:), r(:)
+    real(dp), allocatable, intent(out) :: flips(:, :)
+    integer, intent(out) :: nflips, stop_reason, status
+    integer :: cap
+    cap = max(1, min(max(max_flips, 0), 65536))
+    do
+      if (allocated(flips)) deallocate(flips)
+      allocate(flips(8, cap))
+      call cord_run(eps, theta0, v0, restitution, max_flips, min_flight, t, theta, v, x, y, r, &
+                    flips, nflips, stop_reason, status)
+      if (status /= cord_ok .or. stop_reason /= cord_stop_max_flips .or. nflips < cap &
+          .or. cap >= max_flips) exit
+      cap = int(min(int(max_flips, kind(1_8)), 8_8 * cap))
+    end do
+  end subroutine cord_run_all
+
+end module pendula_cord
