@@ -34,10 +34,14 @@ from .scene import Scene, SceneError  # noqa: E402
 from .series import period_from_series, period_series, poincare_lindstedt  # noqa: E402
 from .spectrum import Spectrum, fourier_series, odd_harmonics_above, spectra, spectrum  # noqa: E402
 
+# sweeps over parameter grids (issue 14); xarray is imported only when a sweep runs
+from .sweep import iv_curve, sweep  # noqa: E402
+
 __version__ = "0.1.0"
 
 __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Scene", "SceneError", "simulate", "period", "orbit", "exact_motion", "energy",
            "Orbit", "Trajectory", "period_series", "period_from_series", "poincare_lindstedt",
            "find_events", "numerical_period", "Events",
-           "spectrum", "spectra", "Spectrum", "fourier_series", "odd_harmonics_above"]
+           "spectrum", "spectra", "Spectrum", "fourier_series", "odd_harmonics_above",
+           "sweep", "iv_curve"]
