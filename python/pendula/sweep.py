@@ -367,3 +367,73 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
         vm, err, st, _, _ = _kernel.sweep_iv_branch(p, td, rtol, atol, float(transient), float(t_avg))
         res["down"] = (td, vm, err, st)
     return res
+
+
+def plot_sweep(ds, path) -> pathlib.Path:
+    """A figure of a sweep: a map (2 axes; discrete colours for wells), a curve
+    (1 axis), or a bifurcation diagram (poincare over 1 axis)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    path = pathlib.Path(path)
+    measure = ds.attrs["measure"]
+    dims = [d for d in ds.dims if d != "sample"]
+    var = {"final_well": "well", "locked": "locked", "mean_velocity": "mean_velocity", "poincare": "theta"}[measure]
+    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    if measure == "poincare":
+        x = np.repeat(ds[dims[0]].values, ds.sizes["sample"])
+        th = ds.theta.values.reshape(-1) if len(dims) == 1 else ds.theta.isel({d: 0 for d in dims[1:]}).values.ravel()
+        ax.plot(x, th, ",k", alpha=0.5)
+        ax.set_xlabel(dims[0]); ax.set_ylabel("stroboscopic theta (mod 2 pi)")
+    elif len(dims) == 1:
+        ax.plot(ds[dims[0]].values, ds[var].values, ".-")
+        ax.set_xlabel(dims[0]); ax.set_ylabel(var)
+    else:
+        z = ds[var]
+        if len(dims) > 2:
+            z = z.isel({d: 0 for d in dims[2:]})
+        z = z.transpose(dims[0], dims[1]).values
+        x, y = ds[dims[0]].values, ds[dims[1]].values
+        if measure in ("final_well", "locked"):
+            lo, hi = np.nanmin(z), np.nanmax(z)
+            lo, hi = (0, 1) if not np.isfinite(lo) else (int(lo), int(hi))
+            cmap = plt.get_cmap("tab20", hi - lo + 1)
+            im = ax.imshow(z.T, origin="lower", aspect="auto", cmap=cmap, vmin=lo - 0.5, vmax=hi + 0.5,
+                           extent=[x[0], x[-1], y[0], y[-1]], interpolation="nearest")
+            fig.colorbar(im, ax=ax, ticks=range(lo, hi + 1), label=var)
+        else:
+            im = ax.imshow(z.T, origin="lower", aspect="auto", extent=[x[0], x[-1], y[0], y[-1]])
+            fig.colorbar(im, ax=ax, label=var)
+        ax.set_xlabel(dims[0]); ax.set_ylabel(dims[1])
+    ax.set_title(f"pendula sweep: {measure}")
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
+def cli_main(args) -> int:
+    """``pendula sweep SCENE.nml -o OUT``: the dataset (OUT/sweep.nc) and its figure (OUT/sweep.png)."""
+    import sys
+    try:
+        scene = Scene.from_file(args.scene)
+        if not scene.grid:
+            raise SceneError(f"{args.scene}: field 'grid' is empty: a sweep scene names 1 to 3 axes")
+        client = None
+        if args.workers:
+            from dask.distributed import Client, LocalCluster
+            client = Client(LocalCluster(n_workers=args.workers, threads_per_worker=1))
+        ds = sweep(scene, out=args.output, chunk_points=args.chunk_points, client=client,
+                   threads=args.threads, progress=not args.quiet)
+    except (SceneError, ValueError) as exc:
+        print(f"pendula sweep: {exc}", file=sys.stderr)
+        return 2
+    out = pathlib.Path(args.output)
+    tmp = out / ".sweep.nc.tmp"
+    ds.to_netcdf(tmp, engine="scipy")
+    os.replace(tmp, out / "sweep.nc")
+    png = plot_sweep(ds, out / "sweep.png")
+    st = ds.status.values
+    print(f"pendula sweep: {st.size} points, {np.mean(st == 0) * 100:.1f} % decided -> {out / 'sweep.nc'}, {png}")
+    return 0
