@@ -283,6 +283,13 @@ contains
     th = p(7); v = p(8)
     vm = nan_dp; err = nan_dp; pstat = ps_unsettled
     do k = 1, ntau
+      ! a locked state follows its equilibrium (the limit of a slow ramp:
+      ! a sudden torque step would kick it over a shallow barrier)
+      if (k > 1 .and. abs(taus(k)) <= p(1)) then
+        if (vm(k - 1) == 0.0_dp .and. abs(p(3)) <= p(1)) then
+          th = asin(taus(k) / p(1)) + two_pi * anint((th - asin(p(3) / p(1))) / two_pi); v = 0.0_dp
+        end if
+      end if
       p(3) = taus(k)
       p(7) = th - two_pi * anint(th / two_pi); p(8) = v
       call mean_velocity(p, rtol, atol, t_tr, t_avg, p(7), p(8), vm(k), err(k), th, v, pstat(k))

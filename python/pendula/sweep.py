@@ -50,7 +50,7 @@ __all__ = ["sweep", "iv_curve", "grid_of", "MEASURE_CODES"]
 MEASURE_CODES = {"final_well": 1, "mean_velocity": 2, "locked": 3, "poincare": 4}
 #: point status codes
 STATUS = {0: "decided", 1: "not settled / undecided by the limit", 2: "measure does not apply",
-          3: "bad measure"}
+          3: "bad measure", 4: "uncertain: the answer changes with the tolerance"}
 _PARAM_ORDER = ("eps", "damping", "torque", "drive_amplitude", "drive_frequency", "drive_phase", "theta0", "v0")
 
 
@@ -131,9 +131,35 @@ class _Plan:
 def _compute_chunk(plan: _Plan, i: int, threads: int):
     from . import _kernel
     p, shape = plan.params(i)
-    out, st = _kernel.sweep_block(MEASURE_CODES[plan.measure], p, plan.rtol, plan.atol, plan.t_tr,
-                                  plan.t_max, plan.nout, int(threads))
-    return i, out.T.reshape(shape + (plan.nout,)), st.reshape(shape)
+    code = MEASURE_CODES[plan.measure]
+    out, st = _kernel.sweep_block(code, p, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout, int(threads))
+    out = out.T.reshape(shape + (plan.nout,))
+    st = st.reshape(shape)
+    if plan.measure in ("final_well", "locked"):
+        # Points on a basin boundary (a grid neighbour in this chunk answers
+        # differently) are computed again at 1000 times tighter tolerances;
+        # where the answer changes, it is not known: NaN and status 4.
+        ans = np.where(st == 0, out[..., 0], -1e300)
+        edge = np.zeros(shape, dtype=bool)
+        for ax in range(len(shape)):
+            d = np.diff(ans, axis=ax) != 0
+            lo = [slice(None)] * len(shape); hi = [slice(None)] * len(shape)
+            lo[ax] = slice(0, -1); hi[ax] = slice(1, None)
+            edge[tuple(lo)] |= d
+            edge[tuple(hi)] |= d
+        idx = np.flatnonzero(edge.ravel())
+        if idx.size:
+            p2 = np.asfortranarray(p[:, idx])
+            o2, s2 = _kernel.sweep_block(code, p2, plan.rtol * 1e-3, plan.atol * 1e-3, plan.t_tr, plan.t_max,
+                                         plan.nout, int(threads))
+            flat_o = out.reshape(-1, plan.nout)
+            flat_s = st.reshape(-1)
+            a1 = np.where(flat_s[idx] == 0, flat_o[idx, 0], -1e300)
+            a2 = np.where(s2 == 0, o2[0], -1e300)
+            bad = idx[a1 != a2]
+            flat_o[bad, 0] = np.nan
+            flat_s[bad] = 4
+    return i, out, st
 
 
 def _chunk_dataset(plan: _Plan, i: int, out: np.ndarray, st: np.ndarray):
@@ -205,7 +231,9 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
     -------
     xarray.Dataset
         Coordinates = the axes; variables per measure plus ``status``
-        (0 decided, 1 not settled by the limit, 2 measure does not apply);
+        (0 decided, 1 not settled by the limit, 2 measure does not apply,
+        4 uncertain: a basin-boundary point whose answer changed when computed
+        again at 1000 times tighter tolerances);
         the scene and options as attributes.
 
     Examples
