@@ -219,3 +219,37 @@ def test_iv_curve_hysteresis_switch_and_retrap():
     assert abs(retrap - law) <= 0.03, (retrap, law)
     # running branch: <v> ~ tau / beta far above (the ohmic line), within 5 %
     assert abs(dn_v[0] - 1.2 / beta) < 0.05 * 1.2 / beta
+
+
+def _pendula_run(*args):
+    exe = pathlib.Path(sys.executable).parent / "pendula-run"
+    return subprocess.run([str(exe), *map(str, args)], capture_output=True, text=True)
+
+
+def test_pendula_run_sweep_scene_matches_python(tmp_path):
+    scene = tmp_path / "r.nml"
+    scene.write_text("&scene\n damping = 0.1\n torque = 0.05\n grid = 'v0', 'damping'\n"
+                     " grid1_range = 0.3, 3.7, 9\n grid2 = 0.07, 0.21\n measure = 'final_well'\n/\n")
+    r = _pendula_run(scene, "-o", tmp_path / "r.csv")
+    assert r.returncode == 0, r.stderr
+    tab = np.loadtxt(tmp_path / "r.csv", delimiter=",", comments="#", skiprows=2)
+    ds = pendula.sweep(Scene.from_file(scene))
+    assert np.array_equal(tab[:, 0], np.repeat(ds.v0.values, 2))       # same grid, bit for bit
+    assert np.array_equal(tab[:, 1], np.tile(ds.damping.values, 9))
+    ok = ds.status.values.ravel() == 0     # Python marks boundary points it cannot decide (status 4)
+    assert ok.sum() >= 15
+    assert np.array_equal(tab[ok, 2], ds.well.values.ravel()[ok])
+
+
+def test_pendula_run_sweep_scene_errors_name_the_field(tmp_path):
+    for body, word in (("grid = 'v0'\n measure = 'final_well'", "grid1"),
+                       ("grid = 'length'\n grid1 = 1\n measure = 'locked'", "grid"),
+                       ("grid = 'v0'\n grid1 = 1\n measure = 'final_wel'", "measure"),
+                       ("grid = 'v0'\n grid1_range = 0, 1, 2.5\n measure = 'locked'", "grid1_range")):
+        f = tmp_path / "bad.nml"
+        f.write_text(f"&scene\n damping = 0.1\n {body}\n/\n")
+        r = _pendula_run(f)
+        assert r.returncode == 2 and word in r.stderr, (body, r.stderr)
+    f.write_text("&scene\n damping = 0.1\n grid = 'v0'\n grid1 = 1\n measure = 'lyapunov'\n/\n")
+    r = _pendula_run(f)
+    assert r.returncode == 3 and "lyapunov" in r.stderr

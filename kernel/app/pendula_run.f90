@@ -15,6 +15,7 @@ program pendula_run
   use pendula_scene, only: scene_t, read_scene, scene_effects, scene_summary, max_outputs
   use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_eval, orbit_period, orbit_theta_max
   use pendula_simulate, only: simulate_scene, simulate_status_text
+  use pendula_sweep, only: sweep_scene_csv
   implicit none
   character(len=4096) :: path, out, arg, orbit_out
   character(len=1024) :: msg
@@ -55,6 +56,20 @@ program pendula_run
     call fail(trim(path) // ': the effect(s) ' // trim(scene_effects(sc)) // &
               ' are not implemented in pendula yet', 3)
 
+  ! --- sweeps (issue 14): a scene with a grid is run by pendula_sweep (OpenMP), CSV to OUT
+  if (sc%n_grid > 0) then
+    if (len_trim(out) > 0) then
+      open(newunit=unit, file=trim(out), status='replace', action='write', iostat=status)
+      if (status /= 0) call fail('cannot write "' // trim(out) // '"')
+    else
+      unit = output_unit
+    end if
+    call sweep_scene_csv(sc, unit, status, msg)
+    if (unit /= output_unit) close(unit)
+    if (status /= 0) call fail(trim(path) // ': ' // trim(msg), status)
+    stop
+  end if
+  ! --- end sweeps
   want_traj = .false.
   want_orbit = .false.
   do i = 1, max_outputs

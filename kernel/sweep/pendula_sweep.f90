@@ -25,11 +25,12 @@
 !> 100 + s: the integrator failed with status s.
 module pendula_sweep
   use pendula_kinds, only: dp, pi, two_pi, nan_dp
+  use pendula_scene, only: scene_t
   use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate, &
     m_dop853, st_ok
   implicit none
   private
-  public :: sweep_points, iv_branch, np_params
+  public :: sweep_points, iv_branch, np_params, sweep_scene_csv
   public :: ms_final_well, ms_mean_velocity, ms_locked, ms_poincare
 
   integer, parameter :: np_params = 8   ! eps, beta, tau, amp, omega, phase, theta0, v0
@@ -297,5 +298,130 @@ contains
     end do
     th = th - two_pi * anint(th / two_pi)
   end subroutine iv_branch
+
+  !> A sweep scene (grid + measure) as CSV on unit u: one row per grid point
+  !> (poincare: per sample) with the axis values, the outputs and the status,
+  !> in the order of pendula.sweep (first axis slowest).  Blocks of points are
+  !> computed (OpenMP) and written as they finish, so memory stays bounded.
+  !> status: 0 ok, 2 bad scene for a sweep, 3 measure not implemented.
+  subroutine sweep_scene_csv(sc, u, status, msg)
+    type(scene_t), intent(in) :: sc
+    integer, intent(in) :: u
+    integer, intent(out) :: status
+    character(len=*), intent(out) :: msg
+    integer, parameter :: block = 4096
+    real(dp), allocatable :: ax(:, :), params(:, :), o(:, :)
+    integer, allocatable :: pst(:)
+    integer :: n(3), k, j, nout, measure, idx(3), ntot, done, nb, i, s
+    real(dp) :: base(np_params), t_tr, a, b, step
+    character(len=256) :: head
+    status = 0; msg = ''
+    select case (trim(sc%measure))
+    case ('final_well'); measure = ms_final_well
+    case ('mean_velocity'); measure = ms_mean_velocity
+    case ('locked'); measure = ms_locked
+    case ('poincare'); measure = ms_poincare
+    case ('lyapunov')
+      status = 3; msg = 'measure ''lyapunov'' is not implemented yet'; return
+    case default
+      status = 2; msg = 'field ''measure'' must name a measure for a sweep'; return
+    end select
+    n = 1
+    n(1:sc%n_grid) = sc%grid_n(1:sc%n_grid)
+    allocate(ax(maxval(n), 3))
+    ax = 0.0_dp
+    do k = 1, sc%n_grid
+      if (sc%grid_values(1, k) == sc%grid_values(1, k)) then
+        ax(1:n(k), k) = sc%grid_values(1:n(k), k)
+      else
+        ! as numpy.linspace: start + j * ((stop - start) / (count - 1)), the last one stop
+        a = sc%grid_range(1, k); b = sc%grid_range(2, k)
+        step = 0.0_dp
+        if (n(k) > 1) step = (b - a) / real(n(k) - 1, dp)
+        do j = 1, n(k)
+          ax(j, k) = real(j - 1, dp) * step + a
+        end do
+        if (n(k) > 1) ax(n(k), k) = b
+      end if
+    end do
+    base = [sc%eps, sc%damping, sc%torque, sc%drive_amplitude, sc%drive_frequency, sc%drive_phase, &
+            sc%theta0, sc%v0]
+    nout = 2
+    t_tr = sc%sweep_transient
+    if (measure == ms_poincare) then
+      if (.not. (sc%drive_frequency > 0.0_dp) .and. .not. any(sc%grid(1:sc%n_grid) == 'drive_frequency')) then
+        status = 2; msg = 'measure ''poincare'' needs a drive (drive_frequency > 0)'; return
+      end if
+      nout = 2 * sc%sweep_samples
+      t_tr = real(ceiling(sc%sweep_transient * sc%drive_frequency / two_pi - 1.0e-12_dp), dp)
+    end if
+    head = ''
+    do k = 1, sc%n_grid
+      head = trim(head) // trim(sc%grid(k)) // ','
+    end do
+    select case (measure)
+    case (ms_final_well); head = trim(head) // 'well,t_decided,status'
+    case (ms_locked); head = trim(head) // 'locked,t_decided,status'
+    case (ms_mean_velocity); head = trim(head) // 'mean_velocity,mean_velocity_err,status'
+    case (ms_poincare); head = trim(head) // 'sample,theta,v,status'
+    end select
+    write(u, '(a)') '# pendula-run sweep: measure = ' // trim(sc%measure) // &
+      '; status 0 decided, 1 not settled by sweep_t_max, 2 measure does not apply'
+    write(u, '(a)') trim(head)
+    ntot = n(1) * n(2) * n(3)
+    allocate(params(np_params, block), o(nout, block), pst(block))
+    done = 0
+    do while (done < ntot)
+      nb = min(block, ntot - done)
+      do i = 1, nb
+        call unflatten(done + i - 1, idx)
+        params(:, i) = base
+        do k = 1, sc%n_grid
+          params(slot(sc%grid(k)), i) = ax(idx(k), k)
+        end do
+      end do
+      call sweep_points(measure, nb, params(:, 1:nb), sc%rtol, sc%atol, t_tr, sc%sweep_t_max, nout, &
+                        o(:, 1:nb), pst(1:nb), 0)
+      do i = 1, nb
+        call unflatten(done + i - 1, idx)
+        if (measure == ms_poincare) then
+          do s = 1, nout / 2
+            write(u, '(*(es24.16e3, :, ","))', advance='no') (ax(idx(k), k), k = 1, sc%n_grid)
+            write(u, '(",", i0, 2(",", es24.16e3), ",", i0)') s - 1, o(2 * s - 1, i), o(2 * s, i), pst(i)
+          end do
+        else
+          write(u, '(*(es24.16e3, :, ","))', advance='no') (ax(idx(k), k), k = 1, sc%n_grid)
+          write(u, '(2(",", es24.16e3), ",", i0)') o(1, i), o(2, i), pst(i)
+        end if
+      end do
+      done = done + nb
+    end do
+
+  contains
+
+    !> flat index (0-based, first axis slowest) -> 1-based axis indices
+    subroutine unflatten(f, id)
+      integer, intent(in) :: f
+      integer, intent(out) :: id(3)
+      id(3) = mod(f, n(3)) + 1
+      id(2) = mod(f / n(3), n(2)) + 1
+      id(1) = f / (n(3) * n(2)) + 1
+    end subroutine unflatten
+
+    pure integer function slot(name)
+      character(len=*), intent(in) :: name
+      select case (trim(name))
+      case ('eps'); slot = 1
+      case ('damping'); slot = 2
+      case ('torque'); slot = 3
+      case ('drive_amplitude'); slot = 4
+      case ('drive_frequency'); slot = 5
+      case ('drive_phase'); slot = 6
+      case ('theta0'); slot = 7
+      case default; slot = 8
+      end select
+    end function slot
+
+  end subroutine sweep_scene_csv
 
 end module pendula_sweep
