@@ -112,6 +112,7 @@ def cmd_demo(args) -> int:
         print(f"  {p.name:40s} {len(files)} file(s): " + ", ".join(f.name for f in files))
     print("\nwhat accuracy costs in time: the integrators against the exact solution")
     integrator_study(out, 1e5, progress=not args.quiet)
+    __import__("pendula.demos.sweeps", fromlist=["run"]).run(out / "sweeps", small=True, quiet=args.quiet)  # issue 14
     print(f"\n{len(written)} gallery files and the integrator study written to {out.resolve()}")
     return 0
 

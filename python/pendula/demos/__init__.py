@@ -1,0 +1,1 @@
+"""Gallery demos of the seed systems, run by ``pendula demo``."""
