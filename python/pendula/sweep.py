@@ -412,7 +412,7 @@ def plot_sweep(ds, path) -> pathlib.Path:
     if measure == "poincare":
         x = np.repeat(ds[dims[0]].values, ds.sizes["sample"])
         th = ds.theta.values.reshape(-1) if len(dims) == 1 else ds.theta.isel({d: 0 for d in dims[1:]}).values.ravel()
-        ax.plot(x, th, ",k", alpha=0.5)
+        ax.plot(x, th, ".k", markersize=1.5, alpha=0.6)
         ax.set_xlabel(dims[0]); ax.set_ylabel("stroboscopic theta (mod 2 pi)")
     elif len(dims) == 1:
         ax.plot(ds[dims[0]].values, ds[var].values, ".-")

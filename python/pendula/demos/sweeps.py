@@ -93,6 +93,20 @@ def _seed_8_2(out, t_max=300.0):
     return rows
 
 
+def _seed_8_2_1():
+    """Seed 8.2.1: beta = 0.16, v0 = 0.2, tau = 0 ... 0.8: where locking gives way to
+    running, and the resting angle of locked orbits (single simulate runs) against asin(tau)."""
+    from ..motion import simulate
+    taus = np.round(np.arange(0.0, 0.8001, 0.01), 10)
+    s = Scene(damping=0.16, v0=0.2)
+    lk = sweep(s, over={"torque": taus}, measure="locked", t_max=500.0)
+    locked = lk.locked.values == 1
+    dev = max(abs(simulate(s.replace(torque=float(t), t_end=300.0, n_samples=2)).theta[-1] - math.asin(t))
+              for t in taus[locked][::10])
+    return {"last_locked": float(taus[locked].max()), "first_running": float(taus[lk.locked.values == 0].min()),
+            "theta_s_vs_asin_tau": float(dev)}
+
+
 def _iv(out):
     import matplotlib
     matplotlib.use("Agg")
@@ -145,7 +159,7 @@ def run(out, small: bool = True, quiet: bool = False) -> dict:
     """Run the sweep gallery into folder ``out``; returns the measured figures."""
     out = pathlib.Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    res = {"basins": _basins(out, small), "seed_8_2": _seed_8_2(out), "iv": _iv(out),
+    res = {"basins": _basins(out, small), "seed_8_2": _seed_8_2(out), "seed_8_2_1": _seed_8_2_1(), "iv": _iv(out),
            "bifurcation": _bifurcation(out, small)}
     if not quiet:
         b = res["basins"]
@@ -154,6 +168,9 @@ def run(out, small: bool = True, quiet: bool = False) -> dict:
         for v, g, sd, r in res["seed_8_2"]:
             flag = "" if set(g) == set(sd) else "  <- differs from the seed"
             print(f"  seed 8.2 v0 = {v:4.2f}: wells {g} (seed {sd}); running from tau = {r}{flag}")
+        r1 = res["seed_8_2_1"]
+        print(f"  seed 8.2.1 (v0 = 0.2): locked up to tau = {r1['last_locked']}, running from {r1['first_running']}; "
+              f"resting angle - asin(tau) <= {r1['theta_s_vs_asin_tau']:.1e}")
         print(f"  I-V: switches to running at tau = {res['iv']['switch_up']}; retrapping "
               + ", ".join(f"beta {k}: {v:.3f} (4b/pi {4 * k / math.pi:.3f})" for k, v in res["iv"]["retrap"].items()))
         print(f"  driven pendulum: period doublings (A, p -> 2p) {res['bifurcation']['doublings']}")
