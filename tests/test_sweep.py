@@ -253,3 +253,12 @@ def test_pendula_run_sweep_scene_errors_name_the_field(tmp_path):
     f.write_text("&scene\n damping = 0.1\n grid = 'v0'\n grid1 = 1\n measure = 'lyapunov'\n/\n")
     r = _pendula_run(f)
     assert r.returncode == 3 and "lyapunov" in r.stderr
+
+
+def test_docstring_examples_run():
+    import doctest
+
+    import importlib
+    mod = importlib.import_module("pendula.sweep")   # the module (pendula.sweep is also the function)
+    failures, tried = doctest.testmod(mod, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+    assert tried >= 2 and failures == 0
