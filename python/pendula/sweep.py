@@ -368,7 +368,7 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
     >>> r = pendula.iv_curve(pendula.Scene(damping=0.2), [0.5, 1.1], "up", transient=50, t_avg=100)
     >>> float(r["up"][1][0])                          # locked below tau = eps: no voltage
     0.0
-    >>> abs(r["up"][1][1] - 1.1 / 0.2) < 0.01         # running: close to the ohmic line tau / beta
+    >>> bool(abs(r["up"][1][1] - 1.1 / 0.2) < 0.01)   # running: close to the ohmic line tau / beta
     True
     """
     from . import _kernel
