@@ -230,7 +230,8 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
     Returns
     -------
     xarray.Dataset
-        Coordinates = the axes; variables per measure plus ``status``
+        Lazy (dask-backed, read from the chunk files) when ``out`` is given
+        and there is more than one chunk.  Coordinates = the axes; variables per measure plus ``status``
         (0 decided, 1 not settled by the limit, 2 measure does not apply,
         4 uncertain: a basin-boundary point whose answer changed when computed
         again at 1000 times tighter tolerances);
@@ -325,19 +326,26 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
         if bar is not None:
             bar.close()
 
-    parts = []
-    for i in range(plan.nchunks):
-        c = chunks[i]
-        if isinstance(c, pathlib.Path):
-            with xr.open_dataset(c, engine="scipy") as d:
-                c = d.load()
-        parts.append(c)
-    ds = xr.concat(parts, dim=list(over)[0]) if len(parts) > 1 else parts[0]
+    if folder is not None and plan.nchunks > 1:
+        # lazily (dask): the grid is never held in memory at once; writing it
+        # (to_netcdf) streams chunk by chunk
+        ds = xr.open_mfdataset([chunks[i] for i in range(plan.nchunks)], combine="nested",
+                               concat_dim=list(over)[0], engine="scipy", data_vars="all",
+                               coords="different", compat="equals", join="outer")
+    else:
+        parts = []
+        for i in range(plan.nchunks):
+            c = chunks[i]
+            if isinstance(c, pathlib.Path):
+                with xr.open_dataset(c, engine="scipy") as d:
+                    c = d.load()
+            parts.append(c)
+        ds = xr.concat(parts, dim=list(over)[0]) if len(parts) > 1 else parts[0]
     ds.attrs.update({"scene": scene.to_namelist(), "measure": measure, "rtol": rtol, "atol": atol,
                      "t_max": t_max, "transient": transient, "samples": samples,
                      "status_codes": json.dumps(STATUS)})
     if plan.measure == "final_well" or plan.measure == "locked":
-        ds.attrs["fraction_decided"] = float(np.mean(ds.status.values == 0))
+        ds.attrs["fraction_decided"] = float((ds.status == 0).mean())
     return ds
 
 
