@@ -270,3 +270,22 @@ def test_docstring_examples_run():
     mod = importlib.import_module("pendula.sweep")   # the module (pendula.sweep is also the function)
     failures, tried = doctest.testmod(mod, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
     assert tried >= 2 and failures == 0
+
+
+def test_measures_match_single_simulate_runs():
+    # final_well and mean_velocity at random points against pendula.simulate of the same scene
+    rng = np.random.default_rng(21)
+    pts = [(float(rng.uniform(0.5, 3.5)), float(np.exp(rng.uniform(math.log(0.08), math.log(0.3)))),
+            float(rng.uniform(-0.3, 0.3))) for _ in range(4)]
+    for v0, b, tau in pts:
+        s = Scene(v0=v0, damping=b, torque=tau)
+        ds = pendula.sweep(s, over={"v0": [v0]}, measure="final_well")
+        tr = pendula.simulate(s.replace(t_end=40.0 / b, n_samples=2))
+        n_sim = round((tr.theta[-1] - math.asin(tau)) / (2 * math.pi))
+        if int(ds.status[0]) == 0:
+            assert ds.well.item() == n_sim, (v0, b, tau)
+    s = Scene(damping=0.2, torque=1.3)
+    ds = pendula.sweep(s, over={"torque": [1.3]}, measure="mean_velocity", transient=40.0, t_max=100.0)
+    tr = pendula.simulate(s.replace(t_start=0.0, t_end=140.0, n_samples=351))   # samples at t = 0, 0.4, ...
+    ref = (tr.theta[-1] - tr.theta[100]) / 100.0
+    assert abs(ds.mean_velocity.item() - ref) < 1e-7 * ref
