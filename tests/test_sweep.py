@@ -182,7 +182,7 @@ def test_resume_after_kill(tmp_path):
     resumed = xr.open_dataset(out / "sweep.nc", engine="scipy").load()
     full = pendula.sweep(Scene.from_file(scene), chunk_points=60, threads=2)
     assert resumed.drop_attrs().identical(full.drop_attrs())
-    assert not list((out / "chunks").glob(".*tmp"))
+    assert not list((out / "chunks").glob(".*tmp"))   # partial files of the killed run are cleaned up
 
 
 def test_scene_grid_fields_and_errors():

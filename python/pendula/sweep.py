@@ -290,6 +290,10 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
             tmp = manifest.with_name(".sweep.json.tmp")
             tmp.write_text(key)
             os.replace(tmp, manifest)
+    if folder is not None:
+        # a run killed while writing leaves a partial temporary file: never a chunk, removed here
+        for stale in folder.glob(".chunk_*.tmp"):
+            stale.unlink(missing_ok=True)
     todo = []
     for i in range(plan.nchunks):
         f = folder / f"chunk_{i:06d}.nc" if folder else None
