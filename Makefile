@@ -38,7 +38,8 @@ $(VENV)/.deps: pyproject.toml | system-deps
 	@[ -x $(PY) ] || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install -q --upgrade pip
 	$(PY) -m pip install -q "numpy>=2.0" "meson>=1.3" "meson-python>=0.15" ninja \
-	    "matplotlib>=3.7" "pytest>=7" "mpmath>=1.3" "scipy>=1.11" "hypothesis>=6"
+	    "matplotlib>=3.7" "pytest>=7" "mpmath>=1.3" "scipy>=1.11" "hypothesis>=6" \
+	    "xarray>=2024.1" "dask[distributed]>=2024.1" "tqdm>=4.60"
 	@touch $@
 
 $(VENV)/.installed: $(VENV)/.deps $(SOURCES) | system-deps

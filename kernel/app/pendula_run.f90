@@ -19,6 +19,7 @@ program pendula_run
   use pendula_scene, only: scene_t, read_scene, scene_effects, scene_summary, max_outputs
   use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_eval, orbit_period, orbit_theta_max
   use pendula_simulate, only: simulate_scene, select_model, sim_ok, simulate_status_text, scene_orbit13
+  use pendula_sweep, only: sweep_scene_csv
   implicit none
   character(len=4096) :: path, out, arg, orbit_out
   character(len=512) :: line
@@ -27,7 +28,7 @@ program pendula_run
   character(len=1024) :: msg
   type(scene_t) :: sc, member
   type(pendulum_orbit) :: o
-  integer :: nargs, i, j, status, nmem
+  integer :: nargs, i, j, status, nmem, sweep_unit
   logical :: two_files
   real(dp), allocatable :: t(:), theta(:), v(:), e(:), values(:)
   logical :: want_traj, want_orbit, swept
@@ -66,6 +67,28 @@ program pendula_run
   call select_model(sc, i, status, msg)
   if (status /= sim_ok) call fail(trim(path) // ': ' // trim(msg), 3)
 
+  ! a scene with a grid is run by pendula_sweep (OpenMP), CSV to OUT (under a
+  ! temporary name renamed at the end; nothing is left on failure)
+  if (sc%n_grid > 0) then
+    if (len_trim(out) > 0) then
+      open(newunit=sweep_unit, file=trim(out) // '.part', status='replace', action='write', iostat=status)
+      if (status /= 0) call fail('cannot write "' // trim(out) // '"', 5)
+    else
+      sweep_unit = output_unit
+    end if
+    call sweep_scene_csv(sc, sweep_unit, status, msg)
+    if (sweep_unit /= output_unit) then
+      if (status == 0) then
+        close(sweep_unit, iostat=j)
+        call rename(trim(out) // '.part', trim(out), j)
+        if (j /= 0) call fail('cannot write "' // trim(out) // '"', 5)
+      else
+        close(sweep_unit, status='delete', iostat=j)
+      end if
+    end if
+    if (status /= 0) call fail(trim(path) // ': ' // trim(msg), status)
+    stop
+  end if
   want_traj = .false.
   want_orbit = .false.
   do i = 1, max_outputs

@@ -303,7 +303,7 @@ subroutine spectra_v(handle, n, nsig, signals, dt, window, nh, omega, power, sta
   call power_spectra(int(handle, c_intptr_t), signals, dt, window, omega, power, status)
 end subroutine spectra_v
 
-! =============================================================
+! ======================================================
 ! Issue 13: Huygens' cycloidal pendulum, non-uniform gravity, the density of the angle
 ! ====================================================================
 
@@ -386,3 +386,33 @@ subroutine cord_run_v(n, maxf, eps, theta0, v0, restitution, max_flips, min_flig
   call cord_run(eps, theta0, v0, restitution, max_flips, min_flight, t, theta, v, x, y, r, flips, &
                 nflips, stop_reason, status)
 end subroutine cord_run_v
+! ====================================================================
+! Sweeps (issue 14): one call per block of grid points, OpenMP inside.
+! ====================================================================
+
+! params(8, npts): eps, beta, tau, amp, omega, phase, theta0, v0 per point.
+! nthreads <= 0: OpenMP's default (OMP_NUM_THREADS, else all cores).
+subroutine sweep_block(measure, npts, params, rtol, atol, t_tr, t_max, nout, nthreads, out, pstat)
+  use pendula_sweep, only: sweep_points
+  implicit none
+  integer, intent(in) :: measure, npts, nout, nthreads
+  double precision, intent(in) :: params(8, npts), rtol, atol, t_tr, t_max
+  double precision, intent(out) :: out(nout, npts)
+  integer, intent(out) :: pstat(npts)
+  !f2py threadsafe
+  !f2py intent(hide), depend(params) :: npts = shape(params, 1)
+  call sweep_points(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, nthreads)
+end subroutine sweep_block
+
+! One adiabatic I-V branch (torques in the order given, state carried over).
+subroutine sweep_iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, vm, err, pstat, th, v)
+  use pendula_sweep, only: iv_branch
+  implicit none
+  integer, intent(in) :: ntau
+  double precision, intent(in) :: params(8), taus(ntau), rtol, atol, t_tr, t_avg
+  double precision, intent(out) :: vm(ntau), err(ntau), th, v
+  integer, intent(out) :: pstat(ntau)
+  !f2py threadsafe
+  !f2py intent(hide), depend(taus) :: ntau = len(taus)
+  call iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, vm, err, pstat, th, v)
+end subroutine sweep_iv_branch

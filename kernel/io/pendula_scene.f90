@@ -30,6 +30,14 @@ module pendula_scene
     ! the flexible cord (kernel/models/pendula_cord.f90)
     real(dp) :: restitution = 0.0_dp, min_flight = 0.0_dp
     integer :: max_flips = 100000
+    ! sweeps over grids (issue 14): axes, values or (start, stop, count), measure
+    character(len=32) :: grid(3) = ''
+    integer :: n_grid = 0
+    real(dp) :: grid_values(max_sweep, 3) = nan_dp, grid_range(3, 3) = nan_dp
+    integer :: grid_n(3) = 0
+    character(len=32) :: measure = ''
+    real(dp) :: sweep_t_max = 2000.0_dp, sweep_transient = 200.0_dp
+    integer :: sweep_samples = 100
   end type scene_t
 
 contains
@@ -72,8 +80,11 @@ contains
     ! the namelist variables (same names as the fields)
     real(dp) :: eps, theta0, v0, t_start, t_end, damping, torque, drive_amplitude, &
                 drive_frequency, drive_phase, rtol, atol, dt, g, length, cycloid_radius, gravity_distance, &
-                gravity_gradient, restitution, min_flight
-    integer :: n_samples, max_flips
+                gravity_gradient, restitution, min_flight, sweep_t_max, sweep_transient
+    integer :: n_samples, max_flips, sweep_samples
+    character(len=32) :: grid(3), measure
+    real(dp) :: grid1(max_sweep), grid2(max_sweep), grid3(max_sweep), grid1_range(3), grid2_range(3), &
+                grid3_range(3)
     ! one more element and far more characters than the scene holds: a longer
     ! list or string is refused with a message instead of being truncated
     character(len=1024) :: cord, guide, gravity, method, sweep
@@ -83,17 +94,21 @@ contains
     namelist /scene/ eps, theta0, v0, t_start, t_end, n_samples, damping, torque, &
       drive_amplitude, drive_frequency, drive_phase, cord, guide, gravity, method, rtol, atol, dt, &
       outputs, sweep, sweep_values, name, g, length, cycloid_radius, gravity_distance, gravity_gradient, &
-      restitution, max_flips, min_flight
+      restitution, max_flips, min_flight, &
+      grid, grid1, grid2, grid3, grid1_range, grid2_range, grid3_range, measure, sweep_t_max, &
+      sweep_transient, sweep_samples
     character(len=:), allocatable :: text
     character(len=:), allocatable :: buf
     character(len=512) :: iom
     integer :: ios, i, j, k, start, line, nseen, jj, kk
     character(len=64) :: fname, seen(64)
-    character(len=16), parameter :: known_fields(30) = [character(len=16) :: 'eps', 'theta0', 'v0', &
+    character(len=16), parameter :: known_fields(41) = [character(len=16) :: 'eps', 'theta0', 'v0', &
       't_start', 't_end', 'n_samples', 'damping', 'torque', 'drive_amplitude', 'drive_frequency', &
       'drive_phase', 'cord', 'guide', 'gravity', 'method', 'rtol', 'atol', 'dt', 'outputs', 'sweep', &
       'sweep_values', 'name', 'g', 'length', 'cycloid_radius', 'gravity_distance', 'gravity_gradient', &
-      'restitution', 'max_flips', 'min_flight']
+      'restitution', 'max_flips', 'min_flight', &
+      'grid', 'grid1', 'grid2', 'grid3', 'grid1_range', 'grid2_range', 'grid3_range', 'measure', &
+      'sweep_t_max', 'sweep_transient', 'sweep_samples']
 
     status = 0
     msg = ''
@@ -104,6 +119,9 @@ contains
     name = ''; g = nan_dp; length = nan_dp
     cycloid_radius = 0.25_dp; gravity_distance = 0.0_dp; gravity_gradient = 0.0_dp
     restitution = 0.0_dp; max_flips = 100000; min_flight = 0.0_dp
+    grid = ''; grid1 = nan_dp; grid2 = nan_dp; grid3 = nan_dp; grid1_range = nan_dp; grid2_range = nan_dp
+    grid3_range = nan_dp; measure = ''; sweep_t_max = 2000.0_dp; sweep_transient = 200.0_dp
+    sweep_samples = 100
 
     k = utf8_error_at(text_in)
     if (k > 0) then
@@ -223,9 +241,93 @@ contains
     sc%gravity_gradient = gravity_gradient
     sc%restitution = restitution; sc%max_flips = max_flips; sc%min_flight = min_flight
     sc%n_sweep = count(sweep_values(1:max_sweep) == sweep_values(1:max_sweep))
+    do i = 1, 3
+      sc%grid(i) = lower(grid(i))
+    end do
+    sc%n_grid = count(len_trim(sc%grid) > 0)
+    sc%grid_values(:, 1) = grid1; sc%grid_values(:, 2) = grid2; sc%grid_values(:, 3) = grid3
+    sc%grid_range(:, 1) = grid1_range; sc%grid_range(:, 2) = grid2_range; sc%grid_range(:, 3) = grid3_range
+    sc%measure = lower(measure); sc%sweep_t_max = sweep_t_max; sc%sweep_transient = sweep_transient
+    sc%sweep_samples = sweep_samples
     call check(sc, g, length, status, msg)
+    if (status == 0) call check_grid(sc, status, msg)
     if (status /= 0) msg = trim(source) // ': ' // trim(msg)
   end subroutine parse_scene
+
+  !> Sweep grid fields (issue 14): the same rules as _validate_grid in pendula/scene.py.
+  subroutine check_grid(sc, status, msg)
+    type(scene_t), intent(inout) :: sc
+    integer, intent(out) :: status
+    character(len=*), intent(out) :: msg
+    character(len=16), parameter :: griddable(8) = [character(len=16) :: 'v0', 'theta0', 'eps', &
+      'damping', 'torque', 'drive_amplitude', 'drive_frequency', 'drive_phase']
+    character(len=16), parameter :: measures(5) = [character(len=16) :: 'final_well', 'mean_velocity', &
+      'locked', 'poincare', 'lyapunov']
+    character(len=1) :: kc
+    integer :: k, nv, nr
+    status = 1
+    if (any(len_trim(sc%grid(1:sc%n_grid)) == 0)) then
+      msg = 'field ''grid'': axis names one after another'; return
+    end if
+    do k = 1, sc%n_grid
+      if (.not. any(griddable == sc%grid(k))) then
+        msg = 'field ''grid'': cannot sweep ''' // trim(sc%grid(k)) // ''''; return
+      end if
+      if (any(sc%grid(1:k - 1) == sc%grid(k))) then
+        msg = 'field ''grid'' names an axis twice'; return
+      end if
+    end do
+    do k = 1, 3
+      write(kc, '(i1)') k
+      nv = count(sc%grid_values(:, k) == sc%grid_values(:, k))
+      nr = count(sc%grid_range(:, k) == sc%grid_range(:, k))
+      if (k > sc%n_grid) then
+        if (nv + nr > 0) then
+          msg = 'field ''grid' // kc // ''' or ''grid' // kc // '_range'' is given but ''grid'' names fewer axes'
+          return
+        end if
+        cycle
+      end if
+      if ((nv > 0) .eqv. (nr > 0)) then
+        msg = 'axis ' // kc // ' (''' // trim(sc%grid(k)) // '''): give exactly one of ''grid' // kc // &
+              ''' (values) or ''grid' // kc // '_range'' (start, stop, count)'; return
+      end if
+      if (nv > 0) then
+        if (any(sc%grid_values(1:nv, k) /= sc%grid_values(1:nv, k)) .or. &
+            any(abs(sc%grid_values(1:nv, k)) > huge(1.0_dp))) then
+          msg = 'field ''grid' // kc // ''' must be finite numbers, one after another'; return
+        end if
+        sc%grid_n(k) = nv
+      else
+        if (nr /= 3 .or. any(abs(sc%grid_range(:, k)) > huge(1.0_dp))) then
+          msg = 'field ''grid' // kc // '_range'' must be start, stop, count (count a whole number >= 1)'; return
+        end if
+        if (sc%grid_range(3, k) /= aint(sc%grid_range(3, k)) .or. sc%grid_range(3, k) < 1.0_dp .or. &
+            sc%grid_range(3, k) > 1.0e8_dp) then
+          msg = 'field ''grid' // kc // '_range'' must be start, stop, count (count a whole number >= 1)'; return
+        end if
+        sc%grid_n(k) = nint(sc%grid_range(3, k))
+      end if
+    end do
+    if (len_trim(sc%measure) > 0 .and. .not. any(measures == sc%measure)) then
+      msg = 'field ''measure'' must be one of final_well, mean_velocity, locked, poincare, lyapunov; got ''' &
+            // trim(sc%measure) // ''''; return
+    end if
+    if (sc%n_grid > 0 .and. len_trim(sc%measure) == 0) then
+      msg = 'field ''grid'' is given but ''measure'' is not'; return
+    end if
+    if (.not. (sc%sweep_t_max > 0.0_dp)) then
+      msg = 'field ''sweep_t_max'' must be > 0'; return
+    end if
+    if (.not. (sc%sweep_transient >= 0.0_dp)) then
+      msg = 'field ''sweep_transient'' must be >= 0'; return
+    end if
+    if (sc%sweep_samples < 1 .or. sc%sweep_samples > 10000000) then
+      msg = 'field ''sweep_samples'' must be between 1 and 1e7'; return
+    end if
+    status = 0
+    msg = ''
+  end subroutine check_grid
 
   !> The same range rules as pendula/scene.py.
   subroutine check(sc, g, length, status, msg)

@@ -260,8 +260,69 @@ def bench_cord(n: int = 10_000, seed: int = 4) -> list[dict]:
     return rows + [{"what": "table2", "seconds": t_tab}]
 
 
+def bench_sweep(n: int = 1_000_000, seed: int = 14) -> list[dict]:
+    """Sweeps (issue 14): a sqrt(n) x sqrt(n) final-well map over (v0, beta)
+    (goal: 10^6 points in 60 s on 2 cores), OpenMP threads 1 against 2, the
+    per-point cost against a scipy solve_ivp loop with a terminal event on a
+    20 x 20 subgrid, and the fraction of points decided early."""
+    import os
+
+    from scipy.integrate import solve_ivp
+
+    from .scene import Scene
+    from .sweeps import sweep
+
+    side = max(20, int(round(n ** 0.5)))
+    s = Scene(damping=0.1)
+    rt, at = 1e-8, 1e-10   # the same tolerances for pendula and scipy
+
+    def grid(k):
+        return {"v0": np.linspace(0.0, 4.0, k), "damping": np.linspace(0.02, 0.3, k)}
+
+    t0 = time.perf_counter()
+    ds = sweep(s, over=grid(side), measure="final_well", rtol=rt, atol=at)
+    t_map = time.perf_counter() - t0
+    st = ds.status.values
+    print(f"\nSweep: final-well map {side} x {side} over (v0, beta), DOP853 rtol {rt:g}: {t_map:.1f} s "
+          f"({os.cpu_count()} cores, OMP_NUM_THREADS={os.environ.get('OMP_NUM_THREADS', 'unset')}; "
+          "the machine is shared: other users' load is in these figures)")
+    td = ds.t_decided.values[st == 0]
+    print(f"  decided {100 * np.mean(st == 0):.2f} %, uncertain (answer changes with tolerance) "
+          f"{int(np.sum(st == 4))}, not settled {int(np.sum(st == 1))}; median decision time {np.median(td):.1f} "
+          f"(the limit is {s.sweep_t_max:g}): every decided point stopped early")
+    sub = grid(200)
+    t1 = best_time(lambda: sweep(s, over=sub, measure="final_well", rtol=rt, atol=at, threads=1), repeat=2)
+    t2 = best_time(lambda: sweep(s, over=sub, measure="final_well", rtol=rt, atol=at, threads=2), repeat=2)
+    print(f"  200 x 200: 1 thread {t1:.2f} s, 2 threads {t2:.2f} s: speed-up {t1 / t2:.2f}")
+    small = grid(20)
+    tp = best_time(lambda: sweep(s, over=small, measure="final_well", rtol=rt, atol=at, threads=1), repeat=3)
+
+    def scipy_loop():
+        res = []
+        for v0 in small["v0"]:
+            for b in small["damping"]:
+                def f(t, y, b=b):
+                    return [y[1], -np.sin(y[0]) - b * y[1]]
+
+                def trapped(t, y):   # energy below the barrier 2 eps: trapped for good
+                    return 0.5 * y[1] ** 2 + 1 - np.cos(y[0]) - 2.0
+                trapped.terminal, trapped.direction = True, -1
+                e0 = 0.5 * v0 ** 2
+                if e0 < 2.0:
+                    res.append(0)
+                    continue
+                r = solve_ivp(f, (0, s.sweep_t_max), [0.0, v0], method="DOP853", rtol=rt, atol=at, events=trapped)
+                res.append(int(np.round(r.y[0, -1] / (2 * np.pi))))
+        return res
+    ts = best_time(scipy_loop, repeat=1)
+    print(f"  20 x 20 subgrid, 1 thread: pendula {tp / 400 * 1e6:.1f} us/point, scipy solve_ivp + event loop "
+          f"{ts / 400 * 1e6:.1f} us/point: ratio {ts / tp:.0f}x")
+    return [{"name": "sweep_map", "seconds": t_map, "points": side * side}, {"name": "threads_1_vs_2", "ratio": t1 / t2},
+            {"name": "scipy_over_pendula", "ratio": ts / tp}]
+
+
 BENCHMARKS = {"elliptic": bench_elliptic, "exact": bench_exact, "integrators": bench_integrators,
-              "spectrum": bench_spectrum, "cord": bench_cord}
+              "spectrum": bench_spectrum, "cord": bench_cord, "sweep": bench_sweep}
 
 
 def main(argv=None) -> int:

@@ -106,6 +106,7 @@ def cmd_demo(args) -> int:
     import pathlib
 
     from .demos.cord import cord_demo
+    from .demos import sweeps as sweep_demos
     from .demos.huygens import huygens_gallery
     from .run import run_scene
     from .scene import Scene
@@ -124,6 +125,7 @@ def cmd_demo(args) -> int:
     written += cord_demo(out, gallery_dir(), quiet=args.quiet)  # the flexible cord (Garfinkel)
     print("\nwhat accuracy costs in time: the integrators against the exact solution")
     integrator_study(out, 1e5, progress=not args.quiet)
+    sweep_demos.run(out / "sweeps", small=True, quiet=args.quiet)  # sweeps: basins, the seed's 8.2, I-V, chaos
     print(f"\n{len(written)} gallery files and the integrator study written to {out.resolve()}")
     return 0
 
@@ -164,6 +166,13 @@ def cmd_bench(args) -> int:
     from .bench import main as bench_main
 
     return bench_main(args.rest)
+
+
+def cmd_sweep(args) -> int:
+    """pendula sweep SCENE -o OUT: the dataset (NetCDF chunks, resumable) and its figure."""
+    from .sweeps import cli_main
+
+    return cli_main(args)
 
 
 def cmd_models(args) -> int:
@@ -212,6 +221,15 @@ def main(argv=None) -> int:
     p.set_defaults(func=cmd_spectrum)
     p = sub.add_parser("models", help="the models pendula knows, the effects each accepts, which keep the exact path")
     p.set_defaults(func=cmd_models)
+    # sweeps (issue 14): the substance is in pendula.sweeps
+    p = sub.add_parser("sweep", help="a sweep scene (grid + measure): OUT/sweep.nc and OUT/sweep.png; resumes")
+    p.add_argument("scene", help="scene file with 'grid' and 'measure'")
+    p.add_argument("-o", "--output", default="out/sweep", help="output folder (chunks, dataset, figure)")
+    p.add_argument("--threads", type=int, default=0, help="OpenMP threads (0: OMP_NUM_THREADS or all cores)")
+    p.add_argument("--workers", type=int, default=0, help="run the chunks on a local Dask cluster of N workers")
+    p.add_argument("--chunk-points", type=int, default=20000, help="grid points per chunk")
+    p.add_argument("-q", "--quiet", action="store_true")
+    p.set_defaults(func=cmd_sweep)
     p = sub.add_parser("bench", help="benchmarks against scipy, GSL and numpy", add_help=False)
     p.add_argument("rest", nargs=argparse.REMAINDER)
     p.set_defaults(func=cmd_bench)

@@ -44,7 +44,7 @@ SWEEPABLE = ("v0", "theta0", "eps", "damping", "torque", "drive_amplitude", "dri
 #: lists and strings are refused with a message, never truncated.
 MAX_SWEEP = 4096
 MAX_OUTPUTS = 16
-STR_LIMITS = {"name": 256, "cord": 32, "guide": 32, "gravity": 32, "method": 32, "sweep": 32}
+STR_LIMITS = {"name": 256, "cord": 32, "guide": 32, "gravity": 32, "method": 32, "sweep": 32, "measure": 32}
 OUTPUT_LIMIT = 16
 
 
@@ -135,6 +135,18 @@ class Scene:
     restitution: float = 0.0
     max_flips: int = 100000
     min_flight: float = 0.0
+    # sweeps over grids (issue 14): see pendula.sweeps
+    grid: tuple = ()
+    grid1: tuple = ()
+    grid2: tuple = ()
+    grid3: tuple = ()
+    grid1_range: tuple = ()
+    grid2_range: tuple = ()
+    grid3_range: tuple = ()
+    measure: str = ""
+    sweep_t_max: float = 2000.0
+    sweep_transient: float = 200.0
+    sweep_samples: int = 100
 
     def __post_init__(self):
         _validate(self)
@@ -251,10 +263,16 @@ def _fmt(v) -> str:
 
 _FLOATS = {"eps", "theta0", "v0", "t_start", "t_end", "damping", "torque", "drive_amplitude",
            "drive_frequency", "drive_phase", "rtol", "atol", "dt", "g", "length",
-           "cycloid_radius", "gravity_distance", "gravity_gradient", "restitution", "min_flight"}
-_INTS = {"n_samples", "max_flips"}
-_STRS = {"cord", "guide", "gravity", "method", "sweep", "name"}
-_TUPLES = {"outputs": str, "sweep_values": float}
+           "cycloid_radius", "gravity_distance", "gravity_gradient", "restitution", "min_flight",
+           "sweep_t_max", "sweep_transient"}
+_INTS = {"n_samples", "max_flips", "sweep_samples"}
+_STRS = {"cord", "guide", "gravity", "method", "sweep", "name", "measure"}
+_TUPLES = {"outputs": str, "sweep_values": float, "grid": str, "grid1": float, "grid2": float, "grid3": float,
+           "grid1_range": float, "grid2_range": float, "grid3_range": float}
+#: what a sweep point can answer (see pendula.sweeps)
+MEASURES = ("final_well", "mean_velocity", "locked", "poincare", "lyapunov")
+#: fields a grid may run over
+GRIDDABLE = ("v0", "theta0", "eps", "damping", "torque", "drive_amplitude", "drive_frequency", "drive_phase")
 
 
 def _validate(s: Scene) -> None:
@@ -269,14 +287,11 @@ def _validate(s: Scene) -> None:
             raise SceneError(f"field '{name}' is too large for a double: {v!r}") from None
         if name not in ("g", "length", "eps") and not math.isfinite(float(v)):
             raise SceneError(f"field '{name}' must be finite, got {v!r}")
-    v = s.n_samples
-    if isinstance(v, bool) or not isinstance(v, (int, np.integer)) and not (isinstance(v, float) and v.is_integer()):
-        raise SceneError(f"field 'n_samples' must be a whole number, got {v!r}")
-    set_(s, "n_samples", int(v))
-    v = s.max_flips
-    if isinstance(v, bool) or not isinstance(v, (int, np.integer)) and not (isinstance(v, float) and v.is_integer()):
-        raise SceneError(f"field 'max_flips' must be a whole number, got {v!r}")
-    set_(s, "max_flips", int(v))
+    for name in sorted(_INTS):
+        v = getattr(s, name)
+        if isinstance(v, bool) or not isinstance(v, (int, np.integer)) and not (isinstance(v, float) and v.is_integer()):
+            raise SceneError(f"field '{name}' must be a whole number, got {v!r}")
+        set_(s, name, int(v))
     for name in _STRS:
         v = getattr(s, name)
         if not isinstance(v, str):
@@ -360,6 +375,7 @@ def _validate(s: Scene) -> None:
     elif s.sweep_values:
         raise SceneError("field 'sweep_values' is given but 'sweep' does not name a field")
     _validate_issue13(s)
+    _validate_grid(s)
     if s.method == "exact" and [e for e in s.effects
                                 if e != "guide" and not (e == "cord" and s.cord == "flexible")]:
         raise SceneError(f"field 'method': 'exact' answers only the conservative rigid pendulum, "
@@ -403,6 +419,41 @@ def _validate_issue13(s: Scene) -> None:
         if not abs(s.theta0) <= math.pi / 2:
             raise SceneError(f"field 'theta0': on the cycloid |theta0| <= pi/2 (the cusps, |s| = 4R), "
                              f"got {s.theta0!r}")
+
+
+def _validate_grid(s: Scene) -> None:
+    """Sweep grid fields (issue 14); the Fortran reader applies the same rules."""
+    if len(s.grid) > 3:
+        raise SceneError(f"field 'grid' names at most 3 axes, got {len(s.grid)}")
+    if len(set(s.grid)) != len(s.grid):
+        raise SceneError("field 'grid' names an axis twice")
+    for g in s.grid:
+        if g not in GRIDDABLE:
+            raise SceneError(f"field 'grid': cannot sweep {g!r}; one of {', '.join(GRIDDABLE)}" + _suggest(g, GRIDDABLE))
+    for k in (1, 2, 3):
+        vals, rng = getattr(s, f"grid{k}"), getattr(s, f"grid{k}_range")
+        if k > len(s.grid):
+            if vals or rng:
+                raise SceneError(f"field 'grid{k}' or 'grid{k}_range' is given but 'grid' names {len(s.grid)} axes")
+            continue
+        if bool(vals) == bool(rng):
+            raise SceneError(f"axis {k} ('{s.grid[k - 1]}'): give exactly one of 'grid{k}' (values) "
+                             f"or 'grid{k}_range' (start, stop, count)")
+        if not all(math.isfinite(x) for x in vals + rng):
+            raise SceneError(f"field 'grid{k}{'_range' if rng else ''}' must be finite numbers")
+        if rng and (len(rng) != 3 or not float(rng[2]).is_integer() or not 1 <= rng[2] <= 1e8):
+            raise SceneError(f"field 'grid{k}_range' must be start, stop, count (count a whole number >= 1)")
+    if s.measure and s.measure not in MEASURES:
+        raise SceneError(f"field 'measure' must be one of {', '.join(MEASURES)}; got {s.measure!r}"
+                         + _suggest(s.measure, MEASURES))
+    if s.grid and not s.measure:
+        raise SceneError("field 'grid' is given but 'measure' is not")
+    if not s.sweep_t_max > 0:
+        raise SceneError(f"field 'sweep_t_max' must be > 0, got {s.sweep_t_max!r}")
+    if s.sweep_transient < 0:
+        raise SceneError(f"field 'sweep_transient' must be >= 0, got {s.sweep_transient!r}")
+    if not 1 <= s.sweep_samples <= 10_000_000:
+        raise SceneError(f"field 'sweep_samples' must be between 1 and 1e7, got {s.sweep_samples}")
 
 
 def _suggest(word, choices) -> str:

@@ -1,0 +1,427 @@
+!> Sweeps: one measure evaluated at a block of grid points, in parallel.
+!>
+!> Each grid point is a full model (eps, beta, tau, A, Omega, phase) and an
+!> initial state (theta0, v0).  A point computes only what its measure needs
+!> and stops as soon as the answer is decided.  The orbit is advanced with the
+!> existing DOP853 integrator (pendula_integrators%integrate) over short
+!> windows, the stop test being applied at samples of each window; a window
+!> restarts the integrator from the state where the last one ended (for a
+!> driven model the phase is advanced by Omega * t, so the orbit is the same
+!> as one long run up to the restart of the step-size control).
+!>
+!> Thread safety: no module variables; every point works on its own locals.
+!> The block loop is an OpenMP parallel do (thread count from OMP_NUM_THREADS).
+!> Results never depend on the thread count: each point is computed by one
+!> thread, from its own inputs only, in the same order of operations.
+!>
+!> Measures (codes), outputs per point:
+!>   1 final_well:    out(1) = n (well at asin(tau/eps) + 2 pi n), out(2) = time decided
+!>   2 mean_velocity: out(1) = <v> after the transient, out(2) = convergence estimate
+!>   3 locked:        out(1) = 1 locked / 0 running, out(2) = time decided
+!>   4 poincare:      out(2k-1), out(2k) = theta mod 2 pi in [-pi, pi), v at t = (n_tr + k) T
+!> Point status: 0 decided; 1 not settled / not decided by t_max; 2 the
+!> measure does not apply to this point (e.g. final_well without damping,
+!> no well when |tau| >= eps, poincare without a drive); 3 bad measure code;
+!> 100 + s: the integrator failed with status s.
+module pendula_sweep
+  use pendula_kinds, only: dp, pi, two_pi, nan_dp
+  use pendula_scene, only: scene_t
+  use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate, &
+    m_dop853, st_ok
+  implicit none
+  private
+  public :: sweep_points, iv_branch, np_params, sweep_scene_csv
+  public :: ms_final_well, ms_mean_velocity, ms_locked, ms_poincare
+
+  integer, parameter :: np_params = 8   ! eps, beta, tau, amp, omega, phase, theta0, v0
+  integer, parameter :: ms_final_well = 1, ms_mean_velocity = 2, ms_locked = 3, ms_poincare = 4
+  integer, parameter :: ps_decided = 0, ps_unsettled = 1, ps_not_applicable = 2, ps_bad_measure = 3
+  !> samples per window at which the stop test is applied
+  integer, parameter :: nsub = 8
+
+contains
+
+  !> Evaluate measure at npts points.  params(:, i) = eps, beta, tau, amp,
+  !> omega, phase, theta0, v0.  t_tr: transient (mean_velocity: time; poincare:
+  !> drive periods); t_max: limit (final_well, locked) or averaging time
+  !> (mean_velocity).  nout outputs per point (2, or 2 * samples for poincare).
+  subroutine sweep_points(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, nthreads)
+    !$ use omp_lib, only: omp_get_max_threads
+    integer, intent(in) :: measure, npts, nout, nthreads
+    real(dp), intent(in) :: params(np_params, npts), rtol, atol, t_tr, t_max
+    real(dp), intent(out) :: out(nout, npts)
+    integer, intent(out) :: pstat(npts)
+    integer :: i, nt
+    ! nthreads > 0: that many threads; otherwise OpenMP's default (OMP_NUM_THREADS, or all cores)
+    nt = 1
+    !$ nt = omp_get_max_threads()
+    if (nthreads > 0) nt = nthreads
+    !$omp parallel do schedule(dynamic, 16) default(none) num_threads(nt) &
+    !$omp   shared(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat)
+    do i = 1, npts
+      call one_point(measure, params(:, i), rtol, atol, t_tr, t_max, out(:, i), pstat(i))
+    end do
+    !$omp end parallel do
+  end subroutine sweep_points
+
+  subroutine one_point(measure, p, rtol, atol, t_tr, t_max, o, st)
+    integer, intent(in) :: measure
+    real(dp), intent(in) :: p(np_params), rtol, atol, t_tr, t_max
+    real(dp), intent(out) :: o(:)
+    integer, intent(out) :: st
+    real(dp) :: th, v, tdec, vm, err
+    integer :: n
+    logical :: settled
+    o = nan_dp
+    select case (measure)
+    case (ms_final_well)
+      if (.not. (p(2) > 0.0_dp) .or. p(4) /= 0.0_dp .or. abs(p(3)) >= p(1)) then
+        st = ps_not_applicable; return
+      end if
+      call settle(p, rtol, atol, t_max, p(7), p(8), th, v, settled, n, tdec, st)
+      if (st /= ps_decided) return
+      if (settled) then
+        o(1) = real(n, dp); o(2) = tdec
+      else
+        st = ps_unsettled; o(2) = t_max
+      end if
+    case (ms_locked)
+      if (.not. (p(2) > 0.0_dp) .or. p(4) /= 0.0_dp) then
+        st = ps_not_applicable; return
+      end if
+      if (abs(p(3)) >= p(1)) then
+        ! no equilibrium: every orbit runs
+        o(1) = 0.0_dp; o(2) = 0.0_dp; st = ps_decided; return
+      end if
+      call settle(p, rtol, atol, t_max, p(7), p(8), th, v, settled, n, tdec, st)
+      if (st /= ps_decided) return
+      if (settled) then
+        o(1) = 1.0_dp; o(2) = tdec
+      else if (running(p, rtol, atol, th, v, st)) then
+        o(1) = 0.0_dp; o(2) = t_max
+      else if (st == ps_decided) then
+        st = ps_unsettled
+      end if
+    case (ms_mean_velocity)
+      call mean_velocity(p, rtol, atol, t_tr, t_max, p(7), p(8), vm, err, th, v, st)
+      o(1) = vm; o(2) = err
+    case (ms_poincare)
+      call poincare(p, rtol, atol, nint(t_tr), size(o) / 2, o, st)
+    case default
+      st = ps_bad_measure
+    end select
+  end subroutine one_point
+
+  !> Advance (th, v) from time t0 by dt (model time origin shifted by t0).
+  subroutine advance(p, t0, rtol, atol, ts, th, v, ths, vs, st)
+    real(dp), intent(in) :: p(np_params), t0, rtol, atol, ts(:)
+    real(dp), intent(inout) :: th, v
+    real(dp), intent(out) :: ths(:), vs(:)
+    integer, intent(out) :: st
+    type(pendulum_model) :: m
+    type(event_spec) :: ev
+    type(run_stats) :: stats
+    integer :: nev, s
+    real(dp) :: tev(1), thev(1), vev(1)
+    m = make_model(p(1), p(2), p(3), p(4), p(5), p(6) + p(5) * t0)
+    call integrate(m, m_dop853, th, v, ts, rtol, atol, 0.0_dp, ths, vs, stats, s, ev, nev, tev, thev, vev)
+    if (s /= st_ok) then
+      st = 100 + s; return
+    end if
+    st = ps_decided
+    th = ths(size(ts)); v = vs(size(ts))
+  end subroutine advance
+
+  !> The well an undriven damped orbit is trapped in, once its energy
+  !> E = v^2/2 - eps cos(theta) - tau theta (non-increasing: dE/dt = -beta v^2)
+  !> is below the lower of the two barriers around its current well.
+  pure subroutine trapped(p, th, v, yes, n)
+    real(dp), intent(in) :: p(np_params), th, v
+    logical, intent(out) :: yes
+    integer, intent(out) :: n
+    real(dp) :: ths, tl, tr, e, ul, ur
+    ths = asin(p(3) / p(1))
+    ! well n spans (-pi - ths + 2 pi n, pi - ths + 2 pi n) between two maxima of U
+    n = floor((th + pi + ths) / two_pi)
+    tl = -pi - ths + two_pi * n
+    tr = tl + two_pi
+    e = 0.5_dp * v * v + pot(th)
+    ul = pot(tl); ur = pot(tr)
+    yes = e < min(ul, ur)
+  contains
+    pure function pot(x) result(u)
+      real(dp), intent(in) :: x
+      real(dp) :: u
+      u = -p(1) * cos(x) - p(3) * x
+    end function pot
+  end subroutine trapped
+
+  !> Integrate until trapped (decided) or t_max.
+  subroutine settle(p, rtol, atol, t_max, th0, v0, th, v, settled, n, tdec, st)
+    real(dp), intent(in) :: p(np_params), rtol, atol, t_max, th0, v0
+    real(dp), intent(out) :: th, v, tdec
+    logical, intent(out) :: settled
+    integer, intent(out) :: n, st
+    real(dp) :: t, tw, ts(nsub), ths(nsub), vs(nsub)
+    integer :: k
+    th = th0; v = v0; t = 0.0_dp; st = ps_decided; tdec = 0.0_dp
+    call trapped(p, th, v, settled, n)
+    if (settled) return
+    tw = two_pi / sqrt(p(1))
+    do while (t < t_max)
+      ts = [(tw * k / real(nsub, dp), k = 1, nsub)]
+      call advance(p, t, rtol, atol, ts, th, v, ths, vs, st)
+      if (st /= ps_decided) return
+      do k = 1, nsub
+        call trapped(p, ths(k), vs(k), settled, n)
+        if (settled) then
+          tdec = t + ts(k); th = ths(k); v = vs(k); return
+        end if
+      end do
+      t = t + tw
+    end do
+  end subroutine settle
+
+  !> An open orbit: over one more window, v keeps its sign and theta advances
+  !> by more than 2 pi.
+  function running(p, rtol, atol, th, v, st) result(yes)
+    real(dp), intent(in) :: p(np_params), rtol, atol
+    real(dp), intent(inout) :: th, v
+    integer, intent(out) :: st
+    logical :: yes
+    real(dp) :: tw, ts(4 * nsub), ths(4 * nsub), vs(4 * nsub), th1
+    integer :: k
+    tw = 4.0_dp * two_pi / sqrt(p(1))
+    ts = [(tw * k / real(4 * nsub, dp), k = 1, 4 * nsub)]
+    th1 = th
+    call advance(p, 0.0_dp, rtol, atol, ts, th, v, ths, vs, st)
+    yes = .false.
+    if (st /= ps_decided) return
+    yes = (all(vs > 0.0_dp) .or. all(vs < 0.0_dp)) .and. abs(ths(size(ts)) - th1) > two_pi
+  end function running
+
+  !> <v> over t_avg after a transient t_tr, from (th0, v0); the convergence
+  !> estimate is |<v>_whole - <v>_second half|.  An undriven damped orbit
+  !> trapped in a well has <v> = 0 exactly: decided as soon as it is trapped.
+  subroutine mean_velocity(p, rtol, atol, t_tr, t_avg, th0, v0, vm, err, th, v, st)
+    real(dp), intent(in) :: p(np_params), rtol, atol, t_tr, t_avg, th0, v0
+    real(dp), intent(out) :: vm, err, th, v
+    integer, intent(out) :: st
+    real(dp) :: t, tw, ts(1), ths(1), vs(1), tha, thh, seg_end(3)
+    integer :: n, seg
+    logical :: can_trap, tr
+    th = th0; v = v0; t = 0.0_dp; st = ps_decided
+    vm = nan_dp; err = nan_dp
+    can_trap = p(2) > 0.0_dp .and. p(4) == 0.0_dp .and. abs(p(3)) < p(1)
+    tw = two_pi / sqrt(p(1))
+    seg_end = [t_tr, t_tr + 0.5_dp * t_avg, t_tr + t_avg]
+    tha = th; thh = th
+    do seg = 1, 3
+      do while (t < seg_end(seg))
+        if (can_trap) then
+          call trapped(p, th, v, tr, n)
+          if (tr) then
+            vm = 0.0_dp; err = 0.0_dp; return
+          end if
+        end if
+        ts(1) = min(tw, seg_end(seg) - t)
+        call advance(p, t, rtol, atol, ts, th, v, ths, vs, st)
+        if (st /= ps_decided) return
+        ! the segment ends exactly at seg_end, whatever the rounding of the sum
+        if (ts(1) == seg_end(seg) - t) then
+          t = seg_end(seg)
+        else
+          t = t + ts(1)
+        end if
+      end do
+      if (seg == 1) tha = th
+      if (seg == 2) thh = th
+    end do
+    vm = (th - tha) / t_avg
+    err = abs(vm - (th - thh) / (0.5_dp * t_avg))
+  end subroutine mean_velocity
+
+  !> Stroboscopic samples once per drive period after n_tr periods.
+  subroutine poincare(p, rtol, atol, n_tr, ns, o, st)
+    real(dp), intent(in) :: p(np_params), rtol, atol
+    integer, intent(in) :: n_tr, ns
+    real(dp), intent(out) :: o(:)
+    integer, intent(out) :: st
+    real(dp) :: tp, t, th, v, ts(1), ths(1), vs(1)
+    integer :: k
+    o = nan_dp
+    if (.not. (p(5) > 0.0_dp)) then
+      st = ps_not_applicable; return
+    end if
+    tp = two_pi / p(5)
+    th = p(7); v = p(8); t = 0.0_dp; st = ps_decided
+    ts(1) = tp
+    do k = 1, n_tr + ns
+      ! time origin at k tp exactly: the drive phase is p(6) + Omega * (k-1) tp
+      call advance(p, tp * (k - 1), rtol, atol, ts, th, v, ths, vs, st)
+      if (st /= ps_decided) return
+      th = th - two_pi * anint(th / two_pi)   ! keep theta small; the force is 2 pi periodic
+      if (k > n_tr) then
+        o(2 * (k - n_tr) - 1) = th
+        if (th >= pi) o(2 * (k - n_tr) - 1) = th - two_pi
+        o(2 * (k - n_tr)) = v
+      end if
+    end do
+  end subroutine poincare
+
+  !> One adiabatic I-V branch: for each torque in turn, the mean velocity
+  !> after t_tr over t_avg, starting from the end state of the previous torque
+  !> (the first from theta0, v0 in params).  params(3) (tau) is overridden.
+  !> th, v: the end state (theta reduced to [-pi, pi]), to start another branch.
+  subroutine iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, vm, err, pstat, th, v)
+    integer, intent(in) :: ntau
+    real(dp), intent(in) :: params(np_params), taus(ntau), rtol, atol, t_tr, t_avg
+    real(dp), intent(out) :: vm(ntau), err(ntau), th, v
+    integer, intent(out) :: pstat(ntau)
+    real(dp) :: p(np_params)
+    integer :: k
+    p = params
+    th = p(7); v = p(8)
+    vm = nan_dp; err = nan_dp; pstat = ps_unsettled
+    do k = 1, ntau
+      ! a locked state follows its equilibrium (the limit of a slow ramp:
+      ! a sudden torque step would kick it over a shallow barrier)
+      if (k > 1 .and. abs(taus(k)) <= p(1)) then
+        if (vm(k - 1) == 0.0_dp .and. abs(p(3)) <= p(1)) then
+          th = asin(taus(k) / p(1)) + two_pi * anint((th - asin(p(3) / p(1))) / two_pi); v = 0.0_dp
+        end if
+      end if
+      p(3) = taus(k)
+      p(7) = th - two_pi * anint(th / two_pi); p(8) = v
+      call mean_velocity(p, rtol, atol, t_tr, t_avg, p(7), p(8), vm(k), err(k), th, v, pstat(k))
+      if (pstat(k) /= ps_decided) exit
+    end do
+    th = th - two_pi * anint(th / two_pi)
+  end subroutine iv_branch
+
+  !> A sweep scene (grid + measure) as CSV on unit u: one row per grid point
+  !> (poincare: per sample) with the axis values, the outputs and the status,
+  !> in the order of pendula.sweep (first axis slowest).  Blocks of points are
+  !> computed (OpenMP) and written as they finish, so memory stays bounded.
+  !> status: 0 ok, 2 bad scene for a sweep, 3 measure not implemented.
+  subroutine sweep_scene_csv(sc, u, status, msg)
+    type(scene_t), intent(in) :: sc
+    integer, intent(in) :: u
+    integer, intent(out) :: status
+    character(len=*), intent(out) :: msg
+    integer, parameter :: block = 4096
+    real(dp), allocatable :: ax(:, :), params(:, :), o(:, :)
+    integer, allocatable :: pst(:)
+    integer :: n(3), k, j, nout, measure, idx(3), ntot, done, nb, i, s
+    real(dp) :: base(np_params), t_tr, a, b, step
+    character(len=256) :: head
+    status = 0; msg = ''
+    select case (trim(sc%measure))
+    case ('final_well'); measure = ms_final_well
+    case ('mean_velocity'); measure = ms_mean_velocity
+    case ('locked'); measure = ms_locked
+    case ('poincare'); measure = ms_poincare
+    case ('lyapunov')
+      status = 3; msg = 'measure ''lyapunov'' is not implemented yet'; return
+    case default
+      status = 2; msg = 'field ''measure'' must name a measure for a sweep'; return
+    end select
+    n = 1
+    n(1:sc%n_grid) = sc%grid_n(1:sc%n_grid)
+    allocate(ax(maxval(n), 3))
+    ax = 0.0_dp
+    do k = 1, sc%n_grid
+      if (sc%grid_values(1, k) == sc%grid_values(1, k)) then
+        ax(1:n(k), k) = sc%grid_values(1:n(k), k)
+      else
+        ! as numpy.linspace: start + j * ((stop - start) / (count - 1)), the last one stop
+        a = sc%grid_range(1, k); b = sc%grid_range(2, k)
+        step = 0.0_dp
+        if (n(k) > 1) step = (b - a) / real(n(k) - 1, dp)
+        do j = 1, n(k)
+          ax(j, k) = real(j - 1, dp) * step + a
+        end do
+        if (n(k) > 1) ax(n(k), k) = b
+      end if
+    end do
+    base = [sc%eps, sc%damping, sc%torque, sc%drive_amplitude, sc%drive_frequency, sc%drive_phase, &
+            sc%theta0, sc%v0]
+    nout = 2
+    t_tr = sc%sweep_transient
+    if (measure == ms_poincare) then
+      if (.not. (sc%drive_frequency > 0.0_dp) .and. .not. any(sc%grid(1:sc%n_grid) == 'drive_frequency')) then
+        status = 2; msg = 'measure ''poincare'' needs a drive (drive_frequency > 0)'; return
+      end if
+      nout = 2 * sc%sweep_samples
+      t_tr = real(ceiling(sc%sweep_transient * sc%drive_frequency / two_pi - 1.0e-12_dp), dp)
+    end if
+    head = ''
+    do k = 1, sc%n_grid
+      head = trim(head) // trim(sc%grid(k)) // ','
+    end do
+    select case (measure)
+    case (ms_final_well); head = trim(head) // 'well,t_decided,status'
+    case (ms_locked); head = trim(head) // 'locked,t_decided,status'
+    case (ms_mean_velocity); head = trim(head) // 'mean_velocity,mean_velocity_err,status'
+    case (ms_poincare); head = trim(head) // 'sample,theta,v,status'
+    end select
+    write(u, '(a)') '# pendula-run sweep: measure = ' // trim(sc%measure) // &
+      '; status 0 decided, 1 not settled by sweep_t_max, 2 measure does not apply'
+    write(u, '(a)') trim(head)
+    ntot = n(1) * n(2) * n(3)
+    allocate(params(np_params, block), o(nout, block), pst(block))
+    done = 0
+    do while (done < ntot)
+      nb = min(block, ntot - done)
+      do i = 1, nb
+        call unflatten(done + i - 1, idx)
+        params(:, i) = base
+        do k = 1, sc%n_grid
+          params(slot(sc%grid(k)), i) = ax(idx(k), k)
+        end do
+      end do
+      call sweep_points(measure, nb, params(:, 1:nb), sc%rtol, sc%atol, t_tr, sc%sweep_t_max, nout, &
+                        o(:, 1:nb), pst(1:nb), 0)
+      do i = 1, nb
+        call unflatten(done + i - 1, idx)
+        if (measure == ms_poincare) then
+          do s = 1, nout / 2
+            write(u, '(*(es24.16e3, :, ","))', advance='no') (ax(idx(k), k), k = 1, sc%n_grid)
+            write(u, '(",", i0, 2(",", es24.16e3), ",", i0)') s - 1, o(2 * s - 1, i), o(2 * s, i), pst(i)
+          end do
+        else
+          write(u, '(*(es24.16e3, :, ","))', advance='no') (ax(idx(k), k), k = 1, sc%n_grid)
+          write(u, '(2(",", es24.16e3), ",", i0)') o(1, i), o(2, i), pst(i)
+        end if
+      end do
+      done = done + nb
+    end do
+
+  contains
+
+    !> flat index (0-based, first axis slowest) -> 1-based axis indices
+    subroutine unflatten(f, id)
+      integer, intent(in) :: f
+      integer, intent(out) :: id(3)
+      id(3) = mod(f, n(3)) + 1
+      id(2) = mod(f / n(3), n(2)) + 1
+      id(1) = f / (n(3) * n(2)) + 1
+    end subroutine unflatten
+
+    pure integer function slot(name)
+      character(len=*), intent(in) :: name
+      select case (trim(name))
+      case ('eps'); slot = 1
+      case ('damping'); slot = 2
+      case ('torque'); slot = 3
+      case ('drive_amplitude'); slot = 4
+      case ('drive_frequency'); slot = 5
+      case ('drive_phase'); slot = 6
+      case ('theta0'); slot = 7
+      case default; slot = 8
+      end select
+    end function slot
+
+  end subroutine sweep_scene_csv
+
+end module pendula_sweep

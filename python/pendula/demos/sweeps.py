@@ -1,0 +1,177 @@
+"""Sweep gallery (issue 14): basins of the damped pendulum with the
+energy-balance prediction, the seed's section 8.2 (wells against torque), the
+I-V loop of the RCSJ junction with its retrapping torque, and the bifurcation
+diagram of the driven damped pendulum.  ``run(out, small=True)`` is what
+``pendula demo`` calls; the full-size scenes are data/scenes/sweeps/*.nml."""
+
+from __future__ import annotations
+
+import math
+import pathlib
+
+import numpy as np
+
+from ..elliptic import ellipe
+from ..scene import Scene
+from ..sweeps import iv_curve, plot_sweep, sweep
+
+#: seed (Suzuki & Suzuki, section 8.2): v0 -> the wells n (theta ~ 2 pi n) the text lists
+SEED_8_2 = {2.01: {0, 1}, 2.05: {0, 1, 2}, 2.10: {0, 1, 3}, 2.14: {0, 1, 2, 3}, 2.27: {0, 1, 2, 4},
+            2.40: {0, 1, 2, 3, 4}, 2.60: {0, 1, 2, 3, 5}, 2.80: {0, 1, 2, 3, 4, 5},
+            2.95: {0, 1, 2, 3, 4, 6}, 3.15: {0, 1, 2, 3, 4, 5, 6}}
+
+
+def energy_balance_well(v0, beta, eps=1.0):
+    """Predicted final well from theta0 = 0: energy lost per half turn
+    beta * integral of v dtheta along the conservative orbit of the current
+    energy, 2 sqrt(2E) E(2 eps / E) (8 beta sqrt(eps) per turn on the separatrix)."""
+    v0, beta = np.broadcast_arrays(np.asarray(v0, float), np.asarray(beta, float))
+    n = np.zeros(v0.shape)
+    e = 0.5 * v0**2
+    alive = e > 2 * eps
+    half = True
+    for _ in range(400):
+        if not alive.any():
+            break
+        m = np.where(alive, 2 * eps / np.maximum(e, 2 * eps), 0.5)
+        ihalf = 2 * np.sqrt(2 * np.maximum(e, 0)) * ellipe(m)
+        e = np.where(alive, e - beta * (ihalf if half else 2 * ihalf), e)
+        passed = alive & (e > 2 * eps)
+        n = n + passed
+        alive = passed
+        half = False
+    return n
+
+
+def _basins(out, small):
+    nv, nb = (80, 50) if small else (1000, 1000)
+    s = Scene(damping=0.1, grid=("v0", "damping"), grid1_range=(0.0, 4.0, nv), grid2_range=(0.02, 0.3, nb),
+              measure="final_well", rtol=1e-8, atol=1e-10)
+    ds = sweep(s)
+    pred = energy_balance_well(ds.v0.values[:, None], ds.damping.values[None, :])
+    ok = ds.status.values == 0
+    dis = float(np.mean(pred[ok] != ds.well.values[ok]))
+    png = plot_sweep(ds, out / "sweep_basins_v0_beta.png")
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    w = ds.well.values
+    hi = int(np.nanmax(w))
+    im = ax.imshow(w.T, origin="lower", aspect="auto", cmap=plt.get_cmap("tab20", hi + 1), vmin=-0.5,
+                   vmax=hi + 0.5, extent=[0, 4, 0.02, 0.3], interpolation="nearest")
+    ax.contour(ds.v0.values, ds.damping.values, pred.T, levels=np.arange(0.5, hi + 1), colors="k",
+               linewidths=0.8)
+    fig.colorbar(im, ax=ax, label="final well n")
+    ax.set_xlabel("v0"); ax.set_ylabel("damping beta")
+    ax.set_title(f"final well; black: energy balance (disagrees at {100 * dis:.1f} % of points)")
+    fig.tight_layout(); fig.savefig(out / "sweep_basins_energy_balance.png", dpi=120); plt.close(fig)
+    s2 = Scene(damping=0.1, grid=("theta0", "v0"), grid1_range=(-math.pi, math.pi, nv // 2),
+               grid2_range=(-4.0, 4.0, nb), measure="final_well", rtol=1e-8, atol=1e-10)
+    ds2 = sweep(s2)
+    plot_sweep(ds2, out / "sweep_basins_theta0_v0.png")
+    return {"points": int(ds.status.size), "decided": float(np.mean(ok)),
+            "uncertain": int(np.sum(ds.status.values == 4)), "energy_balance_disagreement": dis, "png": png}
+
+
+def _seed_8_2(out, t_max=300.0):
+    v0s = sorted(SEED_8_2)
+    taus = np.round(np.arange(-0.01, 0.4001, 0.01), 10)
+    s = Scene(damping=0.16)
+    ds = sweep(s, over={"v0": v0s, "torque": taus}, measure="final_well", t_max=t_max)
+    lk = sweep(s, over={"v0": v0s, "torque": taus}, measure="locked", t_max=t_max)
+    rows = []
+    for i, v in enumerate(v0s):
+        st = ds.status.values[i]
+        got = {int(x) for x in ds.well.values[i][st == 0]}
+        run = taus[lk.locked.values[i] == 0]
+        rows.append((v, sorted(got), sorted(SEED_8_2[v]), float(run.min()) if run.size else math.nan))
+    with open(out / "sweep_seed_8_2.csv", "w") as f:
+        f.write("v0,wells_pendula,wells_seed,first_running_tau\n")
+        for v, g, sd, r in rows:
+            f.write(f"{v},{' '.join(map(str, g))},{' '.join(map(str, sd))},{r}\n")
+    return rows
+
+
+def _seed_8_2_1():
+    """Seed 8.2.1: beta = 0.16, v0 = 0.2, tau = 0 ... 0.8: where locking gives way to
+    running, and the resting angle of locked orbits (single simulate runs) against asin(tau)."""
+    from ..motion import simulate
+    taus = np.round(np.arange(0.0, 0.8001, 0.01), 10)
+    s = Scene(damping=0.16, v0=0.2)
+    lk = sweep(s, over={"torque": taus}, measure="locked", t_max=500.0)
+    locked = lk.locked.values == 1
+    dev = max(abs(simulate(s.replace(torque=float(t), t_end=300.0, n_samples=2)).theta[-1] - math.asin(t))
+              for t in taus[locked][::10])
+    return {"last_locked": float(taus[locked].max()), "first_running": float(taus[lk.locked.values == 0].min()),
+            "theta_s_vs_asin_tau": float(dev)}
+
+
+def _iv(out):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    taus = np.round(np.arange(0.0, 1.3001, 0.01), 10)
+    r = iv_curve(Scene(damping=0.1), taus, "both", transient=100.0, t_avg=200.0)
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4.5))
+    a1.plot(r["up"][0], r["up"][1], ".-", label="up")
+    a1.plot(r["down"][0], r["down"][1], ".-", label="down")
+    a1.set_xlabel("torque tau (current)"); a1.set_ylabel("<v> (voltage)"); a1.legend()
+    a1.set_title("RCSJ I-V loop, beta = 0.1, eps = 1")
+    betas = np.array([0.02, 0.04, 0.08, 0.16, 0.3])
+    tr = []
+    for b in betas:
+        t2 = np.round(np.arange(0.0, 1.0, 0.005), 10)   # run downwards from 0.995
+        # a transient of several damping times 1/beta
+        rr = iv_curve(Scene(damping=b, v0=1.0 / b), t2, "down", transient=max(60.0, 6.0 / b), t_avg=120.0)["down"]
+        running = rr[0][rr[1] > 0]
+        tr.append(running.min() if running.size else math.nan)
+    tr = np.array(tr)
+    a2.plot(betas, tr, "o", label="pendula (retrapping torque)")
+    bb = np.linspace(0, 0.32, 50)
+    a2.plot(bb, 4 * bb / math.pi, "-", label="Stewart-McCumber 4 beta / pi")
+    a2.set_xlabel("beta"); a2.set_ylabel("tau_r"); a2.legend()
+    fig.tight_layout(); fig.savefig(out / "sweep_iv_loop.png", dpi=120); plt.close(fig)
+    up = r["up"]
+    switch = float(up[0][up[1] > 0].min())
+    return {"switch_up": switch, "retrap": dict(zip(betas.tolist(), tr.tolist()))}
+
+
+def _bifurcation(out, small):
+    na, ns = (61, 32) if small else (601, 128)
+    s = Scene(damping=0.5, drive_frequency=2.0 / 3.0, drive_amplitude=1.0,
+              grid=("drive_amplitude",), grid1_range=(0.9, 1.5, na), measure="poincare",
+              sweep_transient=300.0 * 2 * math.pi / (2 / 3), sweep_samples=ns, rtol=1e-9, atol=1e-11)
+    ds = sweep(s)
+    plot_sweep(ds, out / "sweep_bifurcation.png")
+    counts = []
+    for k in range(na):
+        th = np.sort(ds.theta.values[k])
+        counts.append(1 + int(np.sum(np.diff(th) > 1e-4)))
+    counts = np.array(counts)
+    amps = ds.drive_amplitude.values
+    doubling = [(float(amps[k]), int(counts[k]), int(counts[k + 1])) for k in range(na - 1)
+                if counts[k] in (1, 2, 4) and counts[k + 1] == 2 * counts[k]]
+    return {"amplitudes": amps, "period": counts, "doublings": doubling}
+
+
+def run(out, small: bool = True, quiet: bool = False) -> dict:
+    """Run the sweep gallery into folder ``out``; returns the measured figures."""
+    out = pathlib.Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    res = {"basins": _basins(out, small), "seed_8_2": _seed_8_2(out), "seed_8_2_1": _seed_8_2_1(), "iv": _iv(out),
+           "bifurcation": _bifurcation(out, small)}
+    if not quiet:
+        b = res["basins"]
+        print(f"sweeps: basin map {b['points']} points, {100 * b['decided']:.1f} % decided, "
+              f"{b['uncertain']} uncertain; energy balance disagrees at {100 * b['energy_balance_disagreement']:.1f} %")
+        for v, g, sd, r in res["seed_8_2"]:
+            flag = "" if set(g) == set(sd) else "  <- differs from the seed"
+            print(f"  seed 8.2 v0 = {v:4.2f}: wells {g} (seed {sd}); running from tau = {r}{flag}")
+        r1 = res["seed_8_2_1"]
+        print(f"  seed 8.2.1 (v0 = 0.2): locked up to tau = {r1['last_locked']}, running from {r1['first_running']}; "
+              f"resting angle - asin(tau) <= {r1['theta_s_vs_asin_tau']:.1e}")
+        print(f"  I-V: switches to running at tau = {res['iv']['switch_up']}; retrapping "
+              + ", ".join(f"beta {k}: {v:.3f} (4b/pi {4 * k / math.pi:.3f})" for k, v in res["iv"]["retrap"].items()))
+        print(f"  driven pendulum: period doublings (A, p -> 2p) {res['bifurcation']['doublings']}")
+    return res

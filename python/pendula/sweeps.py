@@ -1,0 +1,481 @@
+"""Sweeps: one scene, a grid over one to three of its fields, and a measure.
+
+Every grid point answers one question (the *measure*); the compiled kernel
+runs a block of points per call on OpenMP threads, with no Python per point,
+and each point stops as soon as its answer is decided.
+
+Measures
+--------
+``final_well``
+    The well n (angle asin(tau/eps) + 2 pi n) where an undriven damped orbit
+    ends.  Decided when the energy v^2/2 - eps cos(theta) - tau theta (which
+    can only fall) is below the lower barrier around the current well.  Points
+    not trapped by ``t_max`` are NaN with status 1 ("not settled").
+``mean_velocity``
+    <v> over ``t_max`` after a transient ``transient`` (the junction's voltage),
+    and ``mean_velocity_err`` = |<v> - <v> over the second half|.  An undriven
+    damped orbit that gets trapped has <v> = 0 exactly, decided at once.
+``locked``
+    1 when the orbit spirals into an equilibrium, 0 when it runs (an open
+    orbit over a further window, after ``t_max``), status 1 when undecided.
+``poincare``
+    ``samples`` stroboscopic (theta in [-pi, pi), v) once per drive period
+    after ``ceil(transient / T)`` periods.
+``lyapunov``
+    Not implemented (raises NotImplementedError).
+
+Scale: the grid is cut into chunks along its first axis; each chunk goes to
+``out/chunks/`` as a NetCDF file written atomically (temporary name, then
+rename) as soon as it is done, so a run killed and started again with the same
+``out`` recomputes only missing chunks and gives the same dataset bit for bit.
+A Dask distributed ``client`` spreads the chunks over its workers.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+import pathlib
+import time
+
+import numpy as np
+
+from .scene import GRIDDABLE, MEASURES, Scene, SceneError
+
+__all__ = ["sweep", "iv_curve", "grid_of", "MEASURE_CODES"]
+
+#: kernel codes of the measures (kernel/sweep/pendula_sweep.f90)
+MEASURE_CODES = {"final_well": 1, "mean_velocity": 2, "locked": 3, "poincare": 4}
+#: point status codes
+STATUS = {0: "decided", 1: "not settled / undecided by the limit", 2: "measure does not apply",
+          3: "bad measure", 4: "uncertain: the answer changes with the tolerance"}
+_PARAM_ORDER = ("eps", "damping", "torque", "drive_amplitude", "drive_frequency", "drive_phase", "theta0", "v0")
+
+
+def grid_of(scene: Scene) -> dict:
+    """The grid a scene names (``grid``, ``gridK`` or ``gridK_range``) as {field: values}."""
+    over = {}
+    for k, name in enumerate(scene.grid, start=1):
+        vals = getattr(scene, f"grid{k}")
+        if vals:
+            over[name] = np.asarray(vals, dtype=float)
+        else:
+            a, b, n = getattr(scene, f"grid{k}_range")
+            over[name] = np.linspace(a, b, int(n))
+    return over
+
+
+def _check_over(scene: Scene, over) -> dict:
+    if not isinstance(over, dict) or not 1 <= len(over) <= 3:
+        raise ValueError("parameter 'over' must be a dict of 1 to 3 {field: values}")
+    out = {}
+    for name, vals in over.items():
+        if name not in GRIDDABLE:
+            raise ValueError(f"parameter 'over': cannot sweep {name!r}; one of {', '.join(GRIDDABLE)}")
+        a = np.atleast_1d(np.asarray(vals, dtype=float))
+        if a.ndim != 1 or a.size == 0 or not np.all(np.isfinite(a)):
+            raise ValueError(f"parameter 'over[{name!r}]' must be a non-empty 1-D list of finite numbers")
+        # each value must make a valid scene (damping >= 0, eps > 0 ...)
+        for v in (a.min(), a.max()):
+            try:
+                scene.replace(**{name: float(v)})
+            except SceneError as exc:
+                raise ValueError(f"parameter 'over[{name!r}]': {exc}") from None
+        out[name] = a
+    return out
+
+
+class _Plan:
+    """Everything that defines a sweep's result (and nothing about how it runs)."""
+
+    def __init__(self, scene, over, measure, rtol, atol, t_max, transient, samples, chunk_points):
+        self.scene = scene
+        self.over = over
+        self.measure = measure
+        self.rtol, self.atol = rtol, atol
+        self.t_max, self.transient, self.samples = t_max, transient, samples
+        self.shape = tuple(len(v) for v in over.values())
+        inner = int(np.prod(self.shape[1:], dtype=np.int64))
+        self.rows = max(1, chunk_points // max(inner, 1))
+        self.nchunks = -(-self.shape[0] // self.rows)
+        if measure == "poincare":
+            self.nout = 2 * samples
+            self.t_tr = float(math.ceil(transient * scene.drive_frequency / (2 * math.pi) - 1e-12))
+        else:
+            self.nout = 2
+            self.t_tr = transient
+
+    def key(self) -> dict:
+        return {"scene": self.scene.to_namelist(), "measure": self.measure,
+                "over": {k: v.tolist() for k, v in self.over.items()},
+                "rtol": self.rtol, "atol": self.atol, "t_max": self.t_max, "transient": self.transient,
+                "samples": self.samples, "rows": self.rows}
+
+    def params(self, i: int) -> np.ndarray:
+        """The kernel's (8, npts) parameter block of chunk i."""
+        names = list(self.over)
+        lo, hi = i * self.rows, min((i + 1) * self.rows, self.shape[0])
+        axes = [self.over[names[0]][lo:hi]] + [self.over[n] for n in names[1:]]
+        mesh = np.meshgrid(*axes, indexing="ij")
+        npts = mesh[0].size
+        p = np.empty((8, npts), order="F")
+        for j, f in enumerate(_PARAM_ORDER):
+            p[j] = getattr(self.scene, f)
+        for n, m in zip(names, mesh):
+            p[_PARAM_ORDER.index(n)] = m.ravel()
+        return p, (hi - lo,) + self.shape[1:]
+
+
+def _compute_chunk(plan: _Plan, i: int, threads: int):
+    from . import _kernel
+    p, shape = plan.params(i)
+    code = MEASURE_CODES[plan.measure]
+    out, st = _kernel.sweep_block(code, p, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout, int(threads))
+    out = out.T.reshape(shape + (plan.nout,))
+    st = st.reshape(shape)
+    if plan.measure in ("final_well", "locked"):
+        # Points on a basin boundary (a grid neighbour in this chunk answers
+        # differently) are computed again at 1000 times tighter tolerances;
+        # where the answer changes, it is not known: NaN and status 4.
+        ans = np.where(st == 0, out[..., 0], -1e300)
+        edge = np.zeros(shape, dtype=bool)
+        for ax in range(len(shape)):
+            d = np.diff(ans, axis=ax) != 0
+            lo = [slice(None)] * len(shape); hi = [slice(None)] * len(shape)
+            lo[ax] = slice(0, -1); hi[ax] = slice(1, None)
+            edge[tuple(lo)] |= d
+            edge[tuple(hi)] |= d
+        idx = np.flatnonzero(edge.ravel())
+        if idx.size:
+            p2 = np.asfortranarray(p[:, idx])
+            o2, s2 = _kernel.sweep_block(code, p2, plan.rtol * 1e-3, plan.atol * 1e-3, plan.t_tr, plan.t_max,
+                                         plan.nout, int(threads))
+            flat_o = out.reshape(-1, plan.nout)
+            flat_s = st.reshape(-1)
+            a1 = np.where(flat_s[idx] == 0, flat_o[idx, 0], -1e300)
+            a2 = np.where(s2 == 0, o2[0], -1e300)
+            bad = idx[a1 != a2]
+            flat_o[bad, 0] = np.nan
+            flat_s[bad] = 4
+    return i, out, st
+
+
+def _chunk_dataset(plan: _Plan, i: int, out: np.ndarray, st: np.ndarray):
+    import xarray as xr
+    names = list(plan.over)
+    lo = i * plan.rows
+    coords = {names[0]: plan.over[names[0]][lo:lo + out.shape[0]]}
+    coords.update({n: plan.over[n] for n in names[1:]})
+    dims = tuple(names)
+    data = {"status": (dims, st.astype(np.int32))}
+    if plan.measure == "final_well":
+        data["well"] = (dims, out[..., 0])
+        data["t_decided"] = (dims, out[..., 1])
+    elif plan.measure == "locked":
+        data["locked"] = (dims, out[..., 0])
+        data["t_decided"] = (dims, out[..., 1])
+    elif plan.measure == "mean_velocity":
+        data["mean_velocity"] = (dims, out[..., 0])
+        data["mean_velocity_err"] = (dims, out[..., 1])
+    elif plan.measure == "poincare":
+        data["theta"] = (dims + ("sample",), out[..., 0::2])
+        data["v"] = (dims + ("sample",), out[..., 1::2])
+        coords["sample"] = np.arange(plan.samples)
+    return xr.Dataset(data, coords=coords)
+
+
+def _write_atomic(ds, path: pathlib.Path) -> None:
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    ds.to_netcdf(tmp, engine="scipy")
+    os.replace(tmp, path)   # atomic on POSIX: a chunk file is whole or absent
+
+
+def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, transient=None,
+          samples=None, out=None, chunk_points=20000, client=None, threads=0, progress=False):
+    """Evaluate a measure over a grid of one scene's fields.
+
+    Parameters
+    ----------
+    scene : Scene or str or path
+        The base scene (a Scene, or a namelist file).
+    over : dict, optional
+        {field: values} for 1 to 3 axes (fields: v0, theta0, eps, damping,
+        torque, drive_amplitude, drive_frequency, drive_phase).  Default: the
+        scene's own grid (``grid``, ``grid1`` ... fields).
+    measure : str, optional
+        'final_well', 'mean_velocity', 'locked', 'poincare' ('lyapunov' is not
+        implemented).  Default: the scene's ``measure``.
+    rtol, atol : float, optional
+        DOP853 tolerances (default: the scene's).
+    t_max : float, optional
+        final_well/locked: the limit; mean_velocity: the averaging time.
+        Default: the scene's ``sweep_t_max``.
+    transient : float, optional
+        Time skipped before averaging or sampling (default ``sweep_transient``).
+    samples : int, optional
+        Poincare samples per point (default ``sweep_samples``).
+    out : str or path, optional
+        Folder for the chunks (and resume).  Without it everything stays in memory.
+    chunk_points : int
+        Points per chunk (whole rows of the first axis).
+    client : dask.distributed.Client, optional
+        Spread chunks over its workers.
+    threads : int
+        OpenMP threads per chunk (0: OMP_NUM_THREADS or all cores).
+    progress : bool
+        Show a tqdm bar of chunks done and the time left.
+
+    Returns
+    -------
+    xarray.Dataset
+        Lazy (dask-backed, read from the chunk files) when ``out`` is given
+        and there is more than one chunk.  Coordinates = the axes; variables per measure plus ``status``
+        (0 decided, 1 not settled by the limit, 2 measure does not apply,
+        4 uncertain: a basin-boundary point whose answer changed when computed
+        again at 1000 times tighter tolerances);
+        the scene and options as attributes.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> s = pendula.Scene(damping=0.04)
+    >>> ds = pendula.sweep(s, over={"v0": [1.0, 2.3, 3.0]}, measure="final_well")
+    >>> ds.well.values.tolist()
+    [0.0, 2.0, 5.0]
+    """
+    import xarray as xr
+
+    if not isinstance(scene, Scene):
+        scene = Scene.from_file(scene)
+    measure = measure or scene.measure
+    if measure not in MEASURES:
+        raise ValueError(f"parameter 'measure' must be one of {', '.join(MEASURES)}; got {measure!r}")
+    if measure == "lyapunov":
+        raise NotImplementedError("measure 'lyapunov' (variational equations with Benettin "
+                                  "renormalisation) is not implemented yet")
+    over = grid_of(scene) if over is None else over
+    over = _check_over(scene, over)
+    rtol = scene.rtol if rtol is None else float(rtol)
+    atol = scene.atol if atol is None else float(atol)
+    if not (rtol > 0 and atol >= 0):
+        raise ValueError("parameters 'rtol' must be > 0 and 'atol' >= 0")
+    t_max = scene.sweep_t_max if t_max is None else float(t_max)
+    transient = scene.sweep_transient if transient is None else float(transient)
+    samples = scene.sweep_samples if samples is None else int(samples)
+    if not (t_max > 0 and math.isfinite(t_max)):
+        raise ValueError(f"parameter 't_max' must be positive and finite, got {t_max!r}")
+    if not (transient >= 0 and math.isfinite(transient)):
+        raise ValueError(f"parameter 'transient' must be >= 0 and finite, got {transient!r}")
+    if samples < 1:
+        raise ValueError(f"parameter 'samples' must be >= 1, got {samples!r}")
+    if not (isinstance(chunk_points, (int, np.integer)) and chunk_points >= 1):
+        raise ValueError(f"parameter 'chunk_points' must be a positive integer, got {chunk_points!r}")
+    if measure == "poincare" and not scene.drive_frequency > 0 and "drive_frequency" not in over:
+        raise ValueError("measure 'poincare' needs a drive (drive_frequency > 0)")
+    plan = _Plan(scene, over, measure, rtol, atol, t_max, transient, samples, int(chunk_points))
+
+    chunks: dict[int, object] = {}
+    folder = None
+    if out is not None:
+        folder = pathlib.Path(out) / "chunks"
+        folder.mkdir(parents=True, exist_ok=True)
+        manifest = folder.parent / "sweep.json"
+        key = json.dumps(plan.key(), sort_keys=True)
+        if manifest.exists():
+            if manifest.read_text() != key:
+                raise ValueError(f"parameter 'out': {out} holds a different sweep; use another folder")
+        else:
+            tmp = manifest.with_name(".sweep.json.tmp")
+            tmp.write_text(key)
+            os.replace(tmp, manifest)
+    if folder is not None:
+        # a run killed while writing leaves a partial temporary file: never a chunk, removed here
+        for stale in folder.glob(".chunk_*.tmp"):
+            stale.unlink(missing_ok=True)
+    todo = []
+    for i in range(plan.nchunks):
+        f = folder / f"chunk_{i:06d}.nc" if folder else None
+        if f is not None and f.exists():
+            chunks[i] = f
+        else:
+            todo.append(i)
+
+    bar = None
+    if progress:
+        from tqdm.auto import tqdm
+        bar = tqdm(total=plan.nchunks, initial=plan.nchunks - len(todo), unit="chunk", desc=f"sweep {measure}")
+
+    def done(i, o, st):
+        ds = _chunk_dataset(plan, i, o, st)
+        if folder is not None:
+            _write_atomic(ds, folder / f"chunk_{i:06d}.nc")
+            chunks[i] = folder / f"chunk_{i:06d}.nc"
+        else:
+            chunks[i] = ds
+        if bar is not None:
+            bar.update(1)
+
+    try:
+        if client is not None:
+            from dask.distributed import as_completed
+            futs = [client.submit(_compute_chunk, plan, i, threads, pure=False) for i in todo]
+            for fut in as_completed(futs):
+                done(*fut.result())
+        else:
+            for i in todo:
+                done(*_compute_chunk(plan, i, threads))
+    finally:
+        if bar is not None:
+            bar.close()
+
+    if folder is not None and plan.nchunks > 1:
+        # lazily (dask): the grid is never held in memory at once; writing it
+        # (to_netcdf) streams chunk by chunk
+        ds = xr.open_mfdataset([chunks[i] for i in range(plan.nchunks)], combine="nested",
+                               concat_dim=list(over)[0], engine="scipy", data_vars="all",
+                               coords="different", compat="equals", join="outer")
+    else:
+        parts = []
+        for i in range(plan.nchunks):
+            c = chunks[i]
+            if isinstance(c, pathlib.Path):
+                with xr.open_dataset(c, engine="scipy") as d:
+                    c = d.load()
+            parts.append(c)
+        ds = xr.concat(parts, dim=list(over)[0]) if len(parts) > 1 else parts[0]
+    ds.attrs.update({"scene": scene.to_namelist(), "measure": measure, "rtol": rtol, "atol": atol,
+                     "t_max": t_max, "transient": transient, "samples": samples,
+                     "status_codes": json.dumps(STATUS)})
+    if plan.measure == "final_well" or plan.measure == "locked":
+        ds.attrs["fraction_decided"] = float((ds.status == 0).mean())
+    return ds
+
+
+def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, rtol=None, atol=None):
+    """The I-V curve of the constant-torque pendulum (RCSJ junction), adiabatically.
+
+    Each torque starts from the end state of the previous one (the first from
+    the scene's theta0, v0), so the up and down branches show the hysteresis.
+
+    Parameters
+    ----------
+    scene : Scene
+        Gives eps, damping (> 0) and the start state; its torque is ignored.
+    torques : array_like
+        Torque values, ascending; 'down' runs them in reverse.
+    direction : {'up', 'down', 'both'}
+    transient, t_avg : float
+        Time skipped, then time averaged, at each torque.
+
+    Returns
+    -------
+    dict
+        {'up': (tau, <v>, err, status), 'down': (...)} for the branches asked.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> r = pendula.iv_curve(pendula.Scene(damping=0.2), [0.5, 1.1], "up", transient=50, t_avg=100)
+    >>> float(r["up"][1][0])                          # locked below tau = eps: no voltage
+    0.0
+    >>> bool(abs(r["up"][1][1] - 1.1 / 0.2) < 0.01)   # running: close to the ohmic line tau / beta
+    True
+    """
+    from . import _kernel
+    if not isinstance(scene, Scene):
+        raise TypeError("parameter 'scene' must be a pendula.Scene")
+    if direction not in ("up", "down", "both"):
+        raise ValueError(f"parameter 'direction' must be 'up', 'down' or 'both'; got {direction!r}")
+    tau = np.asarray(torques, dtype=float)
+    if tau.ndim != 1 or tau.size == 0 or not np.all(np.isfinite(tau)):
+        raise ValueError("parameter 'torques' must be a non-empty 1-D list of finite numbers")
+    if not (transient >= 0 and t_avg > 0):
+        raise ValueError("parameters 'transient' must be >= 0 and 't_avg' > 0")
+    rtol = scene.rtol if rtol is None else float(rtol)
+    atol = scene.atol if atol is None else float(atol)
+    p = np.array([getattr(scene, f) for f in _PARAM_ORDER], dtype=float)
+    res = {}
+    if direction in ("up", "both"):
+        vm, err, st, th_end, v_end = _kernel.sweep_iv_branch(p, tau, rtol, atol, float(transient), float(t_avg))
+        res["up"] = (tau, vm, err, st)
+    if direction in ("down", "both"):
+        td = tau[::-1].copy()
+        if direction == "both":
+            # the down branch starts where the up branch ended
+            p = p.copy()
+            p[6], p[7] = th_end, v_end
+        vm, err, st, _, _ = _kernel.sweep_iv_branch(p, td, rtol, atol, float(transient), float(t_avg))
+        res["down"] = (td, vm, err, st)
+    return res
+
+
+def plot_sweep(ds, path) -> pathlib.Path:
+    """A figure of a sweep: a map (2 axes; discrete colours for wells), a curve
+    (1 axis), or a bifurcation diagram (poincare over 1 axis)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    path = pathlib.Path(path)
+    measure = ds.attrs["measure"]
+    dims = [d for d in ds.dims if d != "sample"]
+    var = {"final_well": "well", "locked": "locked", "mean_velocity": "mean_velocity", "poincare": "theta"}[measure]
+    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    if measure == "poincare":
+        x = np.repeat(ds[dims[0]].values, ds.sizes["sample"])
+        th = ds.theta.values.reshape(-1) if len(dims) == 1 else ds.theta.isel({d: 0 for d in dims[1:]}).values.ravel()
+        ax.plot(x, th, ".k", markersize=1.5, alpha=0.6)
+        ax.set_xlabel(dims[0]); ax.set_ylabel("stroboscopic theta (mod 2 pi)")
+    elif len(dims) == 1:
+        ax.plot(ds[dims[0]].values, ds[var].values, ".-")
+        ax.set_xlabel(dims[0]); ax.set_ylabel(var)
+    else:
+        z = ds[var]
+        if len(dims) > 2:
+            z = z.isel({d: 0 for d in dims[2:]})
+        z = z.transpose(dims[0], dims[1]).values
+        x, y = ds[dims[0]].values, ds[dims[1]].values
+        if measure in ("final_well", "locked"):
+            lo, hi = np.nanmin(z), np.nanmax(z)
+            lo, hi = (0, 1) if not np.isfinite(lo) else (int(lo), int(hi))
+            cmap = plt.get_cmap("tab20", hi - lo + 1)
+            im = ax.imshow(z.T, origin="lower", aspect="auto", cmap=cmap, vmin=lo - 0.5, vmax=hi + 0.5,
+                           extent=[x[0], x[-1], y[0], y[-1]], interpolation="nearest")
+            fig.colorbar(im, ax=ax, ticks=range(lo, hi + 1), label=var)
+        else:
+            im = ax.imshow(z.T, origin="lower", aspect="auto", extent=[x[0], x[-1], y[0], y[-1]])
+            fig.colorbar(im, ax=ax, label=var)
+        ax.set_xlabel(dims[0]); ax.set_ylabel(dims[1])
+    ax.set_title(f"pendula sweep: {measure}")
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
+def cli_main(args) -> int:
+    """``pendula sweep SCENE.nml -o OUT``: the dataset (OUT/sweep.nc) and its figure (OUT/sweep.png)."""
+    import sys
+    try:
+        scene = Scene.from_file(args.scene)
+        if not scene.grid:
+            raise SceneError(f"{args.scene}: field 'grid' is empty: a sweep scene names 1 to 3 axes")
+        client = None
+        if args.workers:
+            from dask.distributed import Client, LocalCluster
+            client = Client(LocalCluster(n_workers=args.workers, threads_per_worker=1))
+        ds = sweep(scene, out=args.output, chunk_points=args.chunk_points, client=client,
+                   threads=args.threads, progress=not args.quiet)
+    except (SceneError, ValueError) as exc:
+        print(f"pendula sweep: {exc}", file=sys.stderr)
+        return 2
+    out = pathlib.Path(args.output)
+    tmp = out / ".sweep.nc.tmp"
+    ds.to_netcdf(tmp, engine="scipy")
+    os.replace(tmp, out / "sweep.nc")
+    png = plot_sweep(ds, out / "sweep.png")
+    st = ds.status.values
+    print(f"pendula sweep: {st.size} points, {np.mean(st == 0) * 100:.1f} % decided -> {out / 'sweep.nc'}, {png}")
+    return 0
