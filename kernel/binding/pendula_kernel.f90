@@ -222,6 +222,9 @@ subroutine spectra_v(handle, n, nsig, signals, dt, window, nh, omega, power, sta
   integer, intent(out) :: status
   !f2py intent(hide), depend(signals) :: n = shape(signals, 0)
   !f2py intent(hide), depend(signals) :: nsig = shape(signals, 1)
+  !f2py threadsafe
+  ! threadsafe: f2py releases the GIL around the call (the kernel touches no
+  ! Python object; the plan is kept alive by the caller while in use).
   if (nh /= n / 2 + 1) then
     status = 4
     return

@@ -66,7 +66,7 @@ contains
     real(c_double), pointer :: buf(:)
     complex(c_double_complex), pointer :: spec(:)
     real(dp), allocatable :: w(:)
-    real(dp) :: wsum
+    real(dp) :: wsum, scale
     integer :: n, nh, j, k
 
     n = size(signals, 1)
@@ -91,9 +91,12 @@ contains
     else
       wsum = real(n, dp)
     end if
+    scale = 4.0_dp / (wsum * wsum)
     pin = fftw_alloc_real(int(n, c_size_t))
     pout = fftw_alloc_complex(int(nh, c_size_t))
     if (.not. c_associated(pin) .or. .not. c_associated(pout)) then
+      if (c_associated(pin)) call fftw_free(pin)
+      if (c_associated(pout)) call fftw_free(pout)
       status = spec_no_memory; return
     end if
     call c_f_pointer(pin, buf, [n])
@@ -108,8 +111,10 @@ contains
         buf = signals(:, j) * w
       end if
       call fftw_execute_dft_r2c(plan, buf, spec)
-      ! |A|^2 from the real and imaginary parts (no hypot)
-      power(:, j) = (4.0_dp / (wsum * wsum)) * (real(spec, dp)**2 + aimag(spec)**2)
+      ! |A|^2 from the real and imaginary parts (no hypot), one pass
+      do k = 1, nh
+        power(k, j) = scale * (real(spec(k), dp)**2 + aimag(spec(k))**2)
+      end do
       power(1, j) = 0.25_dp * power(1, j)
       if (mod(n, 2) == 0) power(nh, j) = 0.25_dp * power(nh, j)
     end do

@@ -9,9 +9,12 @@ theta = w t + 4 sum_n q^n / (n (1 + q^(2n))) sin(n w t) has all of them.
 from __future__ import annotations
 
 import atexit
+import collections
+import contextlib
 import functools
 import math
 import threading
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -23,33 +26,62 @@ __all__ = ["Spectrum", "spectrum", "spectra", "fourier_series", "odd_harmonics_a
 
 _WINDOWS = {None: 0, "none": 0, "hann": 1}
 
-# FFTW plans by (length, measured): made once, kept for the process.  FFTW's
-# planner is not thread-safe, so creation is serialised; executing a plan is.
-_PLANS: dict[tuple[int, bool], int] = {}
+# FFTW plans by (length, measured): made once, kept for the process (at most
+# _MAX_PLANS lengths).  FFTW's planner (making and destroying plans) is not
+# thread-safe, so both happen under _PLAN_LOCK; executing a plan on new arrays
+# is thread-safe and runs without the lock (and without the GIL).  A plan is
+# counted while a call uses it: evicting a plan in use only retires it, and
+# the last user frees it (without this, one thread could free a plan between
+# another's look-up and its execution: a segfault, issue 11).
+class _Plan:
+    __slots__ = ("handle", "users", "retired")
+
+    def __init__(self, handle: int):
+        self.handle = handle
+        self.users = 0
+        self.retired = False
+
+
+_PLANS: "collections.OrderedDict[tuple[int, bool], _Plan]" = collections.OrderedDict()
 _PLAN_LOCK = threading.Lock()
 _MAX_PLANS = 16
 
 
-def _plan(n: int, measure: bool) -> int:
+@contextlib.contextmanager
+def _plan(n: int, measure: bool):
+    """The plan handle for n samples, kept alive for the duration of the block."""
     key = (n, bool(measure))
     with _PLAN_LOCK:
-        handle = _PLANS.get(key)
-        if handle is None:
-            if len(_PLANS) >= _MAX_PLANS:
-                old = next(iter(_PLANS))
-                _kernel.spectrum_plan_free_v(_PLANS.pop(old))
+        entry = _PLANS.get(key)
+        if entry is None:
+            while len(_PLANS) >= _MAX_PLANS:
+                _, old = _PLANS.popitem(last=False)
+                old.retired = True
+                if old.users == 0:
+                    _kernel.spectrum_plan_free_v(old.handle)
             handle = int(_kernel.spectrum_plan_v(n, int(bool(measure))))
             if handle == 0:
                 raise MemoryError(f"FFTW could not plan a transform of {n} samples")
-            _PLANS[key] = handle
-        return handle
+            entry = _PLANS[key] = _Plan(handle)
+        else:
+            _PLANS.move_to_end(key)
+        entry.users += 1
+    try:
+        yield entry.handle
+    finally:
+        with _PLAN_LOCK:
+            entry.users -= 1
+            if entry.retired and entry.users == 0:
+                _kernel.spectrum_plan_free_v(entry.handle)
 
 
 @atexit.register
 def _free_plans() -> None:  # pragma: no cover - runs at interpreter exit
     with _PLAN_LOCK:
-        for handle in _PLANS.values():
-            _kernel.spectrum_plan_free_v(handle)
+        for entry in _PLANS.values():
+            entry.retired = True
+            if entry.users == 0:
+                _kernel.spectrum_plan_free_v(entry.handle)
         _PLANS.clear()
 
 
@@ -81,9 +113,27 @@ class Spectrum:
     def fundamental(self) -> float:
         """Angular frequency of the strongest non-constant line, refined by
         quadratic interpolation of log power around the peak bin (exact when
-        the record spans a whole number of periods)."""
+        the record spans a whole number of periods).
+
+        NaN with a RuntimeWarning when the signal has no fundamental: a
+        non-finite spectrum (NaN or inf in the signal), or no line above the
+        rounding floor (a constant or zero signal).
+        """
         p = self.power
+        if p.size < 2 or not np.all(np.isfinite(p)):
+            warnings.warn("spectrum: no fundamental (the signal is not finite)",
+                          RuntimeWarning, stacklevel=2)
+            return math.nan
         k = int(np.argmax(p[1:])) + 1
+        # ms bounds the mean square (Parseval, within a factor 2); the FFT's
+        # rounding floor for a constant is an amplitude of a few eps of the
+        # signal's size (growing like log n), so a strongest line below 1e3 eps
+        # of the RMS is rounding, not a line.
+        ms = np.sum(p)
+        if not p[k] > (1e3 * np.finfo(float).eps) ** 2 * ms:
+            warnings.warn("spectrum: no fundamental (a constant signal: no line above rounding)",
+                          RuntimeWarning, stacklevel=2)
+            return math.nan
         if 1 < k < p.size - 1 and p[k - 1] > 0 and p[k + 1] > 0 and p[k] > 0:
             a, b, c = np.log(p[k - 1]), np.log(p[k]), np.log(p[k + 1])
             den = a - 2 * b + c
@@ -102,8 +152,10 @@ class Spectrum:
         if not (isinstance(n, (int, np.integer)) and n >= 1):
             raise ValueError(f"n must be a positive whole number, got {n!r}")
         dw = self.omega[1] - self.omega[0]
-        bins = np.rint((2 * np.arange(n) + 1) * self.fundamental / dw).astype(np.int64)
         out = np.full(n, np.nan)
+        if not math.isfinite(self.fundamental):     # warned there; no lines to read
+            return out
+        bins = np.rint((2 * np.arange(n) + 1) * self.fundamental / dw).astype(np.int64)
         inside = bins < self.power.size
         out[inside] = np.sqrt(self.power[bins[inside]])
         return out
@@ -130,6 +182,7 @@ def spectra(t, signals, window: str | None = None, measure: bool = False) -> lis
         Uniformly spaced times.
     signals : array_like, shape (m, n) or (n,)
         NaN in a signal gives NaN in its spectrum (as numpy.fft does).
+        m = 0 (no signals) gives an empty list.
     window : {None, 'hann'}
     measure : bool
         Plan with FFTW_MEASURE (seconds of planning for 2^20 samples, then
@@ -146,8 +199,11 @@ def spectra(t, signals, window: str | None = None, measure: bool = False) -> lis
     if window not in _WINDOWS:
         raise ValueError(f"window must be None or 'hann', got {window!r}")
     n = t.size
-    omega, power, status = _kernel.spectra_v(_plan(n, measure), np.asfortranarray(x.T), dt,
-                                             _WINDOWS[window], n // 2 + 1)
+    if x.shape[0] == 0:                         # no signals in, no spectra out
+        return []
+    cols = np.asfortranarray(x.T)
+    with _plan(n, measure) as handle:
+        omega, power, status = _kernel.spectra_v(handle, cols, dt, _WINDOWS[window], n // 2 + 1)
     if status:
         raise RuntimeError(f"pendula kernel: spectrum status {status}")
     if not np.all(np.isfinite(power[:, 0])) and np.all(np.isfinite(x[0])):  # pragma: no cover
