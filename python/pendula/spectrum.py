@@ -153,7 +153,8 @@ class Spectrum:
             raise ValueError(f"n must be a positive whole number, got {n!r}")
         dw = self.omega[1] - self.omega[0]
         out = np.full(n, np.nan)
-        if not math.isfinite(self.fundamental):     # warned there; no lines to read
+        if not math.isfinite(self.fundamental):
+            warnings.warn("spectrum: no fundamental, so no harmonics (NaN)", RuntimeWarning, stacklevel=2)
             return out
         bins = np.rint((2 * np.arange(n) + 1) * self.fundamental / dw).astype(np.int64)
         inside = bins < self.power.size
