@@ -197,3 +197,56 @@ def test_odd_length_and_smallest_length_match_numpy():
         # both are O(eps log n) accurate: compare at 1e-13 of the largest line
         assert np.abs(s.amplitude - ref).max() < 1e-13 * ref.max(), n
         assert np.allclose(s.omega, 2 * np.pi * np.arange(n // 2 + 1) / (n * 0.5), rtol=1e-15, atol=0)
+
+
+# ---------------------------------------------------------------- FFTW wisdom cache (issue 15)
+
+_CHILD = """
+import warnings, numpy as np, pendula
+warnings.simplefilter("always")
+t = np.arange(256) * 0.1
+x = np.sin(3 * t) + 0.25 * np.cos(7 * t)
+s = pendula.spectrum(t, x)
+ref = 2 * np.abs(np.fft.rfft(x)) / 256; ref[0] /= 2; ref[-1] /= 2
+assert np.abs(s.amplitude - ref).max() < 1e-13 * ref.max()
+print("SPECTRUM-OK")
+"""
+
+
+def _child(env_path, code=_CHILD):
+    import os
+    import subprocess
+    import sys
+
+    env = dict(os.environ, PENDULA_WISDOM=str(env_path))
+    return subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120)
+
+
+@pytest.mark.parametrize("content", [
+    "garbage (not wisdom at all",
+    "(fftw-2.1.5 fftw_wisdom #x0 #x0 #x0 #x0\n  (fftw_codelet_n1_4 0 #x0 #x0 #x0 #x0 #x0 #x0 #x0)\n)\n",   # foreign FFTW
+    "",
+])
+def test_corrupt_or_foreign_wisdom_is_ignored_with_a_warning(tmp_path, content):
+    path = tmp_path / "fftw-wisdom"
+    path.write_text(content)
+    r = _child(path)
+    assert r.returncode == 0, r.stderr
+    assert "SPECTRUM-OK" in r.stdout
+    assert "ignored" in r.stderr and "RuntimeWarning" in r.stderr
+
+
+def test_missing_wisdom_is_silent_and_saved_wisdom_is_used(tmp_path):
+    path = tmp_path / "sub" / "fftw-wisdom"
+    r = _child(path)
+    assert r.returncode == 0 and "SPECTRUM-OK" in r.stdout and "Warning" not in r.stderr, r.stderr
+    made = _child(path, "import pendula; print(pendula.precompute_wisdom([256, 100]))")
+    assert made.returncode == 0, made.stderr
+    assert path.read_text().startswith("(fftw-3")
+    r = _child(path)
+    assert r.returncode == 0 and "SPECTRUM-OK" in r.stdout and "Warning" not in r.stderr, r.stderr
+
+
+def test_wisdom_sizes_are_checked():
+    with pytest.raises(ValueError, match="sizes"):
+        pendula.precompute_wisdom([2])

@@ -231,3 +231,21 @@ subroutine spectra_v(handle, n, nsig, signals, dt, window, nh, omega, power, sta
   end if
   call power_spectra(int(handle, c_intptr_t), signals, dt, window, omega, power, status)
 end subroutine spectra_v
+
+! ---------------------------------------------------------------- spectra: FFTW wisdom (spec)
+! Load (save) FFTW wisdom from (to) a file; ok = 1 on success.  Serialised by the
+! caller with planning (FFTW's planner state is not thread-safe).
+subroutine spectrum_wisdom_v(path, save, ok)
+  use pendula_spectrum, only: wisdom_import, wisdom_export
+  implicit none
+  character(len=*), intent(in) :: path
+  integer, intent(in) :: save
+  integer, intent(out) :: ok
+  logical :: done
+  if (save /= 0) then
+    done = wisdom_export(path)
+  else
+    done = wisdom_import(path)
+  end if
+  ok = merge(1, 0, done)
+end subroutine spectrum_wisdom_v

@@ -34,6 +34,9 @@ from .scene import Scene, SceneError  # noqa: E402
 from .series import period_from_series, period_series, poincare_lindstedt  # noqa: E402
 from .spectrum import Spectrum, fourier_series, odd_harmonics_above, spectra, spectrum  # noqa: E402
 
+# spectra (spec): FFTW wisdom cache
+from .spectrum import precompute_wisdom, wisdom_path  # noqa: E402
+
 __version__ = "0.1.0"
 
 __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
@@ -41,3 +44,4 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Orbit", "Trajectory", "period_series", "period_from_series", "poincare_lindstedt",
            "find_events", "numerical_period", "Events",
            "spectrum", "spectra", "Spectrum", "fourier_series", "odd_harmonics_above"]
+__all__ += ["precompute_wisdom", "wisdom_path"]  # spectra (spec)
