@@ -190,6 +190,11 @@ def main(argv=None) -> int:
     p.add_argument("--path", default=None, help="wisdom file (default: ~/.cache/pendula/fftw-wisdom)")
     p.set_defaults(func=lambda a: __import__("pendula.spectrum", fromlist=["wisdom_main"]).wisdom_main(a))
     # --- end spectra
+    # --- spectra (spec): argparse's REMAINDER drops leading options ('bench --json F'), so pass them on
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["bench"]:
+        return cmd_bench(argparse.Namespace(rest=argv[1:]))
+    # --- end spectra
     args = parser.parse_args(argv)
     return args.func(args)
 
