@@ -282,9 +282,23 @@ def spectra(t, signals, window: str | None = None, measure: bool = False) -> lis
         m = 0 (no signals) gives an empty list.
     window : {None, 'hann'}
     measure : bool
-        Plan with FFTW_MEASURE (seconds of planning for 2^20 samples, then
-        faster transforms; worth it for long sweeps).  Plans are kept for the
-        process, per length, so only the first call of a length pays.
+        Plan with FFTW_MEASURE (~25 s of planning for 2^20 samples here, then
+        transforms about twice as fast).  Without it, a measured plan is still
+        used when the machine's wisdom file has one for this length (made once
+        by ``pendula wisdom``, see `precompute_wisdom`), else FFTW_ESTIMATE.
+        Plans are kept for the process, per length, so only the first call of
+        a length pays.  Safe to call from several threads at once.
+
+    Returns
+    -------
+    list of Spectrum
+        One per signal (an empty list for m = 0).
+
+    Raises
+    ------
+    ValueError
+        Fewer than 4 samples, non-uniform or non-finite t, mismatched shapes,
+        an unknown window.
     """
     t = as_float(t, "t")
     dt = _uniform_step(t)
