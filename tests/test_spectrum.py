@@ -116,3 +116,137 @@ def test_unknown_window_and_separatrix():
         pendula.spectrum(np.arange(8.0), np.zeros(8), window="hamming")
     with pytest.raises(ValueError, match="separatrix"):
         pendula.fourier_series(0.0, 2.0)
+
+
+# ---------------------------------------------------------------- degenerate input (issue 11)
+
+def test_no_signals_give_no_spectra():
+    assert pendula.spectra(np.arange(64.0), np.empty((0, 64))) == []
+
+
+@pytest.mark.parametrize("n", [0, 1, 2, 3])
+def test_too_short_records_are_refused(n):
+    with pytest.raises(ValueError, match="at least 4"):
+        pendula.spectrum(np.arange(float(n)), np.zeros(n))
+
+
+# (1e-150: its power 1e-300 is still a normal double; amplitudes below ~1e-154
+# have powers that underflow, a limit of storing |A|^2)
+@pytest.mark.parametrize("value", [0.0, 1.0, -3.7e5, 1e-150])
+def test_constant_signal_has_no_fundamental(value):
+    t = np.arange(256) * 0.1
+    s = pendula.spectrum(t, np.full(256, value))
+    with pytest.warns(RuntimeWarning, match="no fundamental"):
+        assert np.isnan(s.fundamental)
+    with pytest.warns(RuntimeWarning):
+        assert np.all(np.isnan(s.harmonics(3)))
+    # the constant itself is in bin 0, exactly up to rounding of the sum
+    assert abs(s.amplitude[0] - abs(value)) <= 1e-13 * abs(value)
+
+
+def test_a_small_line_on_a_large_offset_is_still_found():
+    # amplitude 1e-9 of the offset: far above the rounding floor (1e3 eps)
+    t = np.arange(1024) * (2 * np.pi / 1024)
+    s = pendula.spectrum(t, 1.0 + 1e-9 * np.sin(5 * t))
+    assert s.fundamental == pytest.approx(5.0, rel=1e-12)
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_non_finite_signal_has_no_fundamental(bad):
+    t = np.arange(128) * 0.1
+    x = np.sin(t)
+    x[17] = bad
+    s = pendula.spectrum(t, x)
+    assert not np.all(np.isfinite(s.power))
+    with pytest.warns(RuntimeWarning, match="not finite"):
+        assert np.isnan(s.fundamental)
+    with pytest.warns(RuntimeWarning):
+        assert pendula.odd_harmonics_above(s) == []
+
+
+def test_non_finite_signal_does_not_spoil_its_neighbours_in_a_sweep():
+    t = np.arange(128) * 0.1
+    x = np.array([np.sin(t), np.sin(t), np.sin(2 * t)])
+    x[1, 3] = np.nan
+    many = pendula.spectra(t, x)
+    assert np.array_equal(many[0].power, pendula.spectrum(t, x[0]).power)
+    assert np.array_equal(many[2].power, pendula.spectrum(t, x[2]).power)
+    assert np.all(np.isnan(many[1].power))
+
+
+@pytest.mark.parametrize("t,what", [
+    (np.r_[np.arange(10.0), 10.5, np.arange(11.0, 16.0)], "uniform"),     # one jittered sample
+    (np.arange(16.0)[::-1], "uniform"),                                  # decreasing
+    (np.zeros(16), "uniform"),                                           # no spacing
+    (np.r_[np.arange(15.0), np.inf], "finite"),
+])
+def test_non_uniform_or_non_finite_times_are_refused(t, what):
+    with pytest.raises(ValueError, match=what):
+        pendula.spectrum(t, np.zeros(t.size))
+
+
+def test_odd_length_and_smallest_length_match_numpy():
+    rng = np.random.default_rng(7)
+    for n in (4, 5, 7, 33, 1001):
+        x = rng.standard_normal(n)
+        s = pendula.spectrum(np.arange(n) * 0.5, x)
+        ref = 2 * np.abs(np.fft.rfft(x)) / n
+        ref[0] /= 2
+        if n % 2 == 0:
+            ref[-1] /= 2
+        # both are O(eps log n) accurate: compare at 1e-13 of the largest line
+        assert np.abs(s.amplitude - ref).max() < 1e-13 * ref.max(), n
+        assert np.allclose(s.omega, 2 * np.pi * np.arange(n // 2 + 1) / (n * 0.5), rtol=1e-15, atol=0)
+
+
+# ---------------------------------------------------------------- FFTW wisdom cache (issue 15)
+
+_CHILD = """
+import warnings, numpy as np, pendula
+warnings.simplefilter("always")
+t = np.arange(256) * 0.1
+x = np.sin(3 * t) + 0.25 * np.cos(7 * t)
+s = pendula.spectrum(t, x)
+ref = 2 * np.abs(np.fft.rfft(x)) / 256; ref[0] /= 2; ref[-1] /= 2
+assert np.abs(s.amplitude - ref).max() < 1e-13 * ref.max()
+print("SPECTRUM-OK")
+"""
+
+
+def _child(env_path, code=_CHILD):
+    import os
+    import subprocess
+    import sys
+
+    env = dict(os.environ, PENDULA_WISDOM=str(env_path))
+    return subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120)
+
+
+@pytest.mark.parametrize("content", [
+    "garbage (not wisdom at all",
+    "(fftw-2.1.5 fftw_wisdom #x0 #x0 #x0 #x0\n  (fftw_codelet_n1_4 0 #x0 #x0 #x0 #x0 #x0 #x0 #x0)\n)\n",   # foreign FFTW
+    "",
+])
+def test_corrupt_or_foreign_wisdom_is_ignored_with_a_warning(tmp_path, content):
+    path = tmp_path / "fftw-wisdom"
+    path.write_text(content)
+    r = _child(path)
+    assert r.returncode == 0, r.stderr
+    assert "SPECTRUM-OK" in r.stdout
+    assert "ignored" in r.stderr and "RuntimeWarning" in r.stderr
+
+
+def test_missing_wisdom_is_silent_and_saved_wisdom_is_used(tmp_path):
+    path = tmp_path / "sub" / "fftw-wisdom"
+    r = _child(path)
+    assert r.returncode == 0 and "SPECTRUM-OK" in r.stdout and "Warning" not in r.stderr, r.stderr
+    made = _child(path, "import pendula; print(pendula.precompute_wisdom([256, 100]))")
+    assert made.returncode == 0, made.stderr
+    assert path.read_text().startswith("(fftw-3")
+    r = _child(path)
+    assert r.returncode == 0 and "SPECTRUM-OK" in r.stdout and "Warning" not in r.stderr, r.stderr
+
+
+def test_wisdom_sizes_are_checked():
+    with pytest.raises(ValueError, match="sizes"):
+        pendula.precompute_wisdom([2])

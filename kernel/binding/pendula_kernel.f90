@@ -296,6 +296,9 @@ subroutine spectra_v(handle, n, nsig, signals, dt, window, nh, omega, power, sta
   integer, intent(out) :: status
   !f2py intent(hide), depend(signals) :: n = shape(signals, 0)
   !f2py intent(hide), depend(signals) :: nsig = shape(signals, 1)
+  !f2py threadsafe
+  ! threadsafe: f2py releases the GIL around the call (the kernel touches no
+  ! Python object; the plan is kept alive by the caller while in use).
   if (nh /= n / 2 + 1) then
     status = 4
     return
@@ -303,7 +306,7 @@ subroutine spectra_v(handle, n, nsig, signals, dt, window, nh, omega, power, sta
   call power_spectra(int(handle, c_intptr_t), signals, dt, window, omega, power, status)
 end subroutine spectra_v
 
-! ======================================================
+! ===============================================
 ! Issue 13: Huygens' cycloidal pendulum, non-uniform gravity, the density of the angle
 ! ====================================================================
 
@@ -416,3 +419,20 @@ subroutine sweep_iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, vm, err,
   !f2py intent(hide), depend(taus) :: ntau = len(taus)
   call iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, vm, err, pstat, th, v)
 end subroutine sweep_iv_branch
+! ---------------------------------------------------------------- spectra: FFTW wisdom (spec)
+! Load (save) FFTW wisdom from (to) a file; ok = 1 on success.  Serialised by the
+! caller with planning (FFTW's planner state is not thread-safe).
+subroutine spectrum_wisdom_v(path, save, ok)
+  use pendula_spectrum, only: wisdom_import, wisdom_export
+  implicit none
+  character(len=*), intent(in) :: path
+  integer, intent(in) :: save
+  integer, intent(out) :: ok
+  logical :: done
+  if (save /= 0) then
+    done = wisdom_export(path)
+  else
+    done = wisdom_import(path)
+  end if
+  ok = merge(1, 0, done)
+end subroutine spectrum_wisdom_v

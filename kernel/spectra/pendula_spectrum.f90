@@ -12,7 +12,7 @@ module pendula_spectrum
   use pendula_kinds, only: dp, two_pi
   implicit none
   private
-  public :: power_spectra, spectrum_plan, spectrum_plan_free
+  public :: power_spectra, spectrum_plan, spectrum_plan_free, wisdom_import, wisdom_export
 
   include 'fftw3.f03'
 
@@ -40,13 +40,38 @@ contains
     if (.not. c_associated(pin) .or. .not. c_associated(pout)) return
     call c_f_pointer(pin, buf, [n])
     call c_f_pointer(pout, spec, [n / 2 + 1])
-    flags = FFTW_ESTIMATE
-    if (measure) flags = FFTW_MEASURE
-    plan = fftw_plan_dft_r2c_1d(int(n, c_int), buf, spec, flags)
+    ! measure: plan by measuring (seconds for long records; the result goes
+    ! into FFTW's wisdom).  Otherwise use a measured plan if the wisdom (loaded
+    ! from the cache file) has one for n, else estimate.
+    if (measure) then
+      plan = fftw_plan_dft_r2c_1d(int(n, c_int), buf, spec, FFTW_MEASURE)
+    else
+      flags = ior(FFTW_MEASURE, FFTW_WISDOM_ONLY)
+      plan = fftw_plan_dft_r2c_1d(int(n, c_int), buf, spec, flags)
+      if (.not. c_associated(plan)) &
+        plan = fftw_plan_dft_r2c_1d(int(n, c_int), buf, spec, FFTW_ESTIMATE)
+    end if
     call fftw_free(pin)
     call fftw_free(pout)
     handle = transfer(plan, handle)
   end function spectrum_plan
+
+  !> Load FFTW wisdom from a file (a NUL-terminated path in the caller's
+  !> character string).  Returns .true. on success; a corrupt or foreign file
+  !> is refused by FFTW and leaves the wisdom as it was.  Not thread-safe
+  !> (planner state): callers serialise it with planning.
+  function wisdom_import(path) result(ok)
+    character(len=*), intent(in) :: path
+    logical :: ok
+    ok = fftw_import_wisdom_from_filename(trim(path) // c_null_char) /= 0
+  end function wisdom_import
+
+  !> Save FFTW's accumulated wisdom to a file; .true. on success.
+  function wisdom_export(path) result(ok)
+    character(len=*), intent(in) :: path
+    logical :: ok
+    ok = fftw_export_wisdom_to_filename(trim(path) // c_null_char) /= 0
+  end function wisdom_export
 
   subroutine spectrum_plan_free(handle)
     integer(c_intptr_t), intent(in) :: handle
@@ -66,7 +91,7 @@ contains
     real(c_double), pointer :: buf(:)
     complex(c_double_complex), pointer :: spec(:)
     real(dp), allocatable :: w(:)
-    real(dp) :: wsum
+    real(dp) :: wsum, scale
     integer :: n, nh, j, k
 
     n = size(signals, 1)
@@ -91,9 +116,12 @@ contains
     else
       wsum = real(n, dp)
     end if
+    scale = 4.0_dp / (wsum * wsum)
     pin = fftw_alloc_real(int(n, c_size_t))
     pout = fftw_alloc_complex(int(nh, c_size_t))
     if (.not. c_associated(pin) .or. .not. c_associated(pout)) then
+      if (c_associated(pin)) call fftw_free(pin)
+      if (c_associated(pout)) call fftw_free(pout)
       status = spec_no_memory; return
     end if
     call c_f_pointer(pin, buf, [n])
@@ -108,8 +136,10 @@ contains
         buf = signals(:, j) * w
       end if
       call fftw_execute_dft_r2c(plan, buf, spec)
-      ! |A|^2 from the real and imaginary parts (no hypot)
-      power(:, j) = (4.0_dp / (wsum * wsum)) * (real(spec, dp)**2 + aimag(spec)**2)
+      ! |A|^2 from the real and imaginary parts (no hypot), one pass
+      do k = 1, nh
+        power(k, j) = scale * (real(spec(k), dp)**2 + aimag(spec(k))**2)
+      end do
       power(1, j) = 0.25_dp * power(1, j)
       if (mod(n, 2) == 0) power(nh, j) = 0.25_dp * power(nh, j)
     end do

@@ -29,7 +29,7 @@ def best_time(fn, repeat: int = 5) -> float:
 
 def _report(title: str, n: int, rows: list[tuple[str, float]], ref: str) -> list[dict]:
     base = dict(rows)[ref]
-    print(f"\n{title}  (n = {n:,}, best of 5, {platform.processor() or platform.machine()})")
+    print(f"\n{title}  (n = {n:,}, best of 3-7 repeats, {platform.processor() or platform.machine()})")
     print(f"  {'what':44s} {'ns/elem':>9s} {'ratio to ' + ref:>22s}")
     out = []
     for name, t in rows:
@@ -204,12 +204,21 @@ def bench_spectrum(n: int = 1 << 20, seed: int = 3) -> list[dict]:
     t0 = time.perf_counter()
     spectrum(t, one)
     first = time.perf_counter() - t0
+    from .spectrum import wisdom_path
+
+    spectra(t, one, measure=True)               # measured plan, paid once here (as `pendula wisdom` does)
     rows = [
-        ("pendula.spectrum, one signal of 2^20", best_time(lambda: spectrum(t, one))),
-        ("numpy.fft.rfft + |A|^2, one signal", best_time(lambda: numpy_power(one))),
+        ("pendula.spectrum, one signal of 2^20", best_time(lambda: spectrum(t, one), repeat=7)),
+        ("pendula.spectra, one signal, measured plan", best_time(lambda: spectra(t, one, measure=True),
+                                                                 repeat=7)),
+        ("numpy.fft.rfft + |A|^2, one signal", best_time(lambda: numpy_power(one), repeat=7)),
     ]
-    out = _report("Spectrum of 2^20 samples (the FFTW_ESTIMATE plan is kept after the first call)", n, rows,
+    have = wisdom_path().is_file()
+    out = _report("Spectrum of 2^20 samples (default plan: " + ("measured, from the wisdom file"
+                  if have else "FFTW_ESTIMATE, no wisdom file: run `pendula wisdom`") + ")", n, rows,
                   "pendula.spectrum, one signal of 2^20")
+    for r in out:
+        r["wisdom_file"] = have
     print(f"  (first call, planning included: {first * 1e9 / n:.1f} ns/elem)")
     rows = [
         ("pendula.spectra, 8 signals, one plan", best_time(lambda: spectra(t, sweep), repeat=3)),
@@ -325,18 +334,114 @@ BENCHMARKS = {"elliptic": bench_elliptic, "exact": bench_exact, "integrators": b
               "spectrum": bench_spectrum, "cord": bench_cord, "sweep": bench_sweep}
 
 
+def machine_record() -> dict:
+    """Machine, versions and date of a benchmark run (for the JSON record)."""
+    import datetime
+    import importlib.metadata as md
+    import os
+
+    cpu = platform.processor() or platform.machine()
+    try:
+        with open("/proc/cpuinfo") as fh:
+            for line in fh:
+                if line.startswith("model name"):
+                    cpu = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    versions = {"python": platform.python_version()}
+    for pkg in ("pendula", "numpy", "scipy", "mpmath"):
+        try:
+            versions[pkg] = md.version(pkg)
+        except md.PackageNotFoundError:
+            versions[pkg] = None
+    try:
+        load = os.getloadavg()
+    except OSError:
+        load = None
+    return {"date_utc": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+            "cpu": cpu, "cores": os.cpu_count(), "platform": platform.platform(),
+            "load_average": load, "versions": versions}
+
+
+def readme_tables(record: dict) -> str:
+    """Markdown tables for README from a recorded run (``pendula bench --readme FILE``)."""
+    m = record["machine"]
+    load = m.get("load_average")
+    load = "/".join(f"{x:.1f}" for x in load) if load else "unknown"
+    lines = [f"Recorded {m['date_utc']} on {m['cpu']} ({m['cores']} cores, load average {load}), "
+             + ", ".join(f"{k} {v}" for k, v in m["versions"].items() if v) + ".", ""]
+    for name, rows in record["results"].items():
+        lines += [f"**{name}**", ""]
+        keys = None
+        for r in rows:                          # one table per run of rows with the same fields
+            cols = [k for k in r if k != "what"]
+            if cols != keys:
+                if keys is not None:
+                    lines.append("")
+                keys = cols
+                lines += ["| what | " + " | ".join(k.replace("_", " ") for k in cols) + " |",
+                          "|---|" + "---:|" * len(cols)]
+            cells = [f"{r[k]:.3g}" if isinstance(r[k], float) else str(r[k]) for k in cols]
+            what = str(r["what"]).replace("|", "\\|")      # a '|' in a name would split the cell
+            lines.append(f"| {what} | " + " | ".join(cells) + " |")
+        lines.append("")
+    return "\n".join(lines)
+
+
 def main(argv=None) -> int:
+    import json
+
     p = argparse.ArgumentParser(prog="pendula bench", description=__doc__.splitlines()[0])
     p.add_argument("which", nargs="*", help=f"benchmarks to run: {', '.join(sorted(BENCHMARKS))} (default: all)")
     p.add_argument("-n", type=int, default=1_000_000, help="elements per array (default 10^6)")
+    p.add_argument("--json", default="bench.json",
+                   help="where to record the run as JSON (default bench.json; '' for none)")
+    p.add_argument("--readme", metavar="FILE", default=None,
+                   help="print README's Markdown tables from a recorded JSON run, and run nothing")
+    p.add_argument("--into", metavar="README", default=None,
+                   help="with --readme: replace the text between the '<!-- bench:begin -->' and "
+                        "'<!-- bench:end -->' lines of this file instead of printing")
     args = p.parse_args(argv)
+    if args.readme is not None:
+        try:
+            with open(args.readme) as fh:
+                tables = readme_tables(json.load(fh))
+        except (OSError, ValueError, KeyError, TypeError) as exc:
+            print(f"pendula bench --readme: cannot read {args.readme}: {exc}")
+            return 2
+        if args.into is None:
+            print(tables)
+            return 0
+        begin, end = "<!-- bench:begin -->", "<!-- bench:end -->"
+        try:
+            with open(args.into) as fh:
+                text = fh.read()
+        except OSError as exc:
+            print(f"pendula bench --into: {exc}")
+            return 2
+        if text.count(begin) != 1 or text.count(end) != 1 or text.index(begin) > text.index(end):
+            print(f"pendula bench --into: {args.into} needs one '{begin}' line and one '{end}' line after it")
+            return 2
+        head, rest = text.split(begin)
+        _, tail = rest.split(end)
+        note = f"\n<!-- generated by: pendula bench --readme {args.readme} --into {args.into} -->\n"
+        with open(args.into, "w") as fh:
+            fh.write(head + begin + note + tables.rstrip("\n") + "\n" + end + tail)
+        print(f"README tables written into {args.into} from {args.readme}")
+        return 0
     if args.n <= 0:
         p.error("-n must be positive")
     unknown = [w for w in args.which if w not in BENCHMARKS]
     if unknown:
         p.error(f"unknown benchmark(s) {', '.join(unknown)}; known: {', '.join(sorted(BENCHMARKS))}")
+    record = {"machine": machine_record(), "n": args.n, "results": {}}
     for name in args.which or sorted(BENCHMARKS):
-        BENCHMARKS[name](n=args.n)
+        record["results"][name] = BENCHMARKS[name](n=args.n)
+    if args.json:
+        with open(args.json, "w") as fh:
+            json.dump(record, fh, indent=1)
+        print(f"\nrecorded in {args.json}")
     return 0
 
 

@@ -4,6 +4,7 @@
     pendula run SCENE.nml        one scene: CSV and PNG into an output folder
     pendula spectrum SCENE.nml   FFTW power spectra of a scene (CSV, log-power PNG)
     pendula bench [NAME ...]     benchmarks against scipy / GSL / numpy
+    pendula wisdom               precompute FFTW plans once per machine (cache file)
     pendula accuracy elliptic    worst errors vs mpmath, beside scipy and GSL
     pendula accuracy integrators work-precision diagram and long-run energy (CSV, PNG)
 """
@@ -233,6 +234,17 @@ def main(argv=None) -> int:
     p = sub.add_parser("bench", help="benchmarks against scipy, GSL and numpy", add_help=False)
     p.add_argument("rest", nargs=argparse.REMAINDER)
     p.set_defaults(func=cmd_bench)
+    # --- spectra (spec): FFTW wisdom, handled in spectrum.py
+    p = sub.add_parser("wisdom", help="precompute FFTW plans for this machine (saved in a cache file)")
+    p.add_argument("sizes", nargs="*", type=int, help="record lengths (default: 2^6..2^20 and 3*2^k)")
+    p.add_argument("--path", default=None, help="wisdom file (default: ~/.cache/pendula/fftw-wisdom)")
+    p.set_defaults(func=lambda a: __import__("pendula.spectrum", fromlist=["wisdom_main"]).wisdom_main(a))
+    # --- end spectra
+    # --- spectra (spec): argparse's REMAINDER drops leading options ('bench --json F'), so pass them on
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["bench"]:
+        return cmd_bench(argparse.Namespace(rest=argv[1:]))
+    # --- end spectra
     args = parser.parse_args(argv)
     return args.func(args)
 

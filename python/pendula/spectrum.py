@@ -9,71 +9,174 @@ theta = w t + 4 sum_n q^n / (n (1 + q^(2n))) sin(n w t) has all of them.
 from __future__ import annotations
 
 import atexit
+import collections
 import contextlib
 import functools
 import math
+import os
 import threading
 import warnings
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
 from . import _kernel
 from ._checks import as_float
 
-__all__ = ["Spectrum", "spectrum", "spectra", "fourier_series", "odd_harmonics_above"]
+__all__ = ["Spectrum", "spectrum", "spectra", "fourier_series", "odd_harmonics_above",
+           "precompute_wisdom", "wisdom_path"]
 
 _WINDOWS = {None: 0, "none": 0, "hann": 1}
 
 # FFTW plans by (length, measured): made once, kept for the process (at most
-# _MAX_PLANS lengths).  FFTW's planner is not thread-safe, so creation and
-# destruction are serialised under one lock; executing a plan on fresh arrays
-# is thread-safe, and runs with the GIL released.  A plan is reference-counted
-# while in use: evicting it from the cache only marks it, and the last user
-# frees it, so no thread can execute a plan another one freed.
-_PLANS: dict[tuple[int, bool], int] = {}
-_USERS: dict[int, int] = {}      # handle -> threads using it now
-_RETIRED: set[int] = set()       # evicted while in use: freed by the last user
+# _MAX_PLANS lengths).  FFTW's planner (making and destroying plans) is not
+# thread-safe, so both happen under _PLAN_LOCK; executing a plan on new arrays
+# is thread-safe and runs without the lock (and without the GIL).  A plan is
+# counted while a call uses it: evicting a plan in use only retires it, and
+# the last user frees it (without this, one thread could free a plan between
+# another's look-up and its execution: a segfault, issue 11).
+class _Plan:
+    __slots__ = ("handle", "users", "retired")
+
+    def __init__(self, handle: int):
+        self.handle = handle
+        self.users = 0
+        self.retired = False
+
+
+_PLANS: "collections.OrderedDict[tuple[int, bool], _Plan]" = collections.OrderedDict()
 _PLAN_LOCK = threading.Lock()
 _MAX_PLANS = 16
 
 
+# FFTW wisdom (measured plans) is kept per machine in a cache file, loaded once
+# per process before the first plan; `pendula wisdom` precomputes it.
+_WISDOM_LOADED = False
+
+
+def wisdom_path() -> Path:
+    """The FFTW wisdom cache file: $PENDULA_WISDOM, else
+    $XDG_CACHE_HOME/pendula/fftw-wisdom, else ~/.cache/pendula/fftw-wisdom."""
+    env = os.environ.get("PENDULA_WISDOM")
+    if env:
+        return Path(env)
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "pendula" / "fftw-wisdom"
+
+
+def _load_wisdom_locked() -> None:
+    global _WISDOM_LOADED
+    if _WISDOM_LOADED:
+        return
+    _WISDOM_LOADED = True
+    path = wisdom_path()
+    try:
+        if not path.is_file():
+            return
+        ok = _kernel.spectrum_wisdom_v(str(path), 0)
+    except (OSError, ValueError, UnicodeError) as exc:     # unreadable path: plan without it
+        warnings.warn(f"pendula: FFTW wisdom {path} ignored ({exc})", RuntimeWarning, stacklevel=4)
+        return
+    if not ok:
+        warnings.warn(f"pendula: FFTW wisdom {path} is corrupt or from another FFTW; ignored "
+                      "(rerun `pendula wisdom` to remake it)", RuntimeWarning, stacklevel=4)
+
+
+def precompute_wisdom(sizes=None, path=None, progress: bool = False) -> Path:
+    """Measure FFTW plans for the given record lengths and save the wisdom.
+
+    Later processes load it before their first spectrum and then use the
+    measured plans without paying for the planning (``measure=False`` uses a
+    measured plan when the wisdom has one for that length, else an estimated
+    one).  This is what ``pendula wisdom`` runs.
+
+    Parameters
+    ----------
+    sizes : iterable of int, optional
+        Record lengths (default: powers of two 2^6 .. 2^20, and 3 * 2^k).
+    path : str or Path, optional
+        Where to save (default: `wisdom_path()`).
+
+    Returns
+    -------
+    Path
+        The file written.
+    """
+    if sizes is None:
+        sizes = [1 << k for k in range(6, 21)] + [3 << k for k in range(5, 18)]
+    sizes = sorted({int(n) for n in sizes})
+    if any(n < 4 for n in sizes):
+        raise ValueError("sizes must be record lengths of at least 4")
+    path = Path(path) if path is not None else wisdom_path()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(path.name + f".tmp{os.getpid()}")
+    with _PLAN_LOCK:
+        _load_wisdom_locked()
+        for n in sizes:
+            if progress:
+                print(f"  planning {n} samples", flush=True)
+            handle = int(_kernel.spectrum_plan_v(n, 1))
+            if handle == 0:
+                raise MemoryError(f"FFTW could not plan a transform of {n} samples")
+            _kernel.spectrum_plan_free_v(handle)
+        if not _kernel.spectrum_wisdom_v(str(tmp), 1):
+            raise OSError(f"could not write FFTW wisdom to {tmp}")
+    os.replace(tmp, path)
+    return path
+
+
+def wisdom_main(args) -> int:
+    """``pendula wisdom [SIZES ...] [--path FILE]``."""
+    import time
+
+    t0 = time.perf_counter()
+    try:
+        path = precompute_wisdom(args.sizes or None, args.path, progress=True)
+    except (ValueError, OSError, MemoryError) as exc:
+        print(f"pendula wisdom: {exc}")
+        return 2
+    print(f"FFTW wisdom saved to {path} ({time.perf_counter() - t0:.1f} s of planning)")
+    return 0
+
+
 @contextlib.contextmanager
 def _plan(n: int, measure: bool):
+    """The plan handle for n samples, kept alive for the duration of the block."""
     key = (n, bool(measure))
     with _PLAN_LOCK:
-        handle = _PLANS.get(key)
-        if handle is None:
-            if len(_PLANS) >= _MAX_PLANS:
-                old = _PLANS.pop(next(iter(_PLANS)))
-                if _USERS.get(old, 0):
-                    _RETIRED.add(old)
-                else:
-                    _kernel.spectrum_plan_free_v(old)
+        _load_wisdom_locked()
+        entry = _PLANS.get(key)
+        if entry is None:
+            while len(_PLANS) >= _MAX_PLANS:
+                _, old = _PLANS.popitem(last=False)
+                old.retired = True
+                if old.users == 0:
+                    _kernel.spectrum_plan_free_v(old.handle)
             handle = int(_kernel.spectrum_plan_v(n, int(bool(measure))))
             if handle == 0:
                 raise MemoryError(f"FFTW could not plan a transform of {n} samples")
-            _PLANS[key] = handle
-        _USERS[handle] = _USERS.get(handle, 0) + 1
+            entry = _PLANS[key] = _Plan(handle)
+        else:
+            _PLANS.move_to_end(key)
+        entry.users += 1
     try:
-        yield handle
+        yield entry.handle
     finally:
         with _PLAN_LOCK:
-            _USERS[handle] -= 1
-            if not _USERS[handle]:
-                del _USERS[handle]
-                if handle in _RETIRED:
-                    _RETIRED.discard(handle)
-                    _kernel.spectrum_plan_free_v(handle)
+            entry.users -= 1
+            if entry.retired and entry.users == 0:
+                _kernel.spectrum_plan_free_v(entry.handle)
 
 
 @atexit.register
 def _free_plans() -> None:  # pragma: no cover - runs at interpreter exit
     with _PLAN_LOCK:
-        for handle in list(_PLANS.values()) + list(_RETIRED):
-            _kernel.spectrum_plan_free_v(handle)
+        for entry in _PLANS.values():
+            entry.retired = True
+            if entry.users == 0:
+                _kernel.spectrum_plan_free_v(entry.handle)
         _PLANS.clear()
-        _RETIRED.clear()
 
 
 @dataclass
@@ -104,13 +207,27 @@ class Spectrum:
     def fundamental(self) -> float:
         """Angular frequency of the strongest non-constant line, refined by
         quadratic interpolation of log power around the peak bin (exact when
-        the record spans a whole number of periods)."""
+        the record spans a whole number of periods).
+
+        NaN with a RuntimeWarning when the signal has no fundamental: a
+        non-finite spectrum (NaN or inf in the signal), or no line above the
+        rounding floor (a constant or zero signal).
+        """
         p = self.power
-        if p.size < 3 or not np.any(p[1:] > 0) or not np.all(np.isfinite(p)):
-            warnings.warn("Spectrum.fundamental: the signal has no non-constant line (or is not finite): NaN",
+        if p.size < 2 or not np.all(np.isfinite(p)):
+            warnings.warn("spectrum: no fundamental (the signal is not finite)",
                           RuntimeWarning, stacklevel=2)
             return math.nan
         k = int(np.argmax(p[1:])) + 1
+        # ms bounds the mean square (Parseval, within a factor 2); the FFT's
+        # rounding floor for a constant is an amplitude of a few eps of the
+        # signal's size (growing like log n), so a strongest line below 1e3 eps
+        # of the RMS is rounding, not a line.
+        ms = np.sum(p)
+        if not p[k] > (1e3 * np.finfo(float).eps) ** 2 * ms:
+            warnings.warn("spectrum: no fundamental (a constant signal: no line above rounding)",
+                          RuntimeWarning, stacklevel=2)
+            return math.nan
         if 1 < k < p.size - 1 and p[k - 1] > 0 and p[k + 1] > 0 and p[k] > 0:
             a, b, c = np.log(p[k - 1]), np.log(p[k]), np.log(p[k + 1])
             den = a - 2 * b + c
@@ -129,8 +246,11 @@ class Spectrum:
         if not (isinstance(n, (int, np.integer)) and n >= 1):
             raise ValueError(f"n must be a positive whole number, got {n!r}")
         dw = self.omega[1] - self.omega[0]
-        bins = np.rint((2 * np.arange(n) + 1) * self.fundamental / dw).astype(np.int64)
         out = np.full(n, np.nan)
+        if not math.isfinite(self.fundamental):
+            warnings.warn("spectrum: no fundamental, so no harmonics (NaN)", RuntimeWarning, stacklevel=2)
+            return out
+        bins = np.rint((2 * np.arange(n) + 1) * self.fundamental / dw).astype(np.int64)
         inside = bins < self.power.size
         out[inside] = np.sqrt(self.power[bins[inside]])
         return out
@@ -143,7 +263,9 @@ def _uniform_step(t: np.ndarray) -> float:
         raise ValueError("t must be finite")
     d = np.diff(t)
     dt = (t[-1] - t[0]) / (t.size - 1)
-    if not dt > 0 or np.abs(d - dt).max() > 1e-9 * abs(dt) * max(1.0, t.size / 1e3):
+    # max |d - dt| from the extremes of d (two reductions, no temporaries)
+    dev = max(float(d.max()) - dt, dt - float(d.min()))
+    if not dt > 0 or not dev <= 1e-9 * abs(dt) * max(1.0, t.size / 1e3):
         raise ValueError("t must be increasing with a uniform spacing (resample first)")
     return float(dt)
 
@@ -157,11 +279,26 @@ def spectra(t, signals, window: str | None = None, measure: bool = False) -> lis
         Uniformly spaced times.
     signals : array_like, shape (m, n) or (n,)
         NaN in a signal gives NaN in its spectrum (as numpy.fft does).
+        m = 0 (no signals) gives an empty list.
     window : {None, 'hann'}
     measure : bool
-        Plan with FFTW_MEASURE (seconds of planning for 2^20 samples, then
-        faster transforms; worth it for long sweeps).  Plans are kept for the
-        process, per length, so only the first call of a length pays.
+        Plan with FFTW_MEASURE (~25 s of planning for 2^20 samples here, then
+        transforms about twice as fast).  Without it, a measured plan is still
+        used when the machine's wisdom file has one for this length (made once
+        by ``pendula wisdom``, see `precompute_wisdom`), else FFTW_ESTIMATE.
+        Plans are kept for the process, per length, so only the first call of
+        a length pays.  Safe to call from several threads at once.
+
+    Returns
+    -------
+    list of Spectrum
+        One per signal (an empty list for m = 0).
+
+    Raises
+    ------
+    ValueError
+        Fewer than 4 samples, non-uniform or non-finite t, mismatched shapes,
+        an unknown window.
     """
     t = as_float(t, "t")
     dt = _uniform_step(t)
@@ -172,11 +309,12 @@ def spectra(t, signals, window: str | None = None, measure: bool = False) -> lis
         raise ValueError(f"signals must have shape (m, {t.size}) to match t, got {x.shape}")
     if window not in _WINDOWS:
         raise ValueError(f"window must be None or 'hann', got {window!r}")
-    if x.shape[0] == 0:
-        return []
     n = t.size
+    if x.shape[0] == 0:                         # no signals in, no spectra out
+        return []
+    cols = np.asfortranarray(x.T)
     with _plan(n, measure) as handle:
-        omega, power, status = _kernel.spectra_v(handle, np.asfortranarray(x.T), dt, _WINDOWS[window], n // 2 + 1)
+        omega, power, status = _kernel.spectra_v(handle, cols, dt, _WINDOWS[window], n // 2 + 1)
     if status:
         raise RuntimeError(f"pendula kernel: spectrum status {status}")
     finite_in = np.all(np.isfinite(x), axis=1)
