@@ -35,3 +35,32 @@ def pendula_run_table(tmp_path, body: str):
     data = np.array([[float(x) for x in ln.split(",")] for ln in out.read_text().splitlines()
                      if ln and ln[0] not in "#t"])
     return data, f
+
+
+def run_threads(targets, switch_interval: float = 1e-6) -> list:
+    """Run each callable in its own thread with a tiny GIL switch interval (so the
+    threads interleave as much as they can); return the exceptions they raised."""
+    import sys
+    import threading
+
+    errors = []
+
+    def wrap(f):
+        def go():
+            try:
+                f()
+            except BaseException as exc:  # noqa: BLE001 - handed back to the test
+                errors.append(exc)
+        return go
+
+    threads = [threading.Thread(target=wrap(f)) for f in targets]
+    old = sys.getswitchinterval()
+    sys.setswitchinterval(switch_interval)
+    try:
+        for th in threads:
+            th.start()
+        for th in threads:
+            th.join()
+    finally:
+        sys.setswitchinterval(old)
+    return errors

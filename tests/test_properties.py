@@ -16,7 +16,6 @@ Tolerances, with the reason:
 import math
 
 import numpy as np
-import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 

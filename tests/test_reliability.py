@@ -5,7 +5,6 @@ import math
 import signal
 import subprocess
 import sys
-import threading
 import time
 import warnings
 
@@ -14,6 +13,7 @@ import numpy as np
 import pytest
 
 import pendula
+from conftest import run_threads
 from pendula import Scene
 
 EPS = np.finfo(float).eps
@@ -141,44 +141,6 @@ def test_numerical_period_near_the_separatrix_warns_or_is_right():
 
 # ------------------------------------------------------------ threads
 
-def _hammer(jobs, n_threads=4):
-    errors = []
-
-    def run(job):
-        try:
-            job()
-        except BaseException as exc:  # noqa: BLE001
-            errors.append(exc)
-
-    threads = [threading.Thread(target=run, args=(jobs[i % len(jobs)],)) for i in range(n_threads)]
-    old = sys.getswitchinterval()
-    sys.setswitchinterval(1e-6)
-    try:
-        for th in threads:
-            th.start()
-        for th in threads:
-            th.join()
-    finally:
-        sys.setswitchinterval(old)
-    assert not errors, errors
-
-
-def test_spectrum_from_threads_on_many_lengths_matches_serial():
-    rng = np.random.default_rng(5)
-    signals = {n: rng.standard_normal(n) for n in range(64, 90)}
-    serial = {n: pendula.spectrum(np.arange(n) * 0.1, x).power for n, x in signals.items()}
-
-    def job(lengths):
-        def go():
-            for _ in range(40):
-                for n in lengths:
-                    p = pendula.spectrum(np.arange(n) * 0.1, signals[n]).power
-                    assert np.array_equal(p, serial[n])
-        return go
-
-    _hammer([job([64]), job(list(range(65, 90))), job(list(range(89, 64, -1)))], n_threads=3)
-
-
 def test_ellipj_simulate_and_events_from_threads_match_serial():
     rng = np.random.default_rng(6)
     us = [rng.uniform(-1e3, 1e3, n) for n in (10, 1000, 50_000)]
@@ -197,4 +159,4 @@ def test_ellipj_simulate_and_events_from_threads_match_serial():
             for s, r in zip(scenes, ref_e):
                 assert np.array_equal(pendula.find_events(s, "turning", t_end=40.0).t, r)
 
-    _hammer([go], n_threads=4)
+    assert run_threads([go] * 4) == []

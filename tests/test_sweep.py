@@ -3,7 +3,6 @@ reference at random grid points, thread and Dask invariance, resume after a
 kill, scene grid fields, the I-V hysteresis loop."""
 
 import math
-import os
 import pathlib
 import signal
 import subprocess

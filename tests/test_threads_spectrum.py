@@ -9,12 +9,11 @@ result must equal the serial one bit for bit (the kernel call releases the GIL,
 """
 
 import importlib
-import sys
-import threading
 
 import numpy as np
 
 import pendula
+from conftest import run_threads
 
 spectrum_module = importlib.import_module("pendula.spectrum")
 
@@ -47,24 +46,12 @@ def test_threads_hammering_spectra_of_many_lengths_match_serial_results():
     jobs = [_work(1000 + i, calls) for i in range(nthreads)]
     serial = [_run(j) for j in jobs]
     results = [None] * nthreads
-    errors = []
-
     def worker(i):
-        try:
+        def go():
             results[i] = _run(jobs[i])
-        except BaseException as exc:  # noqa: BLE001 - reported below
-            errors.append(exc)
+        return go
 
-    old = sys.getswitchinterval()
-    sys.setswitchinterval(1e-6)
-    try:
-        threads = [threading.Thread(target=worker, args=(i,)) for i in range(nthreads)]
-        for th in threads:
-            th.start()
-        for th in threads:
-            th.join()
-    finally:
-        sys.setswitchinterval(old)
+    errors = run_threads([worker(i) for i in range(nthreads)])
     assert not errors, errors
     for got, want in zip(results, serial):
         assert len(got) == len(want) == calls
@@ -94,15 +81,6 @@ def test_one_long_length_and_a_cycle_of_others_in_two_threads():
             if not np.array_equal(pendula.spectrum(t, np.sin(t)).power, others[n]):
                 bad.append(n)
 
-    old = sys.getswitchinterval()
-    sys.setswitchinterval(1e-6)
-    try:
-        ths = [threading.Thread(target=a), threading.Thread(target=b)]
-        for th in ths:
-            th.start()
-        for th in ths:
-            th.join()
-    finally:
-        sys.setswitchinterval(old)
+    assert run_threads([a, b]) == []
     assert bad == []
     assert len(spectrum_module._PLANS) <= spectrum_module._MAX_PLANS

@@ -51,7 +51,7 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Orbit", "Trajectory", "period_series", "period_from_series", "poincare_lindstedt",
            "find_events", "numerical_period", "Events",
            "spectrum", "spectra", "Spectrum", "fourier_series", "odd_harmonics_above",
-           "models", "ModelInfo", "cycloid_geometry", "cycloid_period", "gravity_orbit",
+           "models", "ModelInfo", "cycloid_geometry", "cycloid_period", "CycloidGeometry", "gravity_orbit",
            "angle_density", "angle_cdf", "arcsine_density", "flip_map", "cord_state", "flip_sequence",
            "sweep", "iv_curve",
            "precompute_wisdom", "wisdom_path"]

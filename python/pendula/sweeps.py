@@ -33,12 +33,10 @@ A Dask distributed ``client`` spreads the chunks over its workers.
 
 from __future__ import annotations
 
-import hashlib
 import json
 import math
 import os
 import pathlib
-import time
 
 import numpy as np
 

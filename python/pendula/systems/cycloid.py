@@ -25,7 +25,6 @@ output time runs beyond the ends of the cheeks: ValueError naming the cusp.
 from __future__ import annotations
 
 import math
-import warnings
 
 import numpy as np
 
