@@ -326,8 +326,10 @@ def bench_sweep(n: int = 1_000_000, seed: int = 14) -> list[dict]:
     ts = best_time(scipy_loop, repeat=1)
     print(f"  20 x 20 subgrid, 1 thread: pendula {tp / 400 * 1e6:.1f} us/point, scipy solve_ivp + event loop "
           f"{ts / 400 * 1e6:.1f} us/point: ratio {ts / tp:.0f}x")
-    return [{"name": "sweep_map", "seconds": t_map, "points": side * side}, {"name": "threads_1_vs_2", "ratio": t1 / t2},
-            {"name": "scipy_over_pendula", "ratio": ts / tp}]
+    return [{"what": "final-well map, seconds", "value": t_map},
+            {"what": "points", "value": float(side * side)},
+            {"what": "speed-up, 2 threads over 1", "value": t1 / t2},
+            {"what": "scipy solve_ivp loop over pendula, per point", "value": ts / tp}]
 
 
 BENCHMARKS = {"elliptic": bench_elliptic, "exact": bench_exact, "integrators": bench_integrators,
