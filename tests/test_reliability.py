@@ -160,3 +160,13 @@ def test_ellipj_simulate_and_events_from_threads_match_serial():
                 assert np.array_equal(pendula.find_events(s, "turning", t_end=40.0).t, r)
 
     assert run_threads([go] * 4) == []
+
+
+def test_events_and_density_refuse_the_flexible_cord_instead_of_answering_for_a_rigid_one():
+    s = Scene(cord="flexible", v0=2.5)
+    with pytest.raises(ValueError, match="cord"):
+        pendula.find_events(s, "turning", t_end=10.0)
+    with pytest.raises(ValueError, match="cord|conservative"):
+        pendula.numerical_period(s)
+    with pytest.raises(NotImplementedError, match="cord"):
+        pendula.angle_density(s, 0.0)

@@ -19,7 +19,7 @@ module pendula_simulate
     gr_libration, gr_rotation
   use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate, m_rk4, m_verlet, &
     m_yoshida4, m_yoshida6, m_yoshida8, m_gauss4, m_gauss6, m_dopri5, m_dop853, st_too_many_steps, &
-    st_cancelled, max_steps
+    st_cancelled, max_steps, max_fixed_steps
   use pendula_gsl_iface, only: pendula_gsl_rk8pd
   implicit none
   private
@@ -350,8 +350,8 @@ contains
     case (sim_backward);         s = 'gsl-rk8pd integrates forward only: give times >= 0'
     case (sim_gsl_failed);       s = 'GSL odeiv2 (rk8pd) failed'
     case (sim_too_many_steps)
-      write(s, '(a,es8.1,a)') 'the run needs more than', real(max_steps, dp), ' steps (the work limit): ' // &
-        'shorten the span (t), or give a larger dt or rtol'
+      write(s, '(a,es8.1,a,es8.1,a)') 'the run needs more steps than the work limit (', real(max_steps, dp), &
+        ' adaptive,', real(max_fixed_steps, dp), ' fixed-step): shorten the span (t), or give a larger dt or rtol'
     case (sim_cancelled);        s = 'interrupted'
     case (sim_nonfinite_t);      s = 't must be finite for a scene that is integrated'
     case (sim_cord_effects);     s = 'the flexible cord with damping, torque or drive runs in the Python ' // &

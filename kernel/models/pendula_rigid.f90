@@ -12,7 +12,7 @@ module pendula_rigid
   use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_eval
   implicit none
   private
-  public :: rigid_has_exact, rigid_exact, rigid_energy, rigid_position
+  public :: rigid_has_exact, rigid_exact, rigid_energy
 
 contains
 
@@ -39,14 +39,5 @@ contains
     real(dp) :: e
     e = 0.5_dp * v * v + 2.0_dp * eps * sin(0.5_dp * theta)**2
   end function rigid_energy
-
-  !> The bob's position in units of the length: x = sin theta, y = -cos theta, r = 1.
-  elemental subroutine rigid_position(theta, x, y, r)
-    real(dp), intent(in) :: theta
-    real(dp), intent(out) :: x, y, r
-    x = sin(theta)
-    y = -cos(theta)
-    r = 1.0_dp
-  end subroutine rigid_position
 
 end module pendula_rigid

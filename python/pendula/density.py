@@ -47,7 +47,9 @@ def _check(scene):
 
     if not isinstance(scene, Scene):
         raise TypeError(f"expected a pendula.Scene, got {type(scene).__name__}")
-    scene.require_implemented()
+    if scene.cord != "rigid":
+        raise NotImplementedError("angle_density: the flexible cord (its flights leave the circle) is not "
+                                  "implemented")
     bad = [e for e in scene.effects if e in ("damping", "drive")]
     if bad:
         raise ValueError(f"the density of the angle is defined over the period of a conservative orbit; "

@@ -30,7 +30,8 @@ ADAPTIVE = ("dopri5", "dop853", "gsl-rk8pd")
 _STATUS = {1: "the step dt must be positive", 2: "rtol must be > 0 and atol >= 0", 3: "unknown method",
            5: "step size underflow (the problem may be singular or the tolerance unreachable)",
            6: "the state became non-finite", 9: "events need a method with dense output (dopri5, dop853)",
-           7: "the run needs more than 1e8 steps (the work limit): shorten the span, or give a larger dt or rtol",
+           7: "the run needs more steps than the work limit (1e8 adaptive, 2e9 fixed-step): shorten the span, "
+              "or give a larger dt or rtol",
            8: "interrupted",
            11: "gsl-rk8pd integrates forward only: give times >= 0",
            20: "bad gravity field parameters (gravity_distance > 1, gravity_gradient < 0.5)"}
@@ -62,7 +63,9 @@ def _run(scene, method, t_sorted, ev_kind=0, ev_level=0.0, ev_dir=0, terminal=Fa
         raise ValueError(f"method {method!r} is fixed-step: give the scene a step dt > 0")
     if method in ADAPTIVE and not (scene.rtol > 0 and scene.atol >= 0):
         raise ValueError("adaptive methods need rtol > 0 and atol >= 0")
-    scene.require_implemented()
+    if scene.cord != "rigid":
+        raise ValueError("field 'cord': events and the numerical period are located on the rigid cord; the "
+                         "flexible cord's departures and returns are in simulate(...).flips")
     if scene.guide == "cycloid":
         raise ValueError("the cycloidal pendulum is solved in closed form, never integrated")
     if scene.gravity != "uniform" and method == "gsl-rk8pd":

@@ -209,14 +209,6 @@ class Scene:
             out.append("gravity")
         return tuple(out)
 
-    def require_implemented(self) -> None:
-        """NotImplementedError naming the effects the scene format has room for
-        but pendula cannot simulate yet (none at present: the registry's models all run)."""
-        missing = [e for e in self.effects if e == "cord" and self.cord != "flexible"]
-        if missing:
-            raise NotImplementedError(f"pendula cannot simulate the effect(s) {', '.join(missing)} yet "
-                                      f"(cord = {self.cord!r}, guide = {self.guide!r}, gravity = {self.gravity!r})")
-
     @property
     def is_conservative_rigid(self) -> bool:
         """True when the exact elliptic-function solution answers this scene."""
