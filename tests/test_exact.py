@@ -211,3 +211,34 @@ def test_infinite_and_nan_times():
     with pytest.warns(RuntimeWarning, match="infinite"):
         theta, _ = pendula.exact_motion(0.0, 1.0, 1.0, [np.inf])
     assert np.isnan(theta[0])
+
+
+def test_v_next_to_its_zeros_keeps_4_eps_of_itself():
+    """v = 2 k sqrt(eps) cn(u0 + sqrt(eps) t) next to a turning point, with a
+    large velocity scale (eps up to 900): the starting phase u0 = F(phi0) was
+    formed in double, and its rounding (eps times a phase of order K) stayed in
+    v, up to 18.5 eps of a small |v| on the random grids.  Now in double-double:
+    v within 4 eps relative to max(1, |v|), against mpmath (40 digits) at random
+    states and at times drawn within 1e-3 K of a turning point."""
+    mp = pytest.importorskip("mpmath")
+    mp.mp.dps = 40
+    rng = np.random.default_rng(20261123)
+    worst = 0.0
+    for _ in range(25):
+        eps = float(10 ** rng.uniform(0.0, 3.0))
+        th0 = float(rng.uniform(-3.0, 3.0))
+        # a libration: |w| below cos(theta0/2)
+        v0 = float(rng.uniform(-0.999, 0.999) * 2.0 * math.sqrt(eps) * math.cos(th0 / 2))
+        e, t0, w0 = mp.mpf(eps), mp.mpf(th0), mp.mpf(v0) / (2 * mp.sqrt(eps))
+        s0 = mp.sin(t0 / 2)
+        m = s0**2 + w0**2
+        k = mp.sqrt(m)
+        u0 = mp.ellipf(mp.atan2(s0 / k, w0 / k), m)
+        K = mp.ellipk(m)
+        # a time within 1e-3 K of the turning point (2j + 1) K, j up to 50
+        j = int(rng.integers(-50, 50))
+        t = float(((2 * j + 1) * K * (1 + mp.mpf(rng.uniform(-1e-3, 1e-3))) - u0) / mp.sqrt(e))
+        ref = 2 * k * mp.sqrt(e) * mp.ellipfun("cn", u0 + mp.sqrt(e) * mp.mpf(t), m=m)
+        _, v = pendula.exact_motion(th0, v0, eps, [t])
+        worst = max(worst, abs(float(v[0] - ref)) / max(1.0, abs(float(ref))) / EPS)
+    assert worst <= 4.0, f"{worst:.3g} eps"

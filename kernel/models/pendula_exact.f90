@@ -18,6 +18,7 @@ module pendula_exact
   use pendula_kinds, only: dp, pi, pi_lo, half_pi, two_pi, nan_dp, inf_dp
   use pendula_dd, only: two_sum, fast_two_sum, two_prod, dd_sqrt, dd_add, dd_mul, dd_sincos, dd_div_d
   use pendula_elliptic, only: jacobi_plan, jacobi_prepare_dd, jacobi_eval_array, ellip_f_sc
+  use pendula_carlson_dd, only: ellip_f_dd
   implicit none
   private
   public :: pendulum_orbit, orbit_setup, orbit_eval, orbit_period, orbit_theta_max
@@ -142,7 +143,10 @@ contains
       ! sn(u0) = s0/k, cn(u0) = w/k, dn(u0) = cos(theta0/2): F from sine and
       ! cosine, never from an angle, next to the nearest multiple of K
       if (o%k > 0.0_dp) then
-        call phase_dd(s0 / o%k, wh / o%k, c0, o%plan%kh, o%plan%kl, o%m, o%mch, o%u0, o%u0l)
+        call dd_div(s0, s0l, kh, kl, a, e)
+        call dd_div(wh, wl, kh, kl, b, r)
+        call phase_dd([a, e], [b, r], [c0, c0l], o%plan%kh, o%plan%kl, o%m, [o%mch, o%mcl], &
+                      o%u0, o%u0l)
       end if
     else if (nh == 0.0_dp .and. nl == 0.0_dp) then
       ! the separatrix.  cos(theta0/2) > 0 for every double theta0 (pi is not a
@@ -184,7 +188,9 @@ contains
       ! reduced angle, and the n turns of theta0 as 2 n K more phase (in
       ! double-double): am then carries every turn itself, as j pi + a small
       ! angle, and theta(t) is not the difference of two large numbers
-      call phase_dd(o%dir * s0, c0, awh / kh, o%plan%kh, o%plan%kl, o%m, o%mch, o%u0, o%u0l)
+      call dd_div(awh, awl, kh, kl, a, e)
+      call phase_dd(o%dir * [s0, s0l], [c0, c0l], [a, e], o%plan%kh, o%plan%kl, o%m, &
+                    [o%mch, o%mcl], o%u0, o%u0l)
       call two_prod(o%dir * 2.0_dp * n, o%plan%kh, p, e)
       e = e + o%dir * 2.0_dp * n * o%plan%kl
       call two_sum(p, o%u0, qh, r)
@@ -293,37 +299,64 @@ contains
   end subroutine reduce_2pi
 
   !> The phase u0 (double-double) with sn(u0) = sn0, cn(u0) = cn0,
-  !> dn(u0) = dn0 > 0 for the parameter m (K = kh + kl, mc its complement).
+  !> dn(u0) = dn0 > 0 for the parameter m (K = kh + kl, mc = mch + mcl its
+  !> complement); sn0, cn0, dn0 are given in double-double (the pairs).
   !>
-  !> F is computed only for the part of u0 beyond the nearest multiple of K,
-  !> so its rounding is eps times that small part, never eps K: next to the
-  !> separatrix K is 20 or more, and a start at rest near the top (u0 = K) or a
-  !> libration run backward (u0 near 2K) lost 8 to 13 eps through it.
+  !> F is computed only for the part of u0 beyond the nearest multiple of K
+  !> (a start at rest near the top has u0 = K, a libration run backward u0
+  !> near 2K), and in double-double (pendula_carlson_dd): formed in double,
+  !> its rounding of eps times a phase of order K stayed in v for the whole
+  !> run, up to 18 eps of a small |v| next to its zeros.
   !>   u0 = j K + F(remainder): j = 0 and 2 use sn(2K - u) = sn(u),
   !>   cn(2K - u) = -cn(u); j = 1 uses sn(K - u) = cd(u), cn(K - u) = k' sd(u).
+  !> The branch is chosen from the double values (the choice only has to
+  !> keep the remainder small, not be exact).
   pure subroutine phase_dd(sn0, cn0, dn0, kh, kl, m, mc, uh, ul)
-    real(dp), intent(in) :: sn0, cn0, dn0, kh, kl, m, mc
+    real(dp), intent(in) :: sn0(2), cn0(2), dn0(2), kh, kl, m, mc(2)
     real(dp), intent(out) :: uh, ul
-    real(dp) :: sg, as, f0, f1, jk, ph, pl
-    sg = sign(1.0_dp, sn0)
-    as = abs(sn0)
+    real(dp) :: sg, as(2), f0, f1, jk, ph, pl, fh, fl, ah(2), bh(2), r(2), t(2)
+    sg = sign(1.0_dp, sn0(1))
+    as = sg * sn0
     ! from 0 (cn >= 0) or from 2K (cn < 0)
-    if (cn0 >= 0.0_dp) then
-      f0 = ellip_f_sc(as, cn0, m, mc); jk = 0.0_dp
+    if (cn0(1) >= 0.0_dp) then
+      f0 = ellip_f_sc(as(1), cn0(1), m, mc(1)); jk = 0.0_dp
     else
-      f0 = -ellip_f_sc(as, -cn0, m, mc); jk = 2.0_dp
+      f0 = -ellip_f_sc(as(1), -cn0(1), m, mc(1)); jk = 2.0_dp
     end if
     ! from K: u0 = K - u1, sn(u1) = cn0/dn0, cn(u1) = sqrt(mc) |sn0| / dn0
-    f1 = ellip_f_sc(cn0 / dn0, sqrt(mc) * as / dn0, m, mc)
+    f1 = ellip_f_sc(cn0(1) / dn0(1), sqrt(mc(1)) * as(1) / dn0(1), m, mc(1))
     if (abs(f1) < abs(f0)) then
-      f0 = -f1; jk = 1.0_dp
+      jk = 1.0_dp
+      call dd_div(cn0(1), cn0(2), dn0(1), dn0(2), ah(1), ah(2))
+      call dd_sqrt(mc(1), mc(2), r(1), r(2))
+      call dd_mul(r(1), r(2), as(1), as(2), t(1), t(2))
+      call dd_div(t(1), t(2), dn0(1), dn0(2), bh(1), bh(2))
+      ! cn(u1) >= 0 always; sn(u1) may have either sign
+      call ellip_f_dd(abs(ah(1)), sign(1.0_dp, ah(1)) * ah(2), bh(1), bh(2), mc(1), mc(2), fh, fl)
+      fh = -sign(1.0_dp, ah(1)) * fh; fl = -sign(1.0_dp, ah(1)) * fl
+    else if (jk == 0.0_dp) then
+      call ellip_f_dd(as(1), as(2), cn0(1), cn0(2), mc(1), mc(2), fh, fl)
+    else
+      call ellip_f_dd(as(1), as(2), -cn0(1), -cn0(2), mc(1), mc(2), fh, fl)
+      fh = -fh; fl = -fl
     end if
-    ! u0 = sg (jk K + f0), the multiple of K in double-double
-    call two_sum(jk * kh, f0, ph, pl)
+    ! u0 = sg (jk K + f), the multiple of K in double-double
+    call two_prod(jk, kh, ph, pl)
     pl = pl + jk * kl
-    call fast_two_sum(ph, pl, uh, ul)
+    call dd_add(ph, pl, fh, fl, uh, ul)
     uh = sg * uh; ul = sg * ul
   end subroutine phase_dd
+
+  !> (qh + ql) = (ah + al) / (bh + bl) to double-double accuracy, b /= 0.
+  pure subroutine dd_div(ah, al, bh, bl, qh, ql)
+    real(dp), intent(in) :: ah, al, bh, bl
+    real(dp), intent(out) :: qh, ql
+    real(dp) :: q1, p, e, r
+    q1 = ah / bh
+    call two_prod(q1, bh, p, e)
+    r = (((ah - p) - e) + al) - q1 * bl
+    call fast_two_sum(q1, r / bh, qh, ql)
+  end subroutine dd_div
 
   include 'pendula_atan.inc'
 
