@@ -313,9 +313,33 @@ def test_pendula_run_flexible_cord_matches_python(tmp_path, data_dir):
     np.testing.assert_allclose(tab[:, 4:7], np.column_stack([tr.x, tr.y, tr.r]), rtol=1e-15, atol=1e-15)
     np.testing.assert_allclose(log[:, 5], tr.flips["xi_after"], rtol=1e-15, atol=1e-17)
     assert log.shape[0] == tr.stats["flips"] > 10
-    bad = subprocess.run([venv_bin("pendula-run"), str(data_dir / "scenes" / "cord_damped.nml")],
-                         capture_output=True, text=True)
-    assert bad.returncode == 3 and "Python only" in bad.stderr
+
+
+def test_pendula_run_damped_flexible_cord_is_the_same_kernel_run(tmp_path, data_dir):
+    """The damped cord (the hybrid loop: circle integrated to the tension event) runs whole in
+    the kernel for pendula-run and for pendula.simulate alike: equal to the CSV's 17 digits."""
+    import subprocess
+
+    from conftest import venv_bin
+
+    scene = data_dir / "scenes" / "cord_damped.nml"
+    p = subprocess.run([venv_bin("pendula-run"), str(scene), "-o", str(tmp_path / "d.csv")],
+                       capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    lines = [ln for ln in (tmp_path / "d.csv").read_text().splitlines() if ln and ln[0] not in "#t"]
+    tab = np.array([[float(x) for x in ln.split(",")[:7]] for ln in lines])
+    log = [ln.split(",") for ln in (tmp_path / "d_flips.csv").read_text().splitlines() if ln and ln[0].isdigit()]
+    tr = pendula.simulate(Scene.from_file(scene), tab[:, 0])
+    assert tr.method == "dop853" and tr.stats["flips"] == len(log) >= 1
+    np.testing.assert_allclose(tab[:, 1], tr.theta, rtol=1e-15, atol=1e-15)
+    np.testing.assert_allclose(tab[:, 4:7], np.column_stack([tr.x, tr.y, tr.r]), rtol=1e-15, atol=1e-15)
+    np.testing.assert_allclose([float(r[6]) for r in log], tr.flips["xi_after"], rtol=1e-15, atol=1e-17)
+    # a fixed-step method cannot locate the tension event: exit 2 naming the field
+    bad = tmp_path / "rk4.nml"
+    bad.write_text(scene.read_text().replace("&scene", "&scene\n method = 'rk4', dt = 0.01", 1))
+    q = subprocess.run([venv_bin("pendula-run"), str(bad), "-o", str(tmp_path / "b.csv")],
+                       capture_output=True, text=True)
+    assert q.returncode == 2 and "method" in q.stderr and not (tmp_path / "b.csv").exists()
 
 
 def test_gallery_cord_scenes_run():
@@ -359,8 +383,8 @@ def test_bad_cord_fields_in_both_readers(tmp_path, text, field):
     assert p.returncode == 2 and field in p.stderr and not (tmp_path / "o.csv").exists()
 
 
-def test_restitution_with_damping_python_loop_agrees_with_kernel_at_zero_damping():
-    # the integrated path (Python loop, cubic re-entry root) against the compiled exact path: the same
+def test_restitution_with_damping_integrated_loop_agrees_with_closed_form_at_zero_damping():
+    # the integrated path (hybrid loop, cubic re-entry root) against the compiled exact path: the same
     # scene with damping 1e-300 (an effect, so integrated at rtol 1e-12) and 0 (exact)
     base = Scene(cord="flexible", v0=v0_of(0.5), restitution=0.4, min_flight=1e-6, t_end=15, n_samples=151,
                  rtol=1e-12, atol=1e-14)

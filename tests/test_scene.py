@@ -179,15 +179,6 @@ def test_pendula_run_fixed_step_needs_dt(tmp_path):
     assert p.returncode == 4 and "dt" in p.stderr
 
 
-def test_pendula_run_unimplemented_effect_exits_3(tmp_path):
-    # what pendula-run cannot run: the flexible cord with damping (its loop is in Python)
-    f = tmp_path / "cord.nml"
-    f.write_text("&scene\n cord = 'flexible', v0 = 2.5, damping = 0.1\n/\n")
-    p = run(str(f), "-o", str(tmp_path / "o.csv"))
-    assert p.returncode == 3 and "Python" in p.stderr
-    assert not (tmp_path / "o.csv").exists()
-
-
 def test_cli_run_writes_tables_and_figures(tmp_path, data_dir):
     from pendula.cli import main
     assert main(["run", str(data_dir / "scenes" / "fig10_theta_max_vs_v0.nml"), "-o", str(tmp_path), "-q"]) == 0

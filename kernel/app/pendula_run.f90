@@ -187,9 +187,6 @@ program pendula_run
 
 contains
 
-  !> The flexible cord: table [sweep,]t,theta,v,energy,x,y,r to OUT, the flip log to OUT_flips.csv
-  !> (or following the table on standard output).  Conservative scenes only (exit 3 otherwise).
-
   function member_of(s, k) result(m)
     type(scene_t), intent(in) :: s
     integer, intent(in) :: k
@@ -210,20 +207,17 @@ contains
   !> The flexible cord: its table (t, theta, v, energy, x, y, r) and its flip log
   !> (OUT_flips.csv beside OUT, or following on standard output), through the
   !> checked writer like every other output.
+  !> With or without effects, through the dispatcher (cord_scene_run), as pendula.simulate.
   subroutine run_cord()
-    use pendula_cord, only: cord_run_all
+    use pendula_simulate, only: cord_scene_run, cord_integrated, sim_cord_effects
     real(dp), allocatable :: x(:), y(:), r(:), flips(:, :)
+    real(dp) :: stats(4)
     type(outfile_t) :: f_flips
-    integer :: k, m, nfl, stp, st
+    integer :: k, m, nfl, stp, st, meth
     logical :: two
     character(len=4096) :: flips_out
     character(len=64) :: pre
     character(len=10), parameter :: stops(0:2) = [character(len=10) :: 't_end', 'max_flips', 'min_flight']
-    if (sc%damping /= 0 .or. sc%torque /= 0 .or. sc%drive_amplitude /= 0) &
-      call fail(trim(path) // ': a flexible cord with damping, torque or drive runs in Python only ' // &
-                '(pendula.simulate)', 3)
-    if (sc%method /= 'auto' .and. sc%method /= 'exact') &
-      call fail(trim(path) // ': field ''method'': a conservative flexible cord is run exactly (auto or exact)')
     if (sc%t_start < 0 .or. sc%t_end < sc%t_start) &
       call fail(trim(path) // ': field ''t_start'': a flexible cord runs forward only (0 <= t_start <= t_end)')
     allocate(x(size(t)), y(size(t)), r(size(t)))
@@ -241,8 +235,15 @@ contains
       if (st /= 0) call fail_io('cannot write "' // trim(flips_out) // '"', st)
     end if
     call header(f_out)
-    write(line, '(a, f0.6, a)') '# flexible cord: exact circle phases, parabolic flights, jerk (restitution = ', &
-      sc%restitution, ')'
+    if (cord_integrated(sc)) then
+      pre = sc%method
+      if (sc%method == 'auto') pre = 'dop853'
+      write(line, '(a, f0.6, a)') '# flexible cord: circle phases integrated to the tension event (' // &
+        trim(pre) // '), parabolic flights, jerk (restitution = ', sc%restitution, ')'
+    else
+      write(line, '(a, f0.6, a)') '# flexible cord: exact circle phases, parabolic flights, jerk (restitution = ', &
+        sc%restitution, ')'
+    end if
     call out_line(f_out, line)
     if (swept) then
       call out_line(f_out, trim(sc%sweep) // ',t,theta,v,energy,x,y,r')
@@ -252,9 +253,9 @@ contains
     allocate(log_rows(0))
     do m = 1, nmem
       member = member_of(sc, m)
-      call cord_run_all(member%eps, member%theta0, member%v0, member%restitution, member%max_flips, &
-                        member%min_flight, t, theta, v, x, y, r, flips, nfl, stp, st)
-      if (st /= 0) call fail(trim(path) // ': the flexible-cord run failed (invalid state or times)', 4)
+      call cord_scene_run(member, t, theta, v, x, y, r, flips, nfl, stp, stats, meth, st)
+      if (st == sim_cord_effects) call fail(trim(path) // ': ' // trim(simulate_status_text(st)))
+      if (st /= 0) call fail(trim(path) // ': the flexible-cord run failed: ' // trim(simulate_status_text(st)), 4)
       e = 0.5_dp * v * v + 2.0_dp * member%eps * sin(0.5_dp * theta)**2
       pre = ''
       if (swept) write(pre, '(es24.16e3,",")') values(m)

@@ -375,20 +375,43 @@ subroutine cord_flip_map_v(n, x, f)
   f = flip_map(x)
 end subroutine cord_flip_map_v
 
-! A conservative flexible-cord run at sorted times t >= 0; flips(8, maxf): t_leave, theta_leave,
-! t_return, theta_return, xi_before, xi_after, v_leave, v_return.
-subroutine cord_run_v(n, maxf, eps, theta0, v0, restitution, max_flips, min_flight, t, theta, v, x, y, r, &
-                      flips, nflips, stop_reason, status)
-  use pendula_cord, only: cord_run
+! A flexible-cord scene (namelist text) through the dispatcher at sorted times t >= 0: closed
+! form without effects, the hybrid loop with them.  flips(8, maxf): t_leave, theta_leave, t_return, theta_return, xi_before, xi_after, v_leave,
+! v_return; nflips may
+! exceed maxf (then only maxf rows are returned: call again with room).  status: the
+! dispatcher's (0 ok; 100: the scene text is invalid), msg says why.
+subroutine cord_scene_v(text, n, maxf, t, cancel, theta, v, x, y, r, flips, nflips, stop_reason, stats, &
+                        method, status, msg)
+  use pendula_scene, only: scene_t, parse_scene
+  use pendula_simulate, only: cord_scene_run, simulate_status_text
   implicit none
-  integer, intent(in) :: n, maxf, max_flips
-  double precision, intent(in) :: eps, theta0, v0, restitution, min_flight, t(n)
-  double precision, intent(out) :: theta(n), v(n), x(n), y(n), r(n), flips(8, maxf)
-  integer, intent(out) :: nflips, stop_reason, status
+  !f2py threadsafe
+  character(len=*), intent(in) :: text
+  integer, intent(in) :: n, maxf
+  double precision, intent(in) :: t(n)
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: theta(n), v(n), x(n), y(n), r(n), flips(8, maxf), stats(4)
+  integer, intent(out) :: nflips, stop_reason, method, status
+  character(len=512), intent(out) :: msg
   !f2py intent(hide), depend(t) :: n = len(t)
-  call cord_run(eps, theta0, v0, restitution, max_flips, min_flight, t, theta, v, x, y, r, flips, &
-                nflips, stop_reason, status)
-end subroutine cord_run_v
+  type(scene_t) :: sc
+  double precision, allocatable :: fl(:, :)
+  integer :: k
+  theta = 0; v = 0; x = 0; y = 0; r = 0; flips = 0; stats = 0
+  nflips = 0; stop_reason = 0; method = -1; msg = ''
+  call parse_scene(text, '<scene>', sc, status, msg)
+  if (status /= 0) then
+    status = 100
+    return
+  end if
+  call cord_scene_run(sc, t, theta, v, x, y, r, fl, nflips, stop_reason, stats, method, status, cancel(1))
+  if (status /= 0) then
+    msg = simulate_status_text(status)
+    return
+  end if
+  k = min(nflips, maxf)
+  flips(:, 1:k) = fl(:, 1:k)
+end subroutine cord_scene_v
 ! ====================================================================
 ! Sweeps (issue 14): one call per block of grid points, OpenMP inside.
 ! ====================================================================

@@ -24,7 +24,7 @@ module pendula_simulate
   implicit none
   private
   public :: model_info_t, registry, select_model, method_code, simulate_scene, simulate_status_text, &
-            scene_energy, scene_orbit13
+            scene_energy, scene_orbit13, cord_integrated, cord_scene_run
 
   integer, parameter, public :: sim_ok = 0, sim_bad_state = 1, sim_unsupported = 10, &
     sim_needs_dt = 11, sim_unsorted = 12, sim_integrator_failed = 13, sim_not_implemented = 14, &
@@ -146,11 +146,10 @@ contains
       if (status == sim_ok) energy = rigid_energy(sc%eps, theta, v)
     case (mid_cord)
       ! circle (exact elliptic arcs), free flight (parabola), jerk: all closed form without
-      ! effects.  With damping, torque or drive the circle phases are integrated with the
-      ! tension event, a loop that lives in python/pendula/systems/cord.py for now
-      call simulate_cord(sc, t, theta, v, status)
+      ! effects.  With damping, torque or drive (or an adaptive method named) the circle
+      ! phases are integrated up to the tension event (pendula_cord_hybrid)
+      call simulate_cord(sc, t, theta, v, stats, method, status, cancel)
       if (status == sim_ok) energy = rigid_energy(sc%eps, theta, v)
-      method = m_exact
     case (mid_cycloid)
       ! a damped, driven harmonic oscillator in the arc length: never integrated
       if (sc%method /= 'auto' .and. sc%method /= 'exact') then
@@ -233,24 +232,75 @@ contains
     end select
   end subroutine integrate_model
 
-  !> The flexible cord without effects (kernel/models/pendula_cord.f90).
-  subroutine simulate_cord(sc, t, theta, v, status)
-    use pendula_cord, only: cord_run_all
+  !> The flexible cord through simulate_scene: theta and v (the bob's x, y, r and the
+  !> flip log: cord_scene_run).
+  subroutine simulate_cord(sc, t, theta, v, stats, method, status, cancel)
     type(scene_t), intent(in) :: sc
     real(dp), intent(in) :: t(:)
-    real(dp), intent(out) :: theta(:), v(:)
-    integer, intent(out) :: status
+    real(dp), intent(out) :: theta(:), v(:), stats(4)
+    integer, intent(out) :: method, status
+    integer, intent(inout), volatile, optional :: cancel
     real(dp), allocatable :: x(:), y(:), r(:), flips(:, :)
     integer :: nflips, stop_reason
-    if (sc%damping /= 0.0_dp .or. sc%torque /= 0.0_dp .or. sc%drive_amplitude /= 0.0_dp .or. &
-        .not. (sc%method == 'auto' .or. sc%method == 'exact')) then
+    allocate(x(size(t)), y(size(t)), r(size(t)))
+    call cord_scene_run(sc, t, theta, v, x, y, r, flips, nflips, stop_reason, stats, method, status, cancel)
+  end subroutine simulate_cord
+
+  !> The flexible cord: closed form without effects (kernel/models/pendula_cord.f90),
+  !> the hybrid loop with them (kernel/dispatch/pendula_cord_hybrid.f90: dopri5 or
+  !> dop853, 'auto' meaning dop853; fixed-step methods have no dense output to
+  !> locate the tension event on).  x, y, r: the bob's position (r < 1 in flight);
+  !> flips(8, nflips): the flip log (pendula_cord%cord_run); stop_reason:
+  !> cord_stop_*; stats as simulate_scene; status sim_*.
+  subroutine cord_scene_run(sc, t, theta, v, x, y, r, flips, nflips, stop_reason, stats, method, status, cancel)
+    use pendula_cord, only: cord_run_all
+    use pendula_cord_hybrid, only: cord_hybrid_all, cord_bad_method, cord_integrator_failed
+    type(scene_t), intent(in) :: sc
+    real(dp), intent(in) :: t(:)
+    real(dp), intent(out) :: theta(:), v(:), x(:), y(:), r(:), stats(4)
+    real(dp), allocatable, intent(out) :: flips(:, :)
+    integer, intent(out) :: nflips, stop_reason, method, status
+    integer, intent(inout), volatile, optional :: cancel
+    real(dp) :: work(2)
+    stats = 0.0_dp
+    if (.not. cord_integrated(sc)) then
+      method = m_exact
+      call cord_run_all(sc%eps, sc%theta0, sc%v0, sc%restitution, sc%max_flips, sc%min_flight, t, theta, v, &
+                        x, y, r, flips, nflips, stop_reason, status)
+      if (status /= 0) status = merge(sim_unsorted, sim_bad_state, status == 3)
+      return
+    end if
+    method = merge(m_dop853, method_code(sc%method), sc%method == 'auto')
+    if (method /= m_dopri5 .and. method /= m_dop853) then
+      nflips = 0; stop_reason = 0; allocate(flips(8, 0))
       status = sim_cord_effects; return
     end if
-    allocate(x(size(t)), y(size(t)), r(size(t)))
-    call cord_run_all(sc%eps, sc%theta0, sc%v0, sc%restitution, sc%max_flips, sc%min_flight, t, theta, v, &
-                      x, y, r, flips, nflips, stop_reason, status)
-    if (status /= 0) status = merge(sim_unsorted, sim_bad_state, status == 3)
-  end subroutine simulate_cord
+    call cord_hybrid_all([sc%eps, sc%damping, sc%torque, sc%drive_amplitude, sc%drive_frequency, &
+                          sc%drive_phase], method, sc%rtol, sc%atol, sc%theta0, sc%v0, sc%restitution, &
+                          sc%max_flips, sc%min_flight, t, theta, v, x, y, r, flips, nflips, stop_reason, work, &
+                          status, cancel)
+    stats = [work(1), work(1), 0.0_dp, work(2)]
+    if (status == cord_integrator_failed + st_too_many_steps) then
+      status = sim_too_many_steps
+    else if (status == cord_integrator_failed + st_cancelled) then
+      status = sim_cancelled
+    else if (status >= cord_integrator_failed) then
+      status = sim_integrator_failed
+    else if (status == cord_bad_method) then
+      status = sim_cord_effects
+    else if (status == 3) then
+      status = sim_unsorted
+    else if (status /= 0) then
+      status = sim_bad_state
+    end if
+  end subroutine cord_scene_run
+
+  !> Does a flexible-cord scene run the hybrid loop (effects, or an integrator named)?
+  pure logical function cord_integrated(sc)
+    type(scene_t), intent(in) :: sc
+    cord_integrated = sc%damping /= 0.0_dp .or. sc%torque /= 0.0_dp .or. sc%drive_amplitude /= 0.0_dp .or. &
+                      .not. (sc%method == 'auto' .or. sc%method == 'exact')
+  end function cord_integrated
 
   !> The cycloidal guide's closed form (kernel/models/pendula_cycloid.f90).
   subroutine cycloid_path_motion(sc, t, theta, v, status)
@@ -354,8 +404,9 @@ contains
         ' adaptive,', real(max_fixed_steps, dp), ' fixed-step): shorten the span (t), or give a larger dt or rtol'
     case (sim_cancelled);        s = 'interrupted'
     case (sim_nonfinite_t);      s = 't must be finite for a scene that is integrated'
-    case (sim_cord_effects);     s = 'the flexible cord with damping, torque or drive runs in the Python ' // &
-                                     'layer only (pendula.simulate); pendula-run answers it without effects'
+    case (sim_cord_effects);     s = 'field ''method'': a flexible cord with effects is integrated between ' // &
+                                     'flights by dopri5 or dop853 (auto: dop853), whose dense output ' // &
+                                     'locates the tension event'
     case (sim_closed_form_only); s = 'field ''method'': the cycloidal guide is answered in closed form; ' // &
                                      'use ''auto'' or ''exact'''
     case (sim_beyond_cusp);      s = 'the motion reaches the cusps of the cycloidal guide (|s| = 4R, ' // &
@@ -364,7 +415,5 @@ contains
     end select
   end function simulate_status_text
 
-  !> The flexible cord through the dispatcher: theta and v only (pendula-run writes x, y, r and the
-  !> flip log itself).  Damping, torque or drive with a flexible cord: sim_unsupported (Python only).
 
 end module pendula_simulate

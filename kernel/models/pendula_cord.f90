@@ -18,6 +18,7 @@ module pendula_cord
   implicit none
   private
   public :: flip_map, cord_run, cord_run_all
+  public :: cord_depart, cord_flight_time, cord_land, cord_flight_state
   !> status codes of cord_run
   integer, parameter, public :: cord_ok = 0, cord_bad_eps = 1, cord_bad_state = 2, cord_bad_times = 3, &
     cord_bad_restitution = 4
@@ -112,6 +113,79 @@ contains
     end function poly
   end function first_root
 
+  !> The bob leaves the circle at the angle th1 with the tangential velocity v1
+  !> (= l theta') and the radial velocity vr (< 0: inward, after a springy
+  !> jerk): its position p, velocity u and energy xi = (|u|^2 - 2 eps cos th1) / (3 eps).
+  pure subroutine cord_depart(eps, th1, v1, vr, p, u, xi)
+    real(dp), intent(in) :: eps, th1, v1, vr
+    real(dp), intent(out) :: p(2), u(2), xi
+    p = [sin(th1), -cos(th1)]
+    u = [v1 * cos(th1) + vr * p(1), v1 * sin(th1) + vr * p(2)]
+    xi = (v1 * v1 + vr * vr - 2.0_dp * eps * cos(th1)) / (3.0_dp * eps)
+  end subroutine cord_depart
+
+  !> Duration of the flight from p with velocity u under gravity eps: the
+  !> root of |p(tau)|**2 - 1 = tau (c1 + c2 tau + c3 tau**2 + c4 tau**3).
+  !> general = .false.: a tangential departure at zero tension (c1 = c2 = 0),
+  !> tau = -c3 / c4 (the seed's eq. 13.1), NaN when c3 >= 0 (the tension is
+  !> zero but rising: no flight).  general = .true. (an inward radial velocity
+  !> or a negative tension): the smallest positive root of the cubic, or of
+  !> the quadratic when the departure is tangential (c1 >= 0).
+  pure function cord_flight_time(eps, p, u, general) result(tau)
+    real(dp), intent(in) :: eps, p(2), u(2)
+    logical, intent(in) :: general
+    real(dp) :: tau, c1, c2, c3, c4, d
+    c3 = -eps * u(2)
+    c4 = 0.25_dp * eps * eps
+    if (.not. general) then
+      tau = nan_dp
+      if (c3 < 0.0_dp) tau = -c3 / c4
+      return
+    end if
+    c1 = 2.0_dp * (p(1) * u(1) + p(2) * u(2))
+    c2 = u(1) * u(1) + u(2) * u(2) - eps * p(2)
+    if (c1 < 0.0_dp) then
+      tau = first_root(c1, c2, c3, c4)
+    else
+      d = c3 * c3 - 4.0_dp * c4 * c2
+      tau = nan_dp
+      if (d >= 0.0_dp) tau = (-c3 + sqrt(d)) / (2.0_dp * c4)
+    end if
+  end function cord_flight_time
+
+  !> Re-entry after the flight of duration tau from (p, u), which left the
+  !> circle at th1: the angle th2 (continuous with th1), the tangential
+  !> velocity v2 kept, the radial one removed and reversed times the
+  !> restitution e (vr2 <= 0, inward).
+  pure subroutine cord_land(eps, restitution, p, u, tau, th1, th2, v2, vr2)
+    real(dp), intent(in) :: eps, restitution, p(2), u(2), tau, th1
+    real(dp), intent(out) :: th2, v2, vr2
+    real(dp) :: pe(2), w(2), rr, ct, st
+    pe = p + u * tau + 0.5_dp * [0.0_dp, -eps] * tau * tau
+    w = u + [0.0_dp, -eps] * tau
+    th2 = atan2(pe(1), -pe(2))
+    th2 = th2 + two_pi * anint((th1 - th2) / two_pi)
+    rr = hypot(pe(1), pe(2))
+    ct = -pe(2) / rr; st = pe(1) / rr
+    v2 = w(1) * ct + w(2) * st
+    vr2 = -restitution * (w(1) * st - w(2) * ct)
+  end subroutine cord_land
+
+  !> The bob in flight, tt after leaving the circle at th1 from (p, u):
+  !> position x, y, distance r from the pivot, angle theta (continuous with
+  !> th1) and angular velocity theta'.
+  elemental subroutine cord_flight_state(eps, p1, p2, u1, u2, th1, tt, x, y, r, theta, v)
+    real(dp), intent(in) :: eps, p1, p2, u1, u2, th1, tt
+    real(dp), intent(out) :: x, y, r, theta, v
+    x = p1 + u1 * tt
+    y = p2 + u2 * tt - 0.5_dp * eps * tt * tt
+    r = hypot(x, y)
+    theta = atan2(x, -y)
+    theta = theta + two_pi * anint((th1 - theta) / two_pi)
+    v = nan_dp
+    if (r > 0.0_dp) v = (x * (u2 - eps * tt) - y * u1) / (r * r)
+  end subroutine cord_flight_state
+
   !> Simulate a conservative flexible-cord pendulum at the sorted times t (>= 0).
   !> flips(:, k) = t_leave, theta_leave, t_return, theta_return, xi_before, xi_after,
   !> v_leave, v_return; at most min(max_flips, size(flips, 2)) flips.  Output times
@@ -124,7 +198,7 @@ contains
     integer, intent(out) :: nflips, stop_reason, status
     type(pendulum_orbit) :: o
     real(dp) :: tc, thc, vc, vr, xi, s, phi, phi0, dtd, sq, t1, th1, v1, xib, tau, tension
-    real(dp) :: p(2), u(2), g(2), c1, c2, c3, c4, pe(2), w(2), th2, v2, vr2, ct, st, rr, kk, tt
+    real(dp) :: p(2), u(2), th2, v2, vr2, kk
     integer :: n, i, j, ost, cap
     logical :: leaving, general
 
@@ -152,8 +226,6 @@ contains
       end if
     end do
     cap = min(max_flips, size(flips, 2))
-    g = [0.0_dp, -eps]
-    c4 = 0.25_dp * eps * eps
     tc = 0.0_dp; thc = theta0; vc = v0; vr = 0.0_dp
     i = 1
     do
@@ -165,9 +237,7 @@ contains
       if (vr < 0.0_dp .or. tension <= 0.0_dp) then
         leaving = .true.; general = vr < 0.0_dp .or. tension < 0.0_dp
         t1 = tc; th1 = thc; v1 = vc
-        p = [sin(th1), -cos(th1)]
-        u = [v1 * cos(th1) + vr * p(1), v1 * sin(th1) + vr * p(2)]
-        xib = (v1 * v1 + vr * vr - 2.0_dp * eps * cos(th1)) / (3.0_dp * eps)
+        call cord_depart(eps, th1, v1, vr, p, u, xib)
       else
         xi = (vc * vc - 2.0_dp * eps * cos(thc)) / (3.0_dp * eps)
         if (xi > 0.0_dp .and. xi < 1.0_dp) then
@@ -205,49 +275,23 @@ contains
         stop_reason = cord_stop_max_flips; exit
       end if
       ! ---- the flight
-      c3 = u(1) * g(1) + u(2) * g(2)
-      if (.not. general) then
-        if (c3 >= 0.0_dp) then  ! zero tension but rising: no flight (only at a grazing start)
-          tc = t1; thc = th1; vc = v1; vr = 0.0_dp
-          if (tension <= 0.0_dp) exit
-          cycle
-        end if
-        tau = -c3 / c4
-      else
-        c1 = 2.0_dp * (p(1) * u(1) + p(2) * u(2))
-        c2 = u(1) * u(1) + u(2) * u(2) + p(1) * g(1) + p(2) * g(2)
-        if (c1 < 0.0_dp) then
-          tau = first_root(c1, c2, c3, c4)
-        else  ! tangential with negative tension: the quadratic c2 + c3 tau + c4 tau**2
-          tau = (-c3 + sqrt(c3 * c3 - 4.0_dp * c4 * c2)) / (2.0_dp * c4)
-        end if
-        if (vr < 0.0_dp .and. tau < max(min_flight, 1.0e-9_dp) / sqrt(eps)) then
-          vr = 0.0_dp; tc = t1; thc = th1; vc = v1  ! a bounce below the threshold: absorbed
-          cycle
-        end if
+      tau = cord_flight_time(eps, p, u, general)
+      if (tau /= tau) then  ! no flight: zero tension but rising (only at a grazing start)
+        tc = t1; thc = th1; vc = v1; vr = 0.0_dp
+        if (tension <= 0.0_dp) exit
+        cycle
+      end if
+      if (general .and. vr < 0.0_dp .and. tau < max(min_flight, 1.0e-9_dp) / sqrt(eps)) then
+        vr = 0.0_dp; tc = t1; thc = th1; vc = v1  ! a bounce below the threshold: absorbed
+        cycle
       end if
       if (tau < min_flight / sqrt(eps)) then
         stop_reason = cord_stop_min_flight; exit
       end if
-      pe = p + u * tau + 0.5_dp * g * tau * tau
-      w = u + g * tau
-      th2 = atan2(pe(1), -pe(2))
-      th2 = th2 + two_pi * anint((th1 - th2) / two_pi)
-      rr = hypot(pe(1), pe(2))
-      ct = -pe(2) / rr; st = pe(1) / rr
-      v2 = w(1) * ct + w(2) * st
-      vr2 = -restitution * (w(1) * st - w(2) * ct)
+      call cord_land(eps, restitution, p, u, tau, th1, th2, v2, vr2)
       do while (i <= n)
         if (t(i) > t1 + tau) exit
-        tt = t(i) - t1
-        x(i) = p(1) + u(1) * tt + 0.5_dp * g(1) * tt * tt
-        y(i) = p(2) + u(2) * tt + 0.5_dp * g(2) * tt * tt
-        r(i) = hypot(x(i), y(i))
-        theta(i) = atan2(x(i), -y(i))
-        theta(i) = theta(i) + two_pi * anint((th1 - theta(i)) / two_pi)
-        if (r(i) > 0.0_dp) then
-          v(i) = (x(i) * (u(2) + g(2) * tt) - y(i) * (u(1) + g(1) * tt)) / (r(i) * r(i))
-        end if
+        call cord_flight_state(eps, p(1), p(2), u(1), u(2), th1, t(i) - t1, x(i), y(i), r(i), theta(i), v(i))
         i = i + 1
       end do
       nflips = nflips + 1
