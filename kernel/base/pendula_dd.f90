@@ -6,7 +6,7 @@ module pendula_dd
   use pendula_kinds, only: dp
   implicit none
   private
-  public :: two_sum, fast_two_sum, two_prod, dd_sqrt, dd_add, dd_mul, dd_sincos, dd_div_d
+  public :: two_sum, fast_two_sum, two_prod, dd_sqrt, dd_add, dd_mul, dd_sincos, dd_div_d, dd_div
 
   real(dp), parameter :: splitter = 134217729.0_dp   ! 2**27 + 1
 
@@ -113,5 +113,16 @@ contains
     call two_prod(q, b, p, e)
     call fast_two_sum(q, (((ah - p) - e) + al) / b, rh, rl)
   end subroutine dd_div_d
+
+  !> (qh + ql) = (ah + al) / (bh + bl) to double-double accuracy, b /= 0.
+  elemental subroutine dd_div(ah, al, bh, bl, qh, ql)
+    real(dp), intent(in) :: ah, al, bh, bl
+    real(dp), intent(out) :: qh, ql
+    real(dp) :: q1, p, e, r
+    q1 = ah / bh
+    call two_prod(q1, bh, p, e)
+    r = (((ah - p) - e) + al) - q1 * bl
+    call fast_two_sum(q1, r / bh, qh, ql)
+  end subroutine dd_div
 
 end module pendula_dd

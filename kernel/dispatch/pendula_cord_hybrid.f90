@@ -12,9 +12,8 @@
 !> No module state: one run's locals only.
 module pendula_cord_hybrid
   use pendula_kinds, only: dp, nan_dp, two_pi
-  use pendula_cord, only: cord_depart, cord_flight_time, cord_land, cord_flight_state, &
-    cord_ok, cord_bad_eps, cord_bad_state, cord_bad_times, cord_bad_restitution, &
-    cord_stop_t_end, cord_stop_max_flips, cord_stop_min_flight
+  use pendula_cord, only: cord_check, cord_depart, cord_flight_time, cord_land, cord_flight_state, &
+    cord_ok, cord_stop_t_end, cord_stop_max_flips, cord_stop_min_flight
   use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate, &
     m_dopri5, m_dop853, st_ok, st_stopped
   implicit none
@@ -57,28 +56,11 @@ contains
     nflips = 0; stop_reason = cord_stop_t_end; status = cord_ok
     no_cancel = 0
     eps = params(1)
-    if (.not. (eps > 0.0_dp .and. eps <= huge(eps))) then
-      status = cord_bad_eps; return
-    end if
-    if (.not. (abs(theta0) <= huge(eps) .and. abs(v0) <= huge(eps))) then
-      status = cord_bad_state; return
-    end if
-    if (.not. (restitution >= 0.0_dp .and. restitution < 1.0_dp)) then
-      status = cord_bad_restitution; return
-    end if
+    status = cord_check(eps, theta0, v0, restitution, t)
+    if (status /= cord_ok) return
     if (method /= m_dopri5 .and. method /= m_dop853) then
       status = cord_bad_method; return
     end if
-    do i = 1, n
-      if (.not. (t(i) >= 0.0_dp .and. t(i) <= huge(eps))) then
-        status = cord_bad_times; return
-      end if
-      if (i > 1) then
-        if (t(i) < t(i - 1)) then
-          status = cord_bad_times; return
-        end if
-      end if
-    end do
     if (n == 0) return
     cap = min(max_flips, size(flips, 2))
     ev%kind = 4; ev%level = 0.0_dp; ev%direction = -1; ev%terminal = .true.

@@ -14,7 +14,7 @@
 !> x, y << z the arguments first draw together in O(log log(z / x)) steps.
 module pendula_carlson_dd
   use pendula_kinds, only: dp, nan_dp
-  use pendula_dd, only: two_sum, fast_two_sum, two_prod, dd_sqrt, dd_add, dd_mul, dd_div_d
+  use pendula_dd, only: fast_two_sum, dd_sqrt, dd_add, dd_mul, dd_div_d, dd_div
   implicit none
   private
   public :: carlson_rf_dd, ellip_f_dd
@@ -102,16 +102,5 @@ contains
     call dd_add(a(1), a(2), -x(1), -x(2), d(1), d(2))
     g = (d(1) + d(2)) / a(1)
   end function rel_gap
-
-  !> (qh + ql) = (ah + al) / (bh + bl) to double-double accuracy, b /= 0.
-  elemental subroutine dd_div(ah, al, bh, bl, qh, ql)
-    real(dp), intent(in) :: ah, al, bh, bl
-    real(dp), intent(out) :: qh, ql
-    real(dp) :: q1, p, e, r
-    q1 = ah / bh
-    call two_prod(q1, bh, p, e)
-    r = (((ah - p) - e) + al) - q1 * bl
-    call fast_two_sum(q1, r / bh, qh, ql)
-  end subroutine dd_div
 
 end module pendula_carlson_dd

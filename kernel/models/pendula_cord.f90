@@ -18,7 +18,7 @@ module pendula_cord
   implicit none
   private
   public :: flip_map, cord_run, cord_run_all
-  public :: cord_depart, cord_flight_time, cord_land, cord_flight_state
+  public :: cord_check, cord_depart, cord_flight_time, cord_land, cord_flight_state
   !> status codes of cord_run
   integer, parameter, public :: cord_ok = 0, cord_bad_eps = 1, cord_bad_state = 2, cord_bad_times = 3, &
     cord_bad_restitution = 4
@@ -113,6 +113,32 @@ contains
     end function poly
   end function first_root
 
+  !> The arguments of a cord run: eps > 0, a finite state, 0 <= restitution < 1,
+  !> finite times >= 0 in increasing order (cord_ok or the cord_bad_* naming the first fault).
+  pure integer function cord_check(eps, theta0, v0, restitution, t) result(status)
+    real(dp), intent(in) :: eps, theta0, v0, restitution, t(:)
+    integer :: i
+    status = cord_ok
+    if (.not. (eps > 0.0_dp .and. eps <= huge(eps))) then
+      status = cord_bad_eps
+    else if (.not. (abs(theta0) <= huge(eps) .and. abs(v0) <= huge(eps))) then
+      status = cord_bad_state
+    else if (.not. (restitution >= 0.0_dp .and. restitution < 1.0_dp)) then
+      status = cord_bad_restitution
+    else
+      do i = 1, size(t)
+        if (.not. (t(i) >= 0.0_dp .and. t(i) <= huge(eps))) then
+          status = cord_bad_times; return
+        end if
+        if (i > 1) then
+          if (t(i) < t(i - 1)) then
+            status = cord_bad_times; return
+          end if
+        end if
+      end do
+    end if
+  end function cord_check
+
   !> The bob leaves the circle at the angle th1 with the tangential velocity v1
   !> (= l theta') and the radial velocity vr (< 0: inward, after a springy
   !> jerk): its position p, velocity u and energy xi = (|u|^2 - 2 eps cos th1) / (3 eps).
@@ -206,25 +232,8 @@ contains
     theta = nan_dp; v = nan_dp; x = nan_dp; y = nan_dp; r = nan_dp
     flips = nan_dp
     nflips = 0; stop_reason = cord_stop_t_end; status = cord_ok
-    if (.not. (eps > 0.0_dp .and. eps <= huge(eps))) then
-      status = cord_bad_eps; return
-    end if
-    if (.not. (abs(theta0) <= huge(eps) .and. abs(v0) <= huge(eps))) then
-      status = cord_bad_state; return
-    end if
-    if (.not. (restitution >= 0.0_dp .and. restitution < 1.0_dp)) then
-      status = cord_bad_restitution; return
-    end if
-    do i = 1, n
-      if (.not. (t(i) >= 0.0_dp .and. t(i) <= huge(eps))) then
-        status = cord_bad_times; return
-      end if
-      if (i > 1) then
-        if (t(i) < t(i - 1)) then
-          status = cord_bad_times; return
-        end if
-      end if
-    end do
+    status = cord_check(eps, theta0, v0, restitution, t)
+    if (status /= cord_ok) return
     cap = min(max_flips, size(flips, 2))
     tc = 0.0_dp; thc = theta0; vc = v0; vr = 0.0_dp
     i = 1

@@ -16,7 +16,7 @@
 !> periods loses nothing to the product.
 module pendula_exact
   use pendula_kinds, only: dp, pi, pi_lo, half_pi, two_pi, nan_dp, inf_dp
-  use pendula_dd, only: two_sum, fast_two_sum, two_prod, dd_sqrt, dd_add, dd_mul, dd_sincos, dd_div_d
+  use pendula_dd, only: two_sum, fast_two_sum, two_prod, dd_sqrt, dd_add, dd_mul, dd_sincos, dd_div_d, dd_div
   use pendula_elliptic, only: jacobi_plan, jacobi_prepare_dd, jacobi_eval_array, ellip_f_sc
   use pendula_carlson_dd, only: ellip_f_dd
   implicit none
@@ -346,17 +346,6 @@ contains
     call dd_add(ph, pl, fh, fl, uh, ul)
     uh = sg * uh; ul = sg * ul
   end subroutine phase_dd
-
-  !> (qh + ql) = (ah + al) / (bh + bl) to double-double accuracy, b /= 0.
-  pure subroutine dd_div(ah, al, bh, bl, qh, ql)
-    real(dp), intent(in) :: ah, al, bh, bl
-    real(dp), intent(out) :: qh, ql
-    real(dp) :: q1, p, e, r
-    q1 = ah / bh
-    call two_prod(q1, bh, p, e)
-    r = (((ah - p) - e) + al) - q1 * bl
-    call fast_two_sum(q1, r / bh, qh, ql)
-  end subroutine dd_div
 
   include 'pendula_atan.inc'
 
