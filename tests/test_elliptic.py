@@ -203,3 +203,24 @@ def test_gsl_peer_does_not_abort_on_bad_input():
     assert bad == 1 and np.isnan(sn[1]) and np.isfinite(sn[0])
     k, bad = _kernel.gsl_kcomp_v(np.array([2.0]))
     assert bad == 1 and np.isnan(k[0])
+
+
+def test_F_beyond_m_1_next_to_the_edge_of_its_real_domain():
+    """F(phi|m) for m > 1 with |sin phi| just below 1/sqrt(m): dF/dphi = 1/D,
+    D^2 = 1 - m sin^2 phi -> 0, amplified the rounding of sin and cos (up to
+    4e6 eps on the random grid, at exactly representable phi and m).  With D^2
+    from the double-double sine and cosine: within 4 eps relative, against
+    mpmath at 40 digits, at random m in (1, 1e3) and phi within 1e-15..1e-2
+    (relative) of the edge."""
+    mp = pytest.importorskip("mpmath")
+    mp.mp.dps = 40
+    rng = np.random.default_rng(1123)
+    worst = 0.0
+    for _ in range(60):
+        m = float(1.0 + 10 ** rng.uniform(-12, 3))
+        edge = float(mp.asin(1 / mp.sqrt(m)))
+        phi = float(edge * (1 - 10 ** rng.uniform(-15, -2))) * (1 if rng.uniform() < 0.5 else -1)
+        got = pendula.ellipf(phi, m)
+        ref = mp.re(mp.ellipf(mp.mpf(phi), mp.mpf(m)))
+        worst = max(worst, abs(float((got - ref) / ref)) / EPS)
+    assert worst <= 4.0, f"{worst:.3g} eps"

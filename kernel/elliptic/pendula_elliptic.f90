@@ -23,7 +23,7 @@
 !>    for m <= 1/2, and ln q ln q' = pi^2 with the complementary series above.
 module pendula_elliptic
   use pendula_kinds, only: dp, i8, pi, pi_lo, half_pi, nan_dp, inf_dp
-  use pendula_dd, only: two_sum, fast_two_sum, two_prod, dd_sqrt
+  use pendula_dd, only: two_sum, fast_two_sum, two_prod, dd_sqrt, dd_sincos, dd_mul, dd_add
   implicit none
   private
   public :: ellip_k, ellip_k_array, ellip_k_dd, ellip_e, ellip_f, ellip_f_sc, ellip_einc, ellip_nome
@@ -284,7 +284,17 @@ contains
   elemental subroutine reduce_pi(phi, j, s, c)
     real(dp), intent(in) :: phi
     real(dp), intent(out) :: j, s, c
-    real(dp) :: p, e, rh, rl
+    real(dp) :: rh, rl
+    call reduce_pi_r(phi, j, rh, rl)
+    s = sin(rh) + cos(rh) * rl
+    c = abs(cos(rh) - sin(rh) * rl)
+  end subroutine reduce_pi
+
+  !> phi = j pi + (rh + rl), |rh + rl| <= pi/2, with pi in double-double.
+  elemental subroutine reduce_pi_r(phi, j, rh, rl)
+    real(dp), intent(in) :: phi
+    real(dp), intent(out) :: j, rh, rl
+    real(dp) :: p, e
     j = anint(phi / pi)
     call two_prod(j, pi, p, e)
     call two_sum(phi - p, -e, rh, rl)       ! phi - p is exact near j pi (Sterbenz)
@@ -298,9 +308,7 @@ contains
       call two_sum(rh + pi, rl + pi_lo, rh, e)
       rl = e
     end if
-    s = sin(rh) + cos(rh) * rl
-    c = abs(cos(rh) - sin(rh) * rl)
-  end subroutine reduce_pi
+  end subroutine reduce_pi_r
 
   !> Incomplete integral of the first kind F(phi|m) for any real phi.
   elemental function ellip_f(phi, m, mc) result(f)
@@ -310,9 +318,37 @@ contains
       f = nan_dp; return
     end if
     call reduce_pi(phi, j, s, c)
-    f = f_reduced(s, c, mc)
+    if (mc < 0.0_dp .and. -mc * s * s > 0.5_dp * c * c) then
+      f = f_beyond_one(phi, mc)
+    else
+      f = f_reduced(s, c, mc)
+    end if
     if (j /= 0.0_dp) f = f + 2.0_dp * j * ellip_k(m, mc)
   end function ellip_f
+
+  !> F on the reduced angle for m > 1 next to the edge of the real domain
+  !> |sin r| = 1/sqrt(m), where D^2 = c^2 + mc s^2 (mc < 0) cancels: from sin
+  !> and cos of the exact reduced angle in double-double, so that D^2 keeps
+  !> its relative accuracy.  In double the roundings of s and c were
+  !> amplified by dF/dphi = 1/D, unbounded there (up to 4e6 eps on the random
+  !> grid, at exactly representable phi and m).  Only here: the double-double
+  !> sine and cosine cost about a microsecond.
+  elemental function f_beyond_one(phi, mc) result(f)
+    real(dp), intent(in) :: phi, mc
+    real(dp) :: f, j, rh, rl, sh, sl, ch, cl, ah, al, bh, bl, dh, dl
+    call reduce_pi_r(phi, j, rh, rl)
+    call dd_sincos(rh, rl, sh, sl, ch, cl)
+    cl = sign(1.0_dp, ch) * cl; ch = abs(ch)
+    call dd_mul(ch, cl, ch, cl, ah, al)
+    call dd_mul(sh, sl, sh, sl, bh, bl)
+    call dd_mul(bh, bl, mc, 0.0_dp, dh, dl)
+    call dd_add(ah, al, dh, dl, bh, bl)
+    if (bh < 0.0_dp) then
+      f = nan_dp            ! beyond the real range
+    else
+      f = (sh + sl) * carlson_rf(ah + al, bh + bl, 1.0_dp)
+    end if
+  end function f_beyond_one
 
   !> F(phi|m) from s = sin(phi) and c = cos(phi) (any quadrant of phi in
   !> (-pi, pi]), without forming phi: next to a turning point of the
