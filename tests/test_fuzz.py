@@ -74,7 +74,8 @@ fields = st.fixed_dictionaries({}, optional={
     "v0": wild, "theta0": wild, "eps": wild, "damping": wild, "torque": wild, "drive_amplitude": wild,
     "drive_frequency": wild, "t_end": st.one_of(wild, st.floats(-50, 50)), "dt": wild, "rtol": wild,
     "atol": wild, "method": st.sampled_from(["auto", "rk4", "gauss6", "dop853", "dopri5", "verlet", "exact"]),
-    "n_samples": st.integers(-3, 50)})
+    "n_samples": st.integers(-3, 50), "cord": st.sampled_from(["rigid", "flexible"]),
+    "restitution": st.one_of(wild, st.floats(0.0, 1.0))})
 
 
 @settings(**SETTINGS)
