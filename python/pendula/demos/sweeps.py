@@ -206,7 +206,7 @@ def _lyapunov(out, small, bif):
                     label="chaotic: lambda_1 > 0")
     a2.set_ylim(-0.3, 0.2)
     a2.set_xlabel("drive amplitude A"); a2.set_ylabel("lambda_1")
-    a2.legend(loc="lower left", fontsize=8)
+    a2.legend(loc="upper left", fontsize=8)
     fig.tight_layout(); fig.savefig(out / "sweep_lyapunov.png", dpi=120); plt.close(fig)
     bands = []
     for k, c in enumerate(chaotic):
@@ -215,6 +215,7 @@ def _lyapunov(out, small, bif):
         if c and (k == len(amps) - 1 or not chaotic[k + 1]):
             bands.append((float(start), float(amps[k])))
     return {"points": int(amps.size), "seconds": seconds, "bands": bands, "agree_with_bifurcation": agree,
+            "disagree_at": [float(a) for a in amps[chaotic != strobe_chaotic]],
             "max_sum_rule_error": sum_rule, "max_lambda": float(np.nanmax(lam)),
             "A_max": float(amps[np.nanargmax(lam)])}
 
@@ -242,7 +243,8 @@ def run(out, small: bool = True, quiet: bool = False) -> dict:
         ly = res["lyapunov"]
         print(f"  Lyapunov exponent: {ly['points']} amplitudes in {ly['seconds']:.1f} s; chaotic bands (lambda_1 > 0) "
               + ", ".join(f"{a:.3f}-{b:.3f}" for a, b in ly["bands"])
-              + f"; agrees with the bifurcation diagram at {100 * ly['agree_with_bifurcation']:.0f} % of amplitudes; "
+              + f"; agrees with the bifurcation diagram at {100 * ly['agree_with_bifurcation']:.0f} % of amplitudes "
+              f"(not at A = {', '.join(f'{a:.3f}' for a in ly['disagree_at'])}); "
               f"max lambda_1 = {ly['max_lambda']:.3f} at A = {ly['A_max']:.3f}; "
               f"|lambda_1 + lambda_2 + beta| <= {ly['max_sum_rule_error']:.1e}")
     return res
