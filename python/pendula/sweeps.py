@@ -274,8 +274,9 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
         Lazy (dask-backed, read from the chunk files) when ``out`` is given
         and there is more than one chunk.  Coordinates = the axes; variables per measure plus ``status``
         (0 decided, 1 not settled by the limit, 2 measure does not apply,
-        4 uncertain: a basin-boundary point whose answer changed when computed
-        again at 1000 times tighter tolerances);
+        4 uncertain: a basin-boundary point -- a grid neighbour along any axis,
+        across chunk edges too, answers differently -- whose answer changed when
+        computed again at 1000 times tighter tolerances; final_well and locked);
         the scene and options as attributes.
 
     Examples
@@ -285,6 +286,17 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
     >>> ds = pendula.sweep(s, over={"v0": [1.0, 2.3, 3.0]}, measure="final_well")
     >>> ds.well.values.tolist()
     [0.0, 2.0, 5.0]
+
+    The largest Lyapunov exponent of the driven damped pendulum (chaotic at
+    A = 1.5, a stable cycle at A = 0.9):
+
+    >>> d = pendula.Scene(damping=0.5, drive_frequency=2 / 3)
+    >>> ly = pendula.sweep(d, over={"drive_amplitude": [0.9, 1.5]}, measure="lyapunov",
+    ...                    transient=1000.0, t_max=3000.0)
+    >>> [bool(x > 0) for x in ly.lyapunov.values]
+    [False, True]
+    >>> bool(abs(ly.lyapunov[0] + ly.lyapunov2[0] + 0.5) < 1e-8)     # lambda_1 + lambda_2 = -beta
+    True
     """
     import xarray as xr
 
