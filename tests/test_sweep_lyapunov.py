@@ -236,3 +236,29 @@ def test_lyapunov_gallery_scenes_are_the_demo_sweeps():
     full = Scene.from_file(folder / "driven_lyapunov.nml")
     assert small.replace(name="") == LYAPUNOV_SMALL and full.replace(name="") == LYAPUNOV_FULL
     assert small.measure == full.measure == "lyapunov"
+
+
+@pytest.mark.parametrize("how", ["torque", "drive_of_frequency_0"])
+def test_torqued_equilibrium_closed_form(how):
+    # at the equilibrium theta_s = asin(tau / eps) the linearisation has
+    # stiffness eps cos(theta_s): exponents (-beta +- sqrt(beta^2 - 4 eps cos theta_s)) / 2
+    eps, beta, tau = 1.3, 3.1, 0.4
+    ths = math.asin(tau / eps)
+    if how == "torque":
+        s = Scene(eps=eps, damping=beta, torque=tau, theta0=ths)
+    else:
+        # A cos(0 t + phi) with A cos(phi) = tau: a constant force, the same motion
+        s = Scene(eps=eps, damping=beta, drive_amplitude=2 * tau, drive_phase=math.pi / 3, theta0=ths)
+    ds = lyap(s, {"eps": [eps]}, transient=50.0, t_max=500.0, rtol=1e-11, atol=1e-13)
+    l1, l2 = linear_exponents(beta, eps * math.cos(ths))
+    assert int(ds.status[0]) == 0
+    assert abs(float(ds.lyapunov[0]) - l1) <= 1e-8 * abs(l1)
+    assert abs(float(ds.lyapunov2[0]) - l2) <= 1e-8 * abs(l2)
+
+
+def test_atol_0_at_the_equilibrium_is_a_reported_failure():
+    # pure relative error control on v = 0 (round-off only) cannot be met: the
+    # step shrinks to nothing; reported (status 100 + 5, step underflow), NaN
+    s = Scene(damping=3.1, torque=0.4, theta0=math.asin(0.4))
+    ds = lyap(s, {"damping": [3.1]}, transient=50.0, t_max=500.0, rtol=1e-11, atol=0.0)
+    assert int(ds.status[0]) == 105 and np.isnan(ds.lyapunov[0]) and np.isnan(ds.lyapunov2[0])

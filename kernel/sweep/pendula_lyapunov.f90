@@ -13,7 +13,7 @@
 !> second.  Their sum is (1/T) log det of the tangent map = -beta exactly
 !> (Liouville: trace J = -beta), a check on the whole computation.
 !>
-!> Time base: T_b = 2 pi / Omega for a driven model (A /= 0, Omega > 0), else
+!> Time base: T_b = 2 pi / |Omega| for a driven model (A /= 0, Omega /= 0), else
 !> the small-oscillation period 2 pi / sqrt(eps).  h_r = T_b / m with m the
 !> smallest integer such that (beta + 2 sqrt(eps)) h_r <= 4: within one
 !> interval the tangent norms change by at most about e^4, so neither vector
@@ -54,8 +54,8 @@ contains
     logical, intent(out) :: ok
     real(dp) :: g, rm, rtr, ravg
     m = 0; ntr = 0; navg = 0
-    if (p(4) /= 0.0_dp .and. p(5) > 0.0_dp) then
-      tb = two_pi / p(5)
+    if (p(4) /= 0.0_dp .and. p(5) /= 0.0_dp) then
+      tb = two_pi / abs(p(5))
     else
       tb = two_pi / sqrt(p(1))
     end if
@@ -105,8 +105,11 @@ contains
     jstart = 0
     status = st_ok
     do j = 0, ntr + navg - 1
-      ! the drive phase at the start of interval j: phi + Omega j h_r = phi + 2 pi j / m (mod 2 pi)
-      phase = p(6) + two_pi * real(mod(j, m), dp) / real(m, dp)
+      ! the drive phase at the start of interval j: phi + Omega j h_r = phi +- 2 pi j / m (mod 2 pi);
+      ! a drive of frequency 0 is a constant force A cos(phi)
+      phase = p(6)
+      if (p(4) /= 0.0_dp .and. p(5) /= 0.0_dp) &
+        phase = p(6) + sign(1.0_dp, p(5)) * two_pi * real(mod(j, m), dp) / real(m, dp)
       call interval(p, phase, hr, rtol, atol, y, h, nsteps, s)
       if (s /= st_ok) then
         status = 100 + s; return
@@ -242,7 +245,8 @@ contains
       e3(i) = dot_product(d8_e3, k(0:12, i))
       e5(i) = dot_product(d8_e5, k(0:12, i))
     end do
-    sk = atol + rtol * max(abs(y), abs(ynew))
+    ! (never 0: atol = 0 at the equilibrium theta = v = 0 must not divide 0 by 0)
+    sk = max(atol + rtol * max(abs(y), abs(ynew)), tiny(1.0_dp))
     err5 = sum((e5 / sk)**2)
     err3 = sum((e3 / sk)**2)
     deno = err5 + 0.01_dp * err3
@@ -255,7 +259,7 @@ contains
     type(pendulum_model), intent(in) :: md
     real(dp), intent(in) :: p(8), y(6), f0(6), hr, rtol, atol
     real(dp) :: h0, sk(6), dnf, dny, h1, der2, der12, f1(6)
-    sk = atol + rtol * abs(y)
+    sk = max(atol + rtol * abs(y), tiny(1.0_dp))
     dnf = sum((f0 / sk)**2) / 6.0_dp
     dny = sum((y / sk)**2) / 6.0_dp
     if (dnf <= 1.0e-10_dp .or. dny <= 1.0e-10_dp) then
