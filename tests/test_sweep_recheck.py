@@ -117,3 +117,18 @@ def test_pendula_run_sweep_csv_full_disk_is_exit_5(tmp_path, measure):
     assert r.returncode == 0, r.stderr
     assert len((tmp_path / "ok.csv").read_text().splitlines()) == 2 + 7
     assert not list(tmp_path.glob("*.part"))
+
+
+def test_pendula_run_recheck_three_axes_matches_python(tmp_path):
+    # neighbours along the second and third axes too (2400 points per row: one row per block)
+    scene = tmp_path / "c.nml"
+    scene.write_text("&scene\n damping = 0.1\n grid = 'v0', 'torque', 'theta0'\n grid1_range = 2.2037, 2.2039, 5\n"
+                     " grid2_range = 0, 1e-3, 40\n grid3_range = 0, 1e-3, 60\n measure = 'final_well'\n"
+                     " rtol = 1e-5\n atol = 1e-7\n/\n")
+    r = _pendula_run(scene, "-o", tmp_path / "c.csv")
+    assert r.returncode == 0, r.stderr
+    tab = np.loadtxt(tmp_path / "c.csv", delimiter=",", comments="#", skiprows=2)
+    ds = pendula.sweep(Scene.from_file(scene), chunk_points=2400)
+    st = ds.status.values.ravel()
+    assert (st == 4).sum() >= 1 and np.array_equal(tab[:, -1], st)
+    assert np.array_equal(tab[:, 3], ds.well.values.ravel(), equal_nan=True)
