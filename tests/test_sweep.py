@@ -127,11 +127,6 @@ def test_poincare_period1_against_scipy():
     assert np.ptp(ds.theta.values[0]) < 1e-6   # period 1: one stroboscopic point
 
 
-def test_lyapunov_not_implemented():
-    with pytest.raises(NotImplementedError):
-        pendula.sweep(Scene(damping=0.5), over={"v0": [1.0]}, measure="lyapunov")
-
-
 def test_threads_1_and_2_identical():
     over = {"v0": np.linspace(0, 4, 40), "damping": [0.05, 0.1, 0.2]}
     a = pendula.sweep(Scene(damping=0.1), over=over, measure="final_well", threads=1)
@@ -257,9 +252,6 @@ def test_pendula_run_sweep_scene_errors_name_the_field(tmp_path):
         f.write_text(f"&scene\n damping = 0.1\n {body}\n/\n")
         r = _pendula_run(f)
         assert r.returncode == 2 and word in r.stderr, (body, r.stderr)
-    f.write_text("&scene\n damping = 0.1\n grid = 'v0'\n grid1 = 1\n measure = 'lyapunov'\n/\n")
-    r = _pendula_run(f)
-    assert r.returncode == 3 and "lyapunov" in r.stderr
 
 
 def test_docstring_examples_run():

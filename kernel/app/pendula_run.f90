@@ -28,7 +28,7 @@ program pendula_run
   character(len=1024) :: msg
   type(scene_t) :: sc, member
   type(pendulum_orbit) :: o
-  integer :: nargs, i, j, status, nmem, sweep_unit
+  integer :: nargs, i, j, status, nmem
   logical :: two_files
   real(dp), allocatable :: t(:), theta(:), v(:), e(:), values(:)
   logical :: want_traj, want_orbit, swept
@@ -67,26 +67,18 @@ program pendula_run
   call select_model(sc, i, status, msg)
   if (status /= sim_ok) call fail(trim(path) // ': ' // trim(msg), 3)
 
-  ! a scene with a grid is run by pendula_sweep (OpenMP), CSV to OUT (under a
-  ! temporary name renamed at the end; nothing is left on failure)
+  ! a scene with a grid is run by pendula_sweep (OpenMP), CSV to OUT through
+  ! the checked writer (a temporary name renamed at the end; a write error,
+  ! such as a full disk, is exit 5 and leaves nothing)
   if (sc%n_grid > 0) then
-    if (len_trim(out) > 0) then
-      open(newunit=sweep_unit, file=trim(out) // '.part', status='replace', action='write', iostat=status)
-      if (status /= 0) call fail('cannot write "' // trim(out) // '"', 5)
-    else
-      sweep_unit = output_unit
-    end if
-    call sweep_scene_csv(sc, sweep_unit, status, msg)
-    if (sweep_unit /= output_unit) then
-      if (status == 0) then
-        close(sweep_unit, iostat=j)
-        call rename(trim(out) // '.part', trim(out), j)
-        if (j /= 0) call fail('cannot write "' // trim(out) // '"', 5)
-      else
-        close(sweep_unit, status='delete', iostat=j)
-      end if
-    end if
+    if (len_trim(out) == 0) out = '-'
+    call out_open(f_out, trim(out), status)
+    if (status /= 0) call fail_io('cannot write "' // trim(out) // '"', status)
+    call sweep_scene_csv(sc, f_out, status, msg)
+    if (status == 5) call fail_io('cannot write "' // trim(out) // '"', f_out%err)
     if (status /= 0) call fail(trim(path) // ': ' // trim(msg), status)
+    call out_close(f_out, status)
+    if (status /= 0) call fail_io('cannot write "' // trim(out) // '"', status)
     stop
   end if
   want_traj = .false.

@@ -19,6 +19,10 @@
 !>   2 mean_velocity: out(1) = <v> after the transient, out(2) = convergence estimate
 !>   3 locked:        out(1) = 1 locked / 0 running, out(2) = time decided
 !>   4 poincare:      out(2k-1), out(2k) = theta mod 2 pi in [-pi, pi), v at t = (n_tr + k) T
+!>   5 lyapunov:      out(1) = largest Lyapunov exponent, out(2) = its convergence estimate
+!>                    (standard error over 8 blocks), out(3) (when nout >= 3) = the second
+!>                    exponent; t_tr = transient, t_max = averaging time, both rounded up to
+!>                    whole base periods (pendula_lyapunov)
 !> Point status: 0 decided; 1 not settled / not decided by t_max; 2 the
 !> measure does not apply to this point (e.g. final_well without damping,
 !> no well when |tau| >= eps, poincare without a drive); 3 bad measure code;
@@ -28,14 +32,18 @@ module pendula_sweep
   use pendula_scene, only: scene_t
   use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate, &
     m_dop853, st_ok
+  use pendula_lyapunov, only: lyapunov_point
+  use pendula_outfile, only: outfile_t, out_line
   implicit none
   private
   public :: sweep_points, iv_branch, np_params, sweep_scene_csv
-  public :: ms_final_well, ms_mean_velocity, ms_locked, ms_poincare
+  public :: ms_final_well, ms_mean_velocity, ms_locked, ms_poincare, ms_lyapunov
 
   integer, parameter :: np_params = 8   ! eps, beta, tau, amp, omega, phase, theta0, v0
-  integer, parameter :: ms_final_well = 1, ms_mean_velocity = 2, ms_locked = 3, ms_poincare = 4
-  integer, parameter :: ps_decided = 0, ps_unsettled = 1, ps_not_applicable = 2, ps_bad_measure = 3
+  integer, parameter :: ms_final_well = 1, ms_mean_velocity = 2, ms_locked = 3, ms_poincare = 4, &
+    ms_lyapunov = 5
+  integer, parameter :: ps_decided = 0, ps_unsettled = 1, ps_not_applicable = 2, ps_bad_measure = 3, &
+    ps_uncertain = 4
   !> samples per window at which the stop test is applied
   integer, parameter :: nsub = 8
 
@@ -69,7 +77,7 @@ contains
     real(dp), intent(in) :: p(np_params), rtol, atol, t_tr, t_max
     real(dp), intent(out) :: o(:)
     integer, intent(out) :: st
-    real(dp) :: th, v, tdec, vm, err
+    real(dp) :: th, v, tdec, vm, err, lam2
     integer :: n
     logical :: settled
     o = nan_dp
@@ -107,6 +115,15 @@ contains
       o(1) = vm; o(2) = err
     case (ms_poincare)
       call poincare(p, rtol, atol, nint(t_tr), size(o) / 2, o, st)
+    case (ms_lyapunov)
+      if (size(o) < 2) then
+        st = ps_bad_measure; return
+      end if
+      call lyapunov_point(p, rtol, atol, t_tr, t_max, vm, lam2, err, st)
+      if (st == 2) st = ps_not_applicable
+      if (st /= ps_decided) return
+      o(1) = vm; o(2) = err
+      if (size(o) >= 3) o(3) = lam2
     case default
       st = ps_bad_measure
     end select
@@ -299,30 +316,36 @@ contains
     th = th - two_pi * anint(th / two_pi)
   end subroutine iv_branch
 
-  !> A sweep scene (grid + measure) as CSV on unit u: one row per grid point
+  !> A sweep scene (grid + measure) as CSV through the checked writer f
+  !> (pendula_outfile: every write error seen): one row per grid point
   !> (poincare: per sample) with the axis values, the outputs and the status,
-  !> in the order of pendula.sweep (first axis slowest).  Blocks of points are
-  !> computed (OpenMP) and written as they finish, so memory stays bounded.
-  !> status: 0 ok, 2 bad scene for a sweep, 3 measure not implemented.
-  subroutine sweep_scene_csv(sc, u, status, msg)
+  !> in the order of pendula.sweep (first axis slowest).  Blocks of whole rows
+  !> of the first axis are computed (OpenMP) and written as they finish, so
+  !> memory stays bounded.  final_well and locked: the boundary recheck of
+  !> pendula.sweep (boundary_recheck), with the row after each block computed
+  !> ahead so that neighbours across block edges are seen; the answers are
+  !> those of pendula.sweep whatever its chunks.
+  !> status: 0 ok, 2 bad scene for a sweep, 5 write error (f%err holds errno).
+  subroutine sweep_scene_csv(sc, f, status, msg)
     type(scene_t), intent(in) :: sc
-    integer, intent(in) :: u
+    type(outfile_t), intent(inout) :: f
     integer, intent(out) :: status
     character(len=*), intent(out) :: msg
     integer, parameter :: block = 4096
-    real(dp), allocatable :: ax(:, :), params(:, :), o(:, :)
+    real(dp), allocatable :: ax(:, :), params(:, :), o(:, :), ans(:), prev(:)
     integer, allocatable :: pst(:)
-    integer :: n(3), k, j, nout, measure, idx(3), ntot, done, nb, i, s
+    integer :: n(3), k, j, nout, measure, idx(3), inner, rb, r0, r1, rl, nrow, c0, i, s
     real(dp) :: base(np_params), t_tr, a, b, step
+    logical :: recheck, have_next
     character(len=256) :: head
+    character(len=1024) :: line
     status = 0; msg = ''
     select case (trim(sc%measure))
     case ('final_well'); measure = ms_final_well
     case ('mean_velocity'); measure = ms_mean_velocity
     case ('locked'); measure = ms_locked
     case ('poincare'); measure = ms_poincare
-    case ('lyapunov')
-      status = 3; msg = 'measure ''lyapunov'' is not implemented yet'; return
+    case ('lyapunov'); measure = ms_lyapunov
     case default
       status = 2; msg = 'field ''measure'' must name a measure for a sweep'; return
     end select
@@ -355,6 +378,8 @@ contains
       nout = 2 * sc%sweep_samples
       t_tr = real(ceiling(sc%sweep_transient * sc%drive_frequency / two_pi - 1.0e-12_dp), dp)
     end if
+    if (measure == ms_lyapunov) nout = 3
+    recheck = measure == ms_final_well .or. measure == ms_locked
     head = ''
     do k = 1, sc%n_grid
       head = trim(head) // trim(sc%grid(k)) // ','
@@ -364,49 +389,102 @@ contains
     case (ms_locked); head = trim(head) // 'locked,t_decided,status'
     case (ms_mean_velocity); head = trim(head) // 'mean_velocity,mean_velocity_err,status'
     case (ms_poincare); head = trim(head) // 'sample,theta,v,status'
+    case (ms_lyapunov); head = trim(head) // 'lyapunov,lyapunov_err,lyapunov2,status'
     end select
-    write(u, '(a)') '# pendula-run sweep: measure = ' // trim(sc%measure) // &
-      '; status 0 decided, 1 not settled by sweep_t_max, 2 measure does not apply'
-    write(u, '(a)') trim(head)
-    ntot = n(1) * n(2) * n(3)
-    allocate(params(np_params, block), o(nout, block), pst(block))
-    done = 0
-    do while (done < ntot)
-      nb = min(block, ntot - done)
-      do i = 1, nb
-        call unflatten(done + i - 1, idx)
+    call out_line(f, '# pendula-run sweep: measure = ' // trim(sc%measure) // &
+      '; status 0 decided, 1 not settled by sweep_t_max, 2 measure does not apply, ' // &
+      '4 uncertain (a basin-boundary answer that changes at 1000 times tighter tolerances)')
+    call out_line(f, trim(head))
+    inner = n(2) * n(3)
+    rb = max(1, block / inner)
+    ! rows r0 .. r1 of the first axis per block, plus one row ahead (rechecks)
+    allocate(params(np_params, (rb + 1) * inner), o(nout, (rb + 1) * inner), pst((rb + 1) * inner))
+    allocate(ans((rb + 2) * inner), prev(inner))
+    have_next = .false.
+    r0 = 1
+    do while (r0 <= n(1))
+      r1 = min(n(1), r0 + rb - 1)
+      rl = r1
+      if (recheck) rl = min(n(1), r1 + 1)
+      nrow = rl - r0 + 1
+      do i = 1, nrow * inner
+        call unflatten((r0 - 1) * inner + i - 1, idx)
         params(:, i) = base
         do k = 1, sc%n_grid
           params(slot(sc%grid(k)), i) = ax(idx(k), k)
         end do
       end do
-      call sweep_points(measure, nb, params(:, 1:nb), sc%rtol, sc%atol, t_tr, sc%sweep_t_max, nout, &
-                        o(:, 1:nb), pst(1:nb), 0)
-      do i = 1, nb
-        call unflatten(done + i - 1, idx)
+      ! the first row was computed ahead by the previous block: moved, not recomputed
+      c0 = 1
+      if (have_next) c0 = inner + 1
+      if (c0 <= nrow * inner) then
+        call sweep_points(measure, nrow * inner - c0 + 1, params(:, c0:nrow * inner), sc%rtol, sc%atol, &
+                          t_tr, sc%sweep_t_max, nout, o(:, c0:nrow * inner), pst(c0:nrow * inner), 0)
+      end if
+      if (recheck) then
+        ! answers of the previous row, this block's rows and the row ahead (first pass)
+        if (r0 > 1) ans(1:inner) = prev
+        do i = 1, nrow * inner
+          ans(inner + i) = answer(o(1, i), pst(i))
+        end do
+        call boundary_recheck(measure, n, r0, r1, rl, inner, params, sc%rtol, sc%atol, t_tr, sc%sweep_t_max, &
+                              nout, ans, o, pst)
+        prev = ans((r1 - r0 + 1) * inner + 1:(r1 - r0 + 2) * inner)
+      end if
+      do i = 1, (r1 - r0 + 1) * inner
+        call unflatten((r0 - 1) * inner + i - 1, idx)
         if (measure == ms_poincare) then
           do s = 1, nout / 2
-            write(u, '(*(es24.16e3, :, ","))', advance='no') (ax(idx(k), k), k = 1, sc%n_grid)
-            write(u, '(",", i0, 2(",", es24.16e3), ",", i0)') s - 1, o(2 * s - 1, i), o(2 * s, i), pst(i)
+            line = axes_text(idx)
+            write(line(len_trim(line) + 1:), '(",", i0, 2(",", es24.16e3), ",", i0)') &
+              s - 1, o(2 * s - 1, i), o(2 * s, i), pst(i)
+            call out_line(f, squeeze(line))
           end do
         else
-          write(u, '(*(es24.16e3, :, ","))', advance='no') (ax(idx(k), k), k = 1, sc%n_grid)
-          write(u, '(2(",", es24.16e3), ",", i0)') o(1, i), o(2, i), pst(i)
+          line = axes_text(idx)
+          do k = 1, nout
+            write(line(len_trim(line) + 1:), '(",", es24.16e3)') o(k, i)
+          end do
+          write(line(len_trim(line) + 1:), '(",", i0)') pst(i)
+          call out_line(f, squeeze(line))
         end if
       end do
-      done = done + nb
+      if (f%err /= 0) then
+        ! a full disk: stop computing what cannot be written
+        status = 5; write(msg, '(a, i0, a)') 'write error (errno ', f%err, ')'; return
+      end if
+      have_next = rl > r1
+      if (have_next) then
+        o(:, 1:inner) = o(:, (r1 - r0 + 1) * inner + 1:(r1 - r0 + 2) * inner)
+        pst(1:inner) = pst((r1 - r0 + 1) * inner + 1:(r1 - r0 + 2) * inner)
+      end if
+      r0 = r1 + 1
     end do
 
   contains
 
     !> flat index (0-based, first axis slowest) -> 1-based axis indices
-    subroutine unflatten(f, id)
-      integer, intent(in) :: f
+    subroutine unflatten(fl, id)
+      integer, intent(in) :: fl
       integer, intent(out) :: id(3)
-      id(3) = mod(f, n(3)) + 1
-      id(2) = mod(f / n(3), n(2)) + 1
-      id(1) = f / (n(3) * n(2)) + 1
+      id(3) = mod(fl, n(3)) + 1
+      id(2) = mod(fl / n(3), n(2)) + 1
+      id(1) = fl / (n(3) * n(2)) + 1
     end subroutine unflatten
+
+    function axes_text(id) result(t)
+      integer, intent(in) :: id(3)
+      character(len=1024) :: t
+      integer :: kk
+      t = ''
+      do kk = 1, sc%n_grid
+        if (kk == 1) then
+          write(t, '(es24.16e3)') ax(id(kk), kk)
+        else
+          write(t(len_trim(t) + 1:), '(",", es24.16e3)') ax(id(kk), kk)
+        end if
+      end do
+    end function axes_text
 
     pure integer function slot(name)
       character(len=*), intent(in) :: name
@@ -423,5 +501,78 @@ contains
     end function slot
 
   end subroutine sweep_scene_csv
+
+  !> A line without blanks (the numbers' right-justified padding).
+  pure function squeeze(t) result(r)
+    character(len=*), intent(in) :: t
+    character(len=len(t)) :: r
+    integer :: i, k
+    r = ''
+    k = 0
+    do i = 1, len_trim(t)
+      if (t(i:i) /= ' ') then
+        k = k + 1
+        r(k:k) = t(i:i)
+      end if
+    end do
+  end function squeeze
+
+  !> The answer of a point for the boundary test: out(1) when decided, else a
+  !> value no answer takes (so decided/undecided neighbours also differ).
+  elemental real(dp) function answer(o1, st)
+    real(dp), intent(in) :: o1
+    integer, intent(in) :: st
+    answer = -1.0e300_dp
+    if (st == ps_decided) answer = o1
+  end function answer
+
+  !> The uncertainty recheck of final_well / locked (as pendula.sweep's): a
+  !> point of rows r0 .. r1 whose answer differs from a grid neighbour's (along
+  !> any axis; the previous row from ans(1:inner) when r0 > 1, the row ahead
+  !> when rl > r1) is computed again at 1000 times tighter tolerances; where
+  !> its answer changes it is not known: out(1) = NaN, status 4.
+  !> ans((r - r0 + 1) * inner + j): first-pass answer of point j of row r
+  !> (row r0 - 1 at offset 0); o, pst: outputs of rows r0 .. rl from index 1.
+  subroutine boundary_recheck(measure, n, r0, r1, rl, inner, params, rtol, atol, t_tr, t_max, nout, ans, o, pst)
+    integer, intent(in) :: measure, n(3), r0, r1, rl, inner, nout
+    real(dp), intent(in) :: params(:, :), rtol, atol, t_tr, t_max, ans(:)
+    real(dp), intent(inout) :: o(:, :)
+    integer, intent(inout) :: pst(:)
+    logical, allocatable :: edge(:)
+    integer, allocatable :: id(:)
+    real(dp), allocatable :: p2(:, :), o2(:, :)
+    integer, allocatable :: s2(:)
+    integer :: r, j, i2, i3, c, m, q
+    real(dp) :: a
+    allocate(edge((r1 - r0 + 1) * inner))
+    edge = .false.
+    do r = r0, r1
+      do j = 1, inner
+        c = (r - r0 + 1) * inner + j          ! this point in ans
+        a = ans(c)
+        q = (r - r0) * inner + j              ! and in o, pst
+        i3 = mod(j - 1, n(3)) + 1
+        i2 = (j - 1) / n(3) + 1
+        if (r > 1) edge(q) = edge(q) .or. ans(c - inner) /= a
+        if (r < rl) edge(q) = edge(q) .or. ans(c + inner) /= a
+        if (i2 > 1) edge(q) = edge(q) .or. ans(c - n(3)) /= a
+        if (i2 < n(2)) edge(q) = edge(q) .or. ans(c + n(3)) /= a
+        if (i3 > 1) edge(q) = edge(q) .or. ans(c - 1) /= a
+        if (i3 < n(3)) edge(q) = edge(q) .or. ans(c + 1) /= a
+      end do
+    end do
+    m = count(edge)
+    if (m == 0) return
+    allocate(id(m), p2(size(params, 1), m), o2(nout, m), s2(m))
+    id = pack([(q, q = 1, size(edge))], edge)
+    p2 = params(:, id)
+    call sweep_points(measure, m, p2, rtol * 1.0e-3_dp, atol * 1.0e-3_dp, t_tr, t_max, nout, o2, s2, 0)
+    do q = 1, m
+      if (answer(o2(1, q), s2(q)) /= answer(o(1, id(q)), pst(id(q)))) then
+        o(1, id(q)) = nan_dp
+        pst(id(q)) = ps_uncertain
+      end if
+    end do
+  end subroutine boundary_recheck
 
 end module pendula_sweep

@@ -22,7 +22,14 @@ Measures
     ``samples`` stroboscopic (theta in [-pi, pi), v) once per drive period
     after ``ceil(transient / T)`` periods.
 ``lyapunov``
-    Not implemented (raises NotImplementedError).
+    The largest Lyapunov exponent ``lyapunov`` of the orbit (variational
+    equations integrated with it by DOP853 on the 6-D state, Gram-Schmidt
+    renormalisation of two tangent vectors every fixed interval: Benettin),
+    averaged over ``t_max`` after ``transient`` (both rounded up to whole drive
+    periods, or small-oscillation periods 2 pi / sqrt(eps) without a drive);
+    ``lyapunov_err`` = the standard error of the mean over 8 equal blocks of
+    the window; ``lyapunov2`` = the second exponent (lyapunov + lyapunov2 =
+    -damping exactly in theory: a check).  See kernel/sweep/pendula_lyapunov.f90.
 
 Scale: the grid is cut into chunks along its first axis; each chunk goes to
 ``out/chunks/`` as a NetCDF file written atomically (temporary name, then
@@ -45,7 +52,7 @@ from .scene import GRIDDABLE, MEASURES, Scene, SceneError
 __all__ = ["sweep", "iv_curve", "grid_of", "MEASURE_CODES"]
 
 #: kernel codes of the measures (kernel/sweep/pendula_sweep.f90)
-MEASURE_CODES = {"final_well": 1, "mean_velocity": 2, "locked": 3, "poincare": 4}
+MEASURE_CODES = {"final_well": 1, "mean_velocity": 2, "locked": 3, "poincare": 4, "lyapunov": 5}
 #: point status codes
 STATUS = {0: "decided", 1: "not settled / undecided by the limit", 2: "measure does not apply",
           3: "bad measure", 4: "uncertain: the answer changes with the tolerance"}
@@ -101,6 +108,10 @@ class _Plan:
         if measure == "poincare":
             self.nout = 2 * samples
             self.t_tr = float(math.ceil(transient * scene.drive_frequency / (2 * math.pi) - 1e-12))
+        elif measure == "lyapunov":
+            # the kernel rounds transient and window up to whole periods, point by point
+            self.nout = 3
+            self.t_tr = transient
         else:
             self.nout = 2
             self.t_tr = transient
@@ -113,8 +124,11 @@ class _Plan:
 
     def params(self, i: int) -> np.ndarray:
         """The kernel's (8, npts) parameter block of chunk i."""
+        return self.params_rows(i * self.rows, min((i + 1) * self.rows, self.shape[0]))
+
+    def params_rows(self, lo: int, hi: int) -> np.ndarray:
+        """The kernel's (8, npts) parameter block of rows lo .. hi - 1 of the first axis."""
         names = list(self.over)
-        lo, hi = i * self.rows, min((i + 1) * self.rows, self.shape[0])
         axes = [self.over[names[0]][lo:hi]] + [self.over[n] for n in names[1:]]
         mesh = np.meshgrid(*axes, indexing="ij")
         npts = mesh[0].size
@@ -126,6 +140,12 @@ class _Plan:
         return p, (hi - lo,) + self.shape[1:]
 
 
+def _answers(out, st):
+    """The answer of each point for the boundary test: out[..., 0] when decided,
+    else a value no answer takes (decided and undecided neighbours differ too)."""
+    return np.where(st == 0, out[..., 0], -1e300)
+
+
 def _compute_chunk(plan: _Plan, i: int, threads: int):
     from . import _kernel
     p, shape = plan.params(i)
@@ -134,17 +154,36 @@ def _compute_chunk(plan: _Plan, i: int, threads: int):
     out = out.T.reshape(shape + (plan.nout,))
     st = st.reshape(shape)
     if plan.measure in ("final_well", "locked"):
-        # Points on a basin boundary (a grid neighbour in this chunk answers
-        # differently) are computed again at 1000 times tighter tolerances;
-        # where the answer changes, it is not known: NaN and status 4.
-        ans = np.where(st == 0, out[..., 0], -1e300)
-        edge = np.zeros(shape, dtype=bool)
+        # Points on a basin boundary (a grid neighbour answers differently, along
+        # any axis) are computed again at 1000 times tighter tolerances; where
+        # the answer changes, it is not known: NaN and status 4.  The rows just
+        # outside the chunk are computed too (first pass only), so that
+        # neighbours across chunk edges count: the answer of every point
+        # depends on the grid alone, never on the chunking (resume, Dask and
+        # pendula-run agree bit for bit).
+        lo = i * plan.rows
+        hi = lo + shape[0]
+        parts = [_answers(out, st)]
+        if lo > 0:
+            pb, sb = plan.params_rows(lo - 1, lo)
+            ob, tb = _kernel.sweep_block(code, pb, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout,
+                                         int(threads))
+            parts.insert(0, _answers(ob.T.reshape(sb + (plan.nout,)), tb.reshape(sb)))
+        if hi < plan.shape[0]:
+            pa, sa = plan.params_rows(hi, hi + 1)
+            oa, ta = _kernel.sweep_block(code, pa, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout,
+                                         int(threads))
+            parts.append(_answers(oa.T.reshape(sa + (plan.nout,)), ta.reshape(sa)))
+        ans = np.concatenate(parts, axis=0)
+        edge = np.zeros(ans.shape, dtype=bool)
         for ax in range(len(shape)):
             d = np.diff(ans, axis=ax) != 0
-            lo = [slice(None)] * len(shape); hi = [slice(None)] * len(shape)
-            lo[ax] = slice(0, -1); hi[ax] = slice(1, None)
-            edge[tuple(lo)] |= d
-            edge[tuple(hi)] |= d
+            lo_s = [slice(None)] * len(shape); hi_s = [slice(None)] * len(shape)
+            lo_s[ax] = slice(0, -1); hi_s[ax] = slice(1, None)
+            edge[tuple(lo_s)] |= d
+            edge[tuple(hi_s)] |= d
+        first = 1 if lo > 0 else 0
+        edge = edge[first:first + shape[0]]
         idx = np.flatnonzero(edge.ravel())
         if idx.size:
             p2 = np.asfortranarray(p[:, idx])
@@ -181,6 +220,10 @@ def _chunk_dataset(plan: _Plan, i: int, out: np.ndarray, st: np.ndarray):
         data["theta"] = (dims + ("sample",), out[..., 0::2])
         data["v"] = (dims + ("sample",), out[..., 1::2])
         coords["sample"] = np.arange(plan.samples)
+    elif plan.measure == "lyapunov":
+        data["lyapunov"] = (dims, out[..., 0])
+        data["lyapunov_err"] = (dims, out[..., 1])
+        data["lyapunov2"] = (dims, out[..., 2])
     return xr.Dataset(data, coords=coords)
 
 
@@ -203,12 +246,12 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
         torque, drive_amplitude, drive_frequency, drive_phase).  Default: the
         scene's own grid (``grid``, ``grid1`` ... fields).
     measure : str, optional
-        'final_well', 'mean_velocity', 'locked', 'poincare' ('lyapunov' is not
-        implemented).  Default: the scene's ``measure``.
+        'final_well', 'mean_velocity', 'locked', 'poincare', 'lyapunov'.
+        Default: the scene's ``measure``.
     rtol, atol : float, optional
         DOP853 tolerances (default: the scene's).
     t_max : float, optional
-        final_well/locked: the limit; mean_velocity: the averaging time.
+        final_well/locked: the limit; mean_velocity, lyapunov: the averaging time.
         Default: the scene's ``sweep_t_max``.
     transient : float, optional
         Time skipped before averaging or sampling (default ``sweep_transient``).
@@ -231,8 +274,9 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
         Lazy (dask-backed, read from the chunk files) when ``out`` is given
         and there is more than one chunk.  Coordinates = the axes; variables per measure plus ``status``
         (0 decided, 1 not settled by the limit, 2 measure does not apply,
-        4 uncertain: a basin-boundary point whose answer changed when computed
-        again at 1000 times tighter tolerances);
+        4 uncertain: a basin-boundary point -- a grid neighbour along any axis,
+        across chunk edges too, answers differently -- whose answer changed when
+        computed again at 1000 times tighter tolerances; final_well and locked);
         the scene and options as attributes.
 
     Examples
@@ -242,6 +286,17 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
     >>> ds = pendula.sweep(s, over={"v0": [1.0, 2.3, 3.0]}, measure="final_well")
     >>> ds.well.values.tolist()
     [0.0, 2.0, 5.0]
+
+    The largest Lyapunov exponent of the driven damped pendulum (chaotic at
+    A = 1.5, a stable cycle at A = 0.9):
+
+    >>> d = pendula.Scene(damping=0.5, drive_frequency=2 / 3)
+    >>> ly = pendula.sweep(d, over={"drive_amplitude": [0.9, 1.5]}, measure="lyapunov",
+    ...                    transient=1000.0, t_max=3000.0)
+    >>> [bool(x > 0) for x in ly.lyapunov.values]
+    [False, True]
+    >>> bool(abs(ly.lyapunov[0] + ly.lyapunov2[0] + 0.5) < 1e-8)     # lambda_1 + lambda_2 = -beta
+    True
     """
     import xarray as xr
 
@@ -250,9 +305,6 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
     measure = measure or scene.measure
     if measure not in MEASURES:
         raise ValueError(f"parameter 'measure' must be one of {', '.join(MEASURES)}; got {measure!r}")
-    if measure == "lyapunov":
-        raise NotImplementedError("measure 'lyapunov' (variational equations with Benettin "
-                                  "renormalisation) is not implemented yet")
     over = grid_of(scene) if over is None else over
     over = _check_over(scene, over)
     rtol = scene.rtol if rtol is None else float(rtol)
@@ -419,7 +471,8 @@ def plot_sweep(ds, path) -> pathlib.Path:
     path = pathlib.Path(path)
     measure = ds.attrs["measure"]
     dims = [d for d in ds.dims if d != "sample"]
-    var = {"final_well": "well", "locked": "locked", "mean_velocity": "mean_velocity", "poincare": "theta"}[measure]
+    var = {"final_well": "well", "locked": "locked", "mean_velocity": "mean_velocity", "poincare": "theta",
+           "lyapunov": "lyapunov"}[measure]
     fig, ax = plt.subplots(figsize=(6.4, 4.8))
     if measure == "poincare":
         x = np.repeat(ds[dims[0]].values, ds.sizes["sample"])

@@ -1,7 +1,8 @@
 """Sweep gallery (issue 14): basins of the damped pendulum with the
 energy-balance prediction, the seed's section 8.2 (wells against torque), the
-I-V loop of the RCSJ junction with its retrapping torque, and the bifurcation
-diagram of the driven damped pendulum.  ``run(out, small=True)`` is what
+I-V loop of the RCSJ junction with its retrapping torque, the bifurcation
+diagram of the driven damped pendulum and, beside it, its largest Lyapunov
+exponent against the drive amplitude.  ``run(out, small=True)`` is what
 ``pendula demo`` calls; the full-size scenes are data/scenes/sweeps/*.nml."""
 
 from __future__ import annotations
@@ -137,6 +138,19 @@ def _iv(out):
     return {"switch_up": switch, "retrap": dict(zip(betas.tolist(), tr.tolist()))}
 
 
+def _lyapunov_scene(na, n_tr, n_avg):
+    tp = 2 * math.pi / (2.0 / 3.0)
+    return Scene(damping=0.5, drive_frequency=2.0 / 3.0, drive_amplitude=1.0,
+                 grid=("drive_amplitude",), grid1_range=(0.9, 1.5, na), measure="lyapunov",
+                 sweep_transient=n_tr * tp, sweep_t_max=n_avg * tp, rtol=1e-9, atol=1e-11)
+
+
+#: the gallery's Lyapunov sweep (data/scenes/sweeps/driven_lyapunov_small.nml) and the
+#: full-size one (driven_lyapunov.nml): transient and window in drive periods
+LYAPUNOV_SMALL = _lyapunov_scene(61, 200, 400)
+LYAPUNOV_FULL = _lyapunov_scene(601, 300, 2000)
+
+
 def _bifurcation(out, small):
     na, ns = (61, 32) if small else (601, 128)
     s = Scene(damping=0.5, drive_frequency=2.0 / 3.0, drive_amplitude=1.0,
@@ -152,7 +166,58 @@ def _bifurcation(out, small):
     amps = ds.drive_amplitude.values
     doubling = [(float(amps[k]), int(counts[k]), int(counts[k + 1])) for k in range(na - 1)
                 if counts[k] in (1, 2, 4) and counts[k + 1] == 2 * counts[k]]
-    return {"amplitudes": amps, "period": counts, "doublings": doubling}
+    return {"amplitudes": amps, "period": counts, "doublings": doubling, "dataset": ds}
+
+
+def _lyapunov(out, small, bif):
+    """The largest Lyapunov exponent against A (beta = 0.5, Omega = 2/3, eps = 1,
+    A = 0.9 ... 1.5), drawn under the bifurcation diagram; the chaotic bands
+    (lambda_1 > 3 err and > 0.01) against the diagram's (no stroboscopic point
+    repeats among the samples)."""
+    import time
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    scene = LYAPUNOV_SMALL if small else LYAPUNOV_FULL
+    t0 = time.perf_counter()
+    ds = sweep(scene)
+    seconds = time.perf_counter() - t0
+    amps = ds.drive_amplitude.values
+    lam, err = ds.lyapunov.values, ds.lyapunov_err.values
+    chaotic = (lam > 3 * err) & (lam > 0.01)
+    # the bifurcation diagram's verdict at the same amplitudes (its grid is the same A range)
+    b = bif["dataset"]
+    ns = b.sizes["sample"]
+    per = np.interp(amps, b.drive_amplitude.values, bif["period"].astype(float))
+    strobe_chaotic = per >= ns
+    agree = float(np.mean(chaotic == strobe_chaotic))
+    sum_rule = float(np.nanmax(np.abs(lam + ds.lyapunov2.values + scene.damping)))
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(7.5, 7.0), sharex=True, gridspec_kw={"height_ratios": [3, 2]})
+    x = np.repeat(b.drive_amplitude.values, ns)
+    a1.plot(x, b.theta.values.ravel(), ".k", markersize=1.2, alpha=0.6)
+    a1.set_ylabel("stroboscopic theta (mod 2 pi)")
+    a1.set_title("driven damped pendulum, beta = 0.5, Omega = 2/3, eps = 1")
+    a2.axhline(0.0, color="0.6", linewidth=0.8)
+    a2.axhline(-scene.damping / 2, color="0.6", linewidth=0.8, linestyle=":")
+    a2.errorbar(amps, lam, yerr=err, fmt=".-", markersize=3, linewidth=0.8, elinewidth=0.8,
+                label="largest Lyapunov exponent (+- block standard error)")
+    a2.fill_between(amps, -0.3, 0.2, where=chaotic, color="tab:red", alpha=0.15, step="mid",
+                    label="chaotic: lambda_1 > 0")
+    a2.set_ylim(-0.3, 0.2)
+    a2.set_xlabel("drive amplitude A"); a2.set_ylabel("lambda_1")
+    a2.legend(loc="upper left", fontsize=8)
+    fig.tight_layout(); fig.savefig(out / "sweep_lyapunov.png", dpi=120); plt.close(fig)
+    bands = []
+    for k, c in enumerate(chaotic):
+        if c and (k == 0 or not chaotic[k - 1]):
+            start = amps[k]
+        if c and (k == len(amps) - 1 or not chaotic[k + 1]):
+            bands.append((float(start), float(amps[k])))
+    return {"points": int(amps.size), "seconds": seconds, "bands": bands, "agree_with_bifurcation": agree,
+            "disagree_at": [float(a) for a in amps[chaotic != strobe_chaotic]],
+            "max_sum_rule_error": sum_rule, "max_lambda": float(np.nanmax(lam)),
+            "A_max": float(amps[np.nanargmax(lam)])}
 
 
 def run(out, small: bool = True, quiet: bool = False) -> dict:
@@ -161,6 +226,7 @@ def run(out, small: bool = True, quiet: bool = False) -> dict:
     out.mkdir(parents=True, exist_ok=True)
     res = {"basins": _basins(out, small), "seed_8_2": _seed_8_2(out), "seed_8_2_1": _seed_8_2_1(), "iv": _iv(out),
            "bifurcation": _bifurcation(out, small)}
+    res["lyapunov"] = _lyapunov(out, small, res["bifurcation"])
     if not quiet:
         b = res["basins"]
         print(f"sweeps: basin map {b['points']} points, {100 * b['decided']:.1f} % decided, "
@@ -174,4 +240,11 @@ def run(out, small: bool = True, quiet: bool = False) -> dict:
         print(f"  I-V: switches to running at tau = {res['iv']['switch_up']}; retrapping "
               + ", ".join(f"beta {k}: {v:.3f} (4b/pi {4 * k / math.pi:.3f})" for k, v in res["iv"]["retrap"].items()))
         print(f"  driven pendulum: period doublings (A, p -> 2p) {res['bifurcation']['doublings']}")
+        ly = res["lyapunov"]
+        print(f"  Lyapunov exponent: {ly['points']} amplitudes in {ly['seconds']:.1f} s; chaotic bands (lambda_1 > 0) "
+              + ", ".join(f"{a:.3f}-{b:.3f}" for a, b in ly["bands"])
+              + f"; agrees with the bifurcation diagram at {100 * ly['agree_with_bifurcation']:.0f} % of amplitudes "
+              f"(not at A = {', '.join(f'{a:.3f}' for a in ly['disagree_at'])}); "
+              f"max lambda_1 = {ly['max_lambda']:.3f} at A = {ly['A_max']:.3f}; "
+              f"|lambda_1 + lambda_2 + beta| <= {ly['max_sum_rule_error']:.1e}")
     return res

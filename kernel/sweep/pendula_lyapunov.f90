@@ -1,0 +1,282 @@
+!> Lyapunov exponents of the damped, torqued, driven rigid pendulum
+!>   theta'' = -eps sin(theta) - beta theta' + tau + A cos(Omega t + phi)
+!> (the model of pendula_integrators%make_model / accel, whose accel is used
+!> here, so that the sign conventions are the same by construction).
+!>
+!> Method (Benettin et al. 1980): the orbit (theta, v) is integrated together
+!> with two tangent vectors w1, w2 of the variational equations
+!>   dw/dt = J w,   J = [[0, 1], [-eps cos(theta), -beta]]
+!> by an adaptive embedded Runge-Kutta of order 8(5,3) (DOP853, the tables of
+!> pendula_rk_tables.inc) on the 6-D state (theta, v, w1, w2).  Every
+!> renormalisation interval h_r the pair is re-orthonormalised (Gram-Schmidt):
+!> log |w1| accumulates the largest exponent, log |w2 - (w2.w1) w1| the
+!> second.  Their sum is (1/T) log det of the tangent map = -beta exactly
+!> (Liouville: trace J = -beta), a check on the whole computation.
+!>
+!> Time base: T_b = 2 pi / |Omega| for a driven model (A /= 0, Omega /= 0), else
+!> the small-oscillation period 2 pi / sqrt(eps).  h_r = T_b / m with m the
+!> smallest integer such that (beta + 2 sqrt(eps)) h_r <= 4: within one
+!> interval the tangent norms change by at most about e^4, so neither vector
+!> falls to the absolute tolerance, and the angle between them stays resolved.
+!> Each interval restarts the model's clock at 0 with the drive phase
+!> phi + 2 pi j / m (exact: Omega h_r = 2 pi / m), and theta is reduced mod
+!> 2 pi (the force is 2 pi periodic), so that long runs lose no phase.
+!> The transient is ceil(t_tr / T_b) base periods (whole drive periods, as the
+!> poincare measure), the averaging window ceil(t_avg / T_b) base periods.
+!>
+!> Convergence estimate: the window is cut into nblock = 8 blocks of equal
+!> numbers of intervals; err = the standard error of the mean of the 8 block
+!> exponents, std(block lambda_1) / sqrt(8).
+!>
+!> Thread safety: no module variables; pure helpers; status codes only.
+module pendula_lyapunov
+  use pendula_kinds, only: dp, i8, two_pi, nan_dp
+  use pendula_integrators, only: pendulum_model, make_model, accel, max_steps, &
+    st_ok, st_step_underflow, st_nonfinite, st_too_many_steps
+  implicit none
+  private
+  public :: lyapunov_point, lyapunov_intervals, ly_nblock
+
+  include 'pendula_rk_tables.inc'
+  !> DOP853's A transposed, so that each stage's weights are contiguous
+  real(dp), parameter :: at(0:15, 0:15) = transpose(d8_a)
+  !> blocks of the averaging window for the convergence estimate
+  integer, parameter :: ly_nblock = 8
+
+contains
+
+  !> The base period, the intervals per base period m, the transient and
+  !> window lengths in intervals (see the module text).
+  pure subroutine lyapunov_intervals(p, t_tr, t_avg, tb, m, ntr, navg, ok)
+    real(dp), intent(in) :: p(8), t_tr, t_avg
+    real(dp), intent(out) :: tb
+    integer, intent(out) :: m, ntr, navg
+    logical, intent(out) :: ok
+    real(dp) :: g, rm, rtr, ravg
+    m = 0; ntr = 0; navg = 0
+    if (p(4) /= 0.0_dp .and. p(5) /= 0.0_dp) then
+      tb = two_pi / abs(p(5))
+    else
+      tb = two_pi / sqrt(p(1))
+    end if
+    g = abs(p(2)) + 2.0_dp * sqrt(p(1))
+    ! counted in reals first: a window too long to count is refused, not wrapped around
+    rm = max(1.0_dp, real(ceiling(min(g * tb / 4.0_dp, 1.0e9_dp)), dp))
+    rtr = max(0.0_dp, t_tr / tb - 1.0e-12_dp)
+    ravg = max(1.0_dp, t_avg / tb - 1.0e-12_dp)
+    ok = tb > 0.0_dp .and. tb <= huge(1.0_dp) .and. rm * (rtr + ravg + 2.0_dp) <= 1.0e9_dp
+    if (.not. ok) return
+    m = nint(rm)
+    ntr = m * ceiling(rtr)
+    navg = max(m * ceiling(ravg), ly_nblock)
+  end subroutine lyapunov_intervals
+
+  !> Largest (lam1) and second (lam2) Lyapunov exponents of the orbit from
+  !> (theta0, v0) = (p(7), p(8)) with p = eps, beta, tau, amp, omega, phase,
+  !> theta0, v0; err: the convergence estimate of lam1 (module text).
+  !> t_tr, t_avg: transient and averaging time (rounded up to whole base
+  !> periods).  status 0, or 100 + the integrator status (5 step underflow,
+  !> 6 non-finite, 7 too many steps), or 2 for bad parameters (eps <= 0, a
+  !> window too long to count in intervals).
+  pure subroutine lyapunov_point(p, rtol, atol, t_tr, t_avg, lam1, lam2, err, status)
+    real(dp), intent(in) :: p(8), rtol, atol, t_tr, t_avg
+    real(dp), intent(out) :: lam1, lam2, err
+    integer, intent(out) :: status
+    real(dp) :: tb, hr, y(6), h, s1, s2, n1, n2, d, blk(ly_nblock), bsum, phase, tblk
+    integer :: m, ntr, navg, j, jb, jstart, jend, s
+    integer(i8) :: nsteps
+    logical :: ok
+    lam1 = nan_dp; lam2 = nan_dp; err = nan_dp
+    if (.not. (p(1) > 0.0_dp) .or. .not. (p(2) >= 0.0_dp) .or. .not. (t_tr >= 0.0_dp) &
+        .or. .not. (t_avg > 0.0_dp) .or. .not. (rtol > 0.0_dp) .or. .not. (atol >= 0.0_dp)) then
+      status = 2; return
+    end if
+    call lyapunov_intervals(p, t_tr, t_avg, tb, m, ntr, navg, ok)
+    if (.not. ok) then
+      status = 2; return
+    end if
+    hr = tb / real(m, dp)
+    y = [p(7), p(8), 1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp]
+    h = 0.0_dp
+    nsteps = 0
+    s1 = 0.0_dp; s2 = 0.0_dp
+    blk = 0.0_dp
+    jb = 1; bsum = 0.0_dp
+    jstart = 0
+    status = st_ok
+    do j = 0, ntr + navg - 1
+      ! the drive phase at the start of interval j: phi + Omega j h_r = phi +- 2 pi j / m (mod 2 pi);
+      ! a drive of frequency 0 is a constant force A cos(phi)
+      phase = p(6)
+      if (p(4) /= 0.0_dp .and. p(5) /= 0.0_dp) &
+        phase = p(6) + sign(1.0_dp, p(5)) * two_pi * real(mod(j, m), dp) / real(m, dp)
+      call interval(p, phase, hr, rtol, atol, y, h, nsteps, s)
+      if (s /= st_ok) then
+        status = 100 + s; return
+      end if
+      y(1) = y(1) - two_pi * anint(y(1) / two_pi)
+      ! Gram-Schmidt
+      n1 = hypot(y(3), y(4))
+      y(3:4) = y(3:4) / n1
+      d = y(5) * y(3) + y(6) * y(4)
+      y(5:6) = y(5:6) - d * y(3:4)
+      n2 = hypot(y(5), y(6))
+      y(5:6) = y(5:6) / n2
+      if (.not. (n1 > 0.0_dp .and. n2 > 0.0_dp .and. n1 <= huge(1.0_dp) .and. n2 <= huge(1.0_dp))) then
+        status = 100 + st_nonfinite; return
+      end if
+      if (j >= ntr) then
+        s1 = s1 + log(n1); s2 = s2 + log(n2)
+        bsum = bsum + log(n1)
+        ! block jb covers intervals [ntr + (jb-1) navg / nb, ntr + jb navg / nb)
+        jend = ntr + int((int(jb, i8) * navg) / ly_nblock) - 1
+        if (j == jend) then
+          tblk = real(jend - (ntr + jstart) + 1, dp) * hr
+          blk(jb) = bsum / tblk
+          jstart = jend - ntr + 1
+          bsum = 0.0_dp
+          jb = jb + 1
+        end if
+      end if
+    end do
+    lam1 = s1 / (real(navg, dp) * hr)
+    lam2 = s2 / (real(navg, dp) * hr)
+    err = sqrt(sum((blk - sum(blk) / ly_nblock)**2) / real(ly_nblock - 1, dp)) / sqrt(real(ly_nblock, dp))
+  end subroutine lyapunov_point
+
+  !> Advance the 6-D state over [0, hr] with the model's clock at 0 and
+  !> drive phase `phase`.  h: the step to try (0: choose one); on return the
+  !> step the controller proposes next (not the one cut to reach hr).
+  pure subroutine interval(p, phase, hr, rtol, atol, y, h, nsteps, status)
+    real(dp), intent(in) :: p(8), phase, hr, rtol, atol
+    real(dp), intent(inout) :: y(6), h
+    integer(i8), intent(inout) :: nsteps
+    integer, intent(out) :: status
+    type(pendulum_model) :: md
+    real(dp) :: t, f0(6), ynew(6), fnew(6), k(0:12, 6), err, fac, fac11, hnew, hprop
+    logical :: last, reject
+    real(dp), parameter :: safe = 0.9_dp, facc1 = 1.0_dp / 0.333_dp, facc2 = 1.0_dp / 6.0_dp, &
+      expo1 = 1.0_dp / 8.0_dp
+    md = make_model(p(1), p(2), p(3), p(4), p(5), phase)
+    t = 0.0_dp
+    f0 = rhs(md, p, t, y)
+    if (.not. (h > 0.0_dp)) h = initial_step(md, p, y, f0, hr, rtol, atol)
+    h = min(h, hr)
+    hprop = h
+    reject = .false.
+    status = st_ok
+    do
+      if (h <= 16.0_dp * epsilon(1.0_dp) * abs(t) .or. h <= 0.0_dp) then
+        status = st_step_underflow; return
+      end if
+      if (nsteps >= max_steps) then
+        status = st_too_many_steps; return
+      end if
+      last = .false.
+      if (t + h >= hr) then
+        hprop = h
+        h = hr - t
+        last = .true.
+      end if
+      call step853(md, p, t, y, f0, h, rtol, atol, k, ynew, fnew, err)
+      nsteps = nsteps + 1
+      if (.not. (err == err) .or. .not. all(abs(ynew) <= huge(1.0_dp))) then
+        status = st_nonfinite; return
+      end if
+      fac11 = err**expo1
+      fac = max(facc2, min(facc1, fac11 / safe))
+      hnew = h / fac
+      if (err <= 1.0_dp) then
+        t = t + h
+        y = ynew
+        f0 = fnew
+        if (reject) hnew = min(hnew, h)
+        if (last) then
+          ! a step cut to reach the interval's end says little about the next one
+          h = max(hnew, hprop)
+          if (reject) h = min(h, hprop)
+          return
+        end if
+        reject = .false.
+        h = hnew
+      else
+        hnew = h / min(facc1, fac11 / safe)
+        reject = .true.
+        h = hnew
+      end if
+    end do
+  end subroutine interval
+
+  pure function rhs(md, p, t, y) result(f)
+    type(pendulum_model), intent(in) :: md
+    real(dp), intent(in) :: p(8), t, y(6)
+    real(dp) :: f(6), c
+    f(1) = y(2)
+    f(2) = accel(md, t, y(1), y(2))
+    ! the Jacobian of (v, accel) with respect to (theta, v): [[0, 1], [-eps cos(theta), -beta]]
+    c = -p(1) * cos(y(1))
+    f(3) = y(4)
+    f(4) = c * y(3) - p(2) * y(4)
+    f(5) = y(6)
+    f(6) = c * y(5) - p(2) * y(6)
+  end function rhs
+
+  !> One DOP853 step from (t, y) with f0 = f(t, y): ynew, fnew = f(t + h, ynew)
+  !> and Hairer's error norm (the 5th- and 3rd-order estimates combined).
+  pure subroutine step853(md, p, t, y, f0, h, rtol, atol, k, ynew, fnew, errn)
+    type(pendulum_model), intent(in) :: md
+    real(dp), intent(in) :: p(8), t, y(6), f0(6), h, rtol, atol
+    real(dp), intent(out) :: k(0:12, 6), ynew(6), fnew(6), errn
+    real(dp) :: ys(6), sk(6), e3(6), e5(6), err3, err5, deno
+    integer :: st, i
+    k(0, :) = f0
+    do st = 1, 11
+      do i = 1, 6
+        ys(i) = y(i) + h * dot_product(at(0:st - 1, st), k(0:st - 1, i))
+      end do
+      k(st, :) = rhs(md, p, t + d8_c(st) * h, ys)
+    end do
+    do i = 1, 6
+      ynew(i) = y(i) + h * dot_product(d8_b, k(0:11, i))
+    end do
+    fnew = rhs(md, p, t + h, ynew)
+    k(12, :) = fnew
+    do i = 1, 6
+      e3(i) = dot_product(d8_e3, k(0:12, i))
+      e5(i) = dot_product(d8_e5, k(0:12, i))
+    end do
+    ! (never 0: atol = 0 at the equilibrium theta = v = 0 must not divide 0 by 0)
+    sk = max(atol + rtol * max(abs(y), abs(ynew)), tiny(1.0_dp))
+    err5 = sum((e5 / sk)**2)
+    err3 = sum((e3 / sk)**2)
+    deno = err5 + 0.01_dp * err3
+    if (deno <= 0.0_dp) deno = 1.0_dp
+    errn = abs(h) * err5 * sqrt(1.0_dp / (6.0_dp * deno))
+  end subroutine step853
+
+  !> Hairer's starting step (order 8), at most hr.
+  pure function initial_step(md, p, y, f0, hr, rtol, atol) result(h0)
+    type(pendulum_model), intent(in) :: md
+    real(dp), intent(in) :: p(8), y(6), f0(6), hr, rtol, atol
+    real(dp) :: h0, sk(6), dnf, dny, h1, der2, der12, f1(6)
+    sk = max(atol + rtol * abs(y), tiny(1.0_dp))
+    dnf = sum((f0 / sk)**2) / 6.0_dp
+    dny = sum((y / sk)**2) / 6.0_dp
+    if (dnf <= 1.0e-10_dp .or. dny <= 1.0e-10_dp) then
+      h0 = 1.0e-6_dp
+    else
+      h0 = 0.01_dp * sqrt(dny / dnf)
+    end if
+    h0 = min(h0, hr)
+    f1 = rhs(md, p, h0, y + h0 * f0)
+    der2 = sqrt(sum(((f1 - f0) / sk)**2) / 6.0_dp) / h0
+    der12 = max(abs(der2), sqrt(dnf))
+    if (der12 <= 1.0e-15_dp) then
+      h1 = max(1.0e-6_dp, abs(h0) * 1.0e-3_dp)
+    else
+      h1 = (0.01_dp / der12)**(1.0_dp / 8.0_dp)
+    end if
+    h0 = min(100.0_dp * abs(h0), h1, hr)
+  end function initial_step
+
+end module pendula_lyapunov
