@@ -127,6 +127,25 @@ def test_poincare_period1_against_scipy():
     assert np.ptp(ds.theta.values[0]) < 1e-6   # period 1: one stroboscopic point
 
 
+def test_poincare_transient_in_periods_of_each_points_own_drive():
+    """A drive_frequency axis: each point skips ceil(transient / T) of its own
+    periods T = 2 pi / Omega (not the base scene's), and a base frequency of 0
+    does not mean no transient.  Against scipy at each point's own times."""
+    beta, amp, transient = 0.5, 0.9, 40.0
+    s = Scene(damping=beta, drive_amplitude=amp, drive_frequency=0.0)
+    oms = [0.5, 2.0 / 3.0, 1.3]
+    ds = pendula.sweep(s, over={"drive_frequency": oms}, measure="poincare", transient=transient, samples=3)
+    for i, om in enumerate(oms):
+        tp = 2 * math.pi / om
+        n_tr = math.ceil(transient / tp)
+        ts = tp * np.arange(n_tr + 1, n_tr + 4)
+        sol = solve_ivp(rhs(1.0, beta, 0.0, amp, om), (0, ts[-1]), [0.0, 0.0], method="DOP853", rtol=1e-12,
+                        atol=1e-14, t_eval=ts)
+        th = (sol.y[0] + math.pi) % (2 * math.pi) - math.pi
+        np.testing.assert_allclose(ds.theta.values[i], th, atol=1e-6)
+        np.testing.assert_allclose(ds.v.values[i], sol.y[1], atol=1e-6)
+
+
 def test_threads_1_and_2_identical():
     over = {"v0": np.linspace(0, 4, 40), "damping": [0.05, 0.1, 0.2]}
     a = pendula.sweep(Scene(damping=0.1), over=over, measure="final_well", threads=1)

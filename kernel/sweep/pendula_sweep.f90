@@ -18,7 +18,8 @@
 !>   1 final_well:    out(1) = n (well at asin(tau/eps) + 2 pi n), out(2) = time decided
 !>   2 mean_velocity: out(1) = <v> after the transient, out(2) = convergence estimate
 !>   3 locked:        out(1) = 1 locked / 0 running, out(2) = time decided
-!>   4 poincare:      out(2k-1), out(2k) = theta mod 2 pi in [-pi, pi), v at t = (n_tr + k) T
+!>   4 poincare:      out(2k-1), out(2k) = theta mod 2 pi in [-pi, pi), v at t = (n_tr + k) T,
+!>                    n_tr = ceil(t_tr / T) with each point's own drive period T
 !>   5 lyapunov:      out(1) = largest Lyapunov exponent, out(2) = its convergence estimate
 !>                    (standard error over 8 blocks), out(3) (when nout >= 3) = the second
 !>                    exponent; t_tr = transient, t_max = averaging time, both rounded up to
@@ -114,7 +115,16 @@ contains
       call mean_velocity(p, rtol, atol, t_tr, t_max, p(7), p(8), vm, err, th, v, st)
       o(1) = vm; o(2) = err
     case (ms_poincare)
-      call poincare(p, rtol, atol, nint(t_tr), size(o) / 2, o, st)
+      ! the transient is a time: each point skips whole periods of its own drive
+      n = 0
+      if (p(5) > 0.0_dp) then
+        vm = real(ceiling(min(t_tr * p(5) / two_pi, 1.0e9_dp) - 1.0e-12_dp), dp)
+        if (vm > 1.0e8_dp) then
+          st = ps_unsettled; return   ! beyond any work a sweep point may take
+        end if
+        n = int(vm)
+      end if
+      call poincare(p, rtol, atol, n, size(o) / 2, o, st)
     case (ms_lyapunov)
       if (size(o) < 2) then
         st = ps_bad_measure; return
@@ -376,7 +386,6 @@ contains
         status = 2; msg = 'measure ''poincare'' needs a drive (drive_frequency > 0)'; return
       end if
       nout = 2 * sc%sweep_samples
-      t_tr = real(ceiling(sc%sweep_transient * sc%drive_frequency / two_pi - 1.0e-12_dp), dp)
     end if
     if (measure == ms_lyapunov) nout = 3
     recheck = measure == ms_final_well .or. measure == ms_locked

@@ -106,8 +106,9 @@ class _Plan:
         self.rows = max(1, chunk_points // max(inner, 1))
         self.nchunks = -(-self.shape[0] // self.rows)
         if measure == "poincare":
+            # the kernel rounds the transient up to whole periods of each point's drive
             self.nout = 2 * samples
-            self.t_tr = float(math.ceil(transient * scene.drive_frequency / (2 * math.pi) - 1e-12))
+            self.t_tr = transient
         elif measure == "lyapunov":
             # the kernel rounds transient and window up to whole periods, point by point
             self.nout = 3
