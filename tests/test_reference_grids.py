@@ -5,13 +5,6 @@ draws per class; data/gen_reference_grids.py writes it).
 The error of a point is max over outputs of |got - ref| / max(1, |ref|), in
 eps.  The bound is 4 eps for every class (the promise of README), except
 where a measured, explained limit is stated beside it:
-* exact motion next to the separatrix and near the top (and a few
-  librations with mc ~ 1e-4): v = 2 k sqrt(eps) cn(u | m) (dn for a
-  rotation) with m -> 1 and cn small, and the Jacobi core keeps cn and dn
-  to ~4-8 eps relative there, not 1-2 (measured at the worst points with
-  the reduced argument given exactly: 4.4 to 7.9 eps); theta is within
-  4 eps everywhere.  (The starting phase F(phi0), the cause of up to
-  18.5 eps next to the zeros of v, is now formed in double-double.)
 * sn, cn, dn for m < 0: the imaginary-modulus transformation divides the
   core's sn by dn and by sqrt(1 - m) (two more roundings on ~1.5 eps each):
   measured 4.6 eps at m = -1343.
@@ -27,9 +20,7 @@ from pendula.accuracy import grid_errors, load_grids
 PATH = pathlib.Path(__file__).resolve().parents[1] / "data" / "reference_grids.csv.gz"
 GRIDS = load_grids(PATH)
 # measured limits above 4 eps, with the reason in the module docstring
-LIMITS = {"exact_libration_bwd": 5, "exact_near_separatrix_fwd": 7,
-          "exact_near_separatrix_bwd": 6, "exact_near_top_fwd": 8, "exact_near_top_bwd": 5,
-          "jac_m_neg": 5}
+LIMITS = {"jac_m_neg": 5}
 
 
 def test_the_grid_has_every_class_at_full_size():
