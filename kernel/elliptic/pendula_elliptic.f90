@@ -47,6 +47,7 @@ module pendula_elliptic
     real(dp) :: mc = 1.0_dp                   !< complement of the core parameter (0 <= m < 1)
     real(dp) :: kh = 0.0_dp, kl = 0.0_dp      !< K of the core, double-double
     real(dp) :: sh = 1.0_dp, sl = 0.0_dp      !< argument scale (1, sqrt(1-m) or sqrt(m))
+    real(dp) :: mo = 1.0_dp, mol = 0.0_dp     !< m < 0: the complement 1 - m itself, double-double
     real(dp) :: ct(6) = 0.0_dp                 !< Maclaurin series of tn^2 in u^2
     integer :: ndbl = 0                        !< duplications that cover [0, K/2]
   end type jacobi_plan
@@ -511,6 +512,7 @@ contains
       cm = -m / mc
       call dd_div(1.0_dp, 0.0_dp, mc, mcl, cmc, cmcl)
       call dd_sqrt(mc, mcl, p%sh, p%sl)
+      p%mo = mc; p%mol = mcl
     else
       ! sn(u|m) = sn(k u|1/m)/k, cn = dn(k u|1/m), dn = cn(k u|1/m), k = sqrt(m);
       ! the core's complement -mc/m and the scale sqrt(m) from m + ml
@@ -558,6 +560,42 @@ contains
 
   include 'pendula_atan.inc'
 
+  !> atan2(y, x) for y, x >= 0 (not both zero) with one division: the
+  !> reductions of atan_pos (z -> 1/z above 1, z -> (z-1)/(z+1) above
+  !> tan(pi/8), the half angle z -> z/(1 + sqrt(1 + z^2))) done on the pair
+  !> (a, b) with z = a/b, and a single a/(b + sqrt(a^2 + b^2)) at the end.
+  !> Same series as atan_pos; about 2 ulp.  a^2 + b^2 <= 2 max(x, y)^2: for
+  !> the unit-scale sn, cn it is called with nothing over- or underflows.
+  elemental function atan2_pos(y, x) result(ang)
+    real(dp), intent(in) :: y, x
+    real(dp) :: ang, a, b, a1, z, z2, p, f, g
+    ! the reductions as 0/1 factors (exact: x + 0 y = x): written with merges
+    ! of operands or min/max, the loops that inline this did not vectorize
+    g = merge(1.0_dp, 0.0_dp, y > x)
+    a = merge(x, y, y > x)
+    b = merge(y, x, y > x)
+    f = merge(1.0_dp, 0.0_dp, a > 0.41421356237309503_dp * b)
+    a1 = a - f * b
+    b = b + f * a
+    z = a1 / (b + sqrt(b * b + a1 * a1))
+    z2 = z * z
+    p = 1.0_dp/25.0_dp
+    p = 1.0_dp/23.0_dp - z2 * p
+    p = 1.0_dp/21.0_dp - z2 * p
+    p = 1.0_dp/19.0_dp - z2 * p
+    p = 1.0_dp/17.0_dp - z2 * p
+    p = 1.0_dp/15.0_dp - z2 * p
+    p = 1.0_dp/13.0_dp - z2 * p
+    p = 1.0_dp/11.0_dp - z2 * p
+    p = 1.0_dp/9.0_dp - z2 * p
+    p = 1.0_dp/7.0_dp - z2 * p
+    p = 1.0_dp/5.0_dp - z2 * p
+    p = 1.0_dp/3.0_dp - z2 * p
+    ang = 2.0_dp * (z - z * z2 * p)
+    ang = merge(0.78539816339744831_dp + ang, ang, f > 0.0_dp)
+    ang = merge(half_pi - ang, ang, g > 0.0_dp)
+  end function atan2_pos
+
   !> The Jacobi functions of an array of u at one prepared parameter.
   !>
   !> 1. reduce: x = u * scale = 2 K j + r (|r| <= K, double-double throughout),
@@ -578,8 +616,8 @@ contains
     real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
     integer, parameter :: blk = 256
     real(dp) :: ulb(blk), kh(blk), kl(blk), sc(blk), scl(blk), mc(blk), ct(blk, 6)
-    real(dp) :: j(blk), s(blk), c(blk), d
-    integer :: i0, nb, i, k
+    real(dp) :: j(blk), r(blk), pp(blk), qq(blk), shf(blk), d
+    integer :: i0, nb, k
 
     if (p%regime /= 0 .and. p%regime /= 2 .and. p%regime /= 3) then
       call jacobi_special(p, u, sn, cn, dn, am)
@@ -599,28 +637,81 @@ contains
         ulb(1:nb) = 0.0_dp
       end if
       call jacobi_block(nb, u(i0:i0+nb-1), ulb, kh, kl, sc, scl, mc, ct, p%ndbl, &
-                        sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1), j, s, c)
+                        sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1), j, r, pp, qq, shf)
       ! back from the core parameter to m
       select case (p%regime)
-      case (2)   ! m < 0: sn = sd(nu u|mu)/nu, cn = cd, dn = nd
-        do i = 1, nb
-          d = dn(i0 + i - 1)
-          am(i0 + i - 1) = (j(i) * pi + atan2(s(i) / p%sh, c(i))) + j(i) * pi_lo
-          sn(i0 + i - 1) = sn(i0 + i - 1) / (d * p%sh)
-          cn(i0 + i - 1) = cn(i0 + i - 1) / d
-          dn(i0 + i - 1) = 1.0_dp / d
-        end do
+      case (2)
+        call jacobi_neg_final(nb, p, u(i0:i0+nb-1), j, r, pp, qq, shf, &
+                              sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1))
       case (3)   ! m > 1: sn = sn(k u|1/m)/k, cn = dn, dn = cn; am = asin(sn)
-        do i = i0, i0 + nb - 1
-          d = cn(i)
-          sn(i) = sn(i) / p%sh
-          cn(i) = dn(i)
-          dn(i) = d
-          am(i) = asin(max(-1.0_dp, min(1.0_dp, sn(i))))
+        do k = i0, i0 + nb - 1
+          d = cn(k)
+          sn(k) = sn(k) / p%sh
+          cn(k) = dn(k)
+          dn(k) = d
+          am(k) = asin(max(-1.0_dp, min(1.0_dp, sn(k))))
         end do
       end select
     end do
   end subroutine jacobi_eval_array
+
+  !> m < 0 from the core (parameter mu = -m/mo, mo = 1 - m, argument x = sqrt(mo) u):
+  !> sn(u|m) = sd(x|mu)/sqrt(mo), cn = cd(x|mu), dn = nd(x|mu) (DLMF 22.17.4-6).
+  !> Written in the core's T = tn^2 = P/Q (and mu_c = 1 - mu = 1/mo, so
+  !> mo mu_c = 1 exactly in real arithmetic), every division of the
+  !> transformation folds into one:
+  !>   unshifted (w = |r|):  sn^2 = P/(mo Q + P),  cn^2 = mo Q/(mo Q + P),
+  !>                         dn^2 = mo (Q + P)/(mo Q + P);
+  !>   shifted (w = K - |r|, T = tn^2(w)):  sn^2 = Q/(Q + P),  cn^2 = P/(Q + P),
+  !>                         dn^2 = (mo Q + P)/(Q + P);
+  !> am = atan2(sn, cn).  All terms are positive, so each output carries T's
+  !> relative error halved plus ~1.5 roundings (dividing the core's sn by dn
+  !> and by sqrt(mo), as before, added two roundings and dn's own error:
+  !> 4.6 eps at m = -1343).
+  pure subroutine jacobi_neg_final(nb, p, u, j, r, pp, qq, shf, sn, cn, dn, am)
+    integer, intent(in) :: nb
+    type(jacobi_plan), intent(in) :: p
+    real(dp), intent(in) :: u(:), j(:), r(:), pp(:), qq(:), shf(:)
+    real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
+    real(dp) :: t, q, s, e, h, moq, inv, a, b, c, ar, half, sg
+    integer :: i
+    do i = 1, nb
+      t = pp(i); q = qq(i)
+      ! mo Q + P to within half an ulp (mo carried double-double)
+      h = p%mo * q
+      moq = h + p%mol * q
+      s = h + t; e = s - h; e = (h - (s - e)) + (t - e)
+      s = s + (e + p%mol * q)
+      if (shf(i) > 0.0_dp) then
+        inv = 1.0_dp / (q + t)
+        a = q * inv
+        b = t * inv
+        c = s * inv
+      else
+        inv = 1.0_dp / s
+        a = t * inv
+        b = moq * inv
+        c = (p%mo * (q + t) + p%mol * (q + t)) * inv
+      end if
+      s = sqrt(a)
+      b = sqrt(b)
+      ! (atan_pos, not atan2_pos: with one call site gcc inlines atan2_pos into
+      ! jacobi_block, whose loop then vectorizes)
+      ar = merge(half_pi - atan_pos(b / s), atan_pos(s / b), s > b)
+      ! T underflows for |r| < 1e-100: there sn = r/sqrt(mo), am = r to all digits
+      s = merge(abs(r(i)) / p%sh, s, abs(r(i)) < 1.0e-100_dp)
+      ar = merge(abs(r(i)) / p%sh, ar, abs(r(i)) < 1.0e-100_dp)
+      half = 0.5_dp * j(i)
+      sg = 1.0_dp - 2.0_dp * merge(1.0_dp, 0.0_dp, round_int(half) /= half)
+      sn(i) = sign(s, r(i)) * sg
+      cn(i) = b * sg
+      dn(i) = sqrt(c)
+      am(i) = (j(i) * pi + sign(ar, r(i))) + j(i) * pi_lo
+      if (u(i) /= u(i) .or. abs(u(i)) > huge(1.0_dp) .or. abs(j(i)) > jacobi_max_periods) then
+        sn(i) = nan_dp; cn(i) = nan_dp; dn(i) = nan_dp; am(i) = nan_dp
+      end if
+    end do
+  end subroutine jacobi_neg_final
 
   !> The Jacobi functions of one block of up to 256 arguments, each with its
   !> own core parameter (0 <= m < 1 given by mc, its K = kh + kl and series
@@ -628,22 +719,36 @@ contains
   !>
   !> 1. reduce: x = u * scale = 2 K j + r (|r| <= K, double-double throughout),
   !>    fold onto [0, K/2]: w = |r| or w = K - |r| (shifted);
-  !> 2. T = tn^2(w): Maclaurin series at w / 2^N <= 1/16, then N duplications
-  !>    tn^2(2u) = 4 T (1 + mc T) (1 + T) / (1 - mc T^2)^2.  Every factor is
-  !>    positive on [0, K/2] (mc T^2 <= sqrt(mc)/4 at K/4), so nothing cancels;
-  !> 3. sn, cn, dn, am all from the one number T (and G = mc T after the
-  !>    shift), so whatever rounding does they stay consistent with one
-  !>    argument, and cd = cn/dn keeps full accuracy next to K.
+  !> 2. T = tn^2(w) = P/Q: Maclaurin series at w / 2^N <= 1/16 (P = T, Q = 1),
+  !>    then N duplications tn^2(2u) = 4 T (1 + mc T) (1 + T) / (1 - mc T^2)^2
+  !>    carried as a fraction without dividing:
+  !>      P' = 4 P Q (Q + mc P) (Q + P),   Q' = (Q^2 - mc P^2)^2.
+  !>    Every factor is positive on [0, K/2] (mc T^2 <= sqrt(mc)/4 at K/4), so
+  !>    nothing cancels, and each step rounds about as often as the divided
+  !>    form did (5 roundings in P', 4 in Q', ~2.5 ulp of T either way).
+  !>    Range: Q_N = prod_k (1 - mc T_k^2)^(2 4^(N-1-k)); the last factor is
+  !>    >= (3/4)^2 and T_k^2 shrinks at least 16-fold per step back (T ~ u^2
+  !>    below K/4), so Q_N >= 0.4: Q neither underflows nor overflows, and
+  !>    P = T Q <= tn^2(K/2) = 1/sqrt(mc) < 1e162 (mc >= 5e-324), whose
+  !>    largest intermediate P (Q + P) ~ T_(N-1)^2 <= 1/sqrt(mc) too;
+  !> 3. sn, cn, dn from P and Q with one division:
+  !>      unshifted: sn^2 = P/(Q+P), cn^2 = Q/(Q+P), dn^2 = (Q + mc P)/(Q+P);
+  !>      shifted (tn^2(K-w) = 1/(mc T)): sn^2 = Q/(Q+mc P), cn^2 = mc P/(Q+mc P),
+  !>      dn^2 = mc (Q+P)/(Q+mc P),
+  !>    and am = atan2(sn, cn) (one more division), so whatever rounding does
+  !>    they stay consistent with one argument, and cd = cn/dn keeps full
+  !>    accuracy next to K.  (The divided form took N + 4 divisions per
+  !>    element; this one takes 2.)
   !> The loops have no data-dependent trip counts and no libm calls, so the
-  !> compiler vectorizes them.  Also returned: j, and the core's signed sn and
-  !> cn before the half-period sign (for the m < 0 transformation).
-  pure subroutine jacobi_block(nb, u, ulb, kh, kl, sc, scl, mc, ct, ndbl, sn, cn, dn, am, j, sr, cr)
+  !> compiler vectorizes them.  Also returned: j, r (rounded), the final P and
+  !> Q and the shift flag (for the m < 0 transformation).
+  pure subroutine jacobi_block(nb, u, ulb, kh, kl, sc, scl, mc, ct, ndbl, sn, cn, dn, am, j, r, pp, qq, sh)
     integer, intent(in) :: nb, ndbl
     real(dp), intent(in) :: u(:), ulb(:), kh(:), kl(:), sc(:), scl(:), mc(:), ct(:, :)
-    real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:), j(:), sr(:), cr(:)
+    real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:), j(:), r(:), pp(:), qq(:), sh(:)
     real(dp), parameter :: splitter = 134217729.0_dp
-    real(dp) :: r(nb), w(nb), t2(nb), sh(nb)
-    real(dp) :: x, xh, xl, hi, lo, bh, bl, pr, pe, t, g, xx, inv, s, c, d, ar, half, odd, fac, ss, e1
+    real(dp) :: w(nb)
+    real(dp) :: x, xh, xl, hi, lo, bh, bl, pr, pe, t, g, xx, inv, s, c, d, ar, half, odd, fac, ss, e1, q, pn
     integer :: i, k
 
     fac = scale(1.0_dp, -ndbl)
@@ -673,36 +778,37 @@ contains
       w(i) = merge(max(0.0_dp, (kh(i) - w(i)) + (kl(i) - sign(1.0_dp, r(i)) * e1)), w(i) + sign(1.0_dp, r(i)) * e1, &
                    w(i) > 0.5_dp * kh(i))
     end do
-    ! 2. T = tn^2(w)
+    ! 2. T = tn^2(w) = P/Q
     do i = 1, nb
       t = w(i) * fac
       t = t * t
-      t2(i) = t * (ct(i, 1) + t * (ct(i, 2) + t * (ct(i, 3) + t * (ct(i, 4) + t * (ct(i, 5) &
+      pp(i) = t * (ct(i, 1) + t * (ct(i, 2) + t * (ct(i, 3) + t * (ct(i, 4) + t * (ct(i, 5) &
               + t * ct(i, 6))))))
+      qq(i) = 1.0_dp
     end do
     do k = 1, ndbl
       do i = 1, nb
-        g = mc(i) * t2(i)
-        t2(i) = 4.0_dp * t2(i) * (1.0_dp + g) * (1.0_dp + t2(i)) / (1.0_dp - g * t2(i))**2
+        t = pp(i); q = qq(i)
+        g = mc(i) * t
+        pn = 4.0_dp * t * q * (q + g) * (q + t)
+        qq(i) = (q * q - g * t)**2
+        pp(i) = pn
       end do
     end do
     ! 3. sn, cn, dn, am of the core; sign of r; parity of j
     do i = 1, nb
-      g = mc(i) * t2(i)
-      xx = merge(g, t2(i), sh(i) > 0.0_dp)
-      inv = 1.0_dp / (1.0_dp + xx)
-      s = sqrt(merge(1.0_dp, t2(i), sh(i) > 0.0_dp) * inv)
-      c = sqrt(merge(g, 1.0_dp, sh(i) > 0.0_dp) * inv)
-      d = sqrt(merge(mc(i) + g, 1.0_dp + g, sh(i) > 0.0_dp) * inv)
-      ar = atan_pos(sqrt(xx))
-      ar = merge(half_pi - ar, ar, sh(i) > 0.0_dp)
+      t = pp(i); q = qq(i)
+      g = mc(i) * t
+      inv = 1.0_dp / (q + merge(g, t, sh(i) > 0.0_dp))
+      s = sqrt(merge(q, t, sh(i) > 0.0_dp) * inv)
+      c = sqrt(merge(g, q, sh(i) > 0.0_dp) * inv)
+      d = sqrt(merge(mc(i) * (q + t), q + g, sh(i) > 0.0_dp) * inv)
+      ar = atan2_pos(s, c)
       ! T underflows for |r| < 1e-154: there sn = am = r to all digits
       s = merge(abs(r(i)), s, abs(r(i)) < 1.0e-100_dp)
       ar = merge(abs(r(i)), ar, abs(r(i)) < 1.0e-100_dp)
       s = sign(s, r(i))
       ar = sign(ar, r(i))
-      sr(i) = s
-      cr(i) = c
       half = 0.5_dp * j(i)
       odd = merge(1.0_dp, 0.0_dp, round_int(half) /= half)
       sn(i) = s * (1.0_dp - 2.0_dp * odd)
@@ -729,7 +835,7 @@ contains
     integer, parameter :: blk = 256
     real(dp), parameter :: splitter = 134217729.0_dp
     real(dp) :: pm(blk), pmc(blk), pmcl(blk), kh(blk), kl(blk), one(blk), zero(blk), ct(blk, 6)
-    real(dp) :: a(blk), al(blk), b(blk), bl(blk), j(blk), s(blk), c(blk)
+    real(dp) :: a(blk), al(blk), b(blk), bl(blk), j(blk), s(blk), c(blk), pq(blk), sf(blk)
     logical :: ok(blk)
     real(dp) :: x, y, sm, e, an, anl, p, pe, r, hi, lo, h2, l2, t, cc, tt, corr, mh, ml, q
     integer :: i0, nb, i, it, ndbl
@@ -812,7 +918,7 @@ contains
       end do
       ndbl = max(0, exponent(0.5_dp * maxval(kh(1:nb))) + 4)
       call jacobi_block(nb, u(i0:i0+nb-1), zero, kh, kl, one, zero, pmc, ct, ndbl, &
-                        sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1), j, s, c)
+                        sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1), j, s, c, pq, sf)
       do i = 1, nb
         if (.not. ok(i)) call jacobi_sncndn(u(i0 + i - 1), m(i0 + i - 1), mc(i0 + i - 1), &
           sn(i0 + i - 1), cn(i0 + i - 1), dn(i0 + i - 1), am(i0 + i - 1))
