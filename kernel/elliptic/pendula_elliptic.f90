@@ -616,7 +616,7 @@ contains
     real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
     integer, parameter :: blk = 256
     real(dp) :: ulb(blk), kh(blk), kl(blk), sc(blk), scl(blk), mc(blk), ct(blk, 6)
-    real(dp) :: j(blk), r(blk), pp(blk), qq(blk), shf(blk), d
+    real(dp) :: j(blk), r(blk), pp(blk), qq(blk), shf(blk), wl(blk), d
     integer :: i0, nb, k
 
     if (p%regime /= 0 .and. p%regime /= 2 .and. p%regime /= 3) then
@@ -637,11 +637,11 @@ contains
         ulb(1:nb) = 0.0_dp
       end if
       call jacobi_block(nb, u(i0:i0+nb-1), ulb, kh, kl, sc, scl, mc, ct, p%ndbl, &
-                        sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1), j, r, pp, qq, shf)
+                        sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1), j, r, pp, qq, shf, wl)
       ! back from the core parameter to m
       select case (p%regime)
       case (2)
-        call jacobi_neg_final(nb, p, u(i0:i0+nb-1), j, r, pp, qq, shf, &
+        call jacobi_neg_final(nb, p, u(i0:i0+nb-1), j, r, pp, qq, shf, wl, &
                               sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1))
       case (3)   ! m > 1: sn = sn(k u|1/m)/k, cn = dn, dn = cn; am = asin(sn)
         do k = i0, i0 + nb - 1
@@ -668,12 +668,12 @@ contains
   !> relative error halved plus ~1.5 roundings (dividing the core's sn by dn
   !> and by sqrt(mo), as before, added two roundings and dn's own error:
   !> 4.6 eps at m = -1343).
-  pure subroutine jacobi_neg_final(nb, p, u, j, r, pp, qq, shf, sn, cn, dn, am)
+  pure subroutine jacobi_neg_final(nb, p, u, j, r, pp, qq, shf, wl, sn, cn, dn, am)
     integer, intent(in) :: nb
     type(jacobi_plan), intent(in) :: p
-    real(dp), intent(in) :: u(:), j(:), r(:), pp(:), qq(:), shf(:)
+    real(dp), intent(in) :: u(:), j(:), r(:), pp(:), qq(:), shf(:), wl(:)
     real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
-    real(dp) :: t, q, s, e, h, moq, inv, a, b, c, ar, half, sg
+    real(dp) :: t, q, s, e, h, moq, inv, a, b, c, ar, half, sg, du
     integer :: i
     do i = 1, nb
       t = pp(i); q = qq(i)
@@ -695,6 +695,14 @@ contains
       end if
       s = sqrt(a)
       b = sqrt(b)
+      c = sqrt(c)
+      ! the argument's low part, du = dx / sqrt(mo): sn' = cn dn, cn' = -sn dn,
+      ! dn' = -m sn cn (in u)
+      du = wl(i) / p%sh
+      e = s; h = b
+      s = s + h * c * du
+      b = b - e * c * du
+      c = c + (p%mo - 1.0_dp) * e * h * du
       ! (atan_pos, not atan2_pos: with one call site gcc inlines atan2_pos into
       ! jacobi_block, whose loop then vectorizes)
       ar = merge(half_pi - atan_pos(b / s), atan_pos(s / b), s > b)
@@ -705,7 +713,7 @@ contains
       sg = 1.0_dp - 2.0_dp * merge(1.0_dp, 0.0_dp, round_int(half) /= half)
       sn(i) = sign(s, r(i)) * sg
       cn(i) = b * sg
-      dn(i) = sqrt(c)
+      dn(i) = c
       am(i) = (j(i) * pi + sign(ar, r(i))) + j(i) * pi_lo
       if (u(i) /= u(i) .or. abs(u(i)) > huge(1.0_dp) .or. abs(j(i)) > jacobi_max_periods) then
         sn(i) = nan_dp; cn(i) = nan_dp; dn(i) = nan_dp; am(i) = nan_dp
@@ -742,16 +750,15 @@ contains
   !> The loops have no data-dependent trip counts and no libm calls, so the
   !> compiler vectorizes them.  Also returned: j, r (rounded), the final P and
   !> Q and the shift flag (for the m < 0 transformation).
-  pure subroutine jacobi_block(nb, u, ulb, kh, kl, sc, scl, mc, ct, ndbl, sn, cn, dn, am, j, r, pp, qq, sh)
+  pure subroutine jacobi_block(nb, u, ulb, kh, kl, sc, scl, mc, ct, ndbl, sn, cn, dn, am, j, r, pp, qq, sh, wl)
     integer, intent(in) :: nb, ndbl
     real(dp), intent(in) :: u(:), ulb(:), kh(:), kl(:), sc(:), scl(:), mc(:), ct(:, :)
-    real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:), j(:), r(:), pp(:), qq(:), sh(:)
+    real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:), j(:), r(:), pp(:), qq(:), sh(:), wl(:)
     real(dp), parameter :: splitter = 134217729.0_dp
-    real(dp) :: w(nb)
-    real(dp) :: x, xh, xl, hi, lo, bh, bl, pr, pe, t, g, xx, inv, s, c, d, ar, half, odd, fac, ss, e1, q, pn
+    real(dp) :: w(nb), a(nb)
+    real(dp) :: x, xh, xl, hi, lo, bh, bl, pr, pe, t, g, xx, inv, s, c, d, ar, half, odd, ss, e1, q, q2, gp, y, f
     integer :: i, k
 
-    fac = scale(1.0_dp, -ndbl)
     ! 1. reduction (Dekker products written out so that the loop vectorizes)
     do i = 1, nb
       x = u(i)
@@ -773,26 +780,50 @@ contains
       t = hi + lo; ss = t - hi; e1 = (hi - (t - ss)) + (lo - ss)
       lo = xl - g * kl(i)
       r(i) = t + lo; ss = r(i) - t; e1 = e1 + ((t - (r(i) - ss)) + (lo - ss))
+      ! w = |r| (unshifted) or K - |r| (shifted), as wh + wl: the low part
+      ! is put back at the end, to first order (step 3)
       w(i) = abs(r(i))
       sh(i) = merge(1.0_dp, 0.0_dp, w(i) > 0.5_dp * kh(i))
-      w(i) = merge(max(0.0_dp, (kh(i) - w(i)) + (kl(i) - sign(1.0_dp, r(i)) * e1)), w(i) + sign(1.0_dp, r(i)) * e1, &
-                   w(i) > 0.5_dp * kh(i))
+      hi = kh(i) - w(i)                  ! exact (Sterbenz) when shifted
+      lo = kl(i) - sign(1.0_dp, r(i)) * e1
+      t = hi + lo; ss = t - hi; ss = (hi - (t - ss)) + (lo - ss)
+      wl(i) = merge(-ss, sign(1.0_dp, r(i)) * e1, sh(i) > 0.0_dp)   ! d x = this
+      w(i) = merge(max(0.0_dp, t), w(i), sh(i) > 0.0_dp)
     end do
-    ! 2. T = tn^2(w) = P/Q
+    ! 2. T = tn^2(w) = P/Q; each element scaled to w 2^-n <= 1/16 with its own
+    !    n <= ndbl (a small w takes fewer duplications, so fewer roundings)
+    a(1:nb) = 1.0_dp
+    do k = 1, ndbl
+      do i = 1, nb
+        a(i) = merge(0.5_dp * a(i), a(i), w(i) * a(i) > 0.0625_dp)
+      end do
+    end do
     do i = 1, nb
-      t = w(i) * fac
-      t = t * t
+      a(i) = w(i) * a(i)                 ! exact: a power of 2 times w
+      t = a(i) * a(i)
       pp(i) = t * (ct(i, 1) + t * (ct(i, 2) + t * (ct(i, 3) + t * (ct(i, 4) + t * (ct(i, 5) &
               + t * ct(i, 6))))))
       qq(i) = 1.0_dp
     end do
     do k = 1, ndbl
       do i = 1, nb
+        ! T' = 4 T (1 + D/Y) with Y = (Q^2 - mc P^2)^2 and
+        ! D = Q(Q + mc P)(Q + P) Q^2 - Y = Q^3 (P + mc P) + mc P^2 (3 Q^2 - mc P^2) > 0:
+        ! P' = 4 P (Y + D), Q' = Q Y.  The same rounded Y in P' and Q' cancels
+        ! in T' except through D/Y, which is small while T is (~1.5 ulp a step
+        ! against ~2.5 for the product form)
         t = pp(i); q = qq(i)
         g = mc(i) * t
-        pn = 4.0_dp * t * q * (q + g) * (q + t)
-        qq(i) = (q * q - g * t)**2
-        pp(i) = pn
+        q2 = q * q
+        gp = g * t
+        y = (q2 - gp)**2
+        d = q2 * q * (t + g) + gp * (3.0_dp * q2 - gp)
+        ! active while the element's argument a is below its w: 0/1 factors
+        ! (exact), as merges here kept the loop from vectorizing
+        f = merge(1.0_dp, 0.0_dp, a(i) < w(i))
+        pp(i) = f * (4.0_dp * t * (y + d)) + (1.0_dp - f) * t
+        qq(i) = f * (q * y) + (1.0_dp - f) * q
+        a(i) = a(i) + f * a(i)
       end do
     end do
     ! 3. sn, cn, dn, am of the core; sign of r; parity of j
@@ -803,6 +834,13 @@ contains
       s = sqrt(merge(q, t, sh(i) > 0.0_dp) * inv)
       c = sqrt(merge(g, q, sh(i) > 0.0_dp) * inv)
       d = sqrt(merge(mc(i) * (q + t), q + g, sh(i) > 0.0_dp) * inv)
+      ! the low part dx of the argument: sn' = cn dn, cn' = -sn dn, dn' = -m sn cn
+      ! (s, c, d >= 0 here; m = 1 - mc of the core)
+      e1 = wl(i)
+      pe = s; pr = c
+      s = s + pr * d * e1
+      c = c - pe * d * e1
+      d = d - (1.0_dp - mc(i)) * pe * pr * e1
       ar = atan2_pos(s, c)
       ! T underflows for |r| < 1e-154: there sn = am = r to all digits
       s = merge(abs(r(i)), s, abs(r(i)) < 1.0e-100_dp)
@@ -835,7 +873,7 @@ contains
     integer, parameter :: blk = 256
     real(dp), parameter :: splitter = 134217729.0_dp
     real(dp) :: pm(blk), pmc(blk), pmcl(blk), kh(blk), kl(blk), one(blk), zero(blk), ct(blk, 6)
-    real(dp) :: a(blk), al(blk), b(blk), bl(blk), j(blk), s(blk), c(blk), pq(blk), sf(blk)
+    real(dp) :: a(blk), al(blk), b(blk), bl(blk), j(blk), s(blk), c(blk), pq(blk), sf(blk), wq(blk)
     logical :: ok(blk)
     real(dp) :: x, y, sm, e, an, anl, p, pe, r, hi, lo, h2, l2, t, cc, tt, corr, mh, ml, q
     integer :: i0, nb, i, it, ndbl
@@ -918,7 +956,7 @@ contains
       end do
       ndbl = max(0, exponent(0.5_dp * maxval(kh(1:nb))) + 4)
       call jacobi_block(nb, u(i0:i0+nb-1), zero, kh, kl, one, zero, pmc, ct, ndbl, &
-                        sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1), j, s, c, pq, sf)
+                        sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1), j, s, c, pq, sf, wq)
       do i = 1, nb
         if (.not. ok(i)) call jacobi_sncndn(u(i0 + i - 1), m(i0 + i - 1), mc(i0 + i - 1), &
           sn(i0 + i - 1), cn(i0 + i - 1), dn(i0 + i - 1), am(i0 + i - 1))
