@@ -15,7 +15,7 @@
 !>    duplication, in forms whose terms are all positive for 0 <= m <= 1
 !>    (no cancellation as m -> 1).
 !>  * sn, cn, dn, am: reduction of u by 2K in double-double, a quarter-period
-!>    shift to [0, K/2], a Maclaurin series at u / 2^N <= 1/16 and N
+!>    shift to [0, K/2], a Maclaurin series at u / 2^N <= 1/8 and N
 !>    duplications.  The duplication runs on the complements 1 - cn, 1 - dn
 !>    while they are small and on cn, dn themselves afterwards; in both forms
 !>    every formula is a quotient of sums of positive terms on [0, K/2].
@@ -48,7 +48,7 @@ module pendula_elliptic
     real(dp) :: kh = 0.0_dp, kl = 0.0_dp      !< K of the core, double-double
     real(dp) :: sh = 1.0_dp, sl = 0.0_dp      !< argument scale (1, sqrt(1-m) or sqrt(m))
     real(dp) :: mo = 1.0_dp, mol = 0.0_dp     !< m < 0: the complement 1 - m itself, double-double
-    real(dp) :: ct(6) = 0.0_dp                 !< Maclaurin series of tn^2 in u^2
+    real(dp) :: ct(8) = 0.0_dp                 !< Maclaurin series of tn^2 in u^2
     integer :: ndbl = 0                        !< duplications that cover [0, K/2]
   end type jacobi_plan
 
@@ -526,7 +526,11 @@ contains
     p%mc = cmc
     call ellip_k_dd2(cmc, cmcl, p%kh, p%kl)
     ! Maclaurin series of tn^2 = sn^2/cn^2 in t = u^2 (coefficients from
-    ! data/gen_jacobi_series.py); six terms reach 1e-17 relative at u <= 1/16.
+    ! data/gen_jacobi_series.py).  tn^2 is analytic for |u| < K >= pi/2 (its
+    ! nearest poles are cn's zeros +-K), so the terms fall at least as
+    ! (u / (pi/2))^2 = 0.0063 each at u <= 1/8: the ninth term is below 1.2e-17
+    ! of the sum (0.05 ulp; six terms at 1/16 left 0.35 ulp at m = 0), and
+    ! the eight terms take one duplication fewer.
     p%ct(1) = 1.0_dp
     p%ct(2) = (2.0_dp - cm) / 3.0_dp
     p%ct(3) = (17.0_dp + cm * (-17.0_dp + cm * 2.0_dp)) / 45.0_dp
@@ -535,7 +539,11 @@ contains
               / 14175.0_dp
     p%ct(6) = (21844.0_dp + cm * (-54610.0_dp + cm * (45736.0_dp + cm * (-13994.0_dp &
               + cm * (1028.0_dp - cm * 2.0_dp))))) / 467775.0_dp
-    p%ndbl = max(0, exponent(0.5_dp * p%kh) + 4)
+    p%ct(7) = (929569.0_dp + cm * (-2788707.0_dp + cm * (3021099.0_dp + cm * (-1394353.0_dp &
+              + cm * (240594.0_dp + cm * (-8202.0_dp + cm * 4.0_dp)))))) / 42567525.0_dp
+    p%ct(8) = (6404582.0_dp + cm * (-22416037.0_dp + cm * (29821335.0_dp + cm * (-18513245.0_dp &
+              + cm * (5220109.0_dp + cm * (-524937.0_dp + cm * (8195.0_dp - cm))))))) / 638512875.0_dp
+    p%ndbl = max(0, exponent(0.5_dp * p%kh) + 3)
   end function jacobi_prepare_dd
 
   !> (ah + al) / (bh + bl) in double-double.
@@ -568,7 +576,7 @@ contains
   !> the unit-scale sn, cn it is called with nothing over- or underflows.
   elemental function atan2_pos(y, x) result(ang)
     real(dp), intent(in) :: y, x
-    real(dp) :: ang, a, b, a1, z, z2, p, f, g
+    real(dp) :: ang, a, b, a1, z, z2, z4, z8, p, f, g
     ! the reductions as 0/1 factors (exact: x + 0 y = x): written with merges
     ! of operands or min/max, the loops that inline this did not vectorize
     g = merge(1.0_dp, 0.0_dp, y > x)
@@ -579,18 +587,16 @@ contains
     b = b + f * a
     z = a1 / (b + sqrt(b * b + a1 * a1))
     z2 = z * z
-    p = 1.0_dp/25.0_dp
-    p = 1.0_dp/23.0_dp - z2 * p
-    p = 1.0_dp/21.0_dp - z2 * p
-    p = 1.0_dp/19.0_dp - z2 * p
-    p = 1.0_dp/17.0_dp - z2 * p
-    p = 1.0_dp/15.0_dp - z2 * p
-    p = 1.0_dp/13.0_dp - z2 * p
-    p = 1.0_dp/11.0_dp - z2 * p
-    p = 1.0_dp/9.0_dp - z2 * p
-    p = 1.0_dp/7.0_dp - z2 * p
-    p = 1.0_dp/5.0_dp - z2 * p
-    p = 1.0_dp/3.0_dp - z2 * p
+    ! the series sum_k (-1)^k z2^k / (2k+3), k <= 11, by Estrin's scheme: a
+    ! Horner chain of 12 dependent multiply-adds was the loop's critical path.
+    ! (|z| <= tan(pi/16): z2 <= 0.04, each term 25 times below the one before,
+    ! and p enters the result times z2 <= 0.04, so the changed order of
+    ! rounding moves the result by far less than an ulp.)
+    z4 = z2 * z2
+    z8 = z4 * z4
+    p = ((1.0_dp/3.0_dp - z2 * (1.0_dp/5.0_dp)) + z4 * (1.0_dp/7.0_dp - z2 * (1.0_dp/9.0_dp))) &
+        + z8 * (((1.0_dp/11.0_dp - z2 * (1.0_dp/13.0_dp)) + z4 * (1.0_dp/15.0_dp - z2 * (1.0_dp/17.0_dp))) &
+        + z8 * ((1.0_dp/19.0_dp - z2 * (1.0_dp/21.0_dp)) + z4 * (1.0_dp/23.0_dp - z2 * (1.0_dp/25.0_dp))))
     ang = 2.0_dp * (z - z * z2 * p)
     ang = merge(0.78539816339744831_dp + ang, ang, f > 0.0_dp)
     ang = merge(half_pi - ang, ang, g > 0.0_dp)
@@ -600,7 +606,7 @@ contains
   !>
   !> 1. reduce: x = u * scale = 2 K j + r (|r| <= K, double-double throughout),
   !>    fold onto [0, K/2]: w = |r| or w = K - |r| (shifted);
-  !> 2. T = tn^2(w): Maclaurin series at w / 2^N <= 1/16, then N duplications
+  !> 2. T = tn^2(w): Maclaurin series at w / 2^N <= 1/8, then N duplications
   !>    tn^2(2u) = 4 T (1 + mc T) (1 + T) / (1 - mc T^2)^2.  N is fixed by K/2,
   !>    every factor is positive on [0, K/2] (mc T^2 <= sqrt(mc)/4 at K/4), so
   !>    nothing cancels;
@@ -615,7 +621,7 @@ contains
     real(dp), intent(in), optional :: ul(:)   !< low parts: the argument is u + ul
     real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
     integer, parameter :: blk = 256
-    real(dp) :: ulb(blk), kh(blk), kl(blk), sc(blk), scl(blk), mc(blk), ct(blk, 6)
+    real(dp) :: ulb(blk), kh(blk), kl(blk), sc(blk), scl(blk), mc(blk), ct(blk, 8)
     real(dp) :: j(blk), r(blk), pp(blk), qq(blk), shf(blk), wl(blk), d
     integer :: i0, nb, k
 
@@ -626,7 +632,7 @@ contains
     ! the plan's constants as per-element arrays, only as long as the longest block
     nb = min(blk, size(u))
     kh(1:nb) = p%kh; kl(1:nb) = p%kl; sc(1:nb) = p%sh; scl(1:nb) = p%sl; mc(1:nb) = p%mc
-    do k = 1, 6
+    do k = 1, 8
       ct(1:nb, k) = p%ct(k)
     end do
     do i0 = 1, size(u), blk
@@ -727,7 +733,7 @@ contains
   !>
   !> 1. reduce: x = u * scale = 2 K j + r (|r| <= K, double-double throughout),
   !>    fold onto [0, K/2]: w = |r| or w = K - |r| (shifted);
-  !> 2. T = tn^2(w) = P/Q: Maclaurin series at w / 2^N <= 1/16 (P = T, Q = 1),
+  !> 2. T = tn^2(w) = P/Q: Maclaurin series at w / 2^N <= 1/8 (P = T, Q = 1),
   !>    then N duplications tn^2(2u) = 4 T (1 + mc T) (1 + T) / (1 - mc T^2)^2
   !>    carried as a fraction without dividing:
   !>      P' = 4 P Q (Q + mc P) (Q + P),   Q' = (Q^2 - mc P^2)^2.
@@ -756,7 +762,7 @@ contains
     real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:), j(:), r(:), pp(:), qq(:), sh(:), wl(:)
     real(dp), parameter :: splitter = 134217729.0_dp
     real(dp) :: w(nb), a(nb)
-    real(dp) :: x, xh, xl, hi, lo, bh, bl, pr, pe, t, g, xx, inv, s, c, d, ar, half, odd, ss, e1, q, q2, gp, y, f
+    real(dp) :: x, xh, xl, hi, lo, bh, bl, pr, pe, t, g, xx, inv, s, c, d, ar, half, odd, ss, e1, q, q2, gp, y, f, t2, t4
     integer :: i, k
 
     ! 1. reduction (Dekker products written out so that the loop vectorizes)
@@ -790,19 +796,23 @@ contains
       wl(i) = merge(-ss, sign(1.0_dp, r(i)) * e1, sh(i) > 0.0_dp)   ! d x = this
       w(i) = merge(max(0.0_dp, t), w(i), sh(i) > 0.0_dp)
     end do
-    ! 2. T = tn^2(w) = P/Q; each element scaled to w 2^-n <= 1/16 with its own
+    ! 2. T = tn^2(w) = P/Q; each element scaled to w 2^-n <= 1/8 with its own
     !    n <= ndbl (a small w takes fewer duplications, so fewer roundings)
     a(1:nb) = 1.0_dp
     do k = 1, ndbl
       do i = 1, nb
-        a(i) = merge(0.5_dp * a(i), a(i), w(i) * a(i) > 0.0625_dp)
+        a(i) = merge(0.5_dp * a(i), a(i), w(i) * a(i) > 0.125_dp)
       end do
     end do
     do i = 1, nb
       a(i) = w(i) * a(i)                 ! exact: a power of 2 times w
       t = a(i) * a(i)
-      pp(i) = t * (ct(i, 1) + t * (ct(i, 2) + t * (ct(i, 3) + t * (ct(i, 4) + t * (ct(i, 5) &
-              + t * ct(i, 6))))))
+      ! Estrin's scheme (t <= 1/64: each term ~100 times below the one before,
+      ! so the order of rounding hardly matters; Horner's chain of 8 was slow)
+      t2 = t * t
+      t4 = t2 * t2
+      pp(i) = t * (((ct(i, 1) + t * ct(i, 2)) + t2 * (ct(i, 3) + t * ct(i, 4))) &
+              + t4 * ((ct(i, 5) + t * ct(i, 6)) + t2 * (ct(i, 7) + t * ct(i, 8))))
       qq(i) = 1.0_dp
     end do
     do k = 1, ndbl
@@ -872,7 +882,7 @@ contains
     real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
     integer, parameter :: blk = 256
     real(dp), parameter :: splitter = 134217729.0_dp
-    real(dp) :: pm(blk), pmc(blk), pmcl(blk), kh(blk), kl(blk), one(blk), zero(blk), ct(blk, 6)
+    real(dp) :: pm(blk), pmc(blk), pmcl(blk), kh(blk), kl(blk), one(blk), zero(blk), ct(blk, 8)
     real(dp) :: a(blk), al(blk), b(blk), bl(blk), j(blk), s(blk), c(blk), pq(blk), sf(blk), wq(blk)
     logical :: ok(blk)
     real(dp) :: x, y, sm, e, an, anl, p, pe, r, hi, lo, h2, l2, t, cc, tt, corr, mh, ml, q
@@ -942,19 +952,25 @@ contains
         kh(i) = q + r / x
         kl(i) = r / x - (kh(i) - q)
       end do
-      ! series of tn^2 for each parameter
+      ! series of tn^2 for each parameter, the divisions by constants as
+      ! products (a coefficient then carries ~1 ulp instead of 0.5, which moves
+      ! T at w 2^-n <= 1/8 by less than 2^-6 ulp)
       do i = 1, nb
         x = pm(i)
         ct(i, 1) = 1.0_dp
-        ct(i, 2) = (2.0_dp - x) / 3.0_dp
-        ct(i, 3) = (17.0_dp + x * (-17.0_dp + x * 2.0_dp)) / 45.0_dp
-        ct(i, 4) = (62.0_dp + x * (-93.0_dp + x * (33.0_dp - x))) / 315.0_dp
+        ct(i, 2) = (2.0_dp - x) * (1.0_dp / 3.0_dp)
+        ct(i, 3) = (17.0_dp + x * (-17.0_dp + x * 2.0_dp)) * (1.0_dp / 45.0_dp)
+        ct(i, 4) = (62.0_dp + x * (-93.0_dp + x * (33.0_dp - x))) * (1.0_dp / 315.0_dp)
         ct(i, 5) = (1382.0_dp + x * (-2764.0_dp + x * (1641.0_dp + x * (-259.0_dp + x * 2.0_dp)))) &
-                   / 14175.0_dp
+                   * (1.0_dp / 14175.0_dp)
         ct(i, 6) = (21844.0_dp + x * (-54610.0_dp + x * (45736.0_dp + x * (-13994.0_dp &
-                   + x * (1028.0_dp - x * 2.0_dp))))) / 467775.0_dp
+                   + x * (1028.0_dp - x * 2.0_dp))))) * (1.0_dp / 467775.0_dp)
+        ct(i, 7) = (929569.0_dp + x * (-2788707.0_dp + x * (3021099.0_dp + x * (-1394353.0_dp &
+                   + x * (240594.0_dp + x * (-8202.0_dp + x * 4.0_dp)))))) * (1.0_dp / 42567525.0_dp)
+        ct(i, 8) = (6404582.0_dp + x * (-22416037.0_dp + x * (29821335.0_dp + x * (-18513245.0_dp &
+                   + x * (5220109.0_dp + x * (-524937.0_dp + x * (8195.0_dp - x))))))) * (1.0_dp / 638512875.0_dp)
       end do
-      ndbl = max(0, exponent(0.5_dp * maxval(kh(1:nb))) + 4)
+      ndbl = max(0, exponent(0.5_dp * maxval(kh(1:nb))) + 3)
       call jacobi_block(nb, u(i0:i0+nb-1), zero, kh, kl, one, zero, pmc, ct, ndbl, &
                         sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1), j, s, c, pq, sf, wq)
       do i = 1, nb
