@@ -82,7 +82,15 @@ contains
       kh = 0.0_dp; kl = 0.0_dp; return
     end if
     a = 1.0_dp; al = 0.0_dp
-    call dd_sqrt(mc, mcl, b, bl)
+    ! sqrt(mc) in double-double; below 1e-200 through mc 2^600, so that the
+    ! error term of r^2 (2^-106 mc) does not fall into the subnormals (for
+    ! mc = 1e-300 K was good to 2^-80 only: 1e11 eps in cn next to its zeros)
+    if (mc < 1.0e-200_dp) then
+      call dd_sqrt(scale(mc, 600), scale(mcl, 600), b, bl)
+      b = scale(b, -300); bl = scale(bl, -300)
+    else
+      call dd_sqrt(mc, mcl, b, bl)
+    end if
     do it = 1, 64
       if (abs(a - b) <= 0.0009765625_dp * (a + b)) exit
       call two_sum(a, b, s, e)
@@ -98,11 +106,21 @@ contains
     e = e + (al + bl)
     call fast_two_sum(s, e, ah2, al2)
     ah2 = 0.5_dp * ah2; al2 = 0.5_dp * al2
-    c = 0.5_dp * ((a - b) + (al - bl))
+    ! M = A - c^2/(4A) - A t^4 (5/64 + 11 t^2/256 + 469 t^4/16384), t = c/A <= 2^-10.
+    ! The leading term (2^-22 of A) in double-double from c = ch + cl in
+    ! double-double (a - b exact); the rest is below 2^-43 of A, so double
+    ! suffices, and the first term left out (1379/65536 t^10) is below 2^-105.
+    ! (With c and the whole correction in double, K was good to ~2^-75 only:
+    ! 1e9 eps in cn 1e-12 from its zero at u = 21 K, mc = 1e-226.)
+    call fast_two_sum(0.5_dp * (a - b), 0.5_dp * (al - bl), c, corr)
+    call two_prod(c, c, p, pe)
+    pe = pe + 2.0_dp * c * corr
+    call dd_div(p, pe, 4.0_dp * ah2, 4.0_dp * al2, q, r)
     t = c / ah2
-    corr = ah2 * t * t * (0.25_dp + t * t * (5.0_dp / 64.0_dp + t * t * (11.0_dp / 256.0_dp)))
-    call two_sum(ah2, -corr, s, e)
-    call fast_two_sum(s, e + al2, mh, ml)
+    t = t * t
+    corr = ah2 * t * t * (5.0_dp / 64.0_dp + t * (11.0_dp / 256.0_dp + t * (469.0_dp / 16384.0_dp)))
+    call two_sum(ah2, -q, s, e)
+    call fast_two_sum(s, e + (al2 - r - corr), mh, ml)
     ! K = pi / (2 M) in double-double
     q = pi / (2.0_dp * mh)
     call two_prod(2.0_dp * mh, q, p, pe)
@@ -621,7 +639,7 @@ contains
     real(dp), intent(in), optional :: ul(:)   !< low parts: the argument is u + ul
     real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
     integer, parameter :: blk = 256
-    real(dp) :: ulb(blk), kh(blk), kl(blk), sc(blk), scl(blk), mc(blk), ct(blk, 8)
+    real(dp) :: ulb(blk), kh(blk), kl(blk), sc(blk), scl(blk), mc(blk), smc(blk), ct(blk, 8)
     real(dp) :: j(blk), r(blk), pp(blk), qq(blk), shf(blk), wl(blk), d
     integer :: i0, nb, k
 
@@ -632,6 +650,7 @@ contains
     ! the plan's constants as per-element arrays, only as long as the longest block
     nb = min(blk, size(u))
     kh(1:nb) = p%kh; kl(1:nb) = p%kl; sc(1:nb) = p%sh; scl(1:nb) = p%sl; mc(1:nb) = p%mc
+    smc(1:nb) = sqrt(p%mc)
     do k = 1, 8
       ct(1:nb, k) = p%ct(k)
     end do
@@ -642,7 +661,7 @@ contains
       else
         ulb(1:nb) = 0.0_dp
       end if
-      call jacobi_block(nb, u(i0:i0+nb-1), ulb, kh, kl, sc, scl, mc, ct, p%ndbl, &
+      call jacobi_block(nb, u(i0:i0+nb-1), ulb, kh, kl, sc, scl, mc, smc, ct, p%ndbl, &
                         sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1), j, r, pp, qq, shf, wl)
       ! back from the core parameter to m
       select case (p%regime)
@@ -756,9 +775,10 @@ contains
   !> The loops have no data-dependent trip counts and no libm calls, so the
   !> compiler vectorizes them.  Also returned: j, r (rounded), the final P and
   !> Q and the shift flag (for the m < 0 transformation).
-  pure subroutine jacobi_block(nb, u, ulb, kh, kl, sc, scl, mc, ct, ndbl, sn, cn, dn, am, j, r, pp, qq, sh, wl)
+  pure subroutine jacobi_block(nb, u, ulb, kh, kl, sc, scl, mc, smc, ct, ndbl, sn, cn, dn, am, j, r, pp, qq, sh, wl)
     integer, intent(in) :: nb, ndbl
     real(dp), intent(in) :: u(:), ulb(:), kh(:), kl(:), sc(:), scl(:), mc(:), ct(:, :)
+    real(dp), intent(in) :: smc(:)   !< sqrt(mc)
     real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:), j(:), r(:), pp(:), qq(:), sh(:), wl(:)
     real(dp), parameter :: splitter = 134217729.0_dp
     real(dp) :: w(nb), a(nb)
@@ -793,8 +813,18 @@ contains
       hi = kh(i) - w(i)                  ! exact (Sterbenz) when shifted
       lo = kl(i) - sign(1.0_dp, r(i)) * e1
       t = hi + lo; ss = t - hi; ss = (hi - (t - ss)) + (lo - ss)
-      wl(i) = merge(-ss, sign(1.0_dp, r(i)) * e1, sh(i) > 0.0_dp)   ! d x = this
-      w(i) = merge(max(0.0_dp, t), w(i), sh(i) > 0.0_dp)
+      ! j = round(x / 2K) is taken from the rounded x / 2K, so next to an odd
+      ! multiple of K the remainder may pass K by a little: w < 0.  That point
+      ! is w' = -w into the next half period (j + 1 in the direction of r,
+      ! r' = r -+ 2K); clamping w to 0 instead lost cn's sign and size
+      ! entirely next to its zeros
+      f = merge(1.0_dp, 0.0_dp, sh(i) > 0.0_dp .and. t < 0.0_dp)
+      g = sign(1.0_dp, r(i))
+      j(i) = j(i) + f * g
+      r(i) = r(i) - f * (2.0_dp * g * kh(i))
+      ss = ss - 2.0_dp * f * ss
+      wl(i) = merge(-ss, g * e1, sh(i) > 0.0_dp)   ! d x = this
+      w(i) = merge(abs(t), w(i), sh(i) > 0.0_dp)
     end do
     ! 2. T = tn^2(w) = P/Q; each element scaled to w 2^-n <= 1/8 with its own
     !    n <= ndbl (a small w takes fewer duplications, so fewer roundings)
@@ -842,8 +872,10 @@ contains
       g = mc(i) * t
       inv = 1.0_dp / (q + merge(g, t, sh(i) > 0.0_dp))
       s = sqrt(merge(q, t, sh(i) > 0.0_dp) * inv)
-      c = sqrt(merge(g, q, sh(i) > 0.0_dp) * inv)
-      d = sqrt(merge(mc(i) * (q + t), q + g, sh(i) > 0.0_dp) * inv)
+      ! shifted: cn = sqrt(mc) sqrt(P/(Q + mc P)), dn = sqrt(mc) sqrt((Q+P)/(Q + mc P)):
+      ! mc P itself is subnormal next to cn's zeros when mc ~ 1e-300
+      c = sqrt(merge(t, q, sh(i) > 0.0_dp) * inv) * merge(smc(i), 1.0_dp, sh(i) > 0.0_dp)
+      d = sqrt(merge(q + t, q + g, sh(i) > 0.0_dp) * inv) * merge(smc(i), 1.0_dp, sh(i) > 0.0_dp)
       ! the low part dx of the argument: sn' = cn dn, cn' = -sn dn, dn' = -m sn cn
       ! (s, c, d >= 0 here; m = 1 - mc of the core)
       e1 = wl(i)
@@ -883,7 +915,7 @@ contains
     integer, parameter :: blk = 256
     real(dp), parameter :: splitter = 134217729.0_dp
     real(dp) :: pm(blk), pmc(blk), pmcl(blk), kh(blk), kl(blk), one(blk), zero(blk), ct(blk, 8)
-    real(dp) :: a(blk), al(blk), b(blk), bl(blk), j(blk), s(blk), c(blk), pq(blk), sf(blk), wq(blk)
+    real(dp) :: a(blk), al(blk), b(blk), bl(blk), j(blk), s(blk), c(blk), pq(blk), sf(blk), wq(blk), smc(blk)
     logical :: ok(blk)
     real(dp) :: x, y, sm, e, an, anl, p, pe, r, hi, lo, h2, l2, t, cc, tt, corr, mh, ml, q
     integer :: i0, nb, i, it, ndbl
@@ -903,6 +935,7 @@ contains
       ! K = pi / (2 AGM(1, sqrt(mc))) in double-double, all elements together
       do i = 1, nb
         x = sqrt(pmc(i))
+        smc(i) = x
         t = splitter * x; hi = t - (t - x); lo = x - hi
         p = x * x
         pe = ((hi * hi - p) + 2.0_dp * hi * lo) + lo * lo
@@ -971,7 +1004,7 @@ contains
                    + x * (5220109.0_dp + x * (-524937.0_dp + x * (8195.0_dp - x))))))) * (1.0_dp / 638512875.0_dp)
       end do
       ndbl = max(0, exponent(0.5_dp * maxval(kh(1:nb))) + 3)
-      call jacobi_block(nb, u(i0:i0+nb-1), zero, kh, kl, one, zero, pmc, ct, ndbl, &
+      call jacobi_block(nb, u(i0:i0+nb-1), zero, kh, kl, one, zero, pmc, smc, ct, ndbl, &
                         sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1), j, s, c, pq, sf, wq)
       do i = 1, nb
         if (.not. ok(i)) call jacobi_sncndn(u(i0 + i - 1), m(i0 + i - 1), mc(i0 + i - 1), &
