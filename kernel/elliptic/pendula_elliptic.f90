@@ -24,6 +24,7 @@
 module pendula_elliptic
   use pendula_kinds, only: dp, i8, pi, pi_lo, half_pi, nan_dp, inf_dp
   use pendula_dd, only: two_sum, fast_two_sum, two_prod, dd_sqrt
+  use, intrinsic :: iso_c_binding, only: c_double
   implicit none
   private
   public :: ellip_k, ellip_k_array, ellip_k_dd, ellip_e, ellip_f, ellip_f_sc, ellip_einc, ellip_nome
@@ -35,6 +36,20 @@ module pendula_elliptic
   !> Arguments beyond this many half periods cannot be reduced accurately
   !> even with K in double-double; they give NaN.
   real(dp), parameter :: jacobi_max_periods = 2.0_dp**48
+
+  !> Below this complementary parameter sn, cn, dn come from their first-order
+  !> expansion about m = 1 (DLMF 22.10.6-8) instead of the duplications; see
+  !> jacobi_hyp for why, and why the first order is enough.
+  real(dp), parameter :: mc_hyp = 2.0_dp**(-60)
+
+  interface
+    !> C99's expm1 (Fortran has none): e^x - 1 without cancellation for small x
+    pure function c_expm1(x) bind(C, name='expm1') result(y)
+      import :: c_double
+      real(c_double), value :: x
+      real(c_double) :: y
+    end function c_expm1
+  end interface
 
   ! kfit_p, kfit_q: K(m) = P(mc) - log(mc) Q(mc) on 0 < mc <= 1
   include 'pendula_ellipk_fit.inc'
@@ -586,39 +601,6 @@ contains
 
   include 'pendula_atan.inc'
 
-  !> atan2(y, x) for y, x >= 0 (not both zero) with one division: the
-  !> reductions of atan_pos (z -> 1/z above 1, z -> (z-1)/(z+1) above
-  !> tan(pi/8), the half angle z -> z/(1 + sqrt(1 + z^2))) done on the pair
-  !> (a, b) with z = a/b, and a single a/(b + sqrt(a^2 + b^2)) at the end.
-  !> Same series as atan_pos; about 2 ulp.  a^2 + b^2 <= 2 max(x, y)^2: for
-  !> the unit-scale sn, cn it is called with nothing over- or underflows.
-  elemental function atan2_pos(y, x) result(ang)
-    real(dp), intent(in) :: y, x
-    real(dp) :: ang, a, b, a1, z, z2, z4, z8, p, f, g
-    ! the reductions as 0/1 factors (exact: x + 0 y = x): written with merges
-    ! of operands or min/max, the loops that inline this did not vectorize
-    g = merge(1.0_dp, 0.0_dp, y > x)
-    a = merge(x, y, y > x)
-    b = merge(y, x, y > x)
-    f = merge(1.0_dp, 0.0_dp, a > 0.41421356237309503_dp * b)
-    a1 = a - f * b
-    b = b + f * a
-    z = a1 / (b + sqrt(b * b + a1 * a1))
-    z2 = z * z
-    ! the series sum_k (-1)^k z2^k / (2k+3), k <= 11, by Estrin's scheme: a
-    ! Horner chain of 12 dependent multiply-adds was the loop's critical path.
-    ! (|z| <= tan(pi/16): z2 <= 0.04, each term 25 times below the one before,
-    ! and p enters the result times z2 <= 0.04, so the changed order of
-    ! rounding moves the result by far less than an ulp.)
-    z4 = z2 * z2
-    z8 = z4 * z4
-    p = ((1.0_dp/3.0_dp - z2 * (1.0_dp/5.0_dp)) + z4 * (1.0_dp/7.0_dp - z2 * (1.0_dp/9.0_dp))) &
-        + z8 * (((1.0_dp/11.0_dp - z2 * (1.0_dp/13.0_dp)) + z4 * (1.0_dp/15.0_dp - z2 * (1.0_dp/17.0_dp))) &
-        + z8 * ((1.0_dp/19.0_dp - z2 * (1.0_dp/21.0_dp)) + z4 * (1.0_dp/23.0_dp - z2 * (1.0_dp/25.0_dp))))
-    ang = 2.0_dp * (z - z * z2 * p)
-    ang = merge(0.78539816339744831_dp + ang, ang, f > 0.0_dp)
-    ang = merge(half_pi - ang, ang, g > 0.0_dp)
-  end function atan2_pos
 
   !> The Jacobi functions of an array of u at one prepared parameter.
   !>
@@ -662,6 +644,7 @@ contains
         ulb(1:nb) = 0.0_dp
       end if
       call jacobi_block(nb, u(i0:i0+nb-1), ulb, kh, kl, sc, scl, mc, smc, ct, p%ndbl, &
+                        p%mc < mc_hyp .and. p%regime /= 2, &
                         sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1), j, r, pp, qq, shf, wl)
       ! back from the core parameter to m
       select case (p%regime)
@@ -728,8 +711,6 @@ contains
       s = s + h * c * du
       b = b - e * c * du
       c = c + (p%mo - 1.0_dp) * e * h * du
-      ! (atan_pos, not atan2_pos: with one call site gcc inlines atan2_pos into
-      ! jacobi_block, whose loop then vectorizes)
       ar = merge(half_pi - atan_pos(b / s), atan_pos(s / b), s > b)
       ! T underflows for |r| < 1e-100: there sn = r/sqrt(mo), am = r to all digits
       s = merge(abs(r(i)) / p%sh, s, abs(r(i)) < 1.0e-100_dp)
@@ -745,6 +726,47 @@ contains
       end if
     end do
   end subroutine jacobi_neg_final
+
+  !> sn, cn, dn of the core at x = w (unshifted) or x = K - w (shifted), for
+  !> mc < mc_hyp, by the expansion about m = 1 (DLMF 22.10.6-8):
+  !>   sn = tanh w (1 + (mc/4)(1 - w/S)),   S = sinh w cosh w,
+  !>   cn = sech w (1 - (mc/4)(S - w) tanh w),  dn = sech w (1 + (mc/4)(S + w) tanh w),
+  !> and, shifted, sn(K - w) = cd(w), cn(K - w) = sqrt(mc) sd(w), dn(K - w) = sqrt(mc) nd(w).
+  !> Why: near m = 1 the duplications carry a relative error of a few ulp
+  !> per step that the exponential growth of tn^2 amplifies by ~w (the
+  !> condition number of sech w): cn ~ sech(100) came out 130 eps off,
+  !> relative, at mc = 1e-280.  Here only sinh, cosh (from expm1) enter: 2-3 ulp.
+  !> Why first order suffices: on [0, K/2] mc e^(2w) <= mc e^K ~ 4 sqrt(mc), so
+  !> the first-order terms are below sqrt(mc)/4 <= 2^-32 of the result and the
+  !> second-order ones below mc/16 <= 2^-64 (mc < 2^-60).
+  pure subroutine jacobi_hyp(nb, w, sh, mc, smc, s3, c3, d3)
+    integer, intent(in) :: nb
+    real(dp), intent(in) :: w(:), sh(:), mc(:), smc(:)
+    real(dp), intent(out) :: s3(:), c3(:), d3(:)
+    real(dp) :: em, e, sw, cw, tw, ss, al, a1, b1, q
+    integer :: i
+    do i = 1, nb
+      em = c_expm1(w(i))
+      e = 1.0_dp + em
+      sw = 0.5_dp * (em + em / e)          ! sinh w, no cancellation for small w
+      cw = 0.5_dp * (e + 1.0_dp / e)       ! cosh w
+      tw = sw / cw
+      ss = sw * cw
+      al = 0.25_dp * mc(i) * (1.0_dp - w(i) / max(ss, tiny(1.0_dp)))
+      a1 = 0.25_dp * mc(i) * (ss - w(i)) * tw
+      b1 = 0.25_dp * mc(i) * (ss + w(i)) * tw
+      q = 1.0_dp / (1.0_dp + b1)
+      if (sh(i) > 0.0_dp) then
+        s3(i) = (1.0_dp - a1) * q          ! cd(w)
+        c3(i) = smc(i) * (sw * (1.0_dp + al) * q)   ! sqrt(mc) sd(w)
+        d3(i) = smc(i) * (cw * q)          ! sqrt(mc) nd(w)
+      else
+        s3(i) = tw * (1.0_dp + al)
+        c3(i) = (1.0_dp - a1) / cw
+        d3(i) = (1.0_dp + b1) / cw
+      end if
+    end do
+  end subroutine jacobi_hyp
 
   !> The Jacobi functions of one block of up to 256 arguments, each with its
   !> own core parameter (0 <= m < 1 given by mc, its K = kh + kl and series
@@ -775,13 +797,15 @@ contains
   !> The loops have no data-dependent trip counts and no libm calls, so the
   !> compiler vectorizes them.  Also returned: j, r (rounded), the final P and
   !> Q and the shift flag (for the m < 0 transformation).
-  pure subroutine jacobi_block(nb, u, ulb, kh, kl, sc, scl, mc, smc, ct, ndbl, sn, cn, dn, am, j, r, pp, qq, sh, wl)
+  pure subroutine jacobi_block(nb, u, ulb, kh, kl, sc, scl, mc, smc, ct, ndbl, hyp, sn, cn, dn, am, j, r, pp, qq, sh, wl)
     integer, intent(in) :: nb, ndbl
+    logical, intent(in) :: hyp   !< m -> 1 (mc < mc_hyp): sn, cn, dn by their expansion in mc
     real(dp), intent(in) :: u(:), ulb(:), kh(:), kl(:), sc(:), scl(:), mc(:), ct(:, :)
     real(dp), intent(in) :: smc(:)   !< sqrt(mc)
     real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:), j(:), r(:), pp(:), qq(:), sh(:), wl(:)
     real(dp), parameter :: splitter = 134217729.0_dp
-    real(dp) :: w(nb), a(nb)
+    real(dp) :: w(nb), a(nb), s3(nb), c3(nb), d3(nb), xa, xb, z, z2, z4, z8, pz
+    integer :: ndup
     real(dp) :: x, xh, xl, hi, lo, bh, bl, pr, pe, t, g, xx, inv, s, c, d, ar, half, odd, ss, e1, q, q2, gp, y, f, t2, t4
     integer :: i, k
 
@@ -826,10 +850,12 @@ contains
       wl(i) = merge(-ss, g * e1, sh(i) > 0.0_dp)   ! d x = this
       w(i) = merge(abs(t), w(i), sh(i) > 0.0_dp)
     end do
+    ndup = ndbl
+    if (hyp) ndup = 0
     ! 2. T = tn^2(w) = P/Q; each element scaled to w 2^-n <= 1/8 with its own
     !    n <= ndbl (a small w takes fewer duplications, so fewer roundings)
     a(1:nb) = 1.0_dp
-    do k = 1, ndbl
+    do k = 1, ndup
       do i = 1, nb
         a(i) = merge(0.5_dp * a(i), a(i), w(i) * a(i) > 0.125_dp)
       end do
@@ -845,7 +871,7 @@ contains
               + t4 * ((ct(i, 5) + t * ct(i, 6)) + t2 * (ct(i, 7) + t * ct(i, 8))))
       qq(i) = 1.0_dp
     end do
-    do k = 1, ndbl
+    do k = 1, ndup
       do i = 1, nb
         ! T' = 4 T (1 + D/Y) with Y = (Q^2 - mc P^2)^2 and
         ! D = Q(Q + mc P)(Q + P) Q^2 - Y = Q^3 (P + mc P) + mc P^2 (3 Q^2 - mc P^2) > 0:
@@ -867,15 +893,22 @@ contains
       end do
     end do
     ! 3. sn, cn, dn, am of the core; sign of r; parity of j
+    if (hyp) then
+      call jacobi_hyp(nb, w, sh, mc, smc, s3, c3, d3)
+    else
+      do i = 1, nb
+        t = pp(i); q = qq(i)
+        g = mc(i) * t
+        inv = 1.0_dp / (q + merge(g, t, sh(i) > 0.0_dp))
+        s3(i) = sqrt(merge(q, t, sh(i) > 0.0_dp) * inv)
+        ! shifted: cn = sqrt(mc) sqrt(P/(Q + mc P)), dn = sqrt(mc) sqrt((Q+P)/(Q + mc P)):
+        ! mc P itself is subnormal next to cn's zeros when mc ~ 1e-300
+        c3(i) = sqrt(merge(t, q, sh(i) > 0.0_dp) * inv) * merge(smc(i), 1.0_dp, sh(i) > 0.0_dp)
+        d3(i) = sqrt(merge(q + t, q + g, sh(i) > 0.0_dp) * inv) * merge(smc(i), 1.0_dp, sh(i) > 0.0_dp)
+      end do
+    end if
     do i = 1, nb
-      t = pp(i); q = qq(i)
-      g = mc(i) * t
-      inv = 1.0_dp / (q + merge(g, t, sh(i) > 0.0_dp))
-      s = sqrt(merge(q, t, sh(i) > 0.0_dp) * inv)
-      ! shifted: cn = sqrt(mc) sqrt(P/(Q + mc P)), dn = sqrt(mc) sqrt((Q+P)/(Q + mc P)):
-      ! mc P itself is subnormal next to cn's zeros when mc ~ 1e-300
-      c = sqrt(merge(t, q, sh(i) > 0.0_dp) * inv) * merge(smc(i), 1.0_dp, sh(i) > 0.0_dp)
-      d = sqrt(merge(q + t, q + g, sh(i) > 0.0_dp) * inv) * merge(smc(i), 1.0_dp, sh(i) > 0.0_dp)
+      s = s3(i); c = c3(i); d = d3(i)
       ! the low part dx of the argument: sn' = cn dn, cn' = -sn dn, dn' = -m sn cn
       ! (s, c, d >= 0 here; m = 1 - mc of the core)
       e1 = wl(i)
@@ -883,7 +916,33 @@ contains
       s = s + pr * d * e1
       c = c - pe * d * e1
       d = d - (1.0_dp - mc(i)) * pe * pr * e1
-      ar = atan2_pos(s, c)
+      ! am = atan2(s, c) for s, c >= 0 with one division, written out here (as
+      ! a function gcc inlined it only with a single call site, and the loop
+      ! did not vectorize otherwise): the reductions of atan_pos (z -> 1/z
+      ! above 1, z -> (z-1)/(z+1) above tan(pi/8), the half angle
+      ! z -> z/(1 + sqrt(1 + z^2))) done on the pair (a, b) with z = a/b as
+      ! 0/1 factors (exact: x + 0 y = x), and one a/(b + sqrt(a^2 + b^2)) at
+      ! the end; s, c <= ~1, so nothing over- or underflows.  About 2 ulp.
+      g = merge(1.0_dp, 0.0_dp, s > c)
+      xa = merge(c, s, s > c)
+      xb = merge(s, c, s > c)
+      f = merge(1.0_dp, 0.0_dp, xa > 0.41421356237309503_dp * xb)
+      z = xa - f * xb
+      xb = xb + f * xa
+      z = z / (xb + sqrt(xb * xb + z * z))
+      z2 = z * z
+      ! the series sum_k (-1)^k z2^k / (2k+3), k <= 11, by Estrin's scheme (a
+      ! Horner chain of 12 dependent multiply-adds was the loop's critical
+      ! path; |z| <= tan(pi/16): z2 <= 0.04, each term 25 times below the one
+      ! before, and p enters times z2, so the order of rounding hardly matters)
+      z4 = z2 * z2
+      z8 = z4 * z4
+      pz = ((1.0_dp/3.0_dp - z2 * (1.0_dp/5.0_dp)) + z4 * (1.0_dp/7.0_dp - z2 * (1.0_dp/9.0_dp))) &
+           + z8 * (((1.0_dp/11.0_dp - z2 * (1.0_dp/13.0_dp)) + z4 * (1.0_dp/15.0_dp - z2 * (1.0_dp/17.0_dp))) &
+           + z8 * ((1.0_dp/19.0_dp - z2 * (1.0_dp/21.0_dp)) + z4 * (1.0_dp/23.0_dp - z2 * (1.0_dp/25.0_dp))))
+      ar = 2.0_dp * (z - z * z2 * pz)
+      ar = merge(0.78539816339744831_dp + ar, ar, f > 0.0_dp)
+      ar = merge(half_pi - ar, ar, g > 0.0_dp)
       ! T underflows for |r| < 1e-154: there sn = am = r to all digits
       s = merge(abs(r(i)), s, abs(r(i)) < 1.0e-100_dp)
       ar = merge(abs(r(i)), ar, abs(r(i)) < 1.0e-100_dp)
@@ -924,7 +983,8 @@ contains
     do i0 = 1, size(u), blk
       nb = min(blk, size(u) - i0 + 1)
       do i = 1, nb
-        ok(i) = m(i0 + i - 1) >= 0.0_dp .and. mc(i0 + i - 1) > 0.0_dp .and. &
+        ! (mc below mc_hyp: the scalar path, which takes the expansion about m = 1)
+        ok(i) = m(i0 + i - 1) >= 0.0_dp .and. mc(i0 + i - 1) >= mc_hyp .and. &
                 m(i0 + i - 1) <= 1.0_dp .and. mc(i0 + i - 1) <= 1.0_dp
         pm(i) = merge(m(i0 + i - 1), 0.5_dp, ok(i))
         pmc(i) = merge(mc(i0 + i - 1), 0.5_dp, ok(i))
@@ -1004,7 +1064,7 @@ contains
                    + x * (5220109.0_dp + x * (-524937.0_dp + x * (8195.0_dp - x))))))) * (1.0_dp / 638512875.0_dp)
       end do
       ndbl = max(0, exponent(0.5_dp * maxval(kh(1:nb))) + 3)
-      call jacobi_block(nb, u(i0:i0+nb-1), zero, kh, kl, one, zero, pmc, smc, ct, ndbl, &
+      call jacobi_block(nb, u(i0:i0+nb-1), zero, kh, kl, one, zero, pmc, smc, ct, ndbl, .false., &
                         sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1), j, s, c, pq, sf, wq)
       do i = 1, nb
         if (.not. ok(i)) call jacobi_sncndn(u(i0 + i - 1), m(i0 + i - 1), mc(i0 + i - 1), &
