@@ -24,7 +24,7 @@
 module pendula_elliptic
   use pendula_kinds, only: dp, i8, pi, pi_lo, half_pi, nan_dp, inf_dp
   use pendula_dd, only: two_sum, fast_two_sum, two_prod, dd_sqrt
-  use, intrinsic :: iso_c_binding, only: c_double
+  use, intrinsic :: iso_c_binding, only: c_double, c_int
   implicit none
   private
   public :: ellip_k, ellip_k_array, ellip_k_dd, ellip_e, ellip_f, ellip_f_sc, ellip_einc, ellip_nome
@@ -43,6 +43,16 @@ module pendula_elliptic
   real(dp), parameter :: mc_hyp = 2.0_dp**(-60)
 
   interface
+    !> K = kh + kl in double-double and sqrt(mc) for n parameters 2^-60 <= mc <= 1
+    !> (complement mc + mcl), kernel/elliptic/pendula_agm.c: the AGM with fused
+    !> multiply-adds where the CPU has them (Fortran cannot ask for one fma
+    !> without contracting everything)
+    pure subroutine c_agm_k(n, mc, mcl, kh, kl, smc) bind(C, name='pendula_agm_k')
+      import :: c_double, c_int
+      integer(c_int), value :: n
+      real(c_double), intent(in) :: mc(*), mcl(*)
+      real(c_double), intent(out) :: kh(*), kl(*), smc(*)
+    end subroutine c_agm_k
     !> C99's expm1 (Fortran has none): e^x - 1 without cancellation for small x
     pure function c_expm1(x) bind(C, name='expm1') result(y)
       import :: c_double
@@ -1006,102 +1016,9 @@ contains
         pmcl(i) = merge(e, 0.0_dp, sm == pmc(i))
       end do
       ! K = pi / (2 AGM(1, sqrt(mc))) in double-double, all elements together
-      do i = 1, nb
-        x = sqrt(pmc(i))
-        smc(i) = x
-        t = splitter * x; hi = t - (t - x); lo = x - hi
-        p = x * x
-        pe = ((hi * hi - p) + 2.0_dp * hi * lo) + lo * lo
-        a(i) = 1.0_dp; al(i) = 0.0_dp
-        b(i) = x; bl(i) = (((pmc(i) - p) - pe) + pmcl(i)) / (2.0_dp * x)
-      end do
-      ! Two AGM steps for every element (vectorized, no test: a converged pair
-      ! stays converged), then the few that still have |a - b| > 2^-7 (a + b)
-      ! (3 % of uniform m in [0, 1); mc near 2^-60 takes ~6) one by one.
-      ! Iterating the whole block until its slowest element converged cost
-      ! 3.3 steps per element where 2.0 suffice.
-      do it = 1, 2
-        do i = 1, nb
-          ! a' = (a + b)/2
-          sm = a(i) + b(i); t = sm - a(i); e = (a(i) - (sm - t)) + (b(i) - t) + (al(i) + bl(i))
-          an = sm + e; anl = e - (an - sm)
-          ! b' = sqrt(a b)
-          x = a(i); y = b(i)
-          p = x * y
-          t = splitter * x; hi = t - (t - x); lo = x - hi
-          t = splitter * y; h2 = t - (t - y); l2 = y - h2
-          pe = ((hi * h2 - p) + hi * l2 + lo * h2) + lo * l2 + (x * bl(i) + al(i) * y)
-          sm = p + pe; pe = pe - (sm - p); p = sm
-          r = sqrt(p)
-          t = splitter * r; hi = t - (t - r); lo = r - hi
-          sm = r * r
-          e = ((hi * hi - sm) + 2.0_dp * hi * lo) + lo * lo
-          corr = (((p - sm) - e) + pe) / (2.0_dp * r)
-          b(i) = r + corr; bl(i) = corr - (b(i) - r)
-          a(i) = 0.5_dp * an; al(i) = 0.5_dp * anl
-        end do
-      end do
-      do i = 1, nb
-        do while (abs(a(i) - b(i)) > 0.0078125_dp * (a(i) + b(i)))
-          ! a' = (a + b)/2
-          sm = a(i) + b(i); t = sm - a(i); e = (a(i) - (sm - t)) + (b(i) - t) + (al(i) + bl(i))
-          an = sm + e; anl = e - (an - sm)
-          ! b' = sqrt(a b)
-          x = a(i); y = b(i)
-          p = x * y
-          t = splitter * x; hi = t - (t - x); lo = x - hi
-          t = splitter * y; h2 = t - (t - y); l2 = y - h2
-          pe = ((hi * h2 - p) + hi * l2 + lo * h2) + lo * l2 + (x * bl(i) + al(i) * y)
-          sm = p + pe; pe = pe - (sm - p); p = sm
-          r = sqrt(p)
-          t = splitter * r; hi = t - (t - r); lo = r - hi
-          sm = r * r
-          e = ((hi * hi - sm) + 2.0_dp * hi * lo) + lo * lo
-          corr = (((p - sm) - e) + pe) / (2.0_dp * r)
-          b(i) = r + corr; bl(i) = corr - (b(i) - r)
-          a(i) = 0.5_dp * an; al(i) = 0.5_dp * anl
-        end do
-      end do
-      do i = 1, nb
-        ! A = (a + b)/2, c = (a - b)/2 (a - b exact), t = c/A <= 2^-7,
-        ! M = A - c^2/(4A) - A t^4 (5/64 + 11 t^2/256 + 469 t^4/16384):
-        ! c^2/(4A) (2^-16 of A) in double-double, the rest (below 2^-31 of A)
-        ! in double; the first term left out, 1379/65536 t^10, is below 2^-75
-        ! of A.  (K to ~2^-75 relative is what the reduction of u up to 1e4
-        ! periods needs; the fixed-parameter path closes at t <= 2^-10, 2^-105.)
-        sm = a(i) + b(i); t = sm - a(i); e = (a(i) - (sm - t)) + (b(i) - t) + (al(i) + bl(i))
-        h2 = 0.5_dp * (sm + e); l2 = 0.5_dp * (e - ((sm + e) - sm))
-        x = 0.5_dp * (a(i) - b(i)); y = 0.5_dp * (al(i) - bl(i))
-        cc = x + y; cl = y - (cc - x)
-        ! (p, pe) = c^2
-        p = cc * cc
-        t = splitter * cc; hi = t - (t - cc); lo = cc - hi
-        pe = ((hi * hi - p) + 2.0_dp * hi * lo) + lo * lo + 2.0_dp * cc * cl
-        ! (qq, ql) = c^2 / (4A): one reciprocal, the exact residual fixes q
-        r = 0.25_dp / h2
-        qq = p * r
-        x = 4.0_dp * h2
-        t = splitter * qq; hi = t - (t - qq); lo = qq - hi
-        t = splitter * x; hh = t - (t - x); ll = x - hh
-        e = ((hi * hh - qq * x) + hi * ll + lo * hh) + lo * ll
-        ql = (((p - qq * x) - e) + pe - qq * 4.0_dp * l2) * r
-        tt = cc / h2
-        tt = tt * tt
-        corr = h2 * tt * tt * (5.0_dp / 64.0_dp + tt * (11.0_dp / 256.0_dp + tt * (469.0_dp / 16384.0_dp)))
-        mh = h2 - qq
-        ml = (((h2 - mh) - qq) + l2) - (ql + corr)
-        sm = mh + ml; ml = ml - (sm - mh); mh = sm
-        ! K = pi / (2 M)
-        q = pi / (2.0_dp * mh)
-        x = 2.0_dp * mh
-        p = x * q
-        t = splitter * x; hi = t - (t - x); lo = x - hi
-        t = splitter * q; h2 = t - (t - q); l2 = q - h2
-        pe = ((hi * h2 - p) + hi * l2 + lo * h2) + lo * l2
-        r = ((pi - p) - pe) + (pi_lo - 2.0_dp * ml * q)
-        kh(i) = q + r / x
-        kl(i) = r / x - (kh(i) - q)
-      end do
+      ! (in C for its fused multiply-adds; the algorithm and its error are
+      ! described there)
+      call c_agm_k(int(nb, c_int), pmc, pmcl, kh, kl, smc)
       ! series of tn^2 for each parameter, the divisions by constants as
       ! products (a coefficient then carries ~1 ulp instead of 0.5, which moves
       ! T at w 2^-n <= 1/8 by less than 2^-6 ulp)
