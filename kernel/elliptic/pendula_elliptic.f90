@@ -8,17 +8,21 @@
 !>
 !> Methods (all derived here; see DLMF chapters 19 and 22):
 !>  * K(m): the arithmetic-geometric mean carried in double-double, closed by
-!>    the expansion AGM(A+c, A-c) = A (1 - t^2/4 - 5 t^4/64 - 11 t^6/256),
-!>    t = c/A, so that K is known to ~1e-30 relative.  The low part is what
-!>    lets the Jacobi functions reduce u = 1000 periods without losing digits.
+!>    the expansion AGM(A+c, A-c) = A (1 - t^2/4 - 5 t^4/64 - 11 t^6/256 - ...),
+!>    t = c/A, its leading term in double-double, so that K is known to ~1e-30
+!>    relative for one parameter (~2^-75 on the per-element path, which is
+!>    what 1e4 periods need).  The low part is what lets the Jacobi functions
+!>    reduce u = 1000 periods without losing digits.
 !>  * E(m), F(phi|m), E(phi|m): Carlson's symmetric integrals R_F and R_D by
 !>    duplication, in forms whose terms are all positive for 0 <= m <= 1
 !>    (no cancellation as m -> 1).
 !>  * sn, cn, dn, am: reduction of u by 2K in double-double, a quarter-period
-!>    shift to [0, K/2], a Maclaurin series at u / 2^N <= 1/8 and N
-!>    duplications.  The duplication runs on the complements 1 - cn, 1 - dn
-!>    while they are small and on cn, dn themselves afterwards; in both forms
-!>    every formula is a quotient of sums of positive terms on [0, K/2].
+!>    shift to [0, K/2], an eight-term Maclaurin series of tn^2 at
+!>    u / 2^n <= 1/8 and n duplications carried as a fraction P/Q (see
+!>    jacobi_block); every factor is positive on [0, K/2], and all outputs
+!>    come from P and Q.  For mc < 2^-60 the expansion about m = 1 instead
+!>    (jacobi_hyp); m < 0 and m > 1 through the imaginary and reciprocal
+!>    modulus transformations.
 !>  * the nome q(m): the Jacobi series in eps = (1 - mc^(1/4)) / (2 (1 + mc^(1/4)))
 !>    for m <= 1/2, and ln q ln q' = pi^2 with the complementary series above.
 module pendula_elliptic
