@@ -977,16 +977,14 @@ contains
       ar = sign(ar, r(i))
       half = 0.5_dp * j(i)
       odd = merge(1.0_dp, 0.0_dp, round_int(half) /= half)
-      sn(i) = s * (1.0_dp - 2.0_dp * odd)
-      cn(i) = c * (1.0_dp - 2.0_dp * odd)
-      dn(i) = d
-      am(i) = (j(i) * pi + ar) + j(i) * pi_lo
-    end do
-    do i = 1, nb
+      ! NaN for NaN or infinite u and beyond 2^48 half periods (merges, not an
+      ! if, so that the loop stays vectorized)
       x = u(i)
-      if (x /= x .or. abs(x) > huge(1.0_dp) .or. abs(j(i)) > jacobi_max_periods) then
-        sn(i) = nan_dp; cn(i) = nan_dp; dn(i) = nan_dp; am(i) = nan_dp
-      end if
+      f = merge(1.0_dp, 0.0_dp, x /= x .or. abs(x) > huge(1.0_dp) .or. abs(j(i)) > jacobi_max_periods)
+      sn(i) = merge(nan_dp, s * (1.0_dp - 2.0_dp * odd), f > 0.0_dp)
+      cn(i) = merge(nan_dp, c * (1.0_dp - 2.0_dp * odd), f > 0.0_dp)
+      dn(i) = merge(nan_dp, d, f > 0.0_dp)
+      am(i) = merge(nan_dp, (j(i) * pi + ar) + j(i) * pi_lo, f > 0.0_dp)
     end do
   end subroutine jacobi_block
 
