@@ -543,7 +543,7 @@ contains
     real(dp), intent(in) :: m, mc, mcl
     real(dp), intent(in), optional :: ml   !< low part of m (m + ml = 1 - (mc + mcl))
     type(jacobi_plan) :: p
-    real(dp) :: cm, cmc, cmcl, pr, pe, mlow, qh, ql
+    real(dp) :: cm, cmc, cmcl, mlow
     if (m /= m .or. mc /= mc .or. abs(m) > huge(1.0_dp) .or. abs(mc) > huge(1.0_dp)) then
       p%regime = -1; return
     end if
@@ -997,12 +997,11 @@ contains
     real(dp), intent(in) :: u(:), m(:), mc(:)
     real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
     integer, parameter :: blk = 256
-    real(dp), parameter :: splitter = 134217729.0_dp
     real(dp) :: pm(blk), pmc(blk), pmcl(blk), kh(blk), kl(blk), one(blk), zero(blk), ct(blk, 8)
-    real(dp) :: a(blk), al(blk), b(blk), bl(blk), j(blk), s(blk), c(blk), pq(blk), sf(blk), wq(blk), smc(blk)
+    real(dp) :: j(blk), s(blk), c(blk), pq(blk), sf(blk), wq(blk), smc(blk)
     logical :: ok(blk)
-    real(dp) :: x, y, sm, e, an, anl, p, pe, r, hi, lo, h2, l2, t, cc, cl, tt, corr, mh, ml, q, qq, ql, hh, ll
-    integer :: i0, nb, i, it, ndbl
+    real(dp) :: x, sm, e, t
+    integer :: i0, nb, i, ndbl
 
     one = 1.0_dp; zero = 0.0_dp
     do i0 = 1, size(u), blk
