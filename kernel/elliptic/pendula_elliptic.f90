@@ -616,19 +616,10 @@ contains
   include 'pendula_atan.inc'
 
 
-  !> The Jacobi functions of an array of u at one prepared parameter.
-  !>
-  !> 1. reduce: x = u * scale = 2 K j + r (|r| <= K, double-double throughout),
-  !>    fold onto [0, K/2]: w = |r| or w = K - |r| (shifted);
-  !> 2. T = tn^2(w): Maclaurin series at w / 2^N <= 1/8, then N duplications
-  !>    tn^2(2u) = 4 T (1 + mc T) (1 + T) / (1 - mc T^2)^2.  N is fixed by K/2,
-  !>    every factor is positive on [0, K/2] (mc T^2 <= sqrt(mc)/4 at K/4), so
-  !>    nothing cancels;
-  !> 3. sn, cn, dn, am all from the one number T (and G = mc T after the
-  !>    shift), so whatever rounding does they stay consistent with one
-  !>    argument, and cd = cn/dn keeps full accuracy next to K.
-  !> The loops run over blocks with no data-dependent trip counts and no libm
-  !> calls except in the rare special regimes, so the compiler vectorizes them.
+  !> The Jacobi functions of an array of u (+ ul, double-double) at one
+  !> prepared parameter: blocks of 256 through jacobi_block (the method is
+  !> described there), then the way back from the core parameter to m for
+  !> m < 0 (jacobi_neg_final) and m > 1.
   pure subroutine jacobi_eval_array(p, u, sn, cn, dn, am, ul)
     type(jacobi_plan), intent(in) :: p
     real(dp), intent(in) :: u(:)
@@ -785,33 +776,34 @@ contains
 
   !> The Jacobi functions of one block of up to 256 arguments, each with its
   !> own core parameter (0 <= m < 1 given by mc, its K = kh + kl and series
-  !> ct), its own argument scale (sc + scl) and a common duplication count.
+  !> ct), its own argument scale (sc + scl) and a common duplication bound.
   !>
   !> 1. reduce: x = u * scale = 2 K j + r (|r| <= K, double-double throughout),
-  !>    fold onto [0, K/2]: w = |r| or w = K - |r| (shifted);
-  !> 2. T = tn^2(w) = P/Q: Maclaurin series at w / 2^N <= 1/8 (P = T, Q = 1),
-  !>    then N duplications tn^2(2u) = 4 T (1 + mc T) (1 + T) / (1 - mc T^2)^2
-  !>    carried as a fraction without dividing:
-  !>      P' = 4 P Q (Q + mc P) (Q + P),   Q' = (Q^2 - mc P^2)^2.
-  !>    Every factor is positive on [0, K/2] (mc T^2 <= sqrt(mc)/4 at K/4), so
-  !>    nothing cancels, and each step rounds about as often as the divided
-  !>    form did (5 roundings in P', 4 in Q', ~2.5 ulp of T either way).
-  !>    Range: Q_N = prod_k (1 - mc T_k^2)^(2 4^(N-1-k)); the last factor is
-  !>    >= (3/4)^2 and T_k^2 shrinks at least 16-fold per step back (T ~ u^2
-  !>    below K/4), so Q_N >= 0.4: Q neither underflows nor overflows, and
-  !>    P = T Q <= tn^2(K/2) = 1/sqrt(mc) < 1e162 (mc >= 5e-324), whose
-  !>    largest intermediate P (Q + P) ~ T_(N-1)^2 <= 1/sqrt(mc) too;
+  !>    fold onto [0, K/2]: w = |r| or w = K - |r| (shifted), kept as wh + wl
+  !>    (a remainder just past K moves to the next half period);
+  !> 2. T = tn^2(w) = P/Q: Maclaurin series at w / 2^n <= 1/8 (P = T, Q = 1;
+  !>    n <= ndbl per element), then n duplications
+  !>    tn^2(2u) = 4 T (1 + mc T) (1 + T) / (1 - mc T^2)^2 carried as a
+  !>    fraction without dividing: with Y = (Q^2 - mc P^2)^2 and
+  !>    D = Q^3 (P + mc P) + mc P^2 (3 Q^2 - mc P^2), P' = 4 P (Y + D), Q' = Q Y.
+  !>    Every term is positive on [0, K/2] (mc T^2 <= sqrt(mc)/4 at K/4), so
+  !>    nothing cancels.  Range: Q_n = prod_k (1 - mc T_k^2)^(2 5^(n-1-k)); the
+  !>    last factor is >= (3/4)^2 and mc T_k^2 shrinks at least 16-fold per step
+  !>    back (T ~ u^2 below K/4), against the exponent's 5, so Q_n >= 0.4:
+  !>    Q neither underflows nor overflows, and P = T Q <= tn^2(K/2) =
+  !>    1/sqrt(mc) < 1e162, whose largest intermediate ~T_(n-1)^2 is as small;
+  !>    for mc < mc_hyp the expansion about m = 1 instead (jacobi_hyp);
   !> 3. sn, cn, dn from P and Q with one division:
   !>      unshifted: sn^2 = P/(Q+P), cn^2 = Q/(Q+P), dn^2 = (Q + mc P)/(Q+P);
-  !>      shifted (tn^2(K-w) = 1/(mc T)): sn^2 = Q/(Q+mc P), cn^2 = mc P/(Q+mc P),
-  !>      dn^2 = mc (Q+P)/(Q+mc P),
-  !>    and am = atan2(sn, cn) (one more division), so whatever rounding does
-  !>    they stay consistent with one argument, and cd = cn/dn keeps full
-  !>    accuracy next to K.  (The divided form took N + 4 divisions per
-  !>    element; this one takes 2.)
+  !>      shifted (tn^2(K-w) = 1/(mc T)): sn^2 = Q/(Q+mc P),
+  !>      cn = sqrt(mc) sqrt(P/(Q+mc P)), dn = sqrt(mc) sqrt((Q+P)/(Q+mc P)),
+  !>    the low part wl put back to first order, am = atan2(sn, cn) (one more
+  !>    division), so whatever rounding does they stay consistent with one
+  !>    argument, and cd = cn/dn keeps full accuracy next to K.  (The divided
+  !>    form took ndbl + 4 divisions per element; this one takes 2.)
   !> The loops have no data-dependent trip counts and no libm calls, so the
   !> compiler vectorizes them.  Also returned: j, r (rounded), the final P and
-  !> Q and the shift flag (for the m < 0 transformation).
+  !> Q, the shift flag and wl (for the m < 0 transformation).
   pure subroutine jacobi_block(nb, u, ulb, kh, kl, sc, scl, unit, mc, smc, ct, ndbl, hyp, sn, cn, dn, am, j, r, pp, qq, sh, wl)
     integer, intent(in) :: nb, ndbl
     logical, intent(in) :: unit  !< the scale is exactly 1 (sc = 1, scl = 0)
