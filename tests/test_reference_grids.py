@@ -5,9 +5,6 @@ draws per class; data/gen_reference_grids.py writes it).
 The error of a point is max over outputs of |got - ref| / max(1, |ref|), in
 eps.  The bound is 4 eps for every class (the promise of README), except
 where a measured, explained limit is stated beside it:
-* sn, cn, dn for m < 0: the imaginary-modulus transformation divides the
-  core's sn by dn and by sqrt(1 - m) (two more roundings on ~1.5 eps each):
-  measured 4.6 eps at m = -1343.
 """
 
 import pathlib
@@ -20,7 +17,7 @@ from pendula.accuracy import grid_errors, load_grids
 PATH = pathlib.Path(__file__).resolve().parents[1] / "data" / "reference_grids.csv.gz"
 GRIDS = load_grids(PATH)
 # measured limits above 4 eps, with the reason in the module docstring
-LIMITS = {"jac_m_neg": 5}
+LIMITS: dict[str, float] = {}
 
 
 def test_the_grid_has_every_class_at_full_size():

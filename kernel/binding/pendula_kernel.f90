@@ -459,3 +459,19 @@ subroutine spectrum_wisdom_v(path, save, ok)
   end if
   ok = merge(1, 0, done)
 end subroutine spectrum_wisdom_v
+! ---------------------------------------------------------------- Jacobi: argument in double-double (jac)
+! sn, cn, dn, am at u + ul for one parameter (m, mc as in ellipj_v): the
+! exact motion's phases are double-double, and the tests check the relative
+! accuracy of small cn, dn there against mpmath.
+subroutine ellipj_dd_v(n, u, ul, m, mc, sn, cn, dn, am)
+  use pendula_elliptic, only: jacobi_plan, jacobi_prepare, jacobi_eval_array
+  implicit none
+  !f2py threadsafe
+  integer, intent(in) :: n
+  double precision, intent(in) :: u(n), ul(n), m, mc
+  double precision, intent(out) :: sn(n), cn(n), dn(n), am(n)
+  !f2py intent(hide), depend(u) :: n = len(u)
+  type(jacobi_plan) :: plan
+  plan = jacobi_prepare(m, mc)
+  call jacobi_eval_array(plan, u, sn, cn, dn, am, ul)
+end subroutine ellipj_dd_v

@@ -8,22 +8,27 @@
 !>
 !> Methods (all derived here; see DLMF chapters 19 and 22):
 !>  * K(m): the arithmetic-geometric mean carried in double-double, closed by
-!>    the expansion AGM(A+c, A-c) = A (1 - t^2/4 - 5 t^4/64 - 11 t^6/256),
-!>    t = c/A, so that K is known to ~1e-30 relative.  The low part is what
-!>    lets the Jacobi functions reduce u = 1000 periods without losing digits.
+!>    the expansion AGM(A+c, A-c) = A (1 - t^2/4 - 5 t^4/64 - 11 t^6/256 - ...),
+!>    t = c/A, its leading term in double-double, so that K is known to ~1e-30
+!>    relative for one parameter (~2^-75 on the per-element path, which is
+!>    what 1e4 periods need).  The low part is what lets the Jacobi functions
+!>    reduce u = 1000 periods without losing digits.
 !>  * E(m), F(phi|m), E(phi|m): Carlson's symmetric integrals R_F and R_D by
 !>    duplication, in forms whose terms are all positive for 0 <= m <= 1
 !>    (no cancellation as m -> 1).
 !>  * sn, cn, dn, am: reduction of u by 2K in double-double, a quarter-period
-!>    shift to [0, K/2], a Maclaurin series at u / 2^N <= 1/16 and N
-!>    duplications.  The duplication runs on the complements 1 - cn, 1 - dn
-!>    while they are small and on cn, dn themselves afterwards; in both forms
-!>    every formula is a quotient of sums of positive terms on [0, K/2].
+!>    shift to [0, K/2], an eight-term Maclaurin series of tn^2 at
+!>    u / 2^n <= 1/8 and n duplications carried as a fraction P/Q (see
+!>    jacobi_block); every factor is positive on [0, K/2], and all outputs
+!>    come from P and Q.  For mc < 2^-60 the expansion about m = 1 instead
+!>    (jacobi_hyp); m < 0 and m > 1 through the imaginary and reciprocal
+!>    modulus transformations.
 !>  * the nome q(m): the Jacobi series in eps = (1 - mc^(1/4)) / (2 (1 + mc^(1/4)))
 !>    for m <= 1/2, and ln q ln q' = pi^2 with the complementary series above.
 module pendula_elliptic
   use pendula_kinds, only: dp, i8, pi, pi_lo, half_pi, nan_dp, inf_dp
-  use pendula_dd, only: two_sum, fast_two_sum, two_prod, dd_sqrt, dd_sincos, dd_mul, dd_add
+  use pendula_dd, only: two_sum, fast_two_sum, two_prod, dd_sqrt, dd_sincos, dd_mul, dd_add, dd_div
+  use, intrinsic :: iso_c_binding, only: c_double, c_int
   implicit none
   private
   public :: ellip_k, ellip_k_array, ellip_k_dd, ellip_e, ellip_f, ellip_f_sc, ellip_einc, ellip_nome
@@ -36,6 +41,30 @@ module pendula_elliptic
   !> even with K in double-double; they give NaN.
   real(dp), parameter :: jacobi_max_periods = 2.0_dp**48
 
+  !> Below this complementary parameter sn, cn, dn come from their first-order
+  !> expansion about m = 1 (DLMF 22.10.6-8) instead of the duplications; see
+  !> jacobi_hyp for why, and why the first order is enough.
+  real(dp), parameter :: mc_hyp = 2.0_dp**(-60)
+
+  interface
+    !> K = kh + kl in double-double and sqrt(mc) for n parameters 2^-60 <= mc <= 1
+    !> (complement mc + mcl), kernel/elliptic/pendula_agm.c: the AGM with fused
+    !> multiply-adds where the CPU has them (Fortran cannot ask for one fma
+    !> without contracting everything)
+    pure subroutine c_agm_k(n, mc, mcl, kh, kl, smc) bind(C, name='pendula_agm_k')
+      import :: c_double, c_int
+      integer(c_int), value :: n
+      real(c_double), intent(in) :: mc(*), mcl(*)
+      real(c_double), intent(out) :: kh(*), kl(*), smc(*)
+    end subroutine c_agm_k
+    !> C99's expm1 (Fortran has none): e^x - 1 without cancellation for small x
+    pure function c_expm1(x) bind(C, name='expm1') result(y)
+      import :: c_double
+      real(c_double), value :: x
+      real(c_double) :: y
+    end function c_expm1
+  end interface
+
   ! kfit_p, kfit_q: K(m) = P(mc) - log(mc) Q(mc) on 0 < mc <= 1
   include 'pendula_ellipk_fit.inc'
 
@@ -47,7 +76,8 @@ module pendula_elliptic
     real(dp) :: mc = 1.0_dp                   !< complement of the core parameter (0 <= m < 1)
     real(dp) :: kh = 0.0_dp, kl = 0.0_dp      !< K of the core, double-double
     real(dp) :: sh = 1.0_dp, sl = 0.0_dp      !< argument scale (1, sqrt(1-m) or sqrt(m))
-    real(dp) :: ct(6) = 0.0_dp                 !< Maclaurin series of tn^2 in u^2
+    real(dp) :: mo = 1.0_dp, mol = 0.0_dp     !< m < 0: the complement 1 - m itself, double-double
+    real(dp) :: ct(8) = 0.0_dp                 !< Maclaurin series of tn^2 in u^2
     integer :: ndbl = 0                        !< duplications that cover [0, K/2]
   end type jacobi_plan
 
@@ -81,7 +111,15 @@ contains
       kh = 0.0_dp; kl = 0.0_dp; return
     end if
     a = 1.0_dp; al = 0.0_dp
-    call dd_sqrt(mc, mcl, b, bl)
+    ! sqrt(mc) in double-double; below 1e-200 through mc 2^600, so that the
+    ! error term of r^2 (2^-106 mc) does not fall into the subnormals (for
+    ! mc = 1e-300 K was good to 2^-80 only: 1e11 eps in cn next to its zeros)
+    if (mc < 1.0e-200_dp) then
+      call dd_sqrt(scale(mc, 600), scale(mcl, 600), b, bl)
+      b = scale(b, -300); bl = scale(bl, -300)
+    else
+      call dd_sqrt(mc, mcl, b, bl)
+    end if
     do it = 1, 64
       if (abs(a - b) <= 0.0009765625_dp * (a + b)) exit
       call two_sum(a, b, s, e)
@@ -97,11 +135,21 @@ contains
     e = e + (al + bl)
     call fast_two_sum(s, e, ah2, al2)
     ah2 = 0.5_dp * ah2; al2 = 0.5_dp * al2
-    c = 0.5_dp * ((a - b) + (al - bl))
+    ! M = A - c^2/(4A) - A t^4 (5/64 + 11 t^2/256 + 469 t^4/16384), t = c/A <= 2^-10.
+    ! The leading term (2^-22 of A) in double-double from c = ch + cl in
+    ! double-double (a - b exact); the rest is below 2^-43 of A, so double
+    ! suffices, and the first term left out (1379/65536 t^10) is below 2^-105.
+    ! (With c and the whole correction in double, K was good to ~2^-75 only:
+    ! 1e9 eps in cn 1e-12 from its zero at u = 21 K, mc = 1e-226.)
+    call fast_two_sum(0.5_dp * (a - b), 0.5_dp * (al - bl), c, corr)
+    call two_prod(c, c, p, pe)
+    pe = pe + 2.0_dp * c * corr
+    call dd_div(p, pe, 4.0_dp * ah2, 4.0_dp * al2, q, r)
     t = c / ah2
-    corr = ah2 * t * t * (0.25_dp + t * t * (5.0_dp / 64.0_dp + t * t * (11.0_dp / 256.0_dp)))
-    call two_sum(ah2, -corr, s, e)
-    call fast_two_sum(s, e + al2, mh, ml)
+    t = t * t
+    corr = ah2 * t * t * (5.0_dp / 64.0_dp + t * (11.0_dp / 256.0_dp + t * (469.0_dp / 16384.0_dp)))
+    call two_sum(ah2, -q, s, e)
+    call fast_two_sum(s, e + (al2 - r - corr), mh, ml)
     ! K = pi / (2 M) in double-double
     q = pi / (2.0_dp * mh)
     call two_prod(2.0_dp * mh, q, p, pe)
@@ -531,7 +579,7 @@ contains
     real(dp), intent(in) :: m, mc, mcl
     real(dp), intent(in), optional :: ml   !< low part of m (m + ml = 1 - (mc + mcl))
     type(jacobi_plan) :: p
-    real(dp) :: cm, cmc, cmcl, pr, pe, mlow, qh, ql
+    real(dp) :: cm, cmc, cmcl, mlow
     if (m /= m .or. mc /= mc .or. abs(m) > huge(1.0_dp) .or. abs(mc) > huge(1.0_dp)) then
       p%regime = -1; return
     end if
@@ -547,6 +595,7 @@ contains
       cm = -m / mc
       call dd_div(1.0_dp, 0.0_dp, mc, mcl, cmc, cmcl)
       call dd_sqrt(mc, mcl, p%sh, p%sl)
+      p%mo = mc; p%mol = mcl
     else
       ! sn(u|m) = sn(k u|1/m)/k, cn = dn(k u|1/m), dn = cn(k u|1/m), k = sqrt(m);
       ! the core's complement -mc/m and the scale sqrt(m) from m + ml
@@ -560,7 +609,11 @@ contains
     p%mc = cmc
     call ellip_k_dd2(cmc, cmcl, p%kh, p%kl)
     ! Maclaurin series of tn^2 = sn^2/cn^2 in t = u^2 (coefficients from
-    ! data/gen_jacobi_series.py); six terms reach 1e-17 relative at u <= 1/16.
+    ! data/gen_jacobi_series.py).  tn^2 is analytic for |u| < K >= pi/2 (its
+    ! nearest poles are cn's zeros +-K), so the terms fall at least as
+    ! (u / (pi/2))^2 = 0.0063 each at u <= 1/8: the ninth term is below 1.2e-17
+    ! of the sum (0.05 ulp; six terms at 1/16 left 0.35 ulp at m = 0), and
+    ! the eight terms take one duplication fewer.
     p%ct(1) = 1.0_dp
     p%ct(2) = (2.0_dp - cm) / 3.0_dp
     p%ct(3) = (17.0_dp + cm * (-17.0_dp + cm * 2.0_dp)) / 45.0_dp
@@ -569,19 +622,12 @@ contains
               / 14175.0_dp
     p%ct(6) = (21844.0_dp + cm * (-54610.0_dp + cm * (45736.0_dp + cm * (-13994.0_dp &
               + cm * (1028.0_dp - cm * 2.0_dp))))) / 467775.0_dp
-    p%ndbl = max(0, exponent(0.5_dp * p%kh) + 4)
+    p%ct(7) = (929569.0_dp + cm * (-2788707.0_dp + cm * (3021099.0_dp + cm * (-1394353.0_dp &
+              + cm * (240594.0_dp + cm * (-8202.0_dp + cm * 4.0_dp)))))) / 42567525.0_dp
+    p%ct(8) = (6404582.0_dp + cm * (-22416037.0_dp + cm * (29821335.0_dp + cm * (-18513245.0_dp &
+              + cm * (5220109.0_dp + cm * (-524937.0_dp + cm * (8195.0_dp - cm))))))) / 638512875.0_dp
+    p%ndbl = max(0, exponent(0.5_dp * p%kh) + 3)
   end function jacobi_prepare_dd
-
-  !> (ah + al) / (bh + bl) in double-double.
-  elemental subroutine dd_div(ah, al, bh, bl, qh, ql)
-    real(dp), intent(in) :: ah, al, bh, bl
-    real(dp), intent(out) :: qh, ql
-    real(dp) :: q1, p, pe, r
-    q1 = ah / bh
-    call two_prod(q1, bh, p, pe)
-    r = (((ah - p) - pe) + al - q1 * bl) / bh
-    call fast_two_sum(q1, r, qh, ql)
-  end subroutine dd_div
 
   !> Round to the nearest integer (ties to even) for |x| < 2^51, with plain
   !> arithmetic so that loops using it vectorize (anint calls libm).
@@ -594,28 +640,20 @@ contains
 
   include 'pendula_atan.inc'
 
-  !> The Jacobi functions of an array of u at one prepared parameter.
-  !>
-  !> 1. reduce: x = u * scale = 2 K j + r (|r| <= K, double-double throughout),
-  !>    fold onto [0, K/2]: w = |r| or w = K - |r| (shifted);
-  !> 2. T = tn^2(w): Maclaurin series at w / 2^N <= 1/16, then N duplications
-  !>    tn^2(2u) = 4 T (1 + mc T) (1 + T) / (1 - mc T^2)^2.  N is fixed by K/2,
-  !>    every factor is positive on [0, K/2] (mc T^2 <= sqrt(mc)/4 at K/4), so
-  !>    nothing cancels;
-  !> 3. sn, cn, dn, am all from the one number T (and G = mc T after the
-  !>    shift), so whatever rounding does they stay consistent with one
-  !>    argument, and cd = cn/dn keeps full accuracy next to K.
-  !> The loops run over blocks with no data-dependent trip counts and no libm
-  !> calls except in the rare special regimes, so the compiler vectorizes them.
+
+  !> The Jacobi functions of an array of u (+ ul, double-double) at one
+  !> prepared parameter: blocks of 256 through jacobi_block (the method is
+  !> described there), then the way back from the core parameter to m for
+  !> m < 0 (jacobi_neg_final) and m > 1.
   pure subroutine jacobi_eval_array(p, u, sn, cn, dn, am, ul)
     type(jacobi_plan), intent(in) :: p
     real(dp), intent(in) :: u(:)
     real(dp), intent(in), optional :: ul(:)   !< low parts: the argument is u + ul
     real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
     integer, parameter :: blk = 256
-    real(dp) :: ulb(blk), kh(blk), kl(blk), sc(blk), scl(blk), mc(blk), ct(blk, 6)
-    real(dp) :: j(blk), s(blk), c(blk), d
-    integer :: i0, nb, i, k
+    real(dp) :: ulb(blk), kh(blk), kl(blk), sc(blk), scl(blk), mc(blk), smc(blk), ct(blk, 8)
+    real(dp) :: j(blk), r(blk), pp(blk), qq(blk), shf(blk), wl(blk), d
+    integer :: i0, nb, k
 
     if (p%regime /= 0 .and. p%regime /= 2 .and. p%regime /= 3) then
       call jacobi_special(p, u, sn, cn, dn, am)
@@ -624,7 +662,8 @@ contains
     ! the plan's constants as per-element arrays, only as long as the longest block
     nb = min(blk, size(u))
     kh(1:nb) = p%kh; kl(1:nb) = p%kl; sc(1:nb) = p%sh; scl(1:nb) = p%sl; mc(1:nb) = p%mc
-    do k = 1, 6
+    smc(1:nb) = sqrt(p%mc)
+    do k = 1, 8
       ct(1:nb, k) = p%ct(k)
     end do
     do i0 = 1, size(u), blk
@@ -634,63 +673,194 @@ contains
       else
         ulb(1:nb) = 0.0_dp
       end if
-      call jacobi_block(nb, u(i0:i0+nb-1), ulb, kh, kl, sc, scl, mc, ct, p%ndbl, &
-                        sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1), j, s, c)
+      call jacobi_block(nb, u(i0:i0+nb-1), ulb, kh, kl, sc, scl, p%sh == 1.0_dp .and. p%sl == 0.0_dp, &
+                        mc, smc, ct, p%ndbl, &
+                        p%mc < mc_hyp .and. p%regime /= 2, &
+                        sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1), j, r, pp, qq, shf, wl)
       ! back from the core parameter to m
       select case (p%regime)
-      case (2)   ! m < 0: sn = sd(nu u|mu)/nu, cn = cd, dn = nd
-        do i = 1, nb
-          d = dn(i0 + i - 1)
-          am(i0 + i - 1) = (j(i) * pi + atan2(s(i) / p%sh, c(i))) + j(i) * pi_lo
-          sn(i0 + i - 1) = sn(i0 + i - 1) / (d * p%sh)
-          cn(i0 + i - 1) = cn(i0 + i - 1) / d
-          dn(i0 + i - 1) = 1.0_dp / d
-        end do
+      case (2)
+        call jacobi_neg_final(nb, p, u(i0:i0+nb-1), j, r, pp, qq, shf, wl, &
+                              sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1))
       case (3)   ! m > 1: sn = sn(k u|1/m)/k, cn = dn, dn = cn; am = asin(sn)
-        do i = i0, i0 + nb - 1
-          d = cn(i)
-          sn(i) = sn(i) / p%sh
-          cn(i) = dn(i)
-          dn(i) = d
-          am(i) = asin(max(-1.0_dp, min(1.0_dp, sn(i))))
+        do k = i0, i0 + nb - 1
+          d = cn(k)
+          sn(k) = sn(k) / p%sh
+          cn(k) = dn(k)
+          dn(k) = d
+          am(k) = asin(max(-1.0_dp, min(1.0_dp, sn(k))))
         end do
       end select
     end do
   end subroutine jacobi_eval_array
 
+  !> m < 0 from the core (parameter mu = -m/mo, mo = 1 - m, argument x = sqrt(mo) u):
+  !> sn(u|m) = sd(x|mu)/sqrt(mo), cn = cd(x|mu), dn = nd(x|mu) (DLMF 22.17.4-6).
+  !> Written in the core's T = tn^2 = P/Q (and mu_c = 1 - mu = 1/mo, so
+  !> mo mu_c = 1 exactly in real arithmetic), every division of the
+  !> transformation folds into one:
+  !>   unshifted (w = |r|):  sn^2 = P/(mo Q + P),  cn^2 = mo Q/(mo Q + P),
+  !>                         dn^2 = mo (Q + P)/(mo Q + P);
+  !>   shifted (w = K - |r|, T = tn^2(w)):  sn^2 = Q/(Q + P),  cn^2 = P/(Q + P),
+  !>                         dn^2 = (mo Q + P)/(Q + P);
+  !> am = atan2(sn, cn).  All terms are positive, so each output carries T's
+  !> relative error halved plus ~1.5 roundings (dividing the core's sn by dn
+  !> and by sqrt(mo), as before, added two roundings and dn's own error:
+  !> 4.6 eps at m = -1343).
+  pure subroutine jacobi_neg_final(nb, p, u, j, r, pp, qq, shf, wl, sn, cn, dn, am)
+    integer, intent(in) :: nb
+    type(jacobi_plan), intent(in) :: p
+    real(dp), intent(in) :: u(:), j(:), r(:), pp(:), qq(:), shf(:), wl(:)
+    real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
+    real(dp) :: t, q, s, e, h, moq, inv, a, b, c, ar, half, sg, du
+    integer :: i
+    do i = 1, nb
+      t = pp(i); q = qq(i)
+      ! mo Q + P to within half an ulp (mo carried double-double)
+      h = p%mo * q
+      moq = h + p%mol * q
+      s = h + t; e = s - h; e = (h - (s - e)) + (t - e)
+      s = s + (e + p%mol * q)
+      if (shf(i) > 0.0_dp) then
+        inv = 1.0_dp / (q + t)
+        a = q * inv
+        b = t * inv
+        c = s * inv
+      else
+        inv = 1.0_dp / s
+        a = t * inv
+        b = moq * inv
+        c = (p%mo * (q + t) + p%mol * (q + t)) * inv
+      end if
+      s = sqrt(a)
+      b = sqrt(b)
+      c = sqrt(c)
+      ! the argument's low part, du = dx / sqrt(mo): sn' = cn dn, cn' = -sn dn,
+      ! dn' = -m sn cn (in u)
+      du = wl(i) / p%sh
+      e = s; h = b
+      s = s + h * c * du
+      b = b - e * c * du
+      c = c + (p%mo - 1.0_dp) * e * h * du
+      ar = merge(half_pi - atan_pos(b / s), atan_pos(s / b), s > b)
+      ! T underflows for |r| < 1e-100: there sn = r/sqrt(mo), am = r to all digits
+      s = merge(abs(r(i)) / p%sh, s, abs(r(i)) < 1.0e-100_dp)
+      ar = merge(abs(r(i)) / p%sh, ar, abs(r(i)) < 1.0e-100_dp)
+      half = 0.5_dp * j(i)
+      sg = 1.0_dp - 2.0_dp * merge(1.0_dp, 0.0_dp, round_int(half) /= half)
+      sn(i) = sign(s, r(i)) * sg
+      cn(i) = b * sg
+      dn(i) = c
+      am(i) = (j(i) * pi + sign(ar, r(i))) + j(i) * pi_lo
+      if (u(i) /= u(i) .or. abs(u(i)) > huge(1.0_dp) .or. abs(j(i)) > jacobi_max_periods) then
+        sn(i) = nan_dp; cn(i) = nan_dp; dn(i) = nan_dp; am(i) = nan_dp
+      end if
+    end do
+  end subroutine jacobi_neg_final
+
+  !> sn, cn, dn of the core at x = w (unshifted) or x = K - w (shifted), for
+  !> mc < mc_hyp, by the expansion about m = 1 (DLMF 22.10.6-8):
+  !>   sn = tanh w (1 + (mc/4)(1 - w/S)),   S = sinh w cosh w,
+  !>   cn = sech w (1 - (mc/4)(S - w) tanh w),  dn = sech w (1 + (mc/4)(S + w) tanh w),
+  !> and, shifted, sn(K - w) = cd(w), cn(K - w) = sqrt(mc) sd(w), dn(K - w) = sqrt(mc) nd(w).
+  !> Why: near m = 1 the duplications carry a relative error of a few ulp
+  !> per step that the exponential growth of tn^2 amplifies by ~w (the
+  !> condition number of sech w): cn ~ sech(100) came out 130 eps off,
+  !> relative, at mc = 1e-280.  Here only sinh, cosh (from expm1) enter: 2-3 ulp.
+  !> Why first order suffices: on [0, K/2] mc e^(2w) <= mc e^K ~ 4 sqrt(mc), so
+  !> the first-order terms are below sqrt(mc)/4 <= 2^-32 of the result and the
+  !> second-order ones below mc/16 <= 2^-64 (mc < 2^-60).
+  pure subroutine jacobi_hyp(nb, w, sh, mc, smc, s3, c3, d3)
+    integer, intent(in) :: nb
+    real(dp), intent(in) :: w(:), sh(:), mc(:), smc(:)
+    real(dp), intent(out) :: s3(:), c3(:), d3(:)
+    real(dp) :: em, e, sw, cw, tw, ss, al, a1, b1, q
+    integer :: i
+    do i = 1, nb
+      em = c_expm1(w(i))
+      e = 1.0_dp + em
+      sw = 0.5_dp * (em + em / e)          ! sinh w, no cancellation for small w
+      cw = 0.5_dp * (e + 1.0_dp / e)       ! cosh w
+      tw = sw / cw
+      ss = sw * cw
+      al = 0.25_dp * mc(i) * (1.0_dp - w(i) / max(ss, tiny(1.0_dp)))
+      a1 = 0.25_dp * mc(i) * (ss - w(i)) * tw
+      b1 = 0.25_dp * mc(i) * (ss + w(i)) * tw
+      q = 1.0_dp / (1.0_dp + b1)
+      if (sh(i) > 0.0_dp) then
+        s3(i) = (1.0_dp - a1) * q          ! cd(w)
+        c3(i) = smc(i) * (sw * (1.0_dp + al) * q)   ! sqrt(mc) sd(w)
+        d3(i) = smc(i) * (cw * q)          ! sqrt(mc) nd(w)
+      else
+        s3(i) = tw * (1.0_dp + al)
+        c3(i) = (1.0_dp - a1) / cw
+        d3(i) = (1.0_dp + b1) / cw
+      end if
+    end do
+  end subroutine jacobi_hyp
+
   !> The Jacobi functions of one block of up to 256 arguments, each with its
   !> own core parameter (0 <= m < 1 given by mc, its K = kh + kl and series
-  !> ct), its own argument scale (sc + scl) and a common duplication count.
+  !> ct), its own argument scale (sc + scl) and a common duplication bound.
   !>
   !> 1. reduce: x = u * scale = 2 K j + r (|r| <= K, double-double throughout),
-  !>    fold onto [0, K/2]: w = |r| or w = K - |r| (shifted);
-  !> 2. T = tn^2(w): Maclaurin series at w / 2^N <= 1/16, then N duplications
-  !>    tn^2(2u) = 4 T (1 + mc T) (1 + T) / (1 - mc T^2)^2.  Every factor is
-  !>    positive on [0, K/2] (mc T^2 <= sqrt(mc)/4 at K/4), so nothing cancels;
-  !> 3. sn, cn, dn, am all from the one number T (and G = mc T after the
-  !>    shift), so whatever rounding does they stay consistent with one
-  !>    argument, and cd = cn/dn keeps full accuracy next to K.
+  !>    fold onto [0, K/2]: w = |r| or w = K - |r| (shifted), kept as wh + wl
+  !>    (a remainder just past K moves to the next half period);
+  !> 2. T = tn^2(w) = P/Q: Maclaurin series at w / 2^n <= 1/8 (P = T, Q = 1;
+  !>    n <= ndbl per element), then n duplications
+  !>    tn^2(2u) = 4 T (1 + mc T) (1 + T) / (1 - mc T^2)^2 carried as a
+  !>    fraction without dividing: with Y = (Q^2 - mc P^2)^2 and
+  !>    D = Q^3 (P + mc P) + mc P^2 (3 Q^2 - mc P^2), P' = 4 P (Y + D), Q' = Q Y.
+  !>    Every term is positive on [0, K/2] (mc T^2 <= sqrt(mc)/4 at K/4), so
+  !>    nothing cancels.  Range: Q_n = prod_k (1 - mc T_k^2)^(2 5^(n-1-k)); the
+  !>    last factor is >= (3/4)^2 and mc T_k^2 shrinks at least 16-fold per step
+  !>    back (T ~ u^2 below K/4), against the exponent's 5, so Q_n >= 0.4:
+  !>    Q neither underflows nor overflows, and P = T Q <= tn^2(K/2) =
+  !>    1/sqrt(mc) < 1e162, whose largest intermediate ~T_(n-1)^2 is as small;
+  !>    for mc < mc_hyp the expansion about m = 1 instead (jacobi_hyp);
+  !> 3. sn, cn, dn from P and Q with one division:
+  !>      unshifted: sn^2 = P/(Q+P), cn^2 = Q/(Q+P), dn^2 = (Q + mc P)/(Q+P);
+  !>      shifted (tn^2(K-w) = 1/(mc T)): sn^2 = Q/(Q+mc P),
+  !>      cn = sqrt(mc) sqrt(P/(Q+mc P)), dn = sqrt(mc) sqrt((Q+P)/(Q+mc P)),
+  !>    the low part wl put back to first order, am = atan2(sn, cn) (one more
+  !>    division), so whatever rounding does they stay consistent with one
+  !>    argument, and cd = cn/dn keeps full accuracy next to K.  (The divided
+  !>    form took ndbl + 4 divisions per element; this one takes 2.)
   !> The loops have no data-dependent trip counts and no libm calls, so the
-  !> compiler vectorizes them.  Also returned: j, and the core's signed sn and
-  !> cn before the half-period sign (for the m < 0 transformation).
-  pure subroutine jacobi_block(nb, u, ulb, kh, kl, sc, scl, mc, ct, ndbl, sn, cn, dn, am, j, sr, cr)
+  !> compiler vectorizes them.  Also returned: j, r (rounded), the final P and
+  !> Q, the shift flag and wl (for the m < 0 transformation).
+  pure subroutine jacobi_block(nb, u, ulb, kh, kl, sc, scl, unit, mc, smc, ct, ndbl, hyp, sn, cn, dn, am, j, r, pp, qq, sh, wl)
     integer, intent(in) :: nb, ndbl
+    logical, intent(in) :: unit  !< the scale is exactly 1 (sc = 1, scl = 0)
+    logical, intent(in) :: hyp   !< m -> 1 (mc < mc_hyp): sn, cn, dn by their expansion in mc
     real(dp), intent(in) :: u(:), ulb(:), kh(:), kl(:), sc(:), scl(:), mc(:), ct(:, :)
-    real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:), j(:), sr(:), cr(:)
+    real(dp), intent(in) :: smc(:)   !< sqrt(mc)
+    real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:), j(:), r(:), pp(:), qq(:), sh(:), wl(:)
     real(dp), parameter :: splitter = 134217729.0_dp
-    real(dp) :: r(nb), w(nb), t2(nb), sh(nb)
-    real(dp) :: x, xh, xl, hi, lo, bh, bl, pr, pe, t, g, xx, inv, s, c, d, ar, half, odd, fac, ss, e1
+    real(dp) :: w(nb), a(nb), s3(nb), c3(nb), d3(nb), xha(nb), xla(nb), xa, xb, z, z2, z4, z8, pz
+    integer :: ndup
+    real(dp) :: x, xh, xl, hi, lo, bh, bl, pr, pe, t, g, xx, inv, s, c, d, ar, half, odd, ss, e1, q, q2, gp, y, f, t2, t4
     integer :: i, k
 
-    fac = scale(1.0_dp, -ndbl)
     ! 1. reduction (Dekker products written out so that the loop vectorizes)
+    !    x = u * scale in double-double; the scale is 1 for 0 <= m < 1 (and
+    !    every per-element parameter), and then x = u + ul as it stands
+    if (unit) then
+      xha(1:nb) = u(1:nb)
+      xla(1:nb) = ulb(1:nb)
+    else
+      do i = 1, nb
+        x = u(i)
+        t = splitter * sc(i); bh = t - (t - sc(i)); bl = sc(i) - bh
+        xh = x * sc(i)
+        t = splitter * x; hi = t - (t - x); lo = x - hi
+        xl = ((hi * bh - xh) + hi * bl + lo * bh) + lo * bl + x * scl(i)
+        xha(i) = xh
+        xla(i) = xl + ulb(i) * sc(i)
+      end do
+    end if
     do i = 1, nb
-      x = u(i)
-      t = splitter * sc(i); bh = t - (t - sc(i)); bl = sc(i) - bh
-      xh = x * sc(i)
-      t = splitter * x; hi = t - (t - x); lo = x - hi
-      xl = ((hi * bh - xh) + hi * bl + lo * bh) + lo * bl + x * scl(i)
-      xl = xl + ulb(i) * sc(i)
+      xh = xha(i); xl = xla(i)
       j(i) = round_int(xh * (0.5_dp / kh(i)))
       g = 2.0_dp * j(i)
       pr = g * kh(i)
@@ -704,53 +874,134 @@ contains
       t = hi + lo; ss = t - hi; e1 = (hi - (t - ss)) + (lo - ss)
       lo = xl - g * kl(i)
       r(i) = t + lo; ss = r(i) - t; e1 = e1 + ((t - (r(i) - ss)) + (lo - ss))
+      ! w = |r| (unshifted) or K - |r| (shifted), as wh + wl: the low part
+      ! is put back at the end, to first order (step 3)
       w(i) = abs(r(i))
       sh(i) = merge(1.0_dp, 0.0_dp, w(i) > 0.5_dp * kh(i))
-      w(i) = merge(max(0.0_dp, (kh(i) - w(i)) + (kl(i) - sign(1.0_dp, r(i)) * e1)), w(i) + sign(1.0_dp, r(i)) * e1, &
-                   w(i) > 0.5_dp * kh(i))
+      hi = kh(i) - w(i)                  ! exact (Sterbenz) when shifted
+      lo = kl(i) - sign(1.0_dp, r(i)) * e1
+      t = hi + lo; ss = t - hi; ss = (hi - (t - ss)) + (lo - ss)
+      ! j = round(x / 2K) is taken from the rounded x / 2K, so next to an odd
+      ! multiple of K the remainder may pass K by a little: w < 0.  That point
+      ! is w' = -w into the next half period (j + 1 in the direction of r,
+      ! r' = r -+ 2K); clamping w to 0 instead lost cn's sign and size
+      ! entirely next to its zeros
+      f = merge(1.0_dp, 0.0_dp, sh(i) > 0.0_dp .and. t < 0.0_dp)
+      g = sign(1.0_dp, r(i))
+      j(i) = j(i) + f * g
+      r(i) = r(i) - f * (2.0_dp * g * kh(i))
+      ss = ss - 2.0_dp * f * ss
+      wl(i) = merge(-ss, g * e1, sh(i) > 0.0_dp)   ! d x = this
+      w(i) = merge(abs(t), w(i), sh(i) > 0.0_dp)
     end do
-    ! 2. T = tn^2(w)
-    do i = 1, nb
-      t = w(i) * fac
-      t = t * t
-      t2(i) = t * (ct(i, 1) + t * (ct(i, 2) + t * (ct(i, 3) + t * (ct(i, 4) + t * (ct(i, 5) &
-              + t * ct(i, 6))))))
-    end do
-    do k = 1, ndbl
+    ndup = ndbl
+    if (hyp) ndup = 0
+    ! 2. T = tn^2(w) = P/Q; each element scaled to w 2^-n <= 1/8 with its own
+    !    n <= ndbl (a small w takes fewer duplications, so fewer roundings)
+    a(1:nb) = 1.0_dp
+    do k = 1, ndup
       do i = 1, nb
-        g = mc(i) * t2(i)
-        t2(i) = 4.0_dp * t2(i) * (1.0_dp + g) * (1.0_dp + t2(i)) / (1.0_dp - g * t2(i))**2
+        a(i) = merge(0.5_dp * a(i), a(i), w(i) * a(i) > 0.125_dp)
+      end do
+    end do
+    do i = 1, nb
+      a(i) = w(i) * a(i)                 ! exact: a power of 2 times w
+      t = a(i) * a(i)
+      ! Estrin's scheme (t <= 1/64: each term ~100 times below the one before,
+      ! so the order of rounding hardly matters; Horner's chain of 8 was slow)
+      t2 = t * t
+      t4 = t2 * t2
+      pp(i) = t * (((ct(i, 1) + t * ct(i, 2)) + t2 * (ct(i, 3) + t * ct(i, 4))) &
+              + t4 * ((ct(i, 5) + t * ct(i, 6)) + t2 * (ct(i, 7) + t * ct(i, 8))))
+      qq(i) = 1.0_dp
+    end do
+    do k = 1, ndup
+      do i = 1, nb
+        ! T' = 4 T (1 + D/Y) with Y = (Q^2 - mc P^2)^2 and
+        ! D = Q(Q + mc P)(Q + P) Q^2 - Y = Q^3 (P + mc P) + mc P^2 (3 Q^2 - mc P^2) > 0:
+        ! P' = 4 P (Y + D), Q' = Q Y.  The same rounded Y in P' and Q' cancels
+        ! in T' except through D/Y, which is small while T is (~1.5 ulp a step
+        ! against ~2.5 for the product form)
+        t = pp(i); q = qq(i)
+        g = mc(i) * t
+        q2 = q * q
+        gp = g * t
+        y = (q2 - gp)**2
+        d = q2 * q * (t + g) + gp * (3.0_dp * q2 - gp)
+        ! active while the element's argument a is below its w: 0/1 factors
+        ! (exact), as merges here kept the loop from vectorizing
+        f = merge(1.0_dp, 0.0_dp, a(i) < w(i))
+        pp(i) = f * (4.0_dp * t * (y + d)) + (1.0_dp - f) * t
+        qq(i) = f * (q * y) + (1.0_dp - f) * q
+        a(i) = a(i) + f * a(i)
       end do
     end do
     ! 3. sn, cn, dn, am of the core; sign of r; parity of j
+    if (hyp) then
+      call jacobi_hyp(nb, w, sh, mc, smc, s3, c3, d3)
+    else
+      do i = 1, nb
+        t = pp(i); q = qq(i)
+        g = mc(i) * t
+        inv = 1.0_dp / (q + merge(g, t, sh(i) > 0.0_dp))
+        s3(i) = sqrt(merge(q, t, sh(i) > 0.0_dp) * inv)
+        ! shifted: cn = sqrt(mc) sqrt(P/(Q + mc P)), dn = sqrt(mc) sqrt((Q+P)/(Q + mc P)):
+        ! mc P itself is subnormal next to cn's zeros when mc ~ 1e-300
+        c3(i) = sqrt(merge(t, q, sh(i) > 0.0_dp) * inv) * merge(smc(i), 1.0_dp, sh(i) > 0.0_dp)
+        d3(i) = sqrt(merge(q + t, q + g, sh(i) > 0.0_dp) * inv) * merge(smc(i), 1.0_dp, sh(i) > 0.0_dp)
+      end do
+    end if
     do i = 1, nb
-      g = mc(i) * t2(i)
-      xx = merge(g, t2(i), sh(i) > 0.0_dp)
-      inv = 1.0_dp / (1.0_dp + xx)
-      s = sqrt(merge(1.0_dp, t2(i), sh(i) > 0.0_dp) * inv)
-      c = sqrt(merge(g, 1.0_dp, sh(i) > 0.0_dp) * inv)
-      d = sqrt(merge(mc(i) + g, 1.0_dp + g, sh(i) > 0.0_dp) * inv)
-      ar = atan_pos(sqrt(xx))
-      ar = merge(half_pi - ar, ar, sh(i) > 0.0_dp)
+      s = s3(i); c = c3(i); d = d3(i)
+      ! the low part dx of the argument: sn' = cn dn, cn' = -sn dn, dn' = -m sn cn
+      ! (s, c, d >= 0 here; m = 1 - mc of the core)
+      e1 = wl(i)
+      pe = s; pr = c
+      s = s + pr * d * e1
+      c = c - pe * d * e1
+      d = d - (1.0_dp - mc(i)) * pe * pr * e1
+      ! am = atan2(s, c) for s, c >= 0 with one division, written out here (as
+      ! a function gcc inlined it only with a single call site, and the loop
+      ! did not vectorize otherwise): the reductions of atan_pos (z -> 1/z
+      ! above 1, z -> (z-1)/(z+1) above tan(pi/8), the half angle
+      ! z -> z/(1 + sqrt(1 + z^2))) done on the pair (a, b) with z = a/b as
+      ! 0/1 factors (exact: x + 0 y = x), and one a/(b + sqrt(a^2 + b^2)) at
+      ! the end; s, c <= ~1, so nothing over- or underflows.  About 2 ulp.
+      g = merge(1.0_dp, 0.0_dp, s > c)
+      xa = merge(c, s, s > c)
+      xb = merge(s, c, s > c)
+      f = merge(1.0_dp, 0.0_dp, xa > 0.41421356237309503_dp * xb)
+      z = xa - f * xb
+      xb = xb + f * xa
+      z = z / (xb + sqrt(xb * xb + z * z))
+      z2 = z * z
+      ! the series sum_k (-1)^k z2^k / (2k+3), k <= 11, by Estrin's scheme (a
+      ! Horner chain of 12 dependent multiply-adds was the loop's critical
+      ! path; |z| <= tan(pi/16): z2 <= 0.04, each term 25 times below the one
+      ! before, and p enters times z2, so the order of rounding hardly matters)
+      z4 = z2 * z2
+      z8 = z4 * z4
+      pz = ((1.0_dp/3.0_dp - z2 * (1.0_dp/5.0_dp)) + z4 * (1.0_dp/7.0_dp - z2 * (1.0_dp/9.0_dp))) &
+           + z8 * (((1.0_dp/11.0_dp - z2 * (1.0_dp/13.0_dp)) + z4 * (1.0_dp/15.0_dp - z2 * (1.0_dp/17.0_dp))) &
+           + z8 * ((1.0_dp/19.0_dp - z2 * (1.0_dp/21.0_dp)) + z4 * (1.0_dp/23.0_dp - z2 * (1.0_dp/25.0_dp))))
+      ar = 2.0_dp * (z - z * z2 * pz)
+      ar = merge(0.78539816339744831_dp + ar, ar, f > 0.0_dp)
+      ar = merge(half_pi - ar, ar, g > 0.0_dp)
       ! T underflows for |r| < 1e-154: there sn = am = r to all digits
       s = merge(abs(r(i)), s, abs(r(i)) < 1.0e-100_dp)
       ar = merge(abs(r(i)), ar, abs(r(i)) < 1.0e-100_dp)
       s = sign(s, r(i))
       ar = sign(ar, r(i))
-      sr(i) = s
-      cr(i) = c
       half = 0.5_dp * j(i)
       odd = merge(1.0_dp, 0.0_dp, round_int(half) /= half)
-      sn(i) = s * (1.0_dp - 2.0_dp * odd)
-      cn(i) = c * (1.0_dp - 2.0_dp * odd)
-      dn(i) = d
-      am(i) = (j(i) * pi + ar) + j(i) * pi_lo
-    end do
-    do i = 1, nb
+      ! NaN for NaN or infinite u and beyond 2^48 half periods (merges, not an
+      ! if, so that the loop stays vectorized)
       x = u(i)
-      if (x /= x .or. abs(x) > huge(1.0_dp) .or. abs(j(i)) > jacobi_max_periods) then
-        sn(i) = nan_dp; cn(i) = nan_dp; dn(i) = nan_dp; am(i) = nan_dp
-      end if
+      f = merge(1.0_dp, 0.0_dp, x /= x .or. abs(x) > huge(1.0_dp) .or. abs(j(i)) > jacobi_max_periods)
+      sn(i) = merge(nan_dp, s * (1.0_dp - 2.0_dp * odd), f > 0.0_dp)
+      cn(i) = merge(nan_dp, c * (1.0_dp - 2.0_dp * odd), f > 0.0_dp)
+      dn(i) = merge(nan_dp, d, f > 0.0_dp)
+      am(i) = merge(nan_dp, (j(i) * pi + ar) + j(i) * pi_lo, f > 0.0_dp)
     end do
   end subroutine jacobi_block
 
@@ -763,18 +1014,18 @@ contains
     real(dp), intent(in) :: u(:), m(:), mc(:)
     real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
     integer, parameter :: blk = 256
-    real(dp), parameter :: splitter = 134217729.0_dp
-    real(dp) :: pm(blk), pmc(blk), pmcl(blk), kh(blk), kl(blk), one(blk), zero(blk), ct(blk, 6)
-    real(dp) :: a(blk), al(blk), b(blk), bl(blk), j(blk), s(blk), c(blk)
+    real(dp) :: pm(blk), pmc(blk), pmcl(blk), kh(blk), kl(blk), one(blk), zero(blk), ct(blk, 8)
+    real(dp) :: j(blk), s(blk), c(blk), pq(blk), sf(blk), wq(blk), smc(blk)
     logical :: ok(blk)
-    real(dp) :: x, y, sm, e, an, anl, p, pe, r, hi, lo, h2, l2, t, cc, tt, corr, mh, ml, q
-    integer :: i0, nb, i, it, ndbl
+    real(dp) :: x, sm, e, t
+    integer :: i0, nb, i, ndbl
 
     one = 1.0_dp; zero = 0.0_dp
     do i0 = 1, size(u), blk
       nb = min(blk, size(u) - i0 + 1)
       do i = 1, nb
-        ok(i) = m(i0 + i - 1) >= 0.0_dp .and. mc(i0 + i - 1) > 0.0_dp .and. &
+        ! (mc below mc_hyp: the scalar path, which takes the expansion about m = 1)
+        ok(i) = m(i0 + i - 1) >= 0.0_dp .and. mc(i0 + i - 1) >= mc_hyp .and. &
                 m(i0 + i - 1) <= 1.0_dp .and. mc(i0 + i - 1) <= 1.0_dp
         pm(i) = merge(m(i0 + i - 1), 0.5_dp, ok(i))
         pmc(i) = merge(mc(i0 + i - 1), 0.5_dp, ok(i))
@@ -783,72 +1034,30 @@ contains
         pmcl(i) = merge(e, 0.0_dp, sm == pmc(i))
       end do
       ! K = pi / (2 AGM(1, sqrt(mc))) in double-double, all elements together
-      do i = 1, nb
-        x = sqrt(pmc(i))
-        t = splitter * x; hi = t - (t - x); lo = x - hi
-        p = x * x
-        pe = ((hi * hi - p) + 2.0_dp * hi * lo) + lo * lo
-        a(i) = 1.0_dp; al(i) = 0.0_dp
-        b(i) = x; bl(i) = (((pmc(i) - p) - pe) + pmcl(i)) / (2.0_dp * x)
-      end do
-      do it = 1, 64
-        if (all(abs(a(1:nb) - b(1:nb)) <= 0.0009765625_dp * (a(1:nb) + b(1:nb)))) exit
-        do i = 1, nb
-          ! a' = (a + b)/2
-          sm = a(i) + b(i); t = sm - a(i); e = (a(i) - (sm - t)) + (b(i) - t) + (al(i) + bl(i))
-          an = sm + e; anl = e - (an - sm)
-          ! b' = sqrt(a b)
-          x = a(i); y = b(i)
-          p = x * y
-          t = splitter * x; hi = t - (t - x); lo = x - hi
-          t = splitter * y; h2 = t - (t - y); l2 = y - h2
-          pe = ((hi * h2 - p) + hi * l2 + lo * h2) + lo * l2 + (x * bl(i) + al(i) * y)
-          sm = p + pe; pe = pe - (sm - p); p = sm
-          r = sqrt(p)
-          t = splitter * r; hi = t - (t - r); lo = r - hi
-          sm = r * r
-          e = ((hi * hi - sm) + 2.0_dp * hi * lo) + lo * lo
-          corr = (((p - sm) - e) + pe) / (2.0_dp * r)
-          b(i) = r + corr; bl(i) = corr - (b(i) - r)
-          a(i) = 0.5_dp * an; al(i) = 0.5_dp * anl
-        end do
-      end do
-      do i = 1, nb
-        ! A = (a + b)/2, c = (a - b)/2, M = A (1 - t^2/4 - 5 t^4/64 - 11 t^6/256)
-        sm = a(i) + b(i); t = sm - a(i); e = (a(i) - (sm - t)) + (b(i) - t) + (al(i) + bl(i))
-        h2 = 0.5_dp * (sm + e); l2 = 0.5_dp * (e - ((sm + e) - sm))
-        cc = 0.5_dp * ((a(i) - b(i)) + (al(i) - bl(i)))
-        tt = cc / h2
-        corr = h2 * tt * tt * (0.25_dp + tt * tt * (5.0_dp / 64.0_dp + tt * tt * (11.0_dp / 256.0_dp)))
-        mh = h2 - corr
-        ml = ((h2 - mh) - corr) + l2
-        sm = mh + ml; ml = ml - (sm - mh); mh = sm
-        ! K = pi / (2 M)
-        q = pi / (2.0_dp * mh)
-        x = 2.0_dp * mh
-        p = x * q
-        t = splitter * x; hi = t - (t - x); lo = x - hi
-        t = splitter * q; h2 = t - (t - q); l2 = q - h2
-        pe = ((hi * h2 - p) + hi * l2 + lo * h2) + lo * l2
-        r = ((pi - p) - pe) + (pi_lo - 2.0_dp * ml * q)
-        kh(i) = q + r / x
-        kl(i) = r / x - (kh(i) - q)
-      end do
-      ! series of tn^2 for each parameter
+      ! (in C for its fused multiply-adds; the algorithm and its error are
+      ! described there)
+      call c_agm_k(int(nb, c_int), pmc, pmcl, kh, kl, smc)
+      ! series of tn^2 for each parameter, the divisions by constants as
+      ! products (a coefficient then carries ~1 ulp instead of 0.5, which moves
+      ! T at w 2^-n <= 1/8 by less than 2^-6 ulp)
       do i = 1, nb
         x = pm(i)
         ct(i, 1) = 1.0_dp
-        ct(i, 2) = (2.0_dp - x) / 3.0_dp
-        ct(i, 3) = (17.0_dp + x * (-17.0_dp + x * 2.0_dp)) / 45.0_dp
-        ct(i, 4) = (62.0_dp + x * (-93.0_dp + x * (33.0_dp - x))) / 315.0_dp
+        ct(i, 2) = (2.0_dp - x) * (1.0_dp / 3.0_dp)
+        ct(i, 3) = (17.0_dp + x * (-17.0_dp + x * 2.0_dp)) * (1.0_dp / 45.0_dp)
+        ct(i, 4) = (62.0_dp + x * (-93.0_dp + x * (33.0_dp - x))) * (1.0_dp / 315.0_dp)
         ct(i, 5) = (1382.0_dp + x * (-2764.0_dp + x * (1641.0_dp + x * (-259.0_dp + x * 2.0_dp)))) &
-                   / 14175.0_dp
+                   * (1.0_dp / 14175.0_dp)
         ct(i, 6) = (21844.0_dp + x * (-54610.0_dp + x * (45736.0_dp + x * (-13994.0_dp &
-                   + x * (1028.0_dp - x * 2.0_dp))))) / 467775.0_dp
+                   + x * (1028.0_dp - x * 2.0_dp))))) * (1.0_dp / 467775.0_dp)
+        ct(i, 7) = (929569.0_dp + x * (-2788707.0_dp + x * (3021099.0_dp + x * (-1394353.0_dp &
+                   + x * (240594.0_dp + x * (-8202.0_dp + x * 4.0_dp)))))) * (1.0_dp / 42567525.0_dp)
+        ct(i, 8) = (6404582.0_dp + x * (-22416037.0_dp + x * (29821335.0_dp + x * (-18513245.0_dp &
+                   + x * (5220109.0_dp + x * (-524937.0_dp + x * (8195.0_dp - x))))))) * (1.0_dp / 638512875.0_dp)
       end do
-      ndbl = max(0, exponent(0.5_dp * maxval(kh(1:nb))) + 4)
-      call jacobi_block(nb, u(i0:i0+nb-1), zero, kh, kl, one, zero, pmc, ct, ndbl, &
-                        sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1), j, s, c)
+      ndbl = max(0, exponent(0.5_dp * maxval(kh(1:nb))) + 3)
+      call jacobi_block(nb, u(i0:i0+nb-1), zero, kh, kl, one, zero, .true., pmc, smc, ct, ndbl, .false., &
+                        sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1), j, s, c, pq, sf, wq)
       do i = 1, nb
         if (.not. ok(i)) call jacobi_sncndn(u(i0 + i - 1), m(i0 + i - 1), mc(i0 + i - 1), &
           sn(i0 + i - 1), cn(i0 + i - 1), dn(i0 + i - 1), am(i0 + i - 1))
