@@ -645,15 +645,20 @@ contains
   !> prepared parameter: blocks of 256 through jacobi_block (the method is
   !> described there), then the way back from the core parameter to m for
   !> m < 0 (jacobi_neg_final) and m > 1.
-  pure subroutine jacobi_eval_array(p, u, sn, cn, dn, am, ul)
+  pure subroutine jacobi_eval_array(p, u, sn, cn, dn, am, ul, want_am)
     type(jacobi_plan), intent(in) :: p
     real(dp), intent(in) :: u(:)
     real(dp), intent(in), optional :: ul(:)   !< low parts: the argument is u + ul
+    !> .false.: am is not needed (NaN out) for 0 <= m < 1, a fifth less work
+    logical, intent(in), optional :: want_am
     real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
     integer, parameter :: blk = 256
     real(dp) :: ulb(blk), kh(blk), kl(blk), sc(blk), scl(blk), mc(blk), smc(blk), ct(blk, 8)
     real(dp) :: j(blk), r(blk), pp(blk), qq(blk), shf(blk), wl(blk), d
     integer :: i0, nb, k
+    logical :: want
+    want = .true.
+    if (present(want_am)) want = want_am
 
     if (p%regime /= 0 .and. p%regime /= 2 .and. p%regime /= 3) then
       call jacobi_special(p, u, sn, cn, dn, am)
@@ -676,7 +681,8 @@ contains
       call jacobi_block(nb, u(i0:i0+nb-1), ulb, kh, kl, sc, scl, p%sh == 1.0_dp .and. p%sl == 0.0_dp, &
                         mc, smc, ct, p%ndbl, &
                         p%mc < mc_hyp .and. p%regime /= 2, &
-                        sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1), j, r, pp, qq, shf, wl)
+                        sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1), j, r, pp, qq, shf, wl, &
+                        merge(want, .true., p%regime == 0))
       ! back from the core parameter to m
       select case (p%regime)
       case (2)
@@ -829,8 +835,12 @@ contains
   !> The loops have no data-dependent trip counts and no libm calls, so the
   !> compiler vectorizes them.  Also returned: j, r (rounded), the final P and
   !> Q, the shift flag and wl (for the m < 0 transformation).
-  pure subroutine jacobi_block(nb, u, ulb, kh, kl, sc, scl, unit, mc, smc, ct, ndbl, hyp, sn, cn, dn, am, j, r, pp, qq, sh, wl)
+  pure subroutine jacobi_block(nb, u, ulb, kh, kl, sc, scl, unit, mc, smc, ct, ndbl, hyp, sn, cn, dn, am, j, r, pp, qq, sh, wl, &
+                          want_am)
     integer, intent(in) :: nb, ndbl
+    !> am is computed only when wanted (the exact libration needs sn, cn, dn only:
+    !> its atan2 is a fifth of the block's work); otherwise am = NaN
+    logical, intent(in), optional :: want_am
     logical, intent(in) :: unit  !< the scale is exactly 1 (sc = 1, scl = 0)
     logical, intent(in) :: hyp   !< m -> 1 (mc < mc_hyp): sn, cn, dn by their expansion in mc
     real(dp), intent(in) :: u(:), ulb(:), kh(:), kl(:), sc(:), scl(:), mc(:), ct(:, :)
@@ -960,6 +970,28 @@ contains
       s = s + pr * d * e1
       c = c - pe * d * e1
       d = d - (1.0_dp - mc(i)) * pe * pr * e1
+      s3(i) = s; c3(i) = c
+      ! T underflows for |r| < 1e-154: there sn = am = r to all digits
+      s = merge(abs(r(i)), s, abs(r(i)) < 1.0e-100_dp)
+      s = sign(s, r(i))
+      half = 0.5_dp * j(i)
+      odd = merge(1.0_dp, 0.0_dp, round_int(half) /= half)
+      ! NaN for NaN or infinite u and beyond 2^48 half periods (merges, not an
+      ! if, so that the loop stays vectorized)
+      x = u(i)
+      f = merge(1.0_dp, 0.0_dp, x /= x .or. abs(x) > huge(1.0_dp) .or. abs(j(i)) > jacobi_max_periods)
+      sn(i) = merge(nan_dp, s * (1.0_dp - 2.0_dp * odd), f > 0.0_dp)
+      cn(i) = merge(nan_dp, c * (1.0_dp - 2.0_dp * odd), f > 0.0_dp)
+      dn(i) = merge(nan_dp, d, f > 0.0_dp)
+    end do
+    if (present(want_am)) then
+      if (.not. want_am) then
+        am(1:nb) = nan_dp
+        return
+      end if
+    end if
+    do i = 1, nb
+      s = s3(i); c = c3(i)
       ! am = atan2(s, c) for s, c >= 0 with one division, written out here (as
       ! a function gcc inlined it only with a single call site, and the loop
       ! did not vectorize otherwise): the reductions of atan_pos (z -> 1/z
@@ -987,20 +1019,10 @@ contains
       ar = 2.0_dp * (z - z * z2 * pz)
       ar = merge(0.78539816339744831_dp + ar, ar, f > 0.0_dp)
       ar = merge(half_pi - ar, ar, g > 0.0_dp)
-      ! T underflows for |r| < 1e-154: there sn = am = r to all digits
-      s = merge(abs(r(i)), s, abs(r(i)) < 1.0e-100_dp)
       ar = merge(abs(r(i)), ar, abs(r(i)) < 1.0e-100_dp)
-      s = sign(s, r(i))
       ar = sign(ar, r(i))
-      half = 0.5_dp * j(i)
-      odd = merge(1.0_dp, 0.0_dp, round_int(half) /= half)
-      ! NaN for NaN or infinite u and beyond 2^48 half periods (merges, not an
-      ! if, so that the loop stays vectorized)
       x = u(i)
       f = merge(1.0_dp, 0.0_dp, x /= x .or. abs(x) > huge(1.0_dp) .or. abs(j(i)) > jacobi_max_periods)
-      sn(i) = merge(nan_dp, s * (1.0_dp - 2.0_dp * odd), f > 0.0_dp)
-      cn(i) = merge(nan_dp, c * (1.0_dp - 2.0_dp * odd), f > 0.0_dp)
-      dn(i) = merge(nan_dp, d, f > 0.0_dp)
       am(i) = merge(nan_dp, (j(i) * pi + ar) + j(i) * pi_lo, f > 0.0_dp)
     end do
   end subroutine jacobi_block

@@ -235,14 +235,17 @@ contains
         uh(i) = s + (f + e)
         ul(i) = (f + e) - (uh(i) - s)
       end do
-      call jacobi_eval_array(o%plan, uh(1:nb), sn(1:nb), cn(1:nb), dn(1:nb), am(1:nb), ul(1:nb))
+      ! a libration needs sn, cn, dn only (theta from atan2(k sn, dn)): no am
+      call jacobi_eval_array(o%plan, uh(1:nb), sn(1:nb), cn(1:nb), dn(1:nb), am(1:nb), ul(1:nb), &
+                             want_am=o%regime /= regime_libration)
       if (o%near1) call near_separatrix(o, uh(1:nb), ul(1:nb), cn(1:nb), dn(1:nb))
       select case (o%regime)
       case (regime_libration)
-        ! theta/2 = atan2(k sn, dn) with dn >= sqrt(mc) > 0: an atan that vectorizes
+        ! theta/2 = atan2(k sn, dn) with dn >= sqrt(mc) > 0: an atan2 that vectorizes
+        ! (one division and one square root)
         do i = 1, nb
-          x = o%k * sn(i) / dn(i)
-          theta(i0 + i - 1) = o%offset + (o%offl + 2.0_dp * sign(atan_pos(abs(x)), x))
+          x = atan2_pos(o%k * abs(sn(i)), dn(i))
+          theta(i0 + i - 1) = o%offset + (o%offl + 2.0_dp * sign(x, sn(i)))
           v(i0 + i - 1) = o%vsh * cn(i) + o%vsl * cn(i)
         end do
       case (regime_separatrix)
