@@ -1,12 +1,16 @@
-!> cn and dn near m = 1 with relative accuracy where they are small, from
-!> Jacobi's imaginary transformation and theta series in the complementary
-!> nome q' = q(mc) (DLMF 22.6.iv, 22.2.4-6, 20.2):
+!> sn, cn, dn, am near m = 1, each with its relative accuracy, from Jacobi's
+!> imaginary transformation and theta series in the complementary nome
+!> q' = q(mc) (DLMF 22.6.iv, 22.2.4-6, 20.2): for 0 <= w <= K/2
 !>
-!>   cn(u|m) = 1 / cn(iu|mc) = A0 D / (D0 A),   dn(u|m) = A0 C / (C0 A),
+!>   sn(w|m) = sc(w|m) cn(w|m) = C0 B / (D0 A),   cn(w|m) = 1 / cn(iw|mc) = A0 D / (D0 A),
+!>   dn(w|m) = A0 C / (C0 A),                    am(w|m) = atan2(C0 B, A0 D),
 !>
-!>   A = sum q^(n(n+1)) cosh((2n+1) v),  C = theta3(iv) = 1 + 2 sum q^(n^2) cosh(2nv),
+!>   A = sum q^(n(n+1)) cosh((2n+1) v),  B = sum (-1)^n q^(n(n+1)) sinh((2n+1) v),
+!>   C = theta3(iv) = 1 + 2 sum q^(n^2) cosh(2nv),
 !>   D = theta4(iv) = 1 + 2 sum (-1)^n q^(n^2) cosh(2nv),  A0, C0, D0 their values at v = 0,
-!>   v = pi u / (2 K(mc)) = u AGM(1, sqrt(m)).
+!>   v = pi w / (2 K(mc)) = w AGM(1, sqrt(m)),
+!>
+!> and beyond K/2 through w = K - |r|: sn = cd(w), cn = k' sd(w), dn = k' nd(w).
 !>
 !> Why: the duplication core computes tn^2 by doubling from a small argument,
 !> and the doubling map amplifies a relative error by about 2 per step once
@@ -17,16 +21,18 @@
 !> the only amplified quantity is v, formed in double-double, and exp(-v)
 !> to one rounding: cn and dn come out within ~2 eps relative.
 !>
-!> Range: mc <= 2^-10 and |u| <= K/2 (after the reduction by 2K).  There
-!> q <= 6.2e-5 and x = q exp(2v) <= sqrt(q) < 0.008, so the series need
-!> terms to x^3 q^9 only (the next is below 1e-40) and nothing cancels.
+!> Range: mc <= 2^-10 (0 < mc).  There q <= 6.2e-5 and, on w <= K/2,
+!> q cosh(2v) <= sqrt(q) < 0.008, so the series need three terms (the next
+!> is below 1e-40) and nothing cancels: every multiple angle is written
+!> through S = sinh v and c = cosh v (sinh 3v = S (3 + 4 S^2), ...), so B
+!> keeps its relative accuracy as v -> 0 (S by its Taylor series there).
 module pendula_jacobi_theta
-  use pendula_kinds, only: dp
+  use pendula_kinds, only: dp, pi, pi_lo, half_pi, nan_dp
   use pendula_dd, only: fast_two_sum, dd_sqrt, dd_add, dd_mul
   use pendula_elliptic, only: ellip_nome
   implicit none
   private
-  public :: theta_plan, theta_prepare, theta_cn_dn, theta_mc_max
+  public :: theta_plan, theta_prepare, theta_jacobi, theta_mc_max
 
   !> the largest mc the series are used for
   real(dp), parameter :: theta_mc_max = 2.0_dp**(-10)
@@ -35,14 +41,17 @@ module pendula_jacobi_theta
     real(dp) :: ch = 1.0_dp, cl = 0.0_dp   !< pi / (2 K(mc)) = AGM(1, sqrt(m)), double-double
     real(dp) :: q = 0.0_dp                 !< the complementary nome q(mc)
     real(dp) :: a0 = 1.0_dp, c0 = 1.0_dp, d0 = 1.0_dp
+    real(dp) :: kh = 0.0_dp, kl = 0.0_dp    !< K(m), double-double
+    real(dp) :: kp = 0.0_dp                 !< k' = sqrt(mc)
   end type theta_plan
 
 contains
 
   !> The constants for the complement mc = mch + mcl of the parameter m
   !> (0 <= mc <= theta_mc_max).
-  pure function theta_prepare(mch, mcl) result(p)
+  pure function theta_prepare(mch, mcl, kh, kl) result(p)
     real(dp), intent(in) :: mch, mcl
+    real(dp), intent(in) :: kh, kl   !< K(m) in double-double
     type(theta_plan) :: p
     real(dp) :: mh, ml, ah, al, bh, bl, sh, sl, th, tl
     integer :: it
@@ -64,47 +73,120 @@ contains
     p%a0 = 1.0_dp + p%q**2 + p%q**6
     p%c0 = 1.0_dp + 2.0_dp * (p%q + p%q**4 + p%q**9)
     p%d0 = 1.0_dp - 2.0_dp * p%q + 2.0_dp * p%q**4 - 2.0_dp * p%q**9
+    p%kh = kh; p%kl = kl
+    call dd_sqrt(mch, mcl, sh, sl)
+    p%kp = sh + sl
   end function theta_prepare
 
-  !> cn(u|m) and dn(u|m) for reduced arguments u = uh + ul, |u| <= K/2 (the
-  !> caller keeps only those).  Loops without branches or calls except exp,
-  !> so that they vectorize (exp from the vector libm).
-  pure subroutine theta_cn_dn(p, uh, ul, cn, dn)
+  !> sn, cn, dn, am of u + ul (double-double) at the plan's parameter, any u:
+  !> reduced by 2K in double-double, then the theta series on w <= K/2.
+  !> Loops without branches (merges) and no calls but exp and sqrt, so that
+  !> they vectorize.  NaN for a NaN or infinite u and beyond 2^48 half periods.
+  pure subroutine theta_jacobi(p, uh, ul, sn, cn, dn, am)
     type(theta_plan), intent(in) :: p
     real(dp), intent(in) :: uh(:), ul(:)
-    real(dp), intent(out) :: cn(:), dn(:)
+    real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
     real(dp), parameter :: splitter = 134217729.0_dp
-    real(dp) :: vh(size(uh)), vl(size(uh)), em(size(uh))
-    real(dp) :: x, y, q, a, c, d, au, t, ah, al, bh, bl, pr, e, s
+    !> (x + magic) - magic rounds |x| < 2^51 to an integer, and vectorizes
+    real(dp), parameter :: magic = 6755399441055744.0_dp
+    real(dp) :: vh(size(uh)), vl(size(uh)), ex(size(uh)), sg(size(uh)), jj(size(uh)), shf(size(uh))
+    real(dp) :: j, g, pr, t, ah, al, bh, bl, kbh, kbl, e, s, rh, rl, wh, wl, f, ss
+    real(dp) :: q, sv, cv, v2, c2, a, b, c, d, inv, num_s, num_c, num_d, ya, yb, odd, h
     integer :: i
     q = p%q
+    t = splitter * p%kh; kbh = t - (t - p%kh); kbl = p%kh - kbh
     t = splitter * p%ch; bh = t - (t - p%ch); bl = p%ch - bh
     do i = 1, size(uh)
-      ! v = |u| pi / (2 K(mc)) in double-double (Dekker's product written out)
-      au = abs(uh(i))
-      pr = au * p%ch
-      t = splitter * au; ah = t - (t - au); al = au - ah
-      e = ((ah * bh - pr) + ah * bl + al * bh) + al * bl
-      e = e + au * p%cl + sign(1.0_dp, uh(i)) * ul(i) * p%ch
-      s = pr + e
-      vl(i) = e - (s - pr)
-      vh(i) = min(s, 350.0_dp)      ! (only |u| <= K/2 is kept: v < 200 there)
+      ! r = u - 2 j K in double-double (Dekker's product written out)
+      j = (min(abs(uh(i)) / (2.0_dp * p%kh), 2.0_dp**50) + magic) - magic
+      j = sign(j, uh(i))
+      g = 2.0_dp * j
+      pr = g * p%kh
+      t = splitter * g; ah = t - (t - g); al = g - ah
+      e = ((ah * kbh - pr) + ah * kbl + al * kbh) + al * kbl
+      s = uh(i) - pr
+      e = (ul(i) - e) - g * p%kl
+      rh = s + e
+      rl = e - (rh - s)
+      ! w = |r| or, beyond K/2, K - |r| (exact by Sterbenz, the low parts added)
+      f = merge(1.0_dp, 0.0_dp, abs(rh) > 0.5_dp * p%kh)
+      sg(i) = sign(1.0_dp, rh)
+      wh = merge(p%kh - abs(rh), abs(rh), f > 0.0_dp)
+      wl = merge(p%kl - sg(i) * rl, sg(i) * rl, f > 0.0_dp)
+      s = wh + wl
+      wl = wl - (s - wh)
+      wh = s
+      ! (a remainder just past K, w < 0 by rounding: w -> 0, where cn = 0 to
+      ! within |w| ~ 1e-16 K)
+      wl = merge(0.0_dp, wl, wh < 0.0_dp)
+      wh = max(wh, 0.0_dp)
+      ! v = w AGM(1, k) in double-double
+      pr = wh * p%ch
+      t = splitter * wh; ah = t - (t - wh); al = wh - ah
+      e = ((ah * bh - pr) + ah * bl + al * bh) + al * bl + wh * p%cl + wl * p%ch
+      vh(i) = pr + e
+      vl(i) = e - (vh(i) - pr)
+      vh(i) = min(vh(i), 350.0_dp)
+      shf(i) = f
+      ! NaN input or beyond 2^48 half periods: a marker carried in jj
+      jj(i) = merge(j, huge(1.0_dp), uh(i) == uh(i) .and. abs(uh(i)) <= huge(1.0_dp) &
+                    .and. abs(j) <= 2.0_dp**48)
     end do
-    em = exp(-vh)
+    ex = exp(vh)
     do i = 1, size(uh)
-      ! exp(-v) to first order in the low part (|vl| < 1e-16 |v|)
-      em(i) = em(i) - em(i) * vl(i)
-      x = q / (em(i) * em(i))                         ! q e^(2v) <= sqrt(q)
-      y = q * em(i) * em(i)                           ! q e^(-2v) <= q
-      ! A = (e^v / 2) a with a = 1 + q x + q^4 x^2 + q^9 x^3 + e^(-2v) (1 + q y)
-      a = (1.0_dp + q * x * (1.0_dp + q**3 * x * (1.0_dp + q**5 * x))) + em(i) * em(i) * (1.0_dp + q * y)
-      c = 1.0_dp + (x + y) + q * q * (x * x + y * y) + q**6 * (x**3 + y**3)
-      d = 1.0_dp - (x + y) + q * q * (x * x + y * y) - q**6 * (x**3 + y**3)
-      ! cn = A0 D / (D0 A), dn = A0 C / (C0 A), with 1 / A = 2 e^-v / a
-      a = (2.0_dp * p%a0) * em(i) / a
-      cn(i) = a * (d / p%d0)
-      dn(i) = a * (c / p%c0)
+      ! S = sinh v, c = cosh v: from e^v above v = 1/4, the Taylor series
+      ! below (where e^v - e^-v would cancel); then the low part of v
+      v2 = vh(i) * vh(i)
+      sv = vh(i) * (1.0_dp + v2 * (1.0_dp / 6.0_dp + v2 * (1.0_dp / 120.0_dp + v2 * (1.0_dp / 5040.0_dp &
+           + v2 * (1.0_dp / 362880.0_dp + v2 * (1.0_dp / 39916800.0_dp + v2 / 6227020800.0_dp))))))
+      e = 1.0_dp / ex(i)
+      sv = merge(0.5_dp * (ex(i) - e), sv, vh(i) > 0.25_dp)
+      cv = merge(0.5_dp * (ex(i) + e), sqrt(1.0_dp + sv * sv), vh(i) > 0.25_dp)
+      ss = sv
+      sv = sv + cv * vl(i)
+      cv = cv + ss * vl(i)
+      ! the series through S and c (cosh 2v = 1 + 2 S^2, cosh 3v = c (4 c^2 - 3),
+      ! sinh 3v = S (3 + 4 S^2), ...), each correction a product of small factors
+      c2 = 1.0_dp + 2.0_dp * sv * sv
+      ya = q * cv * cv                   ! q cosh^2 v <= sqrt(q) / 4 on w <= K/2
+      yb = q * c2                        ! q cosh 2v
+      a = cv * (1.0_dp + (4.0_dp * q * ya - 3.0_dp * q * q) &
+          + (16.0_dp * (q * ya)**2 * q**2 - 20.0_dp * q**5 * ya + 5.0_dp * q**6))
+      b = sv * (1.0_dp - q * q * (3.0_dp + 4.0_dp * sv * sv) &
+          + q**6 * (5.0_dp + 20.0_dp * sv * sv + 16.0_dp * sv**4))
+      c = 1.0_dp + 2.0_dp * yb + (4.0_dp * (q * yb)**2 - 2.0_dp * q**4) &
+          + (8.0_dp * (q * q * yb)**3 * q**3 - 6.0_dp * q**8 * yb)
+      d = 1.0_dp - 2.0_dp * yb + (4.0_dp * (q * yb)**2 - 2.0_dp * q**4) &
+          - (8.0_dp * (q * q * yb)**3 * q**3 - 6.0_dp * q**8 * yb)
+      ! w <= K/2:  sn = C0 B/(D0 A), cn = A0 D/(D0 A), dn = A0 C/(C0 A);
+      ! shifted (w = K - |r|): sn = cd(w) = C0 D/(D0 C), cn = k' sd(w) =
+      ! k' C0^2 B/(D0 A0 C), dn = k' nd(w) = k' C0 A/(A0 C)
+      f = shf(i)
+      inv = 1.0_dp / merge(c, a, f > 0.0_dp)
+      num_s = merge((p%c0 / p%d0) * d, (p%c0 / p%d0) * b, f > 0.0_dp)
+      num_c = merge(p%kp * ((p%c0 * p%c0) / (p%d0 * p%a0)) * b, (p%a0 / p%d0) * d, f > 0.0_dp)
+      num_d = merge(p%kp * (p%c0 / p%a0) * a, (p%a0 / p%c0) * c, f > 0.0_dp)
+      ! am(|r|) = atan2(sn, cn): atan2(C0 B, A0 D) on w <= K/2, and
+      ! atan2(cd(w), k' sd(w)) = atan2(A0 D, k' C0 B) beyond
+      ya = merge(p%a0 * d, p%c0 * b, f > 0.0_dp)
+      yb = merge(p%kp * p%c0 * b, p%a0 * d, f > 0.0_dp)
+      h = atan2_pos(ya, yb)
+      s = num_s * inv
+      c = num_c * inv
+      d = num_d * inv
+      ! back to u: sn, cn change sign with j, dn does not; am = j pi + sg am(|r|)
+      j = jj(i)
+      odd = merge(1.0_dp, 0.0_dp, ((0.5_dp * abs(j) + magic) - magic) /= 0.5_dp * abs(j))
+      sn(i) = sg(i) * s * (1.0_dp - 2.0_dp * odd)
+      cn(i) = c * (1.0_dp - 2.0_dp * odd)
+      dn(i) = d
+      am(i) = (j * pi + sg(i) * h) + j * pi_lo
+      if (.not. (abs(j) <= 2.0_dp**48)) then
+        sn(i) = nan_dp; cn(i) = nan_dp; dn(i) = nan_dp; am(i) = nan_dp
+      end if
     end do
-  end subroutine theta_cn_dn
+  end subroutine theta_jacobi
+
+  include 'pendula_atan.inc'
 
 end module pendula_jacobi_theta

@@ -19,7 +19,7 @@ module pendula_exact
   use pendula_dd, only: two_sum, fast_two_sum, two_prod, dd_sqrt, dd_add, dd_mul, dd_sincos, dd_div_d, dd_div
   use pendula_elliptic, only: jacobi_plan, jacobi_prepare_dd, jacobi_eval_array, ellip_f_sc
   use pendula_carlson_dd, only: ellip_f_dd
-  use pendula_jacobi_theta, only: theta_plan, theta_prepare, theta_cn_dn, theta_mc_max
+  use pendula_jacobi_theta, only: theta_plan, theta_prepare, theta_jacobi, theta_mc_max
   implicit none
   private
   public :: pendulum_orbit, orbit_setup, orbit_eval, orbit_period, orbit_theta_max
@@ -42,8 +42,9 @@ module pendula_exact
     real(dp) :: offset = 0.0_dp, offl = 0.0_dp  !< 2 pi n (double-double): the well or the turns
     real(dp) :: dir = 1.0_dp                !< direction of a rotation or separatrix flight
     type(jacobi_plan) :: plan
-    !> next to the separatrix (mc <= theta_mc_max): v from cn (libration) or dn
-    !> (rotation) by the theta series, which keep their relative accuracy
+    !> next to the separatrix (mc <= theta_mc_max): sn, cn, dn, am by the theta
+    !> series, which keep cn and dn to their relative accuracy where they are
+    !> small (the duplication core: 4-8 eps relative there, carried into v)
     logical :: near1 = .false.
     type(theta_plan) :: tp
   end type pendulum_orbit
@@ -146,7 +147,7 @@ contains
       o%rateh = o%sqh; o%ratel = o%sql
       o%plan = jacobi_prepare_dd(o%m, o%mch, o%mcl)
       o%near1 = o%mch <= theta_mc_max
-      if (o%near1) o%tp = theta_prepare(o%mch, o%mcl)
+      if (o%near1) o%tp = theta_prepare(o%mch, o%mcl, o%plan%kh, o%plan%kl)
       ! sn(u0) = s0/k, cn(u0) = w/k, dn(u0) = cos(theta0/2): F from sine and
       ! cosine, never from an angle, next to the nearest multiple of K
       if (o%k > 0.0_dp) then
@@ -192,7 +193,7 @@ contains
       call fast_two_sum(p, e, o%rateh, o%ratel)
       o%plan = jacobi_prepare_dd(o%m, o%mch, o%mcl)
       o%near1 = o%mch <= theta_mc_max
-      if (o%near1) o%tp = theta_prepare(o%mch, o%mcl)
+      if (o%near1) o%tp = theta_prepare(o%mch, o%mcl, o%plan%kh, o%plan%kl)
       ! theta = dir 2 am(u): sn = dir sin(th/2), cn = cos(th/2), dn = |w|/k on the
       ! reduced angle, and the n turns of theta0 as 2 n K more phase (in
       ! double-double): am then carries every turn itself, as j pi + a small
@@ -235,10 +236,15 @@ contains
         uh(i) = s + (f + e)
         ul(i) = (f + e) - (uh(i) - s)
       end do
-      ! a libration needs sn, cn, dn only (theta from atan2(k sn, dn)): no am
-      call jacobi_eval_array(o%plan, uh(1:nb), sn(1:nb), cn(1:nb), dn(1:nb), am(1:nb), ul(1:nb), &
-                             want_am=o%regime /= regime_libration)
-      if (o%near1) call near_separatrix(o, uh(1:nb), ul(1:nb), cn(1:nb), dn(1:nb))
+      if (o%near1) then
+        ! next to the separatrix: the theta series, which keep cn and dn to their
+        ! relative accuracy where they are small (pendula_jacobi_theta)
+        call theta_jacobi(o%tp, uh(1:nb), ul(1:nb), sn(1:nb), cn(1:nb), dn(1:nb), am(1:nb))
+      else
+        ! a libration needs sn, cn, dn only (theta from atan2(k sn, dn)): no am
+        call jacobi_eval_array(o%plan, uh(1:nb), sn(1:nb), cn(1:nb), dn(1:nb), am(1:nb), ul(1:nb), &
+                               want_am=o%regime /= regime_libration)
+      end if
       select case (o%regime)
       case (regime_libration)
         ! theta/2 = atan2(k sn, dn) with dn >= sqrt(mc) > 0: an atan2 that vectorizes
@@ -264,46 +270,6 @@ contains
       end select
     end do
   end subroutine orbit_eval
-
-  !> Next to the separatrix the duplication core keeps cn and dn to 4-8 eps
-  !> relative where they are small (|u| <= K/2 after the reduction), and v =
-  !> 2 k sqrt(eps) cn (or dn) carries that relative error at a scale up to ~60:
-  !> there cn and dn come from the theta series (pendula_jacobi_theta), within
-  !> ~2 eps relative.  Beyond K/2 the core's shifted branch is already that good.
-  pure subroutine near_separatrix(o, uh, ul, cn, dn)
-    type(pendulum_orbit), intent(in) :: o
-    real(dp), intent(in) :: uh(:), ul(:)
-    real(dp), intent(inout) :: cn(:), dn(:)
-    real(dp), parameter :: splitter = 134217729.0_dp
-    !> (x + magic) - magic rounds |x| < 2^51 to an integer, and vectorizes (anint does not)
-    real(dp), parameter :: magic = 6755399441055744.0_dp
-    real(dp) :: j(size(uh)), rh(size(uh)), rl(size(uh)), c(size(uh)), d(size(uh))
-    real(dp) :: kh, kl, p, e, t, ah, al, bh, bl, g, s, h
-    integer :: i
-    kh = o%plan%kh; kl = o%plan%kl
-    t = splitter * kh; bh = t - (t - kh); bl = kh - bh
-    do i = 1, size(uh)
-      ! r = u - 2 j K in double-double (Dekker's product written out)
-      j(i) = (min(abs(uh(i)) / (2.0_dp * kh), 2.0_dp**50) + magic) - magic
-      j(i) = sign(j(i), uh(i))
-      g = 2.0_dp * j(i)
-      p = g * kh
-      t = splitter * g; ah = t - (t - g); al = g - ah
-      e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
-      s = uh(i) - p
-      e = (ul(i) - e) - g * kl
-      rh(i) = s + e
-      rl(i) = e - (rh(i) - s)
-    end do
-    call theta_cn_dn(o%tp, rh, rl, c, d)
-    do i = 1, size(uh)
-      ! cn(r + 2 j K) = (-1)^j cn(r)
-      h = 0.5_dp * abs(j(i))
-      c(i) = merge(-c(i), c(i), ((h + magic) - magic) /= h)
-      cn(i) = merge(c(i), cn(i), abs(rh(i)) <= 0.5_dp * kh .and. abs(j(i)) <= 2.0_dp**48)
-      dn(i) = merge(d(i), dn(i), abs(rh(i)) <= 0.5_dp * kh .and. abs(j(i)) <= 2.0_dp**48)
-    end do
-  end subroutine near_separatrix
 
   !> Period: 4K/sqrt(eps) for a libration, one full turn 2K(1/k^2)/(k sqrt(eps))
   !> for a rotation, +Inf on the separatrix.
