@@ -82,13 +82,16 @@ subroutine nome_v(n, nmc, m, mc, q)
 end subroutine nome_v
 
 ! Jacobi functions; nm = 1 means one parameter for all u (prepared once).
+! sn, cn, dn, am are written into arrays the caller allocates (numpy.empty):
+! f2py's own outputs would be zero-filled first, one more pass over 4 arrays
+! (3 ns per element of the 58 with m per element).
 subroutine ellipj_v(n, nm, u, m, mc, sn, cn, dn, am, status)
   use pendula_elliptic, only: jacobi_plan, jacobi_prepare, jacobi_eval_array, jacobi_eval_varm
   implicit none
   !f2py threadsafe
   integer, intent(in) :: n, nm
   double precision, intent(in) :: u(n), m(nm), mc(nm)
-  double precision, intent(out) :: sn(n), cn(n), dn(n), am(n)
+  double precision, intent(inout) :: sn(n), cn(n), dn(n), am(n)
   integer, intent(out) :: status
   !f2py intent(hide), depend(u) :: n = len(u)
   !f2py intent(hide), depend(m) :: nm = len(m)

@@ -186,16 +186,13 @@ def ellipj(u, m, mc=None):
         shape, (uf, mf, mcf) = flat(u, m, mc)
     if uf.size == 0:
         return tuple(np.empty(shape) for _ in range(4))
-    if uf.size <= CHUNK:
-        sn, cn, dn, am, status = _kernel.ellipj_v(uf, mf, mcf)
-    else:
-        sn, cn, dn, am = (np.empty(uf.size) for _ in range(4))
-        status = 0
-        for i in range(0, uf.size, CHUNK):
-            j = min(i + CHUNK, uf.size)
-            part = (mf, mcf) if mf.size == 1 else (mf[i:j], mcf[i:j])
-            sn[i:j], cn[i:j], dn[i:j], am[i:j], st = _kernel.ellipj_v(uf[i:j], *part)
-            status = status or st
+    # the kernel writes into these (no zero-filled copies); chunks keep Ctrl-C responsive
+    sn, cn, dn, am = (np.empty(uf.size) for _ in range(4))
+    status = 0
+    for i in range(0, uf.size, CHUNK):
+        j = min(i + CHUNK, uf.size)
+        part = (mf, mcf) if mf.size == 1 else (mf[i:j], mcf[i:j])
+        status = status or _kernel.ellipj_v(uf[i:j], *part, sn[i:j], cn[i:j], dn[i:j], am[i:j])
     if status != 0:  # pragma: no cover - the sizes above always agree
         raise RuntimeError("pendula kernel: ellipj_v got inconsistent sizes")
     warn_domain("ellipj", sn, uf, np.broadcast_to(mf, uf.shape), np.broadcast_to(mcf, uf.shape),
