@@ -48,3 +48,14 @@ def test_theta_of_the_exact_motion_within_4_eps(cls):
     th = np.array([exact_motion(*row[:3], [row[3]])[0][0] for row in a])
     err = np.abs(th - a[:, 4]) / np.maximum(1.0, np.abs(a[:, 4])) / np.finfo(float).eps
     assert err.max() <= 4.0, f"{cls}: theta {err.max():.3g} eps"
+
+
+def test_readme_grid_table_is_the_generated_one():
+    """README's worst-error table is what `pendula accuracy grids` prints for
+    the stored grid and the code as it is (a table that drifted from the code
+    would be a claim nobody measured)."""
+    from pendula.accuracy import grids_markdown
+
+    readme = (PATH.parents[1] / "README.md").read_text()
+    table = grids_markdown(PATH)
+    assert table in readme, "README's grid table differs: regenerate it with `pendula accuracy grids`"

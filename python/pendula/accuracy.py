@@ -377,3 +377,38 @@ def grids_report(path) -> list[dict]:
         out.append({"class": cls, "what": GRID_CLASSES[cls.split("_")[0]], "points": len(a),
                     "worst_eps": float(e[k]), "at": a[k, :4].tolist()})
     return out
+
+
+#: README's rows of the grid table: (function, class as README words it, class key)
+GRID_ROWS = [("sn, cn, dn", "m > 1 via m", "jac_m_gt1_m"), ("sn, cn, dn", "m > 1 via mc < 0", "jac_m_gt1_mc"),
+        ("sn, cn, dn", "0.5 ≤ m < 1 via m", "jac_m_mid"), ("sn, cn, dn", "m = 1 − 10^−x via m (x ≤ 16)", "jac_m_near1_m"),
+        ("sn, cn, dn", "mc in [1e-300, 0.5] via mc", "jac_m_near1_mc"), ("sn, cn, dn", "m < 0 via m (\\|m\\| to 1e4)", "jac_m_neg"),
+        ("sn, cn, dn", "0 ≤ m < 0.5 via m, \\|u\\| to 1e4 periods", "jac_m_small"),
+        ("K", "0.5 ≤ m < 1", "k_mid"), ("K", "mc in [1e-300, 0.5] via mc", "k_near1_mc"), ("K", "m < 0", "k_neg"),
+        ("K", "0 ≤ m < 0.5", "k_small"), ("E", "0.5 ≤ m < 1", "e_mid"), ("E", "mc in [1e-300, 0.5] via mc", "e_near1_mc"),
+        ("E", "m < 0", "e_neg"), ("E", "0 ≤ m < 0.5", "e_small"), ("nome q", "0 ≤ m ≤ 1 via m", "nome_m"),
+        ("nome q", "via mc down to 1e-300", "nome_mc"), ("F(φ|m)", "m > 1, φ up to the domain's edge", "f_gt1_m"),
+        ("F(φ|m)", "m ≤ 1 via m, \\|φ\\| to 1e4 π", "f_m"), ("F(φ|m)", "via mc", "f_near1_mc"),
+        ("E(φ|m)", "m > 1, φ up to the domain's edge", "einc_gt1_m"), ("E(φ|m)", "m ≤ 1 via m", "einc_m"),
+        ("E(φ|m)", "via mc", "einc_near1_mc"), ("θ(t), v(t)", "libration, backward", "exact_libration_bwd"),
+        ("θ(t), v(t)", "libration, forward (t to 1e4 periods)", "exact_libration_fwd"),
+        ("θ(t), v(t)", "near the separatrix, backward", "exact_near_separatrix_bwd"),
+        ("θ(t), v(t)", "1 ∓ 1e-15…1e-3 from the separatrix, forward", "exact_near_separatrix_fwd"),
+        ("θ(t), v(t)", "near the top, backward", "exact_near_top_bwd"),
+        ("θ(t), v(t)", "at rest or slow just below the top, forward", "exact_near_top_fwd"),
+        ("θ(t), v(t)", "rotation, backward", "exact_rotation_bwd"), ("θ(t), v(t)", "rotation, forward", "exact_rotation_fwd"),
+        ("θ(t), v(t)", "wrapped, backward", "exact_wrapped_bwd"),
+        ("θ(t), v(t)", "\\|θ0\\| up to 1e3 (wrapped), forward", "exact_wrapped_fwd"),
+        ("period", "librations", "period_libration"), ("period", "rotations", "period_rotation")]
+
+
+def grids_markdown(path) -> str:
+    """README's table of the worst error per class of the stored random grid
+    (``pendula accuracy grids``)."""
+    rep = {r["class"]: r["worst_eps"] for r in grids_report(path)}
+    missing = {c for *_, c in GRID_ROWS} ^ set(rep)
+    if missing:
+        raise ValueError(f"grid classes and README rows disagree: {sorted(missing)}")
+    lines = ["| function | class (2000 random draws each) | worst (eps) |", "|---|---|---:|"]
+    lines += [f"| {f} | {d} | {rep[c]:.3g} |" for f, d, c in GRID_ROWS]
+    return "\n".join(lines)

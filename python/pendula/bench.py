@@ -93,7 +93,7 @@ def bench_elliptic(n: int = 1_000_000, seed: int = 1) -> list[dict]:
 
 
 def bench_exact(n: int = 1_000_000, seed: int = 2) -> list[dict]:
-    """The exact pendulum path per sample against numpy.sin per sample (goal: at most 5x)."""
+    """The exact pendulum path per sample against numpy.sin per sample (issue 15: at most 3x in every regime)."""
     from .systems.rigid import exact_motion
 
     t = np.sort(np.random.default_rng(seed).uniform(0.0, 1000.0, n))

@@ -7,6 +7,7 @@
     pendula wisdom               precompute FFTW plans once per machine (cache file)
     pendula accuracy elliptic    worst errors vs mpmath, beside scipy and GSL
     pendula accuracy integrators work-precision diagram and long-run energy (CSV, PNG)
+    pendula accuracy grids       worst error per class of the stored random grids (README's table)
 """
 
 from __future__ import annotations
@@ -143,6 +144,18 @@ def cmd_accuracy(args) -> int:
             return 2
         print_report(elliptic_report(args.reference), markdown=args.markdown)
         return 0
+    if args.what == "grids":
+        import pathlib
+
+        from .accuracy import grids_markdown
+
+        path = pathlib.Path("data/reference_grids.csv.gz")
+        if not path.is_file():
+            print(f"pendula accuracy: {path} not found: run from the repository root "
+                  "(data/gen_reference_grids.py writes it)", file=sys.stderr)
+            return 2
+        print(grids_markdown(path))
+        return 0
     return integrator_study(args.output, args.periods, progress=not args.quiet)
 
 
@@ -207,7 +220,7 @@ def main(argv=None) -> int:
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bars")
     p.set_defaults(func=cmd_run)
     p = sub.add_parser("accuracy", help="measured accuracy against stored mpmath references")
-    p.add_argument("what", choices=["elliptic", "integrators"])
+    p.add_argument("what", choices=["elliptic", "integrators", "grids"])
     p.add_argument("-o", "--output", default="out", help="output folder for the integrator study")
     p.add_argument("--periods", type=float, default=1e5, help="length of the long energy run, in periods")
     p.add_argument("-q", "--quiet", action="store_true")
