@@ -258,7 +258,10 @@ def test_torqued_equilibrium_closed_form(how):
 
 def test_atol_0_at_the_equilibrium_is_a_reported_failure():
     # pure relative error control on v = 0 (round-off only) cannot be met: the
-    # step shrinks to nothing; reported (status 100 + 5, step underflow), NaN
+    # step shrinks to nothing; reported as the integrator's failure (100 + 5,
+    # step underflow, or 100 + 6, the non-finite state the shrinking step runs
+    # into: which comes first depends on the last bits of the vectorised libm,
+    # and differs between the native and the -fcheck=all debug build), NaN out
     s = Scene(damping=3.1, torque=0.4, theta0=math.asin(0.4))
     ds = lyap(s, {"damping": [3.1]}, transient=50.0, t_max=500.0, rtol=1e-11, atol=0.0)
-    assert int(ds.status[0]) == 105 and np.isnan(ds.lyapunov[0]) and np.isnan(ds.lyapunov2[0])
+    assert int(ds.status[0]) in (105, 106) and np.isnan(ds.lyapunov[0]) and np.isnan(ds.lyapunov2[0])
