@@ -12,7 +12,7 @@
 !> No module state: one run's locals only.
 module pendula_cord_hybrid
   use pendula_kinds, only: dp, nan_dp, two_pi
-  use pendula_cord, only: cord_check, cord_depart, cord_flight_time, cord_land, cord_flight_state, &
+  use pendula_cord, only: cord_check, cord_depart, cord_flight_time, cord_fly, cord_log_room, &
     cord_ok, cord_stop_t_end, cord_stop_max_flips, cord_stop_min_flight
   use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate, &
     m_dopri5, m_dop853, st_ok, st_stopped
@@ -144,16 +144,10 @@ contains
       if (tau < min_flight / sqrt(eps)) then
         stop_reason = cord_stop_min_flight; exit
       end if
-      call cord_land(eps, restitution, p, u, tau, th1, th2, v2, vr2)
-      do while (i <= n)
-        if (t(i) > t1 + tau) exit
-        call cord_flight_state(eps, p(1), p(2), u(1), u(2), th1, t(i) - t1, x(i), y(i), r(i), theta(i), v(i))
-        i = i + 1
-      end do
       nflips = nflips + 1
       nstay = 0
-      flips(:, nflips) = [t1, th1, t1 + tau, th2, xib, &
-                          (v2 * v2 + vr2 * vr2 - 2.0_dp * eps * cos(th2)) / (3.0_dp * eps), v1, v2]
+      call cord_fly(eps, restitution, p, u, tau, t1, th1, v1, xib, t, i, theta, v, x, y, r, &
+                    flips(:, nflips), th2, v2, vr2)
       tc = t1 + tau; thc = th2; vc = v2; vr = vr2
       if (tc > t(n)) exit
     end do
@@ -169,15 +163,14 @@ contains
     integer, intent(out) :: nflips, stop_reason, status
     integer, intent(inout), volatile, optional :: cancel
     integer :: cap
-    cap = max(1, min(max(max_flips, 0), 65536))
+    cap = cord_log_room(0, max_flips, cord_ok, cord_stop_max_flips, 0)
     do
       if (allocated(flips)) deallocate(flips)
       allocate(flips(8, cap))
       call cord_hybrid_run(params, method, rtol, atol, theta0, v0, restitution, max_flips, min_flight, &
                            t, theta, v, x, y, r, flips, nflips, stop_reason, work, status, cancel)
-      if (status /= cord_ok .or. stop_reason /= cord_stop_max_flips .or. nflips < cap &
-          .or. cap >= max_flips) exit
-      cap = int(min(int(max_flips, kind(1_8)), 8_8 * cap))
+      cap = cord_log_room(cap, max_flips, status, stop_reason, nflips)
+      if (cap == 0) exit
     end do
   end subroutine cord_hybrid_all
 

@@ -18,7 +18,7 @@ module pendula_cord
   implicit none
   private
   public :: flip_map, cord_run, cord_run_all
-  public :: cord_check, cord_depart, cord_flight_time, cord_land, cord_flight_state
+  public :: cord_check, cord_depart, cord_flight_time, cord_land, cord_flight_state, cord_fly, cord_log_room
   !> status codes of cord_run
   integer, parameter, public :: cord_ok = 0, cord_bad_eps = 1, cord_bad_state = 2, cord_bad_times = 3, &
     cord_bad_restitution = 4
@@ -197,6 +197,26 @@ contains
     vr2 = -restitution * (w(1) * st - w(2) * ct)
   end subroutine cord_land
 
+  !> One flight, shared by the closed-form and the hybrid loops: from (p, u),
+  !> left at (t1, th1, v1) with energy xib, for tau; the output times from
+  !> t(i) on that fall inside it are filled (i advanced past them); row: the
+  !> flip log's entry; th2, v2, vr2: the state after the jerk (cord_land).
+  pure subroutine cord_fly(eps, restitution, p, u, tau, t1, th1, v1, xib, t, i, theta, v, x, y, r, &
+                           row, th2, v2, vr2)
+    real(dp), intent(in) :: eps, restitution, p(2), u(2), tau, t1, th1, v1, xib, t(:)
+    integer, intent(inout) :: i
+    real(dp), intent(inout) :: theta(:), v(:), x(:), y(:), r(:)
+    real(dp), intent(out) :: row(8), th2, v2, vr2
+    call cord_land(eps, restitution, p, u, tau, th1, th2, v2, vr2)
+    do while (i <= size(t))
+      if (t(i) > t1 + tau) exit
+      call cord_flight_state(eps, p(1), p(2), u(1), u(2), th1, t(i) - t1, x(i), y(i), r(i), theta(i), v(i))
+      i = i + 1
+    end do
+    row = [t1, th1, t1 + tau, th2, xib, (v2 * v2 + vr2 * vr2 - 2.0_dp * eps * cos(th2)) / (3.0_dp * eps), &
+           v1, v2]
+  end subroutine cord_fly
+
   !> The bob in flight, tt after leaving the circle at th1 from (p, u):
   !> position x, y, distance r from the pivot, angle theta (continuous with
   !> th1) and angular velocity theta'.
@@ -297,21 +317,30 @@ contains
       if (tau < min_flight / sqrt(eps)) then
         stop_reason = cord_stop_min_flight; exit
       end if
-      call cord_land(eps, restitution, p, u, tau, th1, th2, v2, vr2)
-      do while (i <= n)
-        if (t(i) > t1 + tau) exit
-        call cord_flight_state(eps, p(1), p(2), u(1), u(2), th1, t(i) - t1, x(i), y(i), r(i), theta(i), v(i))
-        i = i + 1
-      end do
       nflips = nflips + 1
-      flips(:, nflips) = [t1, th1, t1 + tau, th2, xib, &
-                          (v2 * v2 + vr2 * vr2 - 2.0_dp * eps * cos(th2)) / (3.0_dp * eps), v1, v2]
+      call cord_fly(eps, restitution, p, u, tau, t1, th1, v1, xib, t, i, theta, v, x, y, r, &
+                    flips(:, nflips), th2, v2, vr2)
       tc = t1 + tau; thc = th2; vc = v2; vr = vr2
       if (n > 0) then
         if (tc > t(n)) exit
       end if
     end do
   end subroutine cord_run
+
+  !> The flip log's room for a (re)run of a cord loop: the first capacity
+  !> (cap = 0 on entry), then 0 when the run just made is complete, or 8
+  !> times more room when it stopped only because the log was full.
+  pure integer function cord_log_room(cap, max_flips, status, stop_reason, nflips) result(next)
+    integer, intent(in) :: cap, max_flips, status, stop_reason, nflips
+    if (cap == 0) then
+      next = max(1, min(max(max_flips, 0), 65536))
+    else if (status /= cord_ok .or. stop_reason /= cord_stop_max_flips .or. nflips < cap &
+             .or. cap >= max_flips) then
+      next = 0
+    else
+      next = int(min(int(max_flips, kind(1_8)), 8_8 * cap))
+    end if
+  end function cord_log_room
 
   !> cord_run with a flip log that grows as needed (up to max_flips entries).
   pure subroutine cord_run_all(eps, theta0, v0, restitution, max_flips, min_flight, t, theta, v, x, y, r, &
@@ -322,15 +351,14 @@ contains
     real(dp), allocatable, intent(out) :: flips(:, :)
     integer, intent(out) :: nflips, stop_reason, status
     integer :: cap
-    cap = max(1, min(max(max_flips, 0), 65536))
+    cap = cord_log_room(0, max_flips, cord_ok, cord_stop_max_flips, 0)
     do
       if (allocated(flips)) deallocate(flips)
       allocate(flips(8, cap))
       call cord_run(eps, theta0, v0, restitution, max_flips, min_flight, t, theta, v, x, y, r, &
                     flips, nflips, stop_reason, status)
-      if (status /= cord_ok .or. stop_reason /= cord_stop_max_flips .or. nflips < cap &
-          .or. cap >= max_flips) exit
-      cap = int(min(int(max_flips, kind(1_8)), 8_8 * cap))
+      cap = cord_log_room(cap, max_flips, status, stop_reason, nflips)
+      if (cap == 0) exit
     end do
   end subroutine cord_run_all
 
