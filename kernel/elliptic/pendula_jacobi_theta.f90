@@ -29,12 +29,15 @@
 module pendula_jacobi_theta
   use pendula_kinds, only: dp, pi, pi_lo, half_pi, nan_dp
   use pendula_dd, only: fast_two_sum, dd_sqrt, dd_add, dd_mul
+  use pendula_elliptic, only: ellip_nome
   implicit none
   private
   public :: theta_plan, theta_prepare, theta_jacobi, theta_mc_max
 
   !> the largest mc the series are used for
   real(dp), parameter :: theta_mc_max = 2.0_dp**(-10)
+  !> arguments per block of theta_jacobi
+  integer, parameter :: theta_blk = 256
 
   type :: theta_plan
     real(dp) :: ch = 1.0_dp, cl = 0.0_dp   !< pi / (2 K(mc)) = AGM(1, sqrt(m)), double-double
@@ -68,13 +71,7 @@ contains
       if (abs(ah - bh) <= 1.0e-33_dp * ah) exit
     end do
     p%ch = ah; p%cl = al
-    ! the nome of mc: q = e + 2 e^5 + ..., e = (1 - m^(1/4)) / (2 (1 + m^(1/4)))
-    ! = mc / (2 (1 + sqrt(m)) (1 + m^(1/4))^2) without cancellation; e <= 2.5e-4
-    ! here, so 15 e^9 is below 1e-27 of q
-    th = sqrt(mh)
-    tl = sqrt(th)
-    sh = mch / (2.0_dp * (1.0_dp + th) * (1.0_dp + tl)**2)
-    p%q = sh * (1.0_dp + 2.0_dp * sh**4)
+    p%q = ellip_nome(mch, mh)
     p%a0 = 1.0_dp + p%q**2 + p%q**6
     p%c0 = 1.0_dp + 2.0_dp * (p%q + p%q**4 + p%q**9)
     p%d0 = 1.0_dp - 2.0_dp * p%q + 2.0_dp * p%q**4 - 2.0_dp * p%q**9
@@ -91,10 +88,24 @@ contains
     type(theta_plan), intent(in) :: p
     real(dp), intent(in) :: uh(:), ul(:)
     real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
+    integer :: i0, i1
+    ! blocks of a fixed size, so that the work arrays live on the stack (an
+    ! automatic array of size(uh) would be a heap allocation per call)
+    do i0 = 1, size(uh), theta_blk
+      i1 = min(size(uh), i0 + theta_blk - 1)
+      call theta_block(p, uh(i0:i1), ul(i0:i1), sn(i0:i1), cn(i0:i1), dn(i0:i1), am(i0:i1))
+    end do
+  end subroutine theta_jacobi
+
+  !> theta_jacobi on at most theta_blk arguments.
+  pure subroutine theta_block(p, uh, ul, sn, cn, dn, am)
+    type(theta_plan), intent(in) :: p
+    real(dp), intent(in) :: uh(:), ul(:)
+    real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
     real(dp), parameter :: splitter = 134217729.0_dp
     !> (x + magic) - magic rounds |x| < 2^51 to an integer, and vectorizes
     real(dp), parameter :: magic = 6755399441055744.0_dp
-    real(dp) :: vh(size(uh)), vl(size(uh)), ex(size(uh)), sg(size(uh)), jj(size(uh)), shf(size(uh))
+    real(dp) :: vh(theta_blk), vl(theta_blk), ex(theta_blk), sg(theta_blk), jj(theta_blk), shf(theta_blk)
     real(dp) :: j, g, pr, t, ah, al, bh, bl, kbh, kbl, e, s, rh, rl, wh, wl, f, ss
     real(dp) :: q, sv, cv, v2, c2, a, b, c, d, inv, num_s, num_c, num_d, ya, yb, odd, h
     integer :: i
@@ -137,7 +148,7 @@ contains
       jj(i) = merge(j, huge(1.0_dp), uh(i) == uh(i) .and. abs(uh(i)) <= huge(1.0_dp) &
                     .and. abs(j) <= 2.0_dp**48)
     end do
-    ex = exp(vh)
+    ex(1:size(uh)) = exp(vh(1:size(uh)))
     do i = 1, size(uh)
       ! S = sinh v, c = cosh v: from e^v above v = 1/4, the Taylor series
       ! below (where e^v - e^-v would cancel); then the low part of v
@@ -190,7 +201,7 @@ contains
         sn(i) = nan_dp; cn(i) = nan_dp; dn(i) = nan_dp; am(i) = nan_dp
       end if
     end do
-  end subroutine theta_jacobi
+  end subroutine theta_block
 
   include 'pendula_atan.inc'
 
