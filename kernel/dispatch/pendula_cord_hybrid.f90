@@ -13,6 +13,7 @@
 module pendula_cord_hybrid
   use pendula_kinds, only: dp, nan_dp, two_pi
   use pendula_cord, only: cord_check, cord_depart, cord_flight_time, cord_fly, cord_log_room, &
+    cord_flight_verdict, verdict_absorbed, verdict_too_short, &
     cord_ok, cord_stop_t_end, cord_stop_max_flips, cord_stop_min_flight
   use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate, &
     m_dopri5, m_dop853, st_ok, st_stopped
@@ -137,13 +138,13 @@ contains
         end if
         cycle
       end if
-      if (general .and. vr < 0.0_dp .and. tau < max(min_flight, 1.0e-9_dp) / sqrt(eps)) then
-        vr = 0.0_dp; tc = t1; thc = th1; vc = v1  ! a springy bounce below the threshold: absorbed
+      select case (cord_flight_verdict(eps, min_flight, general, vr, tau))
+      case (verdict_absorbed)
+        vr = 0.0_dp; tc = t1; thc = th1; vc = v1
         cycle
-      end if
-      if (tau < min_flight / sqrt(eps)) then
+      case (verdict_too_short)
         stop_reason = cord_stop_min_flight; exit
-      end if
+      end select
       nflips = nflips + 1
       nstay = 0
       call cord_fly(eps, restitution, p, u, tau, t1, th1, v1, xib, t, i, theta, v, x, y, r, &

@@ -19,6 +19,9 @@ module pendula_cord
   private
   public :: flip_map, cord_run, cord_run_all
   public :: cord_check, cord_depart, cord_flight_time, cord_land, cord_flight_state, cord_fly, cord_log_room
+  public :: cord_flight_verdict
+  !> what cord_flight_verdict says of a flight
+  integer, parameter, public :: verdict_fly = 0, verdict_absorbed = 1, verdict_too_short = 2
   !> status codes of cord_run
   integer, parameter, public :: cord_ok = 0, cord_bad_eps = 1, cord_bad_state = 2, cord_bad_times = 3, &
     cord_bad_restitution = 4
@@ -197,6 +200,20 @@ contains
     vr2 = -restitution * (w(1) * st - w(2) * ct)
   end subroutine cord_land
 
+  !> Whether a flight of duration tau is flown (verdict_fly), absorbed (a
+  !> springy bounce, vr < 0, shorter than max(min_flight, 1e-9) / sqrt(eps):
+  !> the cord stays taut) or ends the run (shorter than min_flight / sqrt(eps)).
+  pure integer function cord_flight_verdict(eps, min_flight, general, vr, tau) result(verdict)
+    real(dp), intent(in) :: eps, min_flight, vr, tau
+    logical, intent(in) :: general
+    verdict = verdict_fly
+    if (general .and. vr < 0.0_dp .and. tau < max(min_flight, 1.0e-9_dp) / sqrt(eps)) then
+      verdict = verdict_absorbed
+    else if (tau < min_flight / sqrt(eps)) then
+      verdict = verdict_too_short
+    end if
+  end function cord_flight_verdict
+
   !> One flight, shared by the closed-form and the hybrid loops: from (p, u),
   !> left at (t1, th1, v1) with energy xib, for tau; the output times from
   !> t(i) on that fall inside it are filled (i advanced past them); row: the
@@ -310,13 +327,13 @@ contains
         if (tension <= 0.0_dp) exit
         cycle
       end if
-      if (general .and. vr < 0.0_dp .and. tau < max(min_flight, 1.0e-9_dp) / sqrt(eps)) then
-        vr = 0.0_dp; tc = t1; thc = th1; vc = v1  ! a bounce below the threshold: absorbed
+      select case (cord_flight_verdict(eps, min_flight, general, vr, tau))
+      case (verdict_absorbed)
+        vr = 0.0_dp; tc = t1; thc = th1; vc = v1
         cycle
-      end if
-      if (tau < min_flight / sqrt(eps)) then
+      case (verdict_too_short)
         stop_reason = cord_stop_min_flight; exit
-      end if
+      end select
       nflips = nflips + 1
       call cord_fly(eps, restitution, p, u, tau, t1, th1, v1, xib, t, i, theta, v, x, y, r, &
                     flips(:, nflips), th2, v2, vr2)
