@@ -26,7 +26,7 @@ module pendula_integrators
   use pendula_gravity, only: gravity_accel
   implicit none
   private
-  public :: pendulum_model, make_model, event_spec, run_stats, integrate, accel
+  public :: pendulum_model, make_model, event_spec, run_stats, integrate, accel, dop853_error_norm
 
   include 'pendula_rk_tables.inc'
   !> DOP853's A transposed, so that each stage's weights are contiguous
@@ -73,6 +73,20 @@ module pendula_integrators
   end type run_stats
 
 contains
+
+  !> Hairer's error norm of a DOP853 step of size h in n components: the 5th-
+  !> and 3rd-order estimates e5, e3 combined, each scaled by sk (the tolerance
+  !> per component).  The adaptive integrator here and the Lyapunov stepper
+  !> of the sweeps (6-D) both use it.
+  pure function dop853_error_norm(h, e3, e5, sk) result(errn)
+    real(dp), intent(in) :: h, e3(:), e5(:), sk(:)
+    real(dp) :: errn, err5, err3, deno
+    err5 = sum((e5 / sk)**2)
+    err3 = sum((e3 / sk)**2)
+    deno = err5 + 0.01_dp * err3
+    if (deno <= 0.0_dp) deno = 1.0_dp
+    errn = abs(h) * err5 * sqrt(1.0_dp / (real(size(sk), dp) * deno))
+  end function dop853_error_norm
 
   pure function make_model(eps, beta, tau, amp, omega, phase) result(m)
     real(dp), intent(in) :: eps, beta, tau, amp, omega, phase
@@ -579,7 +593,7 @@ contains
 
     subroutine step853(errn)
       real(dp), intent(out) :: errn
-      real(dp) :: sk(2), err5, err3, deno, e3(2), e5(2), ths, vst
+      real(dp) :: e3(2), e5(2), ths, vst
       integer :: st
       k(0, :) = f0
       do st = 1, 11
@@ -595,12 +609,7 @@ contains
       stats%nfev = stats%nfev + 12
       e3(1) = dot_product(d8_e3, k(0:12, 1)); e3(2) = dot_product(d8_e3, k(0:12, 2))
       e5(1) = dot_product(d8_e5, k(0:12, 1)); e5(2) = dot_product(d8_e5, k(0:12, 2))
-      sk = scale_of(y, ynew)
-      err5 = sum((e5 / sk)**2)
-      err3 = sum((e3 / sk)**2)
-      deno = err5 + 0.01_dp * err3
-      if (deno <= 0.0_dp) deno = 1.0_dp
-      errn = abs(h) * err5 * sqrt(1.0_dp / (2.0_dp * deno))
+      errn = dop853_error_norm(h, e3, e5, scale_of(y, ynew))
     end subroutine step853
 
     !> Coefficients of the dense output on the accepted step [t, t + h].

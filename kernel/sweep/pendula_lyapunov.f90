@@ -31,7 +31,7 @@
 !> Thread safety: no module variables; pure helpers; status codes only.
 module pendula_lyapunov
   use pendula_kinds, only: dp, i8, two_pi, nan_dp
-  use pendula_integrators, only: pendulum_model, make_model, accel, max_steps, &
+  use pendula_integrators, only: pendulum_model, make_model, accel, dop853_error_norm, max_steps, &
     st_ok, st_step_underflow, st_nonfinite, st_too_many_steps
   implicit none
   private
@@ -227,7 +227,7 @@ contains
     type(pendulum_model), intent(in) :: md
     real(dp), intent(in) :: p(8), t, y(6), f0(6), h, rtol, atol
     real(dp), intent(out) :: k(0:12, 6), ynew(6), fnew(6), errn
-    real(dp) :: ys(6), sk(6), e3(6), e5(6), err3, err5, deno
+    real(dp) :: ys(6), sk(6), e3(6), e5(6)
     integer :: st, i
     k(0, :) = f0
     do st = 1, 11
@@ -247,11 +247,7 @@ contains
     end do
     ! (never 0: atol = 0 at the equilibrium theta = v = 0 must not divide 0 by 0)
     sk = max(atol + rtol * max(abs(y), abs(ynew)), tiny(1.0_dp))
-    err5 = sum((e5 / sk)**2)
-    err3 = sum((e3 / sk)**2)
-    deno = err5 + 0.01_dp * err3
-    if (deno <= 0.0_dp) deno = 1.0_dp
-    errn = abs(h) * err5 * sqrt(1.0_dp / (6.0_dp * deno))
+    errn = dop853_error_norm(h, e3, e5, sk)
   end subroutine step853
 
   !> Hairer's starting step (order 8), at most hr.
