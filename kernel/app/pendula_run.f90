@@ -128,12 +128,7 @@ program pendula_run
   if (status /= 0) call fail_io('cannot write "' // trim(out) // '"', status)
   two_files = want_traj .and. want_orbit .and. out /= '-'
   if (two_files) then
-    ! beside OUT, in its folder: OUT without a final '.csv', then '_orbits.csv'
-    j = len_trim(out)
-    if (j > 4) then
-      if (out(j - 3:j) == '.csv') j = j - 4
-    end if
-    orbit_out = out(1:j) // '_orbits.csv'
+    orbit_out = beside(out, '_orbits.csv')
     call out_open(f_orbit, trim(orbit_out), status)
     if (status /= 0) call fail_io('cannot write "' // trim(orbit_out) // '"', status)
   end if
@@ -179,6 +174,19 @@ program pendula_run
 
 contains
 
+  !> A second output file beside OUT, in its folder: OUT without a final
+  !> '.csv', then the suffix ('_orbits.csv', '_flips.csv').
+  pure function beside(path, suffix) result(name)
+    character(len=*), intent(in) :: path, suffix
+    character(len=len_trim(path) + len(suffix)) :: name
+    integer :: j
+    j = len_trim(path)
+    if (j > 4) then
+      if (path(j - 3:j) == '.csv') j = j - 4
+    end if
+    name = path(1:j) // suffix
+  end function beside
+
   function member_of(s, k) result(m)
     type(scene_t), intent(in) :: s
     integer, intent(in) :: k
@@ -218,11 +226,7 @@ contains
     if (st /= 0) call fail_io('cannot write "' // trim(out) // '"', st)
     two = out /= '-'
     if (two) then
-      k = len_trim(out)
-      if (k > 4) then
-        if (out(k - 3:k) == '.csv') k = k - 4
-      end if
-      flips_out = out(1:k) // '_flips.csv'
+      flips_out = beside(out, '_flips.csv')
       call out_open(f_flips, trim(flips_out), st)
       if (st /= 0) call fail_io('cannot write "' // trim(flips_out) // '"', st)
     end if
