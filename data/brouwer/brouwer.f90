@@ -58,6 +58,18 @@ contains
     real(dp), intent(in) :: d, dold
     done = d == 0 .or. (it > 2 .and. d >= dold)
   end function
+  !> the fixed-point iteration's stopping rule of both forms (stopr, above)
+  logical function stop_now(it, d, dold, rises)
+    integer, intent(in) :: it
+    real(dp), intent(in) :: d, dold
+    integer, intent(inout) :: rises
+    if (stopr == 0) then
+      stop_now = done(it, d, dold)
+    else
+      if (it > 2 .and. d >= dold) rises = rises + 1
+      stop_now = d == 0 .or. rises >= 2
+    end if
+  end function
   subroutine step_ab()
     real(dp) :: z(3, 2), f(3, 2), zn(3, 2), d, dold, st, sv
     integer :: it, i, j, rises
@@ -74,13 +86,7 @@ contains
         zn(i, 1) = h * st; zn(i, 2) = h * sv
       end do
       d = maxval(abs(zn - z)); z = zn
-      if (stopr == 0) then
-        if (done(it, d, dold)) exit
-      else
-        if (d == 0) exit
-        if (it > 2 .and. d >= dold) rises = rises + 1
-        if (rises >= 2) exit
-      end if
+      if (stop_now(it, d, dold, rises)) exit
       dold = d
     end do
     do i = 1, 3
@@ -107,13 +113,7 @@ contains
         Ln(i, 2) = -hb(i) * sn(th + yt)
       end do
       d = maxval(abs(Ln - L)); L = Ln
-      if (stopr == 0) then
-        if (done(it, d, dold)) exit
-      else
-        if (d == 0) exit
-        if (it > 2 .and. d >= dold) rises = rises + 1
-        if (rises >= 2) exit
-      end if
+      if (stop_now(it, d, dold, rises)) exit
       dold = d
     end do
     st = 0; sv = 0
