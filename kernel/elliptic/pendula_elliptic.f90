@@ -484,12 +484,22 @@ contains
   ! The nome
   ! ------------------------------------------------------------------
 
+  !> The variable of Jacobi's nome series: e = m / den, den = 2 (1+r)^2 (1+r^2),
+  !> r = mc^(1/4) (den without cancellation).
+  elemental subroutine nome_e(m, mc, den, e)
+    real(dp), intent(in) :: m, mc
+    real(dp), intent(out) :: den, e
+    real(dp) :: r
+    r = sqrt(sqrt(mc))
+    den = 2.0_dp * (1.0_dp + r)**2 * (1.0_dp + r * r)
+    e = m / den
+  end subroutine nome_e
+
   !> Jacobi's series q = e + 2 e^5 + 15 e^9 + ... in e = m / (2 (1+r)^2 (1+r^2)), r = mc^(1/4).
   elemental function nome_series(m, mc) result(q)
     real(dp), intent(in) :: m, mc
-    real(dp) :: q, r, e, e4
-    r = sqrt(sqrt(mc))
-    e = m / (2.0_dp * (1.0_dp + r)**2 * (1.0_dp + r * r))
+    real(dp) :: q, e, e4, den
+    call nome_e(m, mc, den, e)
     e4 = (e * e) * (e * e)
     q = e * (1.0_dp + e4 * (2.0_dp + e4 * (15.0_dp + e4 * (150.0_dp + e4 * (1707.0_dp &
         + e4 * (20910.0_dp + e4 * 268616.0_dp))))))
@@ -498,11 +508,10 @@ contains
   !> ln of nome_series(m, mc) for 0 < m <= 1/2, without forming the series' value.
   elemental function log_nome_series(m, mc) result(lq)
     real(dp), intent(in) :: m, mc
-    real(dp) :: lq, r, e, e4
-    r = sqrt(sqrt(mc))
-    e = m / (2.0_dp * (1.0_dp + r)**2 * (1.0_dp + r * r))
+    real(dp) :: lq, e, e4, den
+    call nome_e(m, mc, den, e)
     e4 = (e * e) * (e * e)
-    lq = log(m) - log(2.0_dp * (1.0_dp + r)**2 * (1.0_dp + r * r)) &
+    lq = log(m) - log(den) &
          + log1p_small(e4 * (2.0_dp + e4 * (15.0_dp + e4 * (150.0_dp + e4 * (1707.0_dp &
          + e4 * (20910.0_dp + e4 * 268616.0_dp))))))
   end function log_nome_series
