@@ -28,6 +28,7 @@
 module pendula_elliptic
   use pendula_kinds, only: dp, i8, pi, pi_lo, half_pi, nan_dp, inf_dp
   use pendula_dd, only: two_sum, fast_two_sum, two_prod, dd_sqrt, dd_sincos, dd_mul, dd_add, dd_div
+  use pendula_jacobi_theta, only: theta_plan, theta_prepare, theta_jacobi_neg, theta_mc_max
   use, intrinsic :: iso_c_binding, only: c_double, c_int
   implicit none
   private
@@ -82,6 +83,10 @@ module pendula_elliptic
     real(dp) :: mo = 1.0_dp, mol = 0.0_dp     !< m < 0: the complement 1 - m itself, double-double
     real(dp) :: ct(8) = 0.0_dp                 !< Maclaurin series of tn^2 in u^2
     integer :: ndbl = 0                        !< duplications that cover [0, K/2]
+    !> m < 0 with the core's complement 1/(1 - m) <= theta_mc_max (m <= -1023):
+    !> the core by the theta series (see jacobi_eval_array)
+    logical :: theta = .false.
+    type(theta_plan) :: tp
   end type jacobi_plan
 
 contains
@@ -687,6 +692,7 @@ contains
       call dd_div(1.0_dp, 0.0_dp, mc, mcl, cmc, cmcl)
       call dd_sqrt(mc, mcl, p%sh, p%sl)
       p%mo = mc; p%mol = mcl
+      p%theta = cmc <= theta_mc_max
     else
       ! sn(u|m) = sn(k u|1/m)/k, cn = dn(k u|1/m), dn = cn(k u|1/m), k = sqrt(m);
       ! the core's complement -mc/m and the scale sqrt(m) from m + ml
@@ -718,6 +724,7 @@ contains
     p%ct(8) = (6404582.0_dp + cm * (-22416037.0_dp + cm * (29821335.0_dp + cm * (-18513245.0_dp &
               + cm * (5220109.0_dp + cm * (-524937.0_dp + cm * (8195.0_dp - cm))))))) / 638512875.0_dp
     p%ndbl = max(0, exponent(0.5_dp * p%kh) + 3)
+    if (p%theta) p%tp = theta_prepare(cmc, cmcl, p%kh, p%kl, ellip_nome(cmc, 1.0_dp - cmc))
   end function jacobi_prepare_dd
 
   !> Round to the nearest integer (ties to even) for |x| < 2^51, with plain
@@ -769,6 +776,14 @@ contains
       else
         ulb(1:nb) = 0.0_dp
       end if
+      if (p%theta) then
+        ! m <= -1023: the core (complement 1/(1 - m) <= 2^-10) by the theta
+        ! series, at x = sqrt(1 - m) u in double-double
+        call scale_dd(nb, u(i0:i0+nb-1), ulb, p%sh, p%sl, j, r)
+        call theta_jacobi_neg(p%tp, p%sh, p%sl, j(1:nb), r(1:nb), &
+                              sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1))
+        cycle
+      end if
       call jacobi_block(nb, u(i0:i0+nb-1), ulb, kh, kl, sc, scl, p%sh == 1.0_dp .and. p%sl == 0.0_dp, &
                         mc, smc, ct, p%ndbl, &
                         p%mc < mc_hyp .and. p%regime /= 2, &
@@ -795,6 +810,26 @@ contains
       end select
     end do
   end subroutine jacobi_eval_array
+
+  !> x = (u + ul) (sh + sl) in double-double, x = xh + xl (Dekker's product
+  !> written out, as in jacobi_block).
+  pure subroutine scale_dd(nb, u, ul, sh, sl, xh, xl)
+    integer, intent(in) :: nb
+    real(dp), intent(in) :: u(:), ul(:), sh, sl
+    real(dp), intent(out) :: xh(:), xl(:)
+    real(dp), parameter :: splitter = 134217729.0_dp
+    real(dp) :: t, bh, bl, hi, lo, x, p, e
+    integer :: i
+    t = splitter * sh; bh = t - (t - sh); bl = sh - bh
+    do i = 1, nb
+      x = u(i)
+      p = x * sh
+      t = splitter * x; hi = t - (t - x); lo = x - hi
+      e = ((hi * bh - p) + hi * bl + lo * bh) + lo * bl + x * sl + ul(i) * sh
+      xh(i) = p + e
+      xl(i) = e - (xh(i) - p)
+    end do
+  end subroutine scale_dd
 
   !> m < 0 from the core (parameter mu = -m/mo, mo = 1 - m, argument x = sqrt(mo) u):
   !> sn(u|m) = sd(x|mu)/sqrt(mo), cn = cd(x|mu), dn = nd(x|mu) (DLMF 22.17.4-6).
