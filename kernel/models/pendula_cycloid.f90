@@ -62,13 +62,19 @@ contains
   elemental subroutine cycloid_motion(w2, beta, tau, amp, om, phase, s0, sd0, t, s, sd)
     real(dp), intent(in) :: w2, beta, tau, amp, om, phase, s0, sd0, t
     real(dp), intent(out) :: s, sd
-    real(dp) :: sp0, vp0, sp, vp, a, vh, h, delta, mu, c, sm, ep, em, sh, vhh
+    real(dp) :: sp0, vp0, sp, vp, a, vh, h, delta, mu, c, sm, ep, em, sh, vhh, w, rf, rs, ca, cb
     call particular(t, sp, vp)
     call particular(0.0_dp, sp0, vp0)
     a = s0 - sp0
     vh = sd0 - vp0
     h = 0.5_dp * beta
-    delta = w2 - h * h
+    ! w2 - h^2, factored where h^2 would overflow
+    if (abs(h) < 1.0e150_dp) then
+      delta = w2 - h * h
+    else
+      w = sqrt(w2)
+      delta = (w - h) * (w + h)
+    end if
     ! homogeneous part: exp(-h t) (a C + (vh + h a) S), s' = exp(-h t) (vh C - (w2 a + h vh) S),
     ! with C = cos(mu t), S = sin(mu t)/mu (under-damped), cosh/sinh (over-damped), 1, t (critical)
     if (delta > 0.0_dp) then
@@ -77,16 +83,33 @@ contains
       c = ep * cos(mu * t)
       sm = ep * sin(mu * t) / mu
     else if (delta < 0.0_dp) then
-      mu = sqrt(-delta)
+      if (abs(h) < 1.0e150_dp) then
+        mu = sqrt(-delta)
+      else
+        mu = sqrt(h - w) * sqrt(h + w)
+      end if
       if (abs(mu * t) < 1.0_dp) then
         ep = exp(-h * t)
         c = ep * cosh(mu * t)
         sm = ep * sinh(mu * t) / mu
-      else                                       ! no overflow of cosh for long times
+      else if (h < 0.0_dp) then                  ! negative damping: both modes grow
         ep = exp((mu - h) * t)
         em = exp(-(mu + h) * t)
         c = 0.5_dp * (ep + em)
         sm = 0.5_dp * (ep - em) / mu
+      else
+        ! the two modes apart: the fast root -(h + mu) and the slow root -(h - mu) =
+        ! -w2 / (h + mu), the slow one without the cancellation of h - mu (heavy
+        ! damping: h - mu ~ w2 / (2 h)); s = ca exp(rs t) + cb exp(rf t)
+        rf = h + mu
+        rs = w2 / rf
+        ca = (vh / rf + a) * (rf / (2.0_dp * mu))
+        cb = -(vh + rs * a) / (2.0_dp * mu)
+        ep = exp(-rs * t)
+        em = exp(-rf * t)
+        s = sp + (ca * ep + cb * em)
+        sd = vp + (-rs * ca * ep - rf * cb * em)
+        return
       end if
     else
       ep = exp(-h * t)

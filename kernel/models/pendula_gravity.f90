@@ -14,6 +14,19 @@
 !>    field still points down at the top):  f = 2 eps (w - kappa w^2),
 !>    theta'' = -eps (1 - 2 kappa w) sin(theta).   Uniform at kappa = 0.
 !>  kind 0: uniform, f = 2 eps w.
+!> The inverse-square formulas are written with a = d - 1, g = d / a and
+!> r = rho / a = sqrt(1 + 4 g w / a), so that nothing overflows for any d up to
+!> huge (at d = 1e300, g = r = 1 to the bit: the uniform field exactly):
+!>    f = eps 4 g w / (r (r + 1)),  Q = eps 4 g / (r r_m (r + r_m)),  V' = eps g sin / r^3.
+!>
+!> One classifier for every field.  f(1) - E = Q(w0, 1) cos^2(theta0/2) - v0^2/2
+!> is the uniform pendulum's distance from the separatrix with eps' = Q(w0, 1)/2
+!> (for the uniform field eps' = eps exactly), so the regime and the complement
+!> mc come from the exact pendulum's classifier (orbit_setup of pendula_exact:
+!> theta0 reduced and cos^2(theta0/2) - w^2 formed in double-double) and are
+!> rescaled by ratios of positive, well-conditioned numbers.  The uniform field
+!> is answered by the exact pendulum itself (orbit_period, orbit_theta_max):
+!> gravity_orbit and the exact orbit give the same bits there.
 !>
 !> The period.  Libration (E < f(1)) with amplitude w_m = sin^2(theta_m/2):
 !> sin(theta/2) = sqrt(w_m) sin(phi) turns E - V = Q (w_m - w), Q the divided
@@ -32,6 +45,8 @@
 module pendula_gravity
   use pendula_kinds, only: dp, nan_dp, inf_dp, pi
   use pendula_elliptic, only: ellip_k, jacobi_sncndn
+  use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_period, orbit_theta_max, &
+    regime_libration, regime_separatrix
   implicit none
   private
   public :: gravity_check, gravity_f, gravity_q, gravity_potential, gravity_accel, gravity_energy, &
@@ -39,7 +54,8 @@ module pendula_gravity
 
   integer, parameter, public :: gk_uniform = 0, gk_inverse_square = 1, gk_linear = 2
   integer, parameter, public :: gr_libration = 0, gr_separatrix = 1, gr_rotation = 2
-  integer, parameter, public :: gs_ok = 0, gs_bad_param = 1, gs_bad_state = 2, gs_no_convergence = 3
+  integer, parameter, public :: gs_ok = 0, gs_bad_param = 1, gs_bad_state = 2, gs_no_convergence = 3, &
+    gs_theta0_too_large = 4, gs_too_fast = 5
 
 contains
 
@@ -66,11 +82,12 @@ contains
   elemental function gravity_f(kind, par, eps, w) result(f)
     integer, intent(in) :: kind
     real(dp), intent(in) :: par, eps, w
-    real(dp) :: f, rho
+    real(dp) :: f, r, g
     select case (kind)
     case (gk_inverse_square)
-      rho = sqrt((par - 1.0_dp)**2 + 4.0_dp * par * w)
-      f = eps * 4.0_dp * par * (par - 1.0_dp) * w / (rho * (rho + par - 1.0_dp))
+      g = par / (par - 1.0_dp)
+      r = sqrt(1.0_dp + 4.0_dp * g * w / (par - 1.0_dp))
+      f = eps * 4.0_dp * g * w / (r * (r + 1.0_dp))
     case (gk_linear)
       f = 2.0_dp * eps * (w - par * w * w)
     case default
@@ -82,12 +99,13 @@ contains
   elemental function gravity_q(kind, par, eps, w, wm) result(q)
     integer, intent(in) :: kind
     real(dp), intent(in) :: par, eps, w, wm
-    real(dp) :: q, rho, rhom
+    real(dp) :: q, r, rm, g
     select case (kind)
     case (gk_inverse_square)
-      rho = sqrt((par - 1.0_dp)**2 + 4.0_dp * par * w)
-      rhom = sqrt((par - 1.0_dp)**2 + 4.0_dp * par * wm)
-      q = eps * (par - 1.0_dp)**2 * 4.0_dp * par / (rho * rhom * (rho + rhom))
+      g = par / (par - 1.0_dp)
+      r = sqrt(1.0_dp + 4.0_dp * g * w / (par - 1.0_dp))
+      rm = sqrt(1.0_dp + 4.0_dp * g * wm / (par - 1.0_dp))
+      q = eps * 4.0_dp * g / (r * rm * (r + rm))
     case (gk_linear)
       q = 2.0_dp * eps * (1.0_dp - par * (w + wm))
     case default
@@ -106,12 +124,13 @@ contains
   elemental function gravity_accel(kind, par, eps, theta) result(a)
     integer, intent(in) :: kind
     real(dp), intent(in) :: par, eps, theta
-    real(dp) :: a, rho, w
+    real(dp) :: a, r, w, g
     select case (kind)
     case (gk_inverse_square)
       w = sin(0.5_dp * theta)**2
-      rho = sqrt((par - 1.0_dp)**2 + 4.0_dp * par * w)
-      a = -eps * par * (par - 1.0_dp)**2 * sin(theta) / rho**3
+      g = par / (par - 1.0_dp)
+      r = sqrt(1.0_dp + 4.0_dp * g * w / (par - 1.0_dp))
+      a = -eps * g * sin(theta) / r**3
     case (gk_linear)
       w = sin(0.5_dp * theta)**2
       a = -eps * (1.0_dp - 2.0_dp * par * w) * sin(theta)
@@ -140,7 +159,7 @@ contains
     else
       w = sn * sn
       f1 = gravity_f(kind, par, eps, 1.0_dp)
-      de = e - f1
+      de = mc * e                    ! E - f(1) = mc E, without the cancellation of e - f1
       hh = (de + gravity_q(kind, par, eps, w, 1.0_dp) * cn * cn) / (de + f1 * cn * cn)
       h = sqrt(2.0_dp / (e * hh))
     end if
@@ -161,8 +180,9 @@ contains
     real(dp), intent(in) :: par, eps, theta0, v0
     real(dp), intent(out) :: e, m, mc, kk, theta_max, period
     integer, intent(out) :: regime, status
-    real(dp) :: w0, f1, c, rho, s_old, s_new, scale
-    integer :: n
+    real(dp) :: w0, f1, c, s_old, s_new, scale, epsu, g
+    integer :: n, st
+    type(pendulum_orbit) :: o
     e = nan_dp; m = nan_dp; mc = nan_dp; kk = nan_dp; theta_max = nan_dp; period = nan_dp; regime = -1
     status = gravity_check(kind, par, eps)
     if (status /= gs_ok) return
@@ -171,8 +191,35 @@ contains
     end if
     w0 = sin(0.5_dp * theta0)**2
     e = 0.5_dp * v0 * v0 + gravity_f(kind, par, eps, w0)
+    ! the one classifier: the exact pendulum's, with eps' = Q(w0, 1) / 2 (= eps when uniform)
+    if (kind == gk_uniform) then
+      epsu = eps
+    else
+      epsu = 0.5_dp * gravity_q(kind, par, eps, w0, 1.0_dp)
+    end if
+    call orbit_setup(theta0, v0, epsu, o, st)
+    select case (st)
+    case (0)
+    case (1)
+      status = gs_bad_param; e = nan_dp; return
+    case (4)
+      status = gs_theta0_too_large; e = nan_dp; return
+    case (5)
+      status = gs_too_fast; e = nan_dp; return
+    case default
+      status = gs_bad_state; e = nan_dp; return
+    end select
+    if (kind == gk_uniform) then     ! the exact pendulum answers the uniform field whole
+      regime = o%regime
+      m = o%m; mc = o%mch
+      theta_max = orbit_theta_max(o)
+      period = orbit_period(o)
+      kk = o%plan%kh
+      if (regime == regime_separatrix) kk = inf_dp
+      return
+    end if
     f1 = gravity_f(kind, par, eps, 1.0_dp)
-    if (e < f1) then
+    if (o%regime == regime_libration) then
       regime = gr_libration
       if (v0 == 0.0_dp) then
         m = w0                       ! exactly, when starting at rest
@@ -180,26 +227,23 @@ contains
         select case (kind)           ! invert f(m) = E without cancellation
         case (gk_inverse_square)
           c = e / (eps * (par - 1.0_dp))
-          rho = (par - 1.0_dp) / (1.0_dp - c)
-          m = (rho - (par - 1.0_dp)) * (rho + par - 1.0_dp) / (4.0_dp * par)
-        case (gk_linear)
-          m = e / (eps * (1.0_dp + sqrt(1.0_dp - 2.0_dp * par * e / eps)))
+          g = par / (par - 1.0_dp)
+          m = (e / eps) * (2.0_dp - c) / (4.0_dp * g * (1.0_dp - c)**2)
         case default
-          m = e / (2.0_dp * eps)
+          m = e / (eps * (1.0_dp + sqrt(1.0_dp - 2.0_dp * par * e / eps)))
         end select
       end if
-      ! 1 - m = (f(1) - E) / Q(m, 1), f(1) - E = Q(w0, 1) cos^2(theta0/2) - v0^2/2: no 1 - m cancellation
-      mc = (gravity_q(kind, par, eps, w0, 1.0_dp) * cos(0.5_dp * theta0)**2 - 0.5_dp * v0 * v0) / &
-           gravity_q(kind, par, eps, m, 1.0_dp)
-      theta_max = 2.0_dp * asin(min(1.0_dp, sqrt(m)))
+      ! 1 - m = (f(1) - E) / Q(m, 1) = mc' Q(w0, 1) / Q(m, 1), mc' the classifier's
+      if (v0 == 0.0_dp) then
+        mc = o%mch                   ! cos^2(theta0/2) in double-double, rounded once
+      else
+        mc = o%mch * (2.0_dp * epsu / gravity_q(kind, par, eps, m, 1.0_dp))
+      end if
+      if (mc < 0.5_dp) m = 1.0_dp - mc         ! next to the top, m from its complement
+      theta_max = 2.0_dp * atan2(sqrt(m), sqrt(mc))
+      if (v0 == 0.0_dp) theta_max = abs((theta0 - o%offset) - o%offl)
       scale = 4.0_dp
-    else if (e > f1) then
-      regime = gr_rotation
-      m = f1 / e
-      mc = (0.5_dp * v0 * v0 - gravity_q(kind, par, eps, w0, 1.0_dp) * cos(0.5_dp * theta0)**2) / e
-      theta_max = inf_dp
-      scale = 2.0_dp
-    else
+    else if (o%regime == regime_separatrix) then
       regime = gr_separatrix
       m = 1.0_dp
       mc = 0.0_dp
@@ -207,6 +251,14 @@ contains
       theta_max = pi
       period = kk
       return
+    else
+      regime = gr_rotation
+      ! E - f(1) = mc' (2 eps' w0 + v0^2/2), mc' the classifier's
+      mc = o%mch * ((2.0_dp * epsu * w0 + 0.5_dp * v0 * v0) / e)
+      m = f1 / e
+      if (mc < 0.5_dp) m = 1.0_dp - mc
+      theta_max = inf_dp
+      scale = 2.0_dp
     end if
     if (m == 0.0_dp) then            ! at rest at the bottom: the small-oscillation limit
       kk = 0.5_dp * pi

@@ -35,7 +35,9 @@ _REGIMES = {0: "libration", 1: "separatrix", 2: "rotation"}
 _STATUS = {1: "bad field parameters (eps > 0; gravity_distance > 1; gravity_gradient < 0.5)",
            2: "theta0 and v0 must be finite",
            3: "the period quadrature did not converge in 2^20 panels (inverse-square field with the "
-              "mass closer than about 2e-5 l below the circle: gravity_distance - 1 too small)"}
+              "mass closer than about 2e-5 l below the circle: gravity_distance - 1 too small)",
+           4: "theta0 beyond 2**52 (4.5e15) cannot be reduced modulo 2 pi in double precision",
+           5: "v0 too large for this field: |v0| / sqrt(2 Q) must stay below 1e154"}
 
 
 def field_of(scene) -> tuple[int, float]:
@@ -116,6 +118,10 @@ def gravity_orbit(scene) -> GravityOrbit:
     >>> o.regime, round(o.theta_max, 15)
     ('libration', 1.0)
     """
+    from ..scene import Scene
+
+    if not isinstance(scene, Scene):
+        raise TypeError(f"gravity_orbit: scene must be a pendula.Scene, got {type(scene).__name__}")
     kind, par = field_of(scene)
     info, status = _kernel.gravity_orbit_v(kind, par, scene.eps, scene.theta0, scene.v0)
     if status:
