@@ -348,6 +348,32 @@ def test_sdist_carries_licence_sources_and_references():
     assert f"Version: {project_version()}" in pkg_info
 
 
+@needs_sdist
+def test_sdist_installs_with_pip_where_the_build_tools_are(tmp_path):
+    """`pip install pendula-X.tar.gz` compiles the kernel (here with the build tools
+    of this environment: gfortran, GSL, FFTW, meson) and the result imports and
+    computes; the licence and the references come along."""
+    bindir = pathlib.Path(sys.executable).parent
+    if shutil.which("gfortran") is None or not (bindir / "meson").exists():
+        pytest.skip("no gfortran or meson here: the sdist cannot be built")
+    site = tmp_path / "site"
+    env = dict(os.environ, PATH=f"{bindir}:{os.environ.get('PATH', '')}")
+    out = subprocess.run([sys.executable, "-m", "pip", "install", "-q", "--no-build-isolation", "--no-deps",
+                          "--target", str(site), SDIST], env=env, cwd=tmp_path, capture_output=True, text=True,
+                         timeout=1200)
+    assert out.returncode == 0, out.stderr[-3000:]
+    code = ("import math, pathlib, pendula\n"
+            "assert pathlib.Path(pendula.__file__).is_relative_to(pathlib.Path.cwd() / 'site'), pendula.__file__\n"
+            "k = math.gamma(0.25) ** 2 / (4 * math.sqrt(math.pi))\n"
+            "print(pendula.__version__, abs(float(pendula.ellipk(0.5)) - k) / k < 1e-15)\n")
+    out = subprocess.run([sys.executable, "-c", code], env=dict(env, PYTHONPATH=str(site)), cwd=tmp_path,
+                         capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0 and out.stdout.split() == [project_version(), "True"], (out.stdout, out.stderr)
+    dist_info = site / f"pendula-{project_version()}.dist-info"
+    assert "GNU GENERAL PUBLIC LICENSE" in (dist_info / "licenses" / "LICENSE").read_text()
+    assert (site / "pendula" / "data" / "reference_grids.csv.gz").is_file()
+
+
 def test_version_is_written_once():
     """meson.build holds the version; pyproject declares it dynamic; the package reads the metadata."""
     tomllib = pytest.importorskip("tomllib")  # Python 3.11

@@ -13,7 +13,7 @@ from ._optional import require
 
 
 def _plt():
-    matplotlib = require("matplotlib", "plot", "pendula's figures")
+    matplotlib = require("matplotlib", "plot", "pendula.plot (figures)")
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 

@@ -466,7 +466,7 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
 def plot_sweep(ds, path) -> pathlib.Path:
     """A figure of a sweep: a map (2 axes; discrete colours for wells), a curve
     (1 axis), or a bifurcation diagram (poincare over 1 axis)."""
-    matplotlib = require("matplotlib", "plot", "the figure of a sweep")
+    matplotlib = require("matplotlib", "plot", "pendula.sweeps.plot_sweep (figures)")
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
