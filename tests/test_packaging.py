@@ -387,6 +387,17 @@ def test_version_is_written_once():
     assert pendula.__version__ == project_version()
 
 
+def test_licence_is_the_same_in_meson_and_pyproject():
+    """meson.build's project(license:) and pyproject's SPDX expression agree, and LICENSE is the GPL 3."""
+    tomllib = pytest.importorskip("tomllib")  # Python 3.11
+    pyproject = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+    m = re.search(r"project\([^)]*?license:\s*'([^']+)'", (ROOT / "meson.build").read_text(), re.S)
+    assert m and m.group(1) == pyproject["license"] == "GPL-3.0-or-later"
+    assert pyproject["license-files"] == ["LICENSE"]
+    text = (ROOT / "LICENSE").read_text()
+    assert text.lstrip().startswith("GNU GENERAL PUBLIC LICENSE") and "Version 3, 29 June 2007" in text
+
+
 # ------------------------------------------------------------------ the same behaviour in the development build
 # (run by make test: the optional packages are hidden by a None in sys.modules)
 
