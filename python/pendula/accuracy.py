@@ -16,6 +16,7 @@ import csv
 import pathlib
 
 import numpy as np
+from ._optional import require
 
 EPS = np.finfo(np.float64).eps
 
@@ -51,7 +52,7 @@ def _worst(err):
 
 def elliptic_report(reference: str | pathlib.Path) -> list[dict]:
     """Worst errors per function and region: pendula, scipy.special, GSL."""
-    import scipy.special as sc
+    sc = require("scipy.special", "accuracy", "pendula accuracy elliptic")
 
     from . import _kernel
     from .elliptic import ellipe, ellipeinc, ellipf, ellipj, ellipk, nome
@@ -178,7 +179,7 @@ def work_precision(n_out: int = 201, repeat: int = 3, progress: bool = True) -> 
 
 def write_work_precision(rows: list[dict], outdir) -> list[pathlib.Path]:
     """CSV of the study and one log-log diagram (error against CPU time) per problem."""
-    import matplotlib
+    matplotlib = require("matplotlib", "accuracy", "pendula accuracy integrators (figures)")
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -271,7 +272,7 @@ def long_run_energy(periods: float = 1e5, methods=("gauss6", "dop853"), progress
 
 
 def write_long_run(res: dict, outdir, periods: float) -> list[pathlib.Path]:
-    import matplotlib
+    matplotlib = require("matplotlib", "accuracy", "pendula accuracy integrators (figures)")
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

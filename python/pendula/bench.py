@@ -15,6 +15,7 @@ import platform
 import time
 
 import numpy as np
+from ._optional import require
 
 
 def best_time(fn, repeat: int = 5) -> float:
@@ -48,7 +49,7 @@ def bench_elliptic(n: int = 1_000_000, seed: int = 1) -> list[dict]:
     (Cephes: descending Landen), GSL gsl_sf_elljac_e (Bulirsch) through
     pendula's C glue, numpy.sin as a yardstick.
     """
-    import scipy.special as sc
+    sc = require("scipy.special", "bench", "pendula bench")
 
     from . import _kernel
     from .elliptic import ellipj, ellipk
@@ -108,7 +109,7 @@ def bench_exact(n: int = 1_000_000, seed: int = 2) -> list[dict]:
 
 def bench_integrators(n: int = 0, seed: int = 0) -> list[dict]:
     """DOP853 against scipy's solve_ivp DOP853 and GSL rk8pd; the cost of effects."""
-    import scipy.integrate as si
+    si = require("scipy.integrate", "bench", "pendula bench")
 
     from .scene import Scene
     from .systems.rigid import exact_motion
@@ -276,7 +277,7 @@ def bench_sweep(n: int = 1_000_000, seed: int = 14) -> list[dict]:
     20 x 20 subgrid, and the fraction of points decided early."""
     import os
 
-    from scipy.integrate import solve_ivp
+    solve_ivp = require("scipy.integrate", "bench", "pendula bench").solve_ivp
 
     from .scene import Scene
     from .sweeps import sweep

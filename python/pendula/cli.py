@@ -8,6 +8,12 @@
     pendula accuracy elliptic    worst errors vs mpmath, beside scipy and GSL
     pendula accuracy integrators work-precision diagram and long-run energy (CSV, PNG)
     pendula accuracy grids       worst error per class of the stored random grids (README's table)
+    pendula --version            the installed version
+
+A feature whose optional package is missing prints one line naming the extra
+to install (``pip install 'pendula[sweep]'``) and exits with status 6
+(pendula._optional.EXIT_MISSING_EXTRA).  Output into a pipe that closes early
+(``pendula models | head -3``) ends quietly with status 0.
 """
 
 from __future__ import annotations
@@ -19,6 +25,35 @@ import sys
 import numpy as np
 
 from ._files import gallery_dir
+from ._optional import EXIT_MISSING_EXTRA, MissingExtraError, require
+
+
+def packaged_data(name: str):
+    """A reference file installed with the package (pendula/data; data/ in the repository)."""
+    from importlib.resources import files
+
+    return files("pendula") / "data" / name
+
+
+def _guarded(func, args) -> int:
+    """Run a subcommand: a missing optional package is one line and exit status 6;
+    a reader that closes the pipe early (``| head``) ends the output quietly."""
+    import os
+
+    try:
+        status = func(args)
+        sys.stdout.flush()  # a closed pipe shows here, not at interpreter exit
+        return status
+    except MissingExtraError as exc:
+        print(f"pendula: {exc}", file=sys.stderr)
+        return EXIT_MISSING_EXTRA
+    except BrokenPipeError:
+        # the reader has gone: send what remains in the buffer nowhere (Python's
+        # documented recipe), so that the flush at exit does not fail again
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+        return 0
 
 
 def elliptic_table() -> list[tuple[str, float, float]]:
@@ -113,6 +148,8 @@ def cmd_demo(args) -> int:
     from .run import run_scene
     from .scene import Scene
 
+    for module in ("matplotlib", "xarray", "tqdm", "scipy"):  # figures, sweeps, the integrator study
+        require(module, "all", "pendula demo")
     print_elliptic_table()
     out = pathlib.Path(args.output)
     scenes = sorted(p for p in gallery_dir().iterdir() if p.name.endswith(".nml"))
@@ -138,21 +175,22 @@ def cmd_accuracy(args) -> int:
 
         from .accuracy import elliptic_report, print_report
 
-        if not pathlib.Path(args.reference).is_file():
-            print(f"pendula accuracy: reference file {args.reference!r} not found: run from the repository "
-                  "root or pass --reference (data/gen_elliptic_reference.py writes it)", file=sys.stderr)
+        reference = args.reference or packaged_data("elliptic_reference.csv")
+        if not pathlib.Path(reference).is_file():
+            print(f"pendula accuracy: reference file {str(reference)!r} not found: pass --reference "
+                  "(data/gen_elliptic_reference.py in the repository writes it)", file=sys.stderr)
             return 2
-        print_report(elliptic_report(args.reference), markdown=args.markdown)
+        print_report(elliptic_report(reference), markdown=args.markdown)
         return 0
     if args.what == "grids":
         import pathlib
 
         from .accuracy import grids_markdown
 
-        path = pathlib.Path("data/reference_grids.csv.gz")
+        path = pathlib.Path(packaged_data("reference_grids.csv.gz"))
         if not path.is_file():
-            print(f"pendula accuracy: {path} not found: run from the repository root "
-                  "(data/gen_reference_grids.py writes it)", file=sys.stderr)
+            print(f"pendula accuracy: {path} not found: reinstall pendula "
+                  "(data/gen_reference_grids.py in the repository writes it)", file=sys.stderr)
             return 2
         print(grids_markdown(path))
         return 0
@@ -209,6 +247,8 @@ def cmd_models(args) -> int:
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="pendula", description="The nonlinear pendulum, exact and fast.")
+    from ._version import __version__
+    parser.add_argument("--version", action="version", version=f"pendula {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
     p = sub.add_parser("demo", help="run the main job on its embedded default (the gallery of the source notes)")
     p.add_argument("-o", "--output", default="out", help="output folder (default: out)")
@@ -224,8 +264,9 @@ def main(argv=None) -> int:
     p.add_argument("-o", "--output", default="out", help="output folder for the integrator study")
     p.add_argument("--periods", type=float, default=1e5, help="length of the long energy run, in periods")
     p.add_argument("-q", "--quiet", action="store_true")
-    p.add_argument("--reference", default="data/elliptic_reference.csv",
-                   help="reference CSV written by data/gen_elliptic_reference.py")
+    p.add_argument("--reference", default=None,
+                   help="reference CSV written by data/gen_elliptic_reference.py (default: the one installed "
+                        "with pendula)")
     p.add_argument("--markdown", action="store_true", help="print a Markdown table")
     p.set_defaults(func=cmd_accuracy)
     p = sub.add_parser("spectrum", help="power spectra of a scene's theta(t): CSV and a log-power PNG")
@@ -256,10 +297,10 @@ def main(argv=None) -> int:
     # --- spectra (spec): argparse's REMAINDER drops leading options ('bench --json F'), so pass them on
     argv = sys.argv[1:] if argv is None else list(argv)
     if argv[:1] == ["bench"]:
-        return cmd_bench(argparse.Namespace(rest=argv[1:]))
+        return _guarded(cmd_bench, argparse.Namespace(rest=argv[1:]))
     # --- end spectra
     args = parser.parse_args(argv)
-    return args.func(args)
+    return _guarded(args.func, args)
 
 
 if __name__ == "__main__":

@@ -9,13 +9,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from ._optional import require
 
 
 def _plt():
-    try:
-        import matplotlib
-    except ImportError:  # pragma: no cover - depends on the environment
-        raise ImportError("pendula's figures need matplotlib: pip install 'pendula[plot]'") from None
+    matplotlib = require("matplotlib", "plot", "pendula.plot (figures)")
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 

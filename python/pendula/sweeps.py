@@ -46,6 +46,7 @@ import os
 import pathlib
 
 import numpy as np
+from ._optional import require
 
 from .scene import GRIDDABLE, MEASURES, Scene, SceneError
 
@@ -201,7 +202,7 @@ def _compute_chunk(plan: _Plan, i: int, threads: int):
 
 
 def _chunk_dataset(plan: _Plan, i: int, out: np.ndarray, st: np.ndarray):
-    import xarray as xr
+    xr = require("xarray", "sweep", "pendula.sweep")
     names = list(plan.over)
     lo = i * plan.rows
     coords = {names[0]: plan.over[names[0]][lo:lo + out.shape[0]]}
@@ -299,7 +300,7 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
     >>> bool(abs(ly.lyapunov[0] + ly.lyapunov2[0] + 0.5) < 1e-8)     # lambda_1 + lambda_2 = -beta
     True
     """
-    import xarray as xr
+    xr = require("xarray", "sweep", "pendula.sweep")
 
     if not isinstance(scene, Scene):
         scene = Scene.from_file(scene)
@@ -355,7 +356,7 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
 
     bar = None
     if progress:
-        from tqdm.auto import tqdm
+        tqdm = require("tqdm.auto", "sweep", "the progress bar of pendula.sweep").tqdm
         bar = tqdm(total=plan.nchunks, initial=plan.nchunks - len(todo), unit="chunk", desc=f"sweep {measure}")
 
     def done(i, o, st):
@@ -465,7 +466,7 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
 def plot_sweep(ds, path) -> pathlib.Path:
     """A figure of a sweep: a map (2 axes; discrete colours for wells), a curve
     (1 axis), or a bifurcation diagram (poincare over 1 axis)."""
-    import matplotlib
+    matplotlib = require("matplotlib", "plot", "pendula.sweeps.plot_sweep (figures)")
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
@@ -516,7 +517,8 @@ def cli_main(args) -> int:
             raise SceneError(f"{args.scene}: field 'grid' is empty: a sweep scene names 1 to 3 axes")
         client = None
         if args.workers:
-            from dask.distributed import Client, LocalCluster
+            distributed = require("distributed", "sweep", "pendula sweep --workers")
+            Client, LocalCluster = distributed.Client, distributed.LocalCluster
             client = Client(LocalCluster(n_workers=args.workers, threads_per_worker=1))
         ds = sweep(scene, out=args.output, chunk_points=args.chunk_points, client=client,
                    threads=args.threads, progress=not args.quiet)
