@@ -266,8 +266,9 @@ class SweepStore:
         self._group = None
         self.lock.release()
 
-    def _warn(self, text: str) -> None:
-        warnings.warn(f"sweep store {self.path}: {text}", SweepStoreWarning, stacklevel=4)
+    def _warn(self, text: str, stacklevel: int = 5) -> None:
+        # stacklevel: the frames from here up to the caller of pendula.sweep
+        warnings.warn(f"sweep store {self.path}: {text}", SweepStoreWarning, stacklevel=stacklevel)
 
     def _remove_temporaries(self) -> None:
         """Temporaries of writers that died (we hold the lock: no live writer has any)."""
@@ -328,7 +329,7 @@ class SweepStore:
         return None
 
     def _rebuild(self, why: str) -> None:
-        self._warn(f"{why}; the store is built again and every chunk computed again")
+        self._warn(f"{why}; the store is built again and every chunk computed again", stacklevel=6)
         aside = self.out / f".{STORE_NAME}.damaged.{os.getpid()}"
         os.replace(self.path, aside)
         shutil.rmtree(aside, ignore_errors=True)

@@ -51,6 +51,7 @@ import pathlib
 
 import numpy as np
 
+from ._store import StoreBusyError, SweepStoreWarning  # noqa: F401 - raised and warned by sweep(out=...)
 from .scene import GRIDDABLE, MEASURES, Scene, SceneError
 
 __all__ = ["sweep", "iv_curve", "grid_of", "MEASURE_CODES"]
