@@ -40,7 +40,7 @@ $(VENV)/.deps: pyproject.toml | system-deps
 	$(PY) -m pip install -q --upgrade pip
 	$(PY) -m pip install -q "numpy>=2.0" "meson>=1.3" "meson-python>=0.18" ninja \
 	    "matplotlib>=3.7" "pytest>=7" "mpmath>=1.3" "scipy>=1.11" "hypothesis>=6" \
-	    "xarray>=2024.1" "dask[distributed]>=2024.1" "tqdm>=4.60"
+	    "xarray>=2024.1" "dask[distributed]>=2024.1" "tqdm>=4.60" "zarr>=3"
 	@touch $@
 
 $(VENV)/.installed: $(VENV)/.deps $(SOURCES) | system-deps

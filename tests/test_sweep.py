@@ -173,15 +173,16 @@ def test_resume_after_kill(tmp_path):
                "--chunk-points", "60", "--threads", "1"]
         proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
         t0 = time.time()
+        commits = out / "sweep.zarr" / "commits"
         while time.time() - t0 < 60:
-            n = len(list((out / "chunks").glob("chunk_*.nc"))) if (out / "chunks").exists() else 0
+            n = len(list(commits.glob("c*/zarr.json"))) if commits.exists() else 0
             if n >= 3 or proc.poll() is not None:
                 break
             time.sleep(0.02)
         killed = proc.poll() is None
         proc.send_signal(signal.SIGKILL)
         _, err = proc.communicate()
-        n = len(list((out / "chunks").glob("chunk_*.nc")))
+        n = len(list(commits.glob("c*/zarr.json")))
         return cmd, killed, n, err
 
     # on a loaded shared machine the kill may come too late: try again in a fresh folder
@@ -191,11 +192,15 @@ def test_resume_after_kill(tmp_path):
         if killed and 0 < n_before < 40:
             break
     assert killed and 0 < n_before < 40, f"the run was not interrupted mid-way ({killed}, {n_before}, {err!r})"
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    resumed = xr.open_dataset(out / "sweep.nc", engine="scipy").load()
+    subprocess.run(cmd + ["--netcdf"], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    resumed = xr.open_zarr(out / "sweep.zarr").load()
     full = pendula.sweep(Scene.from_file(scene), chunk_points=60, threads=2)
     assert resumed.drop_attrs().identical(full.drop_attrs())
-    assert not list((out / "chunks").glob(".*tmp"))   # partial files of the killed run are cleaned up
+    exported = xr.open_dataset(out / "sweep.nc", engine="scipy").load()
+    assert exported.drop_attrs().identical(full.drop_attrs())
+    # partial files of the killed run are cleaned up, and the lock is released
+    left = [p for p in out.rglob("*") if p.name.endswith((".tmp", ".partial")) or p.name == "sweep.lock"]
+    assert not left, left
 
 
 def test_scene_grid_fields_and_errors():

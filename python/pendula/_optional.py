@@ -13,7 +13,7 @@ The extras (``[project.optional-dependencies]`` in pyproject.toml):
 extra      packages                                        needed by
 =========  ==============================================  =========================
 plot       matplotlib                                      figures (``pendula run``)
-sweep      xarray, dask[distributed], tqdm, scipy          ``pendula.sweep``,
+sweep      xarray, dask[distributed], tqdm, scipy, zarr    ``pendula.sweep``,
                                                            ``pendula sweep``
 bench      scipy                                           ``pendula bench``
 accuracy   scipy, matplotlib                               ``pendula accuracy``

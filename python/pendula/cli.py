@@ -221,7 +221,7 @@ def cmd_bench(args) -> int:
 
 
 def cmd_sweep(args) -> int:
-    """pendula sweep SCENE -o OUT: the dataset (NetCDF chunks, resumable) and its figure."""
+    """pendula sweep SCENE -o OUT: the dataset (a Zarr store, resumable) and its figure."""
     from .sweeps import cli_main
 
     return cli_main(args)
@@ -277,12 +277,13 @@ def main(argv=None) -> int:
     p = sub.add_parser("models", help="the models pendula knows, the effects each accepts, which keep the exact path")
     p.set_defaults(func=cmd_models)
     # sweeps (issue 14): the substance is in pendula.sweeps
-    p = sub.add_parser("sweep", help="a sweep scene (grid + measure): OUT/sweep.nc and OUT/sweep.png; resumes")
+    p = sub.add_parser("sweep", help="a sweep scene (grid + measure): OUT/sweep.zarr and OUT/sweep.png; resumes")
     p.add_argument("scene", help="scene file with 'grid' and 'measure'")
     p.add_argument("-o", "--output", default="out/sweep", help="output folder (chunks, dataset, figure)")
     p.add_argument("--threads", type=int, default=0, help="OpenMP threads (0: OMP_NUM_THREADS or all cores)")
-    p.add_argument("--workers", type=int, default=0, help="run the chunks on a local Dask cluster of N workers")
+    p.add_argument("--workers", type=int, default=0, help="run the chunks on a local Dask cluster of N worker processes (closed at the end)")
     p.add_argument("--chunk-points", type=int, default=20000, help="grid points per chunk")
+    p.add_argument("--netcdf", action="store_true", help="also export the dataset as OUT/sweep.nc (NetCDF3)")
     p.add_argument("-q", "--quiet", action="store_true")
     p.set_defaults(func=cmd_sweep)
     p = sub.add_parser("bench", help="benchmarks against scipy, GSL and numpy", add_help=False)

@@ -31,11 +31,15 @@ Measures
     the window; ``lyapunov2`` = the second exponent (lyapunov + lyapunov2 =
     -damping exactly in theory: a check).  See kernel/sweep/pendula_lyapunov.f90.
 
-Scale: the grid is cut into chunks along its first axis; each chunk goes to
-``out/chunks/`` as a NetCDF file written atomically (temporary name, then
-rename) as soon as it is done, so a run killed and started again with the same
-``out`` recomputes only missing chunks and gives the same dataset bit for bit.
-A Dask distributed ``client`` spreads the chunks over its workers.
+Scale: the grid is cut into chunks along its first axis.  With ``out``, the
+result is a Zarr (v3) store ``out/sweep.zarr`` with CF attributes, filled by
+region as each chunk finishes and committed chunk by chunk (checksummed,
+fsynced), so a run killed and started again with the same ``out`` computes
+only the missing or damaged chunks and gives the same dataset bit for bit;
+one sweep at a time writes a store (a lock file).  A Dask distributed
+``client`` spreads the chunks over its workers, each task's OpenMP threads
+set so that no machine runs more threads than it has cores.  See
+``docs/source/sweeps_at_scale.rst``.
 """
 
 from __future__ import annotations
@@ -48,6 +52,7 @@ import pathlib
 import numpy as np
 from ._optional import require
 
+from ._store import StoreBusyError, SweepStoreWarning  # noqa: F401 - raised and warned by sweep(out=...)
 from .scene import GRIDDABLE, MEASURES, Scene, SceneError
 
 __all__ = ["sweep", "iv_curve", "grid_of", "MEASURE_CODES"]
@@ -201,38 +206,85 @@ def _compute_chunk(plan: _Plan, i: int, threads: int):
     return i, out, st
 
 
-def _chunk_dataset(plan: _Plan, i: int, out: np.ndarray, st: np.ndarray):
+#: long_name and CF units of every variable a measure gives (time in the scene's unit, the second)
+_VAR_META = {
+    "well": ("well n of the rest angle asin(tau/eps) + 2 pi n where the orbit ends", "1"),
+    "t_decided": ("time at which the answer was decided", "s"),
+    "locked": ("1 when the orbit spirals into an equilibrium, 0 when it runs", "1"),
+    "mean_velocity": ("mean angular velocity over t_max after the transient", "rad s-1"),
+    "mean_velocity_err": ("|mean angular velocity - its mean over the second half of the window|", "rad s-1"),
+    "theta": ("stroboscopic angle once per drive period, in [-pi, pi)", "rad"),
+    "v": ("stroboscopic angular velocity once per drive period", "rad s-1"),
+    "lyapunov": ("largest Lyapunov exponent", "s-1"),
+    "lyapunov_err": ("standard error of the largest Lyapunov exponent over 8 blocks", "s-1"),
+    "lyapunov2": ("second Lyapunov exponent", "s-1"),
+}
+#: long_name and CF units of the axes a sweep can take (and of the Poincare sample number)
+_AXIS_META = {
+    "v0": ("initial angular velocity", "rad s-1"), "theta0": ("initial angle", "rad"),
+    "eps": ("g / l, the square of the small-oscillation angular frequency", "s-2"),
+    "damping": ("linear damping beta", "s-1"), "torque": ("constant torque tau", "rad s-2"),
+    "drive_amplitude": ("drive amplitude A", "rad s-2"), "drive_frequency": ("drive angular frequency Omega", "rad s-1"),
+    "drive_phase": ("drive phase", "rad"), "sample": ("stroboscopic sample number", "1"),
+}
+#: the variables of each measure, in the kernel's output order
+_MEASURE_VARS = {"final_well": ("well", "t_decided"), "locked": ("locked", "t_decided"),
+                 "mean_velocity": ("mean_velocity", "mean_velocity_err"), "poincare": ("theta", "v"),
+                 "lyapunov": ("lyapunov", "lyapunov_err", "lyapunov2")}
+
+
+def _status_attrs() -> dict:
+    """CF flag attributes of 'status', from STATUS (flag_meanings: one word per code)."""
+    import re
+    codes = sorted(STATUS)
+    return {"long_name": "status of the point's answer",
+            "flag_values": np.array(codes, dtype=np.int32),
+            "flag_meanings": " ".join(re.sub(r"[^0-9A-Za-z]+", "_", STATUS[c]).strip("_") for c in codes),
+            "comment": "-1 (the store's fill value) only in a store whose sweep has not finished: not computed yet"}
+
+
+def _layout(plan: _Plan):
+    """What a sweep's dataset holds, apart from the values: the store's and the in-memory run's common form."""
+    from ._store import Layout, Variable
+
+    dims = tuple(plan.over)
+
+    def meta(name):
+        long_name, units = _AXIS_META.get(name, _VAR_META.get(name, (name, "1")))
+        return {"long_name": long_name, "units": units}
+    coords = {n: (plan.over[n], meta(n)) for n in dims}
+    vdims = dims
+    if plan.measure == "poincare":
+        coords["sample"] = (np.arange(plan.samples), meta("sample"))
+        vdims = dims + ("sample",)
+    variables = {"status": Variable(dims, np.dtype(np.int32), _status_attrs(), -1)}
+    for n in _MEASURE_VARS[plan.measure]:
+        variables[n] = Variable(vdims, np.dtype(np.float64), meta(n), np.nan)
+    attrs = {"Conventions": "CF-1.10", "title": f"pendula sweep: {plan.measure}", "scene": plan.scene.to_namelist(),
+             "measure": plan.measure, "rtol": plan.rtol, "atol": plan.atol, "t_max": plan.t_max,
+             "transient": plan.transient, "samples": plan.samples, "status_codes": json.dumps(STATUS)}
+    return Layout(axes={n: plan.over[n] for n in dims}, coords=coords, variables=variables, rows=plan.rows,
+                  identity=json.dumps(plan.key(), sort_keys=True), attrs=attrs)
+
+
+def _chunk_vars(plan: _Plan, out: np.ndarray, st: np.ndarray) -> dict:
+    """The kernel's output of one chunk as {variable: values}."""
+    if plan.measure == "poincare":
+        vals = {"theta": out[..., 0::2], "v": out[..., 1::2]}
+    else:
+        vals = {n: out[..., k] for k, n in enumerate(_MEASURE_VARS[plan.measure])}
+    vals["status"] = st.astype(np.int32)
+    return vals
+
+
+def _chunk_dataset(plan: _Plan, layout, i: int, out: np.ndarray, st: np.ndarray):
     xr = require("xarray", "sweep", "pendula.sweep")
-    names = list(plan.over)
-    lo = i * plan.rows
-    coords = {names[0]: plan.over[names[0]][lo:lo + out.shape[0]]}
-    coords.update({n: plan.over[n] for n in names[1:]})
-    dims = tuple(names)
-    data = {"status": (dims, st.astype(np.int32))}
-    if plan.measure == "final_well":
-        data["well"] = (dims, out[..., 0])
-        data["t_decided"] = (dims, out[..., 1])
-    elif plan.measure == "locked":
-        data["locked"] = (dims, out[..., 0])
-        data["t_decided"] = (dims, out[..., 1])
-    elif plan.measure == "mean_velocity":
-        data["mean_velocity"] = (dims, out[..., 0])
-        data["mean_velocity_err"] = (dims, out[..., 1])
-    elif plan.measure == "poincare":
-        data["theta"] = (dims + ("sample",), out[..., 0::2])
-        data["v"] = (dims + ("sample",), out[..., 1::2])
-        coords["sample"] = np.arange(plan.samples)
-    elif plan.measure == "lyapunov":
-        data["lyapunov"] = (dims, out[..., 0])
-        data["lyapunov_err"] = (dims, out[..., 1])
-        data["lyapunov2"] = (dims, out[..., 2])
+    lo, hi = layout.rows_of(i)
+    vals = _chunk_vars(plan, out, st)
+    coords = {n: xr.Variable((n,), v[lo:hi] if n == layout.first else v, dict(a))
+              for n, (v, a) in layout.coords.items()}
+    data = {n: (var.dims, vals[n], dict(var.attrs)) for n, var in layout.variables.items()}
     return xr.Dataset(data, coords=coords)
-
-
-def _write_atomic(ds, path: pathlib.Path) -> None:
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    ds.to_netcdf(tmp, engine="scipy")
-    os.replace(tmp, path)   # atomic on POSIX: a chunk file is whole or absent
 
 
 def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, transient=None,
@@ -260,26 +312,41 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
     samples : int, optional
         Poincare samples per point (default ``sweep_samples``).
     out : str or path, optional
-        Folder for the chunks (and resume).  Without it everything stays in memory.
+        Folder of the result's Zarr store ``out/sweep.zarr`` (filled chunk by
+        chunk; a sweep started again with the same ``out`` resumes, checking
+        every chunk already there and computing damaged ones again).  Without
+        it everything stays in memory.  One sweep at a time writes a store.
     chunk_points : int
         Points per chunk (whole rows of the first axis).
     client : dask.distributed.Client, optional
-        Spread chunks over its workers.
+        Spread chunks over its workers; a task's OpenMP threads are
+        ``max(1, cores // slots)`` with ``slots`` the tasks the machine's
+        workers run at once (their nthreads summed), so no machine runs more
+        threads than it has cores.
     threads : int
-        OpenMP threads per chunk (0: OMP_NUM_THREADS or all cores).
+        OpenMP threads per chunk (0: OMP_NUM_THREADS or all cores; with a
+        ``client``: the rule above, which a positive ``threads`` can lower).
     progress : bool
         Show a tqdm bar of chunks done and the time left.
 
     Returns
     -------
     xarray.Dataset
-        Lazy (dask-backed, read from the chunk files) when ``out`` is given
-        and there is more than one chunk.  Coordinates = the axes; variables per measure plus ``status``
+        Lazy (dask-backed, read from the Zarr store) when ``out`` is given.
+        Coordinates = the axes (with CF ``units`` and ``long_name``); variables per measure plus ``status``
         (0 decided, 1 not settled by the limit, 2 measure does not apply,
         4 uncertain: a basin-boundary point -- a grid neighbour along any axis,
         across chunk edges too, answers differently -- whose answer changed when
         computed again at 1000 times tighter tolerances; final_well and locked);
         the scene and options as attributes.
+
+    Raises
+    ------
+    ValueError
+        A bad argument (named), or an ``out`` that holds a different sweep.
+    pendula._store.StoreBusyError
+        (an OSError) another sweep is writing the same ``out``; the message
+        names the store and that sweep's pid.
 
     Examples
     --------
@@ -328,78 +395,48 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
         raise ValueError("measure 'poincare' needs a drive (drive_frequency > 0)")
     plan = _Plan(scene, over, measure, rtol, atol, t_max, transient, samples, int(chunk_points))
 
+    layout = _layout(plan)
     chunks: dict[int, object] = {}
-    folder = None
+    store = None
     if out is not None:
-        folder = pathlib.Path(out) / "chunks"
-        folder.mkdir(parents=True, exist_ok=True)
-        manifest = folder.parent / "sweep.json"
-        key = json.dumps(plan.key(), sort_keys=True)
-        if manifest.exists():
-            if manifest.read_text() != key:
-                raise ValueError(f"parameter 'out': {out} holds a different sweep; use another folder")
-        else:
-            tmp = manifest.with_name(".sweep.json.tmp")
-            tmp.write_text(key)
-            os.replace(tmp, manifest)
-    if folder is not None:
-        # a run killed while writing leaves a partial temporary file: never a chunk, removed here
-        for stale in folder.glob(".chunk_*.tmp"):
-            stale.unlink(missing_ok=True)
-    todo = []
-    for i in range(plan.nchunks):
-        f = folder / f"chunk_{i:06d}.nc" if folder else None
-        if f is not None and f.exists():
-            chunks[i] = f
-        else:
-            todo.append(i)
-
-    bar = None
-    if progress:
-        tqdm = require("tqdm.auto", "sweep", "the progress bar of pendula.sweep").tqdm
-        bar = tqdm(total=plan.nchunks, initial=plan.nchunks - len(todo), unit="chunk", desc=f"sweep {measure}")
-
-    def done(i, o, st):
-        ds = _chunk_dataset(plan, i, o, st)
-        if folder is not None:
-            _write_atomic(ds, folder / f"chunk_{i:06d}.nc")
-            chunks[i] = folder / f"chunk_{i:06d}.nc"
-        else:
-            chunks[i] = ds
-        if bar is not None:
-            bar.update(1)
-
+        from ._store import SweepStore
+        store = SweepStore(out, layout)   # takes the store's lock; finds the chunks done and sound
+        store.open()
     try:
-        if client is not None:
-            from dask.distributed import as_completed
-            futs = [client.submit(_compute_chunk, plan, i, threads, pure=False) for i in todo]
-            for fut in as_completed(futs):
-                done(*fut.result())
-        else:
-            for i in todo:
-                done(*_compute_chunk(plan, i, threads))
-    finally:
-        if bar is not None:
-            bar.close()
+        todo = [i for i in range(plan.nchunks) if store is None or i not in store.done]
+        bar = None
+        if progress:
+            tqdm = require("tqdm.auto", "sweep", "the progress bar of pendula.sweep").tqdm
+            bar = tqdm(total=plan.nchunks, initial=plan.nchunks - len(todo), unit="chunk", desc=f"sweep {measure}")
 
-    if folder is not None and plan.nchunks > 1:
-        # lazily (dask): the grid is never held in memory at once; writing it
-        # (to_netcdf) streams chunk by chunk
-        ds = xr.open_mfdataset([chunks[i] for i in range(plan.nchunks)], combine="nested",
-                               concat_dim=list(over)[0], engine="scipy", data_vars="all",
-                               coords="different", compat="equals", join="outer")
-    else:
-        parts = []
-        for i in range(plan.nchunks):
-            c = chunks[i]
-            if isinstance(c, pathlib.Path):
-                with xr.open_dataset(c, engine="scipy") as d:
-                    c = d.load()
-            parts.append(c)
-        ds = xr.concat(parts, dim=list(over)[0]) if len(parts) > 1 else parts[0]
-    ds.attrs.update({"scene": scene.to_namelist(), "measure": measure, "rtol": rtol, "atol": atol,
-                     "t_max": t_max, "transient": transient, "samples": samples,
-                     "status_codes": json.dumps(STATUS)})
+        def done(i, o, st):
+            if store is not None:
+                store.write_chunk(i, _chunk_vars(plan, o, st))
+            else:
+                chunks[i] = _chunk_dataset(plan, layout, i, o, st)
+            if bar is not None:
+                bar.update(1)
+
+        try:
+            if client is not None:
+                from ._cluster import run_chunks
+                run_chunks(client, _compute_chunk, plan, todo, threads, done)
+            else:
+                for i in todo:
+                    done(*_compute_chunk(plan, i, threads))
+        finally:
+            if bar is not None:
+                bar.close()
+        if store is not None:
+            # lazily (dask): the grid is never held in memory at once
+            ds = store.dataset()
+        else:
+            parts = [chunks[i] for i in range(plan.nchunks)]
+            ds = xr.concat(parts, dim=list(over)[0]) if len(parts) > 1 else parts[0]
+    finally:
+        if store is not None:
+            store.close()
+    ds.attrs.update(layout.attrs)
     if plan.measure == "final_well" or plan.measure == "locked":
         ds.attrs["fraction_decided"] = float((ds.status == 0).mean())
     return ds
@@ -509,27 +546,33 @@ def plot_sweep(ds, path) -> pathlib.Path:
 
 
 def cli_main(args) -> int:
-    """``pendula sweep SCENE.nml -o OUT``: the dataset (OUT/sweep.nc) and its figure (OUT/sweep.png)."""
+    """``pendula sweep SCENE.nml -o OUT``: the dataset (the Zarr store OUT/sweep.zarr; with ``--netcdf``
+    also OUT/sweep.nc) and its figure (OUT/sweep.png)."""
+    import contextlib
     import sys
     try:
         scene = Scene.from_file(args.scene)
         if not scene.grid:
             raise SceneError(f"{args.scene}: field 'grid' is empty: a sweep scene names 1 to 3 axes")
-        client = None
-        if args.workers:
-            distributed = require("distributed", "sweep", "pendula sweep --workers")
-            Client, LocalCluster = distributed.Client, distributed.LocalCluster
-            client = Client(LocalCluster(n_workers=args.workers, threads_per_worker=1))
-        ds = sweep(scene, out=args.output, chunk_points=args.chunk_points, client=client,
-                   threads=args.threads, progress=not args.quiet)
+        with contextlib.ExitStack() as stack:
+            client = None
+            if args.workers:
+                from ._cluster import local_client
+                client = stack.enter_context(local_client(args.workers))   # closed, cluster and all, on leaving
+            ds = sweep(scene, out=args.output, chunk_points=args.chunk_points, client=client,
+                       threads=args.threads, progress=not args.quiet)
     except (SceneError, ValueError) as exc:
         print(f"pendula sweep: {exc}", file=sys.stderr)
         return 2
     out = pathlib.Path(args.output)
-    tmp = out / ".sweep.nc.tmp"
-    ds.to_netcdf(tmp, engine="scipy")
-    os.replace(tmp, out / "sweep.nc")
-    png = plot_sweep(ds, out / "sweep.png")
+    files = [out / "sweep.zarr"]
+    if getattr(args, "netcdf", False):
+        tmp = out / f".sweep.nc.{os.getpid()}.tmp"
+        ds.to_netcdf(tmp, engine="scipy")
+        os.replace(tmp, out / "sweep.nc")
+        files.append(out / "sweep.nc")
+    files.append(plot_sweep(ds, out / "sweep.png"))
     st = ds.status.values
-    print(f"pendula sweep: {st.size} points, {np.mean(st == 0) * 100:.1f} % decided -> {out / 'sweep.nc'}, {png}")
+    print(f"pendula sweep: {st.size} points, {np.mean(st == 0) * 100:.1f} % decided -> "
+          f"{', '.join(map(str, files))}")
     return 0
