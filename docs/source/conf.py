@@ -30,7 +30,6 @@ extensions = [
     "sphinx.ext.autodoc",
     "sphinx.ext.autosummary",
     "sphinx.ext.intersphinx",
-    "sphinx.ext.mathjax",
     "numpydoc",
     "sphinx_gallery.gen_gallery",
     "myst_parser",
@@ -40,7 +39,6 @@ source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 exclude_patterns = ["_build", "_toc", "_api_generated.rst", "**.ipynb_checkpoints"]
 templates_path = ["_templates"]
 myst_heading_anchors = 3
-myst_enable_extensions = ["dollarmath"]
 suppress_warnings = ["myst.header"]
 
 # ---- API reference ---------------------------------------------------------
@@ -79,12 +77,20 @@ sphinx_gallery_conf = {
     "within_subsection_order": "FileNameSortKey",
     "show_memory": False,
     "abort_on_example_error": True,
+    "write_computation_times": False,
 }
+
+# No page may load anything from the network (the site must work offline, and
+# the browser check fails on any resource that does not load): no MathJax
+# (formulas are written in Unicode), no CDN scripts.
 
 # ---- HTML ------------------------------------------------------------------
 html_theme = "pydata_sphinx_theme"
 html_title = "pendula"
-html_static_path = []
+html_static_path = ["_static"]
+html_favicon = "_static/pendula.svg"
+html_logo = "_static/pendula.svg"
+html_context = {"default_mode": "light"}
 html_theme_options = {
     "navigation_with_keys": False,
     "show_toc_level": 2,
