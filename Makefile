@@ -14,7 +14,7 @@ export PATH := $(CURDIR)/$(VENV)/bin:$(PATH)
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 SOURCES := $(shell find kernel python data/scenes -type f \( -name "*.f90" -o -name "*.c" -o -name "*.py" -o -name "*.inc" -o -name "*.nml" \)) meson.build pyproject.toml
 
-.PHONY: demo test test-debug bench system-deps clean wheel sdist test-wheel
+.PHONY: demo test test-debug bench system-deps clean wheel sdist test-wheel docs docs-check docs-deps docs-browser
 
 demo: $(VENV)/.installed
 	$(PY) -m pendula demo
@@ -48,7 +48,7 @@ $(VENV)/.installed: $(VENV)/.deps $(SOURCES) | system-deps
 	@touch $@
 
 clean:
-	rm -rf build build-asan build-debug build-wheel dist out $(VENV)/.installed
+	rm -rf build build-asan build-debug build-wheel dist out docs/_build $(VENV)/.installed
 
 # --- the wheel: built for the x86-64 baseline (native=false: meson.options), then
 # auditwheel repair copies libgsl, libgslcblas, libfftw3, libgfortran, libquadmath
@@ -74,3 +74,29 @@ sdist: $(VENV)/.wheel-tools
 test-wheel: wheel sdist
 	PENDULA_WHEEL="$$(ls dist/pendula-*manylinux*.whl)" PENDULA_SDIST="$$(ls dist/pendula-*.tar.gz)" \
 	    $(PY) -m pytest -q tests/test_packaging.py
+
+# ---- the documentation site (separate from `make test`: it runs every gallery script) ----
+# make docs         build docs/_build/html with warnings as errors
+# make docs-check   also run the docstring examples and open every page in headless Chromium
+DOCS_PY_PKGS := "sphinx>=7" "pydata-sphinx-theme>=0.15" "numpydoc>=1.6" "sphinx-gallery>=0.16" \
+    "myst-parser>=2" "selenium>=4.10"
+DOCS_APT_PKGS := chromium chromium-driver
+
+docs-deps: $(VENV)/.docs-deps
+
+$(VENV)/.docs-deps: $(VENV)/.deps
+	$(PY) -m pip install -q $(DOCS_PY_PKGS)
+	@touch $@
+
+docs: $(VENV)/.installed $(VENV)/.docs-deps
+	cd docs && MPLBACKEND=agg ../$(PY) -m sphinx -W --keep-going -n -b html -j 1 source _build/html
+
+docs-browser:
+	@dpkg -s $(DOCS_APT_PKGS) >/dev/null 2>&1 || { \
+	  echo "installing system packages: $(DOCS_APT_PKGS)"; \
+	  $(SUDO) apt-get update -qq && \
+	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $(DOCS_APT_PKGS); }
+
+docs-check: docs docs-browser
+	$(PY) -m pytest -q tests/test_docs.py
+	$(PY) tests/docs_browser_check.py docs/_build/html

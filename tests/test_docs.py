@@ -1,13 +1,28 @@
-"""The examples in the docstrings run and print what they say."""
+"""The documentation says what the code does.
 
+* every docstring example of the installed package runs and prints what it says;
+* README's Python blocks run as pasted and print the output block that follows them;
+* README stays a newcomer's page: short, its links resolve, no history of the work in it.
+"""
+
+import contextlib
 import doctest
 import importlib
+import io
+import pathlib
+import pkgutil
+import re
 
 import pytest
 
-MODULES = ["pendula.elliptic", "pendula.motion", "pendula.series", "pendula.spectrum", "pendula.scene",
-           "pendula.integrate",
-           "pendula.density", "pendula.systems.cycloid", "pendula.systems.gravity"]  # issue 13
+import pendula
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+README = ROOT / "README.md"
+
+# every module of the package except the command-line entry points, whose import runs them
+MODULES = sorted(m.name for m in pkgutil.walk_packages(pendula.__path__, "pendula.")
+                 if not m.name.endswith("__main__") and not m.name.split(".")[-1].startswith("_"))
 
 
 @pytest.mark.parametrize("name", MODULES)
@@ -15,3 +30,52 @@ def test_docstring_examples(name):
     mod = importlib.import_module(name)
     failures, tried = doctest.testmod(mod, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
     assert failures == 0
+
+
+def _blocks(text):
+    """(language, body) of each fenced block, in order."""
+    return [(m.group(1), m.group(2)) for m in re.finditer(r"^```(\w*)\n(.*?)^```", text, re.S | re.M)]
+
+
+def test_readme_python_blocks_run_and_print_what_follows_them(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    blocks = _blocks(README.read_text())
+    ran = 0
+    for i, (lang, body) in enumerate(blocks):
+        if lang != "python":
+            continue
+        out = io.StringIO()
+        with contextlib.redirect_stdout(out):
+            exec(compile(body, f"README block {i}", "exec"), {"__name__": "__readme__"})
+        ran += 1
+        if i + 1 < len(blocks) and blocks[i + 1][0] == "text":
+            assert out.getvalue() == blocks[i + 1][1], f"README block {i} prints something else"
+    assert ran >= 1
+
+
+def test_readme_is_short_and_has_no_history_of_the_work():
+    text = README.read_text()
+    assert len(text.splitlines()) < 200
+    for pattern in (r"\bissue\s*\d", r"\bthe seeds?\b", r"\bseed's\b", r"#\d+\b"):
+        assert not re.search(pattern, text, re.I), pattern
+
+
+def test_readme_links_resolve():
+    text = README.read_text()
+    links = re.findall(r"\]\(([^)#]+)\)", text)
+    assert links
+    for link in links:
+        if "://" in link:
+            continue
+        assert (ROOT / link).exists(), link
+
+
+def test_readme_names_only_code_that_exists():
+    """Every `pendula.NAME` README mentions is a public name."""
+    names = set(re.findall(r"pendula\.([A-Za-z_]\w*)", README.read_text()))
+    assert names
+    assert names <= set(pendula.__all__) | {"__version__"}, names - set(pendula.__all__)
+
+
+def test_installed_package_is_marked_typed():
+    assert (pathlib.Path(pendula.__file__).parent / "py.typed").exists()

@@ -50,12 +50,12 @@ def test_theta_of_the_exact_motion_within_4_eps(cls):
     assert err.max() <= 4.0, f"{cls}: theta {err.max():.3g} eps"
 
 
-def test_readme_grid_table_is_the_generated_one():
-    """README's worst-error table is what `pendula accuracy grids` prints for
-    the stored grid and the code as it is (a table that drifted from the code
-    would be a claim nobody measured)."""
+def test_accuracy_page_grid_table_is_the_generated_one():
+    """The accuracy report's worst-error table (docs/source/reports/accuracy.md)
+    is what `pendula accuracy grids` prints for the stored grid and the code as
+    it is (a table that drifted from the code would be a claim nobody measured)."""
     from pendula.accuracy import grids_markdown
 
-    readme = (PATH.parents[1] / "README.md").read_text()
+    page = (PATH.parents[1] / "docs" / "source" / "reports" / "accuracy.md").read_text()
     table = grids_markdown(PATH)
-    assert table in readme, "README's grid table differs: regenerate it with `pendula accuracy grids`"
+    assert table in page, "the accuracy report's grid table differs: regenerate it with `pendula accuracy grids`"
