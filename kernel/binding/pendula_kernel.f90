@@ -478,3 +478,56 @@ subroutine ellipj_dd_v(n, u, ul, m, mc, sn, cn, dn, am)
   plan = jacobi_prepare(m, mc)
   call jacobi_eval_array(plan, u, sn, cn, dn, am, ul)
 end subroutine ellipj_dd_v
+
+! ---------------------------------------------------------------- timing
+! The work-precision study's clock: run one integration nrep times inside the
+! kernel and return the process CPU time of one run (seconds = total / nrep),
+! measured by the kernel around the integration alone (no argument conversion
+! or Python call inside the interval).  method: 0 = the exact path (eps =
+! params(1), conservative only), 1.. = the integrators' codes, 10 = GSL rk8pd.
+! theta, v, stats: those of the last run.  status as integrate_v.
+subroutine integrate_timed_v(nrep, n, method, params, theta0, v0, t, rtol, atol, dt, theta, v, stats, &
+                             seconds, status)
+  use pendula_kinds, only: dp
+  use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate
+  use pendula_gsl_iface, only: pendula_gsl_rk8pd
+  use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_eval
+  implicit none
+  integer, intent(in) :: nrep, n, method
+  double precision, intent(in) :: params(6), theta0, v0, t(n), rtol, atol, dt
+  double precision, intent(out) :: theta(n), v(n), stats(4), seconds
+  integer, intent(out) :: status
+  !f2py intent(hide), depend(t) :: n = len(t)
+  type(pendulum_model) :: m
+  type(event_spec) :: ev
+  type(run_stats) :: st
+  type(pendulum_orbit) :: o
+  double precision :: gs(2), tev(1), thev(1), vev(1), c0, c1
+  integer :: rep, nev
+  stats = 0; seconds = 0; status = 0
+  theta = 0; v = 0
+  if (nrep < 1) then
+    status = 1
+    return
+  end if
+  m = make_model(params(1), params(2), params(3), params(4), params(5), params(6))
+  call cpu_time(c0)
+  do rep = 1, nrep
+    select case (method)
+    case (0)
+      call orbit_setup(theta0, v0, params(1), o, status)
+      if (status /= 0) exit
+      call orbit_eval(o, t, theta, v)
+    case (10)
+      status = pendula_gsl_rk8pd(params, theta0, v0, n, t, rtol, atol, theta, v, gs)
+      if (status /= 0) status = 100 + status
+      stats = [gs(1), gs(1), 0.0d0, gs(2)]
+    case default
+      call integrate(m, method, theta0, v0, t, rtol, atol, dt, theta, v, st, status, ev, nev, tev, thev, vev)
+      stats = [dble(st%nsteps), dble(st%naccept), dble(st%nreject), dble(st%nfev)]
+    end select
+    if (status /= 0) exit
+  end do
+  call cpu_time(c1)
+  seconds = (c1 - c0) / nrep
+end subroutine integrate_timed_v

@@ -128,107 +128,14 @@ def print_report(rows: list[dict], markdown: bool = False) -> None:
 # What accuracy costs in time: the work-precision study of the integrators
 # ====================================================================
 
-WP_PROBLEMS = {
-    "libration v0 = 1.999": dict(theta0=0.0, v0=1.999, eps=1.0, t_end=100.0),
-    "rotation v0 = 2.5": dict(theta0=0.0, v0=2.5, eps=1.0, t_end=100.0),
-}
-WP_FIXED = {"rk4": [0.2, 0.1, 0.05, 0.025, 0.0125, 0.00625],
-            "verlet": [0.05, 0.025, 0.0125, 0.00625, 0.003125, 0.0015625],
-            "yoshida4": [0.2, 0.1, 0.05, 0.025, 0.0125, 0.00625],
-            "yoshida6": [0.4, 0.2, 0.1, 0.05, 0.025],
-            "yoshida8": [0.4, 0.2, 0.1, 0.05, 0.025],
-            "gauss4": [0.2, 0.1, 0.05, 0.025, 0.0125],
-            "gauss6": [0.4, 0.2, 0.1, 0.05, 0.025, 0.0125]}
-WP_TOLS = [1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-13, 1e-14]
-WP_ADAPTIVE = ("dopri5", "dop853", "gsl-rk8pd")
+def work_precision(outdir, quick: bool = False, progress: bool = True, record_to=None,
+                   problems=None) -> list[pathlib.Path]:
+    """The work-precision study of the integrators against the peers (pendula.workprecision):
+    the record work_precision.json and one figure per problem into outdir; quick: the short form
+    of ``make demo`` (one problem, four tolerances)."""
+    from .workprecision import study_main
 
-
-def work_precision(n_out: int = 201, repeat: int = 3, progress: bool = True) -> list[dict]:
-    """Global error in theta against the exact solution, and CPU time, for every
-    method over a range of steps or tolerances, on the two problems above."""
-    import time
-
-    from ._progress import Progress
-    from .integrate import integrate_scene
-    from .motion import exact_motion
-    from .scene import Scene
-
-    rows = []
-    total = len(WP_PROBLEMS) * (sum(len(v) for v in WP_FIXED.values()) + len(WP_TOLS) * len(WP_ADAPTIVE))
-    with Progress(total, "work-precision", enabled=progress) as bar:
-        for pname, p in WP_PROBLEMS.items():
-            t = np.linspace(0.0, p["t_end"], n_out)
-            exact, _ = exact_motion(p["theta0"], p["v0"], p["eps"], t)
-            runs = [(m, "dt", dt) for m, dts in WP_FIXED.items() for dt in dts]
-            runs += [(m, "rtol", tol) for m in WP_ADAPTIVE for tol in WP_TOLS]
-            for method, knob, value in runs:
-                kw = dict(dt=value) if knob == "dt" else dict(rtol=value, atol=value * 1e-2)
-                scene = Scene(theta0=p["theta0"], v0=p["v0"], eps=p["eps"], t_end=p["t_end"],
-                              method=method, **kw)
-                best = np.inf
-                for _ in range(repeat):
-                    t0 = time.process_time()
-                    tr = integrate_scene(scene, t, method)
-                    best = min(best, time.process_time() - t0)
-                err = float(np.max(np.abs(tr.theta - exact)))
-                rows.append({"problem": pname, "method": method, knob: value, "error": err, "seconds": best,
-                             "rhs_evaluations": tr.stats["rhs_evaluations"], "steps": tr.stats["steps"]})
-                bar.update(note=f"{method} {knob}={value:g}")
-    return rows
-
-
-def write_work_precision(rows: list[dict], outdir) -> list[pathlib.Path]:
-    """CSV of the study and one log-log diagram (error against CPU time) per problem."""
-    matplotlib = require("matplotlib", "accuracy", "pendula accuracy integrators (figures)")
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    outdir = pathlib.Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
-    csv_path = outdir / "work_precision.csv"
-    with csv_path.open("w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(["problem", "method", "dt", "rtol", "max_error_theta", "cpu_seconds", "rhs_evaluations", "steps"])
-        for r in rows:
-            w.writerow([r["problem"], r["method"], r.get("dt", ""), r.get("rtol", ""), repr(r["error"]),
-                        repr(r["seconds"]), r["rhs_evaluations"], r["steps"]])
-    files = [csv_path]
-    for pname in WP_PROBLEMS:
-        fig, ax = plt.subplots(figsize=(8, 5.5))
-        for method in list(WP_FIXED) + list(WP_ADAPTIVE):
-            sel = [r for r in rows if r["problem"] == pname and r["method"] == method]
-            if not sel:
-                continue
-            err = np.maximum([r["error"] for r in sel], 1e-17)
-            sec = np.maximum([r["seconds"] for r in sel], 1e-6)
-            style = "o-" if method in WP_ADAPTIVE else "s--"
-            ax.loglog(sec, err, style, ms=3.5, lw=1.0, label=method)
-        ax.set_xlabel("CPU time (s), best of 3")
-        ax.set_ylabel("max |theta - theta_exact| over the run")
-        ax.set_title(f"work-precision: {pname}, eps = 1, 0 <= t <= 100", fontsize=10)
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7, ncol=2)
-        fig.tight_layout()
-        path = outdir / f"work_precision_{pname.split()[0]}.png"
-        fig.savefig(path, dpi=110)
-        plt.close(fig)
-        files.append(path)
-    return files
-
-
-def cheapest_table(rows: list[dict], targets=(1e-4, 1e-6, 1e-8, 1e-10, 1e-12)) -> list[tuple]:
-    """For each problem and target error, the method that reached it in the least time."""
-    out = []
-    for pname in WP_PROBLEMS:
-        for target in targets:
-            ok = [r for r in rows if r["problem"] == pname and r["error"] <= target]
-            if ok:
-                best = min(ok, key=lambda r: r["seconds"])
-                out.append((pname, target, best["method"], best.get("dt", best.get("rtol")), best["seconds"]))
-            else:
-                out.append((pname, target, "none reached it", None, None))
-    return out
+    return study_main(outdir, quick=quick, progress=progress, record_to=record_to, problems=problems)
 
 
 def long_run_energy(periods: float = 1e5, methods=("gauss6", "dop853"), progress: bool = True) -> dict:

@@ -163,7 +163,7 @@ def cmd_demo(args) -> int:
     written += huygens_gallery(out)  # issue 13: Huygens' clock, non-uniform gravity, density of the angle
     written += cord_demo(out, gallery_dir(), quiet=args.quiet)  # the flexible cord (Garfinkel)
     print("\nwhat accuracy costs in time: the integrators against the exact solution")
-    integrator_study(out, 1e5, progress=not args.quiet)
+    integrator_study(out, 1e5, progress=not args.quiet, quick=True)
     sweep_demos.run(out / "sweeps", small=True, quiet=args.quiet)  # sweeps: basins, the seed's 8.2, I-V, chaos
     print(f"\n{len(written)} gallery files and the integrator study written to {out.resolve()}")
     return 0
@@ -194,19 +194,16 @@ def cmd_accuracy(args) -> int:
             return 2
         print(grids_markdown(path))
         return 0
-    return integrator_study(args.output, args.periods, progress=not args.quiet)
+    return integrator_study(args.output, args.periods, progress=not args.quiet, quick=args.quick,
+                            record_to=args.record, problems=args.problems)
 
 
-def integrator_study(outdir, periods: float, progress: bool = True) -> int:
-    """The work-precision study and the long-run energy study; files into outdir."""
-    from .accuracy import cheapest_table, long_run_energy, work_precision, write_long_run, write_work_precision
+def integrator_study(outdir, periods: float, progress: bool = True, quick: bool = False, record_to=None,
+                     problems=None) -> int:
+    """The work-precision study (pendula.workprecision) and the long-run energy study; files into outdir."""
+    from .accuracy import long_run_energy, work_precision, write_long_run
 
-    rows = work_precision(progress=progress)
-    files = write_work_precision(rows, outdir)
-    print("cheapest method per target error (CPU time, this machine):")
-    for pname, target, method, knob, sec in cheapest_table(rows):
-        extra = f"({knob:g}, {sec * 1e3:.2f} ms)" if sec is not None else ""
-        print(f"  {pname:22s} error <= {target:7.0e}: {method} {extra}")
+    files = work_precision(outdir, quick=quick, progress=progress, record_to=record_to, problems=problems)
     res = long_run_energy(periods, progress=progress)
     files += write_long_run(res, outdir, periods)
     for f in files:
@@ -268,6 +265,11 @@ def main(argv=None) -> int:
                    help="reference CSV written by data/gen_elliptic_reference.py (default: the one installed "
                         "with pendula)")
     p.add_argument("--markdown", action="store_true", help="print a Markdown table")
+    p.add_argument("--quick", action="store_true", help="integrators: the short form of the study (one problem)")
+    p.add_argument("--record", default=None,
+                   help="integrators: where to write the recorded run (default OUTPUT/work_precision.json)")
+    p.add_argument("--problems", nargs="+", default=None,
+                   help="integrators: only these problems (libration rotation damped torqued driven)")
     p.set_defaults(func=cmd_accuracy)
     p = sub.add_parser("spectrum", help="power spectra of a scene's theta(t): CSV and a log-power PNG")
     p.add_argument("scene", help="scene file (namelist group &scene)")
