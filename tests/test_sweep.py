@@ -304,3 +304,33 @@ def test_measures_match_single_simulate_runs():
     tr = pendula.simulate(s.replace(t_start=0.0, t_end=140.0, n_samples=351))   # samples at t = 0, 0.4, ...
     ref = (tr.theta[-1] - tr.theta[100]) / 100.0
     assert abs(ds.mean_velocity.item() - ref) < 1e-7 * ref
+
+
+def test_iv_curve_starting_at_a_high_torque_ramps_instead_of_stepping():
+    beta = 0.05
+    taus = np.round(np.arange(0.9, 1.0, 0.02), 10)
+    # a step from rest at theta = 0 to tau = 0.9 swings past the saddle pi - asin(0.9): running
+    step = pendula.iv_curve(Scene(damping=beta), taus, "up", transient=100.0, t_avg=200.0, start="scene")["up"]
+    assert step[1][0] > 1.0
+    # the adiabatic ramp from zero torque stays locked below tau = eps
+    ramp = pendula.iv_curve(Scene(damping=beta), taus, "up", transient=100.0, t_avg=200.0)["up"]
+    assert np.all(ramp[1] == 0.0)
+
+
+def test_iv_curve_down_branch_alone_starts_where_the_up_ramp_ends():
+    beta = 0.05
+    taus = np.round(np.arange(0.0, 1.2001, 0.04), 10)
+    both = pendula.iv_curve(Scene(damping=beta), taus, "both", transient=100.0, t_avg=200.0)["down"]
+    down = pendula.iv_curve(Scene(damping=beta), taus, "down", transient=100.0, t_avg=200.0)["down"]
+    np.testing.assert_array_equal(down[1], both[1])
+
+
+def test_iv_curve_from_a_given_state():
+    beta = 0.1
+    r = pendula.iv_curve(Scene(damping=beta), [0.5], "up", transient=100.0, t_avg=200.0, start=(0.0, 10.0))["up"]
+    # running from v = 10 at tau = 0.5 > 4 beta / pi: it stays running near tau / beta
+    assert abs(r[1][0] - 0.5 / beta) < 0.1 * 0.5 / beta
+    with pytest.raises(ValueError, match="start"):
+        pendula.iv_curve(Scene(damping=beta), [0.5], "up", start=(0.0, math.nan))
+    with pytest.raises(ValueError, match="start"):
+        pendula.iv_curve(Scene(damping=beta), [0.5], "up", start="rest")

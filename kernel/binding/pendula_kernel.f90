@@ -531,3 +531,41 @@ subroutine integrate_timed_v(nrep, n, method, params, theta0, v0, t, rtol, atol,
   call cpu_time(c1)
   seconds = (c1 - c0) / nrep
 end subroutine integrate_timed_v
+
+! ==================== equilibria and periodic orbits: kernel/models/pendula_equilibria.f90 ====================
+! Equilibria of a model in lo < theta <= hi (model 1 rigid, 2 cord, 3 cycloid; kind, par: the gravity field;
+! r: the cycloid's R / l): theta, the eigenvalues (re1, im1, re2, im2) and the kind code of each.
+! status 0 ok, 1 bad parameters, 2 more than nmax equilibria in the window.
+subroutine equilibria_v(nmax, model, kind, par, eps, r, beta, tau, lo, hi, theta, eig, ekind, count, status)
+  use pendula_equilibria, only: model_equilibria, linear_stability
+  implicit none
+  integer, intent(in) :: nmax, model, kind
+  double precision, intent(in) :: par, eps, r, beta, tau, lo, hi
+  double precision, intent(out) :: theta(nmax), eig(4, nmax)
+  integer, intent(out) :: ekind(nmax), count, status
+  double precision :: cs(nmax)
+  integer :: i
+  call model_equilibria(model, kind, par, eps, r, tau, lo, hi, theta, cs, count, status)
+  eig = 0.0d0
+  ekind = 0
+  do i = 1, count
+    call linear_stability(beta, cs(i), eig(1, i), eig(2, i), eig(3, i), eig(4, i), ekind(i))
+  end do
+end subroutine equilibria_v
+
+! A periodic orbit of the stroboscopic map over period (k drive periods) of the rigid pendulum
+! params = [eps, beta, tau, amp, omega, phase], advancing theta by 2 pi winding: Newton (GSL hybridsj)
+! on the monodromy.  x0: the guess, x: the orbit; mono: row-major monodromy; info: [iterations, rhs
+! evaluations, residual].  status 0 ok, 1 no convergence, 2 the flow failed, 3 stalled.
+subroutine periodic_orbit_v(params, period, winding, rtol, atol, tol, maxit, x0, x, mono, info, status)
+  use pendula_gsl_iface, only: pendula_gsl_periodic_orbit
+  implicit none
+  double precision, intent(in) :: params(6), period, winding, rtol, atol, tol, x0(2)
+  integer, intent(in) :: maxit
+  double precision, intent(out) :: x(2)
+  double precision, intent(out) :: mono(4), info(3)
+  integer, intent(out) :: status
+  !f2py threadsafe
+  x = x0
+  status = pendula_gsl_periodic_orbit(params, period, winding, rtol, atol, tol, maxit, x, mono, info)
+end subroutine periodic_orbit_v

@@ -42,6 +42,7 @@ from .systems.gravity import gravity_orbit  # noqa: E402
 from .systems.cord import cord_state, flip_map, flip_sequence  # noqa: E402
 # sweeps over parameter grids (issue 14); xarray is imported only when a sweep runs
 from .sweeps import iv_curve, sweep  # noqa: E402
+from .dynamics import Equilibrium, PeriodicOrbit, equilibria, periodic_orbit  # noqa: E402
 from .spectrum import precompute_wisdom, wisdom_path  # noqa: E402
 
 # the version of the installed metadata (written once, in meson.build)
@@ -55,4 +56,5 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "models", "ModelInfo", "cycloid_geometry", "cycloid_period", "CycloidGeometry", "gravity_orbit",
            "angle_density", "angle_cdf", "arcsine_density", "flip_map", "cord_state", "flip_sequence",
            "sweep", "iv_curve",
-           "precompute_wisdom", "wisdom_path"]
+           "precompute_wisdom", "wisdom_path",
+           "equilibria", "Equilibrium", "periodic_orbit", "PeriodicOrbit"]

@@ -18,7 +18,8 @@ from . import _interrupt, _kernel
 from ._checks import as_float
 from .scene import Scene
 from .systems import run
-from .systems.gravity import field_of
+from .systems.cycloid import cycloid_motion, cycloid_period
+from .systems.gravity import field_of, gravity_orbit
 from .systems.rigid import orbit
 
 __all__ = ["integrate_scene", "find_events", "numerical_period", "Events", "FIXED_STEP", "ADAPTIVE"]
@@ -38,6 +39,11 @@ _STATUS = {1: "the step dt must be positive", 2: "rtol must be > 0 and atol >= 0
 _EVENT_KINDS = {"turning": 1, "theta": 2, "theta_mod_2pi": 3}
 #: the most events one call records (memory: 24 bytes each)
 MAX_EVENTS = 10_000_000
+#: samples of the cycloid's exact path per shortest period when its events are bracketed
+CYCLOID_SAMPLES_PER_PERIOD = 64
+#: the most samples of the exact path one event search takes (in blocks of CYCLOID_BLOCK)
+CYCLOID_MAX_SAMPLES = 10**9
+CYCLOID_BLOCK = 1 << 16
 
 
 def choose_method(scene: Scene) -> str:
@@ -124,12 +130,17 @@ def find_events(scene: Scene, kind: str = "turning", level: float = 0.0, directi
     inside one step are both found; a crossing is refined by the Illinois
     method to a few ulps of t.  An event function that is exactly zero at the
     start (an event that starts at zero) is not reported there.
+
+    The cycloidal guide is never integrated: its events are roots of its
+    closed-form path, bracketed on CYCLOID_SAMPLES_PER_PERIOD samples per
+    shortest period (natural or drive) and bisected to adjacent doubles
+    (``method`` is ignored there; ``stats['path_evaluations']`` counts the work).
     """
     if kind not in _EVENT_KINDS:
         raise ValueError(f"kind must be one of {', '.join(_EVENT_KINDS)}, got {kind!r}")
     if direction not in (-1, 0, 1):
         raise ValueError("direction must be -1, 0 or +1")
-    if method not in ("dopri5", "dop853"):
+    if scene.guide != "cycloid" and method not in ("dopri5", "dop853"):
         raise ValueError("events need a method with dense output: 'dopri5' or 'dop853'")
     if isinstance(max_events, bool) or not isinstance(max_events, (int, np.integer)):
         raise TypeError(f"max_events must be a whole number, got {max_events!r}")
@@ -143,17 +154,24 @@ def find_events(scene: Scene, kind: str = "turning", level: float = 0.0, directi
     t_end = float(np.reshape(t_end, -1)[0]) if np.size(t_end) == 1 else math.nan
     if not t_end > 0 or not math.isfinite(t_end):
         raise ValueError(f"t_end must be positive and finite (events are located forward in time), got {t_end!r}")
+    if scene.guide == "cycloid":
+        return _cycloid_events(scene, kind, float(level), int(direction), t_end, bool(terminal), int(max_events))
     _, _, stats, tev, thev, vev = _run(scene, method, np.array([t_end]), _EVENT_KINDS[kind], float(level),
                                        int(direction), terminal, int(max_events))
     return Events(tev.copy(), thev.copy(), vev.copy(), stats)
 
 
 def numerical_period(scene: Scene, periods: int = 20, method: str = "dop853") -> float:
-    """The period measured by event location (source 003, task 2).
+    """The period measured by event location (Prusa & Tuma, task 2).
 
     Libration: the mean spacing of successive maxima (v falling through 0);
     rotation: the mean time per turn (theta passing theta0 + 2 pi k).  The
-    integration runs over ``periods`` estimated periods (at most 1e6).
+    integration runs over ``periods`` estimated periods (at most 1e6).  Every
+    conservative model: the rigid pendulum (its exact period from the elliptic
+    integral), the non-uniform gravity fields (their quadrature period,
+    :func:`pendula.gravity_orbit`) and the cycloidal guide (events on its exact
+    path; a torque only shifts its centre).  The measured period is compared
+    with the model's exact one.
 
     Next to the separatrix an integrator's energy error can carry the orbit
     across it (v0 = 2 - 1e-12 measured 49.2 at rtol 1e-10 against the exact
@@ -166,28 +184,115 @@ def numerical_period(scene: Scene, periods: int = 20, method: str = "dop853") ->
         raise TypeError(f"periods must be a number, got {periods!r}")
     if not 2 <= periods <= 1e6:
         raise ValueError(f"periods must be between 2 and 1e6, got {periods!r}")
-    if not scene.is_conservative_rigid:
-        raise ValueError("numerical_period measures the period of a conservative orbit")
-    o = orbit(scene.theta0, scene.v0, scene.eps)
-    if not math.isfinite(o.period):
-        return math.inf
-    dist = o.mc  # 1 - k^2 (libration) or 1 - 1/k^2 (rotation)
-    rtol = min(scene.rtol, max(1e-14, 0.01 * dist))
-    if rtol > 0.01 * dist:
-        warnings.warn(f"numerical_period: the orbit lies within {dist:.1e} (in k^2) of the separatrix; an "
-                      f"integrator at rtol = {rtol:.0e} cannot resolve it (the exact period is {o.period!r})",
-                      RuntimeWarning, stacklevel=2)
-    scene = scene.replace(rtol=rtol, atol=min(scene.atol, rtol * 1e-2))
-    span = periods * o.period * 1.02
-    if o.regime == "libration":
+    if scene.guide == "cycloid":
+        # Huygens: the period does not depend on the amplitude; a torque only shifts the centre
+        if scene.damping != 0.0 or scene.drive_amplitude != 0.0:
+            raise ValueError("numerical_period measures the period of a conservative orbit: this cycloid "
+                             "scene has damping or a drive")
+        exact, regime = cycloid_period(scene), "libration"
+    elif scene.cord != "rigid":
+        raise NotImplementedError("numerical_period: the flexible cord's motion is not periodic in general; its "
+                                  "departures and returns are in simulate(...).flips")
+    elif scene.damping != 0.0 or scene.torque != 0.0 or scene.drive_amplitude != 0.0:
+        raise ValueError("numerical_period measures the period of a conservative orbit: the scene has "
+                         + ", ".join(e for e in scene.effects if e in ("damping", "torque", "drive")))
+    else:
+        o = gravity_orbit(scene) if scene.gravity != "uniform" else orbit(scene.theta0, scene.v0, scene.eps)
+        if not math.isfinite(o.period):
+            return math.inf
+        exact, regime = o.period, o.regime
+        dist = o.mc  # 1 - k^2 (libration) or 1 - 1/k^2 (rotation): the distance from the separatrix
+        rtol = min(scene.rtol, max(1e-14, 0.01 * dist))
+        if rtol > 0.01 * dist:
+            warnings.warn(f"numerical_period: the orbit lies within {dist:.1e} (in k^2) of the separatrix; an "
+                          f"integrator at rtol = {rtol:.0e} cannot resolve it (the exact period is {exact!r})",
+                          RuntimeWarning, stacklevel=2)
+        scene = scene.replace(rtol=rtol, atol=min(scene.atol, rtol * 1e-2))
+    span = periods * exact * 1.02
+    if regime == "libration":
         ev = find_events(scene, "turning", direction=-1, t_end=span, method=method)
     else:
         ev = find_events(scene, "theta_mod_2pi", level=scene.theta0, direction=0, t_end=span, method=method)
     if ev.t.size < 2:
         raise RuntimeError("fewer than two events: cannot measure a period")
     measured = float((ev.t[-1] - ev.t[0]) / (ev.t.size - 1))
-    if abs(measured - o.period) > 1e-6 * o.period:
-        warnings.warn(f"numerical_period: measured {measured!r} differs from the exact period {o.period!r} by "
-                      f"{abs(measured / o.period - 1):.1e} (relative): the integration did not resolve the orbit",
+    if abs(measured - exact) > 1e-6 * exact:
+        warnings.warn(f"numerical_period: measured {measured!r} differs from the exact period {exact!r} by "
+                      f"{abs(measured / exact - 1):.1e} (relative): the integration did not resolve the orbit",
                       RuntimeWarning, stacklevel=2)
     return measured
+
+
+def _cycloid_event_function(scene, kind, level, t):
+    """The event function on the cycloid's exact path at the times t, and the state there."""
+    theta, v, s, sd = cycloid_motion(scene, t)
+    if kind == "turning":
+        return sd, theta, v          # s' = 4 R cos(theta) theta' has the sign of theta' between the cusps
+    return s - 4 * scene.cycloid_radius * math.sin(level), theta, v   # theta = level <=> s = 4 R sin(level)
+
+
+def _cycloid_events(scene, kind, level, direction, t_end, terminal, max_events) -> Events:
+    """Events of the cycloidal guide as roots of its exact path (no integration)."""
+    if kind == "theta_mod_2pi":
+        level = math.remainder(level, 2 * math.pi)
+    if kind != "turning" and not abs(level) <= math.pi / 2:
+        # the bob stays between the cusps, |theta| <= pi/2: that level is never crossed
+        empty = np.empty(0)
+        return Events(empty, empty.copy(), empty.copy(), {"steps": 0, "accepted": 0, "rejected": 0,
+                                                          "rhs_evaluations": 0, "stopped_by_event": False,
+                                                          "path_evaluations": 0})
+    w = math.sqrt(scene.eps / (4 * scene.cycloid_radius))
+    shortest = 2 * math.pi / max(w, abs(scene.drive_frequency) if scene.drive_amplitude else 0.0)
+    h = shortest / CYCLOID_SAMPLES_PER_PERIOD
+    n_total = math.ceil(t_end / h)
+    if n_total > CYCLOID_MAX_SAMPLES:
+        raise ValueError(f"t_end: {t_end!r} spans {t_end / shortest:.3g} periods; the cycloid's event search "
+                         f"samples at most {CYCLOID_MAX_SAMPLES // CYCLOID_SAMPLES_PER_PERIOD:.3g} periods")
+    found_t, found_th, found_v = [], [], []
+    evaluations = 0
+    count = 0
+    cancel = _interrupt.cancel_flag()
+    for start in range(0, n_total, CYCLOID_BLOCK):
+        if cancel[0]:
+            raise KeyboardInterrupt
+        idx = np.arange(start, min(start + CYCLOID_BLOCK, n_total) + 1, dtype=np.float64)
+        tt = np.minimum(idx * h, t_end)
+        g, _, _ = _cycloid_event_function(scene, kind, level, tt)
+        evaluations += tt.size
+        ga, gb = g[:-1], g[1:]
+        # a root in (a, b]: a sign change, or g(b) = 0 after a non-zero g(a); never at t = 0
+        hit = ((ga < 0) & (gb >= 0)) | ((ga > 0) & (gb <= 0))
+        rising = ga < 0
+        if direction:
+            hit &= rising if direction > 0 else ~rising
+        a, b = tt[:-1][hit], tt[1:][hit]
+        if a.size:
+            fa = ga[hit]
+            # bisection to adjacent doubles: every bracket at once, one path evaluation per step
+            for _ in range(200):
+                mid = 0.5 * (a + b)
+                open_ = (mid > a) & (mid < b)
+                if not open_.any():
+                    break
+                fm, _, _ = _cycloid_event_function(scene, kind, level, mid)
+                evaluations += mid.size
+                left = open_ & ((fm == 0) | (np.sign(fm) != np.sign(fa)))
+                right = open_ & ~left
+                b = np.where(left, mid, b)
+                a = np.where(right, mid, a)
+                fa = np.where(right, fm, fa)
+            _, th, vv = _cycloid_event_function(scene, kind, level, b)
+            take = b[: max_events - count]
+            found_t.append(take)
+            found_th.append(th[: take.size])
+            found_v.append(vv[: take.size])
+            count += take.size
+            if count >= max_events or terminal:
+                break
+    tev = np.concatenate(found_t) if found_t else np.empty(0)
+    if terminal:
+        tev = tev[:1]
+    thev = np.concatenate(found_th)[: tev.size] if found_th else np.empty(0)
+    vev = np.concatenate(found_v)[: tev.size] if found_v else np.empty(0)
+    return Events(tev, thev, vev, {"steps": 0, "accepted": 0, "rejected": 0, "rhs_evaluations": 0,
+                                   "stopped_by_event": bool(terminal and tev.size), "path_evaluations": evaluations})

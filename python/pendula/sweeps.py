@@ -442,11 +442,18 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
     return ds
 
 
-def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, rtol=None, atol=None):
+def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, rtol=None, atol=None,
+             start="ramp"):
     """The I-V curve of the constant-torque pendulum (RCSJ junction), adiabatically.
 
-    Each torque starts from the end state of the previous one (the first from
-    the scene's theta0, v0), so the up and down branches show the hysteresis.
+    Each torque starts from the end state of the previous one, so the up and
+    down branches show the hysteresis: the junction switches to running at
+    tau = eps on the way up and is retrapped near the Stewart-McCumber torque
+    4 beta / pi (small beta) on the way down.
+
+    Where the first torque starts matters: a run that begins at a high torque
+    from rest is a step, not a ramp, and lands on whichever branch the step
+    reaches.  ``start`` says what the branch begins from.
 
     Parameters
     ----------
@@ -457,6 +464,15 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
     direction : {'up', 'down', 'both'}
     transient, t_avg : float
         Time skipped, then time averaged, at each torque.
+    start : {'ramp', 'scene'} or (float, float), optional
+        ``'ramp'`` (default): where an adiabatic ramp from rest at zero torque
+        would be.  The up branch starts at rest at tau = 0 and, when its first
+        torque is not 0, ramps to it first through steps of the torques' own
+        spacing (at most 1000 steps; those values are not reported); a
+        ``'down'`` branch alone first runs that up ramp through all the torques
+        (not reported), so it starts on the running branch when the largest
+        torque exceeds eps.  ``'scene'``: the scene's theta0, v0 (the first
+        torque is a step).  A pair ``(theta, v)``: that state.
 
     Returns
     -------
@@ -485,6 +501,31 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
     rtol = scene.rtol if rtol is None else float(rtol)
     atol = scene.atol if atol is None else float(atol)
     p = np.array([getattr(scene, f) for f in _PARAM_ORDER], dtype=float)
+    if isinstance(start, str):
+        if start not in ("ramp", "scene"):
+            raise ValueError(f"parameter 'start' must be 'ramp', 'scene' or a state (theta, v); got {start!r}")
+    else:
+        try:
+            th_s, v_s = (float(x) for x in start)
+        except (TypeError, ValueError):
+            raise ValueError(f"parameter 'start' must be 'ramp', 'scene' or a state (theta, v); got {start!r}") \
+                from None
+        if not (math.isfinite(th_s) and math.isfinite(v_s)):
+            raise ValueError(f"parameter 'start' must be a finite state (theta, v); got {start!r}")
+        p[6], p[7] = th_s, v_s
+    if start == "ramp":
+        p[6], p[7] = 0.0, 0.0
+        first = tau[0] if direction != "down" else tau[-1]
+        spacing = float(np.min(np.abs(np.diff(tau)))) if tau.size > 1 else 0.0
+        spacing = spacing if spacing > 0 else abs(first) / 100.0
+        lead = tau if direction == "down" else np.array([])
+        if direction != "down" and first != 0.0:
+            steps = min(1000, max(1, math.ceil(abs(first) / spacing)))
+            lead = np.linspace(0.0, first, steps + 1)[:-1]
+        if lead.size:
+            _, _, _, th_end, v_end = _kernel.sweep_iv_branch(p, np.ascontiguousarray(lead, dtype=float), rtol,
+                                                             atol, float(transient), float(t_avg))
+            p[6], p[7] = th_end, v_end
     res = {}
     if direction in ("up", "both"):
         vm, err, st, th_end, v_end = _kernel.sweep_iv_branch(p, tau, rtol, atol, float(transient), float(t_avg))

@@ -124,7 +124,8 @@ def _iv(out):
     for b in betas:
         t2 = np.round(np.arange(0.0, 1.0, 0.005), 10)   # run downwards from 0.995
         # a transient of several damping times 1/beta
-        rr = iv_curve(Scene(damping=b, v0=1.0 / b), t2, "down", transient=max(60.0, 6.0 / b), t_avg=120.0)["down"]
+        rr = iv_curve(Scene(damping=b, v0=1.0 / b), t2, "down", transient=max(60.0, 6.0 / b), t_avg=120.0,
+                     start="scene")["down"]
         running = rr[0][rr[1] > 0]
         tr.append(running.min() if running.size else math.nan)
     tr = np.array(tr)
