@@ -255,6 +255,53 @@ def test_smoke_in_a_fresh_environment(venv, tmp_path):
     assert out.stdout.split()[:3] == ["smoke", "ok", project_version()], out.stdout
 
 
+def system_copies() -> list[str]:
+    """The real files of the system's GSL, FFTW, gfortran, quadmath and OpenMP libraries."""
+    import glob
+
+    files = set()
+    for d in ("/usr/lib/x86_64-linux-gnu", "/lib/x86_64-linux-gnu", "/usr/lib64", "/usr/local/lib"):
+        for lib in BUNDLED:
+            files.update(os.path.realpath(f) for f in glob.glob(f"{d}/{lib}.so*"))
+    return sorted(f for f in files if os.path.isfile(f))
+
+
+def run_hiding_system_copies(venv, command: str, cwd) -> subprocess.CompletedProcess:
+    """``command`` (a shell line) in a private mount namespace in which /dev/null is
+    bind-mounted over every system copy of the bundled libraries: a program that
+    still needed one fails to load it ("file too short").  Skips where mount
+    namespaces are not allowed (not root, no CAP_SYS_ADMIN)."""
+    unshare = shutil.which("unshare")
+    hidden = system_copies()
+    if unshare is None or not hidden:
+        pytest.skip("no unshare(1), or no system copy of the libraries to hide")
+    mounts = " && ".join(f"mount --bind /dev/null '{f}'" for f in hidden)
+    out = run(venv, [unshare, "--mount", "--propagation", "private", "sh", "-c", f"{mounts} && {command}"], cwd)
+    if out.returncode != 0 and ("Operation not permitted" in out.stderr or "permission denied" in out.stderr):
+        pytest.skip(f"mount namespaces are not allowed here: {out.stderr.strip()[:200]}")
+    return out
+
+
+@needs_wheel
+def test_smoke_with_the_system_libraries_hidden(venv, tmp_path):
+    """The wheel computes with the system's GSL, FFTW, gfortran, quadmath and
+    OpenMP made unloadable, from Python and from the batch program."""
+    (tmp_path / "smoke.py").write_text(SMOKE)
+    scene = ROOT / "data" / "scenes" / "fig10_theta_max_vs_v0.nml"
+    out = run_hiding_system_copies(venv, f"python smoke.py && pendula-run '{scene}' -o fig10.csv", tmp_path)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split()[:2] == ["smoke", "ok"], out.stdout
+    assert (tmp_path / "fig10.csv").stat().st_size > 0
+
+
+@needs_wheel
+def test_hiding_the_system_libraries_breaks_a_build_that_needs_them(venv, tmp_path):
+    """The test above can fail: the development build, linked to the system's
+    libraries, cannot even be imported with them hidden."""
+    out = run_hiding_system_copies(venv, f"'{sys.executable}' -c 'import pendula'", tmp_path)
+    assert out.returncode != 0 and "file too short" in out.stderr, (out.returncode, out.stderr)
+
+
 @needs_wheel
 def test_version_in_one_place(venv, tmp_path):
     out = run(venv, ["pendula", "--version"], tmp_path)

@@ -148,7 +148,7 @@ def cmd_demo(args) -> int:
     from .run import run_scene
     from .scene import Scene
 
-    for module in ("matplotlib", "xarray", "tqdm", "scipy"):  # figures, sweeps, the integrator study
+    for module in ("matplotlib", "xarray", "tqdm", "scipy"):  # figures; sweeps (scipy: their NetCDF files)
         require(module, "all", "pendula demo")
     print_elliptic_table()
     out = pathlib.Path(args.output)
