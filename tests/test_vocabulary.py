@@ -101,8 +101,10 @@ def test_progress_is_tqdm():
     from pendula._progress import Progress
     import io
     buf = io.StringIO()
+    import time
     with Progress(3, "work", stream=buf) as bar:
         for _ in range(3):
+            time.sleep(0.8)       # work longer than the two seconds before a bar appears
             bar.update()
     assert "work" in buf.getvalue() and "3/3" in buf.getvalue()
     with Progress(3, "quiet", stream=buf, enabled=False) as bar:

@@ -1,8 +1,9 @@
 """Progress on long work, by tqdm (pendula's one progress library).
 
 Library calls keep it off unless asked (``progress=True``); the command line
-turns it on.  tqdm redraws one line on a terminal and writes plain lines
-elsewhere; ``note`` shows what is being done.
+turns it on.  Work shorter than two seconds draws nothing; tqdm redraws one
+line on a terminal and writes plain lines elsewhere; ``note`` shows what is
+being done.
 """
 
 from __future__ import annotations
@@ -32,7 +33,7 @@ class Progress:
         if enabled:
             from tqdm.auto import tqdm
             self._bar = tqdm(total=self.total, desc=label, file=stream or sys.stderr, leave=True,
-                             mininterval=0.5, dynamic_ncols=True)
+                             mininterval=0.5, dynamic_ncols=True, delay=2.0)
 
     def update(self, n: int = 1, note: str = "") -> None:
         """Count n steps done; note says what the last one was."""
