@@ -19,6 +19,7 @@ to install (``pip install 'pendula[sweep]'``) and exits with status 6
 from __future__ import annotations
 
 import argparse
+import os
 import math
 import sys
 
@@ -243,6 +244,8 @@ def cmd_models(args) -> int:
 
 
 def main(argv=None) -> int:
+    # figures are written to files, never shown: no display needed
+    os.environ.setdefault("MPLBACKEND", "Agg")
     parser = argparse.ArgumentParser(prog="pendula", description="The nonlinear pendulum, exact and fast.")
     from ._version import __version__
     parser.add_argument("--version", action="version", version=f"pendula {__version__}")

@@ -37,6 +37,8 @@ _STATUS = {1: "the step dt must be positive", 2: "rtol must be > 0 and atol >= 0
            11: "gsl-rk8pd integrates forward only: give times >= 0",
            20: "bad gravity field parameters (gravity_distance > 1, gravity_gradient < 0.5)"}
 _EVENT_KINDS = {"turning": 1, "theta": 2, "theta_mod_2pi": 3}
+#: the sense of a crossing, by name (the numbers are accepted too)
+_DIRECTIONS = {"rising": 1, "falling": -1, "both": 0}
 #: the most events one call records (memory: 24 bytes each)
 MAX_EVENTS = 10_000_000
 #: samples of the cycloid's exact path per shortest period when its events are bracketed
@@ -104,15 +106,49 @@ def integrate_scene(scene: Scene, t, method: str = "auto"):
 
 @dataclass
 class Events:
-    """Located events: times t, states theta and v, and the work done."""
+    """Located events: times t, states theta and v, and the work done.
+
+    Attributes
+    ----------
+    t, theta, v : numpy.ndarray
+        The events' times and the states there, in time order.
+    stats : dict
+        The work: ``steps``, ``accepted``, ``rejected``, ``rhs_evaluations``,
+        ``stopped_by_event``; ``path_evaluations`` where the events are roots of
+        an exact path (the cycloidal guide).
+    """
 
     t: np.ndarray
     theta: np.ndarray
     v: np.ndarray
     stats: dict
 
+    def to_xarray(self):
+        """The events as an :class:`xarray.Dataset` along the dimension ``event``.
 
-def find_events(scene: Scene, kind: str = "turning", level: float = 0.0, direction: int = 0,
+        Returns
+        -------
+        xarray.Dataset
+            ``t``, ``theta``, ``v`` on ``event``; the work counters as attributes.
+
+        Examples
+        --------
+        >>> import pendula
+        >>> ev = pendula.find_events(pendula.Scene(theta0=1.0), "turning", t_end=10.0)
+        >>> ev.to_xarray().sizes["event"] == ev.t.size
+        True
+        """
+        from ._optional import require
+        xr = require("xarray", "sweep", "Events.to_xarray")
+        return xr.Dataset({"t": ("event", self.t, {"long_name": "time of the event", "units": "s"}),
+                           "theta": ("event", self.theta, {"long_name": "angle at the event", "units": "rad"}),
+                           "v": ("event", self.v, {"long_name": "angular velocity at the event",
+                                                   "units": "rad s-1"})},
+                          coords={"event": np.arange(self.t.size)},
+                          attrs={k: (int(v) if isinstance(v, (bool, np.bool_)) else v) for k, v in self.stats.items()})
+
+
+def find_events(scene: Scene, kind: str = "turning", level: float = 0.0, direction: int | str = 0,
                 t_end: float | None = None, terminal: bool = False, method: str = "dop853",
                 max_events: int = 100_000) -> Events:
     """Locate events on the dense output of an adaptive integrator.
@@ -121,8 +157,9 @@ def find_events(scene: Scene, kind: str = "turning", level: float = 0.0, directi
     ----------
     kind : {'turning', 'theta', 'theta_mod_2pi'}
         'turning': v = 0; 'theta': theta = level; 'theta_mod_2pi': theta = level + 2 pi k.
-    direction : {-1, 0, +1}
-        Only falling, both, or only rising crossings of the event function.
+    direction : {'both', 'rising', 'falling'} or {0, +1, -1}
+        Every crossing, or only those where the event function rises (+1) or
+        falls (-1).
     terminal : bool
         Stop at the first event.
 
@@ -138,8 +175,9 @@ def find_events(scene: Scene, kind: str = "turning", level: float = 0.0, directi
     """
     if kind not in _EVENT_KINDS:
         raise ValueError(f"kind must be one of {', '.join(_EVENT_KINDS)}, got {kind!r}")
-    if direction not in (-1, 0, 1):
-        raise ValueError("direction must be -1, 0 or +1")
+    direction = _DIRECTIONS.get(direction, direction) if isinstance(direction, str) else direction
+    if isinstance(direction, bool) or direction not in (-1, 0, 1):
+        raise ValueError(f"direction must be 'rising' (+1), 'falling' (-1) or 'both' (0), got {direction!r}")
     if scene.guide != "cycloid" and method not in ("dopri5", "dop853"):
         raise ValueError("events need a method with dense output: 'dopri5' or 'dop853'")
     if isinstance(max_events, bool) or not isinstance(max_events, (int, np.integer)):

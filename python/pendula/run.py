@@ -25,6 +25,12 @@ TRAJECTORY_OUTPUTS = {"trajectory", "theta_t", "v_t", "phase", "energy"}
 ORBIT_OUTPUTS = {"period", "omega", "theta_max"}
 
 
+
+def _png(path, draw, *args, **kw):
+    """Draw a figure with a pendula.plot function, save it to path, and answer with the path."""
+    draw(*args, path=path, **kw)
+    return path
+
 def slug(text: str) -> str:
     s = re.sub(r"[^A-Za-z0-9]+", "_", text).strip("_").lower()
     return s or "scene"
@@ -65,13 +71,13 @@ def _outputs(scene: Scene, outdir: pathlib.Path, stem: str | None, progress: boo
                               if scene.sweep else tr.as_array() for value, tr in runs])
             files.append(write_csv(outdir / f"{stem}.csv", scene, cols, rows))
         if "theta_t" in wanted:
-            files.append(plot.time_series(scene, runs, outdir / f"{stem}_theta_t.png", "theta"))
+            files.append(_png(outdir / f"{stem}_theta_t.png", plot.time_series, scene, runs, which="theta"))
         if "v_t" in wanted:
-            files.append(plot.time_series(scene, runs, outdir / f"{stem}_v_t.png", "v"))
+            files.append(_png(outdir / f"{stem}_v_t.png", plot.time_series, scene, runs, which="v"))
         if "phase" in wanted:
-            files.append(plot.phase_portrait(scene, runs, outdir / f"{stem}_phase.png"))
+            files.append(_png(outdir / f"{stem}_phase.png", plot.phase_portrait, scene, runs))
         if "energy" in wanted:
-            files.append(plot.energy_drift(scene, runs, outdir / f"{stem}_energy.png"))
+            files.append(_png(outdir / f"{stem}_energy.png", plot.energy_drift, scene, runs))
 
     if wanted & ORBIT_OUTPUTS:
         if scene.effects and issue13_orbit(scene) is None:
@@ -90,10 +96,11 @@ def _outputs(scene: Scene, outdir: pathlib.Path, stem: str | None, progress: boo
         files.append(write_csv(outdir / f"{stem}_orbits.csv", scene, cols, rows))
         if scene.sweep:
             shown = {k: table[k] for k in ("omega", "theta_max", "period") if k in wanted}
-            files.append(plot.orbit_curves(scene, values, shown, outdir / f"{stem}_orbits.png"))
+            files.append(_png(outdir / f"{stem}_orbits.png", plot.orbit_curves, scene, values, shown))
             v = np.asarray(values) / math.sqrt(scene.eps)
             if scene.sweep == "v0" and "omega" in wanted and np.all(np.abs(v - 2) < 0.5) and np.any(v != 2):
-                files.append(plot.critical_omega(scene, values, table["omega"], outdir / f"{stem}_critical.png"))
+                files.append(_png(outdir / f"{stem}_critical.png", plot.critical_omega, scene, values,
+                                  table["omega"]))
 
     if wanted & {"series", "lindstedt"} and scene.effects:  # issue 13 guard: both are the uniform rigid pendulum's
         raise ValueError("outputs series/lindstedt are the conservative rigid pendulum's in uniform gravity; "
@@ -119,7 +126,7 @@ def _series_outputs(scene, members, values, outdir, stem):
     rows = [[theta0[i], exact[i]] + [approx[n][i] for n in orders] for i in range(len(theta0))]
     cols = ["theta0", "T_exact"] + [f"T_series_{2 * n}" for n in orders]
     return [write_csv(outdir / f"{stem}_series.csv", scene, cols, rows),
-            plot.period_series_figure(theta0, exact, approx, outdir / f"{stem}_series.png")]
+            _png(outdir / f"{stem}_series.png", plot.period_series_figure, theta0, exact, approx)]
 
 
 def _lindstedt_outputs(scene, members, values, outdir, stem, progress):
@@ -139,7 +146,7 @@ def _lindstedt_outputs(scene, members, values, outdir, stem, progress):
     rows = [[values[i]] + [errors[o][i] for o in orders] for i in range(len(values))]
     cols = ["amplitude"] + [f"max_error_order_{o}" for o in orders]
     return [write_csv(outdir / f"{stem}_lindstedt.csv", scene, cols, rows),
-            plot.lindstedt_figure(np.asarray(values), errors, outdir / f"{stem}_lindstedt.png")]
+            _png(outdir / f"{stem}_lindstedt.png", plot.lindstedt_figure, np.asarray(values), errors)]
 
 
 def _spectrum_outputs(scene, members, values, outdir, stem, progress=True):
@@ -175,7 +182,7 @@ def _spectrum_outputs(scene, members, values, outdir, stem, progress=True):
               notes=("harmonics above 1e-6 of the fundamental's power: "
                      + "; ".join(f"{lab or 'run'}: {h}" for lab, h in zip(labels, notes)),))
     files = [outdir / f"{stem}_spectrum.csv",
-             plot.spectra_figure(scene, specs, labels, outdir / f"{stem}_spectrum.png")]
+             _png(outdir / f"{stem}_spectrum.png", plot.spectra_figure, scene, specs, labels)]
     for lab, h in zip(labels, notes):
         print(f"    {stem}: {lab or 'run'}: odd harmonics above 1e-6 of the fundamental's power: "
               f"{', '.join(str(x) for x in h)}")

@@ -198,6 +198,30 @@ class Spectrum:
     power: np.ndarray
     window: str | None
 
+    def to_xarray(self):
+        """The spectrum as an :class:`xarray.Dataset` along ``omega``, with CF attributes.
+
+        Returns
+        -------
+        xarray.Dataset
+            ``power`` and ``amplitude`` on the dimension ``omega``; the window as an attribute.
+
+        Examples
+        --------
+        >>> import numpy as np, pendula
+        >>> t = np.arange(64) * 0.1
+        >>> ds = pendula.spectrum(t, np.sin(2 * np.pi * t / 6.4)).to_xarray()
+        >>> ds.power.attrs["long_name"]
+        'one-sided power |A_k|^2'
+        """
+        from ._optional import require
+        xr = require("xarray", "sweep", "Spectrum.to_xarray")
+        return xr.Dataset(
+            {"power": ("omega", self.power, {"long_name": "one-sided power |A_k|^2", "units": "rad2"}),
+             "amplitude": ("omega", self.amplitude, {"long_name": "amplitude |A_k|", "units": "rad"})},
+            coords={"omega": ("omega", self.omega, {"long_name": "angular frequency", "units": "rad s-1"})},
+            attrs={"window": self.window or "none"})
+
     @property
     def amplitude(self) -> np.ndarray:
         """|A_k| = sqrt(power)."""
