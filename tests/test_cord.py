@@ -397,3 +397,17 @@ def test_restitution_with_damping_integrated_loop_agrees_with_closed_form_at_zer
     np.testing.assert_allclose(b.flips["t_return"][:n], a.flips["t_return"][:n], rtol=0, atol=1e-8)
     np.testing.assert_allclose(b.flips["xi_after"][:n], a.flips["xi_after"][:n], rtol=0, atol=1e-8)
     assert np.nanmax(b.r) <= 1 + 1e-12
+
+
+# ------------------------------------------------------------ argument checks
+
+def test_cord_state_with_no_terms_names_nmax():
+    with pytest.raises(ValueError, match="nmax"):
+        cord_state(0.5, nmax=0)
+    with pytest.raises(ValueError, match="nmax"):
+        cord_state(0.5, nmax=2.5)
+
+
+def test_flip_sequence_beyond_its_limit_is_refused():
+    with pytest.raises(ValueError, match="n must be a whole number from 0 to"):
+        flip_sequence(2 ** 40)

@@ -244,3 +244,53 @@ def test_sweep_beyond_the_cusp_is_refused_before_output(tmp_path):
     out = tmp_path / "o.csv"
     p = subprocess.run([venv_bin("pendula-run"), str(f), "-o", str(out)], capture_output=True, text=True)
     assert p.returncode == 2 and "theta0" in p.stderr and not out.exists()
+
+
+# ------------------------------------------------------------ corners: heavy damping, bad arguments, cusps
+
+def _overdamped_theta_mp(eps, r, beta, theta0, t):
+    mp.mp.dps = 60
+    eps, r, beta, theta0, t = (mp.mpf(x) for x in (eps, r, beta, theta0, t))
+    w2 = eps / (4 * r)
+    h = beta / 2
+    mu = mp.sqrt(h * h - w2)
+    r1, r2 = -w2 / (h + mu), -h - mu
+    s0 = 4 * r * mp.sin(theta0)
+    a = -r2 * s0 / (r1 - r2)
+    return mp.asin((a * mp.exp(r1 * t) + (s0 - a) * mp.exp(r2 * t)) / (4 * r))
+
+
+@pytest.mark.parametrize("damping", [1e3, 1e8, 3.7e59, 1e160, 1e300])
+def test_heavy_damping_keeps_the_slow_decay(damping):
+    # the slow root -(h - mu) = -w2 / (h + mu), never h - mu (which cancels to nothing)
+    sc = Scene(guide="cycloid", theta0=1.0, damping=damping)
+    w2 = sc.eps / (4 * sc.cycloid_radius)
+    t = np.array([100.0, 0.01 * damping / w2, 2.0 * damping / w2])
+    th = cycloid_motion(sc, t)[0]
+    for ti, got in zip(t, th):
+        ref = float(_overdamped_theta_mp(sc.eps, sc.cycloid_radius, damping, 1.0, ti))
+        assert abs(got - ref) <= 8 * EPS * abs(ref)
+
+
+def test_cycloid_period_of_a_number_names_the_scene_argument():
+    with pytest.raises(TypeError, match="scene must be a pendula.Scene"):
+        cycloid_period(0.25)
+    with pytest.raises(ValueError, match="guide"):
+        cycloid_period(Scene(theta0=0.5))
+
+
+def test_period_and_simulate_agree_on_a_scene_beyond_the_cusps():
+    sc = Scene(guide="cycloid", v0=10.0)
+    with pytest.raises(ValueError, match="cusp"):
+        pendula.simulate(sc)
+    with pytest.raises(ValueError, match=r"cusp.*v0 = 10\.0"):
+        pendula.period(sc)
+    with pytest.raises(ValueError, match="cusp"):
+        cycloid_period(sc)
+
+
+def test_cycloid_geometry_bounds_its_points():
+    with pytest.raises(ValueError, match="n must be"):
+        pendula.cycloid_geometry(1.0, n=10 ** 8)
+    with pytest.raises(TypeError, match="R must be"):
+        pendula.cycloid_geometry("1.0")

@@ -203,3 +203,59 @@ def test_cdf_with_a_sharply_peaked_field():
     sc = Scene(gravity="inverse-square", gravity_distance=1.001, theta0=1.0)
     th = np.array([-0.9, 0.2, 0.99])
     assert np.abs(angle_cdf(sc, th) - [cdf_ref(sc, x) for x in th]).max() <= 1e-12
+
+
+# ------------------------------------------------------------ next to the separatrix and the top
+
+def _cdf_uniform_mp(theta0, v0, eps, theta):
+    """The CDF of the uniform field in closed form (mpmath at 40 digits)."""
+    mp.mp.dps = 40
+    t0, v, e, th = (mp.mpf(x) for x in (theta0, v0, eps, theta))
+    k2 = mp.sin(t0 / 2) ** 2 + v * v / (4 * e)
+    if k2 < 1:
+        phi = mp.asin(mp.sin(abs(th) / 2) / mp.sqrt(k2))
+        return mp.mpf(1) / 2 + mp.sign(th) * mp.ellipf(phi, k2) / (2 * mp.ellipk(k2))
+    m = 1 / k2
+    return mp.mpf(1) / 2 + mp.ellipf(th / 2, m) / (2 * mp.ellipk(m))
+
+
+def test_cdf_next_to_the_separatrix_in_libration():
+    sc = Scene(theta0=-0.5863656862724058, v0=7.148524124932844, eps=13.939604752161001)
+    th = -1.422499142852407
+    ref = _cdf_uniform_mp(sc.theta0, sc.v0, sc.eps, th)
+    assert abs(float(angle_cdf(sc, th)) - float(ref)) <= 4 * EPS
+
+
+@pytest.mark.parametrize("theta", [-3.1358134481626974, 2.6620384923458245, 0.5])
+def test_density_in_rotation_next_to_the_separatrix(theta):
+    # 1 - m sin^2(theta/2) is formed as mc + m cos^2(theta/2): no cancellation next to the top
+    sc = Scene(theta0=-0.41417420891317, v0=0.20927765026927084, eps=0.011432602965413334)
+    mp.mp.dps = 40
+    t0, v, e, th = (mp.mpf(x) for x in (sc.theta0, sc.v0, sc.eps, theta))
+    E = v * v / 2 + 2 * e * mp.sin(t0 / 2) ** 2
+    T = 2 * mp.ellipk(2 * e / E) / mp.sqrt(E / 2)
+    ref = 1 / (T * mp.sqrt(2 * (E - 2 * e * mp.sin(th / 2) ** 2)))
+    assert abs(float(angle_density(sc, theta)) / float(ref) - 1) <= 4 * EPS
+    assert abs(float(angle_cdf(sc, theta)) - float(_cdf_uniform_mp(sc.theta0, sc.v0, sc.eps, theta))) <= 4 * EPS
+
+
+@pytest.mark.parametrize("field", [{}, dict(gravity="inverse-square", gravity_distance=2.5),
+                                   dict(gravity="linear", gravity_gradient=0.25)])
+@pytest.mark.parametrize("theta0,v0", [(math.pi, 0.0), (-math.pi, 1e-12), (3.14159265358, 0.0),
+                                       (math.pi - 1e-13, -1e-9)])
+def test_near_top_scenes_have_a_density(field, theta0, v0):
+    sc = Scene(theta0=theta0, v0=v0, **field)
+    o = pendula.gravity_orbit(sc)
+    assert o.regime != "separatrix"
+    th = np.array([-3.0, -1.0, 0.0, 1.0, 3.0])
+    c = angle_cdf(sc, th)
+    p = angle_density(sc, th)
+    assert np.all(np.isfinite(c)) and np.all(np.diff(c) > 0) and np.all(p > 0)
+
+
+def test_cdf_next_to_the_turning_point_of_a_libration_near_the_top():
+    # F from sin and cos of phi: phi next to pi/2 would lose 1/sqrt(mc) times its rounding
+    sc = Scene(theta0=3.1415926510235415, eps=23.81903433409528)
+    th = 3.141526426620049
+    ref = _cdf_uniform_mp(sc.theta0, sc.v0, sc.eps, th)
+    assert abs(float(angle_cdf(sc, th)) - float(ref)) <= 4 * EPS

@@ -252,3 +252,83 @@ def test_point_mass_close_under_the_circle():
     # delta = 1e-6 needs more than 2^20 panels: a clear error naming the field, never a rough number
     with pytest.raises(ValueError, match="gravity_distance"):
         pendula.period(make("inverse-square", 1.000001, theta0=1.0))
+
+
+# ------------------------------------------------------------ one classifier, the corners
+
+def _uniform_period_mp(theta0, v0, eps):
+    mp.mp.dps = 40
+    t0, v, e = mp.mpf(theta0), mp.mpf(v0), mp.mpf(eps)
+    k2 = mp.sin(t0 / 2) ** 2 + v * v / (4 * e)
+    if k2 < 1:
+        return 4 * mp.ellipk(k2) / mp.sqrt(e)
+    return 2 * mp.ellipk(1 / k2) / (mp.sqrt(k2) * mp.sqrt(e))
+
+
+def test_uniform_field_next_to_the_separatrix_gives_the_exact_orbit():
+    # k^2 - 1 = 2.6e-15: the period through gravity_orbit is the exact orbit's, to the bit
+    sc = Scene(theta0=0.0, v0=-14.657094970714343, eps=53.707608245134786)
+    o = gravity_orbit(sc)
+    assert o.period == pendula.orbit(sc.theta0, sc.v0, sc.eps).period
+    ref = _uniform_period_mp(sc.theta0, sc.v0, sc.eps)
+    assert abs(o.period - float(ref)) <= 2 * EPS * float(ref)
+
+
+def test_double_pi_at_rest_is_a_libration_not_the_separatrix():
+    # np.pi lies 1.2e-16 below pi: a libration that falls off the top slowly
+    o = gravity_orbit(Scene(theta0=3.141592653589793, eps=1.565407824725053))
+    assert o.regime == "libration" and o.regime == pendula.orbit(3.141592653589793, 0.0, 1.565407824725053).regime
+    assert o.theta_max == 3.141592653589793 and math.isfinite(o.period)
+    for field, kw in (("inverse-square", dict(gravity_distance=3.0)), ("linear", dict(gravity_gradient=0.3))):
+        g = gravity_orbit(Scene(theta0=3.141592653589793, eps=1.565407824725053, gravity=field, **kw))
+        assert g.regime == "libration" and g.theta_max == 3.141592653589793 and math.isfinite(g.period)
+
+
+def _theta_max_mp(field, par, eps, theta0, v0):
+    """2 asin(sqrt(w_m)), f(w_m) = E, with w_m = 1 - (f(1) - E) / Q(w_m, 1) next to the top (mpmath)."""
+    mp.mp.dps = 50
+    d, e_, t0, v = mp.mpf(par), mp.mpf(eps), mp.mpf(theta0), mp.mpf(v0)
+
+    def f(w):
+        if field == "linear":
+            return 2 * e_ * (w - d * w * w)
+        rho = mp.sqrt((d - 1) ** 2 + 4 * d * w)
+        return e_ * 4 * d * (d - 1) * w / (rho * (rho + d - 1))
+
+    E = v * v / 2 + f(mp.sin(t0 / 2) ** 2)
+    w = mp.findroot(lambda w: f(w) - E, mp.mpf("0.99"))
+    return 2 * mp.asin(mp.sqrt(w))
+
+
+def test_inverse_square_theta_max_next_to_the_top():
+    kw = dict(gravity="inverse-square", gravity_distance=9436.315480325027, eps=0.2617535163307126,
+              theta0=3.0080558773099972, v0=0.03372271557440667)
+    o = gravity_orbit(Scene(**kw))
+    ref = _theta_max_mp("inverse-square", kw["gravity_distance"], kw["eps"], kw["theta0"], kw["v0"])
+    assert abs(o.theta_max - float(ref)) <= 4 * EPS * float(ref)
+
+
+def test_linear_field_theta_max_next_to_the_top():
+    kw = dict(gravity="linear", gravity_gradient=-0.5687338959343227, eps=1.063316870126798,
+              theta0=2.924048492673269, v0=-0.2629295018915735)
+    o = gravity_orbit(Scene(**kw))
+    ref = _theta_max_mp("linear", kw["gravity_gradient"], kw["eps"], kw["theta0"], kw["v0"])
+    assert abs(o.theta_max - float(ref)) <= 4 * EPS * float(ref)
+
+
+@pytest.mark.parametrize("distance", [1e17, 1e150, 1e300, 1.7e308])
+def test_inverse_square_mass_far_away_is_the_uniform_field(distance):
+    # the correction to the uniform field is O(w / d): below rounding from d ~ 1e16 on
+    sc = Scene(gravity="inverse-square", gravity_distance=distance, theta0=1.0)
+    o = gravity_orbit(sc)
+    u = pendula.orbit(1.0, 0.0, 1.0)
+    assert o.regime == "libration"
+    assert abs(o.period - u.period) <= 4 * EPS * u.period
+    assert o.theta_max == 1.0
+    assert abs(o.energy - 2 * math.sin(0.5) ** 2) <= 2 * EPS
+    assert abs(potential(sc, 2.0) - 2 * math.sin(1.0) ** 2) <= 2 * EPS
+
+
+def test_gravity_orbit_of_something_else_names_the_scene():
+    with pytest.raises(TypeError, match="scene"):
+        gravity_orbit(0.25)

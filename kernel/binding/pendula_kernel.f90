@@ -355,6 +355,19 @@ subroutine gravity_orbit_v(kind, par, eps, theta0, v0, info, status)
   info(1) = regime
 end subroutine gravity_orbit_v
 
+! F(phi|m) from s = sin(phi), c = cos(phi) (never forming phi: next to a turning point
+! dF/dphi ~ 1/sqrt(mc) would amplify the rounding of phi); the angle density uses it.
+subroutine gravity_f_sc_v(n, s, c, m, mc, f)
+  use pendula_elliptic, only: ellip_f_sc
+  implicit none
+  !f2py threadsafe
+  integer, intent(in) :: n
+  double precision, intent(in) :: s(n), c(n), m, mc
+  double precision, intent(out) :: f(n)
+  !f2py intent(hide), depend(s) :: n = len(s)
+  f = ellip_f_sc(s, c, m, mc)
+end subroutine gravity_f_sc_v
+
 ! The integrand h(u) of t = int h du at the nodes u (regime 0 libration, 2 rotation).
 subroutine gravity_h_v(n, kind, par, eps, regime, m, mc, e, u, h)
   use pendula_gravity, only: gravity_h

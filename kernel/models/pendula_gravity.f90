@@ -19,32 +19,23 @@
 !> huge (at d = 1e300, g = r = 1 to the bit: the uniform field exactly):
 !>    f = eps 4 g w / (r (r + 1)),  Q = eps 4 g / (r r_m (r + r_m)),  V' = eps g sin / r^3.
 !>
-!> One classifier for every field.  f(1) - E = Q(w0, 1) cos^2(theta0/2) - v0^2/2
-!> is the uniform pendulum's distance from the separatrix with eps' = Q(w0, 1)/2
-!> (for the uniform field eps' = eps exactly), so the regime and the complement
-!> mc come from the exact pendulum's classifier (orbit_setup of pendula_exact:
-!> theta0 reduced and cos^2(theta0/2) - w^2 formed in double-double) and are
-!> rescaled by ratios of positive, well-conditioned numbers.  The uniform field
-!> is answered by the exact pendulum itself (orbit_period, orbit_theta_max):
-!> gravity_orbit and the exact orbit give the same bits there.
+!> One classifier for every field: the regime is the sign of the distance from
+!> the separatrix,  f(1) - E = Q(w0, 1) cos^2(theta0/2) - v0^2/2,  formed in
+!> double-double, and mc = (f(1) - E) / Q(m, 1) (libration) or (E - f(1)) / E
+!> (rotation) from it.  For the uniform field Q = 2 eps and this is exactly the
+!> exact pendulum's rule (orbit_setup of pendula_exact), which answers the
+!> uniform field whole (orbit_period, orbit_theta_max): gravity_orbit and the
+!> exact orbit give the same bits there.  For the other fields the same routine
+!> reduces theta0 and gives cos^2(theta0/2) in double-double (a start at rest
+!> with eps = 1: its mc is cos^2(theta0/2)), and Q(w0, 1) is formed in
+!> double-double (gravity_q1_dd), so the distance keeps its digits next to the
+!> separatrix and the top.
 !>
-!> The period.  Libration (E < f(1)) with amplitude w_m = sin^2(theta_m/2):
-!> sin(theta/2) = sqrt(w_m) sin(phi) turns E - V = Q (w_m - w), Q the divided
-!> difference (f(w_m) - f(w)) / (w_m - w) > 0, into
-!>   dt = sqrt(2/Q) dphi / sqrt(1 - w_m sin^2 phi),
-!> and phi = am(u | w_m) removes the last square root: dt = sqrt(2/Q) du.  So
-!>   t(theta) = int_0^F(phi | w_m) h(u) du,   h(u) = sqrt(2 / Q(w_m sn^2 u, w_m)),
-!> with no endpoint singularity left, and h even and 2K-periodic in u: the
-!> trapezoid rule on [0, K] converges geometrically (for the uniform field h
-!> is constant and T = 4 K / sqrt(eps) comes out exactly).  T = 4 int_0^K h du.
-!> Rotation (E > f(1)): with m_r = f(1)/E, E - f(w) = E (1 - m_r w) H(w), H
-!> = ((E - f(1)) + Q(w,1)(1-w)) / ((E - f(1)) + f(1)(1-w)) > 0 smooth, and
-!> theta/2 = am(u | m_r):  t(theta) = int_0^F(theta/2 | m_r) sqrt(2/(E H)) du,
-!> one turn T = 2 int_0^K.
 !> Plain-argument procedures only (no scene type).
 module pendula_gravity
   use pendula_kinds, only: dp, nan_dp, inf_dp, pi
   use pendula_elliptic, only: ellip_k, jacobi_sncndn
+  use pendula_dd, only: two_sum, two_prod, dd_add, dd_mul, dd_div, dd_sqrt
   use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_period, orbit_theta_max, &
     regime_libration, regime_separatrix
   implicit none
@@ -180,7 +171,7 @@ contains
     real(dp), intent(in) :: par, eps, theta0, v0
     real(dp), intent(out) :: e, m, mc, kk, theta_max, period
     integer, intent(out) :: regime, status
-    real(dp) :: w0, f1, c, s_old, s_new, scale, epsu, g
+    real(dp) :: w0, f1, c, s_old, s_new, scale, g, qh, ql, dh, dl, ph, pl
     integer :: n, st
     type(pendulum_orbit) :: o
     e = nan_dp; m = nan_dp; mc = nan_dp; kk = nan_dp; theta_max = nan_dp; period = nan_dp; regime = -1
@@ -189,27 +180,15 @@ contains
     if (.not. (abs(theta0) < huge(theta0) .and. abs(v0) < huge(v0))) then
       status = gs_bad_state; return
     end if
-    w0 = sin(0.5_dp * theta0)**2
-    e = 0.5_dp * v0 * v0 + gravity_f(kind, par, eps, w0)
-    ! the one classifier: the exact pendulum's, with eps' = Q(w0, 1) / 2 (= eps when uniform)
-    if (kind == gk_uniform) then
-      epsu = eps
-    else
-      epsu = 0.5_dp * gravity_q(kind, par, eps, w0, 1.0_dp)
-    end if
-    call orbit_setup(theta0, v0, epsu, o, st)
-    select case (st)
-    case (0)
-    case (1)
-      status = gs_bad_param; e = nan_dp; return
-    case (4)
-      status = gs_theta0_too_large; e = nan_dp; return
-    case (5)
-      status = gs_too_fast; e = nan_dp; return
-    case default
-      status = gs_bad_state; e = nan_dp; return
-    end select
-    if (kind == gk_uniform) then     ! the exact pendulum answers the uniform field whole
+    ! the inverse-square field with the mass beyond 2^60 l differs from the uniform one by less
+    ! than 3 / d relative (O(w / d)): below a rounding, and its double-double forms would overflow
+    ! near huge (Dekker's splitting): the uniform field answers it
+    if (kind == gk_uniform .or. (kind == gk_inverse_square .and. par >= 2.0_dp**60)) then
+      ! the exact pendulum answers the uniform field whole
+      call orbit_setup(theta0, v0, eps, o, st)
+      status = status_of(st)
+      if (status /= gs_ok) return
+      e = 0.5_dp * v0 * v0 + gravity_f(gk_uniform, par, eps, sin(0.5_dp * theta0)**2)
       regime = o%regime
       m = o%m; mc = o%mch
       theta_max = orbit_theta_max(o)
@@ -218,8 +197,22 @@ contains
       if (regime == regime_separatrix) kk = inf_dp
       return
     end if
+    ! theta0 reduced and c^2 = cos^2(theta0/2) in double-double: the exact pendulum's set-up at
+    ! rest with eps = 1 (its mc is then c^2)
+    call orbit_setup(theta0, 0.0_dp, 1.0_dp, o, st)
+    status = status_of(st)
+    if (status == gs_ok .and. .not. (eps <= 1.0e300_dp)) status = gs_bad_param
+    if (status == gs_ok .and. .not. (abs(v0) < 1.0e150_dp)) status = gs_too_fast
+    if (status /= gs_ok) return
+    w0 = sin(0.5_dp * theta0)**2
+    e = 0.5_dp * v0 * v0 + gravity_f(kind, par, eps, w0)
     f1 = gravity_f(kind, par, eps, 1.0_dp)
-    if (o%regime == regime_libration) then
+    ! the distance from the separatrix f(1) - E = Q(w0, 1) c^2 - v0^2 / 2 (double-double)
+    call gravity_q1_dd(kind, par, eps, o%mch, o%mcl, qh, ql)
+    call dd_mul(qh, ql, o%mch, o%mcl, dh, dl)
+    call two_prod(v0, v0, ph, pl)
+    call dd_add(dh, dl, -0.5_dp * ph, -0.5_dp * pl, dh, dl)
+    if (dh > 0.0_dp) then
       regime = gr_libration
       if (v0 == 0.0_dp) then
         m = w0                       ! exactly, when starting at rest
@@ -233,17 +226,17 @@ contains
           m = e / (eps * (1.0_dp + sqrt(1.0_dp - 2.0_dp * par * e / eps)))
         end select
       end if
-      ! 1 - m = (f(1) - E) / Q(m, 1) = mc' Q(w0, 1) / Q(m, 1), mc' the classifier's
+      ! 1 - m = (f(1) - E) / Q(m, 1)
       if (v0 == 0.0_dp) then
-        mc = o%mch                   ! cos^2(theta0/2) in double-double, rounded once
+        mc = o%mch + o%mcl           ! cos^2(theta0/2), rounded once
       else
-        mc = o%mch * (2.0_dp * epsu / gravity_q(kind, par, eps, m, 1.0_dp))
+        mc = (dh + dl) / gravity_q(kind, par, eps, m, 1.0_dp)
       end if
       if (mc < 0.5_dp) m = 1.0_dp - mc         ! next to the top, m from its complement
       theta_max = 2.0_dp * atan2(sqrt(m), sqrt(mc))
       if (v0 == 0.0_dp) theta_max = abs((theta0 - o%offset) - o%offl)
       scale = 4.0_dp
-    else if (o%regime == regime_separatrix) then
+    else if (dh == 0.0_dp) then
       regime = gr_separatrix
       m = 1.0_dp
       mc = 0.0_dp
@@ -253,8 +246,7 @@ contains
       return
     else
       regime = gr_rotation
-      ! E - f(1) = mc' (2 eps' w0 + v0^2/2), mc' the classifier's
-      mc = o%mch * ((2.0_dp * epsu * w0 + 0.5_dp * v0 * v0) / e)
+      mc = -(dh + dl) / e            ! (E - f(1)) / E
       m = f1 / e
       if (mc < 0.5_dp) m = 1.0_dp - mc
       theta_max = inf_dp
@@ -310,5 +302,58 @@ contains
       s = s * hu
     end function mid
   end subroutine gravity_orbit
+
+  !> gravity_orbit's status from the exact pendulum's set-up status.
+  pure integer function status_of(st)
+    integer, intent(in) :: st
+    select case (st)
+    case (0)
+      status_of = gs_ok
+    case (1)
+      status_of = gs_bad_param
+    case (4)
+      status_of = gs_theta0_too_large
+    case (5)
+      status_of = gs_too_fast
+    case default
+      status_of = gs_bad_state
+    end select
+  end function status_of
+
+  !> Q(w0, 1) = (f(1) - f(w0)) / (1 - w0) in double-double, from c^2 = 1 - w0 = cos^2(theta0/2)
+  !> given in double-double (ch + cl).  Linear: 2 eps ((1 - 2 kappa) + kappa c^2).
+  !> Inverse-square (a = d - 1, g = d / a, r1 = (d + 1) / a, r0 = sqrt(1 + 4 g w0 / a)):
+  !> 4 eps g / (r0 r1 (r0 + r1)).  Uniform: 2 eps.
+  pure subroutine gravity_q1_dd(kind, par, eps, ch, cl, qh, ql)
+    integer, intent(in) :: kind
+    real(dp), intent(in) :: par, eps, ch, cl
+    real(dp), intent(out) :: qh, ql
+    real(dp) :: ah, al, bh, bl, gh, gl, wh, wl, rh, rl, sh, sl, th, tl
+    select case (kind)
+    case (gk_linear)
+      call two_sum(1.0_dp, -2.0_dp * par, ah, al)
+      call dd_mul(par, 0.0_dp, ch, cl, bh, bl)
+      call dd_add(ah, al, bh, bl, sh, sl)
+      call dd_mul(sh, sl, 2.0_dp * eps, 0.0_dp, qh, ql)
+    case (gk_inverse_square)
+      call two_sum(par, -1.0_dp, ah, al)                  ! a = d - 1
+      call dd_div(par, 0.0_dp, ah, al, gh, gl)            ! g = d / a
+      call two_sum(1.0_dp, -ch, wh, wl)                   ! w0 = 1 - c^2
+      wl = wl - cl
+      call dd_mul(4.0_dp * gh, 4.0_dp * gl, wh, wl, th, tl)
+      call dd_div(th, tl, ah, al, th, tl)                 ! 4 g w0 / a
+      call dd_add(1.0_dp, 0.0_dp, th, tl, th, tl)
+      call dd_sqrt(th, tl, rh, rl)                        ! r0
+      call two_sum(par, 1.0_dp, bh, bl)
+      call dd_div(bh, bl, ah, al, sh, sl)                 ! r1 = (d + 1) / a
+      call dd_add(rh, rl, sh, sl, th, tl)                 ! r0 + r1
+      call dd_mul(th, tl, rh, rl, th, tl)
+      call dd_mul(th, tl, sh, sl, th, tl)                 ! r0 r1 (r0 + r1)
+      call dd_div(4.0_dp * gh, 4.0_dp * gl, th, tl, qh, ql)
+      call dd_mul(qh, ql, eps, 0.0_dp, qh, ql)
+    case default
+      qh = 2.0_dp * eps; ql = 0.0_dp
+    end select
+  end subroutine gravity_q1_dd
 
 end module pendula_gravity

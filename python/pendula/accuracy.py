@@ -363,3 +363,12 @@ def grids_markdown(path) -> str:
     lines += [f"| {f} | {d} | {rep[c]['points']} | {rep[c]['worst_eps']:.3g} | {rep[c]['bound_eps']:.3g} |"
               for f, d, c in GRID_ROWS]
     return "\n".join(lines)
+
+
+def model_grids_markdown(path) -> str:
+    """The models' grid table (data/model_grids.csv.gz: gravity, the angle density, the
+    cycloid, the cord's flips, the events): worst error per class and its tolerance
+    (see pendula._model_grids)."""
+    from ._model_grids import markdown
+
+    return markdown(path)

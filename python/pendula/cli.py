@@ -194,6 +194,12 @@ def cmd_accuracy(args) -> int:
                   "(data/gen_reference_grids.py in the repository writes it)", file=sys.stderr)
             return 2
         print(grids_markdown(path))
+        models = pathlib.Path("data/model_grids.csv.gz")
+        if models.is_file():
+            from .accuracy import model_grids_markdown
+
+            print()
+            print(model_grids_markdown(models))
         return 0
     return integrator_study(args.output, args.periods, progress=not args.quiet, quick=args.quick,
                             record_to=args.record, problems=args.problems)

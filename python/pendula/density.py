@@ -27,7 +27,7 @@ import math
 import numpy as np
 
 from ._checks import as_float
-from .elliptic import ellipf
+from . import _kernel
 
 __all__ = ["angle_density", "angle_cdf", "arcsine_density"]
 
@@ -100,7 +100,9 @@ class _Model:
         self.kind = o.regime
         self.mc = o.mc
         # the amplitude: exactly |theta0| when starting at rest (the kernel's 2 asin(sqrt(m)) rounds)
-        self.thm = abs(sc.theta0) if sc.v0 == 0.0 and o.regime == "libration" else o.theta_max
+        # (|theta0| <= pi: no reduction needed, exact; otherwise the kernel's reduced amplitude)
+        self.thm = abs(sc.theta0) if (sc.v0 == 0.0 and o.regime == "libration" and abs(sc.theta0) <= math.pi) \
+            else o.theta_max
         K = o.K
         # cosine coefficients of h on its period 2K: doubling until the last ones are below rounding
         n = 16
@@ -146,12 +148,29 @@ class _Model:
         return self._chunks(U, lambda u: (self.a * np.cos(np.multiply.outer(u, j) * (math.pi / self.K))).sum(axis=-1))
 
     def _phi(self, theta):
-        """phi with sin(theta/2) = k sin(phi), and k cos(phi), from the angle difference
-        (k^2 cos^2 phi = sin((theta_m - theta)/2) sin((theta_m + theta)/2)), so that phi keeps
-        its accuracy at the turning points where arcsin(sin(theta/2)/k) would not."""
+        """sin(phi), cos(phi) with sin(theta/2) = sqrt(m) sin(phi), and sqrt(m) cos(phi), from the
+        angle difference (m cos^2 phi = sin((theta_m - theta)/2) sin((theta_m + theta)/2)), so that
+        they keep their accuracy at the turning points where arcsin(sin(theta/2)/k) would not."""
         a = np.abs(theta)
         kc = np.sqrt(np.maximum(0.0, np.sin(0.5 * (self.thm - a)) * np.sin(0.5 * (self.thm + a))))
-        return np.arctan2(np.sin(0.5 * a), kc), kc
+        sa = np.sin(0.5 * a)
+        r = np.hypot(sa, kc)
+        r = np.where(r > 0, r, 1.0)
+        return sa / r, kc / r, kc
+
+    def _f(self, s, c):
+        """F(phi | m) from sin(phi) and cos(phi), never from phi (dF/dphi ~ 1/sqrt(mc) next to
+        pi/2 would amplify the rounding of an angle)."""
+        shape = np.shape(s)
+        s = np.ascontiguousarray(s, dtype=np.float64).reshape(-1)
+        c = np.ascontiguousarray(c, dtype=np.float64).reshape(-1)
+        return _kernel.gravity_f_sc_v(s, c, self.orbit.m, self.mc).reshape(shape)
+
+    def _turn(self, theta):
+        """(whole turns, theta - 2 pi turns in [-pi, pi)): theta itself when it is in [-pi, pi)."""
+        turns = np.floor((theta + math.pi) / (2 * math.pi))
+        w = theta - 2 * math.pi * turns
+        return turns, w
 
     def density(self, theta):
         out = np.zeros_like(theta)
@@ -166,15 +185,16 @@ class _Model:
         if self.kind == "libration":
             inside = np.abs(theta) < self.thm
             if np.any(inside):
-                phi, kc = self._phi(theta[inside])
-                U = ellipf(phi, self.orbit.m, self.mc)
+                sn, cs, kc = self._phi(theta[inside])
+                U = self._f(sn, cs)
                 out[inside] = self._h(U) / (self.T * kc)
             out[np.isnan(theta)] = np.nan
             return out
         # rotation: one turn on [-pi, pi)
-        w = np.remainder(theta + math.pi, 2 * math.pi) - math.pi
-        U = ellipf(0.5 * w, self.orbit.m, self.mc)
-        return self._h(U) / (2 * self.T * np.sqrt(1.0 - self.orbit.m * np.sin(0.5 * w) ** 2))
+        _, w = self._turn(theta)
+        U = self._f(np.sin(0.5 * w), np.cos(0.5 * w))
+        # 1 - m sin^2(w/2) = mc + m cos^2(w/2): no cancellation next to the separatrix
+        return self._h(U) / (2 * self.T * np.sqrt(self.mc + self.orbit.m * np.cos(0.5 * w) ** 2))
 
     def cdf(self, theta):
         if self.kind == "cycloid":
@@ -183,15 +203,14 @@ class _Model:
             out = np.where(theta > math.pi / 2, 1.0, np.where(theta < -math.pi / 2, 0.0, out))
             return np.where(np.isnan(theta), np.nan, out)
         if self.kind == "libration":
-            phi, _ = self._phi(np.clip(theta, -self.thm, self.thm))
-            U = ellipf(phi, self.orbit.m, self.mc)
+            sn, cs, _ = self._phi(np.clip(theta, -self.thm, self.thm))
+            U = self._f(sn, cs)
             out = 0.5 + np.sign(theta) * 2.0 * self._time(U) / self.T
             out = np.where(theta >= self.thm, 1.0, np.where(theta <= -self.thm, 0.0, out))
             return np.where(np.isnan(theta), np.nan, np.clip(out, 0.0, 1.0))
         # rotation: the CDF over [-pi, pi), continued by whole turns
-        turns = np.floor((theta + math.pi) / (2 * math.pi))
-        w = theta - 2 * math.pi * turns
-        U = ellipf(0.5 * w, self.orbit.m, self.mc)
+        turns, w = self._turn(theta)
+        U = self._f(np.sin(0.5 * w), np.cos(0.5 * w))
         return turns + 0.5 + self._time(U) / self.T
 
 

@@ -58,6 +58,10 @@ __all__ = ["flip_map", "cord_state", "flip_sequence", "simulate_cord", "xi_of"]
 
 # ------------------------------------------------------------ closed forms
 
+#: the longest sequence x_k computed (each term is one bisection; x_k lies within 1e-6 of 1 long before)
+MAX_SEQUENCE_TERMS = 100_000
+
+
 def flip_map(xi):
     """Garfinkel's flip map f (seed eqs. 14-15), vectorised.
 
@@ -127,8 +131,8 @@ def flip_sequence(n: int) -> np.ndarray:
     >>> [round(float(x), 3) for x in pendula.flip_sequence(5)]
     [-0.667, 0.0, 0.236, 0.751, 0.791]
     """
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
-        raise ValueError(f"n must be a non-negative whole number, got {n!r}")
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 0 <= n <= MAX_SEQUENCE_TERMS:
+        raise ValueError(f"n must be a whole number from 0 to {MAX_SEQUENCE_TERMS}, got {n!r}")
     # the zeros of f in (0, 1): w^3 = 3 x / 64 with w = x (1 - x^2), i.e. (1 - x^2)^3 x^2 = 3/64;
     # g(x) = x^2 (1 - x^2)^3 rises on (0, 1/2) and falls on (1/2, 1): one root on each side.
     def g(x):
@@ -166,6 +170,9 @@ def cord_state(xi, nmax: int = 200):
     >>> float(pendula.cord_state(0.777))
     3.0
     """
+    if isinstance(nmax, bool) or not isinstance(nmax, (int, np.integer)) or not 1 <= nmax <= MAX_SEQUENCE_TERMS:
+        raise ValueError(f"cord_state: nmax must be a whole number from 1 to {MAX_SEQUENCE_TERMS} (the terms "
+                         f"of the sequence x_k computed), got {nmax!r}")
     x = as_float(xi, "xi")
     seq = flip_sequence(nmax)
     k = np.searchsorted(seq, x, side="right").astype(float) - 1.0

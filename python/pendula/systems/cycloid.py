@@ -33,6 +33,8 @@ from .._checks import as_float
 
 __all__ = ["cycloid_motion", "cycloid_period", "cycloid_energy", "cycloid_geometry", "CycloidGeometry"]
 
+MAX_GEOMETRY_POINTS = 10_000_000
+
 _STATUS = {1: "eps and cycloid_radius must be positive and finite",
            3: "theta0 must satisfy |theta0| <= pi/2 (the cusps, |s| = 4R) and v0 must be finite",
            4: "the motion reaches beyond a cusp (|s| > 4R, the ends of the cheeks)"}
@@ -80,9 +82,69 @@ def cycloid_motion(scene, t):
     return tuple(a.reshape(t.shape) for a in (theta, v, s, sd))
 
 
+def _scene_arg(scene, func: str):
+    from ..scene import Scene
+
+    if not isinstance(scene, Scene):
+        raise TypeError(f"{func}: scene must be a pendula.Scene, got {type(scene).__name__} {scene!r}")
+    if scene.guide != "cycloid":
+        raise ValueError(f"{func}: the scene's guide is {scene.guide!r}, not 'cycloid'")
+
+
+def cycloid_amplitude(scene) -> tuple[float, float]:
+    """(centre, amplitude) of s(t) for the conservative cycloidal scene (torque allowed):
+    s = c + A cos(...), c = tau / w2, A = |(s0 - c, s0' / sqrt(w2))|.
+
+    Raises
+    ------
+    ValueError
+        When |c| + A > 4R: the orbit runs beyond a cusp (the same refusal as
+        :func:`pendula.simulate` on the same scene), naming theta0 and v0.
+    """
+    r = scene.cycloid_radius
+    w2 = scene.eps / (4 * r)
+    s0 = 4 * r * math.sin(scene.theta0)
+    sd0 = 4 * r * math.cos(scene.theta0) * scene.v0
+    c = scene.torque / w2
+    a = math.hypot(s0 - c, sd0 / math.sqrt(w2))
+    if abs(c) + a > 4 * r:
+        raise ValueError(f"the cycloidal pendulum's orbit runs beyond a cusp (|s| = 4R, |theta| = pi/2): "
+                         f"theta0 = {scene.theta0!r}, v0 = {scene.v0!r} (and torque = {scene.torque!r}) give "
+                         f"max |s| = {abs(c) + a!r} > 4R = {4 * r!r}; start lower or slower")
+    return c, a
+
+
 def cycloid_period(scene) -> float:
-    """T = 2 pi / sqrt(w2) = 4 pi sqrt(R/g), independent of the amplitude (no damping)."""
-    return 2 * math.pi / math.sqrt(scene.eps / (4 * scene.cycloid_radius))
+    """T = 2 pi / sqrt(w2) = 4 pi sqrt(R/g), independent of the amplitude.
+
+    Parameters
+    ----------
+    scene : Scene
+        With ``guide = 'cycloid'``; the period is that of the conservative
+        motion (damping and drive are not part of it).
+
+    Returns
+    -------
+    float
+        The period, the same for every orbit that stays between the cusps.
+
+    Raises
+    ------
+    TypeError
+        scene is not a :class:`pendula.Scene`.
+    ValueError
+        The scene's guide is not the cycloid, or its orbit runs beyond a cusp
+        (|s| > 4R), where :func:`pendula.simulate` refuses it too.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> round(pendula.cycloid_period(pendula.Scene(guide='cycloid', theta0=1.2)), 12)   # 4 pi sqrt(R/g)
+    6.28318530718
+    """
+    _scene_arg(scene, "cycloid_period")
+    cycloid_amplitude(scene)
+    return 4 * math.pi * math.sqrt(scene.cycloid_radius / scene.eps)
 
 
 def cycloid_energy(scene, s, sd):
@@ -140,7 +202,7 @@ def cycloid_geometry(R: float = 0.25, n: int = 401) -> CycloidGeometry:
     R : float
         Radius of the generating circle (> 0); the cord is 4R long.
     n : int
-        Points per curve (>= 2).
+        Points per curve, 2 to ``MAX_GEOMETRY_POINTS`` (10^7).
 
     Examples
     --------
@@ -149,9 +211,11 @@ def cycloid_geometry(R: float = 0.25, n: int = 401) -> CycloidGeometry:
     >>> [round(float(x), 12) for x in g.path[:, 0]]   # a cusp at (-pi R, 2R)
     [-3.14159265359, 2.0]
     """
+    if isinstance(R, (bool, np.bool_)) or not isinstance(R, (int, float, np.integer, np.floating)):
+        raise TypeError(f"R must be a real number, got {R!r}")
     R = float(R)
     if not (R > 0 and math.isfinite(R)):
         raise ValueError(f"R must be positive and finite, got {R!r}")
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
-        raise ValueError(f"n must be a whole number >= 2, got {n!r}")
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 2 <= n <= MAX_GEOMETRY_POINTS:
+        raise ValueError(f"n must be a whole number from 2 to {MAX_GEOMETRY_POINTS}, got {n!r}")
     return CycloidGeometry(R, int(n))

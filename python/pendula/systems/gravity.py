@@ -146,14 +146,11 @@ def issue13_orbit(scene):
 
     nan = math.nan
     if scene.guide == "cycloid" and set(scene.effects) <= {"guide", "torque"}:
+        from .cycloid import cycloid_amplitude, cycloid_period
+
         r = scene.cycloid_radius
-        w2 = scene.eps / (4 * r)
-        s0, sd0 = 4 * r * math.sin(scene.theta0), 4 * r * math.cos(scene.theta0) * scene.v0
-        c = scene.torque / w2
-        a = math.hypot(s0 - c, sd0 / math.sqrt(w2))
-        if abs(c) + a > 4 * r:
-            raise ValueError("the cycloidal pendulum's orbit runs beyond a cusp (|s| > 4R)")
-        T = 2 * math.pi / math.sqrt(w2)
+        c, a = cycloid_amplitude(scene)
+        T = cycloid_period(scene)
         return Orbit("libration", nan, nan, nan, T, 2 * math.pi / T, math.asin((c + a) / (4 * r)))
     if scene.effects == ("gravity",):
         o = gravity_orbit(scene)
