@@ -437,7 +437,8 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
             store.close()
     ds.attrs.update(layout.attrs)
     if plan.measure == "final_well" or plan.measure == "locked":
-        ds.attrs["fraction_decided"] = float((ds.status == 0).mean())
+        # read from the store in this process (threads): a cluster's workers need not see 'out'
+        ds.attrs["fraction_decided"] = float((ds.status == 0).mean().compute(scheduler="threads"))
     return ds
 
 
