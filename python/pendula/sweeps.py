@@ -564,6 +564,9 @@ def cli_main(args) -> int:
     except (SceneError, ValueError) as exc:
         print(f"pendula sweep: {exc}", file=sys.stderr)
         return 2
+    except StoreBusyError as exc:     # another sweep writes the same output folder
+        print(f"pendula sweep: {exc.strerror}", file=sys.stderr)
+        return 5
     out = pathlib.Path(args.output)
     files = [out / "sweep.zarr"]
     if getattr(args, "netcdf", False):
