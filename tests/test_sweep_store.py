@@ -304,3 +304,36 @@ def test_chunk_data_and_record_fsynced_before_the_commit_rename(tmp_path, monkey
         for var in ("well", "t_decided", "status"):
             assert f"{root}/{var}/c/{i}/0" in synced, (i, var)
         assert str(pathlib.Path(events[k][1]).resolve()) in synced
+
+
+def test_two_cli_sweeps_on_the_same_output_second_exits_5_naming_the_store(tmp_path):
+    """The second `pendula sweep` on an output folder in use exits 5 with one line naming the store and
+    the first sweep's pid, and touches nothing; the first, killed afterwards, resumes to the right result."""
+    scene = tmp_path / "s.nml"
+    scene.write_text("&scene\n damping = 0.1\n grid = 'v0', 'damping'\n grid1_range = 0, 4, 60\n"
+                     " grid2 = 0.05, 0.1, 0.2\n measure = 'final_well'\n rtol = 1e-12\n atol = 1e-14\n/\n")
+    for attempt in range(3):     # on a loaded machine the first may end before the second starts: again
+        out = tmp_path / f"o{attempt}"
+        cmd = [sys.executable, "-m", "pendula", "sweep", str(scene), "-o", str(out), "-q", "--chunk-points", "3",
+               "--threads", "1"]
+        first = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        try:
+            t0 = time.time()
+            while not (out / "sweep.lock").exists() and first.poll() is None and time.time() - t0 < 60:
+                time.sleep(0.005)
+            second = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
+            refused = first.poll() is None
+        finally:
+            first.kill()
+            first.wait()
+        if refused:
+            break
+    assert refused, "the first sweep ended before the second started, three times"
+    assert second.returncode == 5, second.stderr
+    lines = second.stderr.strip().splitlines()
+    assert len(lines) == 1 and str(out / "sweep.zarr") in lines[0] and f"pid {first.pid}" in lines[0], lines
+    # the killed first sweep left a stale lock; the same command takes it over and completes the store
+    subprocess.run(cmd, check=True, capture_output=True, timeout=300)
+    ds = xr.open_zarr(out / "sweep.zarr").load()
+    ref = pendula.sweep(Scene.from_file(scene), chunk_points=3)
+    assert ds.drop_attrs().identical(ref.drop_attrs())

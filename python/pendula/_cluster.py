@@ -63,7 +63,7 @@ def slots_by_host(client) -> dict:
     """{host: tasks its workers run at once (the sum of their nthreads)} from the scheduler."""
     slots: dict = {}
     for addr, w in client.scheduler_info(n_workers=-1)["workers"].items():
-        h = w.get("host") or _host(addr)
+        h = _host(addr)
         slots[h] = slots.get(h, 0) + int(w.get("nthreads", 1))
     return slots
 

@@ -438,7 +438,8 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
             store.close()
     ds.attrs.update(layout.attrs)
     if plan.measure == "final_well" or plan.measure == "locked":
-        ds.attrs["fraction_decided"] = float((ds.status == 0).mean())
+        # read from the store in this process (threads): a cluster's workers need not see 'out'
+        ds.attrs["fraction_decided"] = float((ds.status == 0).mean().compute(scheduler="threads"))
     return ds
 
 
@@ -605,6 +606,9 @@ def cli_main(args) -> int:
     except (SceneError, ValueError) as exc:
         print(f"pendula sweep: {exc}", file=sys.stderr)
         return 2
+    except StoreBusyError as exc:     # another sweep writes the same output folder
+        print(f"pendula sweep: {exc.strerror}", file=sys.stderr)
+        return 5
     out = pathlib.Path(args.output)
     files = [out / "sweep.zarr"]
     if getattr(args, "netcdf", False):
