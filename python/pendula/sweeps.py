@@ -280,6 +280,20 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
         computed again at 1000 times tighter tolerances; final_well and locked);
         the scene and options as attributes.
 
+    Raises
+    ------
+    ValueError
+        For an unknown measure or grid field, grid values that are empty,
+        not finite or out of the field's range, bad tolerances or times,
+        'poincare' without a drive, or an `out` folder holding another sweep.
+    SceneError
+        If `scene` is a file that does not hold a valid scene.
+
+    See Also
+    --------
+    iv_curve : the adiabatic torque ramp (hysteresis), which a grid cannot give.
+    simulate : one point of the grid, in full.
+
     Examples
     --------
     >>> import pendula
@@ -417,13 +431,31 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
     torques : array_like
         Torque values, ascending; 'down' runs them in reverse.
     direction : {'up', 'down', 'both'}
+        The branches: torque ramped up, down, or up then down (the down branch
+        starting where the up branch ended).
     transient, t_avg : float
         Time skipped, then time averaged, at each torque.
+    rtol, atol : float, optional
+        DOP853 tolerances (default: the scene's).
 
     Returns
     -------
     dict
-        {'up': (tau, <v>, err, status), 'down': (...)} for the branches asked.
+        {'up': (tau, <v>, err, status), 'down': (...)} for the branches asked:
+        arrays of the torques (in the order run), the mean velocity, its
+        convergence estimate and the status (0 decided).
+
+    Raises
+    ------
+    TypeError
+        If `scene` is not a :class:`Scene`.
+    ValueError
+        For an unknown `direction`, empty or non-finite torques, or a negative
+        `transient` or non-positive `t_avg`.
+
+    See Also
+    --------
+    sweep : grids of scenes, each from its own initial state.
 
     Examples
     --------

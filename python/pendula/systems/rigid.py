@@ -49,6 +49,19 @@ class Orbit:
     theta_max : float
         Amplitude 2 arcsin(k) of a libration; pi on the separatrix; inf for a
         rotation.
+
+    See Also
+    --------
+    orbit : makes it.
+    gravity_orbit : the orbit in a non-uniform field (``GravityOrbit``, the
+        shared facts under the same names).
+
+    Examples
+    --------
+    >>> import pendula
+    >>> o = pendula.orbit(0.0, 3.0)
+    >>> o.regime, round(o.period, 12), o.theta_max
+    ('rotation', 2.412889993982, inf)
     """
 
     regime: str
