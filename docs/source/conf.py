@@ -48,6 +48,9 @@ autodoc_typehints = "none"          # numpydoc's Parameters section carries the 
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
 numpydoc_xref_param_type = False
+# numpydoc links a class's properties from its Attributes section; the class pages
+# document the fields in that section and do not repeat them as members
+nitpick_ignore = [("py:obj", "amplitude")]
 
 # ---- intersphinx: local inventories only (no network in the build) --------
 _INV = DOCS / "inventories"

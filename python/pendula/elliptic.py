@@ -316,7 +316,7 @@ def ellipj(u, m, mc=None):
         For 0 <= m <= 1, `am` is the continuous (unwrapped) amplitude, monotone
         in u: the angle of the rotating pendulum.  For m > 1 it is
         asin(sn), which stays in [-pi/2, pi/2].  NaN with a RuntimeWarning
-        for |u| beyond 2**48 half periods.
+        for abs(u) beyond 2**48 half periods.
 
     Raises
     ------

@@ -258,7 +258,7 @@ class Spectrum:
 
     @property
     def amplitude(self) -> np.ndarray:
-        """|A_k| = sqrt(power)."""
+        """The amplitude of each line: the square root of `power`."""
         return np.sqrt(self.power)
 
     @functools.cached_property

@@ -107,7 +107,7 @@ def orbit(theta0: float, v0: float, eps: float = 1.0) -> Orbit:
     TypeError
         For a string, complex or array argument.
     ValueError
-        For eps <= 0 or beyond 1e300, |theta0| beyond 2**52, or |v0|
+        For eps <= 0 or beyond 1e300, abs(theta0) beyond 2**52, or abs(v0)
         beyond 1e154 sqrt(eps).
 
     See Also
