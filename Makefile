@@ -48,6 +48,7 @@ $(VENV)/.installed: $(VENV)/.deps $(SOURCES) | system-deps
 
 clean:
 	rm -rf build build-asan build-debug out $(VENV)/.installed
+	rm -rf docs/_build docs/source/gallery docs/source/generated docs/source/_toc docs/source/_api_generated.rst
 
 # ---- the documentation site (separate from `make test`: it runs every gallery script) ----
 # make docs         build docs/_build/html with warnings as errors
@@ -62,7 +63,9 @@ $(VENV)/.docs-deps: $(VENV)/.deps
 	$(PY) -m pip install -q $(DOCS_PY_PKGS)
 	@touch $@
 
+# from scratch every time: every gallery script runs, and no page of an old name survives
 docs: $(VENV)/.installed $(VENV)/.docs-deps
+	rm -rf docs/_build docs/source/gallery docs/source/generated docs/source/_toc docs/source/_api_generated.rst
 	cd docs && MPLBACKEND=agg ../$(PY) -m sphinx -W --keep-going -n -b html -j 1 source _build/html
 
 docs-browser:
