@@ -49,7 +49,8 @@ $(VENV)/.installed: $(VENV)/.deps $(SOURCES) | system-deps
 	@touch $@
 
 clean:
-	rm -rf build build-asan build-debug build-wheel dist out docs/_build $(VENV)/.installed
+	rm -rf build build-asan build-debug build-wheel dist out $(VENV)/.installed
+	rm -rf docs/_build docs/source/gallery docs/source/generated docs/source/_toc docs/source/_api_generated.rst
 
 # --- the wheel: built for the x86-64 baseline (native=false: meson.options), then
 # auditwheel repair copies libgsl, libgslcblas, libfftw3, libgfortran, libquadmath
@@ -89,7 +90,9 @@ $(VENV)/.docs-deps: $(VENV)/.deps
 	$(PY) -m pip install -q $(DOCS_PY_PKGS)
 	@touch $@
 
+# from scratch every time: every gallery script runs, and no page of an old name survives
 docs: $(VENV)/.installed $(VENV)/.docs-deps
+	rm -rf docs/_build docs/source/gallery docs/source/generated docs/source/_toc docs/source/_api_generated.rst
 	cd docs && MPLBACKEND=agg ../$(PY) -m sphinx -W --keep-going -n -b html -j 1 source _build/html
 
 docs-browser:

@@ -8,6 +8,7 @@
 import contextlib
 import doctest
 import importlib
+import inspect
 import io
 import pathlib
 import pkgutil
@@ -79,3 +80,36 @@ def test_readme_names_only_code_that_exists():
 
 def test_installed_package_is_marked_typed():
     assert (pathlib.Path(pendula.__file__).parent / "py.typed").exists()
+
+
+def _sections(doc):
+    """The numpydoc section titles of a docstring (a line underlined with dashes)."""
+    lines = inspect.cleandoc(doc or "").splitlines()
+    return {a.strip() for a, b in zip(lines, lines[1:]) if a.strip() and b.strip() and set(b.strip()) == {"-"}}
+
+
+def _required(obj):
+    need = {"Examples", "See Also"}
+    if inspect.isclass(obj):
+        if not issubclass(obj, BaseException):
+            need.add("Parameters|Attributes")
+        return need
+    fn = inspect.unwrap(obj)
+    if inspect.signature(fn).parameters:
+        need.add("Parameters")
+    need.add("Returns")
+    if re.search(r"^\s+raise\b", inspect.getsource(fn), re.M):
+        need.add("Raises")
+    return need
+
+
+@pytest.mark.parametrize("name", sorted(pendula.__all__))
+def test_public_name_has_the_numpydoc_sections(name):
+    """Parameters, Returns, Raises where it raises, See Also and a runnable Example
+    (the examples run in test_docstring_examples)."""
+    obj = getattr(pendula, name)
+    doc = inspect.getdoc(obj) or ""
+    have = _sections(doc)
+    missing = [s for s in _required(obj) if not set(s.split("|")) & have]
+    assert not missing, f"pendula.{name}: docstring lacks {missing}"
+    assert ">>> " in doc, f"pendula.{name}: its Examples section has no doctest"

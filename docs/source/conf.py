@@ -48,6 +48,9 @@ autodoc_typehints = "none"          # numpydoc's Parameters section carries the 
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
 numpydoc_xref_param_type = False
+# numpydoc links a class's properties from its Attributes section; the class pages
+# document the fields in that section and do not repeat them as members
+nitpick_ignore = [("py:obj", "amplitude")]
 
 # ---- intersphinx: local inventories only (no network in the build) --------
 _INV = DOCS / "inventories"
@@ -139,7 +142,7 @@ def _write_tocs() -> None:
             path.write_text(text)
     # top-level pages nobody placed (written elsewhere and new to this list): an 'other' section
     known = taken | {"index", "api", "getting_started", "about"}
-    rest = sorted({p.stem for p in HERE.iterdir() if p.suffix in (".rst", ".md")} - known)
+    rest = sorted({p.stem for p in HERE.iterdir() if p.suffix in (".rst", ".md") and not p.stem.startswith("_")} - known)
     text = (".. toctree::\n   :maxdepth: 1\n\n" + "".join(f"   /{e}\n" for e in rest)) if rest else ""
     path = toc / "other.rst.inc"
     if not path.exists() or path.read_text() != text:
@@ -184,3 +187,20 @@ def _write_api() -> None:
 
 
 _write_api()
+
+
+# ---- animations without the network ------------------------------------------
+# matplotlib's HTML player links Font Awesome 4 from a CDN for its button icons;
+# the PyData theme already ships Font Awesome (whose 'fa fa-play' ... names still
+# work), so the link is dropped from the player matplotlib writes (the gallery's
+# scripts run in this process).
+def _offline_animation_player() -> None:
+    import matplotlib.animation as animation
+
+    link = ('<link rel="stylesheet"\n'
+            'href="https://maxcdn.bootstrapcdn.com/font-awesome/4.4.0/css/font-awesome.min.css">')
+    if link in animation.JS_INCLUDE:
+        animation.JS_INCLUDE = animation.JS_INCLUDE.replace(link, "")
+
+
+_offline_animation_player()

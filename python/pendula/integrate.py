@@ -106,16 +106,30 @@ def integrate_scene(scene: Scene, t, method: str = "auto"):
 
 @dataclass
 class Events:
-    """Located events: times t, states theta and v, and the work done.
+    """Located events: what :func:`find_events` returns.
 
     Attributes
     ----------
-    t, theta, v : numpy.ndarray
-        The events' times and the states there, in time order.
+    t : ndarray
+        Event times, increasing.
+    theta, v : ndarray
+        The state at each event.
     stats : dict
-        The work: ``steps``, ``accepted``, ``rejected``, ``rhs_evaluations``,
+        Work done: ``steps``, ``accepted``, ``rejected``, ``rhs_evaluations``,
         ``stopped_by_event``; ``path_evaluations`` where the events are roots of
         an exact path (the cycloidal guide).
+
+    See Also
+    --------
+    find_events : makes it.
+    Trajectory : a motion at given times.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> ev = pendula.find_events(pendula.Scene(theta0=1.0), "turning", direction=-1, t_end=20)
+    >>> ev.t.round(6).tolist()             # maxima of theta: one per period 6.699976
+    [6.699976, 13.399951]
     """
 
     t: np.ndarray
@@ -153,16 +167,6 @@ def find_events(scene: Scene, kind: str = "turning", level: float = 0.0, directi
                 max_events: int = 100_000) -> Events:
     """Locate events on the dense output of an adaptive integrator.
 
-    Parameters
-    ----------
-    kind : {'turning', 'theta', 'theta_mod_2pi'}
-        'turning': v = 0; 'theta': theta = level; 'theta_mod_2pi': theta = level + 2 pi k.
-    direction : {'both', 'rising', 'falling'} or {0, +1, -1}
-        Every crossing, or only those where the event function rises (+1) or
-        falls (-1).
-    terminal : bool
-        Stop at the first event.
-
     Each accepted step is sampled at four interior points, so two crossings
     inside one step are both found; a crossing is refined by the Illinois
     method to a few ulps of t.  An event function that is exactly zero at the
@@ -172,6 +176,53 @@ def find_events(scene: Scene, kind: str = "turning", level: float = 0.0, directi
     closed-form path, bracketed on CYCLOID_SAMPLES_PER_PERIOD samples per
     shortest period (natural or drive) and bisected to adjacent doubles
     (``method`` is ignored there; ``stats['path_evaluations']`` counts the work).
+
+    Parameters
+    ----------
+    scene : Scene
+        The motion to search (any effects; the exact path is not used, except
+        for the cycloidal guide, which has no other).
+    kind : {'turning', 'theta', 'theta_mod_2pi'}
+        'turning': v = 0; 'theta': theta = level; 'theta_mod_2pi': theta = level + 2 pi k.
+    level : float, optional
+        The angle for 'theta' and 'theta_mod_2pi'.
+    direction : {'both', 'rising', 'falling'} or {0, +1, -1}
+        Every crossing, or only those where the event function rises (+1) or
+        falls (-1).
+    t_end : float, optional
+        End of the search, > 0 (default the scene's `t_end`).
+    terminal : bool
+        Stop at the first event.
+    method : {'dop853', 'dopri5'}
+        The integrator (events need dense output).
+    max_events : int
+        At most this many events (1 to 1e7).
+
+    Returns
+    -------
+    Events
+        The event times and states, and the work done.
+
+    Raises
+    ------
+    TypeError
+        For a non-integer `max_events`, a non-bool `terminal` or a non-number `level`.
+    ValueError
+        For an unknown `kind`, a `direction` other than those above, a method
+        without dense output, `max_events` out of range, or `t_end` not
+        positive and finite.
+
+    See Also
+    --------
+    numerical_period : the period from events.
+    simulate : the motion at given times.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> ev = pendula.find_events(pendula.Scene(theta0=1.0), "turning", direction=-1, t_end=20)
+    >>> ev.t.size, round(float(ev.t[0]), 9)       # one maximum per period 6.699975664
+    (2, 6.699975664)
     """
     if kind not in _EVENT_KINDS:
         raise ValueError(f"kind must be one of {', '.join(_EVENT_KINDS)}, got {kind!r}")
@@ -217,6 +268,41 @@ def numerical_period(scene: Scene, periods: int = 20, method: str = "dop853") ->
     separatrix (down to rtol = 1e-14), and where even that cannot resolve the
     orbit, or the measured period disagrees with the exact one by more than
     1e-6, a RuntimeWarning says so.
+
+    Parameters
+    ----------
+    scene : Scene
+        A conservative rigid scene.
+    periods : int, optional
+        How many periods to measure over (2 to 1e6).
+    method : {'dop853', 'dopri5'}
+        The integrator.
+
+    Returns
+    -------
+    float
+        The measured period; inf on the separatrix.
+
+    Raises
+    ------
+    TypeError
+        If `periods` is not a number.
+    ValueError
+        If `periods` is out of range or the scene has effects.
+    RuntimeError
+        If fewer than two events were found.
+
+    See Also
+    --------
+    period : the exact period.
+    find_events : the events it measures.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> s = pendula.Scene(theta0=1.0, rtol=1e-12, atol=1e-14)
+    >>> abs(pendula.numerical_period(s) / pendula.period(s) - 1) < 1e-12
+    True
     """
     if isinstance(periods, bool) or not isinstance(periods, (int, float, np.integer, np.floating)):
         raise TypeError(f"periods must be a number, got {periods!r}")

@@ -49,12 +49,35 @@ OUTPUT_LIMIT = 16
 
 
 class SceneError(ValueError):
-    """A malformed scene; the message names the field (and the file and line)."""
+    """A malformed scene; the message names the field (and the file and line).
+
+    A subclass of ValueError, raised by :class:`Scene` (and everything that
+    builds one) when a field has a wrong type or value, and by
+    :meth:`Scene.from_file` / :meth:`Scene.from_namelist` for text that is not
+    a valid ``&scene`` group.
+
+    See Also
+    --------
+    Scene : the fields and their ranges.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> try:
+    ...     pendula.Scene(eps=-1.0)
+    ... except pendula.SceneError as e:
+    ...     print(e)
+    field 'eps' must be positive (eps = g/l), got -1.0
+    """
 
 
 @dataclass(frozen=True)
 class Scene:
-    """One pendulum experiment.
+    """One pendulum experiment: the system, its initial state, its effects and the output times.
+
+    A frozen dataclass: change fields with :meth:`replace`.  Every field is
+    checked when the scene is made; a nonzero effect field names the effect,
+    and nothing that is not named is computed.
 
     Parameters
     ----------
@@ -73,14 +96,17 @@ class Scene:
     drive_amplitude, drive_frequency, drive_phase : float
         Periodic drive A cos(Omega t + phase) on the right-hand side.
     cord, guide, gravity : str
-        Room for the flexible cord (Garfinkel), the cycloidal guide (Huygens)
-        and non-uniform gravity; 'rigid', 'none', 'uniform' mean absent.
+        The flexible cord (``cord = 'flexible'``, Garfinkel), the cycloidal
+        guide (``guide = 'cycloid'``, Huygens) and non-uniform gravity
+        (``gravity = 'inverse-square'`` or ``'linear'``); 'rigid', 'none',
+        'uniform' mean absent.
     method : str
         'auto' (exact whenever the scene allows it), 'exact', or an integrator.
     rtol, atol, dt : float
         Tolerances of adaptive methods, step of fixed-step ones.
     outputs : tuple of str
-        What to produce: see :data:`OUTPUTS`.
+        What ``pendula run`` produces: any of trajectory, theta_t, v_t,
+        phase, energy, period, omega, theta_max, series, lindstedt, spectrum.
     sweep, sweep_values : str, tuple of float
         Optionally one field and the values it takes, one run per value.
     name : str
@@ -101,6 +127,37 @@ class Scene:
         0 = Garfinkel's inelastic jerk), the most flips simulated (0 <= n <= 1e8),
         and the shortest flight simulated, in units of 1/sqrt(eps) (>= 0): the run
         stops there (later output times are NaN, the stop reason is in the stats).
+    grid, grid1, grid2, grid3, grid1_range, grid2_range, grid3_range : tuple
+        A grid for :func:`sweep`: the names of 1 to 3 axes, and for each its
+        values or (start, stop, count).
+    measure : str
+        What a grid sweep computes at each point: 'final_well',
+        'mean_velocity', 'locked', 'poincare' or 'lyapunov'.
+    sweep_t_max, sweep_transient, sweep_samples : float, float, int
+        The sweep's time limit (or averaging time), transient and number of
+        Poincare samples.
+
+    Raises
+    ------
+    SceneError
+        For a field of the wrong type or out of its range, naming the field.
+
+    See Also
+    --------
+    simulate : run a scene.
+    sweep : a grid of scenes.
+    models : which fields select which model.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> s = pendula.Scene(v0=1.9, damping=0.1)
+    >>> s.effects, s.is_conservative_rigid
+    (('damping',), False)
+    >>> s.replace(damping=0.0).is_conservative_rigid
+    True
+    >>> pendula.Scene.from_namelist("&scene\\n v0 = 1.5\\n/\\n").v0
+    1.5
     """
 
     eps: float = math.nan  # not given: 1.0, or g / length when those are given
@@ -154,7 +211,23 @@ class Scene:
     # -- construction -------------------------------------------------------
     @classmethod
     def from_file(cls, path) -> "Scene":
-        """Read a scene from a namelist file (group ``&scene``)."""
+        """Read a scene from a namelist file (group ``&scene``).
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The file (UTF-8 text).
+
+        Returns
+        -------
+        Scene
+
+        Raises
+        ------
+        SceneError
+            If the file cannot be read, is not UTF-8, or holds a malformed
+            scene (the message names the file, the line and the field).
+        """
         path = pathlib.Path(path)
         try:
             data = path.read_bytes()
@@ -169,7 +242,30 @@ class Scene:
 
     @classmethod
     def from_namelist(cls, text: str, source: str = "<scene>") -> "Scene":
-        """Parse namelist text; errors name the source, the line and the field."""
+        """Parse namelist text; errors name the source, the line and the field.
+
+        Parameters
+        ----------
+        text : str
+            One ``&scene`` group.
+        source : str, optional
+            A name for the text in error messages.
+
+        Returns
+        -------
+        Scene
+
+        Raises
+        ------
+        SceneError
+            For malformed text or fields.
+
+        Examples
+        --------
+        >>> import pendula
+        >>> pendula.Scene.from_namelist("&scene\\n eps = 2.0, v0 = 1.0\\n/\\n").eps
+        2.0
+        """
         values = parse_namelist(text, source)
         try:
             return cls(**values)
@@ -182,6 +278,26 @@ class Scene:
         eps, g and length stay consistent: changing eps alone drops g and
         length (eps is then what was given); changing g or length recomputes
         eps from them.
+
+        Parameters
+        ----------
+        **changes
+            Field names and their new values.
+
+        Returns
+        -------
+        Scene
+
+        Raises
+        ------
+        SceneError
+            For an unknown field or a bad value.
+
+        Examples
+        --------
+        >>> import pendula
+        >>> pendula.Scene(v0=1.0).replace(damping=0.1).effects
+        ('damping',)
         """
         if "eps" in changes and not ("g" in changes or "length" in changes):
             changes.setdefault("g", math.nan)
@@ -215,17 +331,51 @@ class Scene:
         return not self.effects
 
     def members(self) -> list["Scene"]:
-        """One scene per sweep value (the scene itself when there is no sweep)."""
+        """One scene per sweep value (the scene itself when there is no sweep).
+
+        Returns
+        -------
+        list of Scene
+
+        Examples
+        --------
+        >>> import pendula
+        >>> [m.v0 for m in pendula.Scene(sweep="v0", sweep_values=(1.0, 2.0)).members()]
+        [1.0, 2.0]
+        """
         if not self.sweep:
             return [self]
         return [self.replace(**{self.sweep: float(v)}, sweep="", sweep_values=()) for v in self.sweep_values]
 
     def times(self) -> np.ndarray:
-        """The output times: n_samples points from t_start to t_end."""
+        """The output times: `n_samples` points from `t_start` to `t_end`.
+
+        Returns
+        -------
+        ndarray
+
+        Examples
+        --------
+        >>> import pendula
+        >>> pendula.Scene(t_end=1.0, n_samples=3).times().tolist()
+        [0.0, 0.5, 1.0]
+        """
         return np.linspace(self.t_start, self.t_end, self.n_samples)
 
     def to_namelist(self) -> str:
-        """The scene as namelist text (what from_namelist reads back)."""
+        """The scene as namelist text (what :meth:`from_namelist` reads back).
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> import pendula
+        >>> s = pendula.Scene(v0=1.5)
+        >>> pendula.Scene.from_namelist(s.to_namelist()) == s
+        True
+        """
         lines = ["&scene"]
         for f in fields(self):
             v = getattr(self, f.name)

@@ -56,8 +56,24 @@ _WISDOM_LOADED = False
 
 
 def wisdom_path() -> Path:
-    """The FFTW wisdom cache file: $PENDULA_WISDOM, else
-    $XDG_CACHE_HOME/pendula/fftw-wisdom, else ~/.cache/pendula/fftw-wisdom."""
+    """The FFTW wisdom cache file.
+
+    Returns
+    -------
+    pathlib.Path
+        $PENDULA_WISDOM, else $XDG_CACHE_HOME/pendula/fftw-wisdom, else
+        ~/.cache/pendula/fftw-wisdom (the file need not exist).
+
+    See Also
+    --------
+    precompute_wisdom : writes it.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> pendula.wisdom_path().name
+    'fftw-wisdom'
+    """
     env = os.environ.get("PENDULA_WISDOM")
     if env:
         return Path(env)
@@ -95,13 +111,37 @@ def precompute_wisdom(sizes=None, path=None, progress: bool = False) -> Path:
     ----------
     sizes : iterable of int, optional
         Record lengths (default: powers of two 2^6 .. 2^20, and 3 * 2^k).
-    path : str or Path, optional
+    path : str or pathlib.Path, optional
         Where to save (default: `wisdom_path()`).
+    progress : bool, optional
+        Print each length as it is planned.
 
     Returns
     -------
-    Path
-        The file written.
+    pathlib.Path
+        The file written (written under a temporary name, then renamed).
+
+    Raises
+    ------
+    ValueError
+        For a length below 4.
+    MemoryError
+        If FFTW cannot plan a length.
+    OSError
+        If the wisdom cannot be written.
+
+    See Also
+    --------
+    wisdom_path : the default file.
+    spectra : uses the wisdom.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile, pendula
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     p = pendula.precompute_wisdom([64, 128], path=pathlib.Path(d) / "wisdom")
+    ...     print(p.name, p.stat().st_size > 0)
+    wisdom True
     """
     if sizes is None:
         sizes = [1 << k for k in range(6, 21)] + [3 << k for k in range(5, 18)]
@@ -181,17 +221,35 @@ def _free_plans() -> None:  # pragma: no cover - runs at interpreter exit
 
 @dataclass
 class Spectrum:
-    """A one-sided power spectrum.
+    """A one-sided power spectrum: what :func:`spectrum` and :func:`spectra` return.
 
     Attributes
     ----------
     omega : ndarray
         Angular frequencies 2 pi k / (n dt), k = 0 .. n/2.
     power : ndarray
-        |A_k|^2, with A_k normalised so that a sin(w t) over whole periods has |A| = a.
+        The squared amplitude of each line, normalised so that a sin(w t) over
+        whole periods has amplitude a.
     amplitude : ndarray
-        |A_k|.
+        The square root of `power`.
     window : str or None
+        The window applied, or None.
+    fundamental : float
+        The angular frequency of the strongest non-constant line, refined
+        between bins (NaN with a RuntimeWarning for a signal without one).
+
+    See Also
+    --------
+    spectrum, spectra : make it.
+    odd_harmonics_above : the odd harmonics that stand out.
+
+    Examples
+    --------
+    >>> import numpy as np, pendula
+    >>> t = np.linspace(0, 8 * np.pi, 256, endpoint=False)
+    >>> s = pendula.spectrum(t, np.sin(t))
+    >>> s.fundamental, float(s.amplitude.max())
+    (1.0, 1.0)
     """
 
     omega: np.ndarray
@@ -224,7 +282,7 @@ class Spectrum:
 
     @property
     def amplitude(self) -> np.ndarray:
-        """|A_k| = sqrt(power)."""
+        """The amplitude of each line: the square root of `power`."""
         return np.sqrt(self.power)
 
     @functools.cached_property
@@ -265,8 +323,26 @@ class Spectrum:
         return float(self.omega[k] + delta * dw)
 
     def harmonics(self, n: int) -> np.ndarray:
-        """Amplitudes of the first n odd harmonics w, 3w, 5w, ... of the fundamental
-        (the lines of a libration), read at the nearest bins."""
+        """Amplitudes of the first n odd harmonics w, 3w, 5w, ... of the fundamental.
+
+        The lines of a libration, read at the nearest bins.
+
+        Parameters
+        ----------
+        n : int
+            How many (n >= 1).
+
+        Returns
+        -------
+        ndarray
+            n amplitudes; NaN beyond the Nyquist frequency, and all NaN (with a
+            RuntimeWarning) when the signal has no fundamental.
+
+        Raises
+        ------
+        ValueError
+            If `n` is not a positive whole number.
+        """
         if not (isinstance(n, (int, np.integer)) and n >= 1):
             raise ValueError(f"n must be a positive whole number, got {n!r}")
         dw = self.omega[1] - self.omega[0]
@@ -305,6 +381,7 @@ def spectra(t, signals, window: str | None = None, measure: bool = False) -> lis
         NaN in a signal gives NaN in its spectrum (as numpy.fft does).
         m = 0 (no signals) gives an empty list.
     window : {None, 'hann'}
+        A window applied before the transform.
     measure : bool
         Plan with FFTW_MEASURE (~25 s of planning for 2^20 samples here, then
         transforms about twice as fast).  Without it, a measured plan is still
@@ -323,6 +400,21 @@ def spectra(t, signals, window: str | None = None, measure: bool = False) -> lis
     ValueError
         Fewer than 4 samples, non-uniform or non-finite t, mismatched shapes,
         an unknown window.
+    TypeError
+        For a string, complex or object argument.
+
+    See Also
+    --------
+    spectrum : one signal.
+    numpy.fft.rfft : the peer.
+
+    Examples
+    --------
+    >>> import numpy as np, pendula
+    >>> t = np.linspace(0, 8 * np.pi, 256, endpoint=False)
+    >>> specs = pendula.spectra(t, np.vstack([np.sin(t), 2 * np.sin(3 * t)]))
+    >>> [round(s.fundamental, 12) for s in specs]
+    [1.0, 3.0]
     """
     t = as_float(t, "t")
     dt = _uniform_step(t)
@@ -350,7 +442,34 @@ def spectra(t, signals, window: str | None = None, measure: bool = False) -> lis
 
 
 def spectrum(t, theta, window: str | None = None) -> Spectrum:
-    """Power spectrum |A|^2 of theta(t) against angular frequency (FFTW).
+    """Power spectrum of theta(t) against angular frequency (FFTW).
+
+    Parameters
+    ----------
+    t : array_like, shape (n,)
+        Uniformly spaced times (n >= 4).
+    theta : array_like, shape (n,)
+        The signal.
+    window : {None, 'hann'}
+        A window applied before the transform.
+
+    Returns
+    -------
+    Spectrum
+        The one-sided power spectrum.
+
+    Raises
+    ------
+    ValueError
+        Fewer than 4 samples, non-uniform or non-finite t, mismatched shapes,
+        an unknown window.
+    TypeError
+        For a string, complex or object argument.
+
+    See Also
+    --------
+    spectra : many signals with one plan.
+    fourier_series : the exact amplitudes of the pendulum's lines.
 
     Examples
     --------
@@ -374,6 +493,40 @@ def fourier_series(theta0: float, v0: float, eps: float = 1.0, n: int = 10) -> t
     j = 1..n, omega = pi k sqrt(eps) / K(1/k^2), theta = omega t + sum c_j sin(j omega t).
     q is the nome of the parameter (k^2 or 1/k^2).  (Phases: for an orbit through
     theta = 0 at t = 0.)
+
+    Parameters
+    ----------
+    theta0, v0 : float
+        A state on the orbit.
+    eps : float, optional
+        g / l (default 1).
+    n : int, optional
+        Number of amplitudes (>= 1).
+
+    Returns
+    -------
+    omega : float
+        The angular frequency 2 pi / T.
+    amplitudes : ndarray
+        n amplitudes, as above.
+
+    Raises
+    ------
+    ValueError
+        If `n` is not a positive whole number, or the orbit is the separatrix
+        (infinite period).
+
+    See Also
+    --------
+    spectrum : the measured spectrum.
+    nome : the q of the series.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> omega, b = pendula.fourier_series(0.0, 1.9, 1.0, 4)
+    >>> round(omega, 12), b.round(6).tolist()
+    (0.606482438404, [2.637235, 0.141741, 0.012079, 0.001222])
     """
     from .elliptic import nome
     from .systems.rigid import orbit
@@ -394,7 +547,34 @@ def fourier_series(theta0: float, v0: float, eps: float = 1.0, n: int = 10) -> t
 
 
 def odd_harmonics_above(spec: Spectrum, threshold: float = 1e-6, n_max: int = 50) -> list[int]:
-    """The odd harmonics (1, 3, 5, ...) whose power exceeds threshold times the fundamental's."""
+    """The odd harmonics (1, 3, 5, ...) whose power exceeds threshold times the fundamental's.
+
+    Parameters
+    ----------
+    spec : Spectrum
+        A spectrum with a fundamental.
+    threshold : float, optional
+        The fraction of the fundamental's power (default 1e-6).
+    n_max : int, optional
+        How many odd harmonics to look at.
+
+    Returns
+    -------
+    list of int
+        The harmonic numbers, in increasing order.
+
+    See Also
+    --------
+    Spectrum.harmonics : their amplitudes.
+
+    Examples
+    --------
+    >>> import numpy as np, pendula
+    >>> T = pendula.orbit(0.0, 1.9).period
+    >>> t = np.arange(4096) * (8 * T / 4096)
+    >>> pendula.odd_harmonics_above(pendula.spectrum(t, pendula.exact_motion(0.0, 1.9, 1.0, t)[0]))
+    [1, 3, 5]
+    """
     a = spec.harmonics(n_max)
     p = a**2
     return [2 * j + 1 for j in range(n_max) if np.isfinite(p[j]) and p[j] > threshold * p[0]]

@@ -343,10 +343,20 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
     Raises
     ------
     ValueError
-        A bad argument (named), or an ``out`` that holds a different sweep.
+        A bad argument (named): an unknown measure or grid field, grid values
+        that are empty, not finite or out of the field's range, bad tolerances
+        or times, 'poincare' without a drive, or an `out` that holds a
+        different sweep.
     pendula._store.StoreBusyError
         (an OSError) another sweep is writing the same ``out``; the message
         names the store and that sweep's pid.
+    SceneError
+        If `scene` is a file that does not hold a valid scene.
+
+    See Also
+    --------
+    iv_curve : the adiabatic torque ramp (hysteresis), which a grid cannot give.
+    simulate : one point of the grid, in full.
 
     Examples
     --------
@@ -463,8 +473,12 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
     torques : array_like
         Torque values, ascending; 'down' runs them in reverse.
     direction : {'up', 'down', 'both'}
+        The branches: torque ramped up, down, or up then down (the down branch
+        starting where the up branch ended).
     transient, t_avg : float
         Time skipped, then time averaged, at each torque.
+    rtol, atol : float, optional
+        DOP853 tolerances (default: the scene's).
     start : {'ramp', 'scene'} or (float, float), optional
         ``'ramp'`` (default): where an adiabatic ramp from rest at zero torque
         would be.  The up branch starts at rest at tau = 0 and, when its first
@@ -478,7 +492,21 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
     Returns
     -------
     dict
-        {'up': (tau, <v>, err, status), 'down': (...)} for the branches asked.
+        {'up': (tau, <v>, err, status), 'down': (...)} for the branches asked:
+        arrays of the torques (in the order run), the mean velocity, its
+        convergence estimate and the status (0 decided).
+
+    Raises
+    ------
+    TypeError
+        If `scene` is not a :class:`Scene`.
+    ValueError
+        For an unknown `direction`, empty or non-finite torques, or a negative
+        `transient` or non-positive `t_avg`.
+
+    See Also
+    --------
+    sweep : grids of scenes, each from its own initial state.
 
     Examples
     --------

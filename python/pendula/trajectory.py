@@ -14,7 +14,7 @@ __all__ = ["Trajectory", "FlipLog"]
 
 @dataclass
 class Trajectory:
-    """A computed motion.
+    """A computed motion: what :func:`simulate` returns.
 
     Attributes
     ----------
@@ -25,9 +25,11 @@ class Trajectory:
     method : str
         'exact' or the integrator's name.
     scene : Scene
+        The scene that was run.
     stats : dict
         Work done: steps, right-hand-side evaluations, rejected steps (empty
-        for the exact solution).
+        for the exact solution); for the flexible cord also the number of
+        flips and the reason the run stopped.
     x, y, r : ndarray or None
         Flexible cord only: the bob's position (pivot at the origin, y up) and
         distance from the pivot, in units of the cord length (r < 1 in flight).
@@ -35,6 +37,20 @@ class Trajectory:
         Flexible cord only: a dict of arrays t_leave, theta_leave, v_leave,
         t_return, theta_return, v_return, xi_before, xi_after, one entry per
         flip in time order; ``flips.to_xarray()`` gives a Dataset.
+
+    See Also
+    --------
+    simulate : makes it.
+    Events : what :func:`find_events` returns.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> tr = pendula.simulate(pendula.Scene(v0=1.0, t_end=2.0, n_samples=3))
+    >>> tr.method, tr.t.tolist(), tr.theta.round(6).tolist()
+    ('exact', [0.0, 1.0, 2.0], [0.0, 0.847799, 1.004615])
+    >>> tr.as_array().shape          # columns t, theta, v, energy
+    (3, 4)
     """
 
     t: np.ndarray
@@ -55,7 +71,13 @@ class Trajectory:
             self.flips = FlipLog(self.flips)
 
     def as_array(self) -> np.ndarray:
-        """Columns t, theta, v, energy."""
+        """Columns t, theta, v, energy.
+
+        Returns
+        -------
+        ndarray
+            Shape (len(t), 4).
+        """
         return np.column_stack([self.t, self.theta, self.v, self.energy])
 
     def to_xarray(self):

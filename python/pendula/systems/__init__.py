@@ -36,7 +36,7 @@ _NOT_IMPLEMENTED = 14
 
 @dataclass(frozen=True)
 class ModelInfo:
-    """One model of the registry.
+    """One model of the registry: what :func:`models` lists.
 
     Attributes
     ----------
@@ -55,6 +55,19 @@ class ModelInfo:
     implemented : bool
         False for a model the scene format names but pendula cannot run yet.
     summary : str
+        One line about the model.
+
+    See Also
+    --------
+    models : the registry.
+    simulate : runs a scene on its model.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> cyc = [m for m in pendula.models() if m.name == "cycloid"][0]
+    >>> cyc.selector, cyc.path, cyc.exact_with
+    ("guide='cycloid'", 'exact', ('damping', 'torque', 'drive'))
     """
 
     name: str
@@ -69,11 +82,26 @@ class ModelInfo:
 def models() -> list[ModelInfo]:
     """The models pendula knows, from the kernel's registry.
 
+    The scene's ``cord``, ``guide`` and ``gravity`` fields select one model;
+    the dispatcher then answers by the model's exact path when the scene's
+    effects allow it and otherwise by an integrator.  ``pendula models``
+    prints the same table.
+
+    Returns
+    -------
+    list of ModelInfo
+        One entry per model, the rigid pendulum first.
+
+    See Also
+    --------
+    ModelInfo : the fields of an entry.
+    Scene : the fields that select a model.
+
     Examples
     --------
     >>> import pendula
-    >>> [m.name for m in pendula.models()][0]
-    'rigid'
+    >>> [m.name for m in pendula.models()]
+    ['rigid', 'cord', 'cycloid', 'gravity']
     """
     table = _kernel.models_v()
     text = table.decode() if isinstance(table, bytes) else str(table)

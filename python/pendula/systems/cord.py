@@ -63,10 +63,32 @@ MAX_SEQUENCE_TERMS = 100_000
 
 
 def flip_map(xi):
-    """Garfinkel's flip map f (seed eqs. 14-15), vectorised.
+    """Garfinkel's flip map f (his eqs. 14-15), vectorised.
 
-    f(x) = x - (64/3) [x (1 - x^2)]^3 for 0 <= x <= 1, and f(x) = x outside
-    (the kernel's elemental ``flip_map``, kernel/models/pendula_cord.f90).
+    The energy xi' after one flip (departure from the circle, free flight,
+    inelastic jerk at re-entry) as a function of the energy xi before it.
+
+    Parameters
+    ----------
+    xi : array_like
+        Garfinkel's energy xi = (theta'^2 - 2 eps cos theta) / (3 eps).
+
+    Returns
+    -------
+    ndarray or float
+        f(x) = x - (64/3) [x (1 - x^2)]^3 for 0 <= x <= 1, and f(x) = x outside
+        (no flight there).
+
+    Raises
+    ------
+    TypeError
+        For a string, complex or object argument.
+
+    See Also
+    --------
+    flip_sequence : the sequence x_k of the map's preimages.
+    cord_state : the state index k of an energy.
+    simulate : the simulated flips (``Scene(cord='flexible')``), which the map is checked against.
 
     Examples
     --------
@@ -119,11 +141,31 @@ _XMIN = _argmin_f()
 
 
 def flip_sequence(n: int) -> np.ndarray:
-    """The first n terms of Garfinkel's sequence x_k (seed eqs. 16-17).
+    """The first n terms of Garfinkel's sequence x_k (his eqs. 16-17).
 
     x_0 = -2/3, x_1, x_2, x_3 the zeros of f (0, 0.2360, 0.7511), then
     x_{k+4} = f^{-1}(x_{k+2}) on the branch of f above its minimum, found by
     bisection (f is monotone there), so every term is good to about 1 ulp.
+
+    Parameters
+    ----------
+    n : int
+        How many terms (>= 0).
+
+    Returns
+    -------
+    ndarray
+        x_0 ... x_{n-1}, increasing towards 1.
+
+    Raises
+    ------
+    ValueError
+        If `n` is not a non-negative whole number.
+
+    See Also
+    --------
+    cord_state : where an energy falls in the sequence.
+    flip_map : the map.
 
     Examples
     --------
@@ -157,17 +199,39 @@ def flip_sequence(n: int) -> np.ndarray:
 
 
 def cord_state(xi, nmax: int = 200):
-    """Garfinkel's state index k of an energy xi (seed eq. 18), vectorised.
+    """Garfinkel's state index k of an energy xi (his eq. 18), vectorised.
 
-    k such that x_k <= xi < x_{k+1} for -2/3 <= xi < 1; ``math.inf`` for xi >= 1
-    (circulation).  The sequence is computed to ``nmax`` terms (x_200 lies
-    1e-3 below 1); xi beyond the last term gives k = nmax - 1 with a
-    RuntimeWarning.  xi < -2/3 is not an energy: NaN with a RuntimeWarning.
+    Parameters
+    ----------
+    xi : array_like
+        Garfinkel's energy.
+    nmax : int, optional
+        Terms of the sequence x_k to compute (x_200 lies 1e-3 below 1).
+
+    Returns
+    -------
+    ndarray or float
+        k such that x_k <= xi < x_{k+1} for -2/3 <= xi < 1; ``math.inf`` for
+        xi >= 1 (circulation).  xi beyond the last term gives k = nmax - 1
+        with a RuntimeWarning; xi < -2/3 is not an energy: NaN with a
+        RuntimeWarning.
+
+    Raises
+    ------
+    TypeError
+        For a string, complex or object `xi`.
+    ValueError
+        If `nmax` is not a non-negative whole number.
+
+    See Also
+    --------
+    flip_sequence : the sequence x_k.
+    flip_map : the map that moves an energy down the sequence.
 
     Examples
     --------
     >>> import pendula
-    >>> float(pendula.cord_state(0.777))
+    >>> float(pendula.cord_state(0.777))      # state 3: one flip to state 1, then flips without end
     3.0
     """
     if isinstance(nmax, bool) or not isinstance(nmax, (int, np.integer)) or not 1 <= nmax <= MAX_SEQUENCE_TERMS:

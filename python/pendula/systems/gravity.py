@@ -111,12 +111,44 @@ class GravityOrbit:
 def gravity_orbit(scene) -> GravityOrbit:
     """Energy, regime, amplitude and period of the scene's orbit (exact quadrature).
 
+    Both fields depend on theta through w = sin^2(theta/2) only, so the
+    substitution sin(theta/2) = sqrt(w_m) sn(u | w_m) turns the energy
+    integral into T = 4 int_0^K h(u) du with h smooth and periodic, which the
+    trapezoid rule integrates to a few eps.
+
+    Parameters
+    ----------
+    scene : Scene
+        A conservative scene in uniform or non-uniform gravity (``gravity``
+        and its ``gravity_distance`` or ``gravity_gradient``).
+
+    Returns
+    -------
+    GravityOrbit
+        regime, energy, m, K, theta_max, period, mc (the fields of
+        :class:`Orbit` it shares have the same meaning).
+
+    Raises
+    ------
+    ValueError
+        When the quadrature cannot reach double precision (a point mass
+        closer than about 2e-5 l under the circle): the message names
+        `gravity_distance`.
+
+    See Also
+    --------
+    period : the period of any conservative scene.
+    orbit : the same facts in uniform gravity.
+
     Examples
     --------
     >>> import pendula
     >>> o = pendula.gravity_orbit(pendula.Scene(gravity='linear', gravity_gradient=0.2, theta0=1.0))
     >>> o.regime, round(o.theta_max, 15)
     ('libration', 1.0)
+    >>> s = pendula.Scene(gravity="inverse-square", gravity_distance=2.0, theta0=2.5)
+    >>> pendula.gravity_orbit(s).period == pendula.period(s)
+    True
     """
     from ..scene import Scene
 
