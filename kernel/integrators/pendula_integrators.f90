@@ -21,6 +21,12 @@
 !> located on the dense output: each accepted step is sampled at 4 interior
 !> points, so that two sign changes in one step are not missed, then refined
 !> by the Illinois method.
+!>
+!> Runge-Kutta-Nystrom (rtol, atol): Dormand & Prince's RKN6(4)6FD pair for
+!> theta'' = f(t, theta) (no damping: the pair's stages never form theta'),
+!> five force evaluations per step (the sixth stage is the next step's first),
+!> the step controlled by the embedded 4th-order pair.  No dense output: the
+!> steps are shortened to land on the output times, so no events.
 module pendula_integrators
   use pendula_kinds, only: dp, i8, nan_dp
   use pendula_gravity, only: gravity_accel
@@ -33,10 +39,10 @@ module pendula_integrators
   real(dp), parameter :: d8_at(0:15, 0:15) = transpose(d8_a)
 
   integer, parameter, public :: m_rk4 = 1, m_verlet = 2, m_yoshida4 = 3, m_yoshida6 = 4, &
-    m_yoshida8 = 5, m_gauss4 = 6, m_gauss6 = 7, m_dopri5 = 8, m_dop853 = 9
+    m_yoshida8 = 5, m_gauss4 = 6, m_gauss6 = 7, m_dopri5 = 8, m_dop853 = 9, m_dprkn6 = 11
   integer, parameter, public :: st_ok = 0, st_bad_step = 1, st_bad_tol = 2, st_bad_method = 3, &
     st_step_underflow = 5, st_nonfinite = 6, st_no_dense = 9, st_stopped = 10, &
-    st_too_many_steps = 7, st_cancelled = 8
+    st_too_many_steps = 7, st_cancelled = 8, st_velocity_force = 12
   !> The work limit of one call: steps of the integrator (fixed or adaptive).
   !> A span that needs more (t = 1e15, dt = 1e-18, a drive at 1e300 rad/s) is
   !> an error that says so, never a hang or a wrapped-around step count.
@@ -166,9 +172,17 @@ contains
     theta = nan_dp; v = nan_dp
     nev = 0
     status = st_ok
-    adaptive = method == m_dopri5 .or. method == m_dop853
-    if (method < m_rk4 .or. method > m_dop853) then
+    adaptive = method == m_dopri5 .or. method == m_dop853 .or. method == m_dprkn6
+    if ((method < m_rk4 .or. method > m_dop853) .and. method /= m_dprkn6) then
       status = st_bad_method; return
+    end if
+    if (method == m_dprkn6) then
+      if (m%damped) then
+        status = st_velocity_force; return
+      end if
+      if (ev%kind /= 0) then
+        status = st_no_dense; return
+      end if
     end if
     if (adaptive) then
       if (.not. (rtol > 0.0_dp .and. atol >= 0.0_dp)) then
@@ -216,6 +230,12 @@ contains
       e = ev
       if (.not. with_events) e%kind = 0
       select case (method)
+      case (m_dprkn6)
+        if (present(cancel)) then
+          call run_nystrom(m, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, cancel)
+        else
+          call run_nystrom(m, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, no_cancel)
+        end if
       case (m_dopri5, m_dop853)
         if (present(cancel)) then
           call run_adaptive(m, method, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, &
@@ -404,6 +424,106 @@ contains
     call kahan_add(th, the, zt)
     call kahan_add(v, ve, zv)
   end subroutine gauss_step
+
+  ! ====================================================================
+  ! Runge-Kutta-Nystrom pair for theta'' = f(t, theta)
+  ! ====================================================================
+
+  !> Dormand & Prince's RKN6(4)6FD: Q_i = th + c_i h v + h^2 sum_j a_ij F_j,
+  !> F_i = force(t + c_i h, Q_i); th1 = th + h v + h^2 sum b_i F_i, v1 = v +
+  !> h sum bp_i F_i; the error is that of the embedded 4th-order weights (the
+  !> stored differences eb, ebp), in Hairer's RMS norm over (theta, v).  Step
+  !> control as DOPRI5 (error exponent 1/5, factors in [0.1, 5]); steps are
+  !> shortened to end on each output time.
+  subroutine run_nystrom(m, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, cancel)
+    type(pendulum_model), intent(in) :: m
+    integer, intent(inout), volatile :: cancel
+    real(dp), intent(in) :: theta0, v0, ts(:), dir, rtol, atol
+    real(dp), intent(inout) :: ths(:), vs(:)
+    type(run_stats), intent(inout) :: stats
+    integer, intent(inout) :: status
+    real(dp) :: t, th, v, f(0:5), qs, th1, v1, eth, ev, err, h, hnew, hs, fac, fac11, sk1, sk2, target
+    real(dp), parameter :: safe = 0.9_dp, expo = 0.2_dp, facc1 = 5.0_dp, facc2 = 0.1_dp
+    integer :: kout, i
+    logical :: reject, hit
+
+    if (size(ts) == 0) return
+    t = 0.0_dp; th = theta0; v = v0
+    kout = 1
+    do while (kout <= size(ts))
+      if (ts(kout) /= 0.0_dp) exit
+      ths(kout) = th; vs(kout) = v
+      kout = kout + 1
+    end do
+    if (kout > size(ts)) return
+    f(0) = force(m, t, th)
+    stats%nfev = stats%nfev + 1
+    ! starting step: the velocity and force scales against the tolerance (Hairer's first guess)
+    sk1 = atol + rtol * abs(th); sk2 = atol + rtol * abs(v)
+    h = 0.01_dp * sqrt(((th / sk1)**2 + (v / sk2)**2) / max(1.0e-10_dp, (v / sk1)**2 + (f(0) / sk2)**2))
+    if (.not. (h > 1.0e-6_dp)) h = 1.0e-6_dp
+    h = dir * min(h, abs(ts(size(ts))))
+    reject = .false.
+    do
+      if (abs(h) <= 16.0_dp * epsilon(1.0_dp) * abs(t) .or. h == 0.0_dp) then
+        status = st_step_underflow; return
+      end if
+      if (stats%nsteps >= max_steps) then
+        status = st_too_many_steps; return
+      end if
+      if (mod(stats%nsteps, poll_every) == 0) then
+        if (cancel /= 0) then
+          status = st_cancelled; return
+        end if
+      end if
+      target = ts(kout)
+      hit = dir * (t + h - target) >= 0.0_dp
+      hs = h
+      if (hit) hs = target - t
+      do i = 1, 5
+        qs = th + n6_c(i) * hs * v + hs * hs * dot_product(n6_a(i, 0:i-1), f(0:i-1))
+        f(i) = force(m, t + n6_c(i) * hs, qs)
+      end do
+      th1 = th + hs * v + hs * hs * dot_product(n6_b(0:4), f(0:4))
+      ! the sixth stage (c = 1, row of b): the force at the new position
+      f(5) = force(m, t + hs, th1)
+      v1 = v + hs * dot_product(n6_bp, f)
+      stats%nfev = stats%nfev + 5
+      stats%nsteps = stats%nsteps + 1
+      eth = hs * hs * dot_product(n6_eb, f)
+      ev = hs * dot_product(n6_ebp, f)
+      sk1 = atol + rtol * max(abs(th), abs(th1)); sk2 = atol + rtol * max(abs(v), abs(v1))
+      err = sqrt(0.5_dp * ((eth / sk1)**2 + (ev / sk2)**2))
+      if (.not. (err == err) .or. .not. (abs(th1) <= huge(1.0_dp) .and. abs(v1) <= huge(1.0_dp))) then
+        status = st_nonfinite; return
+      end if
+      fac11 = err**expo
+      fac = max(facc2, min(facc1, fac11 / safe))
+      hnew = hs / fac
+      if (err <= 1.0_dp) then
+        stats%naccept = stats%naccept + 1
+        t = t + hs
+        if (hit) t = target
+        th = th1; v = v1
+        f(0) = f(5)
+        do while (kout <= size(ts))
+          if (ts(kout) /= t) exit
+          ths(kout) = th; vs(kout) = v
+          kout = kout + 1
+        end do
+        if (kout > size(ts)) exit
+        ! a step shortened to land on an output does not shrink the next one
+        if (hit) hnew = sign(max(abs(hnew), abs(h)), h)
+        if (abs(hnew) > abs(h) .and. reject) hnew = h
+        reject = .false.
+        h = hnew
+      else
+        stats%nreject = stats%nreject + 1
+        h = hs / min(facc1, fac11 / safe)
+        reject = .true.
+      end if
+    end do
+  end subroutine run_nystrom
 
   ! ====================================================================
   ! Adaptive methods with dense output

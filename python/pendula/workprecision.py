@@ -39,6 +39,8 @@ MAX_BATCHES = 10
 #: pendula's methods and their settings (rtol for adaptive ones, with atol = rtol; dt for fixed-step ones)
 TOLS = [10.0 ** -k for k in range(3, 15)]
 PENDULA_ADAPTIVE = ("dopri5", "dop853", "gsl-rk8pd")
+#: methods for theta'' = f(t, theta) only (no damping): the Runge-Kutta-Nystrom pair
+PENDULA_NYSTROM = ("dprkn6",)
 PENDULA_FIXED = {"rk4": [0.1, 0.05, 0.025, 0.0125, 0.00625, 0.003125],
                  "yoshida6": [0.2, 0.1, 0.05, 0.025, 0.0125],
                  "yoshida8": [0.4, 0.2, 0.1, 0.05, 0.025],
@@ -140,7 +142,7 @@ def _process_batch(fn):
 # ---------------------------------------------------------------- pendula (kernel clock)
 
 _KCODES = {"exact": 0, "rk4": 1, "verlet": 2, "yoshida4": 3, "yoshida6": 4, "yoshida8": 5, "gauss4": 6,
-           "gauss6": 7, "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10}
+           "gauss6": 7, "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10, "dprkn6": 11}
 
 
 def run_pendula(p, t, method, rtol=0.0, dt=0.0, batch=BATCH_SECONDS, max_batches=MAX_BATCHES):
@@ -320,10 +322,10 @@ def machine() -> dict:
     return {"cpu": cpu, "cores": os.cpu_count(), "system": platform.platform(), "python": platform.python_version()}
 
 
-def _plan(problems, tols, quick):
-    """The runs of the study: (package, method, knob, value, runner)."""
+def _plan(p, tols, quick):
+    """The runs of the study on problem p: (package, method, knob, value)."""
     runs = []
-    for m in PENDULA_ADAPTIVE:
+    for m in PENDULA_ADAPTIVE + (PENDULA_NYSTROM if not p.get("beta") else ()):
         pkg = "gsl" if m == GSL else "pendula"
         runs += [(pkg, m, "rtol", r) for r in tols]
     if not quick:
@@ -369,7 +371,7 @@ def run_study(problems=None, tols=None, quick=False, progress=True, reference=No
         t = ref["t"]
         floors[pname] = {"floor_error_final": ref["floor_error_final"], "floor_error_max": ref["floor_error_max"],
                          "reference_check": ref["reference_check"]}
-        runs = _plan(problems, tols, quick)
+        runs = _plan(p, tols, quick)
         if methods:
             runs = [r for r in runs if r[1] in methods]
         if p["conservative"] and (not methods or "exact" in methods):
