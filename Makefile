@@ -13,7 +13,7 @@ export PATH := $(CURDIR)/$(VENV)/bin:$(PATH)
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 SOURCES := $(shell find kernel python data/scenes -type f \( -name "*.f90" -o -name "*.c" -o -name "*.py" -o -name "*.inc" -o -name "*.nml" \)) meson.build pyproject.toml
 
-.PHONY: demo test test-debug bench system-deps clean
+.PHONY: demo test test-debug bench bench-peers system-deps clean
 
 demo: $(VENV)/.installed
 	$(PY) -m pendula demo
@@ -27,6 +27,10 @@ test-debug: $(VENV)/.installed
 
 bench: $(VENV)/.installed
 	$(PY) -m pendula bench
+
+# the peers of the work-precision study (SciPy, SUNDIALS CVODE, numbalsoda): the extra pendula[bench]
+bench-peers: $(VENV)/.installed
+	$(PY) -m pip install -q "scipy>=1.11" "scikit-sundae>=1.0" "numbalsoda>=0.3.4" "numba>=0.59"
 
 system-deps:
 	@dpkg -s $(APT_PKGS) >/dev/null 2>&1 || { \
