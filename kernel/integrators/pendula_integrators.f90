@@ -32,7 +32,8 @@ module pendula_integrators
   use pendula_gravity, only: gravity_accel
   implicit none
   private
-  public :: pendulum_model, make_model, event_spec, run_stats, integrate, accel, dop853_error_norm
+  public :: pendulum_model, make_model, event_spec, run_stats, integrate, accel, dop853_error_norm, &
+    dop853_step_2, dop853_step_6, system_rhs
 
   include 'pendula_rk_tables.inc'
   !> DOP853's A transposed, so that each stage's weights are contiguous
@@ -93,6 +94,52 @@ contains
     if (deno <= 0.0_dp) deno = 1.0_dp
     errn = abs(h) * err5 * sqrt(1.0_dp / (real(size(sk), dp) * deno))
   end function dop853_error_norm
+
+  !> The right-hand side of the systems the DOP853 stepper integrates, by the
+  !> size of the state: n = 2, (theta, v) of the model; n = 6, (theta, v) with
+  !> two tangent vectors w1 = y(3:4), w2 = y(5:6) of the variational equations
+  !> dw/dt = J w, J = [[0, 1], [-eps cos(theta), -beta]] (uniform gravity;
+  !> the Lyapunov exponents of pendula_lyapunov).
+  pure function system_rhs(m, t, y) result(f)
+    type(pendulum_model), intent(in) :: m
+    real(dp), intent(in) :: t, y(:)
+    real(dp) :: f(size(y))
+    call system_rhs_n(m, size(y), t, y, f)
+  end function system_rhs
+
+  pure subroutine system_rhs_n(m, n, t, y, f)
+    type(pendulum_model), intent(in) :: m
+    integer, intent(in) :: n
+    real(dp), intent(in) :: t, y(n)
+    real(dp), intent(out) :: f(n)
+    real(dp) :: c
+    f(1) = y(2)
+    f(2) = accel(m, t, y(1), y(2))
+    if (n == 6) then
+      c = -m%eps * cos(y(1))
+      f(3) = y(4)
+      f(4) = c * y(3) - m%beta * y(4)
+      f(5) = y(6)
+      f(6) = c * y(5) - m%beta * y(6)
+    end if
+  end subroutine system_rhs_n
+
+  !> One DOP853 step of the n-dimensional system of system_rhs from (t, y) with
+  !> f0 = f(t, y): the stages k(0:12, 1:n), the solution ynew, fnew = f(t + h, ynew)
+  !> (the next step's first stage) and the 3rd- and 5th-order error estimates
+  !> e3, e5 (to be weighed by dop853_error_norm).  The one stepper of the
+  !> integrators (n = 2) and of the Lyapunov tangent system (n = 6): its text is
+  !> pendula_dop853_step.inc, compiled for each n so that the compiler sees n
+  !> (a run-time n costs the 2-D integrator 17 % of its time).
+  pure subroutine dop853_step_2(m, t, y, f0, h, k, ynew, fnew, e3, e5)
+    integer, parameter :: n = 2, ldk = 16
+    include 'pendula_dop853_step.inc'
+  end subroutine dop853_step_2
+
+  pure subroutine dop853_step_6(m, t, y, f0, h, k, ynew, fnew, e3, e5)
+    integer, parameter :: n = 6, ldk = 13
+    include 'pendula_dop853_step.inc'
+  end subroutine dop853_step_6
 
   pure function make_model(eps, beta, tau, amp, omega, phase) result(m)
     real(dp), intent(in) :: eps, beta, tau, amp, omega, phase
@@ -713,22 +760,9 @@ contains
 
     subroutine step853(errn)
       real(dp), intent(out) :: errn
-      real(dp) :: e3(2), e5(2), ths, vst
-      integer :: st
-      k(0, :) = f0
-      do st = 1, 11
-        ths = y(1) + h * dot_product(d8_at(0:st-1, st), k(0:st-1, 1))
-        vst = y(2) + h * dot_product(d8_at(0:st-1, st), k(0:st-1, 2))
-        k(st, 1) = vst
-        k(st, 2) = accel(m, t + d8_c(st) * h, ths, vst)
-      end do
-      ynew(1) = y(1) + h * dot_product(d8_b, k(0:11, 1))
-      ynew(2) = y(2) + h * dot_product(d8_b, k(0:11, 2))
-      fnew = rhs(t + h, ynew)
-      k(12, :) = fnew
+      real(dp) :: e3(2), e5(2)
+      call dop853_step_2(m, t, y, f0, h, k, ynew, fnew, e3, e5)
       stats%nfev = stats%nfev + 12
-      e3(1) = dot_product(d8_e3, k(0:12, 1)); e3(2) = dot_product(d8_e3, k(0:12, 2))
-      e5(1) = dot_product(d8_e5, k(0:12, 1)); e5(2) = dot_product(d8_e5, k(0:12, 2))
       errn = dop853_error_norm(h, e3, e5, scale_of(y, ynew))
     end subroutine step853
 
