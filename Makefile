@@ -15,7 +15,7 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 SOURCES := $(shell find kernel python data/scenes -type f \( -name "*.f90" -o -name "*.c" -o -name "*.py" -o -name "*.inc" -o -name "*.nml" \)) meson.build meson.options pyproject.toml \
            data/elliptic_reference.csv data/reference_grids.csv.gz
 
-.PHONY: demo test test-debug bench system-deps clean wheel sdist test-wheel docs docs-check docs-deps docs-browser
+.PHONY: demo test test-debug bench bench-peers system-deps clean wheel sdist test-wheel docs docs-check docs-deps docs-browser
 
 demo: $(VENV)/.installed
 	$(PY) -m pendula demo
@@ -29,6 +29,10 @@ test-debug: $(VENV)/.installed
 
 bench: $(VENV)/.installed
 	$(PY) -m pendula bench
+
+# the peers of the work-precision study (SciPy, SUNDIALS CVODE, numbalsoda): the extra pendula[bench]
+bench-peers: $(VENV)/.installed
+	$(PY) -m pip install -q "scipy>=1.11" "scikit-sundae>=1.0" "numbalsoda>=0.3.4" "numba>=0.59"
 
 system-deps:
 	@dpkg -s $(APT_PKGS) >/dev/null 2>&1 || { \

@@ -19,7 +19,7 @@ module pendula_simulate
     gr_libration, gr_rotation
   use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate, m_rk4, m_verlet, &
     m_yoshida4, m_yoshida6, m_yoshida8, m_gauss4, m_gauss6, m_dopri5, m_dop853, st_too_many_steps, &
-    st_cancelled, max_steps, max_fixed_steps
+    st_cancelled, st_velocity_force, m_dprkn6, max_steps, max_fixed_steps
   use pendula_gsl_iface, only: pendula_gsl_rk8pd
   implicit none
   private
@@ -30,7 +30,7 @@ module pendula_simulate
     sim_needs_dt = 11, sim_unsorted = 12, sim_integrator_failed = 13, sim_not_implemented = 14, &
     sim_model_clash = 15, sim_exact_refused = 16, sim_backward = 17, sim_gsl_failed = 18, &
     sim_too_many_steps = 19, sim_cancelled = 20, sim_closed_form_only = 21, sim_beyond_cusp = 22, &
-    sim_nonfinite_t = 23, sim_cord_effects = 24
+    sim_nonfinite_t = 23, sim_cord_effects = 24, sim_velocity_force = 25
   !> method codes: the integrators' 1..9, then GSL's rk8pd and the exact path
   integer, parameter, public :: m_gsl_rk8pd = 10, m_exact = 0
 
@@ -107,6 +107,7 @@ contains
     case ('dopri5');   method_code = m_dopri5
     case ('dop853');   method_code = m_dop853
     case ('gsl-rk8pd'); method_code = m_gsl_rk8pd
+    case ('dprkn6');   method_code = m_dprkn6
     case default;      method_code = -1
     end select
   end function method_code
@@ -228,6 +229,7 @@ contains
     case (0)
     case (st_too_many_steps); status = sim_too_many_steps
     case (st_cancelled);      status = sim_cancelled
+    case (st_velocity_force); status = sim_velocity_force
     case default;             status = sim_integrator_failed
     end select
   end subroutine integrate_model
@@ -411,6 +413,8 @@ contains
                                      'use ''auto'' or ''exact'''
     case (sim_beyond_cusp);      s = 'the motion reaches the cusps of the cycloidal guide (|s| = 4R, ' // &
                                      '|theta| = pi/2): start lower, slower, or drive less'
+    case (sim_velocity_force);   s = 'field ''method'': dprkn6 (a Runge-Kutta-Nystrom pair) integrates ' // &
+                                     'theta'''' = f(t, theta) only; a damped scene needs another method (dop853)'
     case default;                s = 'unknown failure'
     end select
   end function simulate_status_text

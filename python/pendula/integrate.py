@@ -2,7 +2,9 @@
 
 Method names (a contract): 'rk4', 'verlet', 'yoshida4', 'yoshida6', 'yoshida8',
 'gauss4', 'gauss6' (fixed step: they take ``dt``), 'dopri5', 'dop853',
-'gsl-rk8pd' (adaptive: they take ``rtol`` and ``atol``), 'exact' and 'auto'.
+'gsl-rk8pd', 'dprkn6' (adaptive: they take ``rtol`` and ``atol``; 'dprkn6', Dormand &
+Prince's Runge-Kutta-Nystrom pair RKN6(4), takes undamped scenes only and has no dense
+output, so no events), 'exact' and 'auto'.
 The right-hand side holds only the effects the scene names.
 """
 
@@ -25,9 +27,9 @@ from .systems.rigid import orbit
 __all__ = ["integrate_scene", "find_events", "numerical_period", "Events", "FIXED_STEP", "ADAPTIVE"]
 
 CODES = {"rk4": 1, "verlet": 2, "yoshida4": 3, "yoshida6": 4, "yoshida8": 5, "gauss4": 6, "gauss6": 7,
-         "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10}
+         "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10, "dprkn6": 11}
 FIXED_STEP = ("rk4", "verlet", "yoshida4", "yoshida6", "yoshida8", "gauss4", "gauss6")
-ADAPTIVE = ("dopri5", "dop853", "gsl-rk8pd")
+ADAPTIVE = ("dopri5", "dop853", "gsl-rk8pd", "dprkn6")
 _STATUS = {1: "the step dt must be positive", 2: "rtol must be > 0 and atol >= 0", 3: "unknown method",
            5: "step size underflow (the problem may be singular or the tolerance unreachable)",
            6: "the state became non-finite", 9: "events need a method with dense output (dopri5, dop853)",
@@ -35,6 +37,7 @@ _STATUS = {1: "the step dt must be positive", 2: "rtol must be > 0 and atol >= 0
               "or give a larger dt or rtol",
            8: "interrupted",
            11: "gsl-rk8pd integrates forward only: give times >= 0",
+           12: "the Runge-Kutta-Nystrom pair integrates theta'' = f(t, theta) only: no damping",
            20: "bad gravity field parameters (gravity_distance > 1, gravity_gradient < 0.5)"}
 _EVENT_KINDS = {"turning": 1, "theta": 2, "theta_mod_2pi": 3}
 #: the sense of a crossing, by name (the numbers are accepted too)

@@ -39,6 +39,8 @@ MAX_BATCHES = 10
 #: pendula's methods and their settings (rtol for adaptive ones, with atol = rtol; dt for fixed-step ones)
 TOLS = [10.0 ** -k for k in range(3, 15)]
 PENDULA_ADAPTIVE = ("dopri5", "dop853", "gsl-rk8pd")
+#: methods for theta'' = f(t, theta) only (no damping): the Runge-Kutta-Nystrom pair
+PENDULA_NYSTROM = ("dprkn6",)
 PENDULA_FIXED = {"rk4": [0.1, 0.05, 0.025, 0.0125, 0.00625, 0.003125],
                  "yoshida6": [0.2, 0.1, 0.05, 0.025, 0.0125],
                  "yoshida8": [0.4, 0.2, 0.1, 0.05, 0.025],
@@ -140,7 +142,7 @@ def _process_batch(fn):
 # ---------------------------------------------------------------- pendula (kernel clock)
 
 _KCODES = {"exact": 0, "rk4": 1, "verlet": 2, "yoshida4": 3, "yoshida6": 4, "yoshida8": 5, "gauss4": 6,
-           "gauss6": 7, "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10}
+           "gauss6": 7, "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10, "dprkn6": 11}
 
 
 def run_pendula(p, t, method, rtol=0.0, dt=0.0, batch=BATCH_SECONDS, max_batches=MAX_BATCHES):
@@ -320,10 +322,10 @@ def machine() -> dict:
     return {"cpu": cpu, "cores": os.cpu_count(), "system": platform.platform(), "python": platform.python_version()}
 
 
-def _plan(problems, tols, quick):
-    """The runs of the study: (package, method, knob, value, runner)."""
+def _plan(p, tols, quick):
+    """The runs of the study on problem p: (package, method, knob, value)."""
     runs = []
-    for m in PENDULA_ADAPTIVE:
+    for m in PENDULA_ADAPTIVE + (PENDULA_NYSTROM if not p.get("beta") else ()):
         pkg = "gsl" if m == GSL else "pendula"
         runs += [(pkg, m, "rtol", r) for r in tols]
     if not quick:
@@ -369,7 +371,7 @@ def run_study(problems=None, tols=None, quick=False, progress=True, reference=No
         t = ref["t"]
         floors[pname] = {"floor_error_final": ref["floor_error_final"], "floor_error_max": ref["floor_error_max"],
                          "reference_check": ref["reference_check"]}
-        runs = _plan(problems, tols, quick)
+        runs = _plan(p, tols, quick)
         if methods:
             runs = [r for r in runs if r[1] in methods]
         if p["conservative"] and (not methods or "exact" in methods):
@@ -419,9 +421,17 @@ def run_study(problems=None, tols=None, quick=False, progress=True, reference=No
 
 # ---------------------------------------------------------------- the answer: tables and figures
 
+def repo_root() -> pathlib.Path:
+    """The source tree: the working directory when it holds data/bench, else the one this module sits in."""
+    for base in (pathlib.Path.cwd(), pathlib.Path(__file__).resolve().parents[2]):
+        if (base / "data" / "bench").is_dir():
+            return base
+    raise FileNotFoundError("run from the repository root (data/bench/ not found)")
+
+
 def record_path() -> pathlib.Path:
     """data/bench/work_precision.json in the source tree (the recorded run)."""
-    return pathlib.Path(__file__).resolve().parents[2] / "data" / "bench" / "work_precision.json"
+    return repo_root() / "data" / "bench" / "work_precision.json"
 
 
 def _fastest(rows, target, pred):
@@ -474,7 +484,9 @@ def answer_rst(record: dict) -> str:
              "   * - problem", "     - target error", "     - pendula's fastest", "     - fastest peer",
              "     - peer / pendula", "     - SciPy's fastest", "     - SciPy / pendula"]
     for a in answer_table(record):
-        lines += [f"   * - {a['problem']}", f"     - {a['target']:.0e}", f"     - {_cell(a['pendula'])}",
+        floor = record["floors"][a["problem"]]["floor_error_max"]
+        below = f" (below this problem's double-precision floor, {floor:.1e})" if a["target"] < floor else ""
+        lines += [f"   * - {a['problem']}", f"     - {a['target']:.0e}", f"     - {_cell(a['pendula'])}{below}",
                   f"     - {_cell(a['peer'])}", f"     - {_ratio(a['peer_ratio'])}", f"     - {_cell(a['scipy'])}",
                   f"     - {_ratio(a['scipy_ratio'])}"]
     return "\n".join(lines) + "\n"
@@ -565,3 +577,45 @@ def study_main(outdir, quick=False, progress=True, record_to=None, problems=None
     files = [path] + write_figures(record, outdir)
     print(answer_rst(record))
     return files
+
+
+#: the report page and the markers around its generated parts
+PAGE = pathlib.Path("docs") / "source" / "work_precision.rst"
+GENERATED = {"table": (".. generated answer table (pendula.workprecision.answer_rst): do not edit by hand",
+                       ".. end of the generated answer table"),
+             "versions": (".. generated run description (pendula.workprecision.versions_rst): do not edit",
+                          ".. end of the generated run description")}
+
+
+def generated_parts(record: dict) -> dict:
+    """The page's generated parts from the recorded run: the answer table and the run description."""
+    return {"table": answer_rst(record), "versions": versions_rst(record)}
+
+
+def page_part(text: str, key: str) -> str:
+    """The text between one pair of markers of the report page."""
+    start, end = GENERATED[key]
+    a = text.index(start) + len(start)
+    b = text.index(end)
+    return text[a:b].strip("\n") + "\n"
+
+
+def update_page(record: dict, page=None) -> None:
+    """Write the generated parts of the report page (docs/source/work_precision.rst) from the record."""
+    page = pathlib.Path(page or repo_root() / PAGE)
+    text = page.read_text()
+    for key, body in generated_parts(record).items():
+        start, end = GENERATED[key]
+        a = text.index(start) + len(start)
+        b = text.index(end)
+        text = text[:a] + "\n\n" + body + "\n" + text[b:]
+    page.write_text(text)
+
+
+def regenerate_docs(record_file=None) -> list[pathlib.Path]:
+    """Figures (docs/figures/work_precision_*.png) and the page's tables from the recorded run
+    (data/bench/work_precision.json)."""
+    record = json.loads(pathlib.Path(record_file or record_path()).read_text())
+    files = write_figures(record, repo_root() / "docs" / "figures")
+    update_page(record)
+    return files + [repo_root() / PAGE]
