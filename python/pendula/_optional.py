@@ -15,7 +15,8 @@ extra      packages                                        needed by
 plot       matplotlib                                      figures (``pendula run``)
 sweep      xarray, dask[distributed], tqdm, scipy, zarr    ``pendula.sweep``,
                                                            ``pendula sweep``
-bench      scipy                                           ``pendula bench``
+bench      scipy; the work-precision study's peers         ``pendula bench``,
+           (scikit-sundae, numbalsoda, numba)              ``pendula accuracy integrators``
 accuracy   scipy, matplotlib                               ``pendula accuracy``
 all        all of the above                                ``pendula demo``
 =========  ==============================================  =========================
