@@ -109,7 +109,7 @@ html_last_updated_fmt = None
 SECTIONS = {
     "getting_started": ["install*"],
     "guide": ["guide/exact", "guide/integrators", "guide/spectra", "guide/damping", "guide/driven",
-              "guide/cord", "guide/cycloid", "guide/gravity", "guide/density", "guide/sweeps",
+              "guide/cord", "guide/cycloid", "guide/gravity", "guide/density", "guide/dynamics", "guide/sweeps",
               "sweeps_at_scale*", "guide/scenes", "vocabulary", "guide/architecture"],
     "reports": ["reports/accuracy", "accuracy*", "reports/cost", "work_precision*", "reports/benchmarks",
                 "reports/limits"],
@@ -165,6 +165,8 @@ API_GROUPS = [
                                                   "gravity_orbit"]),
     ("The density of the angle", ["angle_density", "angle_cdf", "arcsine_density"]),
     ("Sweeps", ["sweep", "iv_curve"]),
+    ("Equilibria, periodic orbits and attractors", ["equilibria", "Equilibrium", "periodic_orbit",
+                                                    "PeriodicOrbit"]),
 ]
 
 

@@ -42,6 +42,17 @@ class Equilibrium:
     kind : str
         One of :data:`EQUILIBRIUM_KINDS`: ``'stable node'``, ``'stable spiral'``, ``'centre'``,
         ``'saddle'``, ``'unstable node'``, ``'unstable spiral'``, ``'saddle-node'``.
+
+    See Also
+    --------
+    equilibria : makes them.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> bottom, top = pendula.equilibria(pendula.Scene(damping=0.2))
+    >>> bottom.kind, bottom.stable, top.kind
+    ('stable spiral', True, 'saddle')
     """
 
     theta: float
@@ -160,6 +171,18 @@ class PeriodicOrbit:
         Turns the orbit advances per period (0 for an oscillation).
     residual : float
         ``max |P(x) - x - (2 pi winding, 0)|`` at the returned state.
+
+    See Also
+    --------
+    periodic_orbit : makes it.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> sc = pendula.Scene(damping=0.5, drive_amplitude=0.9, drive_frequency=2/3)
+    >>> po = pendula.periodic_orbit(sc, guess=(0.5, 0.5))
+    >>> round(float(po.exponents.sum()), 9)          # Liouville: -damping
+    -0.5
     """
 
     theta: float
