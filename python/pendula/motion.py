@@ -71,7 +71,7 @@ def period(scene: Scene) -> float:
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"period expects a pendula.Scene, got {type(scene).__name__}")
-    # issue 13 hook: the cycloid (any amplitude) and non-uniform gravity (exact quadrature)
+    # the cycloid (any amplitude) and non-uniform gravity (exact quadrature) have their own periods
     if set(scene.effects) <= {"guide", "torque"} and scene.guide == "cycloid":
         return cycloid_period(scene)
     if scene.effects == ("gravity",):

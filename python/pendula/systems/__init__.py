@@ -13,7 +13,6 @@ model returns more than theta, v and its invariant.
 
 from __future__ import annotations
 
-import functools
 import warnings
 from dataclasses import dataclass
 
@@ -101,8 +100,9 @@ def run(scene: Scene, t) -> Trajectory:
     order = np.argsort(flat, kind="stable")
     sorted_t = np.ascontiguousarray(flat[order])
     cancel = _interrupt.cancel_flag()
+    x, words, wlen, nout, ngrid = scene._kernel_fields
     theta_s, v_s, e_s, stats, method, status, msg = _interrupt.call(
-        _kernel.simulate_v, _kernel_text(scene).encode("utf-8"), sorted_t, cancel, cancel=cancel,
+        _kernel.simulate_v, x, words, wlen, nout, ngrid, sorted_t, cancel, cancel=cancel,
         long=bool(scene.effects) and _long_run(scene, sorted_t))
     msg = (msg.decode(errors="replace") if isinstance(msg, bytes) else str(msg)).strip()
     if status == _NOT_IMPLEMENTED:
@@ -143,16 +143,3 @@ def _long_run(scene: Scene, t: np.ndarray) -> bool:
         return span / scene.dt > 1e5
     rate = max(1.0, scene.eps ** 0.5, scene.drive_frequency, scene.damping)
     return span * rate > 1e3 or scene.rtol < 1e-12
-
-
-_SKIP = ("outputs", "sweep", "sweep_values", "name")
-
-
-@functools.lru_cache(maxsize=256)
-def _kernel_text(scene: Scene) -> str:
-    """The scene as the kernel's dispatcher reads it (without the fields that
-    only say what to write: outputs, sweeps and the title).  Scenes are frozen,
-    so the text is formed once per scene, not at every run of it (it was a
-    third of a short run's time)."""
-    return "\n".join(line for line in scene.to_namelist().splitlines()
-                     if line.split("=", 1)[0].strip() not in _SKIP) + "\n"

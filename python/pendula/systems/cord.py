@@ -215,7 +215,7 @@ def simulate_cord(scene, t):
     from ..integrate import ADAPTIVE, FIXED_STEP
     from ..scene import SceneError
     from ..trajectory import Trajectory
-    from . import METHOD_NAMES, _kernel_text, _long_run
+    from . import METHOD_NAMES, _long_run
 
     t = as_float(t, "t")
     flat = np.ascontiguousarray(t, dtype=np.float64).reshape(-1)
@@ -240,12 +240,12 @@ def simulate_cord(scene, t):
     def back(a):
         return a[inv].reshape(t.shape)
 
-    text = _kernel_text(scene).encode("utf-8")
+    fields = scene._kernel_fields
     maxf = max(1, min(scene.max_flips, 65536))
     while True:
         cancel = _interrupt.cancel_flag()
         th, v, x, y, r, fl, nf, stop, stats, code, status, msg = _interrupt.call(
-            _kernel.cord_scene_v, text, maxf, ts, cancel, cancel=cancel,
+            _kernel.cord_scene_v, *fields, maxf, ts, cancel, cancel=cancel,
             long=integrated and _long_run(scene, ts))
         if status or nf <= maxf:
             break
