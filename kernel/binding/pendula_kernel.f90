@@ -205,7 +205,7 @@ subroutine scene_read_v(text, source, x, words, wlen, nout, ngrid, sweep_values,
   sweep_values(1:nsweep) = sc%sweep_values(1:nsweep)
   grid_nv = sc%grid_nv
   grid_nr = sc%grid_nr
-  grid_values = sc%grid_values
+  grid_values(1:size(sc%grid_values, 1), :) = sc%grid_values
   grid_range = sc%grid_range
 end subroutine scene_read_v
 
@@ -265,11 +265,10 @@ subroutine simulate_v(x, words, nw, wlen, nout, ngrid, n, t, cancel, theta, v, e
   character(len=512), intent(out) :: msg
   !f2py intent(hide), depend(wlen) :: nw = len(wlen)
   !f2py intent(hide), depend(t) :: n = len(t)
-  type(scene_t), allocatable :: sc
+  type(scene_t) :: sc
   double precision :: g, length, none(0)
   method = -1
   theta = 0; v = 0; energy = 0; stats = 0
-  allocate(sc)
   call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
                          g, length, status, msg)
   if (status /= 0) then
@@ -476,13 +475,12 @@ subroutine cord_scene_v(fields, words, nw, wlen, nout, ngrid, n, maxf, t, cancel
   character(len=512), intent(out) :: msg
   !f2py intent(hide), depend(wlen) :: nw = len(wlen)
   !f2py intent(hide), depend(t) :: n = len(t)
-  type(scene_t), allocatable :: sc
+  type(scene_t) :: sc
   double precision :: g, length, none(0)
   double precision, allocatable :: fl(:, :)
   integer :: k
   theta = 0; v = 0; x = 0; y = 0; r = 0; flips = 0; stats = 0
   nflips = 0; stop_reason = 0; method = -1; msg = ''
-  allocate(sc)
   call scene_from_fields(fields, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
                          g, length, status, msg)
   if (status /= 0) then

@@ -53,7 +53,7 @@ module pendula_scene
     character(len=16) :: outputs(max_outputs) = ''
     integer :: n_outputs = 0
     character(len=32) :: sweep = ''
-    real(dp) :: sweep_values(max_sweep) = nan_dp
+    real(dp), allocatable :: sweep_values(:)        ! n_sweep values
     integer :: n_sweep = 0
     character(len=256) :: name = ''
     ! the cycloidal guide (R / l) and the gravity fields' parameters
@@ -62,10 +62,13 @@ module pendula_scene
     real(dp) :: restitution = 0.0_dp, min_flight = 0.0_dp
     integer :: max_flips = 100000
     ! sweeps over grids (kernel/sweep): axes, values or (start, stop, count), measure;
-    ! grid_nv, grid_nr: how many values and range entries each axis was given
+    ! grid_nv, grid_nr: how many values and range entries each axis was given;
+    ! grid_values(:, k): axis k's values, NaN beyond them (at least one row: a
+    ! range axis has NaN in its first)
     character(len=32) :: grid(3) = ''
     integer :: n_grid = 0
-    real(dp) :: grid_values(max_sweep, 3) = nan_dp, grid_range(3, 3) = nan_dp
+    real(dp), allocatable :: grid_values(:, :)
+    real(dp) :: grid_range(3, 3) = nan_dp
     integer :: grid_n(3) = 0, grid_nv(3) = 0, grid_nr(3) = 0
     character(len=32) :: measure = ''
     real(dp) :: sweep_t_max = 2000.0_dp, sweep_transient = 200.0_dp
@@ -333,13 +336,16 @@ contains
     sc%sweep_t_max = sweep_t_max; sc%sweep_transient = sweep_transient; sc%sweep_samples = sweep_samples
     call set_words(sc, words, nout, ngrid)
     sc%n_sweep = given(findloc(known_fields, 'sweep_values', dim=1))
-    sc%sweep_values(1:sc%n_sweep) = sweep_values(1:sc%n_sweep)
-    sc%grid_values(:, 1) = grid1; sc%grid_values(:, 2) = grid2; sc%grid_values(:, 3) = grid3
+    sc%sweep_values = sweep_values(1:sc%n_sweep)
     sc%grid_range(:, 1) = grid1_range; sc%grid_range(:, 2) = grid2_range; sc%grid_range(:, 3) = grid3_range
     do i = 1, 3
       sc%grid_nv(i) = given(findloc(known_fields, 'grid' // achar(48 + i), dim=1))
       sc%grid_nr(i) = given(findloc(known_fields, 'grid' // achar(48 + i) // '_range', dim=1))
     end do
+    allocate(sc%grid_values(max(1, maxval(sc%grid_nv)), 3), source=nan_dp)
+    sc%grid_values(1:sc%grid_nv(1), 1) = grid1(1:sc%grid_nv(1))
+    sc%grid_values(1:sc%grid_nv(2), 2) = grid2(1:sc%grid_nv(2))
+    sc%grid_values(1:sc%grid_nv(3), 3) = grid3(1:sc%grid_nv(3))
     if (present(g_out)) g_out = g
     if (present(length_out)) length_out = length
     call check_scene(sc, g, length, status, msg)
@@ -417,9 +423,10 @@ contains
     if (.not. whole(x(25), sc%sweep_samples, msg, 'sweep_samples')) return
     call set_words(sc, w, nout, ngrid)
     sc%n_sweep = size(sweep_values)
-    sc%sweep_values(1:sc%n_sweep) = sweep_values
+    sc%sweep_values = sweep_values
     sc%grid_nv = [size(grid1), size(grid2), size(grid3)]
     sc%grid_nr = [size(grid1_range), size(grid2_range), size(grid3_range)]
+    allocate(sc%grid_values(max(1, maxval(sc%grid_nv)), 3), source=nan_dp)
     sc%grid_values(1:sc%grid_nv(1), 1) = grid1
     sc%grid_values(1:sc%grid_nv(2), 2) = grid2
     sc%grid_values(1:sc%grid_nv(3), 3) = grid3

@@ -336,8 +336,11 @@ BENCHMARKS = {"elliptic": bench_elliptic, "exact": bench_exact, "integrators": b
               "spectrum": bench_spectrum, "cord": bench_cord, "sweep": bench_sweep}
 
 
-def _per_call(fn, calls: int = 200, repeat: int = 7) -> float:
-    """The best over ``repeat`` rounds of the mean wall time of ``calls`` calls of ``fn`` (seconds)."""
+def _per_call(fn, calls: int = 20, repeat: int = 60) -> float:
+    """The best over ``repeat`` rounds of the mean wall time of ``calls`` calls of ``fn`` (seconds).
+
+    Short rounds, many of them: on a loaded machine a round that the scheduler
+    did not interrupt is then among them."""
     fn()
     best = np.inf
     for _ in range(repeat):
@@ -357,8 +360,8 @@ def bench_simulate(n: int = 0, seed: int = 0) -> list[dict]:
     against exact_motion (the exact path with no scene at all; target within
     2x); (2) a short damped DOP853 run through simulate against the
     integrator's binding called directly (the kernel's integration and the
-    f2py call alone; target within 1.5x).  Mean per call of 200 calls, best
-    of 7 rounds.
+    f2py call alone; target within 1.5x).  Mean per call of 20 calls, best
+    of 60 rounds.
     """
     from . import _kernel
     from .motion import simulate

@@ -53,8 +53,8 @@ def simulate(scene: Scene, t=None, method: str | None = None, rtol: float | None
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"simulate expects a pendula.Scene, got {type(scene).__name__}")
-    knobs = {k: v for k, v in (("method", method), ("rtol", rtol), ("atol", atol), ("dt", dt)) if v is not None}
-    if knobs:
+    if method is not None or rtol is not None or atol is not None or dt is not None:
+        knobs = {k: v for k, v in (("method", method), ("rtol", rtol), ("atol", atol), ("dt", dt)) if v is not None}
         scene = scene.replace(**knobs)
     t = scene.times() if t is None else as_float(t, "t")
     if scene.cord == "flexible":

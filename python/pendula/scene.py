@@ -270,6 +270,9 @@ class Scene:
     @property
     def effects(self) -> tuple[str, ...]:
         """The effects this scene names, in a fixed order."""
+        known = self.__dict__.get("_effects")
+        if known is not None:   # formed once per (frozen) scene
+            return known
         out = []
         if self.damping != 0.0:
             out.append("damping")
@@ -283,7 +286,8 @@ class Scene:
             out.append("guide")
         if self.gravity != "uniform":
             out.append("gravity")
-        return tuple(out)
+        object.__setattr__(self, "_effects", tuple(out))
+        return self._effects
 
     @property
     def is_conservative_rigid(self) -> bool:
@@ -300,8 +304,12 @@ class Scene:
                 for v in self.sweep_values]
 
     def times(self) -> np.ndarray:
-        """The output times: n_samples points from t_start to t_end."""
-        return np.linspace(self.t_start, self.t_end, self.n_samples)
+        """The output times: n_samples points from t_start to t_end (a new array each call)."""
+        t = self.__dict__.get("_times")
+        if t is None:   # formed once per (frozen) scene
+            t = np.linspace(self.t_start, self.t_end, self.n_samples)
+            object.__setattr__(self, "_times", t)
+        return t.copy()
 
     def to_namelist(self) -> str:
         """The scene as namelist text (what from_namelist reads back)."""
