@@ -311,7 +311,7 @@ def test_fields_and_text_are_checked_by_the_same_rules():
         Scene(guide="cycloid", theta0=1.7)
     except SceneError as exc:
         fields_err = str(exc)
-    assert text_err == "<scene>: " + fields_err and "cusps" in fields_err
+    assert text_err == "<scene>, line 1: " + fields_err and "cusps" in fields_err
 
 
 def test_replace_is_checked_on_the_fields():
@@ -319,3 +319,21 @@ def test_replace_is_checked_on_the_fields():
     with pytest.raises(SceneError, match="field 'outputs'.*separatrix"):
         s.replace(v0=2.0, outputs=("spectrum",))
     assert s.replace(method="DOPRI5").method == "dopri5"
+
+
+def test_conservative_cycloid_orbit_beyond_the_cusps_is_refused_by_both_programs(tmp_path, capsys):
+    code, msg = one_verdict(tmp_path, capsys, "&scene\n  guide = 'cycloid', theta0 = 1.5, v0 = 2.0, "
+                                              "outputs = 'period'\n/\n")
+    assert code == 2 and "field 'v0'" in msg and "cusps" in msg
+    with pytest.raises(SceneError, match="cusps"):
+        pendula.period(Scene(guide="cycloid", v0=10.0))
+
+
+def test_range_errors_name_the_line_of_the_field():
+    with pytest.raises(SceneError, match=r"^<scene>, line 3: field 'damping' must be >= 0, got -0.1$"):
+        Scene.from_namelist("&scene\n v0 = 1.0\n damping = -0.1\n/\n")
+    with pytest.raises(SceneError, match=r"^<scene>, line 2: field 'sweep_values': eps = 0.0: field 'eps' must be"):
+        Scene.from_namelist("&scene\n sweep = 'eps', sweep_values = 1.0, 0.0\n/\n")
+    # a rule on a field the text does not give: no line to name
+    with pytest.raises(SceneError, match=r"^<scene>: field 'sweep_values' is empty but 'sweep' names a field$"):
+        Scene.from_namelist("&scene\n sweep = 'v0'\n/\n")

@@ -17,6 +17,7 @@
 module pendula_scene
   use pendula_kinds, only: dp, nan_dp, half_pi, pi
   use pendula_exact, only: pendulum_orbit, orbit_setup, regime_separatrix
+  use pendula_cycloid, only: cycloid_omega2
   implicit none
   private
   public :: scene_t, read_scene, parse_scene, scene_from_fields, scene_to_fields, check_scene, scene_member, &
@@ -151,8 +152,8 @@ contains
       'restitution', 'max_flips', 'min_flight', &
       'grid', 'grid1', 'grid2', 'grid3', 'grid1_range', 'grid2_range', 'grid3_range', 'measure', &
       'sweep_t_max', 'sweep_transient', 'sweep_samples']
-    ! how many values each field holds (1: a single value), and how many it was given
-    integer :: given(n_known)
+    ! how many values each field was given, and the line where it was
+    integer :: given(n_known), given_line(n_known)
 
     status = 0
     msg = ''
@@ -167,6 +168,7 @@ contains
     grid3_range = nan_dp; measure = ''; sweep_t_max = 2000.0_dp; sweep_transient = 200.0_dp
     sweep_samples = 100
     given = 0
+    given_line = 0
     if (present(g_out)) g_out = nan_dp
     if (present(length_out)) length_out = nan_dp
 
@@ -296,6 +298,7 @@ contains
         return
       end if
       given(findloc(known_fields, fname, dim=1)) = nval
+      given_line(findloc(known_fields, fname, dim=1)) = line
       buf = '&scene ' // text(start:k - 1) // ' /'
       read(buf, nml=scene, iostat=ios, iomsg=iom)
       if (ios /= 0) then
@@ -349,7 +352,26 @@ contains
     if (present(g_out)) g_out = g
     if (present(length_out)) length_out = length
     call check_scene(sc, g, length, status, msg)
-    if (status /= 0) msg = trim(source) // ': ' // trim(msg)
+    if (status /= 0) then
+      ! the line of the field the message names first, when the text gives it
+      line = 0
+      i = index(msg, 'field ''')
+      if (i == 0) i = index(msg, 'fields ''')
+      if (i > 0) then
+        i = i + index(msg(i:), '''')
+        j = index(msg(i:), '''')
+        if (j > 1) then
+          k = findloc(known_fields, msg(i:i + j - 2), dim=1)
+          if (k > 0) line = given_line(k)
+        end if
+      end if
+      if (line > 0) then
+        buf = trim(source) // ', line ' // trim(int_text(line)) // ': ' // trim(msg)
+        msg = buf
+      else
+        msg = trim(source) // ': ' // trim(msg)
+      end if
+    end if
   end subroutine parse_scene
 
   !> A scene from its fields (the Python layer's Scene): the numbers in the
@@ -730,6 +752,7 @@ contains
   subroutine model_rules(sc, msg)
     type(scene_t), intent(in) :: sc
     character(len=*), intent(out) :: msg
+    real(dp) :: w2, s0, sd0, c
     msg = ''
     if (.not. (sc%cycloid_radius > 0)) then
       msg = 'field ''cycloid_radius'' must be positive (R / l), got ' // trim(num_text(sc%cycloid_radius)); return
@@ -769,6 +792,17 @@ contains
       if (.not. (abs(sc%theta0) <= half_pi)) then
         msg = 'field ''theta0'': on the cycloid |theta0| <= pi/2 (the cusps, |s| = 4R), got ' // &
               trim(num_text(sc%theta0)); return
+      end if
+      if (sc%damping == 0 .and. sc%drive_amplitude == 0) then
+        ! without damping or drive the amplitude about the torque's centre c is constant
+        w2 = cycloid_omega2(sc%eps, sc%cycloid_radius)
+        s0 = 4.0_dp * sc%cycloid_radius * sin(sc%theta0)
+        sd0 = 4.0_dp * sc%cycloid_radius * cos(sc%theta0) * sc%v0
+        c = sc%torque / w2
+        if (abs(c) + hypot(s0 - c, sd0 / sqrt(w2)) > 4.0_dp * sc%cycloid_radius) then
+          msg = 'field ''v0'': the cycloidal pendulum''s orbit (no damping, no drive) reaches the cusps ' // &
+                '(|s| = 4R, |theta| = pi/2): start lower, slower, or with less torque'; return
+        end if
       end if
     end if
     if (sc%cord == 'flexible') then
