@@ -337,3 +337,15 @@ def test_range_errors_name_the_line_of_the_field():
     # a rule on a field the text does not give: no line to name
     with pytest.raises(SceneError, match=r"^<scene>: field 'sweep_values' is empty but 'sweep' names a field$"):
         Scene.from_namelist("&scene\n sweep = 'v0'\n/\n")
+
+
+def test_a_run_beyond_the_work_limit_fails_alike_in_both_programs(tmp_path, capsys):
+    # a failure of the computation (exit 4), not of the scene: the dispatcher's one message
+    code, msg = one_verdict(tmp_path, capsys, "&scene\n  v0 = 1.0, damping = 0.1, method = 'rk4', dt = 1e-9, "
+                                              "t_end = 1000.0, n_samples = 3\n/\n")
+    assert code == 4 and "more steps than the work limit" in msg
+
+
+def test_gsl_rk8pd_in_a_gravity_field_is_a_bad_scene_naming_the_method():
+    with pytest.raises(SceneError, match="field 'method': gsl-rk8pd does not take a non-uniform gravity"):
+        Scene(gravity="linear", gravity_gradient=0.1, method="gsl-rk8pd")

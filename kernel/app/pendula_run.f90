@@ -227,7 +227,7 @@ contains
       member = scene_member(sc, m)
       call cord_scene_run(member, t, theta, v, x, y, r, flips, nfl, stp, stats, meth, st)
       if (st == sim_cord_effects) call fail(trim(path) // ': ' // trim(simulate_status_text(st)))
-      if (st /= 0) call fail(trim(path) // ': the flexible-cord run failed: ' // trim(simulate_status_text(st)), 4)
+      if (st /= 0) call fail(trim(path) // ': ' // trim(simulate_status_text(st)), 4)
       e = 0.5_dp * v * v + 2.0_dp * member%eps * sin(0.5_dp * theta)**2
       pre = ''
       if (swept) write(pre, '(es24.16e3,",")') values(m)

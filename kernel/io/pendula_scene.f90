@@ -815,6 +815,9 @@ contains
               'dop853), whose dense output locates the tension event; got ''' // trim(sc%method) // ''''; return
       end if
     end if
+    if (sc%gravity /= 'uniform' .and. sc%method == 'gsl-rk8pd') then
+      msg = 'field ''method'': gsl-rk8pd does not take a non-uniform gravity field; use dop853 or auto'; return
+    end if
     select case (trim(sc%method))
     case ('rk4', 'verlet', 'yoshida4', 'yoshida6', 'yoshida8', 'gauss4', 'gauss6')
       if (.not. (sc%dt > 0)) then

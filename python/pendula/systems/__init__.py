@@ -118,7 +118,7 @@ def run(scene: Scene, t) -> Trajectory:
             raise NotImplementedError(msg)
         if status == 100:
             raise SceneError(f"the kernel refused the scene: {msg}")
-        raise ValueError(f"{scene.method}: {msg}")
+        raise ValueError(msg)
     if order is None:
         theta, v, e = theta_s, v_s, e_s
     else:

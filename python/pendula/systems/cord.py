@@ -254,7 +254,7 @@ def simulate_cord(scene, t):
     if status == 100:
         raise SceneError(f"the kernel refused the scene: {msg}")
     if status:
-        raise ValueError(f"{method}: {msg}")
+        raise ValueError(msg)
     nan_after = int(np.count_nonzero(np.isnan(th)))
     if nan_after:
         warnings.warn(f"flexible cord: the run stopped ({_STOPS[int(stop)]}) at flip {nf}; "
