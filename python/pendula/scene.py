@@ -354,6 +354,7 @@ def _layout():
 _NUMBERS, _WORDS = _layout()
 _WHOLE = ("n_samples", "max_flips", "sweep_samples")
 _STRING_LISTS = ("outputs", "grid")
+_EMPTY = np.zeros(0)
 _NUMBER_LISTS = ("sweep_values", "grid1", "grid2", "grid3", "grid1_range", "grid2_range", "grid3_range")
 
 
@@ -369,6 +370,8 @@ def _number(name, v) -> float:
 
 
 def _as_list(name, v, kind) -> tuple:
+    if type(v) is tuple and all(type(x) is (str if kind is str else float) for x in v):
+        return v
     if isinstance(v, (str, bytes, int, float, np.integer, np.floating)):
         v = (v,)
     elif isinstance(v, np.ndarray):
@@ -394,8 +397,8 @@ def _fields_from_kernel(x, words, wlen, nout, ngrid) -> dict:
         out.append(raw[at:at + n].decode("utf-8", errors="surrogateescape"))
         at += n
     # NaN (g and length not given) as the one math.nan, so that equal scenes compare equal
-    values = {name: (int(v) if name in _WHOLE else (float(v) if v == v else math.nan))
-              for name, v in zip(_NUMBERS, x)}
+    values = {name: (int(v) if name in _WHOLE else (v if v == v else math.nan))
+              for name, v in zip(_NUMBERS, np.asarray(x, dtype=np.float64).tolist())}
     values.update(zip(_WORDS, out))
     values["outputs"] = tuple(out[len(_WORDS):len(_WORDS) + nout])
     values["grid"] = tuple(out[len(_WORDS) + nout:])
@@ -406,29 +409,29 @@ def _check(s: Scene) -> None:
     """Check a new Scene with the kernel's rules; set its fields to the
     checked ones (eps settled, words in lower case, the default output) and
     keep them, as the kernel takes them, for every run of the scene."""
-    set_ = object.__setattr__
-    x = np.array([_number(name, getattr(s, name)) for name in _NUMBERS], dtype=np.float64)
+    d = s.__dict__
+    x = np.array([v if type(v) is float else _number(name, v) for name, v in ((n, d[n]) for n in _NUMBERS)],
+                 dtype=np.float64)
     singles = []
     for name in _WORDS:
-        v = getattr(s, name)
-        if not isinstance(v, str):
+        v = d[name]
+        if type(v) is not str:
             raise SceneError(f"field '{name}' must be a string, got {v!r}")
         singles.append(v)
-    outputs = _as_list("outputs", s.outputs, str)
-    grid = _as_list("grid", s.grid, str)
-    lists = {name: _as_list(name, getattr(s, name), float) for name in _NUMBER_LISTS}
+    outputs = _as_list("outputs", d["outputs"], str)
+    grid = _as_list("grid", d["grid"], str)
+    lists = {name: (() if d[name] == () else _as_list(name, d[name], float)) for name in _NUMBER_LISTS}
     encoded = [w.encode("utf-8", errors="surrogateescape") for w in singles + list(outputs) + list(grid)]
     wlen = np.array([len(w) for w in encoded], dtype=np.int32)
-    arrays = [np.array(lists[name], dtype=np.float64) for name in _NUMBER_LISTS]
+    arrays = [_EMPTY if not lists[name] else np.array(lists[name], dtype=np.float64) for name in _NUMBER_LISTS]
     x_out, words_out, wlen_out, nout, ngrid, status, msg = _kernel.scene_check_v(
         x, b"".join(encoded) + b" ", wlen, len(outputs), len(grid), *arrays)
     if status:
         raise SceneError(_text(msg))
     values = _fields_from_kernel(x_out, words_out, wlen_out, nout, ngrid)
     values.update(lists)
-    for name, v in values.items():
-        set_(s, name, v)
+    d.update(values)   # the frozen dataclass's fields, set once here
     n = len(_WORDS) + int(nout) + int(ngrid)
     raw = words_out if isinstance(words_out, bytes) else str(words_out).encode("utf-8")
-    set_(s, "_kernel_fields", (np.ascontiguousarray(x_out), raw[:int(np.sum(wlen_out[:n]))] + b" ",
-                               np.ascontiguousarray(wlen_out[:n], dtype=np.int32), int(nout), int(ngrid)))
+    d["_kernel_fields"] = (x_out, raw[:int(np.sum(wlen_out[:n]))] + b" ",
+                           np.ascontiguousarray(wlen_out[:n], dtype=np.int32), int(nout), int(ngrid))
