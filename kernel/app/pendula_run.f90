@@ -61,10 +61,10 @@ program pendula_run
       path = arg
       i = i + 1
     else
-      call fail('unexpected argument "' // trim(arg) // '" (usage: pendula-run SCENE.nml [-o OUT.csv])')
+      call fail('unexpected argument "' // trim(arg) // '" (usage: pendula-run SCENE.nml [-o OUT.csv] [--check])')
     end if
   end do
-  if (len_trim(path) == 0) call fail('usage: pendula-run SCENE.nml [-o OUT.csv]')
+  if (len_trim(path) == 0) call fail('usage: pendula-run SCENE.nml [-o OUT.csv] [--check]')
 
   call read_scene(trim(path), sc, status, msg)
   if (status /= 0) call fail(trim(msg))
