@@ -84,3 +84,53 @@ def test_fuzz_harness_sees_acceptance_and_refusal(path):
     # the harness is not blind: the corpus files get the verdicts their folders say, from both
     expected = path.parent.name == "valid"
     assert python_verdict(path)[0] == native_verdict(path)[0] == expected
+
+
+# ------------------------------------------ the fields and the text: one check
+
+# (NaN has no namelist spelling; infinity is written 1e999, which reads as infinity)
+_NUMBERS = st.one_of(st.sampled_from([0.0, -1.0, 0.5, 1.0, 2.0, 4.0, 1.6, 1e-300, 1e300, 1e308, 2.0 ** 53,
+                                      float("inf"), -float("inf")]),
+                     st.floats(-10.0, 10.0, allow_nan=False))
+_FIELD_VALUES = {
+    "eps": _NUMBERS, "theta0": _NUMBERS, "v0": _NUMBERS, "t_start": _NUMBERS, "t_end": _NUMBERS,
+    "damping": _NUMBERS, "torque": _NUMBERS, "drive_amplitude": _NUMBERS, "dt": _NUMBERS, "rtol": _NUMBERS,
+    "cycloid_radius": _NUMBERS, "gravity_distance": _NUMBERS, "gravity_gradient": _NUMBERS,
+    "restitution": _NUMBERS, "min_flight": _NUMBERS,
+    "n_samples": st.integers(-2, 10 ** 9), "max_flips": st.integers(-2, 10 ** 9),
+    "method": st.sampled_from(["auto", "exact", "rk4", "DOP853", "gsl-rk8pd", "rk5", ""]),
+    "cord": st.sampled_from(["rigid", "flexible", "elastic"]),
+    "guide": st.sampled_from(["none", "cycloid", "cycloyd"]),
+    "gravity": st.sampled_from(["uniform", "linear", "inverse-square", ""]),
+    "outputs": st.lists(st.sampled_from(["trajectory", "spectrum", "series", "lindstedt", "period", "omega",
+                                         "theta_t", "thetat", ""]), min_size=1, max_size=3).map(tuple),
+    "sweep": st.sampled_from(["", "v0", "theta0", "eps", "damping", "drive_phase"]),
+    "sweep_values": st.lists(_NUMBERS, max_size=3).map(tuple),
+}
+
+
+def _namelist(kw: dict) -> str:
+    from pendula.scene import _fmt as fmt
+
+    def _fmt(x):
+        return ("-1e999" if x < 0 else "1e999") if isinstance(x, float) and abs(x) == float("inf") else fmt(x)
+
+    return "&scene\n" + "\n".join(f"  {k} = " + (", ".join(_fmt(x) for x in v) if isinstance(v, tuple)
+                                                  else _fmt(v)) for k, v in kw.items() if v != ()) + "\n/\n"
+
+
+@settings(max_examples=300, derandomize=True, deadline=None, suppress_health_check=list(HealthCheck))
+@given(st.fixed_dictionaries({}, optional=_FIELD_VALUES))
+def test_scene_of_fields_and_scene_of_text_get_one_verdict_with_one_message(kw):
+    import re
+
+    verdicts = []
+    for make in (lambda: Scene(**kw), lambda: Scene.from_namelist(_namelist(kw))):
+        try:
+            verdicts.append((True, make()))
+        except SceneError as exc:
+            verdicts.append((False, re.sub(r"^<scene>(, line \d+)?: ", "", str(exc))))
+    (ok_f, got_f), (ok_t, got_t) = verdicts
+    assert ok_f == ok_t and (got_f == got_t or ok_f), (kw, got_f, got_t)
+    if ok_f:
+        assert got_t == got_f, (kw, got_f, got_t)
