@@ -19,7 +19,7 @@ circle
     kernel integrators), in the kernel's hybrid loop
     (kernel/dispatch/pendula_cord_hybrid.f90).  Both run through the
     dispatcher (``cord_scene_run``), as in ``pendula-run``.  Fixed-step methods have
-    no dense output: they are refused with a ValueError naming the method.
+    no dense output: a scene naming one is refused (SceneError, a ValueError) naming the method.
 flight
     A parabola in closed form.  |p(tau)|^2 - 1 is a quartic in the flight time
     tau whose low coefficients vanish at a tangential departure (r' = 0 and
@@ -212,7 +212,6 @@ def simulate_cord(scene, t):
     integrated, the integrator's work ('steps', 'rhs_evaluations').
     """
     from .. import _interrupt
-    from ..integrate import ADAPTIVE, FIXED_STEP
     from ..scene import SceneError
     from ..trajectory import Trajectory
     from . import METHOD_NAMES, _long_run
@@ -223,14 +222,8 @@ def simulate_cord(scene, t):
         raise ValueError("t must be finite")
     if flat.size and flat.min() < 0:
         raise ValueError("t: a flexible cord runs forward only (the jerk is irreversible): give times >= 0")
-    method = scene.method
-    integrated = any(e for e in scene.effects if e != "cord") or method not in ("auto", "exact")
-    if integrated:
-        if method in FIXED_STEP:
-            raise ValueError(f"method {method!r}: a flexible cord with effects needs the tension event located "
-                             f"on dense output; {method!r} is fixed-step and has none: use dopri5 or dop853")
-        if method != "auto" and (method not in ADAPTIVE or method == "gsl-rk8pd"):
-            raise ValueError(f"method {method!r} cannot locate the tension event: use dopri5 or dop853")
+    # (which methods can run a flexible cord is a rule of the scene, checked when it was made)
+    integrated = any(e for e in scene.effects if e != "cord") or scene.method not in ("auto", "exact")
 
     order = np.argsort(flat, kind="stable")
     ts = np.ascontiguousarray(flat[order])
