@@ -238,9 +238,8 @@ def test_seed_involute_formula_4_22_slip():
 def test_sweep_beyond_the_cusp_is_refused_before_output(tmp_path):
     f = tmp_path / "s.nml"
     f.write_text("&scene\n guide = 'cycloid', sweep = 'theta0', sweep_values = 0.5, 1.7\n/\n")
-    sc = Scene.from_file(f)
     with pytest.raises(SceneError, match="theta0"):
-        sc.members()
+        Scene.from_file(f)
     out = tmp_path / "o.csv"
     p = subprocess.run([venv_bin("pendula-run"), str(f), "-o", str(out)], capture_output=True, text=True)
     assert p.returncode == 2 and "theta0" in p.stderr and not out.exists()

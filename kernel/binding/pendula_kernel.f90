@@ -162,47 +162,121 @@ subroutine exact_info_v(theta0, v0, eps, info, status)
   info = [dble(o%regime), o%k, o%m, o%mch, orbit_period(o), orbit_theta_max(o), o%u0, o%mcl]
 end subroutine exact_info_v
 
-! ---------------------------------------------------------------- dispatcher
-! Run a scene given as namelist text (the kernel reads and checks it with the
-! same rules as pendula-run), at the times t (sorted ascending when an
-! integrator answers).  method: the code of what answered (0 = exact path);
-! status 0 ok, otherwise msg says why (see pendula_simulate).
-subroutine simulate_v(text, n, t, cancel, theta, v, energy, stats, method, status, msg)
-  use pendula_scene, only: scene_t, parse_scene
+! ---------------------------------------------------------------- scenes and the dispatcher
+! A scene crosses the binding as fields: x(25) the numbers in the order of
+! pendula_scene's number_fields (scene_layout_v), the words one after another
+! in `words` with their lengths wlen: cord, guide, gravity, method, sweep,
+! measure, name, then nout outputs, then ngrid grid axes.
+
+! The kernel's order of a scene's numbers and word fields (blank separated, numbers first, then '|').
+subroutine scene_layout_v(names)
+  use pendula_scene, only: number_fields
+  implicit none
+  character(len=1024), intent(out) :: names
+  integer :: i
+  names = ''
+  do i = 1, size(number_fields)
+    names = trim(names) // ' ' // trim(number_fields(i))
+  end do
+  names = trim(names) // ' | cord guide gravity method sweep measure name'
+end subroutine scene_layout_v
+
+! Read and check a scene's text (source: the file's name, for messages):
+! status 0 and the scene's fields, or status 1 and msg naming the field
+! (and the line).
+subroutine scene_read_v(text, source, x, words, wlen, nout, ngrid, sweep_values, nsweep, grid_values, grid_nv, &
+                        grid_range, grid_nr, status, msg)
+  use pendula_scene, only: scene_t, parse_scene, scene_to_fields
+  implicit none
+  character(len=*), intent(in) :: text, source
+  double precision, intent(out) :: x(25), sweep_values(4096), grid_values(4096, 3), grid_range(3, 3)
+  character(len=1024), intent(out) :: words
+  integer, intent(out) :: wlen(26), nout, ngrid, nsweep, grid_nv(3), grid_nr(3), status
+  character(len=2048), intent(out) :: msg
+  type(scene_t), allocatable :: sc
+  double precision :: g, length
+  allocate(sc)
+  x = 0; words = ''; wlen = 0; nout = 0; ngrid = 0; nsweep = 0; grid_nv = 0; grid_nr = 0
+  sweep_values = 0; grid_values = 0; grid_range = 0
+  call parse_scene(text, source, sc, status, msg, g, length)
+  if (status /= 0) return
+  call scene_to_fields(sc, g, length, x, words, wlen, nout, ngrid)
+  nsweep = sc%n_sweep
+  sweep_values(1:nsweep) = sc%sweep_values(1:nsweep)
+  grid_nv = sc%grid_nv
+  grid_nr = sc%grid_nr
+  grid_values(1:size(sc%grid_values, 1), :) = sc%grid_values
+  grid_range = sc%grid_range
+end subroutine scene_read_v
+
+! Check a scene given as fields with the kernel's rules: status 0 and the
+! checked scene's numbers and words (eps settled, words in lower case, the
+! default output), or status 1 and msg naming the field.
+subroutine scene_check_v(x, words, nw, wlen, nout, ngrid, ns, sweep_values, n1, grid1, n2, grid2, n3, grid3, &
+                         nr1, grid1_range, nr2, grid2_range, nr3, grid3_range, x_out, words_out, wlen_out, &
+                         nout_out, ngrid_out, status, msg)
+  use pendula_scene, only: scene_t, scene_from_fields, scene_to_fields
+  implicit none
+  double precision, intent(in) :: x(25)
+  character(len=*), intent(in) :: words
+  integer, intent(in) :: nw, nout, ngrid, ns, n1, n2, n3, nr1, nr2, nr3
+  integer, intent(in) :: wlen(nw)
+  double precision, intent(in) :: sweep_values(ns), grid1(n1), grid2(n2), grid3(n3), grid1_range(nr1), &
+                                  grid2_range(nr2), grid3_range(nr3)
+  !f2py intent(hide), depend(wlen) :: nw = len(wlen)
+  !f2py intent(hide), depend(sweep_values) :: ns = len(sweep_values)
+  !f2py intent(hide), depend(grid1) :: n1 = len(grid1)
+  !f2py intent(hide), depend(grid2) :: n2 = len(grid2)
+  !f2py intent(hide), depend(grid3) :: n3 = len(grid3)
+  !f2py intent(hide), depend(grid1_range) :: nr1 = len(grid1_range)
+  !f2py intent(hide), depend(grid2_range) :: nr2 = len(grid2_range)
+  !f2py intent(hide), depend(grid3_range) :: nr3 = len(grid3_range)
+  double precision, intent(out) :: x_out(25)
+  character(len=1024), intent(out) :: words_out
+  integer, intent(out) :: wlen_out(26), nout_out, ngrid_out, status
+  character(len=2048), intent(out) :: msg
+  type(scene_t), allocatable :: sc
+  double precision :: g, length
+  allocate(sc)
+  x_out = 0; words_out = ''; wlen_out = 0; nout_out = 0; ngrid_out = 0
+  call scene_from_fields(x, words, wlen, nout, ngrid, sweep_values, grid1, grid2, grid3, grid1_range, &
+                         grid2_range, grid3_range, .true., sc, g, length, status, msg)
+  if (status /= 0) return
+  call scene_to_fields(sc, g, length, x_out, words_out, wlen_out, nout_out, ngrid_out)
+end subroutine scene_check_v
+
+! Run a checked scene (its fields, as scene_check_v returns them; no sweep)
+! at the times t (sorted ascending when an integrator answers).  method: the
+! code of what answered (0 = exact path); status 0 ok, otherwise msg says why
+! (see pendula_simulate; 100: the fields do not form a scene).
+subroutine simulate_v(x, words, nw, wlen, nout, ngrid, n, t, cancel, theta, v, energy, stats, method, status, msg)
+  use pendula_scene, only: scene_t, scene_from_fields
   use pendula_simulate, only: simulate_scene
   implicit none
   !f2py threadsafe
-  character(len=*), intent(in) :: text
-  integer, intent(in) :: n
+  double precision, intent(in) :: x(25)
+  character(len=*), intent(in) :: words
+  integer, intent(in) :: nw, nout, ngrid, n
+  integer, intent(in) :: wlen(nw)
   double precision, intent(in) :: t(n)
   integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: theta(n), v(n), energy(n), stats(4)
   integer, intent(out) :: method, status
   character(len=512), intent(out) :: msg
+  !f2py intent(hide), depend(wlen) :: nw = len(wlen)
   !f2py intent(hide), depend(t) :: n = len(t)
   type(scene_t) :: sc
+  double precision :: g, length, none(0)
   method = -1
   theta = 0; v = 0; energy = 0; stats = 0
-  call parse_scene(text, '<scene>', sc, status, msg)
+  call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
+                         g, length, status, msg)
   if (status /= 0) then
     status = 100
     return
   end if
   call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel(1))
 end subroutine simulate_v
-
-! Read and check a scene's text with the kernel's rules (status 0 ok,
-! otherwise msg names the field); the scene corpus and fuzz tests compare
-! this reader with the Python one.
-subroutine scene_check_v(text, status, msg)
-  use pendula_scene, only: scene_t, parse_scene
-  implicit none
-  character(len=*), intent(in) :: text
-  integer, intent(out) :: status
-  character(len=512), intent(out) :: msg
-  type(scene_t) :: sc
-  call parse_scene(text, '<scene>', sc, status, msg)
-end subroutine scene_check_v
 
 ! The model registry, one model per line of `table` (fields separated by '|':
 ! name, selector, effects, exact_with, path, implemented, summary).
@@ -310,7 +384,7 @@ subroutine spectra_v(handle, n, nsig, signals, dt, window, nh, omega, power, sta
 end subroutine spectra_v
 
 ! ===============================================
-! Issue 13: Huygens' cycloidal pendulum, non-uniform gravity, the density of the angle
+! Huygens' cycloidal pendulum, non-uniform gravity, the density of the angle
 ! ====================================================================
 
 ! The cycloidal pendulum in closed form.  params = [eps, beta, tau, amp, Omega, phase],
@@ -391,31 +465,37 @@ subroutine cord_flip_map_v(n, x, f)
   f = flip_map(x)
 end subroutine cord_flip_map_v
 
-! A flexible-cord scene (namelist text) through the dispatcher at sorted times t >= 0: closed
+! A flexible-cord scene (its fields, as simulate_v takes them) through the dispatcher at sorted times t >= 0: closed
 ! form without effects, the hybrid loop with them.  flips(8, maxf): t_leave, theta_leave, t_return, theta_return, xi_before, xi_after, v_leave,
 ! v_return; nflips may
 ! exceed maxf (then only maxf rows are returned: call again with room).  status: the
-! dispatcher's (0 ok; 100: the scene text is invalid), msg says why.
-subroutine cord_scene_v(text, n, maxf, t, cancel, theta, v, x, y, r, flips, nflips, stop_reason, stats, &
+! dispatcher's (0 ok; 100: the fields do not form a scene), msg says why.
+subroutine cord_scene_v(fields, words, nw, wlen, nout, ngrid, n, maxf, t, cancel, theta, v, x, y, r, flips, &
+                        nflips, stop_reason, stats, &
                         method, status, msg)
-  use pendula_scene, only: scene_t, parse_scene
+  use pendula_scene, only: scene_t, scene_from_fields
   use pendula_simulate, only: cord_scene_run, simulate_status_text
   implicit none
   !f2py threadsafe
-  character(len=*), intent(in) :: text
-  integer, intent(in) :: n, maxf
+  double precision, intent(in) :: fields(25)
+  character(len=*), intent(in) :: words
+  integer, intent(in) :: nw, nout, ngrid, n, maxf
+  integer, intent(in) :: wlen(nw)
   double precision, intent(in) :: t(n)
   integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: theta(n), v(n), x(n), y(n), r(n), flips(8, maxf), stats(4)
   integer, intent(out) :: nflips, stop_reason, method, status
   character(len=512), intent(out) :: msg
+  !f2py intent(hide), depend(wlen) :: nw = len(wlen)
   !f2py intent(hide), depend(t) :: n = len(t)
   type(scene_t) :: sc
+  double precision :: g, length, none(0)
   double precision, allocatable :: fl(:, :)
   integer :: k
   theta = 0; v = 0; x = 0; y = 0; r = 0; flips = 0; stats = 0
   nflips = 0; stop_reason = 0; method = -1; msg = ''
-  call parse_scene(text, '<scene>', sc, status, msg)
+  call scene_from_fields(fields, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
+                         g, length, status, msg)
   if (status /= 0) then
     status = 100
     return
@@ -429,7 +509,7 @@ subroutine cord_scene_v(text, n, maxf, t, cancel, theta, v, x, y, r, flips, nfli
   flips(:, 1:k) = fl(:, 1:k)
 end subroutine cord_scene_v
 ! ====================================================================
-! Sweeps (issue 14): one call per block of grid points, OpenMP inside.
+! Sweeps: one call per block of grid points, OpenMP inside.
 ! ====================================================================
 
 ! params(8, npts): eps, beta, tau, amp, omega, phase, theta0, v0 per point.

@@ -12,7 +12,7 @@
 !> case in simulate_scene (and one line in python/pendula/models/__init__.py).
 module pendula_simulate
   use pendula_kinds, only: dp, nan_dp, two_pi
-  use pendula_scene, only: scene_t, scene_effects
+  use pendula_scene, only: scene_t, scene_effects, scene_has_orbit_facts
   use pendula_rigid, only: rigid_has_exact, rigid_exact, rigid_energy
   use pendula_cycloid, only: cycloid_run, cycloid_omega2, cy_ok, cy_reaches_cusp
   use pendula_gravity, only: gk_uniform, gk_inverse_square, gk_linear, gravity_energy, gravity_orbit, &
@@ -24,7 +24,7 @@ module pendula_simulate
   implicit none
   private
   public :: model_info_t, registry, select_model, method_code, simulate_scene, simulate_status_text, &
-            scene_energy, scene_orbit13, cord_integrated, cord_scene_run
+            scene_energy, model_orbit_facts, cord_integrated, cord_scene_run
 
   integer, parameter, public :: sim_ok = 0, sim_bad_state = 1, sim_unsupported = 10, &
     sim_needs_dt = 11, sim_unsorted = 12, sim_integrator_failed = 13, sim_not_implemented = 14, &
@@ -162,7 +162,7 @@ contains
       end if
     case (mid_gravity)
       ! conservative and one-dimensional, but no closed form: the scene's integrator
-      ! on the field's force law (the period comes from the energy integral: scene_orbit13)
+      ! on the field's force law (the period comes from the energy integral: model_orbit_facts)
       if (sc%method == 'exact') then
         status = sim_exact_refused
       else
@@ -321,7 +321,7 @@ contains
     end select
   end subroutine cycloid_path_motion
 
-  !> Issue 13 hook: the energy of the scene's model along (theta, v) (per m l^2):
+  !> The energy of the scene's model along (theta, v) (per m l^2):
   !> rigid v^2/2 + V(theta) of its gravity field; on the cycloid s'^2/2 + w2 s^2/2 - tau s.
   function scene_energy(sc, theta, v) result(e)
     type(scene_t), intent(in) :: sc
@@ -341,11 +341,12 @@ contains
     end if
   end function scene_energy
 
-  !> Issue 13 hook: the orbit facts of a conservative cycloid scene (the guide, perhaps a torque)
-  !> or a scene whose only effect is non-uniform gravity.  has = .false. for any other scene.
+  !> The orbit facts of a model other than the rigid pendulum: a conservative cycloid scene (the
+  !> guide, perhaps a torque) or a scene whose only effect is non-uniform gravity
+  !> (scene_has_orbit_facts).  has = .false. for any other scene.
   !> k: sqrt(m) in libration, 1/sqrt(m) in rotation (the rigid pendulum's k in uniform gravity);
   !> NaN on the cycloid (no modulus there).  status /= 0: the orbit reaches a cusp or bad input.
-  subroutine scene_orbit13(sc, has, regime, k, period, theta_max, status)
+  subroutine model_orbit_facts(sc, has, regime, k, period, theta_max, status)
     type(scene_t), intent(in) :: sc
     logical, intent(out) :: has
     integer, intent(out) :: regime, status
@@ -353,7 +354,8 @@ contains
     real(dp) :: w2, r, s0, sd0, c, a, e, m, mc, kk
     has = .false.; regime = 0; status = 0
     k = nan_dp; period = nan_dp; theta_max = nan_dp
-    if (sc%guide == 'cycloid' .and. sc%damping == 0 .and. sc%drive_amplitude == 0) then
+    if (.not. scene_has_orbit_facts(sc)) return
+    if (sc%guide == 'cycloid') then
       has = .true.
       r = sc%cycloid_radius
       w2 = cycloid_omega2(sc%eps, r)
@@ -366,7 +368,7 @@ contains
         status = sim_beyond_cusp; return
       end if
       theta_max = asin((c + a) / (4.0_dp * r))
-    else if (trim(scene_effects(sc)) == 'gravity') then
+    else
       has = .true.
       select case (trim(sc%gravity))
       case ('inverse-square')
@@ -383,7 +385,7 @@ contains
       if (regime == gr_libration) k = sqrt(m)
       if (regime == gr_rotation) k = 1.0_dp / sqrt(m)
     end if
-  end subroutine scene_orbit13
+  end subroutine model_orbit_facts
 
   function simulate_status_text(status) result(s)
     integer, intent(in) :: status

@@ -94,7 +94,7 @@ def bench_elliptic(n: int = 1_000_000, seed: int = 1) -> list[dict]:
 
 
 def bench_exact(n: int = 1_000_000, seed: int = 2) -> list[dict]:
-    """The exact pendulum path per sample against numpy.sin per sample (issue 15: at most 3x in every regime)."""
+    """The exact pendulum path per sample against numpy.sin per sample (target: at most 3x in every regime)."""
     from .systems.rigid import exact_motion
 
     t = np.sort(np.random.default_rng(seed).uniform(0.0, 1000.0, n))
@@ -271,7 +271,7 @@ def bench_cord(n: int = 10_000, seed: int = 4) -> list[dict]:
 
 
 def bench_sweep(n: int = 1_000_000, seed: int = 14) -> list[dict]:
-    """Sweeps (issue 14): a sqrt(n) x sqrt(n) final-well map over (v0, beta)
+    """Sweeps: a sqrt(n) x sqrt(n) final-well map over (v0, beta)
     (goal: 10^6 points in 60 s on 2 cores), OpenMP threads 1 against 2, the
     per-point cost against a scipy solve_ivp loop with a terminal event on a
     20 x 20 subgrid, and the fraction of points decided early."""
@@ -335,6 +335,73 @@ def bench_sweep(n: int = 1_000_000, seed: int = 14) -> list[dict]:
 
 BENCHMARKS = {"elliptic": bench_elliptic, "exact": bench_exact, "integrators": bench_integrators,
               "spectrum": bench_spectrum, "cord": bench_cord, "sweep": bench_sweep}
+
+
+def _per_call(fn, calls: int = 20, repeat: int = 60) -> float:
+    """The best over ``repeat`` rounds of the mean wall time of ``calls`` calls of ``fn`` (seconds).
+
+    Short rounds, many of them: on a loaded machine a round that the scheduler
+    did not interrupt is then among them."""
+    fn()
+    best = np.inf
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        for _ in range(calls):
+            fn()
+        best = min(best, (time.perf_counter() - t0) / calls)
+    return best
+
+
+def bench_simulate(n: int = 0, seed: int = 0) -> list[dict]:
+    """What one :func:`pendula.simulate` call costs beside the work it asks for.
+
+    The checked scene is kept as the kernel takes it (numbers and words, made
+    once per frozen Scene), so a run parses nothing.  Two comparisons, each
+    on the same times: (1) simulate on an 11-sample conservative scene
+    against exact_motion (the exact path with no scene at all; target within
+    2x); (2) a short damped DOP853 run through simulate against the
+    integrator's binding called directly (the kernel's integration and the
+    f2py call alone; target within 1.5x).  Mean per call of 20 calls, best
+    of 60 rounds.
+    """
+    from . import _kernel
+    from .motion import simulate
+    from .scene import Scene
+    from .systems.rigid import exact_motion
+
+    t = np.linspace(0.0, 10.0, 11)
+    conservative = Scene(v0=1.0, t_end=10.0, n_samples=11)
+    rows = [("simulate, conservative scene, 11 samples", _per_call(lambda: simulate(conservative))),
+            ("exact_motion on the same 11 times", _per_call(lambda: exact_motion(0.0, 1.0, 1.0, t)))]
+    out = _report_calls("simulate against the exact path on the same times (target: within 2x)", rows,
+                        "exact_motion on the same 11 times")
+    damped = Scene(v0=1.0, damping=0.1, t_end=10.0, n_samples=11, rtol=1e-10, atol=1e-12)
+    params = np.array([1.0, 0.1, 0.0, 0.0, 0.0, 0.0])
+    cancel = np.zeros(1, dtype=np.int32)
+
+    def kernel_alone():
+        return _kernel.integrate_v(9, params, 0, 0.0, 0.0, 1.0, t, 1e-10, 1e-12, 0.0, 0, 0.0, 0, 0, 1, cancel)
+
+    if not np.array_equal(kernel_alone()[0], simulate(damped).theta):
+        raise RuntimeError("bench simulate: the two runs compared differ; they must be the same work")
+    rows = [("simulate, damped scene, dop853, 11 samples", _per_call(lambda: simulate(damped))),
+            ("the integrator's binding alone, same run", _per_call(kernel_alone))]
+    out += _report_calls("a short DOP853 run: simulate against the kernel's integration alone "
+                         "(target: within 1.5x)", rows, "the integrator's binding alone, same run")
+    return out
+
+
+def _report_calls(title, rows, ref):
+    base = dict(rows)[ref]
+    print(f"\n{title}")
+    out = []
+    for name, tsec in rows:
+        print(f"  {name:50s} {tsec * 1e6:9.1f} us per call {tsec / base:8.2f}x")
+        out.append({"what": name, "us_per_call": tsec * 1e6, "ratio": tsec / base})
+    return out
+
+
+BENCHMARKS["simulate"] = bench_simulate
 
 
 def machine_record() -> dict:

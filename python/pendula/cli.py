@@ -109,11 +109,11 @@ def _run_file(args, command: str, outputs: tuple | None = None) -> int:
 
     try:
         scene = Scene.from_file(args.scene)
+        if outputs:
+            scene = scene.replace(outputs=outputs)
     except SceneError as exc:
         print(f"pendula {command}: {exc}", file=sys.stderr)
         return 2
-    if outputs:
-        scene = scene.replace(outputs=outputs)
     # the exit codes of pendula-run: 3 model not implemented, 4 the computation
     # failed, 5 a write error; a message, never a traceback, and no partial file
     try:

@@ -81,8 +81,8 @@ def simulate(scene: Scene, t=None, method: str | None = None, rtol: float | None
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"simulate expects a pendula.Scene, got {type(scene).__name__}")
-    knobs = {k: v for k, v in (("method", method), ("rtol", rtol), ("atol", atol), ("dt", dt)) if v is not None}
-    if knobs:
+    if method is not None or rtol is not None or atol is not None or dt is not None:
+        knobs = {k: v for k, v in (("method", method), ("rtol", rtol), ("atol", atol), ("dt", dt)) if v is not None}
         scene = scene.replace(**knobs)
     t = scene.times() if t is None else as_float(t, "t")
     if scene.cord == "flexible":
@@ -132,7 +132,7 @@ def period(scene: Scene) -> float:
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"period expects a pendula.Scene, got {type(scene).__name__}")
-    # issue 13 hook: the cycloid (any amplitude) and non-uniform gravity (exact quadrature)
+    # the cycloid (any amplitude) and non-uniform gravity (exact quadrature) have their own periods
     if set(scene.effects) <= {"guide", "torque"} and scene.guide == "cycloid":
         return cycloid_period(scene)
     if scene.effects == ("gravity",):

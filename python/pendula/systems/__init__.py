@@ -13,7 +13,6 @@ model returns more than theta, v and its invariant.
 
 from __future__ import annotations
 
-import functools
 import warnings
 from dataclasses import dataclass
 
@@ -32,6 +31,7 @@ METHOD_NAMES = {0: "exact", 1: "rk4", 2: "verlet", 3: "yoshida4", 4: "yoshida6",
 
 # kernel status -> exception type (the kernel's message is the text)
 _NOT_IMPLEMENTED = 14
+_UNSORTED = 12
 
 
 @dataclass(frozen=True)
@@ -126,38 +126,51 @@ def run(scene: Scene, t) -> Trajectory:
     """
     t = as_float(t, "t")
     flat = np.ascontiguousarray(t, dtype=np.float64).reshape(-1)
-    order = np.argsort(flat, kind="stable")
-    sorted_t = np.ascontiguousarray(flat[order])
-    cancel = _interrupt.cancel_flag()
-    theta_s, v_s, e_s, stats, method, status, msg = _interrupt.call(
-        _kernel.simulate_v, _kernel_text(scene).encode("utf-8"), sorted_t, cancel, cancel=cancel,
-        long=bool(scene.effects) and _long_run(scene, sorted_t))
-    msg = (msg.decode(errors="replace") if isinstance(msg, bytes) else str(msg)).strip()
-    if status == _NOT_IMPLEMENTED:
-        raise NotImplementedError(msg)
-    if status == 100:
-        raise SceneError(f"the kernel refused the scene: {msg}")
+    x, words, wlen, nout, ngrid = scene._kernel_fields
+    # the times as given: the exact paths take any order, and an integrator
+    # refuses unsorted times (status 12) before any work, so they are sorted
+    # only then (the scene's own times and most others come in order)
+    order, sorted_t = None, flat
+    while True:
+        cancel = _interrupt.cancel_flag()
+        long = bool(scene.effects) and _long_run(scene, sorted_t)
+        theta_s, v_s, e_s, stats, method, status, msg = _interrupt.call(
+            _kernel.simulate_v, x, words, wlen, nout, ngrid, sorted_t, cancel, cancel=cancel, long=long)
+        if status != _UNSORTED or order is not None:
+            break
+        order = np.argsort(flat, kind="stable")
+        sorted_t = np.ascontiguousarray(flat[order])
     if status:
-        raise ValueError(f"{scene.method}: {msg}")
-    theta = np.empty_like(flat)
-    v = np.empty_like(flat)
-    e = np.empty_like(flat)
-    theta[order] = theta_s
-    v[order] = v_s
-    e[order] = e_s
-    theta, v, e = (a.reshape(t.shape) for a in (theta, v, e))
+        msg = (msg.decode(errors="replace") if isinstance(msg, bytes) else str(msg)).strip()
+        if status == _NOT_IMPLEMENTED:
+            raise NotImplementedError(msg)
+        if status == 100:
+            raise SceneError(f"the kernel refused the scene: {msg}")
+        raise ValueError(msg)
+    if order is None:
+        theta, v, e = theta_s, v_s, e_s
+    else:
+        theta = np.empty_like(flat)
+        v = np.empty_like(flat)
+        e = np.empty_like(flat)
+        theta[order] = theta_s
+        v[order] = v_s
+        e[order] = e_s
+    if t.shape != theta.shape:
+        theta, v, e = (a.reshape(t.shape) for a in (theta, v, e))
     name = METHOD_NAMES[int(method)]
     st = {} if method == 0 else {"steps": int(stats[0]), "accepted": int(stats[1]), "rejected": int(stats[2]),
                                  "rhs_evaluations": int(stats[3]), "stopped_by_event": False}
-    nan_out = ~(np.isfinite(theta) & np.isfinite(v)) & ~np.isnan(t)
-    if np.any(nan_out & ~np.isfinite(t)):
-        warnings.warn(f"simulate: {int(np.sum(nan_out & ~np.isfinite(t)))} non-finite time(s) gave NaN",
-                      RuntimeWarning, stacklevel=3)
-    if np.any(nan_out & np.isfinite(t)):
-        warnings.warn(f"simulate: {int(np.sum(nan_out & np.isfinite(t)))} value(s) at finite times are NaN: the "
-                      "state has no value there (at a cusp of the cycloidal guide the cord is horizontal and v "
-                      "is undefined; beyond 2**48 half periods the exact path cannot reduce its phase)",
-                      RuntimeWarning, stacklevel=3)
+    if not np.isfinite(theta_s.sum() + v_s.sum()):   # (a finite sum: every value finite)
+        nan_out = ~(np.isfinite(theta) & np.isfinite(v)) & ~np.isnan(t)
+        if np.any(nan_out & ~np.isfinite(t)):
+            warnings.warn(f"simulate: {int(np.sum(nan_out & ~np.isfinite(t)))} non-finite time(s) gave NaN",
+                          RuntimeWarning, stacklevel=3)
+        if np.any(nan_out & np.isfinite(t)):
+            warnings.warn(f"simulate: {int(np.sum(nan_out & np.isfinite(t)))} value(s) at finite times are NaN: "
+                          "the state has no value there (at a cusp of the cycloidal guide the cord is horizontal "
+                          "and v is undefined; beyond 2**48 half periods the exact path cannot reduce its phase)",
+                          RuntimeWarning, stacklevel=3)
     return Trajectory(t, theta, v, e, name, scene, st)
 
 
@@ -166,21 +179,8 @@ def _long_run(scene: Scene, t: np.ndarray) -> bool:
     runs where Ctrl-C can stop it; short runs skip the thread's ~50 us.)"""
     if t.size == 0:
         return False
-    span = float(np.max(np.abs(t)))
+    span = max(abs(float(t[0])), abs(float(t[-1]))) if t.size < 2 or t[-1] >= t[0] else float(np.max(np.abs(t)))
     if scene.dt > 0 and scene.method not in ("auto", "dop853", "dopri5", "gsl-rk8pd"):
         return span / scene.dt > 1e5
     rate = max(1.0, scene.eps ** 0.5, scene.drive_frequency, scene.damping)
     return span * rate > 1e3 or scene.rtol < 1e-12
-
-
-_SKIP = ("outputs", "sweep", "sweep_values", "name")
-
-
-@functools.lru_cache(maxsize=256)
-def _kernel_text(scene: Scene) -> str:
-    """The scene as the kernel's dispatcher reads it (without the fields that
-    only say what to write: outputs, sweeps and the title).  Scenes are frozen,
-    so the text is formed once per scene, not at every run of it (it was a
-    third of a short run's time)."""
-    return "\n".join(line for line in scene.to_namelist().splitlines()
-                     if line.split("=", 1)[0].strip() not in _SKIP) + "\n"

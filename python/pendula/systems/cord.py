@@ -19,7 +19,7 @@ circle
     kernel integrators), in the kernel's hybrid loop
     (kernel/dispatch/pendula_cord_hybrid.f90).  Both run through the
     dispatcher (``cord_scene_run``), as in ``pendula-run``.  Fixed-step methods have
-    no dense output: they are refused with a ValueError naming the method.
+    no dense output: a scene naming one is refused (SceneError, a ValueError) naming the method.
 flight
     A parabola in closed form.  |p(tau)|^2 - 1 is a quartic in the flight time
     tau whose low coefficients vanish at a tangential departure (r' = 0 and
@@ -283,10 +283,9 @@ def simulate_cord(scene, t):
     integrated, the integrator's work ('steps', 'rhs_evaluations').
     """
     from .. import _interrupt
-    from ..integrate import ADAPTIVE, FIXED_STEP
     from ..scene import SceneError
     from ..trajectory import Trajectory
-    from . import METHOD_NAMES, _kernel_text, _long_run
+    from . import METHOD_NAMES, _long_run
 
     t = as_float(t, "t")
     flat = np.ascontiguousarray(t, dtype=np.float64).reshape(-1)
@@ -294,14 +293,8 @@ def simulate_cord(scene, t):
         raise ValueError("t must be finite")
     if flat.size and flat.min() < 0:
         raise ValueError("t: a flexible cord runs forward only (the jerk is irreversible): give times >= 0")
-    method = scene.method
-    integrated = any(e for e in scene.effects if e != "cord") or method not in ("auto", "exact")
-    if integrated:
-        if method in FIXED_STEP:
-            raise ValueError(f"method {method!r}: a flexible cord with effects needs the tension event located "
-                             f"on dense output; {method!r} is fixed-step and has none: use dopri5 or dop853")
-        if method != "auto" and (method not in ADAPTIVE or method == "gsl-rk8pd"):
-            raise ValueError(f"method {method!r} cannot locate the tension event: use dopri5 or dop853")
+    # (which methods can run a flexible cord is a rule of the scene, checked when it was made)
+    integrated = any(e for e in scene.effects if e != "cord") or scene.method not in ("auto", "exact")
 
     order = np.argsort(flat, kind="stable")
     ts = np.ascontiguousarray(flat[order])
@@ -311,12 +304,12 @@ def simulate_cord(scene, t):
     def back(a):
         return a[inv].reshape(t.shape)
 
-    text = _kernel_text(scene).encode("utf-8")
+    fields = scene._kernel_fields
     maxf = max(1, min(scene.max_flips, 65536))
     while True:
         cancel = _interrupt.cancel_flag()
         th, v, x, y, r, fl, nf, stop, stats, code, status, msg = _interrupt.call(
-            _kernel.cord_scene_v, text, maxf, ts, cancel, cancel=cancel,
+            _kernel.cord_scene_v, *fields, maxf, ts, cancel, cancel=cancel,
             long=integrated and _long_run(scene, ts))
         if status or nf <= maxf:
             break
@@ -325,7 +318,7 @@ def simulate_cord(scene, t):
     if status == 100:
         raise SceneError(f"the kernel refused the scene: {msg}")
     if status:
-        raise ValueError(f"{method}: {msg}")
+        raise ValueError(msg)
     nan_after = int(np.count_nonzero(np.isnan(th)))
     if nan_after:
         warnings.warn(f"flexible cord: the run stopped ({_STOPS[int(stop)]}) at flip {nf}; "

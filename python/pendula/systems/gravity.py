@@ -169,7 +169,7 @@ def h_samples(scene, orb: GravityOrbit, u):
                                orb.energy, u)
 
 
-def issue13_orbit(scene):
+def model_orbit_facts(scene):
     """The orbit facts (a :class:`pendula.Orbit`) of a conservative cycloid scene (the
     guide, perhaps a torque) or of a scene whose only effect is non-uniform gravity;
     None for any other scene.  k is sqrt(m) in libration and 1/sqrt(m) in rotation
