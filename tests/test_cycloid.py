@@ -1,4 +1,4 @@
-"""Huygens' cycloidal pendulum (issue 13, source 003 section 4): closed form at
+"""Huygens' cycloidal pendulum (Prusa & Tuma, section 4): closed form at
 every amplitude, checked against independent references (mpmath quadrature of
 the physics, mpmath's ODE solver, the rigid pendulum's exact solution)."""
 

@@ -1,4 +1,4 @@
-"""Non-uniform gravity (issue 13, source 003 task 4): the period by the
+"""Non-uniform gravity (Prusa & Tuma, task 4): the period by the
 substituted energy quadrature against mpmath's quadrature of the energy
 integral written from the physics, against event location on the integrated
 orbit, the uniform limits, the small-amplitude frequency, rotations, energy."""

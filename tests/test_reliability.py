@@ -1,4 +1,4 @@
-"""Bad input and hard conditions (issue 11): no crash, no hang, no silent wrong
+"""Bad input and hard conditions: no crash, no hang, no silent wrong
 number.  Each test is named for the class it keeps fixed."""
 
 import math

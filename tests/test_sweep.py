@@ -1,4 +1,4 @@
-"""Sweeps (issue 14): every measure against an independent scipy solve_ivp
+"""Sweeps: every measure against an independent scipy solve_ivp
 reference at random grid points, thread and Dask invariance, resume after a
 kill, scene grid fields, the I-V hysteresis loop."""
 
@@ -53,8 +53,8 @@ def test_final_well_random_points_against_scipy():
     assert checked >= 15
 
 
-def test_final_well_seed_slip_v0_2p3_beta_0p04_is_well_2():
-    # the seed says n = 1; /work/shared/seeds/README.md lists it as a slip (n = 2)
+def test_final_well_suzuki_slip_v0_2p3_beta_0p04_is_well_2():
+    # Suzuki & Suzuki, section 7.2.1 list n = 1: a slip (the known-slips page: n = 2)
     ds = pendula.sweep(Scene(damping=0.04), over={"v0": [2.3]}, measure="final_well")
     assert ds.well.item() == 2 == scipy_final_well(1.0, 0.04, 0.0, 0.0, 2.3, 1e-12)
 

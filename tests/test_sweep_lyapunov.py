@@ -1,4 +1,4 @@
-"""The lyapunov measure of sweeps (issue 14) against independent references:
+"""The lyapunov measure of sweeps against independent references:
 the closed form of the linearised undriven pendulum, Floquet multipliers of a
 period-1 orbit from a scipy monodromy matrix, Liouville's sum rule
 lambda1 + lambda2 = -beta, and a stored scipy solve_ivp reference for the

@@ -1,4 +1,4 @@
-"""The uncertainty recheck of final-well points near basin boundaries (issue 14):
+"""The uncertainty recheck of final-well points near basin boundaries:
 a point whose grid neighbour answers differently is computed again at 1000
 times tighter tolerances and marked uncertain (status 4) where its answer
 changes.  Neighbours across chunk edges (pendula.sweep) and across block edges

@@ -156,7 +156,7 @@ contains
   !> Duration of the flight from p with velocity u under gravity eps: the
   !> root of |p(tau)|**2 - 1 = tau (c1 + c2 tau + c3 tau**2 + c4 tau**3).
   !> general = .false.: a tangential departure at zero tension (c1 = c2 = 0),
-  !> tau = -c3 / c4 (the seed's eq. 13.1), NaN when c3 >= 0 (the tension is
+  !> tau = -c3 / c4 (Garfinkel, eq. 13.1), NaN when c3 >= 0 (the tension is
   !> zero but rising: no flight).  general = .true. (an inward radial velocity
   !> or a negative tension): the smallest positive root of the cubic, or of
   !> the quadratic when the departure is tangential (c1 >= 0).

@@ -36,11 +36,11 @@ from .series import period_from_series, period_series, poincare_lindstedt  # noq
 from .systems import ModelInfo, models  # noqa: E402
 from .spectrum import Spectrum, fourier_series, odd_harmonics_above, spectra, spectrum  # noqa: E402
 
-# issue 13: Huygens' cycloidal pendulum, non-uniform gravity, the density of the angle
+# Huygens' cycloidal pendulum, non-uniform gravity, the density of the angle
 from .systems.cycloid import CycloidGeometry, cycloid_geometry, cycloid_period  # noqa: E402
 from .systems.gravity import gravity_orbit  # noqa: E402
 from .systems.cord import cord_state, flip_map, flip_sequence  # noqa: E402
-# sweeps over parameter grids (issue 14); xarray is imported only when a sweep runs
+# sweeps over parameter grids; xarray is imported only when a sweep runs
 from .sweeps import iv_curve, sweep  # noqa: E402
 from .dynamics import Equilibrium, PeriodicOrbit, equilibria, periodic_orbit  # noqa: E402
 from .spectrum import precompute_wisdom, wisdom_path  # noqa: E402

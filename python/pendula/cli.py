@@ -161,11 +161,11 @@ def cmd_demo(args) -> int:
         files = run_scene(scene, out, stem=p.name[:-4], progress=not args.quiet)
         written += files
         print(f"  {p.name:40s} {len(files)} file(s): " + ", ".join(f.name for f in files))
-    written += huygens_gallery(out)  # issue 13: Huygens' clock, non-uniform gravity, density of the angle
+    written += huygens_gallery(out)  # Huygens' clock, non-uniform gravity, density of the angle
     written += cord_demo(out, gallery_dir(), quiet=args.quiet)  # the flexible cord (Garfinkel)
     print("\nwhat accuracy costs in time: the integrators against the exact solution")
     integrator_study(out, 1e5, progress=not args.quiet, quick=True)
-    sweep_demos.run(out / "sweeps", small=True, quiet=args.quiet)  # sweeps: basins, the seed's 8.2, I-V, chaos
+    sweep_demos.run(out / "sweeps", small=True, quiet=args.quiet)  # sweeps: basins, Suzuki & Suzuki 8.2, I-V, chaos
     print(f"\n{len(written)} gallery files and the integrator study written to {out.resolve()}")
     return 0
 
@@ -287,7 +287,7 @@ def main(argv=None) -> int:
     p.set_defaults(func=cmd_spectrum)
     p = sub.add_parser("models", help="the models pendula knows, the effects each accepts, which keep the exact path")
     p.set_defaults(func=cmd_models)
-    # sweeps (issue 14): the substance is in pendula.sweeps
+    # sweeps: the substance is in pendula.sweeps
     p = sub.add_parser("sweep", help="a sweep scene (grid + measure): OUT/sweep.zarr and OUT/sweep.png; resumes")
     p.add_argument("scene", help="scene file with 'grid' and 'measure'")
     p.add_argument("-o", "--output", default="out/sweep", help="output folder (chunks, dataset, figure)")

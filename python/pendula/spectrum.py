@@ -35,7 +35,7 @@ _WINDOWS = {None: 0, "none": 0, "hann": 1}
 # is thread-safe and runs without the lock (and without the GIL).  A plan is
 # counted while a call uses it: evicting a plan in use only retires it, and
 # the last user frees it (without this, one thread could free a plan between
-# another's look-up and its execution: a segfault, issue 11).
+# another's look-up and its execution: a segfault).
 class _Plan:
     __slots__ = ("handle", "users", "retired")
 

@@ -1,9 +1,9 @@
-"""Gallery demo for issue 13: Huygens' clock, non-uniform gravity, the density of the angle.
+"""Gallery demo: Huygens' clock, non-uniform gravity, the density of the angle.
 
 ``huygens_gallery(outdir)`` writes (in seconds):
 
 - huygens_clock.png: the cheeks, the cord wrapping them at several instants,
-  the bob's cycloid and the rigid pendulum's circle (the seed's Figures 3/4);
+  the bob's cycloid and the rigid pendulum's circle (Prusa & Tuma, Figures 3/4);
   huygens_period.csv/png: the period against amplitude, cycloid and rigid.
 - gravity_period.csv/png: the period against amplitude for a few strengths of
   both non-uniform fields, with the uniform (elliptic) period.

@@ -1,5 +1,5 @@
-"""Sweep gallery (issue 14): basins of the damped pendulum with the
-energy-balance prediction, the seed's section 8.2 (wells against torque), the
+"""Sweep gallery: basins of the damped pendulum with the
+energy-balance prediction, Suzuki & Suzuki's section 8.2 (wells against torque), the
 I-V loop of the RCSJ junction with its retrapping torque, the bifurcation
 diagram of the driven damped pendulum and, beside it, its largest Lyapunov
 exponent against the drive amplitude.  ``run(out, small=True)`` is what
@@ -233,7 +233,7 @@ def run(out, small: bool = True, quiet: bool = False) -> dict:
         print(f"sweeps: basin map {b['points']} points, {100 * b['decided']:.1f} % decided, "
               f"{b['uncertain']} uncertain; energy balance disagrees at {100 * b['energy_balance_disagreement']:.1f} %")
         for v, g, sd, r in res["seed_8_2"]:
-            flag = "" if set(g) == set(sd) else "  <- differs from the seed"
+            flag = "" if set(g) == set(sd) else "  <- differs from Suzuki & Suzuki"
             print(f"  seed 8.2 v0 = {v:4.2f}: wells {g} (seed {sd}); running from tau = {r}{flag}")
         r1 = res["seed_8_2_1"]
         print(f"  seed 8.2.1 (v0 = 0.2): locked up to tau = {r1['last_locked']}, running from {r1['first_running']}; "

@@ -24,7 +24,7 @@ flight
     A parabola in closed form.  |p(tau)|^2 - 1 is a quartic in the flight time
     tau whose low coefficients vanish at a tangential departure (r' = 0 and
     zero tension make tau^3 a factor), so the re-entry time is the root of the
-    remaining linear factor: tau = -4 (u . g) / |g|^2 (the seed's eq. 13.1),
+    remaining linear factor: tau = -4 (u . g) / |g|^2 (Garfinkel, eq. 13.1),
     never the departure point itself.  After a springy re-entry (restitution
     e > 0) the flight starts with an inward radial velocity: then tau is the
     smallest positive root of a cubic, taken from its companion matrix and
