@@ -259,6 +259,8 @@ def main(argv=None) -> int:
         return cmd_bench(argparse.Namespace(rest=argv[1:]))
     # --- end spectra
     args = parser.parse_args(argv)
+    from ._files import exit_on_sigterm
+    exit_on_sigterm()     # SIGTERM/SIGHUP unwind like Ctrl-C: no temporary file is left
     return args.func(args)
 
 

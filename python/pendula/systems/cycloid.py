@@ -29,6 +29,7 @@ import math
 import numpy as np
 
 from .. import _kernel
+from .. import _checks
 from .._checks import as_float
 
 __all__ = ["cycloid_motion", "cycloid_period", "cycloid_energy", "cycloid_geometry", "CycloidGeometry"]
@@ -152,6 +153,6 @@ def cycloid_geometry(R: float = 0.25, n: int = 401) -> CycloidGeometry:
     R = float(R)
     if not (R > 0 and math.isfinite(R)):
         raise ValueError(f"R must be positive and finite, got {R!r}")
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
-        raise ValueError(f"n must be a whole number >= 2, got {n!r}")
-    return CycloidGeometry(R, int(n))
+    # a drawing: at most 10^6 points per curve (absurd sizes refused up front)
+    n = _checks.count(n, "n", 2, 10 ** 6)
+    return CycloidGeometry(R, n)
