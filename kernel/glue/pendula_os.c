@@ -83,7 +83,7 @@ static void on_signal(int sig)
 }
 
 /* Install the handler that removes the temporary files on SIGINT, SIGTERM and
-   SIGHUP (batch programs only: never in the Python process). */
+   SIGHUP, and ignore SIGXFSZ (batch programs only: never in the Python process). */
 void pendula_out_guard_signals(void)
 {
     struct sigaction sa;
@@ -93,6 +93,8 @@ void pendula_out_guard_signals(void)
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
     sigaction(SIGHUP, &sa, NULL);
+    /* a file-size limit (ulimit -f) is a write error (EFBIG, exit 5), not a core dump */
+    signal(SIGXFSZ, SIG_IGN);
 }
 
 /* 1 when path names a regular file or nothing yet; 0 for a device, FIFO, folder, ... */
@@ -126,14 +128,14 @@ int pendula_out_open(const char *path, char *tmp, int tmplen)
     }
     slash = strrchr(path, '/');
     if (slash == NULL)
-        n = snprintf(tmp, (size_t)tmplen, ".%s.XXXXXX", path);
+        n = snprintf(tmp, (size_t)tmplen, ".%s.XXXXXX.part", path);
     else
-        n = snprintf(tmp, (size_t)tmplen, "%.*s/.%s.XXXXXX", (int)(slash - path), path, slash + 1);
+        n = snprintf(tmp, (size_t)tmplen, "%.*s/.%s.XXXXXX.part", (int)(slash - path), path, slash + 1);
     if (n < 0 || n >= tmplen || n >= TMP_LEN) {
         tmp[0] = '\0';
         return -ENAMETOOLONG;
     }
-    fd = mkstemp(tmp);
+    fd = mkstemps(tmp, 5);
     if (fd < 0) {
         int e = errno;
         tmp[0] = '\0';
