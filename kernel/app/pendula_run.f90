@@ -108,13 +108,16 @@ program pendula_run
   allocate(values(nmem))
   if (swept) values = sc%sweep_values(1:nmem)
   allocate(t(sc%n_samples), theta(sc%n_samples), v(sc%n_samples), e(sc%n_samples))
+  ! the times as numpy.linspace forms them (the Python layer's), so that both
+  ! programs write the same trajectory to the digit: start + j * step, the last one t_end
   do j = 1, sc%n_samples
     if (sc%n_samples == 1) then
       t(j) = sc%t_start
     else
-      t(j) = sc%t_start + (sc%t_end - sc%t_start) * real(j - 1, dp) / real(sc%n_samples - 1, dp)
+      t(j) = real(j - 1, dp) * ((sc%t_end - sc%t_start) / real(sc%n_samples - 1, dp)) + sc%t_start
     end if
   end do
+  if (sc%n_samples > 1) t(sc%n_samples) = sc%t_end
   ! every member is checked before anything is written
   do i = 1, nmem
     member = member_of(sc, i)

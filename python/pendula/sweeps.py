@@ -263,9 +263,8 @@ def _chunk_dataset(plan: _Plan, i: int, out: np.ndarray, st: np.ndarray):
 
 
 def _write_atomic(ds, path: pathlib.Path) -> None:
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    ds.to_netcdf(tmp, engine="scipy")
-    os.replace(tmp, path)   # atomic on POSIX: a chunk file is whole or absent
+    with atomic_path(path) as tmp:     # a chunk file is whole or absent; no temporary survives a failure
+        ds.to_netcdf(tmp, engine="scipy")
 
 
 def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, transient=None,
@@ -369,9 +368,8 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
             if manifest.read_text() != key:
                 raise ValueError(f"parameter 'out': {out} holds a different sweep; use another folder")
         else:
-            tmp = manifest.with_name(".sweep.json.tmp")
-            tmp.write_text(key)
-            os.replace(tmp, manifest)
+            with atomic_path(manifest) as tmp:
+                tmp.write_text(key)
     if folder is not None:
         # a run killed while writing leaves a partial temporary file: never a chunk, removed here
         for stale in folder.glob(".chunk_*.tmp"):

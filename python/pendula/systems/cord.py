@@ -248,7 +248,7 @@ def simulate_cord(scene, t):
         cancel = _interrupt.cancel_flag()
         th, v, x, y, r, fl, nf, stop, stats, code, status, msg = _interrupt.call(
             _kernel.cord_scene_v, text, maxf, ts, cancel, cancel=cancel,
-            long=integrated and _long_run(scene, ts))
+            long=_long_run(scene, ts))   # the closed-form loop is cancellable too
         if status or nf <= maxf:
             break
         maxf = int(nf)  # the flip log had no room for every flip: once more with room
