@@ -16,6 +16,7 @@ import csv
 import pathlib
 
 import numpy as np
+from ._files import save_figure, open_text  # the one writer: regular files only, whole or absent
 
 EPS = np.finfo(np.float64).eps
 
@@ -186,7 +187,7 @@ def write_work_precision(rows: list[dict], outdir) -> list[pathlib.Path]:
     outdir = pathlib.Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     csv_path = outdir / "work_precision.csv"
-    with csv_path.open("w", newline="") as fh:
+    with open_text(csv_path, newline="") as fh:
         w = csv.writer(fh)
         w.writerow(["problem", "method", "dt", "rtol", "max_error_theta", "cpu_seconds", "rhs_evaluations", "steps"])
         for r in rows:
@@ -210,7 +211,7 @@ def write_work_precision(rows: list[dict], outdir) -> list[pathlib.Path]:
         ax.legend(fontsize=7, ncol=2)
         fig.tight_layout()
         path = outdir / f"work_precision_{pname.split()[0]}.png"
-        fig.savefig(path, dpi=110)
+        save_figure(fig, path, dpi=110)
         plt.close(fig)
         files.append(path)
     return files
@@ -289,10 +290,10 @@ def write_long_run(res: dict, outdir, periods: float) -> list[pathlib.Path]:
     ax.legend(fontsize=8)
     fig.tight_layout()
     path = outdir / "long_run_energy.png"
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     csv_path = outdir / "long_run_energy.csv"
-    with csv_path.open("w", newline="") as fh:
+    with open_text(csv_path, newline="") as fh:
         w = csv.writer(fh)
         w.writerow(["method", "t", "abs_energy_error"])
         for method, r in res.items():

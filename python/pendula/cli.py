@@ -73,8 +73,12 @@ def _run_file(args, command: str, outputs: tuple | None = None) -> int:
 
     try:
         scene = Scene.from_file(args.scene)
-    except SceneError as exc:
-        print(f"pendula {command}: {exc}", file=sys.stderr)
+    except (SceneError, ValueError, OverflowError) as exc:   # a reader's bare ValueError too: one line, exit 2
+        print(f"pendula {command}: {args.scene}: {exc}" if not isinstance(exc, SceneError)
+              else f"pendula {command}: {exc}", file=sys.stderr)
+        return 2
+    except OSError as exc:
+        print(f"pendula {command}: cannot read {args.scene!r}: {exc.strerror or exc}", file=sys.stderr)
         return 2
     if outputs:
         scene = scene.replace(outputs=outputs)

@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from ._files import save_figure  # the one writer: regular files only, whole or absent
 
 
 def _plt():
@@ -32,7 +33,7 @@ def _finish(fig, ax, title, path):
     if ax.get_legend_handles_labels()[0]:
         ax.legend(fontsize=7, loc="best")
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     _plt().close(fig)
     return path
 
@@ -113,7 +114,7 @@ def orbit_curves(scene, values, table, path):
     axes[-1, 0].set_xlabel(scene.sweep)
     axes[0, 0].set_title(scene.name or "orbits", fontsize=10)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     return path
 
@@ -176,6 +177,6 @@ def spectra_figure(scene, specs, labels, path):
     axes[-1, 0].set_xlabel("omega (rad/s)")
     axes[0, 0].set_title(scene.name or "power spectra of theta(t)", fontsize=10)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     return path

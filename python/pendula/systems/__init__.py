@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _interrupt, _kernel
+from .. import _checks
 from .._checks import as_float
 from ..scene import Scene, SceneError
 from ..trajectory import Trajectory
@@ -97,6 +98,7 @@ def run(scene: Scene, t) -> Trajectory:
         'exact' with effects, ...), or the integrator failed.
     """
     t = as_float(t, "t")
+    _checks.angle(scene.theta0, "field 'theta0'")     # |theta0| <= 2^52, as in every function
     flat = np.ascontiguousarray(t, dtype=np.float64).reshape(-1)
     order = np.argsort(flat, kind="stable")
     sorted_t = np.ascontiguousarray(flat[order])
