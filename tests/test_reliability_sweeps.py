@@ -442,3 +442,27 @@ def test_csv_no_column_name_twice(tmp_path):
     with pytest.raises(ValueError, match="v0"):
         write_csv(tmp_path / "x.csv", Scene(), ["v0", "v0"], np.zeros((1, 2)))
     assert not (tmp_path / "x.csv").exists()
+
+
+def test_leftovers_pendula_command_sigterm_leaves_no_staging(tmp_path):
+    scene = tmp_path / "long.nml"
+    scene.write_text("&scene\n damping = 0.01\n t_end = 1e5\n n_samples = 11\n method = 'rk4'\n dt = 1e-3\n/\n")
+    out = tmp_path / "o"
+    out.mkdir()
+    p = subprocess.Popen([str(BIN / "pendula"), "run", str(scene), "-o", str(out), "-q"], stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 60
+    while not list(out.iterdir()) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    time.sleep(1.0)
+    p.send_signal(signal.SIGTERM)
+    p.wait(timeout=60)
+    assert p.returncode == 128 + signal.SIGTERM
+    assert list(out.iterdir()) == []
+
+
+def test_cli_tracebacks_huge_number_in_a_scene_file_is_one_line(tmp_path):
+    scene = tmp_path / "big.nml"
+    scene.write_text("&scene\n theta0 = " + "1" * 5000 + "\n/\n")
+    for cmd in ("run", "sweep"):
+        r = _cli(cmd, scene, "-o", tmp_path / "o")
+        assert r.returncode == 2 and _one_line(r.stderr), r.stderr
