@@ -314,11 +314,13 @@ def test_leftovers_pendula_run_sigterm_and_sigint_remove_the_temporary(tmp_path)
 
 
 def test_leftovers_pendula_run_cord_failure_leaves_no_flip_log(tmp_path):
-    # a flexible cord that cannot run backwards: exit 2, and neither file nor temporary remains
+    # a damped flexible cord over a span beyond the work limit fails after the table and the flip
+    # log were opened: exit 4, and neither file nor temporary remains (the flip log's included)
     scene = tmp_path / "c.nml"
-    scene.write_text("&scene\n cord = 'flexible'\n v0 = 2.0\n t_start = -1.0\n t_end = 5.0\n n_samples = 11\n/\n")
+    scene.write_text("&scene\n cord = 'flexible'\n v0 = 2.0811054754625005\n damping = 1e-9\n t_end = 1e12\n"
+                     " n_samples = 3\n/\n")
     r = _run(scene, "-o", tmp_path / "c.csv")
-    assert r.returncode in (2, 4), r.stderr
+    assert r.returncode == 4 and "work limit" in r.stderr, r.stderr
     assert sorted(x.name for x in tmp_path.iterdir()) == ["c.nml"]
 
 
