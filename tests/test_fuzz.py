@@ -147,7 +147,20 @@ KEYWORDS = ("rtol", "atol", "t_max", "transient", "samples", "threads", "chunk_p
 
 
 def _cheap_value(key, value, measure):
-    """Valid but costly values are not what this fuzz is about: keep a run short."""
+    """Valid but costly values are not what this fuzz is about: keep a run short.  (A speed
+    |v0| = 1e308 is honest but slow: ~5 s per point to report status 107, too many steps.)"""
+    if isinstance(value, (list, tuple, np.ndarray)) and key in ("over_values", "theta0", "torques"):
+        try:
+            a = np.asarray(value, dtype=float)
+            return not np.any(np.abs(a[np.isfinite(a)]) > 1e6)
+        except (TypeError, ValueError, OverflowError):
+            return True
+    if key in ("over_values", "torques", "damping") and isinstance(value, (int, float, np.number)) \
+            and not isinstance(value, (bool, np.bool_)):
+        try:
+            return not abs(float(value)) > 1e6
+        except OverflowError:
+            return True
     try:
         v = float(value)
     except (TypeError, ValueError, OverflowError):
