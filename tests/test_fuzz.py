@@ -129,7 +129,7 @@ import pathlib  # noqa: E402
 import stat as _stat  # noqa: E402
 import tempfile  # noqa: E402
 
-from hypothesis import assume  # noqa: E402
+from hypothesis import assume, event  # noqa: E402
 
 FUZZ_N = int(os.environ.get("PENDULA_FUZZ_EXAMPLES", "0"))
 NEW = dict(max_examples=FUZZ_N or 25, derandomize=not FUZZ_N, deadline=None, suppress_health_check=list(HealthCheck))
@@ -182,10 +182,13 @@ def _sweep_outcome(f, *args, **kw):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
         try:
-            return f(*args, **kw)
+            out = f(*args, **kw)
         except (ValueError, TypeError, NotImplementedError) as exc:
             assert str(exc), "an error must say what is wrong"
+            event(f"refused: {type(exc).__name__}")
             return None
+    event("ran")
+    return out
 
 
 def _check_dataset(ds):
@@ -281,10 +284,14 @@ _OPTS = [[], ["--threads", "1000000"], ["--threads", "-1"], ["--workers", "-1"],
 
 
 @settings(**{**NEW, "max_examples": max(1, (FUZZ_N or 25) // 3)})
-@given(st.fixed_dictionaries({k: st.sampled_from(v) for k, v in _SWEEP_FIELDS.items()}), st.sampled_from(_OPTS),
-       st.sampled_from(["folder", "file", "missing-parent", "dev"]))
-def test_sweep_cli_any_scene_and_options(fields, opts, target):
+@given(st.lists(st.tuples(st.sampled_from(sorted(_SWEEP_FIELDS)), st.integers(0, 7)), max_size=2),
+       st.sampled_from(_OPTS), st.sampled_from(["folder", "folder", "file", "missing-parent", "dev"]))
+def test_sweep_cli_any_scene_and_options(changes, opts, target):
     from pendula.cli import main
+    # a valid sweep scene (the first value of each field) with up to two fields changed
+    fields = {k: v[0] for k, v in _SWEEP_FIELDS.items()}
+    for k, i in changes:
+        fields[k] = _SWEEP_FIELDS[k][i % len(_SWEEP_FIELDS[k])]
     with tempfile.TemporaryDirectory() as d:
         d = pathlib.Path(d)
         extra = " gravity_gradient = 0.2\n" if fields["gravity"] == "'linear'" else ""
@@ -297,6 +304,7 @@ def test_sweep_cli_any_scene_and_options(fields, opts, target):
         with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
             code = main(["sweep", str(d / "s.nml"), "-o", str(out), "-q", *opts])
         assert code in (0, 2, 3, 4, 5), code
+        event(f"exit {code}")
         if code:
             assert len(err.getvalue().strip().splitlines()) == 1, err.getvalue()
         if code == 0:

@@ -468,3 +468,11 @@ def test_cli_tracebacks_huge_number_in_a_scene_file_is_one_line(tmp_path):
     for cmd in ("run", "sweep"):
         r = _cli(cmd, scene, "-o", tmp_path / "o")
         assert r.returncode == 2 and _one_line(r.stderr), r.stderr
+
+
+def test_cannot_stop_sweep_of_a_huge_speed_stops_within_a_window():
+    # |v0| = 1e300: one integration window runs to the integrator's work limit (10^8 steps,
+    # seconds); the flag is read inside the integrator too, so the stop does not wait for it
+    dt = _stops_on_sigint("pendula.sweep(pendula.Scene(damping=0.5), over={'v0': [1e300, 2e300, 3e300]}, "
+                          "measure='mean_velocity', t_max=20.0, threads=1)")
+    assert dt < 2.5

@@ -39,7 +39,7 @@ module pendula_sweep
   use pendula_kinds, only: dp, pi, two_pi, nan_dp
   use pendula_scene, only: scene_t
   use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate, &
-    m_dop853, st_ok
+    m_dop853, st_ok, st_cancelled
   use pendula_lyapunov, only: lyapunov_point, ly_cancelled
   use pendula_outfile, only: outfile_t, out_line, out_reals
   use pendula_simulate, only: select_model, registry, mid_rigid, sim_ok
@@ -171,7 +171,7 @@ contains
       if (st /= ps_decided) return
       if (settled) then
         o(1) = 1.0_dp; o(2) = tdec
-      else if (running(p, rtol, atol, th, v, st)) then
+      else if (running(p, rtol, atol, th, v, st, cancel)) then
         o(1) = 0.0_dp; o(2) = t_max
       else if (st == ps_decided) then
         st = ps_unsettled
@@ -206,18 +206,24 @@ contains
   end subroutine one_point
 
   !> Advance (th, v) from time t0 by dt (model time origin shifted by t0).
-  subroutine advance(p, t0, rtol, atol, ts, th, v, ths, vs, st)
+  !> cancel: read by the integrator every few thousand steps (a window of a
+  !> fast orbit may take up to its work limit of 10^8 steps): status ps_cancelled.
+  subroutine advance(p, t0, rtol, atol, ts, th, v, ths, vs, st, cancel)
     real(dp), intent(in) :: p(np_params), t0, rtol, atol, ts(:)
     real(dp), intent(inout) :: th, v
     real(dp), intent(out) :: ths(:), vs(:)
     integer, intent(out) :: st
+    integer, intent(inout), volatile :: cancel
     type(pendulum_model) :: m
     type(event_spec) :: ev
     type(run_stats) :: stats
     integer :: nev, s
     real(dp) :: tev(1), thev(1), vev(1)
     m = make_model(p(1), p(2), p(3), p(4), p(5), p(6) + p(5) * t0)
-    call integrate(m, m_dop853, th, v, ts, rtol, atol, 0.0_dp, ths, vs, stats, s, ev, nev, tev, thev, vev)
+    call integrate(m, m_dop853, th, v, ts, rtol, atol, 0.0_dp, ths, vs, stats, s, ev, nev, tev, thev, vev, cancel)
+    if (s == st_cancelled) then
+      st = ps_cancelled; return
+    end if
     if (s /= st_ok) then
       st = 100 + s; return
     end if
@@ -269,7 +275,7 @@ contains
         st = ps_cancelled; return
       end if
       ts = [(tw * k / real(nsub, dp), k = 1, nsub)]
-      call advance(p, t, rtol, atol, ts, th, v, ths, vs, st)
+      call advance(p, t, rtol, atol, ts, th, v, ths, vs, st, cancel)
       if (st /= ps_decided) return
       do k = 1, nsub
         call trapped(p, ths(k), vs(k), settled, n)
@@ -283,17 +289,18 @@ contains
 
   !> An open orbit: over one more window, v keeps its sign and theta advances
   !> by more than 2 pi.
-  function running(p, rtol, atol, th, v, st) result(yes)
+  function running(p, rtol, atol, th, v, st, cancel) result(yes)
     real(dp), intent(in) :: p(np_params), rtol, atol
     real(dp), intent(inout) :: th, v
     integer, intent(out) :: st
+    integer, intent(inout), volatile :: cancel
     logical :: yes
     real(dp) :: tw, ts(4 * nsub), ths(4 * nsub), vs(4 * nsub), th1
     integer :: k
     tw = 4.0_dp * two_pi / sqrt(p(1))
     ts = [(tw * k / real(4 * nsub, dp), k = 1, 4 * nsub)]
     th1 = th
-    call advance(p, 0.0_dp, rtol, atol, ts, th, v, ths, vs, st)
+    call advance(p, 0.0_dp, rtol, atol, ts, th, v, ths, vs, st, cancel)
     yes = .false.
     if (st /= ps_decided) return
     yes = (all(vs > 0.0_dp) .or. all(vs < 0.0_dp)) .and. abs(ths(size(ts)) - th1) > two_pi
@@ -329,7 +336,7 @@ contains
           end if
         end if
         ts(1) = min(tw, seg_end(seg) - t)
-        call advance(p, t, rtol, atol, ts, th, v, ths, vs, st)
+        call advance(p, t, rtol, atol, ts, th, v, ths, vs, st, cancel)
         if (st /= ps_decided) return
         ! the segment ends exactly at seg_end, whatever the rounding of the sum
         if (ts(1) == seg_end(seg) - t) then
@@ -366,7 +373,7 @@ contains
         o = nan_dp; st = ps_cancelled; return
       end if
       ! time origin at k tp exactly: the drive phase is p(6) + Omega * (k-1) tp
-      call advance(p, tp * (k - 1), rtol, atol, ts, th, v, ths, vs, st)
+      call advance(p, tp * (k - 1), rtol, atol, ts, th, v, ths, vs, st, cancel)
       if (st /= ps_decided) return
       th = th - two_pi * anint(th / two_pi)   ! keep theta small; the force is 2 pi periodic
       if (k > n_tr) then
