@@ -11,13 +11,18 @@
 !> is written.  Every scene goes through the kernel's dispatcher (the same
 !> as the Python layer's).  Files are written under a temporary name and
 !> renamed into place at the end: a failure leaves no partial or stray file.
+!> Only regular files are written (a device or FIFO under OUT is refused, exit
+!> 5; '-' is standard output); a missing folder is an error; temporaries are
+!> removed on every exit path, SIGINT and SIGTERM included.  Numbers are
+!> written with 17 significant digits, as the Python layer writes them.
 !> Exit status: 0 ok, 2 bad scene or arguments, 3 model not implemented,
 !> 4 the computation failed, 5 a write error.
 program pendula_run
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
-  use pendula_outfile, only: outfile_t, out_open, out_line, out_close, out_abandon
+  use pendula_outfile, only: outfile_t, out_open, out_line, out_close, out_abandon, out_reals, out_errtext, &
+    out_guard_signals, out_abandon_all
   use pendula_kinds, only: dp, two_pi
-  use pendula_scene, only: scene_t, read_scene, scene_effects, scene_summary, scene_member
+  use pendula_scene, only: scene_t, read_scene, scene_effects, scene_summary, scene_member, max_outputs
   use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_eval, orbit_period, orbit_theta_max
   use pendula_simulate, only: simulate_scene, select_model, sim_ok, simulate_status_text, model_orbit_facts
   use pendula_sweep, only: sweep_scene_csv
@@ -41,6 +46,8 @@ program pendula_run
   character(len=10), parameter :: regime_names(0:2) = [character(len=10) :: 'libration', 'separatrix', &
                                                        'rotation']
 
+  ! SIGINT, SIGTERM, SIGHUP: the temporary files are removed before the program dies
+  call out_guard_signals()
   nargs = command_argument_count()
   path = ''
   out = ''
@@ -104,13 +111,16 @@ program pendula_run
   allocate(values(nmem))
   if (swept) values = sc%sweep_values(1:nmem)
   allocate(t(sc%n_samples), theta(sc%n_samples), v(sc%n_samples), e(sc%n_samples))
+  ! the times as numpy.linspace forms them (the Python layer's), so that both
+  ! programs write the same trajectory to the digit: start + j * step, the last one t_end
   do j = 1, sc%n_samples
     if (sc%n_samples == 1) then
       t(j) = sc%t_start
     else
-      t(j) = sc%t_start + (sc%t_end - sc%t_start) * real(j - 1, dp) / real(sc%n_samples - 1, dp)
+      t(j) = real(j - 1, dp) * ((sc%t_end - sc%t_start) / real(sc%n_samples - 1, dp)) + sc%t_start
     end if
   end do
+  if (sc%n_samples > 1) t(sc%n_samples) = sc%t_end
 
   ! the flexible cord writes its own table (with x, y, r) and a flip log
   if (sc%cord == 'flexible') then
@@ -140,11 +150,10 @@ program pendula_run
       if (status /= sim_ok) call fail(trim(path) // ': ' // trim(msg), 4)
       do j = 1, size(t)
         if (swept) then
-          write(line, '(es24.16e3,4(",",es24.16e3))') values(i), t(j), theta(j), v(j), e(j)
+          call out_line(f_out, out_reals([values(i), t(j), theta(j), v(j), e(j)]))
         else
-          write(line, '(es24.16e3,3(",",es24.16e3))') t(j), theta(j), v(j), e(j)
+          call out_line(f_out, out_reals([t(j), theta(j), v(j), e(j)]))
         end if
-        call out_line(f_out, line)
       end do
     end do
   end if
@@ -230,10 +239,9 @@ contains
       if (st /= 0) call fail(trim(path) // ': ' // trim(simulate_status_text(st)), 4)
       e = 0.5_dp * v * v + 2.0_dp * member%eps * sin(0.5_dp * theta)**2
       pre = ''
-      if (swept) write(pre, '(es24.16e3,",")') values(m)
+      if (swept) pre = out_reals([values(m)]) // ','
       do k = 1, size(t)
-        write(line, '(es24.16e3,6(",",es24.16e3))') t(k), theta(k), v(k), e(k), x(k), y(k), r(k)
-        call out_line(f_out, trim(pre) // adjustl(line))
+        call out_line(f_out, trim(pre) // out_reals([t(k), theta(k), v(k), e(k), x(k), y(k), r(k)]))
       end do
       ! the flip log: one line per flip, or one line naming the stop reason of a member without flips
       if (nfl == 0) then
@@ -241,7 +249,8 @@ contains
         log_rows = [character(len=512) :: log_rows, line]
       end if
       do k = 1, nfl
-        write(line, '(i0,8(",",es24.16e3),",",a)') m, flips(:, k), trim(stops(stp))
+        write(line, '(i0)') m
+        line = trim(line) // ',' // out_reals(flips(:, k)) // ',' // trim(stops(stp))
         log_rows = [character(len=512) :: log_rows, line]
       end do
     end do
@@ -278,17 +287,16 @@ contains
       call model_orbit_facts(member, has_facts, regime, orbit_k, orbit_period_value, orbit_theta_max_value, status)
       if (has_facts) then   ! the cycloid and gravity models' orbit facts
         if (status /= 0) call fail(trim(path) // ': ' // trim(simulate_status_text(status)), 4)
-        write(line, '(3(es24.16e3,","),a,4(",",es24.16e3))') member%theta0, member%v0, member%eps, &
-          trim(regime_names(regime)), orbit_k, orbit_period_value, merge(0.0_dp, two_pi / orbit_period_value, &
-          orbit_period_value > huge(1.0_dp)), orbit_theta_max_value
-        call out_line(f, line)
+        call out_line(f, out_reals([member%theta0, member%v0, member%eps]) // ',' // &
+          trim(regime_names(regime)) // ',' // &
+          out_reals([orbit_k, orbit_period_value, merge(0.0_dp, two_pi / orbit_period_value, &
+          orbit_period_value > huge(1.0_dp)), orbit_theta_max_value]))
         cycle
       end if
       call orbit_setup(member%theta0, member%v0, member%eps, o, status)
-      write(line, '(3(es24.16e3,","),a,4(",",es24.16e3))') member%theta0, member%v0, member%eps, &
-        trim(regime_names(o%regime)), o%k, orbit_period(o), merge(0.0_dp, two_pi / orbit_period(o), &
-        orbit_period(o) > huge(1.0_dp)), orbit_theta_max(o)
-      call out_line(f, line)
+      call out_line(f, out_reals([member%theta0, member%v0, member%eps]) // ',' // &
+        trim(regime_names(o%regime)) // ',' // out_reals([o%k, orbit_period(o), &
+        merge(0.0_dp, two_pi / orbit_period(o), orbit_period(o) > huge(1.0_dp)), orbit_theta_max(o)]))
     end do
   end subroutine orbit_table
 
@@ -323,9 +331,7 @@ contains
   subroutine fail_io(text, err)
     character(len=*), intent(in) :: text
     integer, intent(in) :: err
-    character(len=16) :: num
-    write(num, '(i0)') err
-    call fail(trim(text) // ' (errno ' // trim(num) // ')', 5)
+    call fail(trim(text) // ': ' // out_errtext(err), 5)
   end subroutine fail_io
 
   !> Report on standard error, remove any temporary file, exit with code (default 2).
@@ -335,6 +341,7 @@ contains
     write(error_unit, '(a)') 'pendula-run: ' // trim(text)
     call out_abandon(f_out)
     call out_abandon(f_orbit)
+    call out_abandon_all()   ! any other file still open (the flip log)
     if (present(code)) then
       if (code == 3) stop 3, quiet=.true.
       if (code == 4) stop 4, quiet=.true.

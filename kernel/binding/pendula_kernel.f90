@@ -361,7 +361,7 @@ end subroutine spectrum_plan_free_v
 
 ! Power spectra of nsig signals of n samples (columns) with the plan handle for n.
 ! window: 0 none, 1 Hann; nh must be n/2 + 1.
-subroutine spectra_v(handle, n, nsig, signals, dt, window, nh, omega, power, status)
+subroutine spectra_v(handle, n, nsig, signals, dt, window, nh, cancel, omega, power, status)
   use, intrinsic :: iso_c_binding, only: c_intptr_t
   use pendula_spectrum, only: power_spectra
   implicit none
@@ -369,6 +369,7 @@ subroutine spectra_v(handle, n, nsig, signals, dt, window, nh, omega, power, sta
   integer(8), intent(in) :: handle
   integer, intent(in) :: n, nsig, window, nh
   double precision, intent(in) :: signals(n, nsig), dt
+  integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: omega(nh), power(nh, nsig)
   integer, intent(out) :: status
   !f2py intent(hide), depend(signals) :: n = shape(signals, 0)
@@ -380,7 +381,7 @@ subroutine spectra_v(handle, n, nsig, signals, dt, window, nh, omega, power, sta
     status = 4
     return
   end if
-  call power_spectra(int(handle, c_intptr_t), signals, dt, window, omega, power, status)
+  call power_spectra(int(handle, c_intptr_t), signals, dt, window, omega, power, status, cancel(1))
 end subroutine spectra_v
 
 ! ===============================================
@@ -514,30 +515,59 @@ end subroutine cord_scene_v
 
 ! params(8, npts): eps, beta, tau, amp, omega, phase, theta0, v0 per point.
 ! nthreads <= 0: OpenMP's default (OMP_NUM_THREADS, else all cores).
-subroutine sweep_block(measure, npts, params, rtol, atol, t_tr, t_max, nout, nthreads, out, pstat)
+! cancel(1) non-zero (set by another thread) stops the block: status 5.
+subroutine sweep_block(measure, npts, params, rtol, atol, t_tr, t_max, nout, nthreads, cancel, out, pstat)
   use pendula_sweep, only: sweep_points
   implicit none
   integer, intent(in) :: measure, npts, nout, nthreads
   double precision, intent(in) :: params(8, npts), rtol, atol, t_tr, t_max
+  integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: out(nout, npts)
   integer, intent(out) :: pstat(npts)
   !f2py threadsafe
   !f2py intent(hide), depend(params) :: npts = shape(params, 1)
-  call sweep_points(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, nthreads)
+  call sweep_points(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, nthreads, cancel(1))
 end subroutine sweep_block
 
 ! One adiabatic I-V branch (torques in the order given, state carried over).
-subroutine sweep_iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, vm, err, pstat, th, v)
+subroutine sweep_iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, cancel, vm, err, pstat, th, v)
   use pendula_sweep, only: iv_branch
   implicit none
   integer, intent(in) :: ntau
   double precision, intent(in) :: params(8), taus(ntau), rtol, atol, t_tr, t_avg
+  integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: vm(ntau), err(ntau), th, v
   integer, intent(out) :: pstat(ntau)
   !f2py threadsafe
   !f2py intent(hide), depend(taus) :: ntau = len(taus)
-  call iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, vm, err, pstat, th, v)
+  call iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, vm, err, pstat, th, v, cancel(1))
 end subroutine sweep_iv_branch
+
+! The sweep's model rule on a scene's text (status 0 ok; 3 the model is not
+! one a sweep runs; 100 the text is not a valid scene), msg says why.
+subroutine sweep_model_check_v(text, what, status, msg)
+  use pendula_scene, only: scene_t, parse_scene
+  use pendula_sweep, only: sweep_model_rule
+  implicit none
+  character(len=*), intent(in) :: text, what
+  integer, intent(out) :: status
+  character(len=512), intent(out) :: msg
+  type(scene_t) :: sc
+  call parse_scene(text, '<scene>', sc, status, msg)
+  if (status /= 0) then
+    status = 100
+    return
+  end if
+  call sweep_model_rule(sc, what, status, msg)
+end subroutine sweep_model_check_v
+
+! The sweep's limits: [max threads, max t_max and transient, max |theta0|].
+subroutine sweep_limits_v(lim)
+  use pendula_sweep, only: sweep_limits
+  implicit none
+  double precision, intent(out) :: lim(3)
+  call sweep_limits(lim)
+end subroutine sweep_limits_v
 ! ---------------------------------------------------------------- spectra: FFTW wisdom (spec)
 ! Load (save) FFTW wisdom from (to) a file; ok = 1 on success.  Serialised by the
 ! caller with planning (FFTW's planner state is not thread-safe).

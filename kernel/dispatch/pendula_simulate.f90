@@ -255,7 +255,7 @@ contains
   !> flips(8, nflips): the flip log (pendula_cord%cord_run); stop_reason:
   !> cord_stop_*; stats as simulate_scene; status sim_*.
   subroutine cord_scene_run(sc, t, theta, v, x, y, r, flips, nflips, stop_reason, stats, method, status, cancel)
-    use pendula_cord, only: cord_run_all
+    use pendula_cord, only: cord_run_all, cord_cancelled
     use pendula_cord_hybrid, only: cord_hybrid_all, cord_bad_method, cord_integrator_failed
     type(scene_t), intent(in) :: sc
     real(dp), intent(in) :: t(:)
@@ -268,8 +268,12 @@ contains
     if (.not. cord_integrated(sc)) then
       method = m_exact
       call cord_run_all(sc%eps, sc%theta0, sc%v0, sc%restitution, sc%max_flips, sc%min_flight, t, theta, v, &
-                        x, y, r, flips, nflips, stop_reason, status)
-      if (status /= 0) status = merge(sim_unsorted, sim_bad_state, status == 3)
+                        x, y, r, flips, nflips, stop_reason, status, cancel)
+      if (status == cord_cancelled) then
+        status = sim_cancelled
+      else if (status /= 0) then
+        status = merge(sim_unsorted, sim_bad_state, status == 3)
+      end if
       return
     end if
     method = merge(m_dop853, method_code(sc%method), sc%method == 'auto')
@@ -284,7 +288,7 @@ contains
     stats = [work(1), work(1), 0.0_dp, work(2)]
     if (status == cord_integrator_failed + st_too_many_steps) then
       status = sim_too_many_steps
-    else if (status == cord_integrator_failed + st_cancelled) then
+    else if (status == cord_integrator_failed + st_cancelled .or. status == cord_cancelled) then
       status = sim_cancelled
     else if (status >= cord_integrator_failed) then
       status = sim_integrator_failed

@@ -39,6 +39,8 @@ module pendula_lyapunov
 
   !> blocks of the averaging window for the convergence estimate
   integer, parameter :: ly_nblock = 8
+  !> status of a point stopped by its cancel flag
+  integer, parameter, public :: ly_cancelled = 9
 
 contains
 
@@ -75,10 +77,13 @@ contains
   !> periods).  status 0, or 100 + the integrator status (5 step underflow,
   !> 6 non-finite, 7 too many steps), or 2 for bad parameters (eps <= 0, a
   !> window too long to count in intervals).
-  pure subroutine lyapunov_point(p, rtol, atol, t_tr, t_avg, lam1, lam2, err, status)
+  !> cancel (optional): read once per renormalisation interval; non-zero
+  !> stops the point with status ly_cancelled.
+  subroutine lyapunov_point(p, rtol, atol, t_tr, t_avg, lam1, lam2, err, status, cancel)
     real(dp), intent(in) :: p(8), rtol, atol, t_tr, t_avg
     real(dp), intent(out) :: lam1, lam2, err
     integer, intent(out) :: status
+    integer, intent(inout), volatile, optional :: cancel
     real(dp) :: tb, hr, y(6), h, s1, s2, n1, n2, d, blk(ly_nblock), bsum, phase, tblk
     integer :: m, ntr, navg, j, jb, jstart, jend, s
     integer(i8) :: nsteps
@@ -102,6 +107,11 @@ contains
     jstart = 0
     status = st_ok
     do j = 0, ntr + navg - 1
+      if (present(cancel)) then
+        if (cancel /= 0) then
+          status = ly_cancelled; return
+        end if
+      end if
       ! the drive phase at the start of interval j: phi + Omega j h_r = phi +- 2 pi j / m (mod 2 pi);
       ! a drive of frequency 0 is a constant force A cos(phi)
       phase = p(6)

@@ -17,6 +17,7 @@ import pathlib
 
 import numpy as np
 from ._optional import require
+from ._files import save_figure, open_text  # the one writer: regular files only, whole or absent
 
 EPS = np.finfo(np.float64).eps
 
@@ -197,10 +198,10 @@ def write_long_run(res: dict, outdir, periods: float) -> list[pathlib.Path]:
     ax.legend(fontsize=8)
     fig.tight_layout()
     path = outdir / "long_run_energy.png"
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     csv_path = outdir / "long_run_energy.csv"
-    with csv_path.open("w", newline="") as fh:
+    with open_text(csv_path, newline="") as fh:
         w = csv.writer(fh)
         w.writerow(["method", "t", "abs_energy_error"])
         for method, r in res.items():

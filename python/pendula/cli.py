@@ -111,8 +111,12 @@ def _run_file(args, command: str, outputs: tuple | None = None) -> int:
         scene = Scene.from_file(args.scene)
         if outputs:
             scene = scene.replace(outputs=outputs)
-    except SceneError as exc:
-        print(f"pendula {command}: {exc}", file=sys.stderr)
+    except (SceneError, ValueError, OverflowError) as exc:   # a reader's bare ValueError too: one line, exit 2
+        print(f"pendula {command}: {args.scene}: {exc}" if not isinstance(exc, SceneError)
+              else f"pendula {command}: {exc}", file=sys.stderr)
+        return 2
+    except OSError as exc:
+        print(f"pendula {command}: cannot read {args.scene!r}: {exc.strerror or exc}", file=sys.stderr)
         return 2
     # the exit codes of pendula-run: 3 model not implemented, 4 the computation
     # failed, 5 a write error; a message, never a traceback, and no partial file
@@ -312,6 +316,8 @@ def main(argv=None) -> int:
         return _guarded(cmd_bench, argparse.Namespace(rest=argv[1:]))
     # --- end spectra
     args = parser.parse_args(argv)
+    from ._files import exit_on_sigterm
+    exit_on_sigterm()     # SIGTERM/SIGHUP unwind like Ctrl-C: no temporary file is left
     return _guarded(args.func, args)
 
 

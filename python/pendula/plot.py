@@ -14,6 +14,7 @@ import math
 
 import numpy as np
 from ._optional import require
+from ._files import save_figure  # the one writer: regular files only, whole or absent
 
 
 def _plt():
@@ -42,7 +43,7 @@ def _axes(ax, n=None, figsize=(8, 4.5)):
 def _save(fig, path, made_here):
     """Write the figure to path (if any); close it when this module made it and saved it."""
     if path is not None:
-        fig.savefig(path, dpi=110)
+        save_figure(fig, path, dpi=110)   # staged, then renamed: whole or absent
         if made_here:
             _plt().close(fig)
     return fig

@@ -88,9 +88,11 @@ def _outputs(scene: Scene, outdir: pathlib.Path, stem: str | None, progress: boo
             o = model_orbit_facts(member) or orbit(member.theta0, member.v0, member.eps)
             for key in table:
                 table[key].append(getattr(o, key))
-        cols = ([scene.sweep] if scene.sweep else []) + ["theta0", "v0", "eps", "regime", "k", "period",
-                                                         "omega", "theta_max"]
-        rows = [([value] if scene.sweep else []) + [m.theta0, m.v0, m.eps, table["regime"][i], table["k"][i],
+        # the swept value has its own column unless it is one of the orbit's (no name twice)
+        lead = bool(scene.sweep) and scene.sweep not in ("theta0", "v0", "eps")
+        cols = ([scene.sweep] if lead else []) + ["theta0", "v0", "eps", "regime", "k", "period",
+                                                  "omega", "theta_max"]
+        rows = [([value] if lead else []) + [m.theta0, m.v0, m.eps, table["regime"][i], table["k"][i],
                                                      table["period"][i], table["omega"][i], table["theta_max"][i]]
                 for i, (value, m) in enumerate(zip(values, members))]
         files.append(write_csv(outdir / f"{stem}_orbits.csv", scene, cols, rows))

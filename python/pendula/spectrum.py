@@ -21,8 +21,13 @@ from pathlib import Path
 
 import numpy as np
 
-from . import _kernel
+from . import _checks, _interrupt, _kernel
 from ._checks import as_float
+from ._files import atomic_path
+
+#: the longest record a spectrum or a wisdom plan takes (2^27 samples: 1 GiB
+#: per signal); longer is refused up front
+MAX_SAMPLES = 1 << 27
 
 __all__ = ["Spectrum", "spectrum", "spectra", "fourier_series", "odd_harmonics_above",
            "precompute_wisdom", "wisdom_path"]
@@ -119,16 +124,24 @@ def precompute_wisdom(sizes=None, path=None, progress: bool = False) -> Path:
     Returns
     -------
     pathlib.Path
-        The file written (written under a temporary name, then renamed).
+        The file written (under a temporary name, then renamed).
 
     Raises
     ------
-    ValueError
-        For a length below 4.
+    TypeError, ValueError
+        A size that is not a whole number between 4 and 2^27.
     MemoryError
         If FFTW cannot plan a length.
     OSError
-        If the wisdom cannot be written.
+        ``path`` names something other than a regular file (a device such as
+        /dev/full is never replaced), or its folder does not exist (only the
+        default cache folder is created), or the write failed; the file is
+        then left as it was and no temporary file remains.
+
+    Notes
+    -----
+    Measured planning stops after 10 s per length with the best plan found
+    (FFTW's time limit), so every length costs at most that.
 
     See Also
     --------
@@ -145,37 +158,44 @@ def precompute_wisdom(sizes=None, path=None, progress: bool = False) -> Path:
     """
     if sizes is None:
         sizes = [1 << k for k in range(6, 21)] + [3 << k for k in range(5, 18)]
-    sizes = sorted({int(n) for n in sizes})
-    if any(n < 4 for n in sizes):
-        raise ValueError("sizes must be record lengths of at least 4")
-    path = Path(path) if path is not None else wisdom_path()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(path.name + f".tmp{os.getpid()}")
-    with _PLAN_LOCK:
-        _load_wisdom_locked()
-        for n in sizes:
-            if progress:
-                print(f"  planning {n} samples", flush=True)
-            handle = int(_kernel.spectrum_plan_v(n, 1))
-            if handle == 0:
-                raise MemoryError(f"FFTW could not plan a transform of {n} samples")
-            _kernel.spectrum_plan_free_v(handle)
-        if not _kernel.spectrum_wisdom_v(str(tmp), 1):
-            raise OSError(f"could not write FFTW wisdom to {tmp}")
-    os.replace(tmp, path)
-    return path
+    if isinstance(sizes, (str, bytes)):
+        raise TypeError("sizes must be a list of record lengths")
+    sizes = sorted({_checks.count(n, "sizes", 4, MAX_SAMPLES) for n in sizes})
+    if path is None:
+        path = wisdom_path()
+        path.parent.mkdir(parents=True, exist_ok=True)    # the cache folder only
+    with atomic_path(path) as tmp:
+        with _PLAN_LOCK:
+            _load_wisdom_locked()
+            for n in sizes:
+                if progress:
+                    print(f"  planning {n} samples", flush=True)
+                cancel = _interrupt.cancel_flag()
+                handle = int(_interrupt.call(_kernel.spectrum_plan_v, n, 1, cancel=cancel))
+                if handle == 0:
+                    raise MemoryError(f"FFTW could not plan a transform of {n} samples")
+                _kernel.spectrum_plan_free_v(handle)
+            if not _kernel.spectrum_wisdom_v(str(tmp), 1):
+                raise OSError(f"could not write FFTW wisdom to {path}")
+    return Path(path)
 
 
 def wisdom_main(args) -> int:
     """``pendula wisdom [SIZES ...] [--path FILE]``."""
     import time
 
+    import sys
+
     t0 = time.perf_counter()
     try:
         path = precompute_wisdom(args.sizes or None, args.path, progress=True)
-    except (ValueError, OSError, MemoryError) as exc:
-        print(f"pendula wisdom: {exc}")
+    except (ValueError, TypeError, MemoryError) as exc:
+        print(f"pendula wisdom: {exc}", file=sys.stderr)
         return 2
+    except OSError as exc:
+        where = f"{exc.filename}: " if exc.filename else ""
+        print(f"pendula wisdom: cannot write the wisdom: {where}{exc.strerror or exc}", file=sys.stderr)
+        return 5
     print(f"FFTW wisdom saved to {path} ({time.perf_counter() - t0:.1f} s of planning)")
     return 0
 
@@ -193,7 +213,9 @@ def _plan(n: int, measure: bool):
                 old.retired = True
                 if old.users == 0:
                     _kernel.spectrum_plan_free_v(old.handle)
-            handle = int(_kernel.spectrum_plan_v(n, int(bool(measure))))
+            cancel = _interrupt.cancel_flag()
+            handle = int(_interrupt.call(_kernel.spectrum_plan_v, n, int(bool(measure)), cancel=cancel,
+                                         long=bool(measure)))
             if handle == 0:
                 raise MemoryError(f"FFTW could not plan a transform of {n} samples")
             entry = _PLANS[key] = _Plan(handle)
@@ -426,11 +448,17 @@ def spectra(t, signals, window: str | None = None, measure: bool = False) -> lis
     if window not in _WINDOWS:
         raise ValueError(f"window must be None or 'hann', got {window!r}")
     n = t.size
+    if n > MAX_SAMPLES:
+        raise ValueError(f"t: at most 2^27 samples, got {n}")
+    if not isinstance(measure, (bool, np.bool_)):
+        raise TypeError(f"measure must be True or False, not {type(measure).__name__}")
     if x.shape[0] == 0:                         # no signals in, no spectra out
         return []
     cols = np.asfortranarray(x.T)
     with _plan(n, measure) as handle:
-        omega, power, status = _kernel.spectra_v(handle, cols, dt, _WINDOWS[window], n // 2 + 1)
+        cancel = _interrupt.cancel_flag()
+        omega, power, status = _interrupt.call(_kernel.spectra_v, handle, cols, dt, _WINDOWS[window], n // 2 + 1,
+                                               cancel, cancel=cancel, long=cols.size > 1 << 22)
     if status:
         raise RuntimeError(f"pendula kernel: spectrum status {status}")
     finite_in = np.all(np.isfinite(x), axis=1)

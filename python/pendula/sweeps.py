@@ -53,6 +53,8 @@ import numpy as np
 from ._optional import require
 
 from ._store import StoreBusyError, SweepStoreWarning  # noqa: F401 - raised and warned by sweep(out=...)
+from . import _checks, _interrupt
+from ._files import atomic_path, save_figure
 from .scene import GRIDDABLE, MEASURES, Scene, SceneError
 
 __all__ = ["sweep", "iv_curve", "grid_of", "MEASURE_CODES"]
@@ -61,7 +63,13 @@ __all__ = ["sweep", "iv_curve", "grid_of", "MEASURE_CODES"]
 MEASURE_CODES = {"final_well": 1, "mean_velocity": 2, "locked": 3, "poincare": 4, "lyapunov": 5}
 #: point status codes
 STATUS = {0: "decided", 1: "not settled / undecided by the limit", 2: "measure does not apply",
-          3: "bad measure", 4: "uncertain: the answer changes with the tolerance"}
+          3: "bad measure", 4: "uncertain: the answer changes with the tolerance",
+          5: "stopped (cancelled)",
+          # 100 + s: the integrator's status s (pendula_integrators st_*)
+          **{100 + s: f"the integrator failed: {w}" for s, w in (
+              (1, "bad step"), (2, "bad tolerances"), (3, "bad method"), (5, "step size underflow"),
+              (6, "non-finite state"), (7, "too many steps"), (8, "cancelled"), (9, "no dense output"),
+              (10, "stopped by an event"))}}
 _PARAM_ORDER = ("eps", "damping", "torque", "drive_amplitude", "drive_frequency", "drive_phase", "theta0", "v0")
 
 
@@ -83,11 +91,11 @@ def _check_over(scene: Scene, over) -> dict:
         raise ValueError("parameter 'over' must be a dict of 1 to 3 {field: values}")
     out = {}
     for name, vals in over.items():
-        if name not in GRIDDABLE:
+        if not isinstance(name, str) or name not in GRIDDABLE:
             raise ValueError(f"parameter 'over': cannot sweep {name!r}; one of {', '.join(GRIDDABLE)}")
-        a = np.atleast_1d(np.asarray(vals, dtype=float))
-        if a.ndim != 1 or a.size == 0 or not np.all(np.isfinite(a)):
-            raise ValueError(f"parameter 'over[{name!r}]' must be a non-empty 1-D list of finite numbers")
+        a = _checks.grid_values(vals, f"parameter 'over[{name!r}]'")
+        if name == "theta0" and not np.all(np.abs(a) <= _checks.MAX_ANGLE):
+            raise ValueError("parameter 'over['theta0']': |theta0| must be at most 2^52 in a sweep")
         # each value must make a valid scene (damping >= 0, eps > 0 ...)
         for v in (a.min(), a.max()):
             try:
@@ -95,7 +103,36 @@ def _check_over(scene: Scene, over) -> dict:
             except SceneError as exc:
                 raise ValueError(f"parameter 'over[{name!r}]': {exc}") from None
         out[name] = a
+    npts = math.prod(len(a) for a in out.values())
+    if npts > _checks.MAX_GRID_POINTS:
+        raise ValueError(f"parameter 'over': {npts} grid points; a sweep takes at most "
+                         f"{_checks.MAX_GRID_POINTS:.0e} (split it, or use a coarser grid)")
     return out
+
+
+def _model_rule(scene: Scene, what: str) -> None:
+    """The kernel's sweep model rule (pendula_sweep%sweep_model_rule): a
+    NotImplementedError naming the model when a sweep cannot run it."""
+    from . import _kernel
+    from .systems import _kernel_text
+    status, msg = _kernel.sweep_model_check_v(_kernel_text(scene).encode("utf-8"), what.encode())
+    msg = msg.decode(errors="replace").strip() if isinstance(msg, bytes) else str(msg).strip()
+    if status == 3:
+        raise NotImplementedError(msg)
+    if status != 0:
+        raise ValueError(f"parameter 'scene': {msg}")
+
+
+def _block(code, p, rtol, atol, t_tr, t_max, nout, threads):
+    """One kernel sweep block that Ctrl-C stops (KeyboardInterrupt within a
+    few integration windows; the process stays usable)."""
+    from . import _kernel
+    cancel = _interrupt.cancel_flag()
+    out, st = _interrupt.call(_kernel.sweep_block, code, p, rtol, atol, t_tr, t_max, nout, int(threads), cancel,
+                              cancel=cancel)
+    if cancel[0]:
+        raise KeyboardInterrupt
+    return out, st
 
 
 class _Plan:
@@ -154,10 +191,9 @@ def _answers(out, st):
 
 
 def _compute_chunk(plan: _Plan, i: int, threads: int):
-    from . import _kernel
     p, shape = plan.params(i)
     code = MEASURE_CODES[plan.measure]
-    out, st = _kernel.sweep_block(code, p, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout, int(threads))
+    out, st = _block(code, p, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout, threads)
     out = out.T.reshape(shape + (plan.nout,))
     st = st.reshape(shape)
     if plan.measure in ("final_well", "locked"):
@@ -173,13 +209,11 @@ def _compute_chunk(plan: _Plan, i: int, threads: int):
         parts = [_answers(out, st)]
         if lo > 0:
             pb, sb = plan.params_rows(lo - 1, lo)
-            ob, tb = _kernel.sweep_block(code, pb, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout,
-                                         int(threads))
+            ob, tb = _block(code, pb, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout, threads)
             parts.insert(0, _answers(ob.T.reshape(sb + (plan.nout,)), tb.reshape(sb)))
         if hi < plan.shape[0]:
             pa, sa = plan.params_rows(hi, hi + 1)
-            oa, ta = _kernel.sweep_block(code, pa, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout,
-                                         int(threads))
+            oa, ta = _block(code, pa, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout, threads)
             parts.append(_answers(oa.T.reshape(sa + (plan.nout,)), ta.reshape(sa)))
         ans = np.concatenate(parts, axis=0)
         edge = np.zeros(ans.shape, dtype=bool)
@@ -194,8 +228,8 @@ def _compute_chunk(plan: _Plan, i: int, threads: int):
         idx = np.flatnonzero(edge.ravel())
         if idx.size:
             p2 = np.asfortranarray(p[:, idx])
-            o2, s2 = _kernel.sweep_block(code, p2, plan.rtol * 1e-3, plan.atol * 1e-3, plan.t_tr, plan.t_max,
-                                         plan.nout, int(threads))
+            o2, s2 = _block(code, p2, plan.rtol * 1e-3, plan.atol * 1e-3, plan.t_tr, plan.t_max, plan.nout,
+                            threads)
             flat_o = out.reshape(-1, plan.nout)
             flat_s = st.reshape(-1)
             a1 = np.where(flat_s[idx] == 0, flat_o[idx, 0], -1e300)
@@ -382,25 +416,22 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
     if not isinstance(scene, Scene):
         scene = Scene.from_file(scene)
     measure = measure or scene.measure
-    if measure not in MEASURES:
+    if not isinstance(measure, str) or measure not in MEASURES:
         raise ValueError(f"parameter 'measure' must be one of {', '.join(MEASURES)}; got {measure!r}")
+    _model_rule(scene, f"measure '{measure}'")
+    _checks.angle(scene.theta0, "field 'theta0'")
     over = grid_of(scene) if over is None else over
     over = _check_over(scene, over)
-    rtol = scene.rtol if rtol is None else float(rtol)
-    atol = scene.atol if atol is None else float(atol)
-    if not (rtol > 0 and atol >= 0):
-        raise ValueError("parameters 'rtol' must be > 0 and 'atol' >= 0")
-    t_max = scene.sweep_t_max if t_max is None else float(t_max)
-    transient = scene.sweep_transient if transient is None else float(transient)
-    samples = scene.sweep_samples if samples is None else int(samples)
-    if not (t_max > 0 and math.isfinite(t_max)):
-        raise ValueError(f"parameter 't_max' must be positive and finite, got {t_max!r}")
-    if not (transient >= 0 and math.isfinite(transient)):
-        raise ValueError(f"parameter 'transient' must be >= 0 and finite, got {transient!r}")
-    if samples < 1:
-        raise ValueError(f"parameter 'samples' must be >= 1, got {samples!r}")
-    if not (isinstance(chunk_points, (int, np.integer)) and chunk_points >= 1):
-        raise ValueError(f"parameter 'chunk_points' must be a positive integer, got {chunk_points!r}")
+    rtol, atol = _checks.tolerances(scene.rtol if rtol is None else rtol, scene.atol if atol is None else atol)
+    t_max = _checks.duration(scene.sweep_t_max if t_max is None else t_max, "t_max")
+    transient = _checks.duration(scene.sweep_transient if transient is None else transient, "transient",
+                                 positive=False)
+    samples = _checks.count(scene.sweep_samples if samples is None else samples, "samples", 1, 100000)
+    chunk_points = _checks.count(chunk_points, "chunk_points", 1)
+    threads = _checks.threads(threads)
+    if measure == "poincare" and math.prod(len(v) for v in over.values()) * samples > _checks.MAX_GRID_POINTS:
+        raise ValueError(f"parameter 'samples': {samples} samples at each grid point is more than "
+                         f"{_checks.MAX_GRID_POINTS:.0e} values")
     if measure == "poincare" and not scene.drive_frequency > 0 and "drive_frequency" not in over:
         raise ValueError("measure 'poincare' needs a drive (drive_frequency > 0)")
     plan = _Plan(scene, over, measure, rtol, atol, t_max, transient, samples, int(chunk_points))
@@ -520,16 +551,27 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
     from . import _kernel
     if not isinstance(scene, Scene):
         raise TypeError("parameter 'scene' must be a pendula.Scene")
-    if direction not in ("up", "down", "both"):
+    if not isinstance(direction, str) or direction not in ("up", "down", "both"):
         raise ValueError(f"parameter 'direction' must be 'up', 'down' or 'both'; got {direction!r}")
-    tau = np.asarray(torques, dtype=float)
-    if tau.ndim != 1 or tau.size == 0 or not np.all(np.isfinite(tau)):
-        raise ValueError("parameter 'torques' must be a non-empty 1-D list of finite numbers")
-    if not (transient >= 0 and t_avg > 0):
-        raise ValueError("parameters 'transient' must be >= 0 and 't_avg' > 0")
-    rtol = scene.rtol if rtol is None else float(rtol)
-    atol = scene.atol if atol is None else float(atol)
+    _model_rule(scene, "iv_curve")
+    _checks.angle(scene.theta0, "field 'theta0'")
+    if not scene.damping > 0:
+        raise ValueError("field 'damping' must be > 0 for an I-V curve (without damping <v> grows without bound)")
+    tau = _checks.grid_values(torques, "parameter 'torques'")
+    if tau.size > 10 ** 6:
+        raise ValueError(f"parameter 'torques': at most 1e6 values, got {tau.size}")
+    transient = _checks.duration(transient, "transient", positive=False)
+    t_avg = _checks.duration(t_avg, "t_avg")
+    rtol, atol = _checks.tolerances(scene.rtol if rtol is None else rtol, scene.atol if atol is None else atol)
     p = np.array([getattr(scene, f) for f in _PARAM_ORDER], dtype=float)
+
+    def branch(p, taus):
+        cancel = _interrupt.cancel_flag()
+        r = _interrupt.call(_kernel.sweep_iv_branch, p, taus, rtol, atol, transient, t_avg, cancel, cancel=cancel)
+        if cancel[0]:
+            raise KeyboardInterrupt
+        return r
+
     if isinstance(start, str):
         if start not in ("ramp", "scene"):
             raise ValueError(f"parameter 'start' must be 'ramp', 'scene' or a state (theta, v); got {start!r}")
@@ -552,12 +594,11 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
             steps = min(1000, max(1, math.ceil(abs(first) / spacing)))
             lead = np.linspace(0.0, first, steps + 1)[:-1]
         if lead.size:
-            _, _, _, th_end, v_end = _kernel.sweep_iv_branch(p, np.ascontiguousarray(lead, dtype=float), rtol,
-                                                             atol, float(transient), float(t_avg))
+            _, _, _, th_end, v_end = branch(p, np.ascontiguousarray(lead, dtype=float))
             p[6], p[7] = th_end, v_end
     res = {}
     if direction in ("up", "both"):
-        vm, err, st, th_end, v_end = _kernel.sweep_iv_branch(p, tau, rtol, atol, float(transient), float(t_avg))
+        vm, err, st, th_end, v_end = branch(p, tau)
         res["up"] = (tau, vm, err, st)
     if direction in ("down", "both"):
         td = tau[::-1].copy()
@@ -565,7 +606,7 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
             # the down branch starts where the up branch ended
             p = p.copy()
             p[6], p[7] = th_end, v_end
-        vm, err, st, _, _ = _kernel.sweep_iv_branch(p, td, rtol, atol, float(transient), float(t_avg))
+        vm, err, st, _, _ = branch(p, td)
         res["down"] = (td, vm, err, st)
     return res
 
@@ -610,41 +651,65 @@ def plot_sweep(ds, path) -> pathlib.Path:
         ax.set_xlabel(dims[0]); ax.set_ylabel(dims[1])
     ax.set_title(f"pendula sweep: {measure}")
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    try:
+        save_figure(fig, path, dpi=120)     # whole under its name, or absent
+    finally:
+        plt.close(fig)
     return path
 
 
 def cli_main(args) -> int:
     """``pendula sweep SCENE.nml -o OUT``: the dataset (the Zarr store OUT/sweep.zarr; with ``--netcdf``
-    also OUT/sweep.nc) and its figure (OUT/sweep.png)."""
+    also OUT/sweep.nc) and its figure (OUT/sweep.png).
+
+    One line on standard error for every failure, and the exit status of
+    pendula-run: 2 bad scene or arguments (``--threads``, ``--workers``,
+    ``--chunk-points`` out of range), 3 the scene's model is not one a sweep
+    runs, 4 the computation failed, 5 the output cannot be written (OUT is a
+    file, a device, read-only, a full disk, or another sweep is writing it);
+    nothing is left under a final name after a failure (the resumable store
+    stays).  A cluster started for ``--workers`` is closed on every path."""
     import contextlib
     import sys
+
+    def say(msg: str, code: int) -> int:
+        print(f"pendula sweep: {msg}", file=sys.stderr)
+        return code
+
+    out = pathlib.Path(args.output)
     try:
+        workers = _checks.count(args.workers, "--workers", 0, 256)
+        threads = _checks.threads(args.threads, "--threads")
+        chunk_points = _checks.count(args.chunk_points, "--chunk-points", 1)
         scene = Scene.from_file(args.scene)
         if not scene.grid:
             raise SceneError(f"{args.scene}: field 'grid' is empty: a sweep scene names 1 to 3 axes")
+        if out.exists() and not out.is_dir():
+            raise NotADirectoryError(20, "is not a folder", str(out))
         with contextlib.ExitStack() as stack:
             client = None
-            if args.workers:
+            if workers:
                 from ._cluster import local_client
-                client = stack.enter_context(local_client(args.workers))   # closed, cluster and all, on leaving
-            ds = sweep(scene, out=args.output, chunk_points=args.chunk_points, client=client,
-                       threads=args.threads, progress=not args.quiet)
-    except (SceneError, ValueError) as exc:
-        print(f"pendula sweep: {exc}", file=sys.stderr)
-        return 2
+                client = stack.enter_context(local_client(workers))   # closed, cluster and all, on leaving
+            ds = sweep(scene, out=out, chunk_points=chunk_points, client=client, threads=threads,
+                       progress=not args.quiet)
+        files = [out / "sweep.zarr"]
+        if getattr(args, "netcdf", False):
+            with atomic_path(out / "sweep.nc") as tmp:
+                ds.to_netcdf(tmp, engine="scipy")
+            files.append(out / "sweep.nc")
+        files.append(plot_sweep(ds, out / "sweep.png"))
+    except (SceneError, ValueError, TypeError) as exc:
+        return say(str(exc), 2)
+    except NotImplementedError as exc:
+        return say(f"{args.scene}: {exc}", 3)
     except StoreBusyError as exc:     # another sweep writes the same output folder
-        print(f"pendula sweep: {exc.strerror}", file=sys.stderr)
-        return 5
-    out = pathlib.Path(args.output)
-    files = [out / "sweep.zarr"]
-    if getattr(args, "netcdf", False):
-        tmp = out / f".sweep.nc.{os.getpid()}.tmp"
-        ds.to_netcdf(tmp, engine="scipy")
-        os.replace(tmp, out / "sweep.nc")
-        files.append(out / "sweep.nc")
-    files.append(plot_sweep(ds, out / "sweep.png"))
+        return say(exc.strerror, 5)
+    except OSError as exc:
+        where = f"{exc.filename}: " if exc.filename else f"{out}: "
+        return say(f"cannot write the output: {where}{exc.strerror or exc}", 5)
+    except (ArithmeticError, RuntimeError) as exc:
+        return say(f"{args.scene}: {exc}", 4)
     st = ds.status.values
     print(f"pendula sweep: {st.size} points, {np.mean(st == 0) * 100:.1f} % decided -> "
           f"{', '.join(map(str, files))}")

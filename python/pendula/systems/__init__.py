@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _interrupt, _kernel
+from .. import _checks
 from .._checks import as_float
 from ..scene import Scene, SceneError
 from ..trajectory import Trajectory
@@ -125,6 +126,7 @@ def run(scene: Scene, t) -> Trajectory:
         'exact' with effects, ...), or the integrator failed.
     """
     t = as_float(t, "t")
+    _checks.angle(scene.theta0, "field 'theta0'")     # |theta0| <= 2^52, as in every function
     flat = np.ascontiguousarray(t, dtype=np.float64).reshape(-1)
     x, words, wlen, nout, ngrid = scene._kernel_fields
     # the times as given: the exact paths take any order, and an integrator

@@ -29,6 +29,7 @@ import math
 import numpy as np
 
 from .. import _kernel
+from .. import _checks
 from .._checks import as_float
 
 __all__ = ["cycloid_motion", "cycloid_period", "cycloid_energy", "cycloid_geometry", "CycloidGeometry"]
@@ -279,6 +280,6 @@ def cycloid_geometry(R: float = 0.25, n: int = 401) -> CycloidGeometry:
     R = float(R)
     if not (R > 0 and math.isfinite(R)):
         raise ValueError(f"R must be positive and finite, got {R!r}")
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 2 <= n <= MAX_GEOMETRY_POINTS:
-        raise ValueError(f"n must be a whole number from 2 to {MAX_GEOMETRY_POINTS}, got {n!r}")
-    return CycloidGeometry(R, int(n))
+    # a drawing: at most MAX_GEOMETRY_POINTS points per curve (absurd sizes refused up front)
+    n = _checks.count(n, "n", 2, MAX_GEOMETRY_POINTS)
+    return CycloidGeometry(R, n)
