@@ -11,7 +11,8 @@ import pytest
 
 import pendula
 from pendula import Scene
-from pendula.attractors import attractor_map, basin_entropy, boundary_fraction, label_attractors, \
+from pendula import attractor_map
+from pendula.attractors import basin_entropy, boundary_fraction, label_attractors, \
     uncertainty_exponent
 
 ROT = Scene(damping=0.5, drive_amplitude=1.35, drive_frequency=2.0 / 3.0)
@@ -113,3 +114,11 @@ def test_basin_entropy_of_a_checkerboard_is_log2_per_box():
 def test_attractor_map_refuses_undriven_scene():
     with pytest.raises(ValueError, match="drive"):
         attractor_map(Scene(damping=0.1), GRID)
+
+
+def test_sweep_measure_attractor_is_the_attractor_map(rot_map):
+    ds = pendula.sweep(ROT, over=GRID, measure="attractor", transient=300.0, samples=16)
+    np.testing.assert_array_equal(ds.attractor.values, rot_map.dataset.attractor.values)
+    assert ds.attrs["basin_entropy"] == rot_map.basin_entropy
+    import json
+    assert [a["period"] for a in json.loads(ds.attrs["attractors"])] == [1, 1]

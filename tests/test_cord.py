@@ -409,5 +409,5 @@ def test_cord_state_with_no_terms_names_nmax():
 
 
 def test_flip_sequence_beyond_its_limit_is_refused():
-    with pytest.raises(ValueError, match="n must be a whole number from 0 to"):
+    with pytest.raises(ValueError, match="n must be between 0 and"):
         flip_sequence(2 ** 40)

@@ -133,7 +133,8 @@ def test_cycloid_rest_point_and_frequency():
 
 
 def test_cycloid_torque_beyond_the_cusps_has_none():
-    assert pendula.equilibria(Scene(guide="cycloid", torque=1.5)) == []
+    # (with damping: the conservative scene whose orbit reaches the cusps is refused when made)
+    assert pendula.equilibria(Scene(guide="cycloid", torque=1.5, damping=0.1)) == []
 
 
 def test_flexible_cord_rests_only_where_taut():

@@ -308,7 +308,7 @@ def test_sweep_cli_any_scene_and_options(changes, opts, target):
         if code:
             assert len(err.getvalue().strip().splitlines()) == 1, err.getvalue()
         if code == 0:
-            assert (out / "sweep.nc").is_file() and (out / "sweep.png").is_file()
+            assert (out / "sweep.zarr").is_dir() and (out / "sweep.png").is_file()
         leftovers = [p.name for p in d.rglob("*") if p.name.endswith((".part", ".tmp"))]
         assert not leftovers, leftovers
         if target == "file":

@@ -283,16 +283,17 @@ def test_cli_tracebacks_full_disk_leaves_nothing_under_a_final_name(tmp_path):
     assert r.returncode == 5, r.stderr
     assert _one_line(r.stderr) and "too large" in r.stderr
     names = [p.name for p in out.rglob("*")]
-    assert "sweep.nc" not in names and "sweep.png" not in names
+    assert "sweep.nc" not in names and "sweep.png" not in names and "sweep.zarr" not in names
     assert not [n for n in names if n.endswith(".part") or n.endswith(".tmp")]
 
 
 def test_cli_tracebacks_run_and_sweep_succeed_with_room(tmp_path):
     scene = tmp_path / "sw.nml"
     scene.write_text(SWEEP_NML)
-    r = _cli("sweep", scene, "-o", tmp_path / "o", "-q")
+    r = _cli("sweep", scene, "-o", tmp_path / "o", "-q", "--netcdf")
     assert r.returncode == 0, r.stderr
-    assert (tmp_path / "o" / "sweep.nc").is_file() and (tmp_path / "o" / "sweep.png").stat().st_size > 1000
+    assert (tmp_path / "o" / "sweep.zarr").is_dir() and (tmp_path / "o" / "sweep.png").stat().st_size > 1000
+    assert (tmp_path / "o" / "sweep.nc").is_file()
 
 
 # ------------------------------------------------------------------ leftovers

@@ -21,7 +21,8 @@ import time
 import numpy as np
 
 import pendula
-from pendula.attractors import attractor_map, label_attractors
+from pendula import attractor_map
+from pendula.attractors import label_attractors
 
 
 def main():

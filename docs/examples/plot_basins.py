@@ -5,7 +5,7 @@ Attractors and their basins
 The driven damped pendulum (β = 0.5, Ω = 2/3) at two drive amplitudes: each
 initial state (θ0, v0) is coloured by the attractor of the stroboscopic map
 its orbit ends on, found by recurrence without being told the attractors
-(:func:`pendula.attractors.attractor_map`); the attractors' points are drawn
+(:func:`pendula.attractor_map`); the attractors' points are drawn
 on the map.  At A = 1.35 two period-1 rotations, one each way, share the
 plane; at A = 1.45 two period-2 rotations (a longer transient: their basins
 are reached more slowly).  The title gives the basin entropy
@@ -17,7 +17,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import pendula
-from pendula.attractors import attractor_map
+from pendula import attractor_map
 
 n = 56
 grid = {"theta0": np.linspace(-np.pi, np.pi, n), "v0": np.linspace(-3.0, 3.0, n)}

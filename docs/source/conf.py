@@ -166,7 +166,7 @@ API_GROUPS = [
     ("The density of the angle", ["angle_density", "angle_cdf", "arcsine_density"]),
     ("Sweeps", ["sweep", "iv_curve"]),
     ("Equilibria, periodic orbits and attractors", ["equilibria", "Equilibrium", "periodic_orbit",
-                                                    "PeriodicOrbit"]),
+                                                    "PeriodicOrbit", "attractor_map"]),
 ]
 
 

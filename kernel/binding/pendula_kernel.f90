@@ -545,15 +545,21 @@ end subroutine sweep_iv_branch
 
 ! The sweep's model rule on a scene's text (status 0 ok; 3 the model is not
 ! one a sweep runs; 100 the text is not a valid scene), msg says why.
-subroutine sweep_model_check_v(text, what, status, msg)
-  use pendula_scene, only: scene_t, parse_scene
+subroutine sweep_model_check_v(x, words, nw, wlen, nout, ngrid, what, status, msg)
+  use pendula_scene, only: scene_t, scene_from_fields
   use pendula_sweep, only: sweep_model_rule
   implicit none
-  character(len=*), intent(in) :: text, what
+  double precision, intent(in) :: x(25)
+  character(len=*), intent(in) :: words, what
+  integer, intent(in) :: nw, nout, ngrid
+  integer, intent(in) :: wlen(nw)
   integer, intent(out) :: status
   character(len=512), intent(out) :: msg
+  !f2py intent(hide), depend(wlen) :: nw = len(wlen)
   type(scene_t) :: sc
-  call parse_scene(text, '<scene>', sc, status, msg)
+  double precision :: g, length, none(0)
+  call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
+                         g, length, status, msg)
   if (status /= 0) then
     status = 100
     return

@@ -347,27 +347,31 @@ class SweepStore:
         shutil.rmtree(tmp, ignore_errors=True)
         attrs = dict(lay.attrs)
         attrs["pendula_sweep"] = lay.identity
-        g = zarr.open_group(tmp, mode="w", zarr_format=3, attributes=_jsonable(attrs))
-        comp = BloscCodec(cname="zstd", clevel=5, shuffle="shuffle")
-        for name, (vals, cattrs) in lay.coords.items():
-            vals = np.asarray(vals)
-            a = g.create_array(name, shape=vals.shape, dtype=vals.dtype, chunks=vals.shape or (1,),
-                               dimension_names=(name,), attributes=_jsonable(cattrs), compressors=comp)
-            a[...] = vals
-        for name, var in lay.variables.items():
-            g.create_array(name, shape=lay.shape_of(name), dtype=var.dtype, chunks=lay.chunk_shape(name),
-                           dimension_names=var.dims, attributes=_jsonable(var.attrs), fill_value=var.fill_value,
-                           compressors=comp)
-        g.create_group(COMMITS, attributes={"about": "one completion record per finished chunk"})
-        with warnings.catch_warnings():
-            # zarr says consolidated metadata is not (yet) in the v3 specification; xarray reads it
-            warnings.simplefilter("ignore")
-            zarr.consolidate_metadata(tmp)
-        for root, dirs, files in os.walk(tmp):
-            for f in files:
-                _fsync_path(pathlib.Path(root, f))
-            _fsync_path(pathlib.Path(root), directory=True)
-        os.replace(tmp, self.path)
+        try:
+            g = zarr.open_group(tmp, mode="w", zarr_format=3, attributes=_jsonable(attrs))
+            comp = BloscCodec(cname="zstd", clevel=5, shuffle="shuffle")
+            for name, (vals, cattrs) in lay.coords.items():
+                vals = np.asarray(vals)
+                a = g.create_array(name, shape=vals.shape, dtype=vals.dtype, chunks=vals.shape or (1,),
+                                   dimension_names=(name,), attributes=_jsonable(cattrs), compressors=comp)
+                a[...] = vals
+            for name, var in lay.variables.items():
+                g.create_array(name, shape=lay.shape_of(name), dtype=var.dtype, chunks=lay.chunk_shape(name),
+                               dimension_names=var.dims, attributes=_jsonable(var.attrs), fill_value=var.fill_value,
+                               compressors=comp)
+            g.create_group(COMMITS, attributes={"about": "one completion record per finished chunk"})
+            with warnings.catch_warnings():
+                # zarr says consolidated metadata is not (yet) in the v3 specification; xarray reads it
+                warnings.simplefilter("ignore")
+                zarr.consolidate_metadata(tmp)
+            for root, dirs, files in os.walk(tmp):
+                for f in files:
+                    _fsync_path(pathlib.Path(root, f))
+                _fsync_path(pathlib.Path(root), directory=True)
+            os.replace(tmp, self.path)
+        except BaseException:
+            shutil.rmtree(tmp, ignore_errors=True)   # a failed build (a full disk, Ctrl-C) leaves nothing
+            raise
         _fsync_path(self.out, directory=True)
         self._group = zarr.open_group(self.path, mode="r+", use_consolidated=False)
 

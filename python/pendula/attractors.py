@@ -2,8 +2,9 @@
 
 The stroboscopic map of a periodically driven scene is sampled once per drive
 period after a transient (the sweep measure ``poincare``, computed by the
-kernel on OpenMP threads); each grid point's samples are then read for
-recurrence, without being told the attractors in advance (in the spirit of
+kernel on OpenMP threads; :func:`pendula.attractor_map` and the sweep measure
+``attractor`` run it and call this module); each grid point's samples are then
+read for recurrence, without being told the attractors in advance (in the spirit of
 Datseris & Wagemakers' AttractorsViaRecurrences):
 
 - **periodic**: the smallest k such that every sample of the tail recurs
@@ -38,8 +39,8 @@ import numpy as np
 
 from .scene import Scene
 
-__all__ = ["Attractor", "AttractorMap", "attractor_map", "label_attractors", "basin_entropy",
-           "uncertainty_exponent", "boundary_fraction"]
+__all__ = ["Attractor", "AttractorMap", "label_attractors", "basin_entropy", "uncertainty_exponent",
+           "boundary_fraction"]
 
 TWO_PI = 2 * math.pi
 
@@ -352,83 +353,3 @@ class AttractorMap:
     basin_entropy: float
     boundary_basin_entropy: float
     uncertainty_exponent: float
-
-
-def attractor_map(scene: Scene, over: dict, *, transient: float = 600.0, samples: int = 48, tol: float = 1e-6,
-                  merge_tol: float = 1e-3, max_period: int | None = None, cell: float = 0.05,
-                  rtol: float = 1e-10, atol: float = 1e-12, threads: int = 0, out=None, client=None,
-                  progress: bool = False, chunk_points: int = 20000) -> AttractorMap:
-    """Find the attractors of a driven scene and label each grid point by the one its orbit ends on.
-
-    Parameters
-    ----------
-    scene : Scene
-        A periodically driven scene (``drive_frequency > 0``).
-    over : dict
-        The grid, as for :func:`pendula.sweep` (e.g. ``{'theta0': ..., 'v0': ...}`` for a basin map).
-    transient : float, optional
-        Time skipped before sampling (rounded up to whole drive periods; default 600).
-    samples : int, optional
-        Stroboscopic samples per point read for recurrence (default 48).
-    tol, merge_tol, max_period, cell : optional
-        See :func:`label_attractors`.
-    rtol, atol : float, optional
-        The integrator's tolerances (default 1e-10, 1e-12).
-    threads, out, client, progress, chunk_points : optional
-        As for :func:`pendula.sweep` (a stored, resumable run with ``out``); the
-        labels do not depend on them.
-
-    Returns
-    -------
-    AttractorMap
-
-    Raises
-    ------
-    ValueError
-        If the scene is not driven or an argument is out of range.
-
-    Examples
-    --------
-    >>> import pendula
-    >>> from pendula.attractors import attractor_map
-    >>> sc = pendula.Scene(damping=0.5, drive_amplitude=1.35, drive_frequency=2/3)
-    >>> am = attractor_map(sc, {"theta0": [-2.0, 0.0, 2.0], "v0": [-3.0, 0.0, 3.0]}, transient=300, samples=16)
-    >>> [(a.kind, a.period) for a in am.attractors]      # two period-1 rotations, one each way
-    [('periodic', 1), ('periodic', 1)]
-    """
-    from .sweeps import sweep   # the sweep layer sits above this module's helpers
-
-    if not isinstance(scene, Scene):
-        raise TypeError(f"scene must be a pendula.Scene, got {type(scene).__name__}")
-    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or not 4 <= samples <= 4096:
-        raise ValueError(f"samples must be a whole number between 4 and 4096, got {samples!r}")
-    for name, val in (("tol", tol), ("merge_tol", merge_tol), ("cell", cell)):
-        if not (isinstance(val, (int, float, np.floating)) and math.isfinite(val) and val > 0):
-            raise ValueError(f"{name} must be a positive finite number, got {val!r}")
-    if not (scene.drive_frequency > 0 and scene.drive_amplitude != 0) and "drive_frequency" not in over:
-        raise ValueError("drive_amplitude, drive_frequency: attractor maps read the stroboscopic map of a "
-                         "periodically driven scene (drive_frequency > 0, drive_amplitude != 0)")
-    pc = sweep(scene, over=over, measure="poincare", transient=transient, samples=int(samples), rtol=rtol,
-               atol=atol, threads=threads, out=out, client=client, progress=progress, chunk_points=chunk_points)
-    labels, atts = label_attractors(pc.theta.values, pc.v.values, tol=tol, merge_tol=merge_tol,
-                                    max_period=max_period, cell=cell)
-    labels = np.where(pc.status.values == 0, labels, -1)
-    import xarray as xr
-    dims = tuple(d for d in pc.theta.dims if d != "sample")
-    per = np.array([a.period for a in atts] + [-1])[labels]
-    ds = xr.Dataset(
-        {"attractor": (dims, labels.astype(np.int32), {
-            "long_name": "attractor of the stroboscopic map the orbit ends on",
-            "flag_values": np.arange(-1, len(atts), dtype=np.int32),
-            "flag_meanings": " ".join(["undecided"] + [f"{a.kind}_period_{a.period}_{a.label}" if a.period
-                                                       else f"chaotic_{a.label}" for a in atts])}),
-         "period": (dims, per.astype(np.int32), {"long_name": "period of the attractor in drive periods "
-                                                              "(0 chaotic, -1 undecided)",
-                                                 "units": "1"})},
-        coords={d: pc[d] for d in dims})
-    ds.attrs.update({k: pc.attrs[k] for k in pc.attrs if k != "measure"})
-    ds.attrs.update({"measure": "attractor", "tol": tol, "merge_tol": merge_tol, "cell": cell})
-    bf = boundary_fraction(labels)
-    sb, sbb = basin_entropy(labels) if labels.ndim == 2 and min(labels.shape) >= 5 else (math.nan, math.nan)
-    alpha = uncertainty_exponent(labels)[0] if len(atts) > 1 else math.nan
-    return AttractorMap(ds, atts, bf, sb, sbb, alpha)

@@ -73,7 +73,7 @@ class SceneError(ValueError):
     ...     pendula.Scene(eps=-1.0)
     ... except pendula.SceneError as e:
     ...     print(e)
-    field 'eps' must be positive (eps = g/l), got -1.0
+    field 'eps' must be positive and at most 1e300 (eps = g/l), got -1.0
     """
 
 

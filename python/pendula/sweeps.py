@@ -57,7 +57,7 @@ from . import _checks, _interrupt
 from ._files import atomic_path, save_figure
 from .scene import GRIDDABLE, MEASURES, Scene, SceneError
 
-__all__ = ["sweep", "iv_curve", "grid_of", "MEASURE_CODES"]
+__all__ = ["sweep", "iv_curve", "grid_of", "MEASURE_CODES", "attractor_map"]
 
 #: kernel codes of the measures (kernel/sweep/pendula_sweep.f90)
 MEASURE_CODES = {"final_well": 1, "mean_velocity": 2, "locked": 3, "poincare": 4, "lyapunov": 5}
@@ -114,8 +114,8 @@ def _model_rule(scene: Scene, what: str) -> None:
     """The kernel's sweep model rule (pendula_sweep%sweep_model_rule): a
     NotImplementedError naming the model when a sweep cannot run it."""
     from . import _kernel
-    from .systems import _kernel_text
-    status, msg = _kernel.sweep_model_check_v(_kernel_text(scene).encode("utf-8"), what.encode())
+    x, words, wlen, nout, ngrid = scene._kernel_fields     # the scene as the kernel checked it
+    status, msg = _kernel.sweep_model_check_v(x, words, wlen, nout, ngrid, what.encode())
     msg = msg.decode(errors="replace").strip() if isinstance(msg, bytes) else str(msg).strip()
     if status == 3:
         raise NotImplementedError(msg)
@@ -334,8 +334,12 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
         torque, drive_amplitude, drive_frequency, drive_phase).  Default: the
         scene's own grid (``grid``, ``grid1`` ... fields).
     measure : str, optional
-        'final_well', 'mean_velocity', 'locked', 'poincare', 'lyapunov'.
-        Default: the scene's ``measure``.
+        'final_well', 'mean_velocity', 'locked', 'poincare', 'lyapunov', or
+        'attractor' (the attractor each point's orbit ends on, found by
+        recurrence: :func:`attractor_map`, whose options it takes from
+        ``transient``, ``samples``, ``rtol`` and ``atol``; its measures and
+        attractors are in the Dataset's attributes).  Default: the scene's
+        ``measure`` (a scene file names one of the kernel's measures).
     rtol, atol : float, optional
         DOP853 tolerances (default: the scene's).
     t_max : float, optional
@@ -416,8 +420,15 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
     if not isinstance(scene, Scene):
         scene = Scene.from_file(scene)
     measure = measure or scene.measure
+    if measure == "attractor":
+        # the kernel's poincare samples, read for recurrence (pendula.attractor_map)
+        kw = {k: v for k, v in (("transient", transient), ("samples", samples), ("rtol", rtol),
+                                ("atol", atol)) if v is not None}
+        return attractor_map(scene, grid_of(scene) if over is None else over, threads=threads, out=out,
+                             client=client, progress=progress, chunk_points=chunk_points, **kw).dataset
     if not isinstance(measure, str) or measure not in MEASURES:
-        raise ValueError(f"parameter 'measure' must be one of {', '.join(MEASURES)}; got {measure!r}")
+        raise ValueError(f"parameter 'measure' must be one of {', '.join(MEASURES + ('attractor',))}; "
+                         f"got {measure!r}")
     _model_rule(scene, f"measure '{measure}'")
     _checks.angle(scene.theta0, "field 'theta0'")
     over = grid_of(scene) if over is None else over
@@ -482,6 +493,96 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
         # read from the store in this process (threads): a cluster's workers need not see 'out'
         ds.attrs["fraction_decided"] = float((ds.status == 0).mean().compute(scheduler="threads"))
     return ds
+
+
+def attractor_map(scene: Scene, over: dict, *, transient: float = 600.0, samples: int = 48, tol: float = 1e-6,
+                  merge_tol: float = 1e-3, max_period: int | None = None, cell: float = 0.05,
+                  rtol: float = 1e-10, atol: float = 1e-12, threads: int = 0, out=None, client=None,
+                  progress: bool = False, chunk_points: int = 20000) -> AttractorMap:
+    """Find the attractors of a driven scene and label each grid point by the one its orbit ends on.
+
+    Parameters
+    ----------
+    scene : Scene
+        A periodically driven scene (``drive_frequency > 0``).
+    over : dict
+        The grid, as for :func:`pendula.sweep` (e.g. ``{'theta0': ..., 'v0': ...}`` for a basin map).
+    transient : float, optional
+        Time skipped before sampling (rounded up to whole drive periods; default 600).
+    samples : int, optional
+        Stroboscopic samples per point read for recurrence (default 48).
+    tol, merge_tol, max_period, cell : optional
+        See :func:`label_attractors`.
+    rtol, atol : float, optional
+        The integrator's tolerances (default 1e-10, 1e-12).
+    threads, out, client, progress, chunk_points : optional
+        As for :func:`pendula.sweep` (a stored, resumable run with ``out``); the
+        labels do not depend on them.
+
+    Returns
+    -------
+    AttractorMap
+        The label map as a Dataset, the attractors, and the basin measures.
+
+    Raises
+    ------
+    ValueError
+        If the scene is not driven or an argument is out of range.
+
+    See Also
+    --------
+    sweep : ``measure='attractor'`` gives the same map's Dataset.
+    periodic_orbit : Newton's method on one periodic attractor.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> sc = pendula.Scene(damping=0.5, drive_amplitude=1.35, drive_frequency=2/3)
+    >>> am = pendula.attractor_map(sc, {"theta0": [-2.0, 0.0, 2.0], "v0": [-3.0, 0.0, 3.0]}, transient=300, samples=16)
+    >>> [(a.kind, a.period) for a in am.attractors]      # two period-1 rotations, one each way
+    [('periodic', 1), ('periodic', 1)]
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a pendula.Scene, got {type(scene).__name__}")
+    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or not 4 <= samples <= 4096:
+        raise ValueError(f"samples must be a whole number between 4 and 4096, got {samples!r}")
+    for name, val in (("tol", tol), ("merge_tol", merge_tol), ("cell", cell)):
+        if not (isinstance(val, (int, float, np.floating)) and math.isfinite(val) and val > 0):
+            raise ValueError(f"{name} must be a positive finite number, got {val!r}")
+    if not (scene.drive_frequency > 0 and scene.drive_amplitude != 0) and "drive_frequency" not in over:
+        raise ValueError("drive_amplitude, drive_frequency: attractor maps read the stroboscopic map of a "
+                         "periodically driven scene (drive_frequency > 0, drive_amplitude != 0)")
+    pc = sweep(scene, over=over, measure="poincare", transient=transient, samples=int(samples), rtol=rtol,
+               atol=atol, threads=threads, out=out, client=client, progress=progress, chunk_points=chunk_points)
+    from .attractors import AttractorMap, basin_entropy, boundary_fraction, label_attractors, \
+        uncertainty_exponent
+    labels, atts = label_attractors(pc.theta.values, pc.v.values, tol=tol, merge_tol=merge_tol,
+                                    max_period=max_period, cell=cell)
+    labels = np.where(pc.status.values == 0, labels, -1)
+    xr = require("xarray", "sweep", "pendula.attractor_map")
+    dims = tuple(d for d in pc.theta.dims if d != "sample")
+    per = np.array([a.period for a in atts] + [-1])[labels]
+    ds = xr.Dataset(
+        {"attractor": (dims, labels.astype(np.int32), {
+            "long_name": "attractor of the stroboscopic map the orbit ends on",
+            "flag_values": np.arange(-1, len(atts), dtype=np.int32),
+            "flag_meanings": " ".join(["undecided"] + [f"{a.kind}_period_{a.period}_{a.label}" if a.period
+                                                       else f"chaotic_{a.label}" for a in atts])}),
+         "period": (dims, per.astype(np.int32), {"long_name": "period of the attractor in drive periods "
+                                                              "(0 chaotic, -1 undecided)",
+                                                 "units": "1"})},
+        coords={d: pc[d] for d in dims})
+    ds.attrs.update({k: pc.attrs[k] for k in pc.attrs if k != "measure"})
+    bf = boundary_fraction(labels)
+    sb, sbb = basin_entropy(labels) if labels.ndim == 2 and min(labels.shape) >= 5 else (math.nan, math.nan)
+    alpha = uncertainty_exponent(labels)[0] if len(atts) > 1 else math.nan
+    ds.attrs.update({"measure": "attractor", "tol": tol, "merge_tol": merge_tol, "cell": cell,
+                     "boundary_fraction": bf, "basin_entropy": sb, "boundary_basin_entropy": sbb,
+                     "uncertainty_exponent": alpha,
+                     "attractors": json.dumps([{"label": x.label, "kind": x.kind, "period": x.period,
+                                                "theta": x.theta.tolist(), "v": x.v.tolist(),
+                                                "fraction": x.fraction} for x in atts])})
+    return AttractorMap(ds, atts, bf, sb, sbb, alpha)
 
 
 def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, rtol=None, atol=None,
