@@ -113,7 +113,27 @@ def ellipf(phi, m, mc=None):
         Amplitude in radians, any real value (F(phi + j pi) = F(phi) + 2 j K).
     m, mc : array_like
         Parameter and its complement, as in :func:`ellipk`.  For m > 1 the
-        integral is real only while sin^2 phi <= 1/m; elsewhere NaN.
+        integral is real only while m sin^2 phi <= 1 with |phi| < pi/2;
+        elsewhere NaN.
+
+    Returns
+    -------
+    F : ndarray or float
+        int_0^phi dt / sqrt(1 - m sin^2 t); NaN with a RuntimeWarning outside
+        the real domain.
+
+    Notes
+    -----
+    phi is reduced by pi from the exact double: next to an odd multiple of
+    pi/2 its distance from it is formed in double-double, so F keeps its
+    accuracy there even when mc is tiny and F is ill-conditioned in phi.
+    Whether m sin^2 phi > 1 (m > 1) is decided from the double-double sine.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> round(float(pendula.ellipf(1.0, 0.5)), 15)
+    1.083216772845169
     """
     return _incomplete(_kernel.ellipf_v, "ellipf", phi, m, mc)
 
@@ -121,9 +141,28 @@ def ellipf(phi, m, mc=None):
 def ellipeinc(phi, m, mc=None):
     """Incomplete elliptic integral of the second kind E(phi|m).
 
+    Parameters
+    ----------
+    phi, m, mc : array_like
+        As in :func:`ellipf` (the same real domain for m > 1).
+
+    Returns
+    -------
+    E : ndarray or float
+        int_0^phi sqrt(1 - m sin^2 t) dt; NaN with a RuntimeWarning outside
+        the real domain (m > 1 and m sin^2 phi > 1, decided exactly).
+
+    Notes
+    -----
     For 0 <= m < 1 it uses E = mc F + (m mc/3) s^3 R_D(c^2, 1, D^2) + m s c / D
     (s = sin phi, c = cos phi, D^2 = 1 - m s^2), whose terms are all positive,
-    so no digits cancel near m = 1.  See :func:`ellipf` for the parameters.
+    so no digits cancel near m = 1.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> round(float(pendula.ellipeinc(1.0, 0.5)), 15)
+    0.92732988362444
     """
     return _incomplete(_kernel.ellipeinc_v, "ellipeinc", phi, m, mc)
 
@@ -150,7 +189,9 @@ def ellipj(u, m, mc=None):
         reduced with K in double-double, so the error does not grow with u.
     m : array_like
         Parameter m = k^2, any real value: m > 1 through the reciprocal-modulus
-        transformation, m < 0 through the imaginary-modulus transformation.
+        transformation, m < 0 through the imaginary-modulus transformation
+        (for m <= -1023 its core from Jacobi's theta series, so that dn, up
+        to sqrt(1 - m), keeps its relative accuracy).
         May be None when `mc` is given.
     mc : array_like, optional
         Complementary parameter 1 - m, used instead of `m` when given.
@@ -160,7 +201,8 @@ def ellipj(u, m, mc=None):
     sn, cn, dn, am : ndarray or float
         For 0 <= m <= 1, `am` is the continuous (unwrapped) amplitude, monotone
         in u: the angle of the rotating pendulum.  For m > 1 it is
-        asin(sn), which stays in [-pi/2, pi/2].
+        asin(sn), which stays in [-pi/2, pi/2] (computed as atan2(sn, cn),
+        cn > 0, so that it keeps its accuracy next to sn = +-1/sqrt(m)).
 
     Notes
     -----
