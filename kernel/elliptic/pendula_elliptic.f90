@@ -385,29 +385,41 @@ contains
     real(dp), intent(in) :: phi
     real(dp), intent(out) :: j, rh, rl, sg, dh, dl
     logical, intent(out) :: near
-    real(dp) :: p, e, q, f, a, b, en
+    real(dp) :: p, e, a, b
     j = anint(phi / pi)
     call two_prod(j, pi, p, e)
     call two_sum(phi - p, -e, rh, rl)       ! phi - p is exact near j pi (Sterbenz)
     rl = rl - j * pi_lo
     call fast_two_sum(rh, rl, a, b)
     rh = a; rl = b
-    sg = sign(1.0_dp, rh)
     dh = 0.0_dp; dl = 0.0_dp
     near = abs(abs(rh) - half_pi) < 2.0_dp**(-20)
-    if (.not. near) then
-      if (rh > half_pi) then
-        j = j + 1.0_dp
-        call two_sum(rh - pi, rl - pi_lo, rh, e)
-        rl = e
-      else if (rh < -half_pi) then
-        j = j - 1.0_dp
-        call two_sum(rh + pi, rl + pi_lo, rh, e)
-        rl = e
-      end if
-      sg = sign(1.0_dp, rh)
+    if (near) then
+      call reduce_pi_near(phi, j, rh, sg, dh, dl)
+      rl = 0.0_dp
       return
     end if
+    if (rh > half_pi) then
+      j = j + 1.0_dp
+      call two_sum(rh - pi, rl - pi_lo, rh, e)
+      rl = e
+    else if (rh < -half_pi) then
+      j = j - 1.0_dp
+      call two_sum(rh + pi, rl + pi_lo, rh, e)
+      rl = e
+    end if
+    sg = sign(1.0_dp, rh)
+  end subroutine reduce_pi_r
+
+  !> reduce_pi_r next to an odd multiple of pi/2: from the first guess j and
+  !> remainder rh, the final j, sg = sign(r), d = dh + dl = pi/2 - |r| >= 0 and
+  !> rh = r rounded.
+  elemental subroutine reduce_pi_near(phi, j, rh, sg, dh, dl)
+    real(dp), intent(in) :: phi
+    real(dp), intent(inout) :: j, rh
+    real(dp), intent(out) :: sg, dh, dl
+    real(dp) :: p, e, q, f, a, b, en
+    sg = sign(1.0_dp, rh)
     ! delta = phi - en pi/2, en = 2 j + sg odd (exact below 2^53)
     en = 2.0_dp * j + sg
     call two_prod(en, half_pi, p, e)
@@ -425,8 +437,7 @@ contains
       dh = -dh; dl = -dl
     end if
     rh = sg * half_pi - sg * dh
-    rl = 0.0_dp
-  end subroutine reduce_pi_r
+  end subroutine reduce_pi_near
 
   !> Incomplete integral of the first kind F(phi|m) for any real phi.
   elemental function ellip_f(phi, m, mc) result(f)
