@@ -545,6 +545,16 @@ contains
       end if
     else if (mc == 0.0_dp) then
       ev = s
+    else if (j /= 0.0_dp .and. j * s < 0.0_dp .and. c < abs(s) .and. mc >= 1.0e-150_dp) then
+      ! 2 j E + E(r) with r of the other sign and |r| > pi/4 cancels (up to
+      ! half, at |j| = 1 next to |r| = pi/2, where E's own error doubled):
+      ! E(phi) = (2 j + sg) E - sg Delta, sg = sign(r), both terms of one sign,
+      ! with Delta = E - E(|r|) = int_0^d sqrt(mc + m sin^2 t) dt, d = pi/2 - |r|,
+      ! = sqrt(mc) E(d | -m/mc), sin d = c, cos d = |s| (mc >= 1e-150: m/mc
+      ! stays finite)
+      ev = (2.0_dp * j + sign(1.0_dp, s)) * ellip_e(m, mc) - sign(1.0_dp, s) * sqrt(mc) &
+           * einc_reduced(c, abs(s), s * s, 1.0_dp + (m / mc) * (c * c), -m / mc, 1.0_dp / mc)
+      return
     else
       ev = einc_reduced(s, c, c * c, c * c + mc * s * s, m, mc)
     end if
