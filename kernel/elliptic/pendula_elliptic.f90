@@ -339,18 +339,42 @@ contains
   elemental subroutine reduce_pi(phi, j, s, c)
     real(dp), intent(in) :: phi
     real(dp), intent(out) :: j, s, c
-    real(dp) :: rh, rl, dh, dl, sg
+    real(dp) :: rh, rl, dh, dl, sg, p, e
     logical :: near
-    call reduce_pi_r(phi, j, rh, rl, near, sg, dh, dl)
-    if (near) then
-      ! r = sg (pi/2 - d), d = dh + dl >= 0 below 2^-20: sin r = sg cos d, cos r = sin d
-      s = sg * (cos(dh) - sin(dh) * dl)
-      c = sin(dh) + cos(dh) * dl
-    else
-      s = sin(rh) + cos(rh) * rl
-      c = abs(cos(rh) - sin(rh) * rl)
+    ! the first steps of reduce_pi_r written out: this is every F's and E's
+    ! path, and as a call it cost 15% of ellipf
+    j = anint(phi / pi)
+    call two_prod(j, pi, p, e)
+    call two_sum(phi - p, -e, rh, rl)       ! phi - p is exact near j pi (Sterbenz)
+    rl = rl - j * pi_lo
+    if (abs(abs(rh) - half_pi) < 2.0_dp**(-20) + abs(rl)) then
+      call reduce_pi_r(phi, j, rh, rl, near, sg, dh, dl)
+      if (near) then
+        call near_sincos(sg, dh, dl, s, c)
+        return
+      end if
+    else if (rh > half_pi) then
+      j = j + 1.0_dp
+      call two_sum(rh - pi, rl - pi_lo, rh, e)
+      rl = e
+    else if (rh < -half_pi) then
+      j = j - 1.0_dp
+      call two_sum(rh + pi, rl + pi_lo, rh, e)
+      rl = e
     end if
+    s = sin(rh) + cos(rh) * rl
+    c = abs(cos(rh) - sin(rh) * rl)
   end subroutine reduce_pi
+
+  !> r = sg (pi/2 - d), d = dh + dl >= 0 below 2^-20: s = sin r = sg cos d,
+  !> c = cos r = sin d (apart from reduce_pi, so that the common path stays
+  !> small enough to be inlined)
+  elemental subroutine near_sincos(sg, dh, dl, s, c)
+    real(dp), intent(in) :: sg, dh, dl
+    real(dp), intent(out) :: s, c
+    s = sg * (cos(dh) - sin(dh) * dl)
+    c = sin(dh) + cos(dh) * dl
+  end subroutine near_sincos
 
   !> As reduce_pi with sin r and cos r in double-double (s = sh + sl, c = ch + cl).
   elemental subroutine reduce_pi_dd(phi, j, sh, sl, ch, cl)
