@@ -25,7 +25,7 @@ Classes (the parameter is given to pendula as the test says: "via m" or "via mc"
                  each forward and backward in time, t up to 1e4 periods
   period_*       periods of librations and rotations
 
-The second set (--set edges, data/reference_grids_edges.csv.gz) holds the
+The second set (--set edges, data/reference_grids_edges.csv.gz, 1000 draws per class) holds the
 places where a value is ill-conditioned in its own inputs or a formula
 changes, each drawn log-uniformly next to the place:
   am_*           the amplitude am(u|m) in every class of m: 0 <= m < 0.5,
@@ -47,7 +47,7 @@ am - pi u / (2K) being within pi/2 of 0, confirmed by F(am|m) = u (a second
 route); asin(sn) = atan2(sn, cn) with cn > 0 for m > 1.
 
 Usage:  python data/gen_reference_grids.py [--n 2000] [--jobs 2]   (about 20 min on 2 cores)
-        python data/gen_reference_grids.py --set edges [--n 2000]   (about 10 min on 2 cores)
+        python data/gen_reference_grids.py --set edges --n 1000   (22 min on 2 busy cores)
 """
 
 import argparse

@@ -233,3 +233,19 @@ def test_ellipeinc_just_inside_the_m_above_1_edge():
         warnings.simplefilter("error")
         assert worst([pendula.ellipeinc(phi, m)], [ref_e]) <= 4
         assert worst([pendula.ellipf(phi, m)], [ref_f]) <= 4
+
+
+@pytest.mark.parametrize("phi, m", [(-1.5717213480972183, 0.1284314179638475), (1.5717213480972183, 0.9),
+                                    (-4.7, 0.5), (1.58, -3.0), (7.85, None)])
+def test_ellipeinc_just_past_an_odd_multiple_of_half_pi(phi, m):
+    """E(phi) = 2 j E + E(r) with r of the other sign cancels up to half next
+    to |r| = pi/2 (|j| = 1), doubling E's own error: 4.04 eps at the first
+    point.  Now (2 j + sg) E - sg (E - E(|r|)), the difference an integral of
+    its own (sqrt(mc) E(pi/2 - |r| | -m/mc)); the last point through mc = 1e-30."""
+    mc = None
+    if m is None:
+        m, mc = None, 1e-30
+    with mp.workdps(80):
+        mm = mp.mpf(m) if mc is None else 1 - mp.mpf(mc)
+        ref = mp.ellipe(mp.mpf(phi), mm)
+    assert worst([pendula.ellipeinc(phi, m, mc=mc)], [ref]) <= 4

@@ -339,18 +339,42 @@ contains
   elemental subroutine reduce_pi(phi, j, s, c)
     real(dp), intent(in) :: phi
     real(dp), intent(out) :: j, s, c
-    real(dp) :: rh, rl, dh, dl, sg
+    real(dp) :: rh, rl, dh, dl, sg, p, e
     logical :: near
-    call reduce_pi_r(phi, j, rh, rl, near, sg, dh, dl)
-    if (near) then
-      ! r = sg (pi/2 - d), d = dh + dl >= 0 below 2^-20: sin r = sg cos d, cos r = sin d
-      s = sg * (cos(dh) - sin(dh) * dl)
-      c = sin(dh) + cos(dh) * dl
-    else
-      s = sin(rh) + cos(rh) * rl
-      c = abs(cos(rh) - sin(rh) * rl)
+    ! the first steps of reduce_pi_r written out: this is every F's and E's
+    ! path, and as a call it cost 15% of ellipf
+    j = anint(phi / pi)
+    call two_prod(j, pi, p, e)
+    call two_sum(phi - p, -e, rh, rl)       ! phi - p is exact near j pi (Sterbenz)
+    rl = rl - j * pi_lo
+    if (abs(abs(rh) - half_pi) < 2.0_dp**(-20) + abs(rl)) then
+      call reduce_pi_r(phi, j, rh, rl, near, sg, dh, dl)
+      if (near) then
+        call near_sincos(sg, dh, dl, s, c)
+        return
+      end if
+    else if (rh > half_pi) then
+      j = j + 1.0_dp
+      call two_sum(rh - pi, rl - pi_lo, rh, e)
+      rl = e
+    else if (rh < -half_pi) then
+      j = j - 1.0_dp
+      call two_sum(rh + pi, rl + pi_lo, rh, e)
+      rl = e
     end if
+    s = sin(rh) + cos(rh) * rl
+    c = abs(cos(rh) - sin(rh) * rl)
   end subroutine reduce_pi
+
+  !> r = sg (pi/2 - d), d = dh + dl >= 0 below 2^-20: s = sin r = sg cos d,
+  !> c = cos r = sin d (apart from reduce_pi, so that the common path stays
+  !> small enough to be inlined)
+  elemental subroutine near_sincos(sg, dh, dl, s, c)
+    real(dp), intent(in) :: sg, dh, dl
+    real(dp), intent(out) :: s, c
+    s = sg * (cos(dh) - sin(dh) * dl)
+    c = sin(dh) + cos(dh) * dl
+  end subroutine near_sincos
 
   !> As reduce_pi with sin r and cos r in double-double (s = sh + sl, c = ch + cl).
   elemental subroutine reduce_pi_dd(phi, j, sh, sl, ch, cl)
@@ -385,29 +409,41 @@ contains
     real(dp), intent(in) :: phi
     real(dp), intent(out) :: j, rh, rl, sg, dh, dl
     logical, intent(out) :: near
-    real(dp) :: p, e, q, f, a, b, en
+    real(dp) :: p, e, a, b
     j = anint(phi / pi)
     call two_prod(j, pi, p, e)
     call two_sum(phi - p, -e, rh, rl)       ! phi - p is exact near j pi (Sterbenz)
     rl = rl - j * pi_lo
     call fast_two_sum(rh, rl, a, b)
     rh = a; rl = b
-    sg = sign(1.0_dp, rh)
     dh = 0.0_dp; dl = 0.0_dp
     near = abs(abs(rh) - half_pi) < 2.0_dp**(-20)
-    if (.not. near) then
-      if (rh > half_pi) then
-        j = j + 1.0_dp
-        call two_sum(rh - pi, rl - pi_lo, rh, e)
-        rl = e
-      else if (rh < -half_pi) then
-        j = j - 1.0_dp
-        call two_sum(rh + pi, rl + pi_lo, rh, e)
-        rl = e
-      end if
-      sg = sign(1.0_dp, rh)
+    if (near) then
+      call reduce_pi_near(phi, j, rh, sg, dh, dl)
+      rl = 0.0_dp
       return
     end if
+    if (rh > half_pi) then
+      j = j + 1.0_dp
+      call two_sum(rh - pi, rl - pi_lo, rh, e)
+      rl = e
+    else if (rh < -half_pi) then
+      j = j - 1.0_dp
+      call two_sum(rh + pi, rl + pi_lo, rh, e)
+      rl = e
+    end if
+    sg = sign(1.0_dp, rh)
+  end subroutine reduce_pi_r
+
+  !> reduce_pi_r next to an odd multiple of pi/2: from the first guess j and
+  !> remainder rh, the final j, sg = sign(r), d = dh + dl = pi/2 - |r| >= 0 and
+  !> rh = r rounded.
+  elemental subroutine reduce_pi_near(phi, j, rh, sg, dh, dl)
+    real(dp), intent(in) :: phi
+    real(dp), intent(inout) :: j, rh
+    real(dp), intent(out) :: sg, dh, dl
+    real(dp) :: p, e, q, f, a, b, en
+    sg = sign(1.0_dp, rh)
     ! delta = phi - en pi/2, en = 2 j + sg odd (exact below 2^53)
     en = 2.0_dp * j + sg
     call two_prod(en, half_pi, p, e)
@@ -425,8 +461,7 @@ contains
       dh = -dh; dl = -dl
     end if
     rh = sg * half_pi - sg * dh
-    rl = 0.0_dp
-  end subroutine reduce_pi_r
+  end subroutine reduce_pi_near
 
   !> Incomplete integral of the first kind F(phi|m) for any real phi.
   elemental function ellip_f(phi, m, mc) result(f)
@@ -534,6 +569,16 @@ contains
       end if
     else if (mc == 0.0_dp) then
       ev = s
+    else if (j /= 0.0_dp .and. j * s < 0.0_dp .and. c < abs(s) .and. mc >= 1.0e-150_dp) then
+      ! 2 j E + E(r) with r of the other sign and |r| > pi/4 cancels (up to
+      ! half, at |j| = 1 next to |r| = pi/2, where E's own error doubled):
+      ! E(phi) = (2 j + sg) E - sg Delta, sg = sign(r), both terms of one sign,
+      ! with Delta = E - E(|r|) = int_0^d sqrt(mc + m sin^2 t) dt, d = pi/2 - |r|,
+      ! = sqrt(mc) E(d | -m/mc), sin d = c, cos d = |s| (mc >= 1e-150: m/mc
+      ! stays finite)
+      ev = (2.0_dp * j + sign(1.0_dp, s)) * ellip_e(m, mc) - sign(1.0_dp, s) * sqrt(mc) &
+           * einc_reduced(c, abs(s), s * s, 1.0_dp + (m / mc) * (c * c), -m / mc, 1.0_dp / mc)
+      return
     else
       ev = einc_reduced(s, c, c * c, c * c + mc * s * s, m, mc)
     end if

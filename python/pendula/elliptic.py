@@ -162,8 +162,8 @@ def ellipf(phi, m, mc=None):
         Amplitude in radians, any real value (F(phi + j pi) = F(phi) + 2 j K).
     m : array_like
         Parameter m = k^2, any real value.  For m > 1 the integral is real
-        only while sin^2 phi <= 1/m; elsewhere NaN.  May be None when `mc`
-        is given.
+        only while m sin^2 phi <= 1 with |phi| < pi/2; elsewhere NaN.  May be
+        None when `mc` is given.
     mc : array_like, optional
         Complementary parameter 1 - m; used instead of `m` when given.
 
@@ -188,11 +188,18 @@ def ellipf(phi, m, mc=None):
     ellipeinc : the incomplete integral of the second kind.
     scipy.special.ellipkinc : the peer.
 
+    Notes
+    -----
+    phi is reduced by pi from the exact double: next to an odd multiple of
+    pi/2 its distance from it is formed in double-double, so F keeps its
+    accuracy there even when mc is tiny and F is ill-conditioned in phi.
+    Whether m sin^2 phi > 1 (m > 1) is decided from the double-double sine.
+
     Examples
     --------
     >>> import pendula
-    >>> float(pendula.ellipf(1.0, 0.5))
-    1.0832167728451687
+    >>> round(float(pendula.ellipf(1.0, 0.5)), 15)
+    1.083216772845169
     >>> float(pendula.ellipf(3.141592653589793 / 2, 0.5)), float(pendula.ellipk(0.5))   # F(pi/2) = K, 1 ulp
     (1.854074677301372, 1.8540746773013719)
     """
@@ -207,8 +214,8 @@ def ellipeinc(phi, m, mc=None):
     phi : array_like
         Amplitude in radians, any real value.
     m : array_like
-        Parameter m = k^2, any real value (for m > 1 real while
-        sin^2 phi <= 1/m).  May be None when `mc` is given.
+        Parameter m = k^2, any real value (the same real domain for m > 1 as
+        :func:`ellipf`).  May be None when `mc` is given.
     mc : array_like, optional
         Complementary parameter 1 - m; used instead of `m` when given.
 
@@ -216,7 +223,7 @@ def ellipeinc(phi, m, mc=None):
     -------
     E : ndarray or float
         E(phi|m) = int_0^phi sqrt(1 - m sin^2 t) dt; NaN with a RuntimeWarning
-        outside the real domain.
+        outside the real domain (m > 1 and m sin^2 phi > 1, decided exactly).
 
     Raises
     ------
@@ -241,7 +248,7 @@ def ellipeinc(phi, m, mc=None):
     Examples
     --------
     >>> import pendula
-    >>> float(pendula.ellipeinc(1.0, 0.5))
+    >>> round(float(pendula.ellipeinc(1.0, 0.5)), 15)
     0.92732988362444
     """
     return _incomplete(_kernel.ellipeinc_v, "ellipeinc", phi, m, mc)
@@ -305,7 +312,9 @@ def ellipj(u, m, mc=None):
         reduced with K in double-double, so the error does not grow with u.
     m : array_like
         Parameter m = k^2, any real value: m > 1 through the reciprocal-modulus
-        transformation, m < 0 through the imaginary-modulus transformation.
+        transformation, m < 0 through the imaginary-modulus transformation
+        (for m <= -1023 its core from Jacobi's theta series, so that dn, up
+        to sqrt(1 - m), keeps its relative accuracy).
         May be None when `mc` is given.
     mc : array_like, optional
         Complementary parameter 1 - m, used instead of `m` when given.
@@ -315,8 +324,9 @@ def ellipj(u, m, mc=None):
     sn, cn, dn, am : ndarray or float
         For 0 <= m <= 1, `am` is the continuous (unwrapped) amplitude, monotone
         in u: the angle of the rotating pendulum.  For m > 1 it is
-        asin(sn), which stays in [-pi/2, pi/2].  NaN with a RuntimeWarning
-        for abs(u) beyond 2**48 half periods.
+        asin(sn), which stays in [-pi/2, pi/2] (computed as atan2(sn, cn),
+        cn > 0, so that it keeps its accuracy next to sn = +-1/sqrt(m)).  NaN
+        with a RuntimeWarning for abs(u) beyond 2**48 half periods.
 
     Raises
     ------
