@@ -403,7 +403,7 @@ GRID_ROWS = [("sn, cn, dn", "m > 1 via m", "jac_m_gt1_m"), ("sn, cn, dn", "m > 1
 
 
 def grids_markdown(path) -> str:
-    """README's table of the worst error per class of the stored random grid
+    """The accuracy report's table (docs/source/reports/accuracy.md) of the worst error per class of the stored random grid
     (``pendula accuracy grids``)."""
     rep = {r["class"]: r["worst_eps"] for r in grids_report(path)}
     missing = {c for *_, c in GRID_ROWS} ^ set(rep)

@@ -7,7 +7,7 @@
     pendula wisdom               precompute FFTW plans once per machine (cache file)
     pendula accuracy elliptic    worst errors vs mpmath, beside scipy and GSL
     pendula accuracy integrators work-precision diagram and long-run energy (CSV, PNG)
-    pendula accuracy grids       worst error per class of the stored random grids (README's table)
+    pendula accuracy grids       worst error per class of the stored random grids (the accuracy report's table)
 """
 
 from __future__ import annotations
