@@ -113,3 +113,30 @@ def test_public_name_has_the_numpydoc_sections(name):
     missing = [s for s in _required(obj) if not set(s.split("|")) & have]
     assert not missing, f"pendula.{name}: docstring lacks {missing}"
     assert ">>> " in doc, f"pendula.{name}: its Examples section has no doctest"
+
+
+DOCS = ROOT / "docs" / "source"
+
+
+def _page_blocks(path):
+    """The Python code blocks of a page: Markdown fences and reST code-block directives."""
+    text = path.read_text()
+    blocks = re.findall(r"^```python\n(.*?)^```", text, re.S | re.M)
+    for m in re.finditer(r"^\.\. code-block:: python\n\n((?:   .*\n|\n)+)", text, re.M):
+        blocks.append("\n".join(line[3:] for line in m.group(1).splitlines()))
+    return blocks
+
+
+PAGES_WITH_CODE = sorted(str(p.relative_to(DOCS)) for p in list(DOCS.rglob("*.md")) + list(DOCS.rglob("*.rst"))
+                         if not {"gallery", "generated", "_build"} & set(p.parts) and _page_blocks(p))
+
+
+@pytest.mark.parametrize("page", PAGES_WITH_CODE)
+def test_python_blocks_of_the_docs_pages_run(page, tmp_path, monkeypatch):
+    """Every Python block of a page runs as pasted (the blocks of a page share one namespace)."""
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("MPLBACKEND", "agg")
+    ns = {"__name__": "__docs__"}
+    with contextlib.redirect_stdout(io.StringIO()):
+        for i, block in enumerate(_page_blocks(DOCS / page)):
+            exec(compile(block, f"{page} block {i}", "exec"), ns)

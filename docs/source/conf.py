@@ -85,7 +85,8 @@ sphinx_gallery_conf = {
 
 # No page may load anything from the network (the site must work offline, and
 # the browser check fails on any resource that does not load): no MathJax
-# (formulas are written in Unicode), no CDN scripts.
+# (formulas are written in Unicode: a :math: role or a math directive would make
+# Sphinx load MathJax from its CDN), no CDN scripts.
 
 # ---- HTML ------------------------------------------------------------------
 html_theme = "pydata_sphinx_theme"

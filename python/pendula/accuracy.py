@@ -353,9 +353,9 @@ GRID_ROWS = [("sn, cn, dn", "m > 1 via m", "jac_m_gt1_m"), ("sn, cn, dn", "m > 1
 
 
 def grids_markdown(path) -> str:
-    """README's table of the worst error per class of the stored random grids
-    (``pendula accuracy grids``): the points of each class, its worst error
-    and the bound the tests hold it to, in eps."""
+    """The accuracy report's table (docs/source/reports/accuracy.md) of the worst error per class of
+    the stored random grids (``pendula accuracy grids``): the points of each class, its worst error and
+    the bound the tests hold it to, in eps."""
     rep = {r["class"]: r for r in grids_report(path)}
     missing = {c for *_, c in GRID_ROWS} ^ set(rep)
     if missing:

@@ -436,7 +436,7 @@ def machine_record() -> dict:
 
 
 def readme_tables(record: dict) -> str:
-    """Markdown tables for README from a recorded run (``pendula bench --readme FILE``)."""
+    """Markdown tables of the benchmark report (docs/source/reports/benchmarks.md) from a recorded run (``pendula bench --readme FILE``)."""
     m = record["machine"]
     load = m.get("load_average")
     load = "/".join(f"{x:.1f}" for x in load) if load else "unknown"

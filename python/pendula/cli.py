@@ -7,7 +7,7 @@
     pendula wisdom               precompute FFTW plans once per machine (cache file)
     pendula accuracy elliptic    worst errors vs mpmath, beside scipy and GSL
     pendula accuracy integrators work-precision diagram and long-run energy (CSV, PNG)
-    pendula accuracy grids       worst error per class of the stored random grids (README's table)
+    pendula accuracy grids       worst error per class of the stored random grids (the accuracy report's table)
     pendula --version            the installed version
 
 A feature whose optional package is missing prints one line naming the extra

@@ -53,7 +53,7 @@ CYCLOID_BLOCK = 1 << 16
 
 def choose_method(scene: Scene) -> str:
     """What 'auto' picks: the exact solution whenever the scene allows it,
-    otherwise DOP853.  The work-precision study (README) finds DOP853 and GSL's
+    otherwise DOP853.  The work-precision study (docs: What accuracy costs in time) finds DOP853 and GSL's
     rk8pd within a few per cent of each other at equal final error, and both
     far cheaper than every other method below 1e-6; DOP853 also has dense
     output, runs backwards in time and locates events, which rk8pd here does not."""
