@@ -145,3 +145,10 @@ def test_auto_picks_what_the_recorded_table_says(record):
     scene = pendula.Scene(v0=2.3, damping=0.1, rtol=1e-9, atol=1e-9)
     assert pendula.simulate(scene, [0.0, 1.0]).method == "dop853"
     assert pendula.simulate(pendula.Scene(v0=2.5), [0.0, 1.0]).method == "exact"
+
+
+def test_docstring_examples_run():
+    import doctest
+
+    failures, tried = doctest.testmod(wp, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+    assert failures == 0 and tried > 0
