@@ -43,7 +43,7 @@ MAX_BATCHES = 10
 
 #: pendula's methods and their settings (rtol for adaptive ones, with atol = rtol; dt for fixed-step ones)
 TOLS = [10.0 ** -k for k in range(3, 15)]
-PENDULA_ADAPTIVE = ("dopri5", "dop853", "gsl-rk8pd")
+PENDULA_ADAPTIVE = ("dopri5", "dop853", "vern9", "gsl-rk8pd")
 #: methods for theta'' = f(t, theta) only (no damping): the Runge-Kutta-Nystrom pair
 PENDULA_NYSTROM = ("dprkn6",)
 PENDULA_FIXED = {"rk4": [0.1, 0.05, 0.025, 0.0125, 0.00625, 0.003125],
@@ -219,7 +219,7 @@ def _process_batch(fn):
 # ---------------------------------------------------------------- pendula (kernel clock)
 
 _KCODES = {"exact": 0, "rk4": 1, "verlet": 2, "yoshida4": 3, "yoshida6": 4, "yoshida8": 5, "gauss4": 6,
-           "gauss6": 7, "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10, "dprkn6": 11}
+           "gauss6": 7, "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10, "dprkn6": 11, "vern9": 12}
 
 
 def run_pendula(p, t, method, rtol=0.0, dt=0.0, batch=BATCH_SECONDS, max_batches=MAX_BATCHES):
