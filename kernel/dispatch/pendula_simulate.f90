@@ -31,7 +31,7 @@ module pendula_simulate
     sim_model_clash = 15, sim_exact_refused = 16, sim_backward = 17, sim_gsl_failed = 18, &
     sim_too_many_steps = 19, sim_cancelled = 20, sim_closed_form_only = 21, sim_beyond_cusp = 22, &
     sim_nonfinite_t = 23, sim_cord_effects = 24, sim_velocity_force = 25
-  !> method codes: the integrators' 1..9, then GSL's rk8pd and the exact path
+  !> method codes: the integrators' 1..9, 11 (dprkn6) and 12 (vern9), then GSL's rk8pd and the exact path
   integer, parameter, public :: m_gsl_rk8pd = 10, m_exact = 0
 
   !> What a model is, for users (`pendula models`) and for the dispatcher.
