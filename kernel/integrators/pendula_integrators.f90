@@ -63,7 +63,7 @@ module pendula_integrators
     real(dp) :: eps = 1.0_dp, beta = 0.0_dp, tau = 0.0_dp
     real(dp) :: amp = 0.0_dp, omega = 0.0_dp, phase = 0.0_dp
     logical :: damped = .false., torqued = .false., driven = .false.
-    !> non-uniform gravity (issue 13): field kind and parameter of pendula_gravity; 0 = uniform
+    !> non-uniform gravity: field kind and parameter of pendula_gravity; 0 = uniform
     integer :: gkind = 0
     real(dp) :: gpar = 0.0_dp
   end type pendulum_model
