@@ -293,7 +293,7 @@ subroutine models_v(table)
   end do
 end subroutine models_v
 
-! Integrate a scene's model: method codes 1..9 (see pendula_integrators), 10 = GSL rk8pd.
+! Integrate a scene's model: method codes 1..9, 11, 12 (see pendula_integrators), 10 = GSL rk8pd.
 ! t must be sorted ascending.  stats = [steps, accepted, rejected, rhs evaluations].
 subroutine integrate_v(n, method, params, gkind, gpar, theta0, v0, t, rtol, atol, dt, ev_kind, ev_level, &
                        ev_dir, ev_terminal, max_ev, cancel, theta, v, stats, status, nev, tev, thev, vev)

@@ -19,7 +19,7 @@ module pendula_simulate
     gr_libration, gr_rotation
   use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate, m_rk4, m_verlet, &
     m_yoshida4, m_yoshida6, m_yoshida8, m_gauss4, m_gauss6, m_dopri5, m_dop853, st_too_many_steps, &
-    st_cancelled, st_velocity_force, m_dprkn6, max_steps, max_fixed_steps
+    st_cancelled, st_velocity_force, m_dprkn6, m_vern9, max_steps, max_fixed_steps
   use pendula_gsl_iface, only: pendula_gsl_rk8pd
   implicit none
   private
@@ -31,7 +31,7 @@ module pendula_simulate
     sim_model_clash = 15, sim_exact_refused = 16, sim_backward = 17, sim_gsl_failed = 18, &
     sim_too_many_steps = 19, sim_cancelled = 20, sim_closed_form_only = 21, sim_beyond_cusp = 22, &
     sim_nonfinite_t = 23, sim_cord_effects = 24, sim_velocity_force = 25
-  !> method codes: the integrators' 1..9, then GSL's rk8pd and the exact path
+  !> method codes: the integrators' 1..9, 11 (dprkn6) and 12 (vern9), then GSL's rk8pd and the exact path
   integer, parameter, public :: m_gsl_rk8pd = 10, m_exact = 0
 
   !> What a model is, for users (`pendula models`) and for the dispatcher.
@@ -108,6 +108,7 @@ contains
     case ('dop853');   method_code = m_dop853
     case ('gsl-rk8pd'); method_code = m_gsl_rk8pd
     case ('dprkn6');   method_code = m_dprkn6
+    case ('vern9');    method_code = m_vern9
     case default;      method_code = -1
     end select
   end function method_code

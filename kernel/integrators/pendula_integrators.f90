@@ -27,6 +27,10 @@
 !> five force evaluations per step (the sixth stage is the next step's first),
 !> the step controlled by the embedded 4th-order pair.  No dense output: the
 !> steps are shortened to land on the output times, so no events.
+!>
+!> Verner's 9(8) pair (rtol, atol): 16 stages, any model; the step controlled
+!> by the embedded 8th-order weights; no dense output (steps land on the output
+!> times, no events).
 module pendula_integrators
   use pendula_kinds, only: dp, i8, nan_dp
   use pendula_gravity, only: gravity_accel
@@ -40,7 +44,7 @@ module pendula_integrators
   real(dp), parameter :: d8_at(0:15, 0:15) = transpose(d8_a)
 
   integer, parameter, public :: m_rk4 = 1, m_verlet = 2, m_yoshida4 = 3, m_yoshida6 = 4, &
-    m_yoshida8 = 5, m_gauss4 = 6, m_gauss6 = 7, m_dopri5 = 8, m_dop853 = 9, m_dprkn6 = 11
+    m_yoshida8 = 5, m_gauss4 = 6, m_gauss6 = 7, m_dopri5 = 8, m_dop853 = 9, m_dprkn6 = 11, m_vern9 = 12
   integer, parameter, public :: st_ok = 0, st_bad_step = 1, st_bad_tol = 2, st_bad_method = 3, &
     st_step_underflow = 5, st_nonfinite = 6, st_no_dense = 9, st_stopped = 10, &
     st_too_many_steps = 7, st_cancelled = 8, st_velocity_force = 12
@@ -219,9 +223,12 @@ contains
     theta = nan_dp; v = nan_dp
     nev = 0
     status = st_ok
-    adaptive = method == m_dopri5 .or. method == m_dop853 .or. method == m_dprkn6
-    if ((method < m_rk4 .or. method > m_dop853) .and. method /= m_dprkn6) then
+    adaptive = method == m_dopri5 .or. method == m_dop853 .or. method == m_dprkn6 .or. method == m_vern9
+    if ((method < m_rk4 .or. method > m_dop853) .and. method /= m_dprkn6 .and. method /= m_vern9) then
       status = st_bad_method; return
+    end if
+    if (method == m_vern9 .and. ev%kind /= 0) then
+      status = st_no_dense; return
     end if
     if (method == m_dprkn6) then
       if (m%damped) then
@@ -277,6 +284,12 @@ contains
       e = ev
       if (.not. with_events) e%kind = 0
       select case (method)
+      case (m_vern9)
+        if (present(cancel)) then
+          call run_verner(m, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, cancel)
+        else
+          call run_verner(m, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, no_cancel)
+        end if
       case (m_dprkn6)
         if (present(cancel)) then
           call run_nystrom(m, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, cancel)
@@ -571,6 +584,104 @@ contains
       end if
     end do
   end subroutine run_nystrom
+
+  ! ====================================================================
+  ! Verner's 9(8) pair
+  ! ====================================================================
+
+  !> Verner's 9(8) pair on (theta, v): 16 stages per step, Hairer's RMS error
+  !> norm of the difference to the embedded 8th-order solution, the step
+  !> controlled as DOP853's (exponent 1/9, factors in [1/6, 3]); steps are
+  !> shortened to end on each output time.
+  subroutine run_verner(m, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, cancel)
+    type(pendulum_model), intent(in) :: m
+    integer, intent(inout), volatile :: cancel
+    real(dp), intent(in) :: theta0, v0, ts(:), dir, rtol, atol
+    real(dp), intent(inout) :: ths(:), vs(:)
+    type(run_stats), intent(inout) :: stats
+    integer, intent(inout) :: status
+    real(dp) :: t, y(2), ys(2), ynew(2), e(2), sk(2), k(0:15, 2), err, h, hnew, hs, fac, fac11, target
+    real(dp), parameter :: safe = 0.9_dp, expo = 1.0_dp / 9.0_dp, facc1 = 1.0_dp / 0.333_dp, &
+      facc2 = 1.0_dp / 6.0_dp
+    integer :: kout, st, i
+    logical :: reject, hit
+
+    if (size(ts) == 0) return
+    t = 0.0_dp; y = [theta0, v0]
+    kout = 1
+    do while (kout <= size(ts))
+      if (ts(kout) /= 0.0_dp) exit
+      ths(kout) = y(1); vs(kout) = y(2)
+      kout = kout + 1
+    end do
+    if (kout > size(ts)) return
+    ! starting step: Hairer's first guess from the state and slope scales (order 9)
+    sk = atol + rtol * abs(y)
+    k(0, 1) = y(2); k(0, 2) = accel(m, t, y(1), y(2))
+    h = 0.01_dp * sqrt(sum((y / sk)**2) / max(1.0e-10_dp, sum((k(0, :) / sk)**2)))
+    if (.not. (h > 1.0e-6_dp)) h = 1.0e-6_dp
+    h = dir * min(h, abs(ts(size(ts))))
+    reject = .false.
+    do
+      if (abs(h) <= 16.0_dp * epsilon(1.0_dp) * abs(t) .or. h == 0.0_dp) then
+        status = st_step_underflow; return
+      end if
+      if (stats%nsteps >= max_steps) then
+        status = st_too_many_steps; return
+      end if
+      if (mod(stats%nsteps, poll_every) == 0) then
+        if (cancel /= 0) then
+          status = st_cancelled; return
+        end if
+      end if
+      target = ts(kout)
+      hit = dir * (t + h - target) >= 0.0_dp
+      hs = h
+      if (hit) hs = target - t
+      k(0, 1) = y(2); k(0, 2) = accel(m, t, y(1), y(2))
+      do st = 1, 15
+        do i = 1, 2
+          ys(i) = y(i) + hs * dot_product(v9_a(st, 0:st - 1), k(0:st - 1, i))
+        end do
+        k(st, 1) = ys(2)
+        k(st, 2) = accel(m, t + v9_c(st) * hs, ys(1), ys(2))
+      end do
+      do i = 1, 2
+        ynew(i) = y(i) + hs * dot_product(v9_b, k(:, i))
+        e(i) = hs * dot_product(v9_e, k(:, i))
+      end do
+      stats%nfev = stats%nfev + 16
+      stats%nsteps = stats%nsteps + 1
+      sk = atol + rtol * max(abs(y), abs(ynew))
+      err = sqrt(0.5_dp * sum((e / sk)**2))
+      if (.not. (err == err) .or. .not. all(abs(ynew) <= huge(1.0_dp))) then
+        status = st_nonfinite; return
+      end if
+      fac11 = err**expo
+      fac = max(facc2, min(facc1, fac11 / safe))
+      hnew = hs / fac
+      if (err <= 1.0_dp) then
+        stats%naccept = stats%naccept + 1
+        t = t + hs
+        if (hit) t = target
+        y = ynew
+        do while (kout <= size(ts))
+          if (ts(kout) /= t) exit
+          ths(kout) = y(1); vs(kout) = y(2)
+          kout = kout + 1
+        end do
+        if (kout > size(ts)) exit
+        if (hit) hnew = sign(max(abs(hnew), abs(h)), h)
+        if (abs(hnew) > abs(h) .and. reject) hnew = h
+        reject = .false.
+        h = hnew
+      else
+        stats%nreject = stats%nreject + 1
+        h = hs / min(facc1, fac11 / safe)
+        reject = .true.
+      end if
+    end do
+  end subroutine run_verner
 
   ! ====================================================================
   ! Adaptive methods with dense output

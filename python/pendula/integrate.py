@@ -4,7 +4,8 @@ Method names (a contract): 'rk4', 'verlet', 'yoshida4', 'yoshida6', 'yoshida8',
 'gauss4', 'gauss6' (fixed step: they take ``dt``), 'dopri5', 'dop853',
 'gsl-rk8pd', 'dprkn6' (adaptive: they take ``rtol`` and ``atol``; 'dprkn6', Dormand &
 Prince's Runge-Kutta-Nystrom pair RKN6(4), takes undamped scenes only and has no dense
-output, so no events), 'exact' and 'auto'.
+output, so no events), 'vern9' (Verner's 9(8) pair, any scene, no dense output: no
+events), 'exact' and 'auto'.
 The right-hand side holds only the effects the scene names.
 """
 
@@ -27,9 +28,9 @@ from .systems.rigid import orbit
 __all__ = ["integrate_scene", "find_events", "numerical_period", "Events", "FIXED_STEP", "ADAPTIVE"]
 
 CODES = {"rk4": 1, "verlet": 2, "yoshida4": 3, "yoshida6": 4, "yoshida8": 5, "gauss4": 6, "gauss6": 7,
-         "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10, "dprkn6": 11}
+         "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10, "dprkn6": 11, "vern9": 12}
 FIXED_STEP = ("rk4", "verlet", "yoshida4", "yoshida6", "yoshida8", "gauss4", "gauss6")
-ADAPTIVE = ("dopri5", "dop853", "gsl-rk8pd", "dprkn6")
+ADAPTIVE = ("dopri5", "dop853", "gsl-rk8pd", "dprkn6", "vern9")
 _STATUS = {1: "the step dt must be positive", 2: "rtol must be > 0 and atol >= 0", 3: "unknown method",
            5: "step size underflow (the problem may be singular or the tolerance unreachable)",
            6: "the state became non-finite", 9: "events need a method with dense output (dopri5, dop853)",

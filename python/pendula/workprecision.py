@@ -2,6 +2,8 @@
 
 Problems, references, peers, timing and the tables/figures made from the
 recorded run (data/bench/work_precision.json); see docs/source/work_precision.rst.
+The problem definitions come first and are plain data: the reference generator
+(data/gen_work_precision_reference.py) reads them without importing the package.
 """
 
 from __future__ import annotations
@@ -19,6 +21,9 @@ PROBLEMS = {
 N_OUT = 100
 
 # ---- end of problem definitions
+
+__all__ = ["PROBLEMS", "N_OUT", "TARGETS", "load_reference", "errors", "best_time", "run_study", "answer_table",
+           "answer_rst", "write_figures", "merge_records", "study_main", "regenerate_docs"]
 
 import datetime
 import json
@@ -38,7 +43,7 @@ MAX_BATCHES = 10
 
 #: pendula's methods and their settings (rtol for adaptive ones, with atol = rtol; dt for fixed-step ones)
 TOLS = [10.0 ** -k for k in range(3, 15)]
-PENDULA_ADAPTIVE = ("dopri5", "dop853", "gsl-rk8pd")
+PENDULA_ADAPTIVE = ("dopri5", "dop853", "vern9", "gsl-rk8pd")
 #: methods for theta'' = f(t, theta) only (no damping): the Runge-Kutta-Nystrom pair
 PENDULA_NYSTROM = ("dprkn6",)
 PENDULA_FIXED = {"rk4": [0.1, 0.05, 0.025, 0.0125, 0.00625, 0.003125],
@@ -70,8 +75,32 @@ def reference_path() -> pathlib.Path:
 
 
 def load_reference(path=None) -> dict:
-    """Per problem: t, theta, v (float64, rounded from the stored 35 digits), the reference's own
-    check and the double-precision floor."""
+    """The stored references of the study's problems.
+
+    Parameters
+    ----------
+    path : str or path, optional
+        The reference file (default: data/work_precision_reference.json).
+
+    Returns
+    -------
+    dict
+        Per problem: ``t``, ``theta``, ``v`` (float64 arrays, rounded from the stored
+        35 digits), ``reference_check`` (the difference of two Taylor integrations),
+        ``floor_error_final`` and ``floor_error_max`` (the double-precision floor).
+
+    Raises
+    ------
+    FileNotFoundError
+        When the file is not found.
+
+    Examples
+    --------
+    >>> from pendula.workprecision import load_reference
+    >>> ref = load_reference()                                  # doctest: +SKIP
+    >>> ref["damped"]["reference_check"] < 1e-20                # doctest: +SKIP
+    True
+    """
     data = json.loads(pathlib.Path(path or reference_path()).read_text())
     out = {}
     for name, r in data["problems"].items():
@@ -89,8 +118,32 @@ def _params(p) -> np.ndarray:
 
 
 def errors(p, ref, theta, v) -> dict:
-    """Errors of one run: the state's error (max of |d theta| and |d v|) at the final time and
-    the largest over the output times; for conservative problems the largest |E - E0|."""
+    """Errors of one run against the reference.
+
+    Parameters
+    ----------
+    p : dict
+        The problem (an entry of PROBLEMS).
+    ref : dict
+        Its reference (an entry of :func:`load_reference`).
+    theta, v : array_like
+        The run's state at the reference's output times.
+
+    Returns
+    -------
+    dict
+        ``error_final``: max(|d theta|, |d v|) at the final time; ``error_max``: the largest
+        over the output times (inf where the run is not finite); ``error_energy``: the
+        largest |E - E0| for a conservative problem, else None.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pendula.workprecision import PROBLEMS, errors
+    >>> ref = {"theta": np.zeros(3), "v": np.zeros(3)}
+    >>> errors(PROBLEMS["damped"], ref, [0.0, 1e-9, 0.0], [0.0, 0.0, 2e-12])["error_max"]
+    1e-09
+    """
     theta = np.asarray(theta, dtype=float)
     v = np.asarray(v, dtype=float)
     e = np.maximum(np.abs(theta - ref["theta"]), np.abs(v - ref["v"]))
@@ -106,11 +159,35 @@ def errors(p, ref, theta, v) -> dict:
 # ---------------------------------------------------------------- timing
 
 def best_time(run_batch, batch_seconds=BATCH_SECONDS, max_batches=MAX_BATCHES) -> dict:
-    """Time a run honestly: run_batch(n) runs it n times and returns the CPU seconds of one run
-    (measured around the runs alone).  n is chosen so that one batch lasts about batch_seconds;
-    batches are repeated until the best three agree within SPREAD_GOAL (relative spread of the
-    best time: (third best - best) / best), or max_batches.  Returns seconds (best), repeats
-    (runs timed in all), spread."""
+    """Time a run until its best time is stable.
+
+    n is chosen from one calibrating call so that a batch lasts about batch_seconds;
+    batches are repeated until the best three agree within SPREAD_GOAL (the relative
+    spread of the best time, (third best - best) / best), or max_batches (3 when one
+    run takes over SLOW_RUN seconds).
+
+    Parameters
+    ----------
+    run_batch : callable
+        run_batch(n) runs the solver n times and returns the CPU seconds of one run,
+        measured around the runs alone.
+    batch_seconds : float
+        The length of one batch.
+    max_batches : int
+        The most batches.
+
+    Returns
+    -------
+    dict
+        ``seconds`` (the best batch's time per run), ``repeats`` (runs timed in all,
+        the calibrating call not counted), ``spread``.
+
+    Examples
+    --------
+    >>> from pendula.workprecision import best_time
+    >>> best_time(lambda n: 1e-3)["seconds"]
+    0.001
+    """
     n = 1
     t1 = run_batch(1)
     if t1 < batch_seconds:
@@ -142,7 +219,7 @@ def _process_batch(fn):
 # ---------------------------------------------------------------- pendula (kernel clock)
 
 _KCODES = {"exact": 0, "rk4": 1, "verlet": 2, "yoshida4": 3, "yoshida6": 4, "yoshida8": 5, "gauss4": 6,
-           "gauss6": 7, "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10, "dprkn6": 11}
+           "gauss6": 7, "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10, "dprkn6": 11, "vern9": 12}
 
 
 def run_pendula(p, t, method, rtol=0.0, dt=0.0, batch=BATCH_SECONDS, max_batches=MAX_BATCHES):
@@ -349,9 +426,42 @@ def _plan(p, tols, quick):
 
 
 def run_study(problems=None, tols=None, quick=False, progress=True, reference=None, methods=None) -> dict:
-    """Run the work-precision study: every method and setting on every problem, errors against
-    the stored reference, CPU time by the honest clock of each package.  Returns the record
-    written to data/bench/work_precision.json."""
+    """Run the work-precision study.
+
+    Every method and setting on every problem; errors against the stored reference;
+    the CPU time of the solver alone (:func:`best_time`).  Peers that are not installed
+    (scikit-sundae, numbalsoda: ``make bench-peers``) are left out.
+
+    Parameters
+    ----------
+    problems : sequence of str, optional
+        Names of PROBLEMS (default: all; quick: 'damped').
+    tols : sequence of float, optional
+        rtol (= atol) of the adaptive methods (default TOLS).
+    quick : bool
+        The short form of ``make demo``: pendula's adaptive methods, GSL and SciPy's
+        RK45 and DOP853 at three tolerances, short batches.
+    progress : bool
+        Print one line per run.
+    reference : str or path, optional
+        The reference file (see :func:`load_reference`).
+    methods : sequence of str, optional
+        Only these methods.
+
+    Returns
+    -------
+    dict
+        The record: ``date``, ``machine``, ``versions``, the timing and error rules,
+        ``floors`` per problem and ``rows`` (problem, package, method, setting,
+        error_final, error_max, error_energy, seconds, repeats, spread).
+
+    Examples
+    --------
+    >>> from pendula.workprecision import run_study
+    >>> rec = run_study(problems=("damped",), tols=[1e-6], quick=True, progress=False)  # doctest: +SKIP
+    >>> sorted({r["package"] for r in rec["rows"]})                                      # doctest: +SKIP
+    ['gsl', 'pendula', 'scipy']
+    """
     import warnings
 
     ref_all = load_reference(reference)
@@ -440,8 +550,31 @@ def _fastest(rows, target, pred):
 
 
 def answer_table(record: dict, targets=TARGETS) -> list[dict]:
-    """For each problem and target error (largest state error over the output times): pendula's
-    fastest integrator and setting, the fastest peer, SciPy's fastest, and the time ratios."""
+    """The answer a user can act on, from a recorded run.
+
+    Parameters
+    ----------
+    record : dict
+        A record of :func:`run_study` (e.g. data/bench/work_precision.json).
+    targets : sequence of float
+        Target errors (the largest state error over the output times).
+
+    Returns
+    -------
+    list of dict
+        Per problem and target: ``pendula`` (the fastest pendula integrator's row that
+        reaches it, or None), ``peer``, ``scipy``, ``compiled`` (the fastest peer other
+        than SciPy), and the time ratios ``peer_ratio``, ``scipy_ratio``,
+        ``compiled_ratio`` (theirs / pendula's).
+
+    Examples
+    --------
+    >>> from pendula.workprecision import answer_table
+    >>> rows = [{"problem": "damped", "package": "pendula", "method": "dop853", "error_max": 1e-7, "seconds": 1e-4},
+    ...         {"problem": "damped", "package": "scipy", "method": "RK45", "error_max": 1e-7, "seconds": 1e-2}]
+    >>> answer_table({"rows": rows}, targets=[1e-6])[0]["scipy_ratio"]
+    100.0
+    """
     out = []
     rows = record["rows"]
     problems = list(dict.fromkeys(r["problem"] for r in rows))
@@ -492,6 +625,45 @@ def answer_rst(record: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _same_setting_ratios(record, package, method, ref_method="dop853"):
+    """Time ratios package:method / pendula:ref_method at equal problem and rtol."""
+    mine = {(r["problem"], r["setting"]): r["seconds"] for r in record["rows"]
+            if r["package"] == "pendula" and r["method"] == ref_method}
+    return [r["seconds"] / mine[(r["problem"], r["setting"])] for r in record["rows"]
+            if r["package"] == package and r["method"] == method and (r["problem"], r["setting"]) in mine]
+
+
+def summary_rst(record: dict) -> str:
+    """The measured verdicts of the report page, as an RST bullet list generated from the record:
+    the ratio ranges against SciPy and the compiled peers, and the cells where pendula is slower."""
+    table = answer_table(record)
+    sci = [a["scipy_ratio"] for a in table if a["scipy_ratio"] is not None]
+    comp = [a for a in table if a["compiled_ratio"] is not None]
+    slower = [a for a in comp if a["compiled_ratio"] < 1.0]
+    lines = []
+    if sci:
+        lines.append(f"* SciPy's fastest / pendula's fastest: {min(sci):.0f} to {max(sci):.0f} over the {len(sci)} "
+                     f"cells both reach; below 30 in {sum(x < 30 for x in sci)} of them.")
+    if comp:
+        lines.append(f"* fastest compiled peer / pendula's fastest: {min(a['compiled_ratio'] for a in comp):.2f} to "
+                     f"{max(a['compiled_ratio'] for a in comp):.2f} over {len(comp)} cells; pendula is slower in "
+                     f"{len(slower)}: " + ", ".join(f"{a['problem']} {a['target']:.0e} ({_cell(a['compiled'])}, "
+                                                     f"{a['compiled_ratio']:.2f})" for a in slower) + ".")
+    for pkg, method in (("numbalsoda", "dop853"), ("gsl", "gsl-rk8pd"), ("sundials", "CVODE-Adams"),
+                        ("numbalsoda", "lsoda")):
+        r = _same_setting_ratios(record, pkg, method)
+        if r:
+            lines.append(f"* {pkg} {method} / pendula's dop853 at the same problem and rtol: median "
+                         f"{float(np.median(r)):.2f} (from {min(r):.2f} to {max(r):.2f}, {len(r)} settings).")
+    ex = [r for r in record["rows"] if r["method"] == "exact"]
+    for r in ex:
+        integ = [q["seconds"] for q in record["rows"] if q["problem"] == r["problem"] and q["method"] != "exact"]
+        lines.append(f"* exact path, {r['problem']}: {_ms(r['seconds'])} for {record.get('n_out', N_OUT) + 1} "
+                     f"outputs, error {r['error_max']:.1e}; the cheapest integrator run of any accuracy costs "
+                     f"{min(integ) / r['seconds']:.0f} times more.")
+    return "\n".join(lines) + "\n"
+
+
 def versions_rst(record: dict) -> str:
     """Machine, date and versions of the recorded run, as an RST field list."""
     m = record["machine"]
@@ -506,8 +678,29 @@ PACKAGE_STYLE = {"pendula": "-", "gsl": "--", "scipy": ":", "sundials": "-.", "n
 
 
 def write_figures(record: dict, outdir) -> list[pathlib.Path]:
-    """One work-precision diagram per problem (error against CPU time, log-log), every package on
-    the same axes, with the double-precision floor and (conservative problems) the exact path."""
+    """One work-precision diagram per problem.
+
+    Error against CPU time (log-log), every package on the same axes, with the
+    double-precision floor and (conservative problems) the exact path.
+
+    Parameters
+    ----------
+    record : dict
+        A record of :func:`run_study`.
+    outdir : str or path
+        Folder for work_precision_PROBLEM.png (created).
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+
+    Examples
+    --------
+    >>> import json
+    >>> from pendula.workprecision import record_path, write_figures
+    >>> write_figures(json.loads(record_path().read_text()), "out")   # doctest: +SKIP
+    """
     import matplotlib
 
     matplotlib.use("Agg")
@@ -530,12 +723,12 @@ def write_figures(record: dict, outdir) -> list[pathlib.Path]:
             ax.loglog(sec, err, PACKAGE_STYLE.get(pkg, "-"), marker="o" if pkg == "pendula" else ".",
                       ms=4, lw=1.2 if pkg == "pendula" else 1.0, label=f"{pkg}: {method}" if pkg != "pendula"
                       else method)
-        floor = record["floors"][pname]["floor_error_max"]
-        ax.axhline(floor, color="k", lw=0.8, ls="--")
-        ax.text(ax.get_xlim()[0], floor, " double-precision floor (1 ulp in v0)", va="bottom", fontsize=7)
         ex = [r for r in pr if r["method"] == "exact"]
         if ex:
             ax.loglog([ex[0]["seconds"]], [max(ex[0]["error_max"], 1e-17)], "k*", ms=12, label="pendula: exact path")
+        floor = record["floors"][pname]["floor_error_max"]
+        ax.axhline(floor, color="k", lw=0.8, ls="--")
+        ax.text(ax.get_xlim()[0], floor, " double-precision floor (1 ulp in v0)", va="bottom", fontsize=7)
         for target in TARGETS:
             ax.axhline(target, color="0.85", lw=0.5)
         ax.set_xlabel("CPU time of one run (s), best of repeated batches")
@@ -567,8 +760,33 @@ def merge_records(records: list[dict]) -> dict:
 
 
 def study_main(outdir, quick=False, progress=True, record_to=None, problems=None) -> list[pathlib.Path]:
-    """``pendula accuracy integrators`` (and its short form in ``make demo``): run the study, write
-    the record (work_precision.json) and the figures into outdir, print the answer table."""
+    """``pendula accuracy integrators`` (and its short form in ``make demo``).
+
+    Runs the study, writes the record and the figures, prints the answer table.
+
+    Parameters
+    ----------
+    outdir : str or path
+        Folder for the record (work_precision.json) and the figures.
+    quick : bool
+        The short form (see :func:`run_study`).
+    progress : bool
+        Print one line per run.
+    record_to : str or path, optional
+        Where to write the record instead (e.g. data/bench/work_precision.json).
+    problems : sequence of str, optional
+        Only these problems.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+
+    Examples
+    --------
+    >>> from pendula.workprecision import study_main
+    >>> study_main("out", quick=True)      # doctest: +SKIP
+    """
     outdir = pathlib.Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     record = run_study(problems=problems, quick=quick, progress=progress)
@@ -584,12 +802,14 @@ PAGE = pathlib.Path("docs") / "source" / "work_precision.rst"
 GENERATED = {"table": (".. generated answer table (pendula.workprecision.answer_rst): do not edit by hand",
                        ".. end of the generated answer table"),
              "versions": (".. generated run description (pendula.workprecision.versions_rst): do not edit",
-                          ".. end of the generated run description")}
+                          ".. end of the generated run description"),
+             "summary": (".. generated verdicts (pendula.workprecision.summary_rst): do not edit",
+                         ".. end of the generated verdicts")}
 
 
 def generated_parts(record: dict) -> dict:
     """The page's generated parts from the recorded run: the answer table and the run description."""
-    return {"table": answer_rst(record), "versions": versions_rst(record)}
+    return {"table": answer_rst(record), "versions": versions_rst(record), "summary": summary_rst(record)}
 
 
 def page_part(text: str, key: str) -> str:
@@ -613,8 +833,23 @@ def update_page(record: dict, page=None) -> None:
 
 
 def regenerate_docs(record_file=None) -> list[pathlib.Path]:
-    """Figures (docs/figures/work_precision_*.png) and the page's tables from the recorded run
-    (data/bench/work_precision.json)."""
+    """The figures and the report page's tables from the recorded run.
+
+    Parameters
+    ----------
+    record_file : str or path, optional
+        The record (default data/bench/work_precision.json).
+
+    Returns
+    -------
+    list of pathlib.Path
+        docs/figures/work_precision_*.png and docs/source/work_precision.rst.
+
+    Examples
+    --------
+    >>> from pendula.workprecision import regenerate_docs
+    >>> regenerate_docs()          # doctest: +SKIP
+    """
     record = json.loads(pathlib.Path(record_file or record_path()).read_text())
     files = write_figures(record, repo_root() / "docs" / "figures")
     update_page(record)
