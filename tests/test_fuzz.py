@@ -265,9 +265,8 @@ def test_iv_curve_any_keyword(key, value, model):
     r = _sweep_outcome(pendula.iv_curve, s, torques, direction, **kw)
     if r is not None:
         assert model is None
-        for tau, vm, err, status in r.values():
-            ok = status == 0
-            assert np.all(np.isfinite(vm[ok])) and np.all(np.isfinite(err[ok]))
+        ok = r.status.values == 0
+        assert np.all(np.isfinite(r.mean_velocity.values[ok])) and np.all(np.isfinite(r.mean_velocity_err.values[ok]))
 
 
 _SWEEP_FIELDS = {

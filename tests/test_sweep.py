@@ -235,11 +235,11 @@ def test_sweep_bad_arguments():
 def test_iv_curve_hysteresis_switch_and_retrap():
     beta = 0.05
     taus = np.round(np.arange(0.0, 1.2001, 0.02), 10)
-    r = pendula.iv_curve(Scene(damping=beta), taus, "both", transient=100.0, t_avg=200.0)
-    up_tau, up_v = r["up"][0], r["up"][1]
+    r = pendula.iv_curve(Scene(damping=beta), taus, "both", transient=100.0, t_max=200.0)
+    up_tau, up_v = r.torque.values, r.mean_velocity.sel(direction="up").values
     # switching to running on the way up at tau = eps (the first grid point >= 1)
     assert up_v[up_tau < 1.0].max() == 0.0 and up_v[up_tau > 1.0].min() > 1.0
-    dn_tau, dn_v = r["down"][0], r["down"][1]
+    dn_tau, dn_v = r.torque.values[::-1], r.mean_velocity.sel(direction="down").values[::-1]   # in the order run
     retrap = dn_tau[dn_v > 0].min()
     law = 4 * beta / math.pi   # Stewart-McCumber, small beta
     assert abs(retrap - law) <= 0.03, (retrap, law)
@@ -310,27 +310,46 @@ def test_iv_curve_starting_at_a_high_torque_ramps_instead_of_stepping():
     beta = 0.05
     taus = np.round(np.arange(0.9, 1.0, 0.02), 10)
     # a step from rest at theta = 0 to tau = 0.9 swings past the saddle pi - asin(0.9): running
-    step = pendula.iv_curve(Scene(damping=beta), taus, "up", transient=100.0, t_avg=200.0, start="scene")["up"]
-    assert step[1][0] > 1.0
+    step = pendula.iv_curve(Scene(damping=beta), taus, "up", transient=100.0, t_max=200.0, start="scene")
+    assert step.mean_velocity.sel(direction="up").values[0] > 1.0
     # the adiabatic ramp from zero torque stays locked below tau = eps
-    ramp = pendula.iv_curve(Scene(damping=beta), taus, "up", transient=100.0, t_avg=200.0)["up"]
-    assert np.all(ramp[1] == 0.0)
+    ramp = pendula.iv_curve(Scene(damping=beta), taus, "up", transient=100.0, t_max=200.0)
+    assert np.all(ramp.mean_velocity.sel(direction="up").values == 0.0)
 
 
 def test_iv_curve_down_branch_alone_starts_where_the_up_ramp_ends():
     beta = 0.05
     taus = np.round(np.arange(0.0, 1.2001, 0.04), 10)
-    both = pendula.iv_curve(Scene(damping=beta), taus, "both", transient=100.0, t_avg=200.0)["down"]
-    down = pendula.iv_curve(Scene(damping=beta), taus, "down", transient=100.0, t_avg=200.0)["down"]
-    np.testing.assert_array_equal(down[1], both[1])
+    both = pendula.iv_curve(Scene(damping=beta), taus, "both", transient=100.0, t_max=200.0)
+    down = pendula.iv_curve(Scene(damping=beta), taus, "down", transient=100.0, t_max=200.0)
+    np.testing.assert_array_equal(down.mean_velocity.sel(direction="down"), both.mean_velocity.sel(direction="down"))
 
 
 def test_iv_curve_from_a_given_state():
     beta = 0.1
-    r = pendula.iv_curve(Scene(damping=beta), [0.5], "up", transient=100.0, t_avg=200.0, start=(0.0, 10.0))["up"]
+    r = pendula.iv_curve(Scene(damping=beta), [0.5], "up", transient=100.0, t_max=200.0, start=(0.0, 10.0))
     # running from v = 10 at tau = 0.5 > 4 beta / pi: it stays running near tau / beta
-    assert abs(r[1][0] - 0.5 / beta) < 0.1 * 0.5 / beta
+    assert abs(float(r.mean_velocity.sel(direction="up", torque=0.5)) - 0.5 / beta) < 0.1 * 0.5 / beta
     with pytest.raises(ValueError, match="start"):
         pendula.iv_curve(Scene(damping=beta), [0.5], "up", start=(0.0, math.nan))
     with pytest.raises(ValueError, match="start"):
         pendula.iv_curve(Scene(damping=beta), [0.5], "up", start="rest")
+
+
+def test_iv_curve_is_a_dataset_with_cf_attributes_and_takes_a_path(tmp_path):
+    f = tmp_path / "iv.nml"
+    f.write_text("&scene damping = 0.2 /")
+    r = pendula.iv_curve(f, [0.5, 1.1], "both", transient=50.0, t_max=100.0)
+    assert r.mean_velocity.dims == ("direction", "torque") and list(r.direction.values) == ["up", "down"]
+    assert r.mean_velocity.attrs["units"] == "rad s-1" and list(r.status.attrs["flag_values"])[0] == 0
+    assert float(r.mean_velocity.sel(direction="up", torque=0.5)) == 0.0
+
+
+def test_iv_curve_t_avg_is_the_deprecated_name_of_t_max():
+    s = Scene(damping=0.2)
+    with pytest.warns(DeprecationWarning, match="t_max"):
+        old = pendula.iv_curve(s, [0.5, 1.1], "up", transient=50.0, t_avg=100.0)
+    new = pendula.iv_curve(s, [0.5, 1.1], "up", transient=50.0, t_max=100.0)
+    np.testing.assert_array_equal(old.mean_velocity, new.mean_velocity)
+    with pytest.raises(TypeError, match="t_max"):
+        pendula.iv_curve(s, [0.5], "up", t_max=100.0, t_avg=100.0)

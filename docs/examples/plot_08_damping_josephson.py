@@ -30,9 +30,9 @@ ax1.set(xlabel="v0", ylabel="damping β", title="basins of the damped pendulum")
 
 beta = 0.1
 r = pendula.iv_curve(pendula.Scene(damping=beta), np.arange(0.0, 1.3001, 0.02), "both",
-                     transient=100.0, t_avg=200.0)
-ax2.plot(r["up"][0], r["up"][1], ".-", label="torque ramped up")
-ax2.plot(r["down"][0], r["down"][1], ".-", label="torque ramped down")
+                     transient=100.0, t_max=200.0)
+ax2.plot(r.torque, r.mean_velocity.sel(direction="up"), ".-", label="torque ramped up")
+ax2.plot(r.torque, r.mean_velocity.sel(direction="down"), ".-", label="torque ramped down")
 ax2.plot([0, 1.3], [0, 1.3 / beta], color="0.8", lw=0.8, label="ohmic line τ/β")
 ax2.axvline(4 * beta / np.pi, color="0.6", ls=":", label="4β/π (Stewart–McCumber)")
 ax2.set(xlabel="torque τ (bias current)", ylabel="⟨v⟩ (voltage)", ylim=(-0.5, 14),

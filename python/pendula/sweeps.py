@@ -585,8 +585,8 @@ def attractor_map(scene: Scene, over: dict, *, transient: float = 600.0, samples
     return AttractorMap(ds, atts, bf, sb, sbb, alpha)
 
 
-def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, rtol=None, atol=None,
-             start="ramp"):
+def iv_curve(scene, torques, direction="both", *, transient=200.0, t_max=None, rtol=None, atol=None,
+             start="ramp", t_avg=None):
     """The I-V curve of the constant-torque pendulum (RCSJ junction), adiabatically.
 
     Each torque starts from the end state of the previous one, so the up and
@@ -600,15 +600,17 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
 
     Parameters
     ----------
-    scene : Scene
+    scene : Scene or str or path
         Gives eps, damping (> 0) and the start state; its torque is ignored.
+        A path is read as a scene file (as :func:`sweep` does).
     torques : array_like
         Torque values, ascending; 'down' runs them in reverse.
     direction : {'up', 'down', 'both'}
         The branches: torque ramped up, down, or up then down (the down branch
         starting where the up branch ended).
-    transient, t_avg : float
-        Time skipped, then time averaged, at each torque.
+    transient, t_max : float
+        Time skipped, then time averaged, at each torque (default 200, 400):
+        the averaging time has the name it has in :func:`sweep`.
     rtol, atol : float, optional
         DOP853 tolerances (default: the scene's).
     start : {'ramp', 'scene'} or (float, float), optional
@@ -620,13 +622,18 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
         (not reported), so it starts on the running branch when the largest
         torque exceeds eps.  ``'scene'``: the scene's theta0, v0 (the first
         torque is a step).  A pair ``(theta, v)``: that state.
+    t_avg : float, optional
+        The former name of ``t_max`` (deprecated: a DeprecationWarning).
 
     Returns
     -------
-    dict
-        {'up': (tau, <v>, err, status), 'down': (...)} for the branches asked:
-        arrays of the torques (in the order run), the mean velocity, its
-        convergence estimate and the status (0 decided).
+    xarray.Dataset
+        Dimensions ``direction`` (the branches asked, 'up' and/or 'down') and
+        ``torque`` (the torques as given; the down branch runs them in
+        reverse, and its values are stored against their torque):
+        ``mean_velocity`` <v>, ``mean_velocity_err`` (|<v> - <v> over the
+        second half of the window) and ``status`` (0 decided; CF flags), with
+        CF units and the options as attributes.
 
     Raises
     ------
@@ -643,15 +650,29 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
     Examples
     --------
     >>> import pendula
-    >>> r = pendula.iv_curve(pendula.Scene(damping=0.2), [0.5, 1.1], "up", transient=50, t_avg=100)
-    >>> float(r["up"][1][0])                          # locked below tau = eps: no voltage
+    >>> r = pendula.iv_curve(pendula.Scene(damping=0.2), [0.5, 1.1], "up", transient=50, t_max=100)
+    >>> up = r.mean_velocity.sel(direction="up")
+    >>> float(up.sel(torque=0.5))                     # locked below tau = eps: no voltage
     0.0
-    >>> bool(abs(r["up"][1][1] - 1.1 / 0.2) < 0.01)   # running: close to the ohmic line tau / beta
+    >>> bool(abs(up.sel(torque=1.1) - 1.1 / 0.2) < 0.01)   # running: close to the ohmic line tau / beta
     True
     """
+    import warnings
+
     from . import _kernel
+    xr = require("xarray", "sweep", "pendula.iv_curve")
+    if isinstance(scene, (str, bytes, os.PathLike)):
+        scene = Scene.from_file(scene)
     if not isinstance(scene, Scene):
-        raise TypeError("parameter 'scene' must be a pendula.Scene")
+        raise TypeError("parameter 'scene' must be a pendula.Scene or the path of a scene file")
+    t_name = "t_max"
+    if t_avg is not None:
+        if t_max is not None:
+            raise TypeError("give the averaging time as t_max only (t_avg is its former name)")
+        warnings.warn("iv_curve: t_avg is now called t_max (as in sweep); t_avg will go", DeprecationWarning,
+                      stacklevel=2)
+        t_max, t_name = t_avg, "t_avg"
+    t_max = 400.0 if t_max is None else t_max
     if not isinstance(direction, str) or direction not in ("up", "down", "both"):
         raise ValueError(f"parameter 'direction' must be 'up', 'down' or 'both'; got {direction!r}")
     _model_rule(scene, "iv_curve")
@@ -662,7 +683,7 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
     if tau.size > 10 ** 6:
         raise ValueError(f"parameter 'torques': at most 1e6 values, got {tau.size}")
     transient = _checks.duration(transient, "transient", positive=False)
-    t_avg = _checks.duration(t_avg, "t_avg")
+    t_avg = _checks.duration(t_max, t_name)
     rtol, atol = _checks.tolerances(scene.rtol if rtol is None else rtol, scene.atol if atol is None else atol)
     p = np.array([getattr(scene, f) for f in _PARAM_ORDER], dtype=float)
 
@@ -697,10 +718,10 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
         if lead.size:
             _, _, _, th_end, v_end = branch(p, np.ascontiguousarray(lead, dtype=float))
             p[6], p[7] = th_end, v_end
-    res = {}
+    rows = {}
     if direction in ("up", "both"):
         vm, err, st, th_end, v_end = branch(p, tau)
-        res["up"] = (tau, vm, err, st)
+        rows["up"] = (vm, err, st)
     if direction in ("down", "both"):
         td = tau[::-1].copy()
         if direction == "both":
@@ -708,8 +729,23 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
             p = p.copy()
             p[6], p[7] = th_end, v_end
         vm, err, st, _, _ = branch(p, td)
-        res["down"] = (td, vm, err, st)
-    return res
+        rows["down"] = (vm[::-1], err[::-1], st[::-1])     # stored against their torques
+    dims = ("direction", "torque")
+    dirs = list(rows)
+    return xr.Dataset(
+        {"mean_velocity": (dims, np.stack([rows[d][0] for d in dirs]),
+                           {"long_name": "mean angular velocity <v> after the transient (the junction's voltage)",
+                            "units": "rad s-1"}),
+         "mean_velocity_err": (dims, np.stack([rows[d][1] for d in dirs]),
+                               {"long_name": "|<v> - <v> over the second half of the window|", "units": "rad s-1"}),
+         "status": (dims, np.stack([rows[d][2] for d in dirs]).astype(np.int32), _status_attrs())},
+        coords={"direction": ("direction", dirs, {"long_name": "branch of the adiabatic torque ramp"}),
+                "torque": ("torque", tau, {"long_name": "constant torque tau", "units": "rad s-2"})},
+        attrs={"scene": scene.to_namelist(), "measure": "iv_curve", "transient": transient, "t_max": t_avg,
+               "rtol": rtol, "atol": atol, "start": start if isinstance(start, str) else repr(tuple(start)),
+               "order_run": "up: the torques as given; down: in reverse, from where the up branch ended "
+                            "(both) or from the up ramp's end (down alone, start='ramp')",
+               "status_codes": json.dumps(STATUS)})
 
 
 def plot_sweep(ds, path) -> pathlib.Path:

@@ -114,10 +114,10 @@ def _iv(out):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     taus = np.round(np.arange(0.0, 1.3001, 0.01), 10)
-    r = iv_curve(Scene(damping=0.1), taus, "both", transient=100.0, t_avg=200.0)
+    r = iv_curve(Scene(damping=0.1), taus, "both", transient=100.0, t_max=200.0)
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4.5))
-    a1.plot(r["up"][0], r["up"][1], ".-", label="up")
-    a1.plot(r["down"][0], r["down"][1], ".-", label="down")
+    a1.plot(r.torque, r.mean_velocity.sel(direction="up"), ".-", label="up")
+    a1.plot(r.torque, r.mean_velocity.sel(direction="down"), ".-", label="down")
     a1.set_xlabel("torque tau (current)"); a1.set_ylabel("<v> (voltage)"); a1.legend()
     a1.set_title("RCSJ I-V loop, beta = 0.1, eps = 1")
     betas = np.array([0.02, 0.04, 0.08, 0.16, 0.3])
@@ -125,9 +125,9 @@ def _iv(out):
     for b in betas:
         t2 = np.round(np.arange(0.0, 1.0, 0.005), 10)   # run downwards from 0.995
         # a transient of several damping times 1/beta
-        rr = iv_curve(Scene(damping=b, v0=1.0 / b), t2, "down", transient=max(60.0, 6.0 / b), t_avg=120.0,
-                     start="scene")["down"]
-        running = rr[0][rr[1] > 0]
+        rr = iv_curve(Scene(damping=b, v0=1.0 / b), t2, "down", transient=max(60.0, 6.0 / b), t_max=120.0,
+                      start="scene").sel(direction="down")
+        running = rr.torque.values[rr.mean_velocity.values > 0]
         tr.append(running.min() if running.size else math.nan)
     tr = np.array(tr)
     a2.plot(betas, tr, "o", label="pendula (retrapping torque)")
@@ -135,8 +135,8 @@ def _iv(out):
     a2.plot(bb, 4 * bb / math.pi, "-", label="Stewart-McCumber 4 beta / pi")
     a2.set_xlabel("beta"); a2.set_ylabel("tau_r"); a2.legend()
     fig.tight_layout(); save_figure(fig, out / "sweep_iv_loop.png", dpi=120); plt.close(fig)
-    up = r["up"]
-    switch = float(up[0][up[1] > 0].min())
+    up = r.mean_velocity.sel(direction="up")
+    switch = float(r.torque.values[up.values > 0].min())
     return {"switch_up": switch, "retrap": dict(zip(betas.tolist(), tr.tolist()))}
 
 
