@@ -323,6 +323,11 @@ contains
     can_trap = p(2) > 0.0_dp .and. p(4) == 0.0_dp .and. abs(p(3)) < p(1)
     tw = two_pi / sqrt(p(1))
     seg_end = [t_tr, t_tr + 0.5_dp * t_avg, t_tr + t_avg]
+    ! a window below the resolution of the transient (t_tr + t_avg / 2 == t_tr) would give
+    ! <v> = 0 or NaN as if decided: the measure does not apply
+    if (.not. (seg_end(1) < seg_end(2) .and. seg_end(2) < seg_end(3))) then
+      st = ps_not_applicable; return
+    end if
     tha = th; thh = th
     do seg = 1, 3
       do while (t < seg_end(seg))

@@ -216,3 +216,12 @@ def grid_values(vals, name: str) -> np.ndarray:
     if a.ndim != 1 or a.size == 0 or not np.all(np.isfinite(a)):
         raise ValueError(f"{name} must be a non-empty 1-D list of finite numbers")
     return a
+
+
+def window(transient: float, t_avg: float, name: str = "t_avg") -> None:
+    """An averaging window after a transient must be resolved by it:
+    transient < transient + t_avg / 2 < transient + t_avg (else <v> would be 0
+    or NaN as if decided)."""
+    if not (transient < transient + 0.5 * t_avg < transient + t_avg):
+        raise ValueError(f"{name} = {t_avg!r} is below the resolution of transient = {transient!r}: "
+                         "the window cannot be told from the transient")

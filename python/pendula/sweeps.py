@@ -440,6 +440,8 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
     samples = _checks.count(scene.sweep_samples if samples is None else samples, "samples", 1, 100000)
     chunk_points = _checks.count(chunk_points, "chunk_points", 1)
     threads = _checks.threads(threads)
+    if measure == "mean_velocity":
+        _checks.window(transient, t_max, "t_max")
     if measure == "poincare" and math.prod(len(v) for v in over.values()) * samples > _checks.MAX_GRID_POINTS:
         raise ValueError(f"parameter 'samples': {samples} samples at each grid point is more than "
                          f"{_checks.MAX_GRID_POINTS:.0e} values")
@@ -684,6 +686,7 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_max=None, r
         raise ValueError(f"parameter 'torques': at most 1e6 values, got {tau.size}")
     transient = _checks.duration(transient, "transient", positive=False)
     t_avg = _checks.duration(t_max, t_name)
+    _checks.window(transient, t_avg, t_name)
     rtol, atol = _checks.tolerances(scene.rtol if rtol is None else rtol, scene.atol if atol is None else atol)
     p = np.array([getattr(scene, f) for f in _PARAM_ORDER], dtype=float)
 
