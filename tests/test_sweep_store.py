@@ -262,6 +262,16 @@ def test_resume_unreadable_store_metadata_rebuilds_the_store(complete):
     resume_warns(out, ref, "built again")
 
 
+def test_resume_damaged_consolidated_metadata_is_written_again(complete):
+    out, ref = complete
+    p = out / "sweep.zarr" / "zarr.json"
+    meta = json.loads(p.read_text())
+    meta["consolidated_metadata"]["metadata"]["well"]["shape"] = [25, 2]
+    p.write_text(json.dumps(meta))
+    resume_warns(out, ref, "consolidated metadata")
+    assert xr.open_zarr(out / "sweep.zarr").well.shape == (24, 2)
+
+
 def test_resume_removes_temporaries_of_a_dead_writer(complete):
     out, ref = complete
     (out / ".sweep.zarr.999999.tmp").mkdir()

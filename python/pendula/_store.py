@@ -311,6 +311,7 @@ class SweepStore:
             self._rebuild(bad)
             return
         self._group = g
+        self._check_consolidated(g)
         for name, (vals, _) in self.layout.coords.items():
             try:
                 ok = np.array_equal(g[name][...], vals)
@@ -319,6 +320,24 @@ class SweepStore:
             if not ok:
                 self._warn(f"coordinate '{name}' is damaged; written again from the plan")
                 g[name][...] = vals
+
+    def _check_consolidated(self, g) -> None:
+        """The consolidated metadata (what readers such as xarray use) must say what the arrays' own say."""
+        import zarr
+
+        def text(a):
+            return json.dumps(a.metadata.to_dict(), sort_keys=True, default=str)
+        names = list(self.layout.coords) + list(self.layout.variables)
+        try:
+            gc = zarr.open_group(self.path, mode="r", use_consolidated=True)
+            same = all(text(gc[n]) == text(g[n]) for n in names)
+        except Exception:   # noqa: BLE001 - unreadable consolidated metadata
+            same = False
+        if not same:
+            self._warn("its consolidated metadata is damaged; written again", stacklevel=6)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                zarr.consolidate_metadata(self.path)
 
     def _check_arrays(self, g) -> str | None:
         lay = self.layout
@@ -477,7 +496,8 @@ class SweepStore:
         """The store as a lazy (dask-backed) xarray Dataset, with the layout's attributes on its variables."""
         import xarray as xr
 
-        ds = xr.open_zarr(self.path.resolve(), consolidated=True)
+        # the arrays' own metadata (checked on opening), not the consolidated copy
+        ds = xr.open_zarr(self.path.resolve(), consolidated=False)
         for name, var in self.layout.variables.items():
             ds[name].attrs = dict(var.attrs)
         for name, (_, cattrs) in self.layout.coords.items():
