@@ -262,6 +262,16 @@ def test_resume_unreadable_store_metadata_rebuilds_the_store(complete):
     resume_warns(out, ref, "built again")
 
 
+def test_resume_damaged_consolidated_metadata_is_written_again(complete):
+    out, ref = complete
+    p = out / "sweep.zarr" / "zarr.json"
+    meta = json.loads(p.read_text())
+    meta["consolidated_metadata"]["metadata"]["well"]["shape"] = [25, 2]
+    p.write_text(json.dumps(meta))
+    resume_warns(out, ref, "consolidated metadata")
+    assert xr.open_zarr(out / "sweep.zarr").well.shape == (24, 2)
+
+
 def test_resume_removes_temporaries_of_a_dead_writer(complete):
     out, ref = complete
     (out / ".sweep.zarr.999999.tmp").mkdir()
@@ -337,3 +347,38 @@ def test_two_cli_sweeps_on_the_same_output_second_exits_5_naming_the_store(tmp_p
     ds = xr.open_zarr(out / "sweep.zarr").load()
     ref = pendula.sweep(Scene.from_file(scene), chunk_points=3)
     assert ds.drop_attrs().identical(ref.drop_attrs())
+
+
+def test_resume_after_seeded_random_damage_always_gives_the_in_memory_result(complete):
+    """Bytes flipped, files cut at random lengths, zero-filled, grown, swapped: whatever the damage,
+    the resumed result is the in-memory one, and a damaged chunk is never trusted silently."""
+    out, ref = complete
+    rng = np.random.default_rng(2026)
+    warned = 0
+    for _ in range(8):
+        var = str(rng.choice(["well", "t_decided", "status"]))
+        i = int(rng.integers(12))
+        f = chunk_file(out, var, i)
+        b = bytearray(f.read_bytes())
+        kind = int(rng.integers(5))
+        if kind == 0:
+            k = int(rng.integers(len(b)))
+            b[k] ^= 1 << int(rng.integers(8))
+        elif kind == 1:
+            b = b[: int(rng.integers(len(b)))]
+        elif kind == 2:
+            b = bytearray(len(b))
+        elif kind == 3:
+            b += rng.bytes(int(rng.integers(1, 64)))
+        else:
+            b = bytearray(chunk_file(out, var, (i + 1 + int(rng.integers(11))) % 12).read_bytes())
+        f.write_bytes(bytes(b))
+        with warnings.catch_warnings(record=True) as rec:
+            warnings.simplefilter("always")
+            ds = pendula.sweep(SCENE, out=out, **KW)
+        assert ds.identical(ref), (var, i, kind)
+        warned += any(issubclass(w.category, SweepStoreWarning) for w in rec)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            assert pendula.sweep(SCENE, out=out, **KW).identical(ref)
+    assert warned >= 4

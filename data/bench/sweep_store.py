@@ -13,8 +13,8 @@ pendula._cluster: max(1, cores // slots)), the sweep written to a fresh store,
 wall time from the call to the returned (lazy) dataset, points per second, and
 the driving process's peak resident memory during the sweep (VmHWM after
 resetting it through /proc/self/clear_refs; the baseline before the sweep is
-recorded too).  The result goes to data/bench/sweep_store.json with the
-machine, date, load average and versions.  The machine is shared: other
+recorded too).  The result is appended to data/bench/sweep_store.json
+({"records": [...]}) with the machine, date, load average and versions.  The machine is shared: other
 users' load is in these figures (the load average is recorded).
 """
 
@@ -106,6 +106,17 @@ def run(side: int, workers: int, chunk_points: int, root: pathlib.Path) -> dict:
     return rec
 
 
+def save(path, record) -> None:
+    """Keep the earlier records of the file ({"records": [...]}) and put this one (replaced as it grows) last."""
+    p = pathlib.Path(path)
+    try:
+        records = json.loads(p.read_text())["records"]
+    except (OSError, ValueError, KeyError):
+        records = []
+    records = [r for r in records if r.get("machine", {}).get("date_utc") != record["machine"]["date_utc"]]
+    p.write_text(json.dumps({"records": records + [record]}, indent=1) + "\n")
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--side", type=int, default=3163, help="points per axis (default 3163: 10^7 points)")
@@ -138,7 +149,7 @@ def main(argv=None) -> int:
                   f"{r['driver_peak_rss_MiB']:.0f} MiB (before the sweep {r['driver_rss_before_MiB']:.0f} MiB); "
                   f"store {r['store_MiB']:.0f} MiB for {r['raw_MiB']:.0f} MiB raw; load {r['load_average_before']}",
                   flush=True)
-            pathlib.Path(args.json).write_text(json.dumps(record, indent=1) + "\n")   # after every run
+            save(args.json, record)   # after every run
     finally:
         if not args.dir:
             shutil.rmtree(root, ignore_errors=True)

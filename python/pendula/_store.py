@@ -10,7 +10,8 @@ the folder ``out``::
         <variable>/         the measure's variables and 'status'
         commits/cNNNNNN/    one completion record per finished chunk (a Zarr
                             group whose attributes hold its rows, shape,
-                            coordinate checksum and data checksums)
+                            coordinate checksum, and the checksums of its
+                            files' bytes and of its decoded values)
 
 The grid is cut along its first axis into chunks of whole rows; one sweep
 chunk is one Zarr chunk of every variable, so a chunk is written as one
@@ -21,7 +22,8 @@ place.  A run killed at any moment leaves at worst a chunk without a record,
 which the next run computes again.
 
 When a run resumes, every recorded chunk is checked against the plan: its
-record must name its rows, shape and coordinates, and its data must match the
+record must name its rows, shape and coordinates, and its files' bytes (first:
+a damaged file never reaches the decoder) and decoded values must match the
 recorded SHA-256 checksums.  A chunk that fails (a truncated, emptied or
 halved file, a file copied from another position, a damaged or misplaced
 record) is named in a :class:`SweepStoreWarning` and computed again.
@@ -136,6 +138,14 @@ class Layout:
 def _digest(a: np.ndarray) -> str:
     a = np.ascontiguousarray(a)
     return hashlib.sha256(str(a.dtype).encode() + b"\0" + repr(a.shape).encode() + b"\0" + a.tobytes()).hexdigest()
+
+
+def _file_digest(path: pathlib.Path) -> str | None:
+    """SHA-256 of a file's bytes, None when there is no file."""
+    try:
+        return hashlib.sha256(path.read_bytes()).hexdigest()
+    except FileNotFoundError:
+        return None
 
 
 def _fsync_path(path: pathlib.Path, directory: bool = False) -> None:
@@ -303,6 +313,7 @@ class SweepStore:
             self._rebuild(bad)
             return
         self._group = g
+        self._check_consolidated(g)
         for name, (vals, _) in self.layout.coords.items():
             try:
                 ok = np.array_equal(g[name][...], vals)
@@ -311,6 +322,24 @@ class SweepStore:
             if not ok:
                 self._warn(f"coordinate '{name}' is damaged; written again from the plan")
                 g[name][...] = vals
+
+    def _check_consolidated(self, g) -> None:
+        """The consolidated metadata (what readers such as xarray use) must say what the arrays' own say."""
+        import zarr
+
+        def text(a):
+            return json.dumps(a.metadata.to_dict(), sort_keys=True, default=str)
+        names = list(self.layout.coords) + list(self.layout.variables)
+        try:
+            gc = zarr.open_group(self.path, mode="r", use_consolidated=True)
+            same = all(text(gc[n]) == text(g[n]) for n in names)
+        except Exception:   # noqa: BLE001 - unreadable consolidated metadata
+            same = False
+        if not same:
+            self._warn("its consolidated metadata is damaged; written again", stacklevel=6)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                zarr.consolidate_metadata(self.path)
 
     def _check_arrays(self, g) -> str | None:
         lay = self.layout
@@ -409,7 +438,8 @@ class SweepStore:
         try:
             meta = json.loads(rec.read_text())
             r = meta["attributes"]
-            recorded = (r["chunk"], list(r["rows"]), r["coords_sha256"], dict(r["sha256"]), list(r["shape"]))
+            recorded = (r["chunk"], list(r["rows"]), r["coords_sha256"], dict(r["sha256"]), list(r["shape"]),
+                        dict(r["files_sha256"]))
         except Exception as exc:   # noqa: BLE001 - any damage to the record
             return f"has an unreadable completion record {rec} ({type(exc).__name__})"
         if recorded[0] != i or recorded[1] != [lo, hi]:
@@ -421,6 +451,11 @@ class SweepStore:
         for name in lay.variables:
             f = self.chunk_files(name, i)
             want = recorded[3].get(name)
+            # the file's bytes first: a damaged compressed file is never handed to the decoder (Blosc may
+            # decode a truncated frame without an error, from whatever lies past its end)
+            if _file_digest(f) != recorded[5].get(name, ""):
+                return (f"does not match the checksum recorded when it was completed ({f}: "
+                        f"{'missing' if not f.exists() else f'{f.stat().st_size} bytes'})")
             try:
                 a = self._group[name][lo:hi]
             except Exception as exc:   # noqa: BLE001 - truncated, emptied, garbled chunk files
@@ -448,14 +483,17 @@ class SweepStore:
                 raise ValueError(f"chunk {i} of '{name}' has shape {a.shape}, the plan {lay.shape_of(name, i)}")
             self._group[name][lo:hi] = a
             sums[name] = _digest(a)
+        files = {}
         for name in lay.variables:                  # the data reach the disk before the record does
             f = self.chunk_files(name, i)
+            files[name] = _file_digest(f)           # None: Zarr wrote no file (every value the fill value)
             _fsync_path(f)
             _fsync_path(f.parent, directory=True)
         rec = self._record_path(i)
         rec.parent.mkdir(exist_ok=True)
         record = {"chunk": i, "rows": [lo, hi], "shape": lay.grid_shape(i),
-                  "coords_sha256": lay.coords_digest(i), "sha256": sums, "writer_pid": os.getpid()}
+                  "coords_sha256": lay.coords_digest(i), "sha256": sums, "files_sha256": files,
+                  "writer_pid": os.getpid()}
         _write_json_atomic(rec, {"zarr_format": 3, "node_type": "group", "attributes": record})
         _fsync_path(rec.parent.parent, directory=True)
         self.done.add(i)
@@ -464,7 +502,8 @@ class SweepStore:
         """The store as a lazy (dask-backed) xarray Dataset, with the layout's attributes on its variables."""
         xr = require("xarray", "sweep", "pendula.sweep")
 
-        ds = xr.open_zarr(self.path.resolve(), consolidated=True)
+        # the arrays' own metadata (checked on opening), not the consolidated copy
+        ds = xr.open_zarr(self.path.resolve(), consolidated=False)
         for name, var in self.layout.variables.items():
             ds[name].attrs = dict(var.attrs)
         for name, (_, cattrs) in self.layout.coords.items():
