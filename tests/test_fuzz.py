@@ -241,11 +241,11 @@ def test_sweep_any_keyword(measure, key, value, model):
 
 
 @settings(**NEW)
-@given(st.sampled_from(("rtol", "atol", "t_avg", "transient", "torques", "direction", "damping", "theta0")),
+@given(st.sampled_from(("rtol", "atol", "t_max", "transient", "torques", "direction", "damping", "theta0")),
        st.one_of(anything, PLAUSIBLE), MODEL_PICK)
 def test_iv_curve_any_keyword(key, value, model):
-    assume(_cheap_value("t_max" if key in ("t_avg", "transient") else key, value, "mean_velocity"))
-    kw = dict(transient=5.0, t_avg=10.0)
+    assume(_cheap_value("t_max" if key in ("t_max", "transient") else key, value, "mean_velocity"))
+    kw = dict(transient=5.0, t_max=10.0)
     scene = dict(damping=0.3, **MODELS[model])
     torques = [0.5, 1.5]
     direction = "both"

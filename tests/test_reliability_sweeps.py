@@ -131,7 +131,7 @@ def test_silent_wrong_physics_sweep_of_another_model_names_it(model, measure):
 @pytest.mark.parametrize("model", sorted(OTHER_MODELS))
 def test_silent_wrong_physics_iv_curve_of_another_model_names_it(model):
     with pytest.raises(NotImplementedError, match=f"model '{model}'"):
-        pendula.iv_curve(Scene(damping=0.2, **OTHER_MODELS[model]), [0.5, 1.5], t_avg=10.0)
+        pendula.iv_curve(Scene(damping=0.2, **OTHER_MODELS[model]), [0.5, 1.5], t_max=10.0)
 
 
 def test_silent_wrong_physics_pendula_run_sweep_of_another_model_is_exit_3(tmp_path):
@@ -173,7 +173,7 @@ def test_cannot_stop_sweep_stops_on_sigint(measure):
 
 
 def test_cannot_stop_iv_curve_stops_on_sigint():
-    _stops_on_sigint("pendula.iv_curve(pendula.Scene(damping=1e-3), [0.5, 1.5], t_avg=1e8, transient=1e7)")
+    _stops_on_sigint("pendula.iv_curve(pendula.Scene(damping=1e-3), [0.5, 1.5], t_max=1e8, transient=1e7)")
 
 
 def test_cannot_stop_cord_loop_stops_on_sigint():
@@ -338,8 +338,8 @@ def test_leftovers_pendula_run_write_error_leaves_nothing(tmp_path):
 # ------------------------------------------------------------------ checks missing or misleading
 
 @pytest.mark.parametrize("kw,what", [
-    (dict(rtol=-1.0), "rtol"), (dict(atol=float("nan")), "atol"), (dict(t_avg=float("inf")), "t_avg"),
-    (dict(transient=-1.0), "transient"), (dict(rtol="1e-9"), "rtol"), (dict(t_avg=True), "t_avg"),
+    (dict(rtol=-1.0), "rtol"), (dict(atol=float("nan")), "atol"), (dict(t_max=float("inf")), "t_max"),
+    (dict(transient=-1.0), "transient"), (dict(rtol="1e-9"), "rtol"), (dict(t_max=True), "t_max"),
 ])
 def test_checks_iv_curve_names_the_bad_argument(kw, what):
     with pytest.raises((TypeError, ValueError), match=what):
@@ -475,8 +475,8 @@ def test_cli_tracebacks_huge_number_in_a_scene_file_is_one_line(tmp_path):
 @pytest.mark.parametrize("t_avg", [5e-324, 1e-300, 1e-17])
 def test_silent_wrong_number_window_below_the_transient_resolution_is_refused(t_avg):
     # transient + t_avg / 2 == transient: <v> came out 0 (or NaN) with status 0 "decided"
-    with pytest.raises(ValueError, match="t_avg .* below the resolution of transient"):
-        pendula.iv_curve(Scene(damping=0.3), [0.5, 1.5], transient=5.0, t_avg=t_avg)
+    with pytest.raises(ValueError, match="t_max .* below the resolution of transient"):
+        pendula.iv_curve(Scene(damping=0.3), [0.5, 1.5], transient=5.0, t_max=t_avg)
     with pytest.raises(ValueError, match="t_max .* below the resolution of transient"):
         pendula.sweep(Scene(damping=0.3, torque=1.5), over={"v0": [1.0]}, measure="mean_velocity",
                       transient=5.0, t_max=t_avg)

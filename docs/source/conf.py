@@ -114,7 +114,7 @@ SECTIONS = {
               "sweeps_at_scale*", "guide/scenes", "vocabulary", "guide/architecture"],
     "reports": ["reports/accuracy", "accuracy*", "reports/cost", "work_precision*", "reports/benchmarks",
                 "reports/limits"],
-    "about": ["promises", "bad_input*", "slips", "changelog", "license*", "develop"],
+    "about": ["bad_input*", "slips", "changelog", "license*", "develop"],
 }
 
 
