@@ -310,7 +310,7 @@ subroutine spectra_v(handle, n, nsig, signals, dt, window, nh, omega, power, sta
 end subroutine spectra_v
 
 ! ===============================================
-! Issue 13: Huygens' cycloidal pendulum, non-uniform gravity, the density of the angle
+! Huygens' cycloidal pendulum, non-uniform gravity, the density of the angle
 ! ====================================================================
 
 ! The cycloidal pendulum in closed form.  params = [eps, beta, tau, amp, Omega, phase],

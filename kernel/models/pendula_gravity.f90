@@ -1,4 +1,4 @@
-!> Non-uniform gravity (source 003, task 4): the pendulum of length l in a
+!> Non-uniform gravity (Prusa & Tuma, task 4): the pendulum of length l in a
 !> conservative field that is not uniform, still one-dimensional:
 !>   theta'' = -V'(theta),   E = theta'^2 / 2 + V(theta),   V(0) = 0,
 !> in units of m l^2, with eps = g / l and g the field strength at the lowest

@@ -83,10 +83,12 @@ def _err(got, ref, scale):
 
 def evaluate(rows: list[dict]) -> list[dict]:
     """pendula's error (eps) and the tolerance (eps) at every row."""
-    from . import angle_cdf, angle_density, cycloid_geometry, cycloid_period, gravity_orbit, simulate
+    from .density import angle_cdf, angle_density
     from .integrate import find_events, numerical_period
+    from .motion import simulate
     from .scene import Scene
-    from .systems.cycloid import cycloid_motion
+    from .systems.cycloid import cycloid_geometry, cycloid_motion, cycloid_period
+    from .systems.gravity import gravity_orbit
 
     out = []
     cache: dict = {}

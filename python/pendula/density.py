@@ -1,4 +1,4 @@
-"""The density of the angle (source 003, task 5): how much of its time a
+"""The density of the angle (Prusa & Tuma, task 5): how much of its time a
 conservative orbit spends near each angle.
 
 Over one period of a libration the bob passes every angle twice, so the
@@ -33,7 +33,7 @@ __all__ = ["angle_density", "angle_cdf", "arcsine_density"]
 
 
 def arcsine_density(theta, theta_init):
-    """The linear limit (source 003): 1 / (pi sqrt(theta_init^2 - theta^2)) inside, 0 outside."""
+    """The linear limit (Prusa & Tuma): 1 / (pi sqrt(theta_init^2 - theta^2)) inside, 0 outside."""
     theta = as_float(theta, "theta")
     a = float(theta_init)
     out = np.zeros_like(theta)

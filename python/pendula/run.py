@@ -19,7 +19,7 @@ from .motion import exact_motion, orbit, simulate
 from .scene import Scene
 from .series import period_from_series, poincare_lindstedt
 from .spectrum import odd_harmonics_above, spectrum
-from .systems.gravity import issue13_orbit
+from .systems.gravity import conservative_orbit
 
 TRAJECTORY_OUTPUTS = {"trajectory", "theta_t", "v_t", "phase", "energy"}
 ORBIT_OUTPUTS = {"period", "omega", "theta_max"}
@@ -74,12 +74,12 @@ def _outputs(scene: Scene, outdir: pathlib.Path, stem: str | None, progress: boo
             files.append(plot.energy_drift(scene, runs, outdir / f"{stem}_energy.png"))
 
     if wanted & ORBIT_OUTPUTS:
-        if scene.effects and issue13_orbit(scene) is None:
+        if scene.effects and conservative_orbit(scene) is None:
             raise ValueError("outputs period/omega/theta_max are facts of the exact conservative orbit; "
                              f"the scene names {', '.join(scene.effects)}")
         table = {"period": [], "omega": [], "theta_max": [], "regime": [], "k": []}
         for member in members:
-            o = issue13_orbit(member) or orbit(member.theta0, member.v0, member.eps)
+            o = conservative_orbit(member) or orbit(member.theta0, member.v0, member.eps)
             for key in table:
                 table[key].append(getattr(o, key))
         cols = ([scene.sweep] if scene.sweep else []) + ["theta0", "v0", "eps", "regime", "k", "period",

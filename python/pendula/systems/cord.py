@@ -1,4 +1,4 @@
-"""The pendulum on a flexible cord (Garfinkel 1957, seed 000).
+"""The pendulum on a flexible cord (Garfinkel 1957).
 
 A bob on a massless inextensible cord of length l that can go slack.  Units:
 lengths in l (the pivot at the origin, x to the right, y up, the bob at
@@ -24,7 +24,7 @@ flight
     A parabola in closed form.  |p(tau)|^2 - 1 is a quartic in the flight time
     tau whose low coefficients vanish at a tangential departure (r' = 0 and
     zero tension make tau^3 a factor), so the re-entry time is the root of the
-    remaining linear factor: tau = -4 (u . g) / |g|^2 (the seed's eq. 13.1),
+    remaining linear factor: tau = -4 (u . g) / |g|^2 (Garfinkel's eq. 13.1),
     never the departure point itself.  After a springy re-entry (restitution
     e > 0) the flight starts with an inward radial velocity: then tau is the
     smallest positive root of a cubic, taken from its companion matrix and
@@ -63,7 +63,7 @@ MAX_SEQUENCE_TERMS = 100_000
 
 
 def flip_map(xi):
-    """Garfinkel's flip map f (seed eqs. 14-15), vectorised.
+    """Garfinkel's flip map f (Garfinkel eqs. 14-15), vectorised.
 
     f(x) = x - (64/3) [x (1 - x^2)]^3 for 0 <= x <= 1, and f(x) = x outside
     (the kernel's elemental ``flip_map``, kernel/models/pendula_cord.f90).
@@ -119,7 +119,7 @@ _XMIN = _argmin_f()
 
 
 def flip_sequence(n: int) -> np.ndarray:
-    """The first n terms of Garfinkel's sequence x_k (seed eqs. 16-17).
+    """The first n terms of Garfinkel's sequence x_k (Garfinkel eqs. 16-17).
 
     x_0 = -2/3, x_1, x_2, x_3 the zeros of f (0, 0.2360, 0.7511), then
     x_{k+4} = f^{-1}(x_{k+2}) on the branch of f above its minimum, found by
@@ -157,12 +157,29 @@ def flip_sequence(n: int) -> np.ndarray:
 
 
 def cord_state(xi, nmax: int = 200):
-    """Garfinkel's state index k of an energy xi (seed eq. 18), vectorised.
+    """Garfinkel's state index k of an energy xi (Garfinkel eq. 18), vectorised.
 
     k such that x_k <= xi < x_{k+1} for -2/3 <= xi < 1; ``math.inf`` for xi >= 1
     (circulation).  The sequence is computed to ``nmax`` terms (x_200 lies
     1e-3 below 1); xi beyond the last term gives k = nmax - 1 with a
     RuntimeWarning.  xi < -2/3 is not an energy: NaN with a RuntimeWarning.
+
+    Parameters
+    ----------
+    xi : array_like
+        Garfinkel's energies.
+    nmax : int
+        Terms of the sequence x_k computed, 1 to ``MAX_SEQUENCE_TERMS``.
+
+    Returns
+    -------
+    float or ndarray
+        k (``math.inf`` for circulation, NaN below -2/3).
+
+    Raises
+    ------
+    ValueError
+        nmax is not a whole number from 1 to ``MAX_SEQUENCE_TERMS``.
 
     Examples
     --------

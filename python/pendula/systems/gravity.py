@@ -1,4 +1,4 @@
-"""Non-uniform gravity (source 003, task 4): the rigid pendulum in a
+"""Non-uniform gravity (Prusa & Tuma, task 4): the rigid pendulum in a
 conservative field that is not uniform.
 
 Fields (scene ``gravity``), each parameterised so that g is the strength at the
@@ -111,6 +111,30 @@ class GravityOrbit:
 def gravity_orbit(scene) -> GravityOrbit:
     """Energy, regime, amplitude and period of the scene's orbit (exact quadrature).
 
+    One classifier for every field: the regime is the sign of the distance from
+    the separatrix f(1) - E = Q(w0, 1) cos^2(theta0/2) - v0^2/2, formed in
+    double-double, and mc follows from it; the uniform field is answered by the
+    exact pendulum itself (the same bits as :func:`pendula.orbit`).
+
+    Parameters
+    ----------
+    scene : Scene
+        Its field (``gravity``, ``gravity_distance``, ``gravity_gradient``),
+        ``eps``, ``theta0`` and ``v0``; other effects are ignored.
+
+    Returns
+    -------
+    GravityOrbit
+
+    Raises
+    ------
+    TypeError
+        scene is not a :class:`pendula.Scene`.
+    ValueError
+        theta0 beyond 2^52, v0 beyond 1e150, eps beyond 1e300, or the
+        inverse-square mass closer than about 2e-5 l below the circle (the
+        quadrature of the period does not converge); the message names it.
+
     Examples
     --------
     >>> import pendula
@@ -137,7 +161,7 @@ def h_samples(scene, orb: GravityOrbit, u):
                                orb.energy, u)
 
 
-def issue13_orbit(scene):
+def conservative_orbit(scene):
     """The orbit facts (a :class:`pendula.Orbit`) of a conservative cycloid scene (the
     guide, perhaps a torque) or of a scene whose only effect is non-uniform gravity;
     None for any other scene.  k is sqrt(m) in libration and 1/sqrt(m) in rotation
