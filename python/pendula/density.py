@@ -101,8 +101,8 @@ class _Model:
         self.mc = o.mc
         # the amplitude: exactly |theta0| when starting at rest (the kernel's 2 asin(sqrt(m)) rounds)
         # (|theta0| <= pi: no reduction needed, exact; otherwise the kernel's reduced amplitude)
-        self.thm = abs(sc.theta0) if (sc.v0 == 0.0 and o.regime == "libration" and abs(sc.theta0) <= math.pi) \
-            else o.theta_max
+        self.at_rest = sc.v0 == 0.0 and o.regime == "libration" and abs(sc.theta0) <= math.pi
+        self.thm = abs(sc.theta0) if self.at_rest else o.theta_max
         K = o.K
         # cosine coefficients of h on its period 2K: doubling until the last ones are below rounding
         n = 16
@@ -152,8 +152,17 @@ class _Model:
         angle difference (m cos^2 phi = sin((theta_m - theta)/2) sin((theta_m + theta)/2)), so that
         they keep their accuracy at the turning points where arcsin(sin(theta/2)/k) would not."""
         a = np.abs(theta)
-        kc = np.sqrt(np.maximum(0.0, np.sin(0.5 * (self.thm - a)) * np.sin(0.5 * (self.thm + a))))
         sa = np.sin(0.5 * a)
+        if self.at_rest:
+            # theta_max = |theta0| exactly: from the angle difference
+            kc2 = np.sin(0.5 * (self.thm - a)) * np.sin(0.5 * (self.thm + a))
+        else:
+            # theta_max is rounded: m - sin^2(theta/2), or cos^2(theta/2) - mc next to the top, from
+            # the orbit's m and mc (each to a few ulps), which keeps more digits next to the turning point
+            m, mc = self.orbit.m, self.mc
+            kc2 = m - sa * sa if m < 0.5 else np.cos(0.5 * a) ** 2 - mc
+            kc2 = np.where(a >= self.thm, 0.0, kc2)
+        kc = np.sqrt(np.maximum(0.0, kc2))
         r = np.hypot(sa, kc)
         r = np.where(r > 0, r, 1.0)
         return sa / r, kc / r, kc

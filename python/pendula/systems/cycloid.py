@@ -144,7 +144,7 @@ def cycloid_period(scene) -> float:
     """
     _scene_arg(scene, "cycloid_period")
     cycloid_amplitude(scene)
-    return 4 * math.pi * math.sqrt(scene.cycloid_radius / scene.eps)
+    return 2 * math.pi / math.sqrt(scene.eps / (4 * scene.cycloid_radius))   # as the kernel forms it
 
 
 def cycloid_energy(scene, s, sd):
