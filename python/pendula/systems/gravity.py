@@ -34,10 +34,20 @@ KINDS = {"uniform": 0, "inverse-square": 1, "linear": 2}
 _REGIMES = {0: "libration", 1: "separatrix", 2: "rotation"}
 _STATUS = {1: "bad field parameters (eps > 0; gravity_distance > 1; gravity_gradient < 0.5)",
            2: "theta0 and v0 must be finite",
-           3: "the period quadrature did not converge in 2^20 panels (inverse-square field with the "
-              "mass closer than about 2e-5 l below the circle: gravity_distance - 1 too small)",
+           3: "the period quadrature did not converge in 2^20 panels ({field})",
            4: "theta0 beyond 2**52 (4.5e15) cannot be reduced modulo 2 pi in double precision",
-           5: "v0 too large for this field: |v0| / sqrt(2 Q) must stay below 1e154"}
+           5: "v0 must stay below 1e150 in a non-uniform field (its square must be a double)",
+           6: "this orbit is beyond double precision in this field ({field}): a quantity of it under- or "
+              "overflows"}
+
+
+def _field_words(scene) -> str:
+    if scene.gravity == "inverse-square":
+        return (f"inverse-square field, gravity_distance = {scene.gravity_distance!r}: the mass closer than "
+                f"about 2e-5 l below the circle, or eps = {scene.eps!r} extreme")
+    if scene.gravity == "linear":
+        return f"linear field, gravity_gradient = {scene.gravity_gradient!r}, eps = {scene.eps!r}"
+    return f"uniform field, eps = {scene.eps!r}"
 
 
 def field_of(scene) -> tuple[int, float]:
@@ -149,7 +159,8 @@ def gravity_orbit(scene) -> GravityOrbit:
     kind, par = field_of(scene)
     info, status = _kernel.gravity_orbit_v(kind, par, scene.eps, scene.theta0, scene.v0)
     if status:
-        raise ValueError(_STATUS.get(status, f"kernel status {status}"))
+        raise ValueError("gravity_orbit: " + _STATUS.get(status, f"kernel status {status}").format(
+            field=_field_words(scene)))
     return GravityOrbit(_REGIMES[int(info[0])], *(float(x) for x in info[1:7]))
 
 
