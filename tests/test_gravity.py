@@ -355,3 +355,14 @@ def test_period_scales_as_one_over_sqrt_eps_to_the_ends_of_the_doubles(field, ep
 def test_orbit_beyond_double_precision_is_refused_naming_the_field(kw, words):
     with pytest.raises(ValueError, match=words.replace("+", r"\+")):
         gravity_orbit(Scene(**kw))
+
+
+@pytest.mark.parametrize("field", [dict(gravity="inverse-square", gravity_distance=8.38905609893065),
+                                   dict(gravity="linear", gravity_gradient=0.3)])
+@pytest.mark.parametrize("v0", [2.2e-242, 1e-160, 1e-8])
+def test_tiny_swing_at_the_bottom_is_a_libration(field, v0):
+    # v0^2 underflows (or nearly): mc = Q(w0, 1) / Q(m, 1) rounds to either side of 1; it is 1
+    o = gravity_orbit(Scene(theta0=0.0, v0=v0, **field))
+    small = 2 * math.pi / small_oscillation_omega(Scene(theta0=0.0, v0=v0, **field))
+    assert o.regime == "libration" and 0.0 <= o.m < 1e-15 and o.mc == 1.0
+    assert abs(o.period / small - 1) <= 1e-15

@@ -264,6 +264,8 @@ contains
       theta_max = inf_dp
       sfac = 2.0_dp
     end if
+    ! (at the bottom mc = Q(w0, 1) / Q(m, 1) rounds to either side of 1: it is 1 there)
+    if (mc > 1.0_dp .and. mc <= 1.0_dp + 8.0_dp * epsilon(1.0_dp)) mc = 1.0_dp
     ! what double precision cannot hold for this field (a parameter so extreme that a quantity of
     ! the orbit under- or overflows): refused, never a wrong number
     if (.not. (m >= 0.0_dp .and. m <= 1.0_dp .and. mc > 0.0_dp .and. mc <= 1.0_dp .and. &
