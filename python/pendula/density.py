@@ -23,6 +23,7 @@ the arcsine law at every amplitude: p(s) = 1 / (pi sqrt(A^2 - (s - s_c)^2)).
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 
@@ -171,14 +172,24 @@ class _Model:
         """F(phi | m) from sin(phi) and cos(phi), never from phi (dF/dphi ~ 1/sqrt(mc) next to
         pi/2 would amplify the rounding of an angle)."""
         shape = np.shape(s)
+        if np.size(s) == 0:
+            return np.zeros(shape)
         s = np.ascontiguousarray(s, dtype=np.float64).reshape(-1)
         c = np.ascontiguousarray(c, dtype=np.float64).reshape(-1)
         return _kernel.gravity_f_sc_v(s, c, self.orbit.m, self.mc).reshape(shape)
 
     def _turn(self, theta):
-        """(whole turns, theta - 2 pi turns in [-pi, pi)): theta itself when it is in [-pi, pi)."""
-        turns = np.floor((theta + math.pi) / (2 * math.pi))
-        w = theta - 2 * math.pi * turns
+        """(whole turns, theta - 2 pi turns in [-pi, pi)): theta itself when it is in [-pi, pi).
+        Beyond 2^52 (and at +-inf) theta cannot be reduced modulo 2 pi: w is NaN there, with a
+        RuntimeWarning naming theta."""
+        far = ~(np.abs(theta) <= 2.0 ** 52) & ~np.isnan(theta)
+        if np.any(far):
+            warnings.warn("angle density of a rotation: theta beyond 2**52 (4.5e15) or infinite cannot be "
+                          "reduced modulo 2 pi: NaN there (the CDF, continued by whole turns, is +-inf at "
+                          "+-inf)", RuntimeWarning, stacklevel=4)
+        t = np.where(far, np.nan, theta)
+        turns = np.floor((t + math.pi) / (2 * math.pi))
+        w = t - 2 * math.pi * turns
         return turns, w
 
     def density(self, theta):
@@ -220,7 +231,8 @@ class _Model:
         # rotation: the CDF over [-pi, pi), continued by whole turns
         turns, w = self._turn(theta)
         U = self._f(np.sin(0.5 * w), np.cos(0.5 * w))
-        return turns + 0.5 + self._time(U) / self.T
+        out = turns + 0.5 + self._time(U) / self.T
+        return np.where(np.isinf(theta), theta, out)     # continued by whole turns: +-inf at +-inf
 
 
 def angle_density(scene, theta):
