@@ -143,15 +143,26 @@ contains
   elemental function gravity_h(kind, par, eps, regime, m, mc, e, u) result(h)
     integer, intent(in) :: kind, regime
     real(dp), intent(in) :: par, eps, m, mc, e, u
-    real(dp) :: h, sn, cn, dn, am, w, f1, de, hh
+    real(dp) :: h, sn, cn, dn, am, w, f1, de, hh, q1
     call jacobi_sncndn(u, m, mc, sn, cn, dn, am)
     if (regime == gr_libration) then
-      h = sqrt(2.0_dp / gravity_q(kind, par, eps, m * sn * sn, m))
+      if (kind == gk_linear) then
+        ! Q = 2 eps (1 - kappa (w + w_m)) = 2 eps ((1 - 2 kappa) + kappa (dn^2 + mc)): no cancellation
+        ! next to the top when kappa is next to 1/2
+        h = sqrt(2.0_dp / (2.0_dp * eps * ((1.0_dp - 2.0_dp * par) + par * (dn * dn + mc))))
+      else
+        h = sqrt(2.0_dp / gravity_q(kind, par, eps, m * sn * sn, m))
+      end if
     else
       w = sn * sn
       f1 = gravity_f(kind, par, eps, 1.0_dp)
       de = mc * e                    ! E - f(1) = mc E, without the cancellation of e - f1
-      hh = (de + gravity_q(kind, par, eps, w, 1.0_dp) * cn * cn) / (de + f1 * cn * cn)
+      if (kind == gk_linear) then    ! Q(w, 1) = 2 eps ((1 - 2 kappa) + kappa cn^2)
+        q1 = 2.0_dp * eps * ((1.0_dp - 2.0_dp * par) + par * cn * cn)
+      else
+        q1 = gravity_q(kind, par, eps, w, 1.0_dp)
+      end if
+      hh = (de + q1 * cn * cn) / (de + f1 * cn * cn)
       h = sqrt(2.0_dp / (e * hh))
     end if
   end function gravity_h
@@ -241,6 +252,10 @@ contains
       ! 1 - m = (f(1) - E) / Q(m, 1)
       if (v0 == 0.0_dp) then
         mc = o%mch + o%mcl           ! cos^2(theta0/2), rounded once
+      else if (kind == gk_linear .and. par > 0.0_dp) then
+        ! Q(m, 1) = 2 ((1 - 2 kappa) + kappa mc): mc solves 2 kappa mc^2 + 2 (1 - 2 kappa) mc = d,
+        ! taken in its stable form (1 - kappa (m + 1) would cancel next to the top, kappa near 1/2)
+        mc = (dh + dl) / ((1.0_dp - 2.0_dp * par) + sqrt((1.0_dp - 2.0_dp * par)**2 + 2.0_dp * par * (dh + dl)))
       else
         mc = (dh + dl) / gravity_q(kind, par, 1.0_dp, m, 1.0_dp)
       end if
