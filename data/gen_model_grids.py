@@ -20,8 +20,8 @@ absolute with the class's scale):
   the curves at the exact double nodes, at 40 and 80 digits.
 - cycloid_motion (heavy damping): the closed form of the over-damped oscillator
   at 40 digits (exponentials of both roots) and at 80.
-- cord flips: Garfinkel's closed forms (his eqs. 9, 13, 14; with the slips listed in
-  the seeds' README corrected) at 40 and 80 digits; the circle time to departure
+- cord flips: Garfinkel's closed forms (his eqs. 9, 13, 14; with the slips listed on
+  the documentation's known-slips page corrected) at 40 and 80 digits; the circle time to departure
   as the integral over theta (route A) and as F (route B).
 - find_events / numerical_period: turning-point times (2j+1) K / sqrt(eps) - u0
   and angle-crossing times from F, at 40 and 80 digits.

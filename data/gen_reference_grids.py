@@ -25,7 +25,29 @@ Classes (the parameter is given to pendula as the test says: "via m" or "via mc"
                  each forward and backward in time, t up to 1e4 periods
   period_*       periods of librations and rotations
 
+The second set (--set edges, data/reference_grids_edges.csv.gz, 1000 draws per class) holds the
+places where a value is ill-conditioned in its own inputs or a formula
+changes, each drawn log-uniformly next to the place:
+  am_*           the amplitude am(u|m) in every class of m: 0 <= m < 0.5,
+                 0.5 <= m < 1, mc down to 1e-300, m < 0 (to -1e12), m > 1 via m
+                 and via mc; am_edge_*: m > 1 with u next to an odd multiple
+                 of the quarter period K(1/m)/sqrt(m), where sn = +-1/sqrt(m)
+                 and m - 1 down to 1e-100 (via mc)
+  jac_m_neg_far  sn cn dn for m from -1e3 to -1e100
+  f_halfpi_*, einc_halfpi_*   phi next to N pi/2 (|N| up to 1e4, odd and
+                 even; 1e-17 to 1e-3 relative, or one ulp), m in [-10, 1) via m,
+                 mc down to 1e-300 via mc
+  f_edge_*, einc_edge_*       m > 1 (m - 1 from 1e-16 to 1e3, via m and via
+                 mc < 0), phi next to the edge of the real domain
+                 asin(1/sqrt(m)), on both sides (beyond it the reference is NaN)
+  exact_huge_theta0_*         theta(t), v(t) with |theta0| from 1e3 to 2^52,
+                 every regime, forward and backward, t up to 1e4 periods
+The reference of am(u|m): atan2(sn, cn) made continuous for m <= 1 by
+am - pi u / (2K) being within pi/2 of 0, confirmed by F(am|m) = u (a second
+route); asin(sn) = atan2(sn, cn) with cn > 0 for m > 1.
+
 Usage:  python data/gen_reference_grids.py [--n 2000] [--jobs 2]   (about 20 min on 2 cores)
+        python data/gen_reference_grids.py --set edges --n 1000   (22 min on 2 busy cores)
 """
 
 import argparse
@@ -43,6 +65,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).parent))
 from gen_exact_reference import closed_form, k2_of  # noqa: E402  (the same closed form, one copy)
 
 OUT = pathlib.Path(__file__).with_name("reference_grids.csv.gz")
+OUT_EDGES = pathlib.Path(__file__).with_name("reference_grids_edges.csv.gz")
 COLUMNS = ["cls", "x0", "x1", "x2", "x3", "r0", "r1", "r2"]
 
 
@@ -55,6 +78,22 @@ def loguni(rng, lo, hi):
 def jac(u, m):
     u, m = mp.mpf(u), mp.mpf(m)
     return [mp.re(mp.ellipfun(f, u, m=m)) for f in ("sn", "cn", "dn")]
+
+
+def amplitude(u, m):
+    """am(u|m): atan2(sn, cn), for m <= 1 on the branch where am - pi u/(2K)
+    lies within pi/2 of 0 (am and pi u/(2K) both pass j pi/2 at u = j K and
+    am is monotone between), for m > 1 in [-pi/2, pi/2] (cn > 0 there)."""
+    u = mp.mpf(u)
+    sn, cn = (mp.re(mp.ellipfun(f, u, m=m)) for f in ("sn", "cn"))
+    a = mp.atan2(sn, cn)
+    if m < 1:
+        a += 2 * mp.pi * mp.nint((mp.pi * u / (2 * mp.ellipk(m)) - a) / (2 * mp.pi))
+        # a second route: F(am|m) = u
+        back = mp.ellipf(a, m)
+        if abs(back - u) > mp.mpf("1e-25") * max(1, abs(u)):
+            raise RuntimeError(f"am({u}|{m}): F(am) = {back}")
+    return a
 
 
 def motion(theta0, v0, eps, t):
@@ -80,6 +119,8 @@ def reference(cls, x):
     via = "mc" if cls.endswith("_mc") else "m"
     if kind == "jac":
         return jac(x[0], param(x[1], via))
+    if kind == "am":
+        return [amplitude(x[0], param(x[1], via))]
     if kind == "k":
         return [mp.ellipk(param(x[0], via))]
     if kind == "e":
@@ -89,8 +130,8 @@ def reference(cls, x):
         return [mp.exp(-mp.pi * mp.ellipk(1 - m) / mp.ellipk(m))]
     if kind in ("f", "einc"):
         phi, m = mp.mpf(x[0]), param(x[1], via)
-        if m > 1 and m * mp.sin(phi) ** 2 > 1:
-            return [mp.nan]          # outside the real domain: pendula must give NaN
+        if m > 1 and (abs(phi) >= mp.pi / 2 or m * mp.sin(phi) ** 2 > 1):
+            return [mp.nan]          # the path from 0 leaves the real domain: pendula must give NaN
         f = mp.ellipf if kind == "f" else mp.ellipe
         return [mp.re(f(phi, m))]
     if kind == "exact":
@@ -104,6 +145,10 @@ def stable(cls, x):
     # enough digits to hold the parameter 1 - mc (mc down to 1e-300) and then 40 more
     small = [abs(v) for v in x[:2] if v != 0] if cls.endswith("_mc") else []
     dps = 40 + (int(-math.log10(min(small))) if small and min(small) < 1 else 0)
+    if cls.startswith(("jac", "am")) and abs(x[1]) > 1:
+        dps += int(math.log10(abs(x[1])))      # mpmath's transformations of a large |m|
+    if cls.startswith("exact") and abs(x[0]) > 1e3:
+        dps += int(math.log10(abs(x[0])))      # the reduction of theta0
     while True:
         with mp.workdps(dps):
             a = reference(cls, x)
@@ -199,6 +244,94 @@ def points(n, seed):
     return rows
 
 
+def edge_points(n, seed):
+    """The second set (see the module docstring)."""
+    rng = random.Random(seed)
+    out = []
+    sign = lambda: rng.choice([-1, 1])  # noqa: E731
+
+    def quarter(m):
+        # the quarter period of sn(u|m) in u: K(m), or K(1/m)/sqrt(m) for m > 1
+        with mp.workdps(30):
+            return float(mp.ellipk(m)) if m < 1 else float(mp.ellipk(1 / m) / mp.sqrt(m))
+
+    def u_for(m):
+        q = quarter(m)
+        return sign() * loguni(rng, 1e-3 * min(1.0, q), 4e4 * q)
+
+    for _ in range(n):
+        # the amplitude in every class of m
+        m = rng.uniform(0, 0.5) if rng.random() < 0.5 else loguni(rng, 1e-300, 0.5)
+        out.append(("am_m_small", [u_for(m), m]))
+        m = rng.uniform(0.5, 1.0)
+        out.append(("am_m_mid", [u_for(m), m]))
+        mc = loguni(rng, 1e-300, 0.5)
+        K = math.log(4 / math.sqrt(mc)) + 1.0
+        out.append(("am_m_near1_mc", [sign() * loguni(rng, 1e-3, 4e4 * K), mc]))
+        m = -loguni(rng, 1e-12, 1e12)
+        out.append(("am_m_neg", [u_for(m), m]))
+        m = 1 + loguni(rng, 1e-15, 1e4)
+        out.append(("am_m_gt1_m", [u_for(m), m]))
+        mc = -loguni(rng, 1e-15, 1e4)
+        out.append(("am_m_gt1_mc", [u_for(1 - mc), mc]))
+        # next to sn = +-1/k: u = (2j + 1) K(1/m)/k (1 + delta)
+        for cls, d in (("am_edge_m", loguni(rng, 1e-15, 1e3)), ("am_edge_mc", loguni(rng, 1e-100, 1e3))):
+            x = max(1 + d, math.nextafter(1.0, 2.0)) if cls.endswith("_m") else -d
+            with mp.workdps(40 + max(0, int(-math.log10(d)))):
+                mm = param(x, "m" if cls.endswith("_m") else "mc")
+                q = mp.ellipk(1 / mm) / mp.sqrt(mm)
+                j = 2 * int(loguni(rng, 1, 1e3)) + 1
+                u = float(sign() * j * q * (1 + sign() * loguni(rng, 1e-17, 1e-2)))
+            out.append((cls, [u, x]))
+        # sn cn dn far below m = 0
+        m = -loguni(rng, 1e3, 1e100)
+        out.append(("jac_m_neg_far", [u_for(m), m]))
+        # F and E(phi) next to multiples of pi/2
+        for fam in ("f", "einc"):
+            for via in ("m", "mc"):
+                nq = sign() * int(loguni(rng, 1, 1e4))
+                with mp.workdps(40):
+                    phi = float(nq * mp.pi / 2)
+                if rng.random() < 0.2:
+                    phi = math.nextafter(phi, sign() * math.inf)
+                else:
+                    phi *= 1 + sign() * loguni(rng, 1e-17, 1e-3)
+                if via == "m":
+                    x = rng.uniform(-10, 1) if rng.random() < 0.5 else 1 - loguni(rng, 1e-15, 1)
+                else:
+                    x = loguni(rng, 1e-300, 0.5)
+                out.append((f"{fam}_halfpi_{via}", [phi, x]))
+        # F and E(phi) next to the edge of the real domain for m > 1
+        for fam in ("f", "einc"):
+            for via in ("m", "mc"):
+                d = loguni(rng, 1e-16, 1e3)
+                x = max(1 + d, math.nextafter(1.0, 2.0)) if via == "m" else -d
+                with mp.workdps(40 + 16):
+                    mm = param(x, via)
+                    edge = mp.asin(1 / mp.sqrt(mm))
+                    phi = float(sign() * edge * (1 + sign() * loguni(rng, 1e-17, 1e-3)))
+                out.append((f"{fam}_edge_{via}", [phi, x]))
+        # the exact motion from a huge theta0
+        eps = loguni(rng, 1e-3, 1e3)
+        th0 = sign() * loguni(rng, 1e3, 2.0**52)
+        out.append(("exact_huge_theta0", [th0, rng.uniform(-3, 3) * math.sqrt(eps), eps]))
+    rows = []
+    for cls, x in out:
+        if cls.startswith("exact"):
+            th0, v0, eps = x
+            with mp.workdps(60):
+                k2 = k2_of(th0, v0, eps)
+                if k2 == 1:
+                    continue
+                P = float(period(th0, v0, eps)[0])
+            for direction in (1, -1):
+                t = direction * loguni(rng, 1e-3, 1e4 * P)
+                rows.append((cls + ("_fwd" if direction > 0 else "_bwd"), [th0, v0, eps, t]))
+        else:
+            rows.append((cls, x))
+    return rows
+
+
 def work(item):
     cls, x = item
     try:
@@ -212,9 +345,13 @@ def main(argv=None):
     ap.add_argument("--n", type=int, default=2000, help="points per class")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--seed", type=int, default=20261123)
-    ap.add_argument("--out", default=str(OUT))
+    ap.add_argument("--set", choices=("main", "edges"), default="main",
+                    help="main: every function in every regime; edges: the ill-conditioned places")
+    ap.add_argument("--out", default=None, help="default: data/reference_grids.csv.gz or ..._edges.csv.gz")
     args = ap.parse_args(argv)
-    items = points(args.n, args.seed)
+    if args.out is None:
+        args.out = str(OUT if args.set == "main" else OUT_EDGES)
+    items = points(args.n, args.seed) if args.set == "main" else edge_points(args.n, args.seed)
     done = []
     with mpr.Pool(args.jobs) as pool:
         for k, res in enumerate(pool.imap(work, items, chunksize=16)):
@@ -222,7 +359,7 @@ def main(argv=None):
             if k % 2000 == 0:
                 print(f"  {k}/{len(items)}", file=sys.stderr, flush=True)
     with gzip.open(args.out, "wt", newline="") as fh:
-        fh.write(f"# generated by data/gen_reference_grids.py with mpmath {mp.__version__}, "
+        fh.write(f"# generated by data/gen_reference_grids.py --set {args.set} with mpmath {mp.__version__}, "
                  f"seed {args.seed}, {args.n} draws per class\n")
         w = csv.writer(fh)
         w.writerow(COLUMNS)

@@ -49,7 +49,7 @@ def test_flip_sequence_against_mpmath():
     got = flip_sequence(14)
     # about 1 ulp per inversion; 1e-14 absolute leaves room for the growth of f^-1's slope
     assert np.max(np.abs(got - np.array([float(x) for x in xs]))) < 1e-14
-    # the seed's printed terms (3 decimals, eq. 17)
+    # Garfinkel's printed terms (3 decimals, eq. 17)
     np.testing.assert_allclose(got[:9], [-0.667, 0.0, 0.236, 0.751, 0.791, 0.889, 0.899, 0.930, 0.935],
                                atol=5e-4)
     assert np.all(np.diff(got) > 0) and got[-1] < 1
@@ -122,7 +122,7 @@ def test_stationary_values_and_zeros_from_simulated_flips():
     j = int(np.argmax(fs[:400]))
     # grid spacing 1e-3: the argmin is within a grid step of 0.5458 (seed README: the print 0.544 is a slip)
     assert abs(xs[i] - 0.5458) < 1.5e-3 and fs[i] == pytest.approx(-0.6547, abs=1e-4)
-    # max f = f(0.1305) = 0.08547 (mpmath); the seed prints +0.086 = f(0.130), a rounding slip (README)
+    # max f = f(0.1305) = 0.08547 (mpmath); Garfinkel prints +0.086 = f(0.130), a rounding slip (README)
     assert abs(xs[j] - 0.1305) < 1.5e-3 and fs[j] == pytest.approx(0.08547, abs=1e-5)
     sign = np.nonzero(np.diff(np.sign(fs)))[0]
     assert np.allclose(xs[sign], [0.236, 0.751], atol=1.5e-3)
@@ -143,10 +143,10 @@ def test_special_values_from_simulation():
     assert xs[np.argmax(amp)] == pytest.approx(2 ** -0.5, abs=5e-3)
     assert np.max(amp) == pytest.approx(1.0, abs=1e-12)
     # theta2 changes sign (the boundary between flips that return on the near side and the far side) at
-    # xi = 1/2: the seed prints 0.5 [3 - 3^1/2]^1/2 = 0.563, which is not where theta2 = 0 (see README)
+    # xi = 1/2: Garfinkel prints 0.5 [3 - 3^1/2]^1/2 = 0.563, which is not where theta2 = 0 (see README)
     k = np.nonzero(np.diff(np.sign(sense)))[0]
     assert len(k) == 1 and 0.49 < xs[k[0]] <= 0.5 <= xs[k[0] + 1] < 0.51
-    # the sense of rotation reverses ("oscillatory" flips) below 0.5 (3 - 3^1/2)^1/2 = 0.563, as the seed
+    # the sense of rotation reverses ("oscillatory" flips) below 0.5 (3 - 3^1/2)^1/2 = 0.563, as Garfinkel
     # prints; there theta2' = 0 (the OCR lost the dot: theta2 = 0 is at xi = 1/2, above)
     xb = 0.5 * math.sqrt(3 - math.sqrt(3))
     assert np.all(vsense[xs < xb - 1e-9] < 0) and np.all(vsense[xs > xb + 1e-9] > 0)
@@ -409,5 +409,5 @@ def test_cord_state_with_no_terms_names_nmax():
 
 
 def test_flip_sequence_beyond_its_limit_is_refused():
-    with pytest.raises(ValueError, match="n must be a whole number from 0 to"):
+    with pytest.raises(ValueError, match="n must be between 0 and"):
         flip_sequence(2 ** 40)

@@ -1,4 +1,4 @@
-"""The density of the angle (issue 13, source 003 task 5): CDF and density
+"""The density of the angle (Prusa & Tuma, task 5): CDF and density
 against mpmath's time integrals, the arcsine limit, Kolmogorov-Smirnov
 distances of sampled trajectories, the cycloid's arcsine law in s."""
 

@@ -66,3 +66,23 @@ def test_gsl_peer_runs_through_the_dispatcher():
     a = pendula.simulate(s, [0.0, 3.0], method="gsl-rk8pd")
     b = pendula.simulate(s, [0.0, 3.0], method="dop853")
     assert a.method == "gsl-rk8pd" and abs(a.theta[1] - b.theta[1]) < 1e-8
+
+
+@pytest.mark.parametrize("kw", [dict(), dict(g=9.81, length=2.0, method="DOP853", rtol=1e-9),
+                                dict(guide="cycloid", theta0=0.3, cycloid_radius=0.3, name="Huygens' guide"),
+                                dict(gravity="linear", gravity_gradient=0.2, v0=1.0, outputs=("trajectory", "omega")),
+                                dict(cord="flexible", v0=1.7, restitution=0.5, max_flips=7, min_flight=1e-3),
+                                dict(grid=("v0", "damping"), grid1=(0.5, 1.0), grid2_range=(0.0, 0.2, 5.0),
+                                     measure="locked", sweep_samples=17, damping=0.1)])
+def test_the_checked_scene_the_kernel_keeps_rebuilds_the_same_scene(kw):
+    # simulate hands the kernel these numbers and words (no text is formed or parsed at a run);
+    # read back through the kernel's layout they are the scene again, field by field
+    from pendula.scene import _fields_from_kernel
+
+    s = Scene(**kw)
+    x, words, wlen, nout, ngrid = s._kernel_fields
+    back = _fields_from_kernel(x, words, wlen, nout, ngrid)
+    for name, value in back.items():
+        got = getattr(s, name)
+        assert got == value or (got != got and value != value), name
+    assert np.array_equal(pendula.simulate(s, [0.0, 0.5]).theta, pendula.simulate(s.replace(), [0.0, 0.5]).theta)

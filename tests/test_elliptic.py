@@ -2,10 +2,10 @@
 60+ digits by data/gen_elliptic_reference.py), closed forms and identities.
 
 Tolerances, with the reason:
-- K, E, F(phi|m), E(phi|m), q: 4 eps relative -- the issue's goal; each is a
+- K, E, F(phi|m), E(phi|m), q: 4 eps relative -- README's promise; each is a
   short sequence of correctly rounded operations on well-conditioned terms.
 - sn, cn, dn: 8 eps absolute over the whole grid, u up to 1000 periods
-  included -- the issue's goal (absolute, because cn and dn pass through 0
+  included -- README's promise (absolute, because cn and dn pass through 0
   and are as small as sqrt(mc) = 1e-150 at u = K).
 """
 

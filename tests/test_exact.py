@@ -157,7 +157,7 @@ def test_bad_states_are_value_errors():
 # ---------------------------------------------------------------- series
 
 def test_period_series_exact_fractions():
-    """1 and 1/16 are printed in the source (Prusa & Tuma 3.13), 11/3072 in the issue; all ten are
+    """1 and 1/16 are printed in Prusa & Tuma (3.13), 11/3072 is the term after them; all ten are
     checked against mpmath's (numerical) Taylor expansion of (2/pi) K(sin^2(theta/2)) at 120
     digits, to 1e-20 relative (the differentiation loses digits, not the series)."""
     from fractions import Fraction as F

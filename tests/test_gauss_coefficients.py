@@ -1,4 +1,4 @@
-"""Gauss-Legendre coefficients of the kernel in the mu form (issue 15).
+"""Gauss-Legendre coefficients of the kernel in the mu form.
 
 The energy drift of long Gauss runs came from coefficients that miss the
 symplecticity condition in floating point (data/brouwer/).  Here the stored

@@ -212,3 +212,83 @@ def test_events_need_dense_output_and_sane_arguments():
         pendula.find_events(s, t_end=-1.0)
     with pytest.raises(ValueError, match="tolerance|rtol"):
         pendula.Scene(v0=1.0, rtol=0.0)
+
+
+# ------------------------------------------------------------ the Runge-Kutta-Nystrom pair
+
+def test_nystrom_pair_converges_with_the_tolerance_forwards_and_backwards():
+    t = np.array([-13.7, -2.0, 0.0, 3.3, 25.0])
+    ex, vex = pendula.exact_motion(0.0, 1.9, 1.0, t)
+    errs = []
+    for tol in (1e-6, 1e-9, 1e-12):
+        tr = integrate_scene(pendula.Scene(v0=1.9, rtol=tol, atol=tol), t, "dprkn6")
+        errs.append(max(np.abs(tr.theta - ex).max(), np.abs(tr.v - vex).max()))
+    assert errs[0] > errs[1] > errs[2], errs
+    # near the separatrix (v0 = 1.9) the error grows along the run: 1e3 times the tolerance
+    assert errs[2] < 1e-9, errs
+
+
+def test_nystrom_pair_lands_on_the_output_times():
+    """No dense output: the steps end on the output times, so the output count shows in the steps."""
+    s = pendula.Scene(v0=1.0, rtol=1e-10, atol=1e-10)
+    few = integrate_scene(s, [0.0, 20.0], "dprkn6")
+    many = integrate_scene(s, np.linspace(0.0, 20.0, 401), "dprkn6")
+    ex, _ = pendula.exact_motion(0.0, 1.0, 1.0, np.linspace(0.0, 20.0, 401))
+    assert many.stats["steps"] > few.stats["steps"]
+    assert np.abs(many.theta - ex).max() < 1e-8
+
+
+def test_nystrom_pair_takes_torque_and_drive():
+    """Forces that depend on t and theta only are the pair's domain: compared with DOP853 at 1e-13."""
+    t = np.linspace(0.0, 30.0, 7)
+    s = pendula.Scene(v0=0.3, torque=0.2, drive_amplitude=0.4, drive_frequency=0.7, rtol=1e-12, atol=1e-12)
+    a = integrate_scene(s, t, "dprkn6")
+    b = integrate_scene(s.replace(rtol=1e-14, atol=1e-14), t, "dop853")
+    assert np.abs(a.theta - b.theta).max() < 1e-9
+
+
+def test_nystrom_pair_refuses_damping_and_events():
+    s = pendula.Scene(v0=1.0, damping=0.1, rtol=1e-8, atol=1e-8)
+    with pytest.raises(ValueError, match="damped scene needs another method"):
+        integrate_scene(s, [0.0, 1.0], "dprkn6")
+    with pytest.raises(ValueError, match="dense output"):
+        pendula.find_events(pendula.Scene(v0=1.0, rtol=1e-8), method="dprkn6")
+
+
+def test_nystrom_pair_through_simulate():
+    s = pendula.Scene(v0=1.0, rtol=1e-11, atol=1e-11, method="dprkn6")
+    tr = pendula.simulate(s, [0.0, 5.0, 10.0])
+    ex, _ = pendula.exact_motion(0.0, 1.0, 1.0, [0.0, 5.0, 10.0])
+    assert np.abs(tr.theta - ex).max() < 1e-9
+    with pytest.raises(Exception, match="dprkn6|damping|method"):
+        pendula.simulate(s.replace(damping=0.2), [0.0, 1.0])
+
+
+# ------------------------------------------------------------ Verner's 9(8) pair
+
+def test_verner_pair_converges_with_the_tolerance_forwards_and_backwards():
+    t = np.array([-13.7, -2.0, 0.0, 3.3, 25.0])
+    ex, vex = pendula.exact_motion(0.0, 1.9, 1.0, t)
+    errs = []
+    for tol in (1e-6, 1e-9, 1e-12):
+        tr = integrate_scene(pendula.Scene(v0=1.9, rtol=tol, atol=tol), t, "vern9")
+        errs.append(max(np.abs(tr.theta - ex).max(), np.abs(tr.v - vex).max()))
+    assert errs[0] > errs[1] > errs[2], errs
+    assert errs[2] < 1e-9, errs
+
+
+def test_verner_pair_takes_damping_torque_and_drive():
+    t = np.linspace(0.0, 30.0, 7)
+    s = pendula.Scene(v0=2.3, damping=0.1, torque=0.2, drive_amplitude=0.4, drive_frequency=0.7,
+                      rtol=1e-12, atol=1e-12)
+    a = integrate_scene(s, t, "vern9")
+    b = integrate_scene(s.replace(rtol=1e-14, atol=1e-14), t, "dop853")
+    assert np.abs(a.theta - b.theta).max() < 1e-9
+
+
+def test_verner_pair_has_no_events_and_runs_through_simulate():
+    with pytest.raises(ValueError, match="dense output"):
+        pendula.find_events(pendula.Scene(v0=1.0, rtol=1e-8), method="vern9")
+    tr = pendula.simulate(pendula.Scene(v0=1.0, damping=0.05, rtol=1e-11, atol=1e-11, method="vern9"), [0.0, 5.0])
+    ref = pendula.simulate(pendula.Scene(v0=1.0, damping=0.05, rtol=1e-14, atol=1e-14, method="dop853"), [0.0, 5.0])
+    assert tr.method == "vern9" and abs(tr.theta[-1] - ref.theta[-1]) < 1e-9

@@ -1,5 +1,6 @@
-"""Scenes: the namelist format (Python and the Fortran executable), validation
-that names the field, method selection, and the pendula-run executable."""
+"""Scenes: the namelist format (one reader: the kernel's, for Python and the
+Fortran executable), checks that name the field, method selection, and the
+pendula-run executable."""
 
 import subprocess
 
@@ -122,7 +123,7 @@ def test_pendula_run_matches_python(tmp_path):
 
 @pytest.mark.parametrize("text,what", [
     ("&scene\n eps = 1.0\n vv0 = 3\n/\n", "line 3: unknown field 'vv0'"),
-    ("&scene\n v0 = 'abc'\n/\n", "line 2: field 'v0': cannot read its value"),
+    ("&scene\n v0 = 'abc'\n/\n", "line 2: field 'v0' must be a real number, got 'abc'"),
     ("&scene\n eps = -1.0\n/\n", "field 'eps' must be positive"),
     ("&scene\n method = 'rk5'\n/\n", "field 'method'"),
     ("&scene\n sweep = 'v0'\n/\n", "field 'sweep_values' is empty"),
@@ -172,11 +173,14 @@ def test_pendula_run_integrates_scenes_with_effects(tmp_path):
     assert np.abs(data[:, 1] - tr.theta).max() < 1e-12 and np.abs(data[:, 2] - tr.v).max() < 1e-12
 
 
-def test_pendula_run_fixed_step_needs_dt(tmp_path):
+def test_fixed_step_method_without_dt_is_a_bad_scene_in_both_programs(tmp_path):
     f = tmp_path / "rk.nml"
     f.write_text("&scene\n v0 = 1.0, damping = 0.1, method = 'rk4'\n/\n")
     p = run(str(f), "-o", str(tmp_path / "o.csv"))
-    assert p.returncode == 4 and "dt" in p.stderr
+    assert p.returncode == 2 and "field 'dt'" in p.stderr
+    with pytest.raises(SceneError) as exc:
+        Scene.from_file(f)
+    assert p.stderr.strip() == "pendula-run: " + str(exc.value)
 
 
 def test_cli_run_writes_tables_and_figures(tmp_path, data_dir):
@@ -202,3 +206,146 @@ def test_run_trajectory_csv_round_trips(tmp_path):
         rows = data[data[:, 0] == value]
         theta, v = pendula.exact_motion(0.0, value, 1.0, rows[:, 1])
         assert np.array_equal(rows[:, 2], theta) and np.array_equal(rows[:, 3], v)
+
+
+# ------------------------------------------- one verdict from both programs
+
+def one_verdict(tmp_path, capsys, text: str) -> tuple[int, str]:
+    """Run a scene file through pendula-run and `pendula run`; both must give
+    the same exit status and (after the program's name) the same message."""
+    from pendula.cli import main
+
+    f = tmp_path / "case.nml"
+    f.write_text(text)
+    p = run(str(f), "-o", str(tmp_path / "native.csv"))
+    capsys.readouterr()
+    code = main(["run", str(f), "-o", str(tmp_path / "py"), "-q"])
+    err = capsys.readouterr().err.strip()
+    assert code == p.returncode, (code, err, p.returncode, p.stderr)
+    native_msg = p.stderr.strip().removeprefix("pendula-run: ")
+    assert err.removeprefix("pendula run: ") == native_msg
+    return code, native_msg
+
+
+def test_spectrum_on_the_separatrix_is_refused_by_both_programs(tmp_path, capsys):
+    code, msg = one_verdict(tmp_path, capsys, "&scene  v0 = 2.0, outputs = 'trajectory', 'spectrum', "
+                                              "t_end = 5.0, n_samples = 11 /\n")
+    assert code == 2 and "field 'outputs'" in msg and "separatrix has no spectrum" in msg
+
+
+def test_series_without_an_amplitude_sweep_is_refused_by_both_programs(tmp_path, capsys):
+    code, msg = one_verdict(tmp_path, capsys, "&scene  v0 = 1.0, outputs = 'trajectory', 'series', "
+                                              "t_end = 5.0, n_samples = 11 /\n")
+    assert code == 2 and "sweep theta0 with v0 = 0" in msg
+
+
+def test_lindstedt_amplitude_beyond_pi_is_refused_by_both_programs(tmp_path, capsys):
+    code, msg = one_verdict(tmp_path, capsys, "&scene  v0 = 0.0, outputs = 'trajectory', 'lindstedt', "
+                                              "sweep = 'theta0', sweep_values = 0.5, 4.0 /\n")
+    assert code == 2 and "theta0 = 4.0" in msg and "|theta0| < pi" in msg
+
+
+def test_atol_overflowing_to_infinity_is_refused_by_both_programs(tmp_path, capsys):
+    code, msg = one_verdict(tmp_path, capsys, "&scene\n  atol = 1d999\n/\n")
+    assert code == 2 and "field 'atol' must be finite" in msg
+
+
+def test_repeat_count_without_its_value_is_refused_by_both_programs(tmp_path, capsys):
+    code, msg = one_verdict(tmp_path, capsys, "&scene\n  grid = 'v0', 'theta0', measure = 'locked'\n"
+                                              "  grid1 = 1.0, 2.0\n  grid2 = 3*\n/\n")
+    assert code == 2 and "line 4: field 'grid2'" in msg and "repeat count" in msg
+
+
+def test_empty_grid_axis_name_is_refused_by_both_programs(tmp_path, capsys):
+    code, msg = one_verdict(tmp_path, capsys, "&scene\n  grid = ''\n/\n")
+    assert code == 2 and "field 'grid': cannot sweep ''" in msg
+
+
+def test_empty_output_name_is_refused_by_both_programs(tmp_path, capsys):
+    code, msg = one_verdict(tmp_path, capsys, "&scene\n  outputs = ''\n/\n")
+    assert code == 2 and "field 'outputs': unknown output ''" in msg
+
+
+def test_theta0_1e308_without_a_sweep_is_refused_naming_theta0(tmp_path, capsys):
+    code, msg = one_verdict(tmp_path, capsys, "&scene\n  theta0 = 1e308\n/\n")
+    assert code == 2 and "field 'theta0'" in msg and "2^52" in msg and "sweep" not in msg
+
+
+def test_grid1_with_4097_values_is_refused_naming_the_limit(tmp_path, capsys):
+    values = ", ".join(f"{1 + k * 1e-4:.4f}" for k in range(4097))
+    code, msg = one_verdict(tmp_path, capsys, f"&scene\n  grid = 'v0', measure = 'locked'\n  grid1 = {values}\n/\n")
+    assert code == 2 and "line 3: field 'grid1' holds at most 4096 values, got 4097" in msg
+
+
+def test_theta0_with_5000_digits_is_refused_naming_theta0(tmp_path, capsys):
+    code, msg = one_verdict(tmp_path, capsys, "&scene\n  theta0 = " + "7" * 5000 + ".0\n/\n")
+    assert code == 2 and "field 'theta0' must be finite" in msg
+
+
+def test_period_of_a_damped_scene_is_refused_by_both_programs(tmp_path, capsys):
+    code, msg = one_verdict(tmp_path, capsys, "&scene\n  v0 = 1.0, damping = 0.1, outputs = 'period'\n/\n")
+    assert code == 2 and "period/omega/theta_max" in msg and "damping" in msg
+
+
+def test_conservative_cycloid_orbit_facts_are_given_by_both_programs(tmp_path, capsys):
+    code, msg = one_verdict(tmp_path, capsys, "&scene\n  guide = 'cycloid', theta0 = 0.5, outputs = 'period'\n/\n")
+    assert code == 0 and msg == ""
+
+
+def test_did_you_mean_names_the_closest_field_and_word():
+    with pytest.raises(SceneError, match=r"line 2: unknown field 'dampin' \(did you mean 'damping'\?\)"):
+        Scene.from_namelist("&scene\n dampin = 0.1\n/\n")
+    with pytest.raises(SceneError, match=r"got 'dop835' \(did you mean 'dop853'\?\)"):
+        Scene(method="dop835")
+    with pytest.raises(SceneError, match=r"got 'lockd' \(did you mean 'locked'\?\)"):
+        Scene(grid=("v0",), grid1=(1.0,), measure="lockd")
+
+
+def test_fields_and_text_are_checked_by_the_same_rules():
+    text_err = fields_err = None
+    try:
+        Scene.from_namelist("&scene guide = 'cycloid', theta0 = 1.7 /")
+    except SceneError as exc:
+        text_err = str(exc)
+    try:
+        Scene(guide="cycloid", theta0=1.7)
+    except SceneError as exc:
+        fields_err = str(exc)
+    assert text_err == "<scene>, line 1: " + fields_err and "cusps" in fields_err
+
+
+def test_replace_is_checked_on_the_fields():
+    s = Scene(v0=1.0)
+    with pytest.raises(SceneError, match="field 'outputs'.*separatrix"):
+        s.replace(v0=2.0, outputs=("spectrum",))
+    assert s.replace(method="DOPRI5").method == "dopri5"
+
+
+def test_conservative_cycloid_orbit_beyond_the_cusps_is_refused_by_both_programs(tmp_path, capsys):
+    code, msg = one_verdict(tmp_path, capsys, "&scene\n  guide = 'cycloid', theta0 = 1.5, v0 = 2.0, "
+                                              "outputs = 'period'\n/\n")
+    assert code == 2 and "field 'v0'" in msg and "cusps" in msg
+    with pytest.raises(SceneError, match="cusps"):
+        pendula.period(Scene(guide="cycloid", v0=10.0))
+
+
+def test_range_errors_name_the_line_of_the_field():
+    with pytest.raises(SceneError, match=r"^<scene>, line 3: field 'damping' must be >= 0, got -0.1$"):
+        Scene.from_namelist("&scene\n v0 = 1.0\n damping = -0.1\n/\n")
+    with pytest.raises(SceneError, match=r"^<scene>, line 2: field 'sweep_values': eps = 0.0: field 'eps' must be"):
+        Scene.from_namelist("&scene\n sweep = 'eps', sweep_values = 1.0, 0.0\n/\n")
+    # a rule on a field the text does not give: no line to name
+    with pytest.raises(SceneError, match=r"^<scene>: field 'sweep_values' is empty but 'sweep' names a field$"):
+        Scene.from_namelist("&scene\n sweep = 'v0'\n/\n")
+
+
+def test_a_run_beyond_the_work_limit_fails_alike_in_both_programs(tmp_path, capsys):
+    # a failure of the computation (exit 4), not of the scene: the dispatcher's one message
+    code, msg = one_verdict(tmp_path, capsys, "&scene\n  v0 = 1.0, damping = 0.1, method = 'rk4', dt = 1e-9, "
+                                              "t_end = 1000.0, n_samples = 3\n/\n")
+    assert code == 4 and "more steps than the work limit" in msg
+
+
+def test_gsl_rk8pd_in_a_gravity_field_is_a_bad_scene_naming_the_method():
+    with pytest.raises(SceneError, match="field 'method': gsl-rk8pd does not take a non-uniform gravity"):
+        Scene(gravity="linear", gravity_gradient=0.1, method="gsl-rk8pd")

@@ -1,6 +1,7 @@
-"""One scene-reader contract: Python's reader and pendula-run's native reader
-accept and refuse the same files (tests/scenes/valid, tests/scenes/invalid),
-and a refused scene leaves no output file behind."""
+"""One scene reader, one verdict: pendula-run and `pendula run` both read and
+check scenes with the kernel's reader, so they accept and refuse every file of
+the corpus (tests/scenes/valid, tests/scenes/invalid) alike, with the same exit
+status and the same message; a refused scene leaves no output file behind."""
 
 import pathlib
 import subprocess
@@ -9,6 +10,7 @@ import pytest
 
 from conftest import venv_bin
 from pendula import Scene, SceneError
+from pendula.cli import main
 
 HERE = pathlib.Path(__file__).resolve().parent / "scenes"
 VALID = sorted((HERE / "valid").glob("*.nml"))
@@ -16,47 +18,57 @@ INVALID = sorted((HERE / "invalid").glob("*.nml"))
 EXE = venv_bin("pendula-run")
 
 
-def _run(path, out):
-    return subprocess.run([EXE, str(path), "-o", str(out)], capture_output=True, text=True, timeout=60)
+def native(path, out):
+    return subprocess.run([EXE, str(path), "-o", str(out)], capture_output=True, text=True, timeout=120)
+
+
+def python_run(path, out, capsys):
+    capsys.readouterr()
+    code = main(["run", str(path), "-o", str(out), "-q"])
+    return code, capsys.readouterr().err.strip()
 
 
 def test_corpus_is_there():
-    assert len(VALID) >= 10 and len(INVALID) >= 25
+    assert len(VALID) >= 10 and len(INVALID) >= 40
+
+
+@pytest.mark.parametrize("path", VALID + INVALID, ids=lambda p: f"{p.parent.name}/{p.stem}")
+def test_both_programs_give_one_verdict_with_one_message(path, tmp_path, capsys):
+    p = native(path, tmp_path / "o.csv")
+    code, err = python_run(path, tmp_path / "py", capsys)
+    assert code == p.returncode, (code, err, p.returncode, p.stderr)
+    if code:
+        assert p.stderr.startswith("pendula-run: ") and err.startswith("pendula run: ")
+        assert err.removeprefix("pendula run: ") == p.stderr.strip().removeprefix("pendula-run: ")
+        assert "Traceback" not in err and "runtime error" not in p.stderr.lower()
+    if path in VALID:
+        assert code == 0, err
+    else:
+        assert code == 2, err
+        assert str(path) in err
+        # nothing written by either program
+        assert [f.name for f in tmp_path.iterdir() if f.name != "py"] == []
+        assert not (tmp_path / "py").exists() or list((tmp_path / "py").iterdir()) == []
 
 
 @pytest.mark.parametrize("path", VALID, ids=lambda p: p.stem)
-def test_valid_scene_is_accepted_by_both_readers(path, tmp_path):
+def test_valid_scene_settles_the_same_numbers_in_both_programs(path, tmp_path):
     scene = Scene.from_file(path)
-    p = _run(path, tmp_path / "o.csv")
+    p = native(path, tmp_path / "o.csv")
     assert p.returncode == 0, p.stderr
     header = (tmp_path / "o.csv").read_text().splitlines()[1]
-    # both readers settled on the same eps, theta0 and v0
     got = dict(kv.split(" = ") for kv in header.lstrip("# ").split(", ")[:3])
     assert float(got["eps"]) == scene.eps
     assert float(got["theta0"]) == scene.theta0 and float(got["v0"]) == scene.v0
 
 
 @pytest.mark.parametrize("path", INVALID, ids=lambda p: p.stem)
-def test_invalid_scene_is_refused_by_both_readers_and_leaves_no_file(path, tmp_path):
+def test_invalid_scene_is_refused_by_scene_from_file_with_the_native_message(path):
     with pytest.raises(SceneError) as exc:
         Scene.from_file(path)
-    assert str(path) in str(exc.value)
-    p = _run(path, tmp_path / "o.csv")
-    assert p.returncode == 2, (p.returncode, p.stdout[-200:], p.stderr)
-    assert "Traceback" not in p.stderr and "runtime error" not in p.stderr.lower()
-    assert p.stderr.startswith("pendula-run: ")
-    assert list(tmp_path.iterdir()) == []
-
-
-def test_python_command_refuses_without_traceback(tmp_path):
-    import sys
-
-    for path in INVALID:
-        p = subprocess.run([sys.executable, "-m", "pendula", "run", str(path), "-o", str(tmp_path / "out"), "-q"],
-                           capture_output=True, text=True, timeout=60)
-        assert p.returncode == 2, (path.name, p.stderr)
-        assert "Traceback" not in p.stderr, (path.name, p.stderr)
-        assert not (tmp_path / "out").exists() or list((tmp_path / "out").iterdir()) == []
+    p = subprocess.run([EXE, str(path), "--check"], capture_output=True, text=True, timeout=60)
+    assert p.returncode == 2
+    assert p.stderr.strip() == "pendula-run: " + str(exc.value)
 
 
 def test_replace_eps_really_changes_eps():

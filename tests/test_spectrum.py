@@ -118,7 +118,7 @@ def test_unknown_window_and_separatrix():
         pendula.fourier_series(0.0, 2.0)
 
 
-# ---------------------------------------------------------------- degenerate input (issue 11)
+# ---------------------------------------------------------------- degenerate input
 
 def test_no_signals_give_no_spectra():
     assert pendula.spectra(np.arange(64.0), np.empty((0, 64))) == []
@@ -199,7 +199,7 @@ def test_odd_length_and_smallest_length_match_numpy():
         assert np.allclose(s.omega, 2 * np.pi * np.arange(n // 2 + 1) / (n * 0.5), rtol=1e-15, atol=0)
 
 
-# ---------------------------------------------------------------- FFTW wisdom cache (issue 15)
+# ---------------------------------------------------------------- FFTW wisdom cache
 
 _CHILD = """
 import warnings, numpy as np, pendula

@@ -1,4 +1,4 @@
-"""Sweeps (issue 14): every measure against an independent scipy solve_ivp
+"""Sweeps: every measure against an independent scipy solve_ivp
 reference at random grid points, thread and Dask invariance, resume after a
 kill, scene grid fields, the I-V hysteresis loop."""
 
@@ -53,8 +53,8 @@ def test_final_well_random_points_against_scipy():
     assert checked >= 15
 
 
-def test_final_well_seed_slip_v0_2p3_beta_0p04_is_well_2():
-    # the seed says n = 1; /work/shared/seeds/README.md lists it as a slip (n = 2)
+def test_final_well_suzuki_slip_v0_2p3_beta_0p04_is_well_2():
+    # Suzuki & Suzuki, section 7.2.1 list n = 1: a slip (the known-slips page: n = 2)
     ds = pendula.sweep(Scene(damping=0.04), over={"v0": [2.3]}, measure="final_well")
     assert ds.well.item() == 2 == scipy_final_well(1.0, 0.04, 0.0, 0.0, 2.3, 1e-12)
 
@@ -173,15 +173,16 @@ def test_resume_after_kill(tmp_path):
                "--chunk-points", "60", "--threads", "1"]
         proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
         t0 = time.time()
+        commits = out / "sweep.zarr" / "commits"
         while time.time() - t0 < 60:
-            n = len(list((out / "chunks").glob("chunk_*.nc"))) if (out / "chunks").exists() else 0
+            n = len(list(commits.glob("c*/zarr.json"))) if commits.exists() else 0
             if n >= 3 or proc.poll() is not None:
                 break
             time.sleep(0.02)
         killed = proc.poll() is None
         proc.send_signal(signal.SIGKILL)
         _, err = proc.communicate()
-        n = len(list((out / "chunks").glob("chunk_*.nc")))
+        n = len(list(commits.glob("c*/zarr.json")))
         return cmd, killed, n, err
 
     # on a loaded shared machine the kill may come too late: try again in a fresh folder
@@ -191,11 +192,15 @@ def test_resume_after_kill(tmp_path):
         if killed and 0 < n_before < 40:
             break
     assert killed and 0 < n_before < 40, f"the run was not interrupted mid-way ({killed}, {n_before}, {err!r})"
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    resumed = xr.open_dataset(out / "sweep.nc", engine="scipy").load()
+    subprocess.run(cmd + ["--netcdf"], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    resumed = xr.open_zarr(out / "sweep.zarr").load()
     full = pendula.sweep(Scene.from_file(scene), chunk_points=60, threads=2)
     assert resumed.drop_attrs().identical(full.drop_attrs())
-    assert not list((out / "chunks").glob(".*tmp"))   # partial files of the killed run are cleaned up
+    exported = xr.open_dataset(out / "sweep.nc", engine="scipy").load()
+    assert exported.drop_attrs().identical(full.drop_attrs())
+    # partial files of the killed run are cleaned up, and the lock is released
+    left = [p for p in out.rglob("*") if p.name.endswith((".tmp", ".partial")) or p.name == "sweep.lock"]
+    assert not left, left
 
 
 def test_scene_grid_fields_and_errors():
@@ -299,3 +304,33 @@ def test_measures_match_single_simulate_runs():
     tr = pendula.simulate(s.replace(t_start=0.0, t_end=140.0, n_samples=351))   # samples at t = 0, 0.4, ...
     ref = (tr.theta[-1] - tr.theta[100]) / 100.0
     assert abs(ds.mean_velocity.item() - ref) < 1e-7 * ref
+
+
+def test_iv_curve_starting_at_a_high_torque_ramps_instead_of_stepping():
+    beta = 0.05
+    taus = np.round(np.arange(0.9, 1.0, 0.02), 10)
+    # a step from rest at theta = 0 to tau = 0.9 swings past the saddle pi - asin(0.9): running
+    step = pendula.iv_curve(Scene(damping=beta), taus, "up", transient=100.0, t_avg=200.0, start="scene")["up"]
+    assert step[1][0] > 1.0
+    # the adiabatic ramp from zero torque stays locked below tau = eps
+    ramp = pendula.iv_curve(Scene(damping=beta), taus, "up", transient=100.0, t_avg=200.0)["up"]
+    assert np.all(ramp[1] == 0.0)
+
+
+def test_iv_curve_down_branch_alone_starts_where_the_up_ramp_ends():
+    beta = 0.05
+    taus = np.round(np.arange(0.0, 1.2001, 0.04), 10)
+    both = pendula.iv_curve(Scene(damping=beta), taus, "both", transient=100.0, t_avg=200.0)["down"]
+    down = pendula.iv_curve(Scene(damping=beta), taus, "down", transient=100.0, t_avg=200.0)["down"]
+    np.testing.assert_array_equal(down[1], both[1])
+
+
+def test_iv_curve_from_a_given_state():
+    beta = 0.1
+    r = pendula.iv_curve(Scene(damping=beta), [0.5], "up", transient=100.0, t_avg=200.0, start=(0.0, 10.0))["up"]
+    # running from v = 10 at tau = 0.5 > 4 beta / pi: it stays running near tau / beta
+    assert abs(r[1][0] - 0.5 / beta) < 0.1 * 0.5 / beta
+    with pytest.raises(ValueError, match="start"):
+        pendula.iv_curve(Scene(damping=beta), [0.5], "up", start=(0.0, math.nan))
+    with pytest.raises(ValueError, match="start"):
+        pendula.iv_curve(Scene(damping=beta), [0.5], "up", start="rest")

@@ -1,4 +1,4 @@
-"""The uncertainty recheck of final-well points near basin boundaries (issue 14):
+"""The uncertainty recheck of final-well points near basin boundaries:
 a point whose grid neighbour answers differently is computed again at 1000
 times tighter tolerances and marked uncertain (status 4) where its answer
 changes.  Neighbours across chunk edges (pendula.sweep) and across block edges
@@ -70,9 +70,10 @@ def test_recheck_resume_bit_identical(vstar, tmp_path):
     kw = dict(over={"v0": v0, "damping": [0.1, 0.1 + 1e-9]}, measure="final_well", rtol=1e-5, atol=1e-7,
               chunk_points=6)
     first = pendula.sweep(Scene(damping=0.1), out=tmp_path / "o", **kw)
-    # a "killed" run: some chunk files gone; the resumed run recomputes them
-    chunks = sorted((tmp_path / "o" / "chunks").glob("chunk_*.nc"))
-    for c in chunks[1::2]:
+    # a "killed" run: some chunks never committed; the resumed run recomputes them
+    records = sorted((tmp_path / "o" / "sweep.zarr" / "commits").glob("c*/zarr.json"))
+    assert len(records) == 7
+    for c in records[1::2]:
         c.unlink()
     resumed = pendula.sweep(Scene(damping=0.1), out=tmp_path / "o", **kw)
     assert resumed.load().identical(first.load())
@@ -105,13 +106,29 @@ def test_pendula_run_recheck_across_blocks_matches_python(vstar, tmp_path):
 @pytest.mark.skipif(not pathlib.Path("/dev/full").exists(), reason="needs /dev/full")
 @pytest.mark.parametrize("measure", ["final_well", "lyapunov"])
 def test_pendula_run_sweep_csv_full_disk_is_exit_5(tmp_path, measure):
-    # the sweep CSV goes through the checked writer: a full disk is seen (exit 5, errno named)
+    # the sweep CSV goes through the checked writer: a device is refused and left as it was,
+    # and a write that fails (a file-size limit stands in for a full disk) is exit 5, the error named
+    import resource
+    import signal
+    import subprocess
     scene = tmp_path / "f.nml"
     scene.write_text("&scene\n damping = 0.5\n drive_frequency = 0.6666666666666666\n"
                      f" grid = 'v0'\n grid1_range = 0, 3, 7\n measure = '{measure}'\n sweep_t_max = 100\n/\n")
     r = _pendula_run(scene, "-o", "/dev/full")
     assert r.returncode == 5, (r.returncode, r.stderr)
-    assert "/dev/full" in r.stderr and "errno" in r.stderr
+    assert "/dev/full" in r.stderr and "not a regular file" in r.stderr
+    assert pathlib.Path("/dev/full").is_char_device()
+
+    def small_disk():
+        resource.setrlimit(resource.RLIMIT_FSIZE, (100, 100))
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+
+    exe = pathlib.Path(sys.executable).parent / "pendula-run"
+    r = subprocess.run([str(exe), str(scene), "-o", str(tmp_path / "full.csv")], capture_output=True, text=True,
+                       preexec_fn=small_disk, timeout=300)
+    assert r.returncode == 5, (r.returncode, r.stderr)
+    assert "full.csv" in r.stderr and "too large" in r.stderr
+    assert not (tmp_path / "full.csv").exists()
     # and a sweep CSV to a file is complete and leaves no temporary behind
     r = _pendula_run(scene, "-o", tmp_path / "ok.csv")
     assert r.returncode == 0, r.stderr

@@ -1,4 +1,4 @@
-"""Spectra from several threads at once (issue 11).
+"""Spectra from several threads at once.
 
 Before plans were counted while in use, one thread could free a cached FFTW
 plan (evicting it for a new length) between another thread's look-up and its
@@ -62,7 +62,7 @@ def test_threads_hammering_spectra_of_many_lengths_match_serial_results():
 
 
 def test_one_long_length_and_a_cycle_of_others_in_two_threads():
-    # the fuzz case of issue 11: length 64 in one thread, 65..81 in another
+    # a case a fuzz found: length 64 in one thread, 65..81 in another
     t64 = np.arange(64) * 0.1
     want64 = pendula.spectrum(t64, np.sin(t64)).power
     others = {n: pendula.spectrum(np.arange(n) * 0.1, np.sin(np.arange(n) * 0.1)).power

@@ -1,6 +1,7 @@
 !> pendula-run: run a scene file, write its outputs as CSV.
 !>
-!> Usage: pendula-run SCENE.nml [-o OUT.csv]
+!> Usage: pendula-run SCENE.nml [-o OUT.csv] [--check]
+!> (--check: read and check the scene only; exit 0 or 2.)
 !> The trajectory table (t, theta, v, energy; with a first column for the swept
 !> value when the scene sweeps a field) goes to OUT (standard output when -o
 !> is absent).  When the scene asks for period, omega or theta_max, the orbit
@@ -10,15 +11,20 @@
 !> is written.  Every scene goes through the kernel's dispatcher (the same
 !> as the Python layer's).  Files are written under a temporary name and
 !> renamed into place at the end: a failure leaves no partial or stray file.
+!> Only regular files are written (a device or FIFO under OUT is refused, exit
+!> 5; '-' is standard output); a missing folder is an error; temporaries are
+!> removed on every exit path, SIGINT and SIGTERM included.  Numbers are
+!> written with 17 significant digits, as the Python layer writes them.
 !> Exit status: 0 ok, 2 bad scene or arguments, 3 model not implemented,
 !> 4 the computation failed, 5 a write error.
 program pendula_run
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
-  use pendula_outfile, only: outfile_t, out_open, out_line, out_close, out_abandon
-  use pendula_kinds, only: dp, two_pi, half_pi
-  use pendula_scene, only: scene_t, read_scene, scene_effects, scene_summary, max_outputs
+  use pendula_outfile, only: outfile_t, out_open, out_line, out_close, out_abandon, out_reals, out_errtext, &
+    out_guard_signals, out_abandon_all
+  use pendula_kinds, only: dp, two_pi
+  use pendula_scene, only: scene_t, read_scene, scene_effects, scene_summary, scene_member, max_outputs
   use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_eval, orbit_period, orbit_theta_max
-  use pendula_simulate, only: simulate_scene, select_model, sim_ok, simulate_status_text, scene_orbit13
+  use pendula_simulate, only: simulate_scene, select_model, sim_ok, simulate_status_text, model_orbit_facts
   use pendula_sweep, only: sweep_scene_csv
   implicit none
   character(len=4096) :: path, out, arg, orbit_out
@@ -31,15 +37,17 @@ program pendula_run
   integer :: nargs, i, j, status, nmem
   logical :: two_files
   real(dp), allocatable :: t(:), theta(:), v(:), e(:), values(:)
-  logical :: want_traj, want_orbit, swept
+  logical :: want_traj, want_orbit, swept, check_only = .false.
   integer :: method
   real(dp) :: stats(4)
-  logical :: has13                                   ! cycloid / gravity orbit facts
-  integer :: reg13
-  real(dp) :: k13, per13, tmax13
+  logical :: has_facts                               ! the cycloid's and gravity's orbit facts
+  integer :: regime
+  real(dp) :: orbit_k, orbit_period_value, orbit_theta_max_value
   character(len=10), parameter :: regime_names(0:2) = [character(len=10) :: 'libration', 'separatrix', &
                                                        'rotation']
 
+  ! SIGINT, SIGTERM, SIGHUP: the temporary files are removed before the program dies
+  call out_guard_signals()
   nargs = command_argument_count()
   path = ''
   out = ''
@@ -51,19 +59,23 @@ program pendula_run
       call get_command_argument(i + 1, out)
       i = i + 2
     else if (arg == '-h' .or. arg == '--help') then
-      write(output_unit, '(a)') 'usage: pendula-run SCENE.nml [-o OUT.csv]'
+      write(output_unit, '(a)') 'usage: pendula-run SCENE.nml [-o OUT.csv] [--check]'
       stop
+    else if (arg == '--check') then
+      check_only = .true.
+      i = i + 1
     else if (len_trim(path) == 0) then
       path = arg
       i = i + 1
     else
-      call fail('unexpected argument "' // trim(arg) // '" (usage: pendula-run SCENE.nml [-o OUT.csv])')
+      call fail('unexpected argument "' // trim(arg) // '" (usage: pendula-run SCENE.nml [-o OUT.csv] [--check])')
     end if
   end do
-  if (len_trim(path) == 0) call fail('usage: pendula-run SCENE.nml [-o OUT.csv]')
+  if (len_trim(path) == 0) call fail('usage: pendula-run SCENE.nml [-o OUT.csv] [--check]')
 
   call read_scene(trim(path), sc, status, msg)
   if (status /= 0) call fail(trim(msg))
+  if (check_only) stop   ! --check: read and check the scene, run nothing
   call select_model(sc, i, status, msg)
   if (status /= sim_ok) call fail(trim(path) // ': ' // trim(msg), 3)
 
@@ -83,7 +95,9 @@ program pendula_run
   end if
   want_traj = .false.
   want_orbit = .false.
-  do i = 1, max_outputs
+  ! which outputs may go with which scene is the scene's rule (check_scene):
+  ! every scene read here can have the outputs it names
+  do i = 1, sc%n_outputs
     select case (trim(sc%outputs(i)))
     case ('trajectory', 'theta_t', 'v_t', 'phase', 'energy', 'spectrum')
       want_traj = .true.
@@ -91,31 +105,22 @@ program pendula_run
       want_orbit = .true.
     end select
   end do
-  call scene_orbit13(sc, has13, reg13, k13, per13, tmax13, status)   ! issue 13: cycloid, gravity orbits
-  if (want_orbit .and. len_trim(scene_effects(sc)) > 0 .and. .not. has13) &
-    call fail(trim(path) // ': outputs period/omega/theta_max are exact-orbit facts; the scene names ' // &
-              trim(scene_effects(sc)))
 
   swept = sc%n_sweep > 0
   nmem = max(1, sc%n_sweep)
   allocate(values(nmem))
   if (swept) values = sc%sweep_values(1:nmem)
   allocate(t(sc%n_samples), theta(sc%n_samples), v(sc%n_samples), e(sc%n_samples))
+  ! the times as numpy.linspace forms them (the Python layer's), so that both
+  ! programs write the same trajectory to the digit: start + j * step, the last one t_end
   do j = 1, sc%n_samples
     if (sc%n_samples == 1) then
       t(j) = sc%t_start
     else
-      t(j) = sc%t_start + (sc%t_end - sc%t_start) * real(j - 1, dp) / real(sc%n_samples - 1, dp)
+      t(j) = real(j - 1, dp) * ((sc%t_end - sc%t_start) / real(sc%n_samples - 1, dp)) + sc%t_start
     end if
   end do
-  ! every member is checked before anything is written
-  do i = 1, nmem
-    member = member_of(sc, i)
-    call orbit_setup(member%theta0, member%v0, member%eps, o, status)
-    if (status /= 0) call fail(trim(path) // ': sweep value makes the initial state invalid (eps <= 0?)')
-    if (member%guide == 'cycloid' .and. .not. (abs(member%theta0) <= half_pi)) &   ! issue 13
-      call fail(trim(path) // ': field ''theta0'': a sweep value puts the cycloid beyond a cusp (|theta0| > pi/2)')
-  end do
+  if (sc%n_samples > 1) t(sc%n_samples) = sc%t_end
 
   ! the flexible cord writes its own table (with x, y, r) and a flip log
   if (sc%cord == 'flexible') then
@@ -140,16 +145,15 @@ program pendula_run
       call out_line(f_out, 't,theta,v,energy')
     end if
     do i = 1, nmem
-      member = member_of(sc, i)
+      member = scene_member(sc, i)
       call simulate_scene(member, t, theta, v, e, stats, method, status, msg)
       if (status /= sim_ok) call fail(trim(path) // ': ' // trim(msg), 4)
       do j = 1, size(t)
         if (swept) then
-          write(line, '(es24.16e3,4(",",es24.16e3))') values(i), t(j), theta(j), v(j), e(j)
+          call out_line(f_out, out_reals([values(i), t(j), theta(j), v(j), e(j)]))
         else
-          write(line, '(es24.16e3,3(",",es24.16e3))') t(j), theta(j), v(j), e(j)
+          call out_line(f_out, out_reals([t(j), theta(j), v(j), e(j)]))
         end if
-        call out_line(f_out, line)
       end do
     end do
   end if
@@ -187,23 +191,6 @@ contains
     name = path(1:j) // suffix
   end function beside
 
-  function member_of(s, k) result(m)
-    type(scene_t), intent(in) :: s
-    integer, intent(in) :: k
-    type(scene_t) :: m
-    m = s
-    if (s%n_sweep == 0) return
-    select case (trim(s%sweep))
-    case ('v0');              m%v0 = s%sweep_values(k)
-    case ('theta0');          m%theta0 = s%sweep_values(k)
-    case ('eps');             m%eps = s%sweep_values(k)
-    case ('damping');         m%damping = s%sweep_values(k)
-    case ('torque');          m%torque = s%sweep_values(k)
-    case ('drive_amplitude'); m%drive_amplitude = s%sweep_values(k)
-    case ('drive_frequency'); m%drive_frequency = s%sweep_values(k)
-    end select
-  end function member_of
-
   !> The flexible cord: its table (t, theta, v, energy, x, y, r) and its flip log
   !> (OUT_flips.csv beside OUT, or following on standard output), through the
   !> checked writer like every other output.
@@ -218,8 +205,6 @@ contains
     character(len=4096) :: flips_out
     character(len=64) :: pre
     character(len=10), parameter :: stops(0:2) = [character(len=10) :: 't_end', 'max_flips', 'min_flight']
-    if (sc%t_start < 0 .or. sc%t_end < sc%t_start) &
-      call fail(trim(path) // ': field ''t_start'': a flexible cord runs forward only (0 <= t_start <= t_end)')
     allocate(x(size(t)), y(size(t)), r(size(t)))
     if (len_trim(out) == 0) out = '-'
     call out_open(f_out, trim(out), st)
@@ -248,16 +233,15 @@ contains
     end if
     allocate(log_rows(0))
     do m = 1, nmem
-      member = member_of(sc, m)
+      member = scene_member(sc, m)
       call cord_scene_run(member, t, theta, v, x, y, r, flips, nfl, stp, stats, meth, st)
       if (st == sim_cord_effects) call fail(trim(path) // ': ' // trim(simulate_status_text(st)))
-      if (st /= 0) call fail(trim(path) // ': the flexible-cord run failed: ' // trim(simulate_status_text(st)), 4)
+      if (st /= 0) call fail(trim(path) // ': ' // trim(simulate_status_text(st)), 4)
       e = 0.5_dp * v * v + 2.0_dp * member%eps * sin(0.5_dp * theta)**2
       pre = ''
-      if (swept) write(pre, '(es24.16e3,",")') values(m)
+      if (swept) pre = out_reals([values(m)]) // ','
       do k = 1, size(t)
-        write(line, '(es24.16e3,6(",",es24.16e3))') t(k), theta(k), v(k), e(k), x(k), y(k), r(k)
-        call out_line(f_out, trim(pre) // adjustl(line))
+        call out_line(f_out, trim(pre) // out_reals([t(k), theta(k), v(k), e(k), x(k), y(k), r(k)]))
       end do
       ! the flip log: one line per flip, or one line naming the stop reason of a member without flips
       if (nfl == 0) then
@@ -265,7 +249,8 @@ contains
         log_rows = [character(len=512) :: log_rows, line]
       end if
       do k = 1, nfl
-        write(line, '(i0,8(",",es24.16e3),",",a)') m, flips(:, k), trim(stops(stp))
+        write(line, '(i0)') m
+        line = trim(line) // ',' // out_reals(flips(:, k)) // ',' // trim(stops(stp))
         log_rows = [character(len=512) :: log_rows, line]
       end do
     end do
@@ -298,20 +283,20 @@ contains
     call header(f)
     call out_line(f, 'theta0,v0,eps,regime,k,period,omega,theta_max')
     do i = 1, nmem
-      member = member_of(sc, i)
-      call scene_orbit13(member, has13, reg13, k13, per13, tmax13, status)
-      if (has13) then   ! the cycloid and gravity models' orbit facts
+      member = scene_member(sc, i)
+      call model_orbit_facts(member, has_facts, regime, orbit_k, orbit_period_value, orbit_theta_max_value, status)
+      if (has_facts) then   ! the cycloid and gravity models' orbit facts
         if (status /= 0) call fail(trim(path) // ': ' // trim(simulate_status_text(status)), 4)
-        write(line, '(3(es24.16e3,","),a,4(",",es24.16e3))') member%theta0, member%v0, member%eps, &
-          trim(regime_names(reg13)), k13, per13, merge(0.0_dp, two_pi / per13, per13 > huge(1.0_dp)), tmax13
-        call out_line(f, line)
+        call out_line(f, out_reals([member%theta0, member%v0, member%eps]) // ',' // &
+          trim(regime_names(regime)) // ',' // &
+          out_reals([orbit_k, orbit_period_value, merge(0.0_dp, two_pi / orbit_period_value, &
+          orbit_period_value > huge(1.0_dp)), orbit_theta_max_value]))
         cycle
       end if
       call orbit_setup(member%theta0, member%v0, member%eps, o, status)
-      write(line, '(3(es24.16e3,","),a,4(",",es24.16e3))') member%theta0, member%v0, member%eps, &
-        trim(regime_names(o%regime)), o%k, orbit_period(o), merge(0.0_dp, two_pi / orbit_period(o), &
-        orbit_period(o) > huge(1.0_dp)), orbit_theta_max(o)
-      call out_line(f, line)
+      call out_line(f, out_reals([member%theta0, member%v0, member%eps]) // ',' // &
+        trim(regime_names(o%regime)) // ',' // out_reals([o%k, orbit_period(o), &
+        merge(0.0_dp, two_pi / orbit_period(o), orbit_period(o) > huge(1.0_dp)), orbit_theta_max(o)]))
     end do
   end subroutine orbit_table
 
@@ -346,9 +331,7 @@ contains
   subroutine fail_io(text, err)
     character(len=*), intent(in) :: text
     integer, intent(in) :: err
-    character(len=16) :: num
-    write(num, '(i0)') err
-    call fail(trim(text) // ' (errno ' // trim(num) // ')', 5)
+    call fail(trim(text) // ': ' // out_errtext(err), 5)
   end subroutine fail_io
 
   !> Report on standard error, remove any temporary file, exit with code (default 2).
@@ -358,6 +341,7 @@ contains
     write(error_unit, '(a)') 'pendula-run: ' // trim(text)
     call out_abandon(f_out)
     call out_abandon(f_orbit)
+    call out_abandon_all()   ! any other file still open (the flip log)
     if (present(code)) then
       if (code == 3) stop 3, quiet=.true.
       if (code == 4) stop 4, quiet=.true.

@@ -162,47 +162,121 @@ subroutine exact_info_v(theta0, v0, eps, info, status)
   info = [dble(o%regime), o%k, o%m, o%mch, orbit_period(o), orbit_theta_max(o), o%u0, o%mcl]
 end subroutine exact_info_v
 
-! ---------------------------------------------------------------- dispatcher
-! Run a scene given as namelist text (the kernel reads and checks it with the
-! same rules as pendula-run), at the times t (sorted ascending when an
-! integrator answers).  method: the code of what answered (0 = exact path);
-! status 0 ok, otherwise msg says why (see pendula_simulate).
-subroutine simulate_v(text, n, t, cancel, theta, v, energy, stats, method, status, msg)
-  use pendula_scene, only: scene_t, parse_scene
+! ---------------------------------------------------------------- scenes and the dispatcher
+! A scene crosses the binding as fields: x(25) the numbers in the order of
+! pendula_scene's number_fields (scene_layout_v), the words one after another
+! in `words` with their lengths wlen: cord, guide, gravity, method, sweep,
+! measure, name, then nout outputs, then ngrid grid axes.
+
+! The kernel's order of a scene's numbers and word fields (blank separated, numbers first, then '|').
+subroutine scene_layout_v(names)
+  use pendula_scene, only: number_fields
+  implicit none
+  character(len=1024), intent(out) :: names
+  integer :: i
+  names = ''
+  do i = 1, size(number_fields)
+    names = trim(names) // ' ' // trim(number_fields(i))
+  end do
+  names = trim(names) // ' | cord guide gravity method sweep measure name'
+end subroutine scene_layout_v
+
+! Read and check a scene's text (source: the file's name, for messages):
+! status 0 and the scene's fields, or status 1 and msg naming the field
+! (and the line).
+subroutine scene_read_v(text, source, x, words, wlen, nout, ngrid, sweep_values, nsweep, grid_values, grid_nv, &
+                        grid_range, grid_nr, status, msg)
+  use pendula_scene, only: scene_t, parse_scene, scene_to_fields
+  implicit none
+  character(len=*), intent(in) :: text, source
+  double precision, intent(out) :: x(25), sweep_values(4096), grid_values(4096, 3), grid_range(3, 3)
+  character(len=1024), intent(out) :: words
+  integer, intent(out) :: wlen(26), nout, ngrid, nsweep, grid_nv(3), grid_nr(3), status
+  character(len=2048), intent(out) :: msg
+  type(scene_t), allocatable :: sc
+  double precision :: g, length
+  allocate(sc)
+  x = 0; words = ''; wlen = 0; nout = 0; ngrid = 0; nsweep = 0; grid_nv = 0; grid_nr = 0
+  sweep_values = 0; grid_values = 0; grid_range = 0
+  call parse_scene(text, source, sc, status, msg, g, length)
+  if (status /= 0) return
+  call scene_to_fields(sc, g, length, x, words, wlen, nout, ngrid)
+  nsweep = sc%n_sweep
+  sweep_values(1:nsweep) = sc%sweep_values(1:nsweep)
+  grid_nv = sc%grid_nv
+  grid_nr = sc%grid_nr
+  grid_values(1:size(sc%grid_values, 1), :) = sc%grid_values
+  grid_range = sc%grid_range
+end subroutine scene_read_v
+
+! Check a scene given as fields with the kernel's rules: status 0 and the
+! checked scene's numbers and words (eps settled, words in lower case, the
+! default output), or status 1 and msg naming the field.
+subroutine scene_check_v(x, words, nw, wlen, nout, ngrid, ns, sweep_values, n1, grid1, n2, grid2, n3, grid3, &
+                         nr1, grid1_range, nr2, grid2_range, nr3, grid3_range, x_out, words_out, wlen_out, &
+                         nout_out, ngrid_out, status, msg)
+  use pendula_scene, only: scene_t, scene_from_fields, scene_to_fields
+  implicit none
+  double precision, intent(in) :: x(25)
+  character(len=*), intent(in) :: words
+  integer, intent(in) :: nw, nout, ngrid, ns, n1, n2, n3, nr1, nr2, nr3
+  integer, intent(in) :: wlen(nw)
+  double precision, intent(in) :: sweep_values(ns), grid1(n1), grid2(n2), grid3(n3), grid1_range(nr1), &
+                                  grid2_range(nr2), grid3_range(nr3)
+  !f2py intent(hide), depend(wlen) :: nw = len(wlen)
+  !f2py intent(hide), depend(sweep_values) :: ns = len(sweep_values)
+  !f2py intent(hide), depend(grid1) :: n1 = len(grid1)
+  !f2py intent(hide), depend(grid2) :: n2 = len(grid2)
+  !f2py intent(hide), depend(grid3) :: n3 = len(grid3)
+  !f2py intent(hide), depend(grid1_range) :: nr1 = len(grid1_range)
+  !f2py intent(hide), depend(grid2_range) :: nr2 = len(grid2_range)
+  !f2py intent(hide), depend(grid3_range) :: nr3 = len(grid3_range)
+  double precision, intent(out) :: x_out(25)
+  character(len=1024), intent(out) :: words_out
+  integer, intent(out) :: wlen_out(26), nout_out, ngrid_out, status
+  character(len=2048), intent(out) :: msg
+  type(scene_t), allocatable :: sc
+  double precision :: g, length
+  allocate(sc)
+  x_out = 0; words_out = ''; wlen_out = 0; nout_out = 0; ngrid_out = 0
+  call scene_from_fields(x, words, wlen, nout, ngrid, sweep_values, grid1, grid2, grid3, grid1_range, &
+                         grid2_range, grid3_range, .true., sc, g, length, status, msg)
+  if (status /= 0) return
+  call scene_to_fields(sc, g, length, x_out, words_out, wlen_out, nout_out, ngrid_out)
+end subroutine scene_check_v
+
+! Run a checked scene (its fields, as scene_check_v returns them; no sweep)
+! at the times t (sorted ascending when an integrator answers).  method: the
+! code of what answered (0 = exact path); status 0 ok, otherwise msg says why
+! (see pendula_simulate; 100: the fields do not form a scene).
+subroutine simulate_v(x, words, nw, wlen, nout, ngrid, n, t, cancel, theta, v, energy, stats, method, status, msg)
+  use pendula_scene, only: scene_t, scene_from_fields
   use pendula_simulate, only: simulate_scene
   implicit none
   !f2py threadsafe
-  character(len=*), intent(in) :: text
-  integer, intent(in) :: n
+  double precision, intent(in) :: x(25)
+  character(len=*), intent(in) :: words
+  integer, intent(in) :: nw, nout, ngrid, n
+  integer, intent(in) :: wlen(nw)
   double precision, intent(in) :: t(n)
   integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: theta(n), v(n), energy(n), stats(4)
   integer, intent(out) :: method, status
   character(len=512), intent(out) :: msg
+  !f2py intent(hide), depend(wlen) :: nw = len(wlen)
   !f2py intent(hide), depend(t) :: n = len(t)
   type(scene_t) :: sc
+  double precision :: g, length, none(0)
   method = -1
   theta = 0; v = 0; energy = 0; stats = 0
-  call parse_scene(text, '<scene>', sc, status, msg)
+  call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
+                         g, length, status, msg)
   if (status /= 0) then
     status = 100
     return
   end if
   call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel(1))
 end subroutine simulate_v
-
-! Read and check a scene's text with the kernel's rules (status 0 ok,
-! otherwise msg names the field); the scene corpus and fuzz tests compare
-! this reader with the Python one.
-subroutine scene_check_v(text, status, msg)
-  use pendula_scene, only: scene_t, parse_scene
-  implicit none
-  character(len=*), intent(in) :: text
-  integer, intent(out) :: status
-  character(len=512), intent(out) :: msg
-  type(scene_t) :: sc
-  call parse_scene(text, '<scene>', sc, status, msg)
-end subroutine scene_check_v
 
 ! The model registry, one model per line of `table` (fields separated by '|':
 ! name, selector, effects, exact_with, path, implemented, summary).
@@ -219,7 +293,7 @@ subroutine models_v(table)
   end do
 end subroutine models_v
 
-! Integrate a scene's model: method codes 1..9 (see pendula_integrators), 10 = GSL rk8pd.
+! Integrate a scene's model: method codes 1..9, 11, 12 (see pendula_integrators), 10 = GSL rk8pd.
 ! t must be sorted ascending.  stats = [steps, accepted, rejected, rhs evaluations].
 subroutine integrate_v(n, method, params, gkind, gpar, theta0, v0, t, rtol, atol, dt, ev_kind, ev_level, &
                        ev_dir, ev_terminal, max_ev, cancel, theta, v, stats, status, nev, tev, thev, vev)
@@ -287,7 +361,7 @@ end subroutine spectrum_plan_free_v
 
 ! Power spectra of nsig signals of n samples (columns) with the plan handle for n.
 ! window: 0 none, 1 Hann; nh must be n/2 + 1.
-subroutine spectra_v(handle, n, nsig, signals, dt, window, nh, omega, power, status)
+subroutine spectra_v(handle, n, nsig, signals, dt, window, nh, cancel, omega, power, status)
   use, intrinsic :: iso_c_binding, only: c_intptr_t
   use pendula_spectrum, only: power_spectra
   implicit none
@@ -295,6 +369,7 @@ subroutine spectra_v(handle, n, nsig, signals, dt, window, nh, omega, power, sta
   integer(8), intent(in) :: handle
   integer, intent(in) :: n, nsig, window, nh
   double precision, intent(in) :: signals(n, nsig), dt
+  integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: omega(nh), power(nh, nsig)
   integer, intent(out) :: status
   !f2py intent(hide), depend(signals) :: n = shape(signals, 0)
@@ -306,7 +381,7 @@ subroutine spectra_v(handle, n, nsig, signals, dt, window, nh, omega, power, sta
     status = 4
     return
   end if
-  call power_spectra(int(handle, c_intptr_t), signals, dt, window, omega, power, status)
+  call power_spectra(int(handle, c_intptr_t), signals, dt, window, omega, power, status, cancel(1))
 end subroutine spectra_v
 
 ! ===============================================
@@ -391,31 +466,37 @@ subroutine cord_flip_map_v(n, x, f)
   f = flip_map(x)
 end subroutine cord_flip_map_v
 
-! A flexible-cord scene (namelist text) through the dispatcher at sorted times t >= 0: closed
+! A flexible-cord scene (its fields, as simulate_v takes them) through the dispatcher at sorted times t >= 0: closed
 ! form without effects, the hybrid loop with them.  flips(8, maxf): t_leave, theta_leave, t_return, theta_return, xi_before, xi_after, v_leave,
 ! v_return; nflips may
 ! exceed maxf (then only maxf rows are returned: call again with room).  status: the
-! dispatcher's (0 ok; 100: the scene text is invalid), msg says why.
-subroutine cord_scene_v(text, n, maxf, t, cancel, theta, v, x, y, r, flips, nflips, stop_reason, stats, &
+! dispatcher's (0 ok; 100: the fields do not form a scene), msg says why.
+subroutine cord_scene_v(fields, words, nw, wlen, nout, ngrid, n, maxf, t, cancel, theta, v, x, y, r, flips, &
+                        nflips, stop_reason, stats, &
                         method, status, msg)
-  use pendula_scene, only: scene_t, parse_scene
+  use pendula_scene, only: scene_t, scene_from_fields
   use pendula_simulate, only: cord_scene_run, simulate_status_text
   implicit none
   !f2py threadsafe
-  character(len=*), intent(in) :: text
-  integer, intent(in) :: n, maxf
+  double precision, intent(in) :: fields(25)
+  character(len=*), intent(in) :: words
+  integer, intent(in) :: nw, nout, ngrid, n, maxf
+  integer, intent(in) :: wlen(nw)
   double precision, intent(in) :: t(n)
   integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: theta(n), v(n), x(n), y(n), r(n), flips(8, maxf), stats(4)
   integer, intent(out) :: nflips, stop_reason, method, status
   character(len=512), intent(out) :: msg
+  !f2py intent(hide), depend(wlen) :: nw = len(wlen)
   !f2py intent(hide), depend(t) :: n = len(t)
   type(scene_t) :: sc
+  double precision :: g, length, none(0)
   double precision, allocatable :: fl(:, :)
   integer :: k
   theta = 0; v = 0; x = 0; y = 0; r = 0; flips = 0; stats = 0
   nflips = 0; stop_reason = 0; method = -1; msg = ''
-  call parse_scene(text, '<scene>', sc, status, msg)
+  call scene_from_fields(fields, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
+                         g, length, status, msg)
   if (status /= 0) then
     status = 100
     return
@@ -429,35 +510,70 @@ subroutine cord_scene_v(text, n, maxf, t, cancel, theta, v, x, y, r, flips, nfli
   flips(:, 1:k) = fl(:, 1:k)
 end subroutine cord_scene_v
 ! ====================================================================
-! Sweeps (issue 14): one call per block of grid points, OpenMP inside.
+! Sweeps: one call per block of grid points, OpenMP inside.
 ! ====================================================================
 
 ! params(8, npts): eps, beta, tau, amp, omega, phase, theta0, v0 per point.
 ! nthreads <= 0: OpenMP's default (OMP_NUM_THREADS, else all cores).
-subroutine sweep_block(measure, npts, params, rtol, atol, t_tr, t_max, nout, nthreads, out, pstat)
+! cancel(1) non-zero (set by another thread) stops the block: status 5.
+subroutine sweep_block(measure, npts, params, rtol, atol, t_tr, t_max, nout, nthreads, cancel, out, pstat)
   use pendula_sweep, only: sweep_points
   implicit none
   integer, intent(in) :: measure, npts, nout, nthreads
   double precision, intent(in) :: params(8, npts), rtol, atol, t_tr, t_max
+  integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: out(nout, npts)
   integer, intent(out) :: pstat(npts)
   !f2py threadsafe
   !f2py intent(hide), depend(params) :: npts = shape(params, 1)
-  call sweep_points(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, nthreads)
+  call sweep_points(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, nthreads, cancel(1))
 end subroutine sweep_block
 
 ! One adiabatic I-V branch (torques in the order given, state carried over).
-subroutine sweep_iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, vm, err, pstat, th, v)
+subroutine sweep_iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, cancel, vm, err, pstat, th, v)
   use pendula_sweep, only: iv_branch
   implicit none
   integer, intent(in) :: ntau
   double precision, intent(in) :: params(8), taus(ntau), rtol, atol, t_tr, t_avg
+  integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: vm(ntau), err(ntau), th, v
   integer, intent(out) :: pstat(ntau)
   !f2py threadsafe
   !f2py intent(hide), depend(taus) :: ntau = len(taus)
-  call iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, vm, err, pstat, th, v)
+  call iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, vm, err, pstat, th, v, cancel(1))
 end subroutine sweep_iv_branch
+
+! The sweep's model rule on a scene's text (status 0 ok; 3 the model is not
+! one a sweep runs; 100 the text is not a valid scene), msg says why.
+subroutine sweep_model_check_v(x, words, nw, wlen, nout, ngrid, what, status, msg)
+  use pendula_scene, only: scene_t, scene_from_fields
+  use pendula_sweep, only: sweep_model_rule
+  implicit none
+  double precision, intent(in) :: x(25)
+  character(len=*), intent(in) :: words, what
+  integer, intent(in) :: nw, nout, ngrid
+  integer, intent(in) :: wlen(nw)
+  integer, intent(out) :: status
+  character(len=512), intent(out) :: msg
+  !f2py intent(hide), depend(wlen) :: nw = len(wlen)
+  type(scene_t) :: sc
+  double precision :: g, length, none(0)
+  call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
+                         g, length, status, msg)
+  if (status /= 0) then
+    status = 100
+    return
+  end if
+  call sweep_model_rule(sc, what, status, msg)
+end subroutine sweep_model_check_v
+
+! The sweep's limits: [max threads, max t_max and transient, max |theta0|].
+subroutine sweep_limits_v(lim)
+  use pendula_sweep, only: sweep_limits
+  implicit none
+  double precision, intent(out) :: lim(3)
+  call sweep_limits(lim)
+end subroutine sweep_limits_v
 ! ---------------------------------------------------------------- spectra: FFTW wisdom (spec)
 ! Load (save) FFTW wisdom from (to) a file; ok = 1 on success.  Serialised by the
 ! caller with planning (FFTW's planner state is not thread-safe).
@@ -491,3 +607,94 @@ subroutine ellipj_dd_v(n, u, ul, m, mc, sn, cn, dn, am)
   plan = jacobi_prepare(m, mc)
   call jacobi_eval_array(plan, u, sn, cn, dn, am, ul)
 end subroutine ellipj_dd_v
+
+! ---------------------------------------------------------------- timing
+! The work-precision study's clock: run one integration nrep times inside the
+! kernel and return the process CPU time of one run (seconds = total / nrep),
+! measured by the kernel around the integration alone (no argument conversion
+! or Python call inside the interval).  method: 0 = the exact path (eps =
+! params(1), conservative only), 1.. = the integrators' codes, 10 = GSL rk8pd.
+! theta, v, stats: those of the last run.  status as integrate_v.
+subroutine integrate_timed_v(nrep, n, method, params, theta0, v0, t, rtol, atol, dt, theta, v, stats, &
+                             seconds, status)
+  use pendula_kinds, only: dp
+  use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate
+  use pendula_gsl_iface, only: pendula_gsl_rk8pd
+  use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_eval
+  implicit none
+  integer, intent(in) :: nrep, n, method
+  double precision, intent(in) :: params(6), theta0, v0, t(n), rtol, atol, dt
+  double precision, intent(out) :: theta(n), v(n), stats(4), seconds
+  integer, intent(out) :: status
+  !f2py intent(hide), depend(t) :: n = len(t)
+  type(pendulum_model) :: m
+  type(event_spec) :: ev
+  type(run_stats) :: st
+  type(pendulum_orbit) :: o
+  double precision :: gs(2), tev(1), thev(1), vev(1), c0, c1
+  integer :: rep, nev
+  stats = 0; seconds = 0; status = 0
+  theta = 0; v = 0
+  if (nrep < 1) then
+    status = 1
+    return
+  end if
+  m = make_model(params(1), params(2), params(3), params(4), params(5), params(6))
+  call cpu_time(c0)
+  do rep = 1, nrep
+    select case (method)
+    case (0)
+      call orbit_setup(theta0, v0, params(1), o, status)
+      if (status /= 0) exit
+      call orbit_eval(o, t, theta, v)
+    case (10)
+      status = pendula_gsl_rk8pd(params, theta0, v0, n, t, rtol, atol, theta, v, gs)
+      if (status /= 0) status = 100 + status
+      stats = [gs(1), gs(1), 0.0d0, gs(2)]
+    case default
+      call integrate(m, method, theta0, v0, t, rtol, atol, dt, theta, v, st, status, ev, nev, tev, thev, vev)
+      stats = [dble(st%nsteps), dble(st%naccept), dble(st%nreject), dble(st%nfev)]
+    end select
+    if (status /= 0) exit
+  end do
+  call cpu_time(c1)
+  seconds = (c1 - c0) / nrep
+end subroutine integrate_timed_v
+
+! ==================== equilibria and periodic orbits: kernel/models/pendula_equilibria.f90 ====================
+! Equilibria of a model in lo < theta <= hi (model 1 rigid, 2 cord, 3 cycloid; kind, par: the gravity field;
+! r: the cycloid's R / l): theta, the eigenvalues (re1, im1, re2, im2) and the kind code of each.
+! status 0 ok, 1 bad parameters, 2 more than nmax equilibria in the window.
+subroutine equilibria_v(nmax, model, kind, par, eps, r, beta, tau, lo, hi, theta, eig, ekind, count, status)
+  use pendula_equilibria, only: model_equilibria, linear_stability
+  implicit none
+  integer, intent(in) :: nmax, model, kind
+  double precision, intent(in) :: par, eps, r, beta, tau, lo, hi
+  double precision, intent(out) :: theta(nmax), eig(4, nmax)
+  integer, intent(out) :: ekind(nmax), count, status
+  double precision :: cs(nmax)
+  integer :: i
+  call model_equilibria(model, kind, par, eps, r, tau, lo, hi, theta, cs, count, status)
+  eig = 0.0d0
+  ekind = 0
+  do i = 1, count
+    call linear_stability(beta, cs(i), eig(1, i), eig(2, i), eig(3, i), eig(4, i), ekind(i))
+  end do
+end subroutine equilibria_v
+
+! A periodic orbit of the stroboscopic map over period (k drive periods) of the rigid pendulum
+! params = [eps, beta, tau, amp, omega, phase], advancing theta by 2 pi winding: Newton (GSL hybridsj)
+! on the monodromy.  x0: the guess, x: the orbit; mono: row-major monodromy; info: [iterations, rhs
+! evaluations, residual].  status 0 ok, 1 no convergence, 2 the flow failed, 3 stalled.
+subroutine periodic_orbit_v(params, period, winding, rtol, atol, tol, maxit, x0, x, mono, info, status)
+  use pendula_gsl_iface, only: pendula_gsl_periodic_orbit
+  implicit none
+  double precision, intent(in) :: params(6), period, winding, rtol, atol, tol, x0(2)
+  integer, intent(in) :: maxit
+  double precision, intent(out) :: x(2)
+  double precision, intent(out) :: mono(4), info(3)
+  integer, intent(out) :: status
+  !f2py threadsafe
+  x = x0
+  status = pendula_gsl_periodic_orbit(params, period, winding, rtol, atol, tol, maxit, x, mono, info)
+end subroutine periodic_orbit_v

@@ -14,7 +14,7 @@ module pendula_cord_hybrid
   use pendula_kinds, only: dp, nan_dp, two_pi
   use pendula_cord, only: cord_check, cord_depart, cord_flight_time, cord_fly, cord_log_room, &
     cord_flight_verdict, verdict_absorbed, verdict_too_short, &
-    cord_ok, cord_stop_t_end, cord_stop_max_flips, cord_stop_min_flight
+    cord_ok, cord_cancelled, cord_stop_t_end, cord_stop_max_flips, cord_stop_min_flight
   use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate, &
     m_dopri5, m_dop853, st_ok, st_stopped
   implicit none
@@ -70,6 +70,13 @@ contains
     stay = .false.
     nstay = 0
     do
+      ! the flag is read once per circle-flight cycle too: a run of many short
+      ! cycles never reaches the integrator's own polling interval
+      if (present(cancel)) then
+        if (cancel /= 0) then
+          status = cord_cancelled; return
+        end if
+      end if
       ! ---- the circle from (tc, thc, vc), unless the bob is in flight or slack
       tension = vc * vc + eps * cos(thc)
       leaving = .false.

@@ -12,26 +12,26 @@
 !> case in simulate_scene (and one line in python/pendula/models/__init__.py).
 module pendula_simulate
   use pendula_kinds, only: dp, nan_dp, two_pi
-  use pendula_scene, only: scene_t, scene_effects
+  use pendula_scene, only: scene_t, scene_effects, scene_has_orbit_facts
   use pendula_rigid, only: rigid_has_exact, rigid_exact, rigid_energy
   use pendula_cycloid, only: cycloid_run, cycloid_omega2, cy_ok, cy_reaches_cusp
   use pendula_gravity, only: gk_uniform, gk_inverse_square, gk_linear, gravity_energy, gravity_orbit, &
     gr_libration, gr_rotation
   use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate, m_rk4, m_verlet, &
     m_yoshida4, m_yoshida6, m_yoshida8, m_gauss4, m_gauss6, m_dopri5, m_dop853, st_too_many_steps, &
-    st_cancelled, max_steps, max_fixed_steps
+    st_cancelled, st_velocity_force, m_dprkn6, m_vern9, max_steps, max_fixed_steps
   use pendula_gsl_iface, only: pendula_gsl_rk8pd
   implicit none
   private
   public :: model_info_t, registry, select_model, method_code, simulate_scene, simulate_status_text, &
-            scene_energy, scene_orbit13, cord_integrated, cord_scene_run
+            scene_energy, model_orbit_facts, cord_integrated, cord_scene_run
 
   integer, parameter, public :: sim_ok = 0, sim_bad_state = 1, sim_unsupported = 10, &
     sim_needs_dt = 11, sim_unsorted = 12, sim_integrator_failed = 13, sim_not_implemented = 14, &
     sim_model_clash = 15, sim_exact_refused = 16, sim_backward = 17, sim_gsl_failed = 18, &
     sim_too_many_steps = 19, sim_cancelled = 20, sim_closed_form_only = 21, sim_beyond_cusp = 22, &
-    sim_nonfinite_t = 23, sim_cord_effects = 24
-  !> method codes: the integrators' 1..9, then GSL's rk8pd and the exact path
+    sim_nonfinite_t = 23, sim_cord_effects = 24, sim_velocity_force = 25
+  !> method codes: the integrators' 1..9, 11 (dprkn6) and 12 (vern9), then GSL's rk8pd and the exact path
   integer, parameter, public :: m_gsl_rk8pd = 10, m_exact = 0
 
   !> What a model is, for users (`pendula models`) and for the dispatcher.
@@ -107,6 +107,8 @@ contains
     case ('dopri5');   method_code = m_dopri5
     case ('dop853');   method_code = m_dop853
     case ('gsl-rk8pd'); method_code = m_gsl_rk8pd
+    case ('dprkn6');   method_code = m_dprkn6
+    case ('vern9');    method_code = m_vern9
     case default;      method_code = -1
     end select
   end function method_code
@@ -161,7 +163,7 @@ contains
       end if
     case (mid_gravity)
       ! conservative and one-dimensional, but no closed form: the scene's integrator
-      ! on the field's force law (the period comes from the energy integral: scene_orbit13)
+      ! on the field's force law (the period comes from the energy integral: model_orbit_facts)
       if (sc%method == 'exact') then
         status = sim_exact_refused
       else
@@ -228,6 +230,7 @@ contains
     case (0)
     case (st_too_many_steps); status = sim_too_many_steps
     case (st_cancelled);      status = sim_cancelled
+    case (st_velocity_force); status = sim_velocity_force
     case default;             status = sim_integrator_failed
     end select
   end subroutine integrate_model
@@ -253,7 +256,7 @@ contains
   !> flips(8, nflips): the flip log (pendula_cord%cord_run); stop_reason:
   !> cord_stop_*; stats as simulate_scene; status sim_*.
   subroutine cord_scene_run(sc, t, theta, v, x, y, r, flips, nflips, stop_reason, stats, method, status, cancel)
-    use pendula_cord, only: cord_run_all
+    use pendula_cord, only: cord_run_all, cord_cancelled
     use pendula_cord_hybrid, only: cord_hybrid_all, cord_bad_method, cord_integrator_failed
     type(scene_t), intent(in) :: sc
     real(dp), intent(in) :: t(:)
@@ -266,8 +269,12 @@ contains
     if (.not. cord_integrated(sc)) then
       method = m_exact
       call cord_run_all(sc%eps, sc%theta0, sc%v0, sc%restitution, sc%max_flips, sc%min_flight, t, theta, v, &
-                        x, y, r, flips, nflips, stop_reason, status)
-      if (status /= 0) status = merge(sim_unsorted, sim_bad_state, status == 3)
+                        x, y, r, flips, nflips, stop_reason, status, cancel)
+      if (status == cord_cancelled) then
+        status = sim_cancelled
+      else if (status /= 0) then
+        status = merge(sim_unsorted, sim_bad_state, status == 3)
+      end if
       return
     end if
     method = merge(m_dop853, method_code(sc%method), sc%method == 'auto')
@@ -282,7 +289,7 @@ contains
     stats = [work(1), work(1), 0.0_dp, work(2)]
     if (status == cord_integrator_failed + st_too_many_steps) then
       status = sim_too_many_steps
-    else if (status == cord_integrator_failed + st_cancelled) then
+    else if (status == cord_integrator_failed + st_cancelled .or. status == cord_cancelled) then
       status = sim_cancelled
     else if (status >= cord_integrator_failed) then
       status = sim_integrator_failed
@@ -319,7 +326,7 @@ contains
     end select
   end subroutine cycloid_path_motion
 
-  !> Issue 13 hook: the energy of the scene's model along (theta, v) (per m l^2):
+  !> The energy of the scene's model along (theta, v) (per m l^2):
   !> rigid v^2/2 + V(theta) of its gravity field; on the cycloid s'^2/2 + w2 s^2/2 - tau s.
   function scene_energy(sc, theta, v) result(e)
     type(scene_t), intent(in) :: sc
@@ -339,11 +346,12 @@ contains
     end if
   end function scene_energy
 
-  !> Issue 13 hook: the orbit facts of a conservative cycloid scene (the guide, perhaps a torque)
-  !> or a scene whose only effect is non-uniform gravity.  has = .false. for any other scene.
+  !> The orbit facts of a model other than the rigid pendulum: a conservative cycloid scene (the
+  !> guide, perhaps a torque) or a scene whose only effect is non-uniform gravity
+  !> (scene_has_orbit_facts).  has = .false. for any other scene.
   !> k: sqrt(m) in libration, 1/sqrt(m) in rotation (the rigid pendulum's k in uniform gravity);
   !> NaN on the cycloid (no modulus there).  status /= 0: the orbit reaches a cusp or bad input.
-  subroutine scene_orbit13(sc, has, regime, k, period, theta_max, status)
+  subroutine model_orbit_facts(sc, has, regime, k, period, theta_max, status)
     type(scene_t), intent(in) :: sc
     logical, intent(out) :: has
     integer, intent(out) :: regime, status
@@ -351,7 +359,8 @@ contains
     real(dp) :: w2, r, s0, sd0, c, a, e, m, mc, kk
     has = .false.; regime = 0; status = 0
     k = nan_dp; period = nan_dp; theta_max = nan_dp
-    if (sc%guide == 'cycloid' .and. sc%damping == 0 .and. sc%drive_amplitude == 0) then
+    if (.not. scene_has_orbit_facts(sc)) return
+    if (sc%guide == 'cycloid') then
       has = .true.
       r = sc%cycloid_radius
       w2 = cycloid_omega2(sc%eps, r)
@@ -364,7 +373,7 @@ contains
         status = sim_beyond_cusp; return
       end if
       theta_max = asin((c + a) / (4.0_dp * r))
-    else if (trim(scene_effects(sc)) == 'gravity') then
+    else
       has = .true.
       select case (trim(sc%gravity))
       case ('inverse-square')
@@ -381,7 +390,7 @@ contains
       if (regime == gr_libration) k = sqrt(m)
       if (regime == gr_rotation) k = 1.0_dp / sqrt(m)
     end if
-  end subroutine scene_orbit13
+  end subroutine model_orbit_facts
 
   function simulate_status_text(status) result(s)
     integer, intent(in) :: status
@@ -411,6 +420,8 @@ contains
                                      'use ''auto'' or ''exact'''
     case (sim_beyond_cusp);      s = 'the motion reaches the cusps of the cycloidal guide (|s| = 4R, ' // &
                                      '|theta| = pi/2): start lower, slower, or drive less'
+    case (sim_velocity_force);   s = 'field ''method'': dprkn6 (a Runge-Kutta-Nystrom pair) integrates ' // &
+                                     'theta'''' = f(t, theta) only; a damped scene needs another method (dop853)'
     case default;                s = 'unknown failure'
     end select
   end function simulate_status_text

@@ -28,6 +28,7 @@
 module pendula_elliptic
   use pendula_kinds, only: dp, i8, pi, pi_lo, half_pi, nan_dp, inf_dp
   use pendula_dd, only: two_sum, fast_two_sum, two_prod, dd_sqrt, dd_sincos, dd_mul, dd_add, dd_div
+  use pendula_jacobi_theta, only: theta_plan, theta_prepare, theta_jacobi_neg, theta_mc_max
   use, intrinsic :: iso_c_binding, only: c_double, c_int
   implicit none
   private
@@ -45,6 +46,9 @@ module pendula_elliptic
   !> expansion about m = 1 (DLMF 22.10.6-8) instead of the duplications; see
   !> jacobi_hyp for why, and why the first order is enough.
   real(dp), parameter :: mc_hyp = 2.0_dp**(-60)
+
+  !> the third part of pi (pi = pi + pi_lo + pi_lo2 to 160 bits)
+  real(dp), parameter :: pi_lo2 = -2.9947698097183397e-33_dp
 
   interface
     !> K = kh + kl in double-double and sqrt(mc) for n parameters 2^-60 <= mc <= 1
@@ -79,6 +83,10 @@ module pendula_elliptic
     real(dp) :: mo = 1.0_dp, mol = 0.0_dp     !< m < 0: the complement 1 - m itself, double-double
     real(dp) :: ct(8) = 0.0_dp                 !< Maclaurin series of tn^2 in u^2
     integer :: ndbl = 0                        !< duplications that cover [0, K/2]
+    !> m < 0 with the core's complement 1/(1 - m) <= theta_mc_max (m <= -1023):
+    !> the core by the theta series (see jacobi_eval_array)
+    logical :: theta = .false.
+    type(theta_plan) :: tp
   end type jacobi_plan
 
 contains
@@ -326,37 +334,134 @@ contains
     end if
   end function ellip_e
 
-  !> phi = j pi + r with |r| <= pi/2, r = rh + rl computed with pi in
-  !> double-double; returns s = sin r and c = cos r (c >= 0) to full accuracy
-  !> even next to r = +-pi/2, where cos r is tiny.
+  !> phi = j pi + r with |r| <= pi/2; s = sin r and c = cos r >= 0, each to
+  !> full relative accuracy, next to r = +-pi/2 too (see reduce_pi_r).
   elemental subroutine reduce_pi(phi, j, s, c)
     real(dp), intent(in) :: phi
     real(dp), intent(out) :: j, s, c
-    real(dp) :: rh, rl
-    call reduce_pi_r(phi, j, rh, rl)
-    s = sin(rh) + cos(rh) * rl
-    c = abs(cos(rh) - sin(rh) * rl)
-  end subroutine reduce_pi
-
-  !> phi = j pi + (rh + rl), |rh + rl| <= pi/2, with pi in double-double.
-  elemental subroutine reduce_pi_r(phi, j, rh, rl)
-    real(dp), intent(in) :: phi
-    real(dp), intent(out) :: j, rh, rl
-    real(dp) :: p, e
+    real(dp) :: rh, rl, dh, dl, sg, p, e
+    logical :: near
+    ! the first steps of reduce_pi_r written out: this is every F's and E's
+    ! path, and as a call it cost 15% of ellipf
     j = anint(phi / pi)
     call two_prod(j, pi, p, e)
     call two_sum(phi - p, -e, rh, rl)       ! phi - p is exact near j pi (Sterbenz)
     rl = rl - j * pi_lo
-    if (rh > half_pi .or. (rh == half_pi .and. rl > pi_lo / 2.0_dp)) then
+    if (abs(abs(rh) - half_pi) < 2.0_dp**(-20) + abs(rl)) then
+      call reduce_pi_r(phi, j, rh, rl, near, sg, dh, dl)
+      if (near) then
+        call near_sincos(sg, dh, dl, s, c)
+        return
+      end if
+    else if (rh > half_pi) then
       j = j + 1.0_dp
       call two_sum(rh - pi, rl - pi_lo, rh, e)
       rl = e
-    else if (rh < -half_pi .or. (rh == -half_pi .and. rl < -pi_lo / 2.0_dp)) then
+    else if (rh < -half_pi) then
       j = j - 1.0_dp
       call two_sum(rh + pi, rl + pi_lo, rh, e)
       rl = e
     end if
+    s = sin(rh) + cos(rh) * rl
+    c = abs(cos(rh) - sin(rh) * rl)
+  end subroutine reduce_pi
+
+  !> r = sg (pi/2 - d), d = dh + dl >= 0 below 2^-20: s = sin r = sg cos d,
+  !> c = cos r = sin d (apart from reduce_pi, so that the common path stays
+  !> small enough to be inlined)
+  elemental subroutine near_sincos(sg, dh, dl, s, c)
+    real(dp), intent(in) :: sg, dh, dl
+    real(dp), intent(out) :: s, c
+    s = sg * (cos(dh) - sin(dh) * dl)
+    c = sin(dh) + cos(dh) * dl
+  end subroutine near_sincos
+
+  !> As reduce_pi with sin r and cos r in double-double (s = sh + sl, c = ch + cl).
+  elemental subroutine reduce_pi_dd(phi, j, sh, sl, ch, cl)
+    real(dp), intent(in) :: phi
+    real(dp), intent(out) :: j, sh, sl, ch, cl
+    real(dp) :: rh, rl, dh, dl, sg
+    logical :: near
+    call reduce_pi_r(phi, j, rh, rl, near, sg, dh, dl)
+    if (near) then
+      call dd_sincos(dh, dl, ch, cl, sh, sl)
+      sh = sg * sh; sl = sg * sl
+    else
+      call dd_sincos(rh, rl, sh, sl, ch, cl)
+      cl = sign(1.0_dp, ch) * cl; ch = abs(ch)
+    end if
+  end subroutine reduce_pi_dd
+
+  !> The reduction of the exact double phi by pi: phi = j pi + r, |r| <= pi/2,
+  !> r = rh + rl with pi in double-double (phi - j pi_hi is exact by Sterbenz).
+  !>
+  !> Next to an odd multiple N pi/2 (| |r| - pi/2 | < 2^-20) the multiple j
+  !> is chosen, and the distance d = pi/2 - |r| >= 0 formed, from
+  !> delta = phi - N pi/2 with pi/2 in three parts (two-products for the
+  !> first two, so every product of N is exact or below 2^-160 N), summed in
+  !> double-double: d keeps its relative accuracy even when it is 1e-20 (the
+  !> cosine there is d itself, and F's derivative 1/D ~ 1/d when mc < d^2).
+  !> Through pi in two parts, unnormalized, the rounded rh alone chose j: a
+  !> phi 1e-16 beyond (2j+1) pi/2 was taken as the other side, and F came out
+  !> 2 (K - F(r)) off (2.4e14 eps at mc = 3e-199).  Then near = .true., sg =
+  !> sign(r) and r = sg (pi/2 - d); elsewhere near = .false. and d = 0.
+  elemental subroutine reduce_pi_r(phi, j, rh, rl, near, sg, dh, dl)
+    real(dp), intent(in) :: phi
+    real(dp), intent(out) :: j, rh, rl, sg, dh, dl
+    logical, intent(out) :: near
+    real(dp) :: p, e, a, b
+    j = anint(phi / pi)
+    call two_prod(j, pi, p, e)
+    call two_sum(phi - p, -e, rh, rl)       ! phi - p is exact near j pi (Sterbenz)
+    rl = rl - j * pi_lo
+    call fast_two_sum(rh, rl, a, b)
+    rh = a; rl = b
+    dh = 0.0_dp; dl = 0.0_dp
+    near = abs(abs(rh) - half_pi) < 2.0_dp**(-20)
+    if (near) then
+      call reduce_pi_near(phi, j, rh, sg, dh, dl)
+      rl = 0.0_dp
+      return
+    end if
+    if (rh > half_pi) then
+      j = j + 1.0_dp
+      call two_sum(rh - pi, rl - pi_lo, rh, e)
+      rl = e
+    else if (rh < -half_pi) then
+      j = j - 1.0_dp
+      call two_sum(rh + pi, rl + pi_lo, rh, e)
+      rl = e
+    end if
+    sg = sign(1.0_dp, rh)
   end subroutine reduce_pi_r
+
+  !> reduce_pi_r next to an odd multiple of pi/2: from the first guess j and
+  !> remainder rh, the final j, sg = sign(r), d = dh + dl = pi/2 - |r| >= 0 and
+  !> rh = r rounded.
+  elemental subroutine reduce_pi_near(phi, j, rh, sg, dh, dl)
+    real(dp), intent(in) :: phi
+    real(dp), intent(inout) :: j, rh
+    real(dp), intent(out) :: sg, dh, dl
+    real(dp) :: p, e, q, f, a, b, en
+    sg = sign(1.0_dp, rh)
+    ! delta = phi - en pi/2, en = 2 j + sg odd (exact below 2^53)
+    en = 2.0_dp * j + sg
+    call two_prod(en, half_pi, p, e)
+    call two_prod(en, 0.5_dp * pi_lo, q, f)
+    call two_sum(phi - p, -e, a, b)          ! phi - p exact (Sterbenz)
+    call two_sum(a, -q, a, e)
+    b = (b + e) - f - en * (0.5_dp * pi_lo2)
+    call fast_two_sum(a, b, dh, dl)
+    ! r = sg pi/2 + delta: inside when sg delta <= 0, else the next multiple of pi
+    if (sg * dh > 0.0_dp) then
+      j = j + sg
+      sg = -sg
+    end if
+    if (dh < 0.0_dp) then
+      dh = -dh; dl = -dl
+    end if
+    rh = sg * half_pi - sg * dh
+  end subroutine reduce_pi_near
 
   !> Incomplete integral of the first kind F(phi|m) for any real phi.
   elemental function ellip_f(phi, m, mc) result(f)
@@ -374,27 +479,42 @@ contains
     if (j /= 0.0_dp) f = f + 2.0_dp * j * ellip_k(m, mc)
   end function ellip_f
 
-  !> F on the reduced angle for m > 1 next to the edge of the real domain
-  !> |sin r| = 1/sqrt(m), where D^2 = c^2 + mc s^2 (mc < 0) cancels: from sin
-  !> and cos of the exact reduced angle in double-double, so that D^2 keeps
-  !> its relative accuracy.  In double the roundings of s and c were
-  !> amplified by dF/dphi = 1/D, unbounded there (up to 4e6 eps on the random
-  !> grid, at exactly representable phi and m).  Only here: the double-double
-  !> sine and cosine cost about a microsecond.
-  elemental function f_beyond_one(phi, mc) result(f)
+  !> For m > 1 (mc < 0) next to the edge of the real domain |sin r| = 1/sqrt(m),
+  !> where D^2 = 1 - m s^2 = c^2 + mc s^2 cancels: s = sin r, c = cos r and
+  !> D^2 from the double-double sine and cosine of the exact reduced angle,
+  !> so that D^2 keeps its relative accuracy and its sign says exactly
+  !> whether m sin^2 phi > 1 (beyond the domain: inside = .false.).  In
+  !> double the roundings of s and c were amplified by dF/dphi = 1/D,
+  !> unbounded there (up to 4e6 eps in F), and E(phi|m) was given a real
+  !> value 4.8e-17 beyond the edge.  Only here: the double-double sine and
+  !> cosine cost about a microsecond.
+  elemental subroutine edge_terms(phi, mc, s, c, c2, d2, inside)
     real(dp), intent(in) :: phi, mc
-    real(dp) :: f, j, rh, rl, sh, sl, ch, cl, ah, al, bh, bl, dh, dl
-    call reduce_pi_r(phi, j, rh, rl)
-    call dd_sincos(rh, rl, sh, sl, ch, cl)
-    cl = sign(1.0_dp, ch) * cl; ch = abs(ch)
+    real(dp), intent(out) :: s, c, c2, d2
+    logical, intent(out) :: inside
+    real(dp) :: j, sh, sl, ch, cl, ah, al, bh, bl, dh, dl
+    call reduce_pi_dd(phi, j, sh, sl, ch, cl)
     call dd_mul(ch, cl, ch, cl, ah, al)
     call dd_mul(sh, sl, sh, sl, bh, bl)
     call dd_mul(bh, bl, mc, 0.0_dp, dh, dl)
     call dd_add(ah, al, dh, dl, bh, bl)
-    if (bh < 0.0_dp) then
+    inside = bh >= 0.0_dp
+    s = sh + sl
+    c = ch + cl
+    c2 = ah + al
+    d2 = bh + bl
+  end subroutine edge_terms
+
+  !> F(phi|m), m > 1, next to the edge of the real domain (see edge_terms).
+  elemental function f_beyond_one(phi, mc) result(f)
+    real(dp), intent(in) :: phi, mc
+    real(dp) :: f, s, c, c2, d2
+    logical :: inside
+    call edge_terms(phi, mc, s, c, c2, d2, inside)
+    if (.not. inside) then
       f = nan_dp            ! beyond the real range
     else
-      f = (sh + sl) * carlson_rf(ah + al, bh + bl, 1.0_dp)
+      f = s * carlson_rf(c2, d2, 1.0_dp)
     end if
   end function f_beyond_one
 
@@ -417,10 +537,12 @@ contains
     real(dp), intent(in) :: s, c, mc
     real(dp) :: f, d2
     if (mc == 0.0_dp) then
-      f = atanh(s)          ! inverse Gudermannian; +-Inf at |r| = pi/2
+      ! inverse Gudermannian atanh(s) = asinh(s/c), without the rounding of
+      ! s next to 1 (+-Inf at c = 0)
+      f = asinh(s / c)
       return
     end if
-    d2 = edge_d2(s, c, mc)
+    d2 = c * c + mc * s * s
     if (d2 < 0.0_dp) then
       f = nan_dp            ! m > 1 beyond the real range
     else
@@ -431,34 +553,44 @@ contains
   !> Incomplete integral of the second kind E(phi|m) for any real phi.
   elemental function ellip_einc(phi, m, mc) result(ev)
     real(dp), intent(in) :: phi, m, mc
-    real(dp) :: ev, j, s, c
+    real(dp) :: ev, j, s, c, c2, d2
+    logical :: inside
     if (phi /= phi .or. m /= m .or. mc /= mc .or. abs(phi) > huge(1.0_dp)) then
       ev = nan_dp; return
     end if
     call reduce_pi(phi, j, s, c)
-    ev = einc_reduced(s, c, m, mc)
+    if (mc < 0.0_dp .and. -mc * s * s > 0.5_dp * c * c) then
+      ! m > 1 next to the edge of the real domain: as F (edge_terms)
+      call edge_terms(phi, mc, s, c, c2, d2, inside)
+      if (.not. inside) then
+        ev = nan_dp
+      else
+        ev = einc_reduced(s, c, c2, d2, m, mc)
+      end if
+    else if (mc == 0.0_dp) then
+      ev = s
+    else if (j /= 0.0_dp .and. j * s < 0.0_dp .and. c < abs(s) .and. mc >= 1.0e-150_dp) then
+      ! 2 j E + E(r) with r of the other sign and |r| > pi/4 cancels (up to
+      ! half, at |j| = 1 next to |r| = pi/2, where E's own error doubled):
+      ! E(phi) = (2 j + sg) E - sg Delta, sg = sign(r), both terms of one sign,
+      ! with Delta = E - E(|r|) = int_0^d sqrt(mc + m sin^2 t) dt, d = pi/2 - |r|,
+      ! = sqrt(mc) E(d | -m/mc), sin d = c, cos d = |s| (mc >= 1e-150: m/mc
+      ! stays finite)
+      ev = (2.0_dp * j + sign(1.0_dp, s)) * ellip_e(m, mc) - sign(1.0_dp, s) * sqrt(mc) &
+           * einc_reduced(c, abs(s), s * s, 1.0_dp + (m / mc) * (c * c), -m / mc, 1.0_dp / mc)
+      return
+    else
+      ev = einc_reduced(s, c, c * c, c * c + mc * s * s, m, mc)
+    end if
     if (j /= 0.0_dp) ev = ev + 2.0_dp * j * ellip_e(m, mc)
   end function ellip_einc
 
-  !> D^2 = 1 - m s^2 = c^2 + mc s^2.  For m > 1 it vanishes at the edge of the
-  !> real domain |s| = 1/sqrt(m); a point inside the domain whose D^2 comes out
-  !> below zero only by the rounding of s, c and the sum is on the edge (0),
-  !> not outside it (NaN came out 1e-15 inside the edge).
-  elemental function edge_d2(s, c, mc) result(d2)
-    real(dp), intent(in) :: s, c, mc
-    real(dp) :: d2
-    d2 = c * c + mc * s * s
-    if (d2 < 0.0_dp .and. -d2 <= 4.0_dp * epsilon(1.0_dp) * (c * c - mc * s * s)) d2 = 0.0_dp
-  end function edge_d2
-
-  !> E on |r| <= pi/2 from s = sin r, c = cos r >= 0.
-  elemental function einc_reduced(s, c, m, mc) result(ev)
-    real(dp), intent(in) :: s, c, m, mc
-    real(dp) :: ev, d2, as, s3
-    if (mc == 0.0_dp) then
-      ev = s; return
-    end if
-    d2 = edge_d2(s, c, mc)
+  !> E on |r| <= pi/2 from s = sin r, c = cos r >= 0, c2 = c^2 and
+  !> D^2 = d2 = 1 - m s^2 = c^2 + mc s^2 (NaN for d2 < 0: m > 1 beyond the
+  !> real range).
+  elemental function einc_reduced(s, c, c2, d2, m, mc) result(ev)
+    real(dp), intent(in) :: s, c, c2, d2, m, mc
+    real(dp) :: ev, as, s3
     if (d2 < 0.0_dp) then
       ev = nan_dp; return
     end if
@@ -466,16 +598,16 @@ contains
     s3 = as * as * as
     if (m >= 0.0_dp .and. mc > 0.0_dp) then
       ! E = mc F + (m mc / 3) s^3 R_D(c^2, 1, D^2) + m s c / D: positive terms
-      ev = mc * as * carlson_rf(c * c, d2, 1.0_dp) &
-           + (m * mc / 3.0_dp) * s3 * carlson_rd(c * c, 1.0_dp, d2) + m * as * c / sqrt(d2)
+      ev = mc * as * carlson_rf(c2, d2, 1.0_dp) &
+           + (m * mc / 3.0_dp) * s3 * carlson_rd(c2, 1.0_dp, d2) + m * as * c / sqrt(d2)
     else if (m > 1.0_dp) then
       ! DLMF 19.25.11 scaled by s^2: E = ((m - 1)/3) s^3 R_D(D^2, 1, c^2) + s D / c,
       ! both terms positive for m > 1 (where c > 0 on the whole domain); the
       ! form of 19.25.9 below subtracts two large terms next to the edge
       ! |s| = 1/sqrt(m) (12 eps at phi = 1.566, m = 1.00001)
-      ev = (-mc / 3.0_dp) * s3 * carlson_rd(d2, 1.0_dp, c * c) + as * sqrt(d2) / c
+      ev = (-mc / 3.0_dp) * s3 * carlson_rd(d2, 1.0_dp, c2) + as * sqrt(d2) / c
     else
-      ev = as * carlson_rf(c * c, d2, 1.0_dp) - (m / 3.0_dp) * s3 * carlson_rd(c * c, d2, 1.0_dp)
+      ev = as * carlson_rf(c2, d2, 1.0_dp) - (m / 3.0_dp) * s3 * carlson_rd(c2, d2, 1.0_dp)
     end if
     ev = sign(ev, s)
   end function einc_reduced
@@ -605,6 +737,7 @@ contains
       call dd_div(1.0_dp, 0.0_dp, mc, mcl, cmc, cmcl)
       call dd_sqrt(mc, mcl, p%sh, p%sl)
       p%mo = mc; p%mol = mcl
+      p%theta = cmc <= theta_mc_max
     else
       ! sn(u|m) = sn(k u|1/m)/k, cn = dn(k u|1/m), dn = cn(k u|1/m), k = sqrt(m);
       ! the core's complement -mc/m and the scale sqrt(m) from m + ml
@@ -636,6 +769,7 @@ contains
     p%ct(8) = (6404582.0_dp + cm * (-22416037.0_dp + cm * (29821335.0_dp + cm * (-18513245.0_dp &
               + cm * (5220109.0_dp + cm * (-524937.0_dp + cm * (8195.0_dp - cm))))))) / 638512875.0_dp
     p%ndbl = max(0, exponent(0.5_dp * p%kh) + 3)
+    if (p%theta) p%tp = theta_prepare(cmc, cmcl, p%kh, p%kl, ellip_nome(cmc, 1.0_dp - cmc))
   end function jacobi_prepare_dd
 
   !> Round to the nearest integer (ties to even) for |x| < 2^51, with plain
@@ -687,6 +821,14 @@ contains
       else
         ulb(1:nb) = 0.0_dp
       end if
+      if (p%theta) then
+        ! m <= -1023: the core (complement 1/(1 - m) <= 2^-10) by the theta
+        ! series, at x = sqrt(1 - m) u in double-double
+        call scale_dd(nb, u(i0:i0+nb-1), ulb, p%sh, p%sl, j, r)
+        call theta_jacobi_neg(p%tp, p%sh, p%sl, j(1:nb), r(1:nb), &
+                              sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1))
+        cycle
+      end if
       call jacobi_block(nb, u(i0:i0+nb-1), ulb, kh, kl, sc, scl, p%sh == 1.0_dp .and. p%sl == 0.0_dp, &
                         mc, smc, ct, p%ndbl, &
                         p%mc < mc_hyp .and. p%regime /= 2, &
@@ -697,17 +839,42 @@ contains
       case (2)
         call jacobi_neg_final(nb, p, u(i0:i0+nb-1), j, r, pp, qq, shf, wl, &
                               sn(i0:i0+nb-1), cn(i0:i0+nb-1), dn(i0:i0+nb-1), am(i0:i0+nb-1))
-      case (3)   ! m > 1: sn = sn(k u|1/m)/k, cn = dn, dn = cn; am = asin(sn)
+      case (3)
+        ! m > 1: sn = sn(k u|1/m)/k, cn = dn(k u|1/m) > 0, dn = cn(k u|1/m);
+        ! am = asin(sn) in [-pi/2, pi/2] taken as atan2(sn, cn): next to
+        ! sn = +-1/k (k -> 1) the asin amplified sn's rounding by 1/cn
+        ! (3.9e7 eps at m = 1 + 1.9e-16), while cn = dn of the core keeps its
+        ! relative accuracy there
         do k = i0, i0 + nb - 1
           d = cn(k)
           sn(k) = sn(k) / p%sh
           cn(k) = dn(k)
           dn(k) = d
-          am(k) = asin(max(-1.0_dp, min(1.0_dp, sn(k))))
+          am(k) = atan2(sn(k), cn(k))
         end do
       end select
     end do
   end subroutine jacobi_eval_array
+
+  !> x = (u + ul) (sh + sl) in double-double, x = xh + xl (Dekker's product
+  !> written out, as in jacobi_block).
+  pure subroutine scale_dd(nb, u, ul, sh, sl, xh, xl)
+    integer, intent(in) :: nb
+    real(dp), intent(in) :: u(:), ul(:), sh, sl
+    real(dp), intent(out) :: xh(:), xl(:)
+    real(dp), parameter :: splitter = 134217729.0_dp
+    real(dp) :: t, bh, bl, hi, lo, x, p, e
+    integer :: i
+    t = splitter * sh; bh = t - (t - sh); bl = sh - bh
+    do i = 1, nb
+      x = u(i)
+      p = x * sh
+      t = splitter * x; hi = t - (t - x); lo = x - hi
+      e = ((hi * bh - p) + hi * bl + lo * bh) + lo * bl + x * sl + ul(i) * sh
+      xh(i) = p + e
+      xl(i) = e - (xh(i) - p)
+    end do
+  end subroutine scale_dd
 
   !> m < 0 from the core (parameter mu = -m/mo, mo = 1 - m, argument x = sqrt(mo) u):
   !> sn(u|m) = sd(x|mu)/sqrt(mo), cn = cd(x|mu), dn = nd(x|mu) (DLMF 22.17.4-6).

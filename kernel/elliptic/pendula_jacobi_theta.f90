@@ -29,10 +29,9 @@
 module pendula_jacobi_theta
   use pendula_kinds, only: dp, pi, pi_lo, half_pi, nan_dp
   use pendula_dd, only: fast_two_sum, dd_sqrt, dd_add, dd_mul
-  use pendula_elliptic, only: ellip_nome
   implicit none
   private
-  public :: theta_plan, theta_prepare, theta_jacobi, theta_mc_max
+  public :: theta_plan, theta_prepare, theta_jacobi, theta_jacobi_neg, theta_mc_max
 
   !> the largest mc the series are used for
   real(dp), parameter :: theta_mc_max = 2.0_dp**(-10)
@@ -51,9 +50,12 @@ contains
 
   !> The constants for the complement mc = mch + mcl of the parameter m
   !> (0 <= mc <= theta_mc_max).
-  pure function theta_prepare(mch, mcl, kh, kl) result(p)
+  pure function theta_prepare(mch, mcl, kh, kl, q) result(p)
     real(dp), intent(in) :: mch, mcl
     real(dp), intent(in) :: kh, kl   !< K(m) in double-double
+    !> the complementary nome q(mc), ellip_nome(mch, 1 - mch) of pendula_elliptic
+    !> (passed in: that module uses this one for m < 0)
+    real(dp), intent(in) :: q
     type(theta_plan) :: p
     real(dp) :: mh, ml, ah, al, bh, bl, sh, sl, th, tl
     integer :: it
@@ -71,7 +73,7 @@ contains
       if (abs(ah - bh) <= 1.0e-33_dp * ah) exit
     end do
     p%ch = ah; p%cl = al
-    p%q = ellip_nome(mch, mh)
+    p%q = q
     p%a0 = 1.0_dp + p%q**2 + p%q**6
     p%c0 = 1.0_dp + 2.0_dp * (p%q + p%q**4 + p%q**9)
     p%d0 = 1.0_dp - 2.0_dp * p%q + 2.0_dp * p%q**4 - 2.0_dp * p%q**9
@@ -93,19 +95,48 @@ contains
     ! automatic array of size(uh) would be a heap allocation per call)
     do i0 = 1, size(uh), theta_blk
       i1 = min(size(uh), i0 + theta_blk - 1)
-      call theta_block(p, uh(i0:i1), ul(i0:i1), sn(i0:i1), cn(i0:i1), dn(i0:i1), am(i0:i1))
+      call theta_block(p, uh(i0:i1), ul(i0:i1), sn(i0:i1), cn(i0:i1), dn(i0:i1), am(i0:i1), .false., 0.0_dp, 0.0_dp)
     end do
   end subroutine theta_jacobi
 
-  !> theta_jacobi on at most theta_blk arguments.
-  pure subroutine theta_block(p, uh, ul, sn, cn, dn, am)
+  !> sn, cn, dn, am(x / sqrt(mo) | m) for the negative parameter m = 1 - mo
+  !> whose imaginary-modulus core (DLMF 22.17.4-6: sn(u|m) = sd(x|mu)/sqrt(mo),
+  !> cn = cd(x|mu), dn = nd(x|mu), x = sqrt(mo) u, mu = -m/mo) is the plan's
+  !> parameter mu, with complement 1/mo <= theta_mc_max.  Written in the
+  !> series (k' = sqrt(1/mo), so k' sqrt(mo) = 1 exactly in real arithmetic):
+  !>   w = |r| <= K/2:  sn = k' C0^2 B/(D0 A0 C),  cn = C0 D/(D0 C),
+  !>                    dn = C0 A/(A0 C),          am(|r|) = atan2(k' C0 B, A0 D);
+  !>   w = K - |r|:     sn = A0 D/(D0 A),  cn = C0 B/(D0 A),
+  !>                    dn = sqrt(mo) A0 C/(C0 A), am(|r|) = atan2(A0 D, C0 B).
+  !> Every factor is positive and none cancels, so dn (up to sqrt(mo)) keeps
+  !> its relative accuracy: through the duplication core (its tn^2 near
+  !> m = 1 to 4-8 eps relative) dn was 5.5 eps off at m = -1.3e8, 23 eps at
+  !> -1e41, and NaN (an overflow of mo T) at m = -3e221.
+  pure subroutine theta_jacobi_neg(p, smo, smol, xh, xl, sn, cn, dn, am)
+    type(theta_plan), intent(in) :: p
+    real(dp), intent(in) :: smo, smol      !< sqrt(mo) in double-double
+    real(dp), intent(in) :: xh(:), xl(:)   !< x = sqrt(mo) u in double-double
+    real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
+    integer :: i0, i1
+    do i0 = 1, size(xh), theta_blk
+      i1 = min(size(xh), i0 + theta_blk - 1)
+      call theta_block(p, xh(i0:i1), xl(i0:i1), sn(i0:i1), cn(i0:i1), dn(i0:i1), am(i0:i1), .true., smo, smol)
+    end do
+  end subroutine theta_jacobi_neg
+
+  !> theta_jacobi (neg = .false.) or theta_jacobi_neg (neg = .true., smo + smol
+  !> = sqrt(mo)) on at most theta_blk arguments.
+  pure subroutine theta_block(p, uh, ul, sn, cn, dn, am, neg, smo, smol)
     type(theta_plan), intent(in) :: p
     real(dp), intent(in) :: uh(:), ul(:)
     real(dp), intent(out) :: sn(:), cn(:), dn(:), am(:)
+    logical, intent(in) :: neg
+    real(dp), intent(in) :: smo, smol
     real(dp), parameter :: splitter = 134217729.0_dp
     !> (x + magic) - magic rounds |x| < 2^51 to an integer, and vectorizes
     real(dp), parameter :: magic = 6755399441055744.0_dp
     real(dp) :: vh(theta_blk), vl(theta_blk), ex(theta_blk), sg(theta_blk), jj(theta_blk), shf(theta_blk)
+    real(dp) :: sa(theta_blk), sb(theta_blk), sc(theta_blk), sd(theta_blk)
     real(dp) :: j, g, pr, t, ah, al, bh, bl, kbh, kbl, e, s, rh, rl, wh, wl, f, ss
     real(dp) :: q, sv, cv, v2, c2, a, b, c, d, inv, num_s, num_c, num_d, ya, yb, odd, h
     integer :: i
@@ -166,14 +197,47 @@ contains
       c2 = 1.0_dp + 2.0_dp * sv * sv
       ya = q * cv * cv                   ! q cosh^2 v <= sqrt(q) / 4 on w <= K/2
       yb = q * c2                        ! q cosh 2v
-      a = cv * (1.0_dp + (4.0_dp * q * ya - 3.0_dp * q * q) &
-          + (16.0_dp * (q * ya)**2 * q**2 - 20.0_dp * q**5 * ya + 5.0_dp * q**6))
-      b = sv * (1.0_dp - q * q * (3.0_dp + 4.0_dp * sv * sv) &
-          + q**6 * (5.0_dp + 20.0_dp * sv * sv + 16.0_dp * sv**4))
-      c = 1.0_dp + 2.0_dp * yb + (4.0_dp * (q * yb)**2 - 2.0_dp * q**4) &
-          + (8.0_dp * (q * q * yb)**3 * q**3 - 6.0_dp * q**8 * yb)
-      d = 1.0_dp - 2.0_dp * yb + (4.0_dp * (q * yb)**2 - 2.0_dp * q**4) &
-          - (8.0_dp * (q * q * yb)**3 * q**3 - 6.0_dp * q**8 * yb)
+      sa(i) = cv * (1.0_dp + (4.0_dp * q * ya - 3.0_dp * q * q) &
+              + (16.0_dp * (q * ya)**2 * q**2 - 20.0_dp * q**5 * ya + 5.0_dp * q**6))
+      sb(i) = sv * (1.0_dp - q * q * (3.0_dp + 4.0_dp * sv * sv) &
+              + q**6 * (5.0_dp + 20.0_dp * sv * sv + 16.0_dp * sv**4))
+      sc(i) = 1.0_dp + 2.0_dp * yb + (4.0_dp * (q * yb)**2 - 2.0_dp * q**4) &
+              + (8.0_dp * (q * q * yb)**3 * q**3 - 6.0_dp * q**8 * yb)
+      sd(i) = 1.0_dp - 2.0_dp * yb + (4.0_dp * (q * yb)**2 - 2.0_dp * q**4) &
+              - (8.0_dp * (q * q * yb)**3 * q**3 - 6.0_dp * q**8 * yb)
+    end do
+    if (neg) then
+      do i = 1, size(uh)
+        a = sa(i); b = sb(i); c = sc(i); d = sd(i)
+        ! m < 0 (theta_jacobi_neg): w <= K/2: sn = k' C0^2 B/(D0 A0 C),
+        ! cn = C0 D/(D0 C), dn = C0 A/(A0 C); shifted: sn = A0 D/(D0 A),
+        ! cn = C0 B/(D0 A), dn = sqrt(mo) A0 C/(C0 A)
+        f = shf(i)
+        inv = 1.0_dp / merge(a, c, f > 0.0_dp)
+        num_s = merge((p%a0 / p%d0) * d, p%kp * ((p%c0 * p%c0) / (p%d0 * p%a0)) * b, f > 0.0_dp)
+        num_c = merge((p%c0 / p%d0) * b, (p%c0 / p%d0) * d, f > 0.0_dp)
+        num_d = merge(((p%a0 / p%c0) * c) / a, (p%c0 / p%a0) * a / c, f > 0.0_dp)
+        num_d = merge(smo * num_d + smol * num_d, num_d, f > 0.0_dp)
+        ya = merge(p%a0 * d, p%kp * p%c0 * b, f > 0.0_dp)
+        yb = merge(p%c0 * b, p%a0 * d, f > 0.0_dp)
+        h = atan2_pos(ya, yb)
+        s = num_s * inv
+        c = num_c * inv
+        d = num_d
+        j = jj(i)
+        odd = merge(1.0_dp, 0.0_dp, ((0.5_dp * abs(j) + magic) - magic) /= 0.5_dp * abs(j))
+        sn(i) = sg(i) * s * (1.0_dp - 2.0_dp * odd)
+        cn(i) = c * (1.0_dp - 2.0_dp * odd)
+        dn(i) = d
+        am(i) = (j * pi + sg(i) * h) + j * pi_lo
+        if (.not. (abs(j) <= 2.0_dp**48)) then
+          sn(i) = nan_dp; cn(i) = nan_dp; dn(i) = nan_dp; am(i) = nan_dp
+        end if
+      end do
+      return
+    end if
+    do i = 1, size(uh)
+      a = sa(i); b = sb(i); c = sc(i); d = sd(i)
       ! w <= K/2:  sn = C0 B/(D0 A), cn = A0 D/(D0 A), dn = A0 C/(C0 A);
       ! shifted (w = K - |r|): sn = cd(w) = C0 D/(D0 C), cn = k' sd(w) =
       ! k' C0^2 B/(D0 A0 C), dn = k' nd(w) = k' C0 A/(A0 C)

@@ -3,7 +3,7 @@ module pendula_gsl_iface
   use, intrinsic :: iso_c_binding, only: c_int, c_double
   implicit none
   private
-  public :: pendula_gsl_init, pendula_gsl_elljac, pendula_gsl_kcomp, pendula_gsl_rk8pd
+  public :: pendula_gsl_init, pendula_gsl_elljac, pendula_gsl_kcomp, pendula_gsl_rk8pd, pendula_gsl_periodic_orbit
 
   interface
     subroutine pendula_gsl_init() bind(C, name="pendula_gsl_init")
@@ -36,5 +36,16 @@ module pendula_gsl_iface
       real(c_double), intent(out) :: theta(*), v(*), stats(2)
       integer(c_int) :: status
     end function pendula_gsl_rk8pd
+
+    function pendula_gsl_periodic_orbit(params, period, winding, rtol, atol, tol, maxit, x, mono, info) &
+        bind(C, name="pendula_gsl_periodic_orbit") result(status)
+      import :: c_int, c_double
+      real(c_double), intent(in) :: params(6)
+      real(c_double), value, intent(in) :: period, winding, rtol, atol, tol
+      integer(c_int), value, intent(in) :: maxit
+      real(c_double), intent(inout) :: x(2)
+      real(c_double), intent(out) :: mono(4), info(3)
+      integer(c_int) :: status
+    end function pendula_gsl_periodic_orbit
   end interface
 end module pendula_gsl_iface

@@ -21,22 +21,33 @@
 !> located on the dense output: each accepted step is sampled at 4 interior
 !> points, so that two sign changes in one step are not missed, then refined
 !> by the Illinois method.
+!>
+!> Runge-Kutta-Nystrom (rtol, atol): Dormand & Prince's RKN6(4)6FD pair for
+!> theta'' = f(t, theta) (no damping: the pair's stages never form theta'),
+!> five force evaluations per step (the sixth stage is the next step's first),
+!> the step controlled by the embedded 4th-order pair.  No dense output: the
+!> steps are shortened to land on the output times, so no events.
+!>
+!> Verner's 9(8) pair (rtol, atol): 16 stages, any model; the step controlled
+!> by the embedded 8th-order weights; no dense output (steps land on the output
+!> times, no events).
 module pendula_integrators
   use pendula_kinds, only: dp, i8, nan_dp
   use pendula_gravity, only: gravity_accel
   implicit none
   private
-  public :: pendulum_model, make_model, event_spec, run_stats, integrate, accel, dop853_error_norm
+  public :: pendulum_model, make_model, event_spec, run_stats, integrate, accel, dop853_error_norm, &
+    dop853_step_2, dop853_step_6, system_rhs
 
   include 'pendula_rk_tables.inc'
   !> DOP853's A transposed, so that each stage's weights are contiguous
   real(dp), parameter :: d8_at(0:15, 0:15) = transpose(d8_a)
 
   integer, parameter, public :: m_rk4 = 1, m_verlet = 2, m_yoshida4 = 3, m_yoshida6 = 4, &
-    m_yoshida8 = 5, m_gauss4 = 6, m_gauss6 = 7, m_dopri5 = 8, m_dop853 = 9
+    m_yoshida8 = 5, m_gauss4 = 6, m_gauss6 = 7, m_dopri5 = 8, m_dop853 = 9, m_dprkn6 = 11, m_vern9 = 12
   integer, parameter, public :: st_ok = 0, st_bad_step = 1, st_bad_tol = 2, st_bad_method = 3, &
     st_step_underflow = 5, st_nonfinite = 6, st_no_dense = 9, st_stopped = 10, &
-    st_too_many_steps = 7, st_cancelled = 8
+    st_too_many_steps = 7, st_cancelled = 8, st_velocity_force = 12
   !> The work limit of one call: steps of the integrator (fixed or adaptive).
   !> A span that needs more (t = 1e15, dt = 1e-18, a drive at 1e300 rad/s) is
   !> an error that says so, never a hang or a wrapped-around step count.
@@ -52,7 +63,7 @@ module pendula_integrators
     real(dp) :: eps = 1.0_dp, beta = 0.0_dp, tau = 0.0_dp
     real(dp) :: amp = 0.0_dp, omega = 0.0_dp, phase = 0.0_dp
     logical :: damped = .false., torqued = .false., driven = .false.
-    !> non-uniform gravity (issue 13): field kind and parameter of pendula_gravity; 0 = uniform
+    !> non-uniform gravity: field kind and parameter of pendula_gravity; 0 = uniform
     integer :: gkind = 0
     real(dp) :: gpar = 0.0_dp
   end type pendulum_model
@@ -87,6 +98,52 @@ contains
     if (deno <= 0.0_dp) deno = 1.0_dp
     errn = abs(h) * err5 * sqrt(1.0_dp / (real(size(sk), dp) * deno))
   end function dop853_error_norm
+
+  !> The right-hand side of the systems the DOP853 stepper integrates, by the
+  !> size of the state: n = 2, (theta, v) of the model; n = 6, (theta, v) with
+  !> two tangent vectors w1 = y(3:4), w2 = y(5:6) of the variational equations
+  !> dw/dt = J w, J = [[0, 1], [-eps cos(theta), -beta]] (uniform gravity;
+  !> the Lyapunov exponents of pendula_lyapunov).
+  pure function system_rhs(m, t, y) result(f)
+    type(pendulum_model), intent(in) :: m
+    real(dp), intent(in) :: t, y(:)
+    real(dp) :: f(size(y))
+    call system_rhs_n(m, size(y), t, y, f)
+  end function system_rhs
+
+  pure subroutine system_rhs_n(m, n, t, y, f)
+    type(pendulum_model), intent(in) :: m
+    integer, intent(in) :: n
+    real(dp), intent(in) :: t, y(n)
+    real(dp), intent(out) :: f(n)
+    real(dp) :: c
+    f(1) = y(2)
+    f(2) = accel(m, t, y(1), y(2))
+    if (n == 6) then
+      c = -m%eps * cos(y(1))
+      f(3) = y(4)
+      f(4) = c * y(3) - m%beta * y(4)
+      f(5) = y(6)
+      f(6) = c * y(5) - m%beta * y(6)
+    end if
+  end subroutine system_rhs_n
+
+  !> One DOP853 step of the n-dimensional system of system_rhs from (t, y) with
+  !> f0 = f(t, y): the stages k(0:12, 1:n), the solution ynew, fnew = f(t + h, ynew)
+  !> (the next step's first stage) and the 3rd- and 5th-order error estimates
+  !> e3, e5 (to be weighed by dop853_error_norm).  The one stepper of the
+  !> integrators (n = 2) and of the Lyapunov tangent system (n = 6): its text is
+  !> pendula_dop853_step.inc, compiled for each n so that the compiler sees n
+  !> (a run-time n costs the 2-D integrator 17 % of its time).
+  pure subroutine dop853_step_2(m, t, y, f0, h, k, ynew, fnew, e3, e5)
+    integer, parameter :: n = 2, ldk = 16
+    include 'pendula_dop853_step.inc'
+  end subroutine dop853_step_2
+
+  pure subroutine dop853_step_6(m, t, y, f0, h, k, ynew, fnew, e3, e5)
+    integer, parameter :: n = 6, ldk = 13
+    include 'pendula_dop853_step.inc'
+  end subroutine dop853_step_6
 
   pure function make_model(eps, beta, tau, amp, omega, phase) result(m)
     real(dp), intent(in) :: eps, beta, tau, amp, omega, phase
@@ -166,9 +223,20 @@ contains
     theta = nan_dp; v = nan_dp
     nev = 0
     status = st_ok
-    adaptive = method == m_dopri5 .or. method == m_dop853
-    if (method < m_rk4 .or. method > m_dop853) then
+    adaptive = method == m_dopri5 .or. method == m_dop853 .or. method == m_dprkn6 .or. method == m_vern9
+    if ((method < m_rk4 .or. method > m_dop853) .and. method /= m_dprkn6 .and. method /= m_vern9) then
       status = st_bad_method; return
+    end if
+    if (method == m_vern9 .and. ev%kind /= 0) then
+      status = st_no_dense; return
+    end if
+    if (method == m_dprkn6) then
+      if (m%damped) then
+        status = st_velocity_force; return
+      end if
+      if (ev%kind /= 0) then
+        status = st_no_dense; return
+      end if
     end if
     if (adaptive) then
       if (.not. (rtol > 0.0_dp .and. atol >= 0.0_dp)) then
@@ -216,6 +284,18 @@ contains
       e = ev
       if (.not. with_events) e%kind = 0
       select case (method)
+      case (m_vern9)
+        if (present(cancel)) then
+          call run_verner(m, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, cancel)
+        else
+          call run_verner(m, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, no_cancel)
+        end if
+      case (m_dprkn6)
+        if (present(cancel)) then
+          call run_nystrom(m, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, cancel)
+        else
+          call run_nystrom(m, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, no_cancel)
+        end if
       case (m_dopri5, m_dop853)
         if (present(cancel)) then
           call run_adaptive(m, method, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, &
@@ -406,6 +486,204 @@ contains
   end subroutine gauss_step
 
   ! ====================================================================
+  ! Runge-Kutta-Nystrom pair for theta'' = f(t, theta)
+  ! ====================================================================
+
+  !> Dormand & Prince's RKN6(4)6FD: Q_i = th + c_i h v + h^2 sum_j a_ij F_j,
+  !> F_i = force(t + c_i h, Q_i); th1 = th + h v + h^2 sum b_i F_i, v1 = v +
+  !> h sum bp_i F_i; the error is that of the embedded 4th-order weights (the
+  !> stored differences eb, ebp), in Hairer's RMS norm over (theta, v).  Step
+  !> control as DOPRI5 (error exponent 1/5, factors in [0.1, 5]); steps are
+  !> shortened to end on each output time.
+  subroutine run_nystrom(m, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, cancel)
+    type(pendulum_model), intent(in) :: m
+    integer, intent(inout), volatile :: cancel
+    real(dp), intent(in) :: theta0, v0, ts(:), dir, rtol, atol
+    real(dp), intent(inout) :: ths(:), vs(:)
+    type(run_stats), intent(inout) :: stats
+    integer, intent(inout) :: status
+    real(dp) :: t, th, v, f(0:5), qs, th1, v1, eth, ev, err, h, hnew, hs, fac, fac11, sk1, sk2, target
+    real(dp), parameter :: safe = 0.9_dp, expo = 0.2_dp, facc1 = 5.0_dp, facc2 = 0.1_dp
+    integer :: kout, i
+    logical :: reject, hit
+
+    if (size(ts) == 0) return
+    t = 0.0_dp; th = theta0; v = v0
+    kout = 1
+    do while (kout <= size(ts))
+      if (ts(kout) /= 0.0_dp) exit
+      ths(kout) = th; vs(kout) = v
+      kout = kout + 1
+    end do
+    if (kout > size(ts)) return
+    f(0) = force(m, t, th)
+    stats%nfev = stats%nfev + 1
+    ! starting step: the velocity and force scales against the tolerance (Hairer's first guess)
+    sk1 = atol + rtol * abs(th); sk2 = atol + rtol * abs(v)
+    h = 0.01_dp * sqrt(((th / sk1)**2 + (v / sk2)**2) / max(1.0e-10_dp, (v / sk1)**2 + (f(0) / sk2)**2))
+    if (.not. (h > 1.0e-6_dp)) h = 1.0e-6_dp
+    h = dir * min(h, abs(ts(size(ts))))
+    reject = .false.
+    do
+      if (abs(h) <= 16.0_dp * epsilon(1.0_dp) * abs(t) .or. h == 0.0_dp) then
+        status = st_step_underflow; return
+      end if
+      if (stats%nsteps >= max_steps) then
+        status = st_too_many_steps; return
+      end if
+      if (mod(stats%nsteps, poll_every) == 0) then
+        if (cancel /= 0) then
+          status = st_cancelled; return
+        end if
+      end if
+      target = ts(kout)
+      hit = dir * (t + h - target) >= 0.0_dp
+      hs = h
+      if (hit) hs = target - t
+      do i = 1, 5
+        qs = th + n6_c(i) * hs * v + hs * hs * dot_product(n6_a(i, 0:i-1), f(0:i-1))
+        f(i) = force(m, t + n6_c(i) * hs, qs)
+      end do
+      th1 = th + hs * v + hs * hs * dot_product(n6_b(0:4), f(0:4))
+      ! the sixth stage (c = 1, row of b): the force at the new position
+      f(5) = force(m, t + hs, th1)
+      v1 = v + hs * dot_product(n6_bp, f)
+      stats%nfev = stats%nfev + 5
+      stats%nsteps = stats%nsteps + 1
+      eth = hs * hs * dot_product(n6_eb, f)
+      ev = hs * dot_product(n6_ebp, f)
+      sk1 = atol + rtol * max(abs(th), abs(th1)); sk2 = atol + rtol * max(abs(v), abs(v1))
+      err = sqrt(0.5_dp * ((eth / sk1)**2 + (ev / sk2)**2))
+      if (.not. (err == err) .or. .not. (abs(th1) <= huge(1.0_dp) .and. abs(v1) <= huge(1.0_dp))) then
+        status = st_nonfinite; return
+      end if
+      fac11 = err**expo
+      fac = max(facc2, min(facc1, fac11 / safe))
+      hnew = hs / fac
+      if (err <= 1.0_dp) then
+        stats%naccept = stats%naccept + 1
+        t = t + hs
+        if (hit) t = target
+        th = th1; v = v1
+        f(0) = f(5)
+        do while (kout <= size(ts))
+          if (ts(kout) /= t) exit
+          ths(kout) = th; vs(kout) = v
+          kout = kout + 1
+        end do
+        if (kout > size(ts)) exit
+        ! a step shortened to land on an output does not shrink the next one
+        if (hit) hnew = sign(max(abs(hnew), abs(h)), h)
+        if (abs(hnew) > abs(h) .and. reject) hnew = h
+        reject = .false.
+        h = hnew
+      else
+        stats%nreject = stats%nreject + 1
+        h = hs / min(facc1, fac11 / safe)
+        reject = .true.
+      end if
+    end do
+  end subroutine run_nystrom
+
+  ! ====================================================================
+  ! Verner's 9(8) pair
+  ! ====================================================================
+
+  !> Verner's 9(8) pair on (theta, v): 16 stages per step, Hairer's RMS error
+  !> norm of the difference to the embedded 8th-order solution, the step
+  !> controlled as DOP853's (exponent 1/9, factors in [1/6, 3]); steps are
+  !> shortened to end on each output time.
+  subroutine run_verner(m, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, cancel)
+    type(pendulum_model), intent(in) :: m
+    integer, intent(inout), volatile :: cancel
+    real(dp), intent(in) :: theta0, v0, ts(:), dir, rtol, atol
+    real(dp), intent(inout) :: ths(:), vs(:)
+    type(run_stats), intent(inout) :: stats
+    integer, intent(inout) :: status
+    real(dp) :: t, y(2), ys(2), ynew(2), e(2), sk(2), k(0:15, 2), err, h, hnew, hs, fac, fac11, target
+    real(dp), parameter :: safe = 0.9_dp, expo = 1.0_dp / 9.0_dp, facc1 = 1.0_dp / 0.333_dp, &
+      facc2 = 1.0_dp / 6.0_dp
+    integer :: kout, st, i
+    logical :: reject, hit
+
+    if (size(ts) == 0) return
+    t = 0.0_dp; y = [theta0, v0]
+    kout = 1
+    do while (kout <= size(ts))
+      if (ts(kout) /= 0.0_dp) exit
+      ths(kout) = y(1); vs(kout) = y(2)
+      kout = kout + 1
+    end do
+    if (kout > size(ts)) return
+    ! starting step: Hairer's first guess from the state and slope scales (order 9)
+    sk = atol + rtol * abs(y)
+    k(0, 1) = y(2); k(0, 2) = accel(m, t, y(1), y(2))
+    h = 0.01_dp * sqrt(sum((y / sk)**2) / max(1.0e-10_dp, sum((k(0, :) / sk)**2)))
+    if (.not. (h > 1.0e-6_dp)) h = 1.0e-6_dp
+    h = dir * min(h, abs(ts(size(ts))))
+    reject = .false.
+    do
+      if (abs(h) <= 16.0_dp * epsilon(1.0_dp) * abs(t) .or. h == 0.0_dp) then
+        status = st_step_underflow; return
+      end if
+      if (stats%nsteps >= max_steps) then
+        status = st_too_many_steps; return
+      end if
+      if (mod(stats%nsteps, poll_every) == 0) then
+        if (cancel /= 0) then
+          status = st_cancelled; return
+        end if
+      end if
+      target = ts(kout)
+      hit = dir * (t + h - target) >= 0.0_dp
+      hs = h
+      if (hit) hs = target - t
+      k(0, 1) = y(2); k(0, 2) = accel(m, t, y(1), y(2))
+      do st = 1, 15
+        do i = 1, 2
+          ys(i) = y(i) + hs * dot_product(v9_a(st, 0:st - 1), k(0:st - 1, i))
+        end do
+        k(st, 1) = ys(2)
+        k(st, 2) = accel(m, t + v9_c(st) * hs, ys(1), ys(2))
+      end do
+      do i = 1, 2
+        ynew(i) = y(i) + hs * dot_product(v9_b, k(:, i))
+        e(i) = hs * dot_product(v9_e, k(:, i))
+      end do
+      stats%nfev = stats%nfev + 16
+      stats%nsteps = stats%nsteps + 1
+      sk = atol + rtol * max(abs(y), abs(ynew))
+      err = sqrt(0.5_dp * sum((e / sk)**2))
+      if (.not. (err == err) .or. .not. all(abs(ynew) <= huge(1.0_dp))) then
+        status = st_nonfinite; return
+      end if
+      fac11 = err**expo
+      fac = max(facc2, min(facc1, fac11 / safe))
+      hnew = hs / fac
+      if (err <= 1.0_dp) then
+        stats%naccept = stats%naccept + 1
+        t = t + hs
+        if (hit) t = target
+        y = ynew
+        do while (kout <= size(ts))
+          if (ts(kout) /= t) exit
+          ths(kout) = y(1); vs(kout) = y(2)
+          kout = kout + 1
+        end do
+        if (kout > size(ts)) exit
+        if (hit) hnew = sign(max(abs(hnew), abs(h)), h)
+        if (abs(hnew) > abs(h) .and. reject) hnew = h
+        reject = .false.
+        h = hnew
+      else
+        stats%nreject = stats%nreject + 1
+        h = hs / min(facc1, fac11 / safe)
+        reject = .true.
+      end if
+    end do
+  end subroutine run_verner
+
+  ! ====================================================================
   ! Adaptive methods with dense output
   ! ====================================================================
 
@@ -593,22 +871,9 @@ contains
 
     subroutine step853(errn)
       real(dp), intent(out) :: errn
-      real(dp) :: e3(2), e5(2), ths, vst
-      integer :: st
-      k(0, :) = f0
-      do st = 1, 11
-        ths = y(1) + h * dot_product(d8_at(0:st-1, st), k(0:st-1, 1))
-        vst = y(2) + h * dot_product(d8_at(0:st-1, st), k(0:st-1, 2))
-        k(st, 1) = vst
-        k(st, 2) = accel(m, t + d8_c(st) * h, ths, vst)
-      end do
-      ynew(1) = y(1) + h * dot_product(d8_b, k(0:11, 1))
-      ynew(2) = y(2) + h * dot_product(d8_b, k(0:11, 2))
-      fnew = rhs(t + h, ynew)
-      k(12, :) = fnew
+      real(dp) :: e3(2), e5(2)
+      call dop853_step_2(m, t, y, f0, h, k, ynew, fnew, e3, e5)
       stats%nfev = stats%nfev + 12
-      e3(1) = dot_product(d8_e3, k(0:12, 1)); e3(2) = dot_product(d8_e3, k(0:12, 2))
-      e5(1) = dot_product(d8_e5, k(0:12, 1)); e5(2) = dot_product(d8_e5, k(0:12, 2))
       errn = dop853_error_norm(h, e3, e5, scale_of(y, ynew))
     end subroutine step853
 

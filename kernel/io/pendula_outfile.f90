@@ -1,14 +1,19 @@
 !> Output files for the batch programs: lines formatted in Fortran, written
 !> through the C glue (kernel/glue/pendula_os.c) with every error checked,
-!> all or nothing (a temporary name renamed into place at the end).
+!> all or nothing (a temporary name renamed into place at the end; only
+!> regular files written or replaced; temporaries removed on every exit path,
+!> SIGINT and SIGTERM included once out_guard_signals is called).
+!> Numbers go into lines through out_real / out_reals: one format for every
+!> CSV (17 significant digits, as the Python layer's '%.17g').
 !>
 !> gfortran 12 ignores ENOSPC from write(2) (a run with -o /dev/full exited 0),
 !> which is why the bytes do not go through Fortran units.
 module pendula_outfile
-  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long, c_null_char
+  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long, c_null_char, c_double
   implicit none
   private
   public :: outfile_t, out_open, out_line, out_close, out_abandon
+  public :: out_real, out_reals, out_errtext, out_guard_signals, out_abandon_all
 
   integer, parameter :: chunk = 1048576
 
@@ -43,9 +48,67 @@ module pendula_outfile
       integer(c_int), value, intent(in) :: abandon
       integer(c_int) :: err
     end function c_close
+    function c_fmt_real(x, buf, n) bind(C, name='pendula_fmt_real') result(k)
+      import :: c_int, c_char, c_double
+      real(c_double), value, intent(in) :: x
+      character(kind=c_char), intent(out) :: buf(*)
+      integer(c_int), value, intent(in) :: n
+      integer(c_int) :: k
+    end function c_fmt_real
+    subroutine c_errtext(err, buf, n) bind(C, name='pendula_out_errtext')
+      import :: c_int, c_char
+      integer(c_int), value, intent(in) :: err
+      character(kind=c_char), intent(out) :: buf(*)
+      integer(c_int), value, intent(in) :: n
+    end subroutine c_errtext
+    subroutine out_guard_signals() bind(C, name='pendula_out_guard_signals')
+    end subroutine out_guard_signals
+    subroutine out_abandon_all() bind(C, name='pendula_out_abandon_all')
+    end subroutine out_abandon_all
   end interface
 
 contains
+
+  !> x as CSV text: 17 significant digits (reads back as the same double),
+  !> trailing zeros dropped; 'nan', 'inf', '-inf'.
+  function out_real(x) result(t)
+    real(c_double), intent(in) :: x
+    character(len=:), allocatable :: t
+    character(kind=c_char) :: b(40)
+    integer :: k, i
+    k = c_fmt_real(x, b, size(b, kind=c_int))
+    allocate(character(len=k) :: t)
+    do i = 1, k
+      t(i:i) = b(i)
+    end do
+  end function out_real
+
+  !> The reals of xs as CSV fields joined by commas.
+  function out_reals(xs) result(t)
+    real(c_double), intent(in) :: xs(:)
+    character(len=:), allocatable :: t
+    integer :: i
+    t = ''
+    do i = 1, size(xs)
+      if (i > 1) t = t // ','
+      t = t // out_real(xs(i))
+    end do
+  end function out_reals
+
+  !> The words for an error code of out_open / out_close.
+  function out_errtext(err) result(t)
+    integer, intent(in) :: err
+    character(len=:), allocatable :: t
+    character(kind=c_char) :: b(256)
+    integer :: i
+    b = c_null_char
+    call c_errtext(int(err, c_int), b, size(b, kind=c_int))
+    t = ''
+    do i = 1, size(b)
+      if (b(i) == c_null_char) exit
+      t = t // b(i)
+    end do
+  end function out_errtext
 
   !> Open path ('-' = standard output) for writing; status 0 or errno.
   subroutine out_open(f, path, status)

@@ -1,16 +1,47 @@
-!> Scenes for the batch executables: the namelist group &scene, read natively.
+!> Scenes: the namelist group &scene, read and checked by one set of rules.
 !>
-!> Each "name = value" assignment is read on its own through an internal
-!> namelist read, so that an unknown field, a misspelling or a value of the
-!> wrong type is reported with the field's name and its line; then the ranges
-!> are checked with the same rules as the Python layer (pendula/scene.py).
+!> A scene reaches the kernel in one of two ways, and both end in the same
+!> check (check_scene):
+!>   - as text (parse_scene; read_scene for a file): each "name = value"
+!>     assignment is read on its own through an internal namelist read, so
+!>     that an unknown field, a misspelling, a value of the wrong type or too
+!>     many values is reported with the field's name and its line;
+!>   - as fields (scene_from_fields): the numbers in a fixed order
+!>     (number_fields) and the words one after another, as the Python layer's
+!>     Scene holds them.
+!> check_scene holds every rule about a scene: the ranges of the fields, the
+!> models' combinations, the sweep and grid fields, and which outputs a scene
+!> can have (spectrum, series, lindstedt, the orbit facts).  pendula-run and
+!> the Python layer ask it alike, so they accept and refuse the same scenes
+!> with the same message.
 module pendula_scene
-  use pendula_kinds, only: dp, nan_dp, half_pi
+  use pendula_kinds, only: dp, nan_dp, half_pi, pi
+  use pendula_exact, only: pendulum_orbit, orbit_setup, regime_separatrix
+  use pendula_cycloid, only: cycloid_omega2
   implicit none
   private
-  public :: scene_t, read_scene, parse_scene, scene_effects, scene_summary, max_sweep, max_outputs
+  public :: scene_t, read_scene, parse_scene, scene_from_fields, scene_to_fields, check_scene, scene_member, &
+            scene_effects, scene_has_orbit_facts, scene_summary, max_sweep, max_outputs, number_fields, &
+            n_number_fields, n_word_fields, max_words
 
   integer, parameter :: max_sweep = 4096, max_outputs = 16
+  !> the numbers of a scene in the order scene_from_fields takes them (whole
+  !> numbers too: n_samples, max_flips, sweep_samples)
+  integer, parameter :: n_number_fields = 25
+  character(len=16), parameter :: number_fields(n_number_fields) = [character(len=16) :: 'eps', 'theta0', &
+    'v0', 't_start', 't_end', 'n_samples', 'damping', 'torque', 'drive_amplitude', 'drive_frequency', &
+    'drive_phase', 'rtol', 'atol', 'dt', 'g', 'length', 'cycloid_radius', 'gravity_distance', &
+    'gravity_gradient', 'restitution', 'max_flips', 'min_flight', 'sweep_t_max', 'sweep_transient', &
+    'sweep_samples']
+  !> the single words, in order; then the outputs, then the grid's axes
+  integer, parameter :: n_word_fields = 7
+  character(len=8), parameter :: word_fields(n_word_fields) = [character(len=8) :: 'cord', 'guide', 'gravity', &
+    'method', 'sweep', 'measure', 'name']
+  integer, parameter :: max_words = n_word_fields + max_outputs + 3
+  !> |theta0| beyond 2^52: a double has no fraction left, the angle cannot be reduced mod 2 pi
+  real(dp), parameter :: theta0_limit = 4503599627370496.0_dp
+  !> eps above 1e300 leaves no room for the exact path's double-double sqrt(eps)
+  real(dp), parameter :: eps_limit = 1.0e300_dp
 
   type :: scene_t
     real(dp) :: eps = 1.0_dp, theta0 = 0.0_dp, v0 = 0.0_dp
@@ -21,20 +52,25 @@ module pendula_scene
     character(len=32) :: cord = 'rigid', guide = 'none', gravity = 'uniform', method = 'auto'
     real(dp) :: rtol = 1.0e-10_dp, atol = 1.0e-12_dp, dt = 0.0_dp
     character(len=16) :: outputs(max_outputs) = ''
+    integer :: n_outputs = 0
     character(len=32) :: sweep = ''
-    real(dp) :: sweep_values(max_sweep) = nan_dp
+    real(dp), allocatable :: sweep_values(:)        ! n_sweep values
     integer :: n_sweep = 0
     character(len=256) :: name = ''
-    ! issue 13: the cycloidal guide (R / l) and the gravity fields' parameters
+    ! the cycloidal guide (R / l) and the gravity fields' parameters
     real(dp) :: cycloid_radius = 0.25_dp, gravity_distance = 0.0_dp, gravity_gradient = 0.0_dp
     ! the flexible cord (kernel/models/pendula_cord.f90)
     real(dp) :: restitution = 0.0_dp, min_flight = 0.0_dp
     integer :: max_flips = 100000
-    ! sweeps over grids (issue 14): axes, values or (start, stop, count), measure
+    ! sweeps over grids (kernel/sweep): axes, values or (start, stop, count), measure;
+    ! grid_nv, grid_nr: how many values and range entries each axis was given;
+    ! grid_values(:, k): axis k's values, NaN beyond them (at least one row: a
+    ! range axis has NaN in its first)
     character(len=32) :: grid(3) = ''
     integer :: n_grid = 0
-    real(dp) :: grid_values(max_sweep, 3) = nan_dp, grid_range(3, 3) = nan_dp
-    integer :: grid_n(3) = 0
+    real(dp), allocatable :: grid_values(:, :)
+    real(dp) :: grid_range(3, 3) = nan_dp
+    integer :: grid_n(3) = 0, grid_nv(3) = 0, grid_nr(3) = 0
     character(len=32) :: measure = ''
     real(dp) :: sweep_t_max = 2000.0_dp, sweep_transient = 200.0_dp
     integer :: sweep_samples = 100
@@ -60,37 +96,39 @@ contains
     open(newunit=unit, file=path, status='old', action='read', access='stream', form='unformatted', &
          iostat=ios)
     if (ios /= 0) then
-      status = 1; msg = trim(path) // ': cannot open scene file'; return
+      status = 1; msg = trim(path) // ': cannot read scene file (cannot open it)'; return
     end if
     inquire(unit=unit, size=k)
     allocate(character(len=max(k, 0)) :: text)
     if (k > 0) read(unit, iostat=ios) text
     close(unit)
+    if (ios /= 0) then
+      status = 1; msg = trim(path) // ': cannot read scene file (cannot open it)'; return
+    end if
     call parse_scene(text, path, sc, status, msg)
   end subroutine read_scene
 
   !> Parse and check the text of a scene (the group &scene); messages start
-  !> with source.  The Python layer hands scenes to the kernel this way, so
-  !> that both sides run one set of rules.
-  subroutine parse_scene(text_in, source, sc, status, msg)
+  !> with source.  g_out, length_out: the fields g and length as given (NaN:
+  !> not given; eps is settled from them).
+  subroutine parse_scene(text_in, source, sc, status, msg, g_out, length_out)
     character(len=*), intent(in) :: text_in, source
     type(scene_t), intent(out) :: sc
     integer, intent(out) :: status
     character(len=*), intent(out) :: msg
+    real(dp), intent(out), optional :: g_out, length_out
     ! the namelist variables (same names as the fields)
     real(dp) :: eps, theta0, v0, t_start, t_end, damping, torque, drive_amplitude, &
                 drive_frequency, drive_phase, rtol, atol, dt, g, length, cycloid_radius, gravity_distance, &
                 gravity_gradient, restitution, min_flight, sweep_t_max, sweep_transient
     integer :: n_samples, max_flips, sweep_samples
-    character(len=32) :: grid(3), measure
     real(dp) :: grid1(max_sweep), grid2(max_sweep), grid3(max_sweep), grid1_range(3), grid2_range(3), &
                 grid3_range(3)
-    ! one more element and far more characters than the scene holds: a longer
-    ! list or string is refused with a message instead of being truncated
-    character(len=1024) :: cord, guide, gravity, method, sweep
-    character(len=1024) :: outputs(max_outputs + 1)
-    real(dp) :: sweep_values(max_sweep + 1)
-    character(len=1024) :: name
+    ! far more characters than the scene holds: a longer string is refused
+    ! with a message instead of being truncated
+    character(len=1024) :: cord, guide, gravity, method, sweep, measure, name
+    character(len=1024) :: outputs(max_outputs), grid(3)
+    real(dp) :: sweep_values(max_sweep)
     namelist /scene/ eps, theta0, v0, t_start, t_end, n_samples, damping, torque, &
       drive_amplitude, drive_frequency, drive_phase, cord, guide, gravity, method, rtol, atol, dt, &
       outputs, sweep, sweep_values, name, g, length, cycloid_radius, gravity_distance, gravity_gradient, &
@@ -100,15 +138,22 @@ contains
     character(len=:), allocatable :: text
     character(len=:), allocatable :: buf
     character(len=512) :: iom
-    integer :: ios, i, j, k, start, line, nseen, jj, kk
+    integer :: ios, i, j, k, start, line, nseen, jj, kk, nval, cap, eq
+    logical :: nulls
     character(len=64) :: fname, seen(64)
-    character(len=16), parameter :: known_fields(41) = [character(len=16) :: 'eps', 'theta0', 'v0', &
+    character(len=32) :: words(max_words)
+    integer :: wlen(max_words), nout, ngrid
+    character(len=1024) :: longw(max_words)
+    integer, parameter :: n_known = 41
+    character(len=16), parameter :: known_fields(n_known) = [character(len=16) :: 'eps', 'theta0', 'v0', &
       't_start', 't_end', 'n_samples', 'damping', 'torque', 'drive_amplitude', 'drive_frequency', &
       'drive_phase', 'cord', 'guide', 'gravity', 'method', 'rtol', 'atol', 'dt', 'outputs', 'sweep', &
       'sweep_values', 'name', 'g', 'length', 'cycloid_radius', 'gravity_distance', 'gravity_gradient', &
       'restitution', 'max_flips', 'min_flight', &
       'grid', 'grid1', 'grid2', 'grid3', 'grid1_range', 'grid2_range', 'grid3_range', 'measure', &
       'sweep_t_max', 'sweep_transient', 'sweep_samples']
+    ! how many values each field was given, and the line where it was
+    integer :: given(n_known), given_line(n_known)
 
     status = 0
     msg = ''
@@ -122,11 +167,21 @@ contains
     grid = ''; grid1 = nan_dp; grid2 = nan_dp; grid3 = nan_dp; grid1_range = nan_dp; grid2_range = nan_dp
     grid3_range = nan_dp; measure = ''; sweep_t_max = 2000.0_dp; sweep_transient = 200.0_dp
     sweep_samples = 100
+    given = 0
+    given_line = 0
+    if (present(g_out)) g_out = nan_dp
+    if (present(length_out)) length_out = nan_dp
 
     k = utf8_error_at(text_in)
     if (k > 0) then
       status = 1
       write(msg, '(a,i0,a)') trim(source) // ': not UTF-8 text (byte ', k, ' is not part of a UTF-8 character)'
+      return
+    end if
+    k = index(text_in, achar(0))
+    if (k > 0) then
+      status = 1
+      write(msg, '(a,i0,a)') trim(source) // ': not a text file (byte ', k, ' is NUL)'
       return
     end if
     text = text_in
@@ -170,6 +225,12 @@ contains
       end if
       if (start == 0) exit
       line = 1 + count_newlines(text(1:start))
+      if (.not. any(known_fields == fname)) then
+        status = 1
+        write(msg, '(a,i0,a)') trim(source) // ', line ', line, ': unknown field ''' // trim(fname) // '''' // &
+          suggest(fname, known_fields)
+        return
+      end if
       if (any(seen(1:nseen) == fname)) then
         status = 1
         write(msg, '(a,i0,a)') trim(source) // ', line ', line, ': field ''' // trim(fname) // ''' is given twice'
@@ -177,293 +238,532 @@ contains
       end if
       nseen = min(nseen + 1, size(seen))
       seen(nseen) = fname
-      ios = index(text(start:k - 1), '=')
-      if (verify(text(start + ios:k - 1), ' ,' // new_line('a') // achar(9) // achar(13)) == 0) then
+      eq = start + index(text(start:k - 1), '=')
+      if (verify(text(eq:k - 1), ' ,' // new_line('a') // achar(9) // achar(13)) == 0) then
         status = 1
         write(msg, '(a,i0,a)') trim(source) // ', line ', line, ': field ''' // trim(fname) // ''' has no value'
         return
       end if
-      jj = bad_value_token(text(start + index(text(start:k - 1), '='):k - 1))
+      jj = bad_value_token(text(eq:k - 1))
       if (jj > 0) then
         status = 1
-        write(msg, '(a,i0,a)') trim(source) // ', line ', line, ': field ''' // trim(fname) // &
-          ''': cannot read value ''' // token_at(text(start + index(text(start:k - 1), '='):k - 1), jj) // ''''
+        if (text(eq + jj - 1:eq + jj - 1) == '*' .or. len_trim(token_at(text(eq:k - 1), jj)) == 0) then
+          write(msg, '(a,i0,a)') trim(source) // ', line ', line, ': field ''' // trim(fname) // &
+            ''': a repeat count (r*) needs its value right after the ''*'''
+        else
+          write(msg, '(a,i0,a)') trim(source) // ', line ', line, ': field ''' // trim(fname) // &
+            ''': cannot read value ''' // token_at(text(eq:k - 1), jj) // ''''
+        end if
         return
       end if
+      call count_values(text(eq:k - 1), nval, nulls)
+      if (nulls) then
+        status = 1
+        write(msg, '(a,i0,a)') trim(source) // ', line ', line, ': field ''' // trim(fname) // &
+          ''': an empty value between commas'
+        return
+      end if
+      select case (trim(fname))
+      case ('outputs');                               cap = max_outputs
+      case ('grid', 'grid1_range', 'grid2_range', 'grid3_range'); cap = 3
+      case ('sweep_values', 'grid1', 'grid2', 'grid3'); cap = max_sweep
+      case default;                                   cap = 1
+      end select
+      if (nval > cap) then
+        status = 1
+        if (cap == 1) then
+          write(msg, '(a,i0,a,i0)') trim(source) // ', line ', line, ': field ''' // trim(fname) // &
+            ''' takes one value, got ', nval
+        else
+          write(msg, '(a,i0,a,i0,a,i0)') trim(source) // ', line ', line, ': field ''' // trim(fname) // &
+            ''' holds at most ', cap, ' values, got ', nval
+        end if
+        return
+      end if
+      select case (trim(fname))
+      case ('n_samples', 'max_flips', 'sweep_samples')
+        kk = first_token_not(text(eq:k - 1), 'i')
+        iom = 'a whole number'
+      case ('cord', 'guide', 'gravity', 'method', 'sweep', 'measure', 'name', 'outputs', 'grid')
+        kk = first_token_not(text(eq:k - 1), 's')
+        iom = 'a quoted string'
+      case default
+        kk = first_token_not(text(eq:k - 1), 'r')
+        iom = 'a real number'
+      end select
+      if (kk > 0) then
+        status = 1
+        write(msg, '(a,i0,a)') trim(source) // ', line ', line, ': field ''' // trim(fname) // ''' must be ' // &
+          trim(iom) // ', got ' // token_at(text(eq:k - 1), kk)
+        return
+      end if
+      given(findloc(known_fields, fname, dim=1)) = nval
+      given_line(findloc(known_fields, fname, dim=1)) = line
       buf = '&scene ' // text(start:k - 1) // ' /'
       read(buf, nml=scene, iostat=ios, iomsg=iom)
       if (ios /= 0) then
         status = 1
-        if (.not. any(known_fields == fname)) then
-          write(msg, '(a,i0,a)') trim(source) // ', line ', line, ': unknown field ''' // trim(fname) // ''''
-        else
-          write(msg, '(a,i0,a)') trim(source) // ', line ', line, ': field ''' // trim(fname) // &
-            ''': cannot read its value (' // trim(iom) // ')'
-        end if
+        write(msg, '(a,i0,a)') trim(source) // ', line ', line, ': field ''' // trim(fname) // &
+          ''': cannot read its value (' // trim(iom) // ')'
         return
       end if
     end do
 
-    if (count(sweep_values == sweep_values) > max_sweep) then
-      status = 1
-      write(msg, '(a,i0)') trim(source) // ': field ''sweep_values'' holds too many values; at most ', max_sweep
-      return
-    end if
-    if (any(len_trim(outputs) > len(sc%outputs)) .or. len_trim(outputs(max_outputs + 1)) > 0) then
-      status = 1
-      write(msg, '(a,i0,a,i0,a)') trim(source) // ': field ''outputs'': at most ', max_outputs, &
-        ' outputs of at most ', len(sc%outputs), ' characters'
-      return
-    end if
-    if (len_trim(name) > len(sc%name)) then
-      status = 1; msg = trim(source) // ': field ''name'' is longer than 256 characters'; return
-    end if
-    do i = 1, 5
-      select case (i)
-      case (1); fname = 'cord'; buf = cord
-      case (2); fname = 'guide'; buf = guide
-      case (3); fname = 'gravity'; buf = gravity
-      case (4); fname = 'method'; buf = method
-      case (5); fname = 'sweep'; buf = sweep
-      end select
-      if (len_trim(buf) > 32) then
-        status = 1; msg = trim(source) // ': field ''' // trim(fname) // ''' is longer than 32 characters'; return
+    ! the words, as the fields path takes them: single words, outputs, grid axes
+    longw = ''
+    longw(1:n_word_fields) = [cord, guide, gravity, method, sweep, measure, name]
+    nout = given(findloc(known_fields, 'outputs', dim=1))
+    ngrid = given(findloc(known_fields, 'grid', dim=1))
+    longw(n_word_fields + 1:n_word_fields + nout) = outputs(1:nout)
+    longw(n_word_fields + nout + 1:n_word_fields + nout + ngrid) = grid(1:ngrid)
+    do i = 1, n_word_fields + nout + ngrid
+      wlen(i) = len_trim(longw(i))
+      if (wlen(i) > word_limit(i, nout)) then
+        status = 1
+        msg = trim(source) // ': ' // too_long(i, nout)
+        return
       end if
+    end do
+    words = ''
+    sc%name = longw(7)
+    do i = 1, n_word_fields + nout + ngrid
+      if (i /= 7) words(i) = longw(i)
     end do
     sc%eps = eps; sc%theta0 = theta0; sc%v0 = v0; sc%t_start = t_start; sc%t_end = t_end
     sc%n_samples = n_samples; sc%damping = damping; sc%torque = torque
     sc%drive_amplitude = drive_amplitude; sc%drive_frequency = drive_frequency
-    sc%drive_phase = drive_phase; sc%cord = lower(cord); sc%guide = lower(guide)
-    sc%gravity = lower(gravity); sc%method = lower(method); sc%rtol = rtol; sc%atol = atol
-    sc%dt = dt; sc%outputs = outputs(1:max_outputs); sc%sweep = lower(sweep); sc%sweep_values = sweep_values(1:max_sweep)
-    sc%name = name
+    sc%drive_phase = drive_phase; sc%rtol = rtol; sc%atol = atol; sc%dt = dt
     sc%cycloid_radius = cycloid_radius; sc%gravity_distance = gravity_distance
     sc%gravity_gradient = gravity_gradient
     sc%restitution = restitution; sc%max_flips = max_flips; sc%min_flight = min_flight
-    sc%n_sweep = count(sweep_values(1:max_sweep) == sweep_values(1:max_sweep))
-    do i = 1, 3
-      sc%grid(i) = lower(grid(i))
-    end do
-    sc%n_grid = count(len_trim(sc%grid) > 0)
-    sc%grid_values(:, 1) = grid1; sc%grid_values(:, 2) = grid2; sc%grid_values(:, 3) = grid3
+    sc%sweep_t_max = sweep_t_max; sc%sweep_transient = sweep_transient; sc%sweep_samples = sweep_samples
+    call set_words(sc, words, nout, ngrid)
+    sc%n_sweep = given(findloc(known_fields, 'sweep_values', dim=1))
+    sc%sweep_values = sweep_values(1:sc%n_sweep)
     sc%grid_range(:, 1) = grid1_range; sc%grid_range(:, 2) = grid2_range; sc%grid_range(:, 3) = grid3_range
-    sc%measure = lower(measure); sc%sweep_t_max = sweep_t_max; sc%sweep_transient = sweep_transient
-    sc%sweep_samples = sweep_samples
-    call check(sc, g, length, status, msg)
-    if (status == 0) call check_grid(sc, status, msg)
-    if (status /= 0) msg = trim(source) // ': ' // trim(msg)
+    do i = 1, 3
+      sc%grid_nv(i) = given(findloc(known_fields, 'grid' // achar(48 + i), dim=1))
+      sc%grid_nr(i) = given(findloc(known_fields, 'grid' // achar(48 + i) // '_range', dim=1))
+    end do
+    allocate(sc%grid_values(max(1, maxval(sc%grid_nv)), 3), source=nan_dp)
+    sc%grid_values(1:sc%grid_nv(1), 1) = grid1(1:sc%grid_nv(1))
+    sc%grid_values(1:sc%grid_nv(2), 2) = grid2(1:sc%grid_nv(2))
+    sc%grid_values(1:sc%grid_nv(3), 3) = grid3(1:sc%grid_nv(3))
+    if (present(g_out)) g_out = g
+    if (present(length_out)) length_out = length
+    call check_scene(sc, g, length, status, msg)
+    if (status /= 0) then
+      ! the line of the field the message names first, when the text gives it
+      line = 0
+      i = index(msg, 'field ''')
+      if (i == 0) i = index(msg, 'fields ''')
+      if (i > 0) then
+        i = i + index(msg(i:), '''')
+        j = index(msg(i:), '''')
+        if (j > 1) then
+          k = findloc(known_fields, msg(i:i + j - 2), dim=1)
+          if (k > 0) line = given_line(k)
+        end if
+      end if
+      if (line > 0) then
+        buf = trim(source) // ', line ' // trim(int_text(line)) // ': ' // trim(msg)
+        msg = buf
+      else
+        msg = trim(source) // ': ' // trim(msg)
+      end if
+    end if
   end subroutine parse_scene
 
-  !> Sweep grid fields (issue 14): the same rules as _validate_grid in pendula/scene.py.
-  subroutine check_grid(sc, status, msg)
-    type(scene_t), intent(inout) :: sc
+  !> A scene from its fields (the Python layer's Scene): the numbers in the
+  !> order of number_fields; the words one after another in `words` with
+  !> their lengths in wlen: cord, guide, gravity, method, sweep, measure,
+  !> name, then nout outputs, then ngrid grid axes; the lists of numbers.
+  !> Checked by check_scene unless check is .false. (a scene checked before).
+  subroutine scene_from_fields(x, words, wlen, nout, ngrid, sweep_values, grid1, grid2, grid3, grid1_range, &
+                               grid2_range, grid3_range, check, sc, g, length, status, msg)
+    real(dp), intent(in) :: x(n_number_fields)
+    character(len=*), intent(in) :: words
+    integer, intent(in) :: wlen(:), nout, ngrid
+    real(dp), intent(in) :: sweep_values(:), grid1(:), grid2(:), grid3(:), grid1_range(:), grid2_range(:), &
+                            grid3_range(:)
+    logical, intent(in) :: check
+    type(scene_t), intent(out) :: sc
+    real(dp), intent(out) :: g, length
     integer, intent(out) :: status
     character(len=*), intent(out) :: msg
-    character(len=16), parameter :: griddable(8) = [character(len=16) :: 'v0', 'theta0', 'eps', &
-      'damping', 'torque', 'drive_amplitude', 'drive_frequency', 'drive_phase']
-    character(len=16), parameter :: measures(5) = [character(len=16) :: 'final_well', 'mean_velocity', &
-      'locked', 'poincare', 'lyapunov']
-    character(len=1) :: kc
-    integer :: k, nv, nr
+    character(len=32) :: w(max_words)
+    integer :: i, a, n
     status = 1
-    if (any(len_trim(sc%grid(1:sc%n_grid)) == 0)) then
-      msg = 'field ''grid'': axis names one after another'; return
+    g = x(15); length = x(16)
+    n = n_word_fields + nout + ngrid
+    if (nout < 0 .or. ngrid < 0 .or. size(wlen) < n .or. sum(wlen(1:n)) > len(words) .or. any(wlen(1:n) < 0)) then
+      msg = 'the words of the scene do not match their lengths'; return
     end if
-    do k = 1, sc%n_grid
-      if (.not. any(griddable == sc%grid(k))) then
-        msg = 'field ''grid'': cannot sweep ''' // trim(sc%grid(k)) // ''''; return
-      end if
-      if (any(sc%grid(1:k - 1) == sc%grid(k))) then
-        msg = 'field ''grid'' names an axis twice'; return
+    if (nout > max_outputs) then
+      write(msg, '(a,i0,a,i0)') 'field ''outputs'' holds at most ', max_outputs, ' values, got ', nout; return
+    end if
+    if (ngrid > 3) then
+      write(msg, '(a,i0)') 'field ''grid'' holds at most 3 values, got ', ngrid; return
+    end if
+    if (size(sweep_values) > max_sweep) then
+      write(msg, '(a,i0,a,i0)') 'field ''sweep_values'' holds at most ', max_sweep, ' values, got ', &
+        size(sweep_values); return
+    end if
+    do i = 1, 3
+      select case (i)
+      case (1); a = size(grid1)
+      case (2); a = size(grid2)
+      case default; a = size(grid3)
+      end select
+      if (a > max_sweep) then
+        write(msg, '(a,i0,a,i0,a,i0)') 'field ''grid', i, ''' holds at most ', max_sweep, ' values, got ', a; return
       end if
     end do
-    do k = 1, 3
-      write(kc, '(i1)') k
-      nv = count(sc%grid_values(:, k) == sc%grid_values(:, k))
-      nr = count(sc%grid_range(:, k) == sc%grid_range(:, k))
-      if (k > sc%n_grid) then
-        if (nv + nr > 0) then
-          msg = 'field ''grid' // kc // ''' or ''grid' // kc // '_range'' is given but ''grid'' names fewer axes'
-          return
-        end if
-        cycle
+    if (size(grid1_range) > 3 .or. size(grid2_range) > 3 .or. size(grid3_range) > 3) then
+      msg = 'fields ''grid1_range'', ''grid2_range'', ''grid3_range'' hold at most 3 values'; return
+    end if
+    w = ''
+    a = 1
+    do i = 1, n
+      if (wlen(i) > word_limit(i, nout)) then
+        msg = too_long(i, nout); return
       end if
-      if ((nv > 0) .eqv. (nr > 0)) then
-        msg = 'axis ' // kc // ' (''' // trim(sc%grid(k)) // '''): give exactly one of ''grid' // kc // &
-              ''' (values) or ''grid' // kc // '_range'' (start, stop, count)'; return
-      end if
-      if (nv > 0) then
-        if (any(sc%grid_values(1:nv, k) /= sc%grid_values(1:nv, k)) .or. &
-            any(abs(sc%grid_values(1:nv, k)) > huge(1.0_dp))) then
-          msg = 'field ''grid' // kc // ''' must be finite numbers, one after another'; return
-        end if
-        sc%grid_n(k) = nv
+      if (i == 7) then
+        sc%name = words(a:a + wlen(i) - 1)
       else
-        if (nr /= 3 .or. any(abs(sc%grid_range(:, k)) > huge(1.0_dp))) then
-          msg = 'field ''grid' // kc // '_range'' must be start, stop, count (count a whole number >= 1)'; return
-        end if
-        if (sc%grid_range(3, k) /= aint(sc%grid_range(3, k)) .or. sc%grid_range(3, k) < 1.0_dp .or. &
-            sc%grid_range(3, k) > 1.0e8_dp) then
-          msg = 'field ''grid' // kc // '_range'' must be start, stop, count (count a whole number >= 1)'; return
-        end if
-        sc%grid_n(k) = nint(sc%grid_range(3, k))
+        w(i) = words(a:a + wlen(i) - 1)
       end if
+      a = a + wlen(i)
     end do
-    if (len_trim(sc%measure) > 0 .and. .not. any(measures == sc%measure)) then
-      msg = 'field ''measure'' must be one of final_well, mean_velocity, locked, poincare, lyapunov; got ''' &
-            // trim(sc%measure) // ''''; return
-    end if
-    if (sc%n_grid > 0 .and. len_trim(sc%measure) == 0) then
-      msg = 'field ''grid'' is given but ''measure'' is not'; return
-    end if
-    if (.not. (sc%sweep_t_max > 0.0_dp)) then
-      msg = 'field ''sweep_t_max'' must be > 0'; return
-    end if
-    if (.not. (sc%sweep_transient >= 0.0_dp)) then
-      msg = 'field ''sweep_transient'' must be >= 0'; return
-    end if
-    if (sc%sweep_samples < 1 .or. sc%sweep_samples > 10000000) then
-      msg = 'field ''sweep_samples'' must be between 1 and 1e7'; return
-    end if
+    sc%eps = x(1); sc%theta0 = x(2); sc%v0 = x(3); sc%t_start = x(4); sc%t_end = x(5)
+    sc%damping = x(7); sc%torque = x(8); sc%drive_amplitude = x(9); sc%drive_frequency = x(10)
+    sc%drive_phase = x(11); sc%rtol = x(12); sc%atol = x(13); sc%dt = x(14)
+    sc%cycloid_radius = x(17); sc%gravity_distance = x(18); sc%gravity_gradient = x(19)
+    sc%restitution = x(20); sc%min_flight = x(22); sc%sweep_t_max = x(23); sc%sweep_transient = x(24)
+    if (.not. whole(x(6), sc%n_samples, msg, 'n_samples')) return
+    if (.not. whole(x(21), sc%max_flips, msg, 'max_flips')) return
+    if (.not. whole(x(25), sc%sweep_samples, msg, 'sweep_samples')) return
+    call set_words(sc, w, nout, ngrid)
+    sc%n_sweep = size(sweep_values)
+    sc%sweep_values = sweep_values
+    sc%grid_nv = [size(grid1), size(grid2), size(grid3)]
+    sc%grid_nr = [size(grid1_range), size(grid2_range), size(grid3_range)]
+    allocate(sc%grid_values(max(1, maxval(sc%grid_nv)), 3), source=nan_dp)
+    sc%grid_values(1:sc%grid_nv(1), 1) = grid1
+    sc%grid_values(1:sc%grid_nv(2), 2) = grid2
+    sc%grid_values(1:sc%grid_nv(3), 3) = grid3
+    sc%grid_range(1:sc%grid_nr(1), 1) = grid1_range
+    sc%grid_range(1:sc%grid_nr(2), 2) = grid2_range
+    sc%grid_range(1:sc%grid_nr(3), 3) = grid3_range
     status = 0
     msg = ''
-  end subroutine check_grid
+    if (check) call check_scene(sc, g, length, status, msg)
+  contains
+    logical function whole(v, iv, m, fname)
+      real(dp), intent(in) :: v
+      integer, intent(out) :: iv
+      character(len=*), intent(inout) :: m
+      character(len=*), intent(in) :: fname
+      whole = v == aint(v)
+      iv = 0
+      if (.not. whole) then
+        m = 'field ''' // fname // ''' must be a whole number, got ' // trim(num_text(v)); return
+      end if
+      iv = int(max(-2.0e9_dp, min(2.0e9_dp, v)))
+    end function whole
+  end subroutine scene_from_fields
 
-  !> The same range rules as pendula/scene.py.
-  subroutine check(sc, g, length, status, msg)
+  !> The numbers and words of a (checked) scene, as scene_from_fields takes
+  !> them; wlen(max_words), words of length >= 7 * 32 + 256 + 16 * 16 + 3 * 32.
+  subroutine scene_to_fields(sc, g, length, x, words, wlen, nout, ngrid)
+    type(scene_t), intent(in) :: sc
+    real(dp), intent(in) :: g, length
+    real(dp), intent(out) :: x(n_number_fields)
+    character(len=*), intent(out) :: words
+    integer, intent(out) :: wlen(max_words), nout, ngrid
+    integer :: i, a
+    character(len=256) :: w
+    x = [sc%eps, sc%theta0, sc%v0, sc%t_start, sc%t_end, real(sc%n_samples, dp), sc%damping, sc%torque, &
+         sc%drive_amplitude, sc%drive_frequency, sc%drive_phase, sc%rtol, sc%atol, sc%dt, g, length, &
+         sc%cycloid_radius, sc%gravity_distance, sc%gravity_gradient, sc%restitution, real(sc%max_flips, dp), &
+         sc%min_flight, sc%sweep_t_max, sc%sweep_transient, real(sc%sweep_samples, dp)]
+    nout = sc%n_outputs
+    ngrid = sc%n_grid
+    words = ''
+    wlen = 0
+    a = 1
+    do i = 1, n_word_fields + nout + ngrid
+      select case (i)
+      case (1); w = sc%cord
+      case (2); w = sc%guide
+      case (3); w = sc%gravity
+      case (4); w = sc%method
+      case (5); w = sc%sweep
+      case (6); w = sc%measure
+      case (7); w = sc%name
+      case default
+        if (i <= n_word_fields + nout) then
+          w = sc%outputs(i - n_word_fields)
+        else
+          w = sc%grid(i - n_word_fields - nout)
+        end if
+      end select
+      wlen(i) = len_trim(w)
+      if (wlen(i) > 0) words(a:a + wlen(i) - 1) = w(1:wlen(i))
+      a = a + wlen(i)
+    end do
+  end subroutine scene_to_fields
+
+  !> The words into the scene (lower case but the name); nout outputs, ngrid axes.
+  subroutine set_words(sc, w, nout, ngrid)
+    type(scene_t), intent(inout) :: sc
+    character(len=*), intent(in) :: w(:)
+    integer, intent(in) :: nout, ngrid
+    integer :: i
+    sc%cord = lower(w(1)); sc%guide = lower(w(2)); sc%gravity = lower(w(3)); sc%method = lower(w(4))
+    sc%sweep = lower(w(5)); sc%measure = lower(w(6))
+    sc%n_outputs = nout
+    do i = 1, nout
+      sc%outputs(i) = lower(w(n_word_fields + i))
+    end do
+    sc%n_grid = ngrid
+    do i = 1, ngrid
+      sc%grid(i) = lower(w(n_word_fields + nout + i))
+    end do
+  end subroutine set_words
+
+  !> The longest word field i may hold (i as in scene_from_fields).
+  pure integer function word_limit(i, nout)
+    integer, intent(in) :: i, nout
+    if (i == 7) then
+      word_limit = 256
+    else if (i > n_word_fields .and. i <= n_word_fields + nout) then
+      word_limit = 16
+    else
+      word_limit = 32
+    end if
+  end function word_limit
+
+  function too_long(i, nout) result(m)
+    integer, intent(in) :: i, nout
+    character(len=96) :: m
+    character(len=8) :: f
+    if (i <= n_word_fields) then
+      f = word_fields(i)
+    else if (i <= n_word_fields + nout) then
+      f = 'outputs'
+    else
+      f = 'grid'
+    end if
+    write(m, '(a,i0,a)') 'field ''' // trim(f) // ''' is longer than ', word_limit(i, nout), ' characters'
+  end function too_long
+
+  !> Member k of a scene's sweep: the scene with the swept field set to its
+  !> k-th value (the scene itself when it sweeps nothing).
+  pure function scene_member(s, k) result(m)
+    type(scene_t), intent(in) :: s
+    integer, intent(in) :: k
+    type(scene_t) :: m
+    m = s
+    if (s%n_sweep == 0) return
+    call set_swept(m, s%sweep, s%sweep_values(k))
+  end function scene_member
+
+  !> The field a sweep runs over, set to one of its values.
+  pure subroutine set_swept(m, field, value)
+    type(scene_t), intent(inout) :: m
+    character(len=*), intent(in) :: field
+    real(dp), intent(in) :: value
+    select case (trim(field))
+    case ('v0');              m%v0 = value
+    case ('theta0');          m%theta0 = value
+    case ('eps');             m%eps = value
+    case ('damping');         m%damping = value
+    case ('torque');          m%torque = value
+    case ('drive_amplitude'); m%drive_amplitude = value
+    case ('drive_frequency'); m%drive_frequency = value
+    end select
+  end subroutine set_swept
+
+  !> Every rule about a scene.  g and length (NaN: not given) settle eps.
+  !> status 0: fine (eps set, outputs default to 'trajectory'); otherwise
+  !> msg names the field.
+  subroutine check_scene(sc, g, length, status, msg)
     type(scene_t), intent(inout) :: sc
     real(dp), intent(in) :: g, length
     integer, intent(out) :: status
     character(len=*), intent(out) :: msg
+    integer :: k
+    character(len=512) :: m2
+    type(scene_t), allocatable :: m
+    call check_fields(sc, g, length, msg)
+    if (len_trim(msg) == 0) call check_grid(sc, msg)
+    if (len_trim(msg) == 0) then
+      if (sc%n_sweep == 0) then
+        call check_member(sc, msg)
+      else
+        allocate(m, source=sc)
+        do k = 1, sc%n_sweep
+          call set_swept(m, sc%sweep, sc%sweep_values(k))
+          call check_member(m, m2)
+          if (len_trim(m2) > 0) then
+            msg = 'field ''sweep_values'': ' // trim(sc%sweep) // ' = ' // trim(num_text(sc%sweep_values(k))) // &
+                  ': ' // trim(m2)
+            exit
+          end if
+        end do
+      end if
+    end if
+    status = merge(1, 0, len_trim(msg) > 0)
+  end subroutine check_scene
+
+  !> The fields one by one and the sweep's (msg = '' when fine).
+  subroutine check_fields(sc, g, length, msg)
+    type(scene_t), intent(inout) :: sc
+    real(dp), intent(in) :: g, length
+    character(len=*), intent(out) :: msg
     character(len=16), parameter :: known_outputs(11) = [character(len=16) :: 'trajectory', 'theta_t', &
       'v_t', 'phase', 'energy', 'period', 'omega', 'theta_max', 'series', 'lindstedt', 'spectrum']
-    character(len=16), parameter :: methods(12) = [character(len=16) :: 'auto', 'exact', 'rk4', 'verlet', &
-      'yoshida4', 'yoshida6', 'yoshida8', 'gauss4', 'gauss6', 'dopri5', 'dop853', 'gsl-rk8pd']
+    character(len=16), parameter :: methods(14) = [character(len=16) :: 'auto', 'exact', 'rk4', 'verlet', &
+      'yoshida4', 'yoshida6', 'yoshida8', 'gauss4', 'gauss6', 'dopri5', 'dop853', 'gsl-rk8pd', 'dprkn6', 'vern9']
     character(len=16), parameter :: sweepable(7) = [character(len=16) :: 'v0', 'theta0', 'eps', &
       'damping', 'torque', 'drive_amplitude', 'drive_frequency']
+    character(len=16), parameter :: cords(2) = [character(len=16) :: 'rigid', 'flexible'], &
+      guides(2) = [character(len=16) :: 'none', 'cycloid'], &
+      gravities(3) = [character(len=16) :: 'uniform', 'inverse-square', 'linear']
+    real(dp) :: vals(22)
     integer :: i
-    status = 1
+    character(len=16), parameter :: finite_names(22) = [character(len=16) :: 'theta0', 'v0', 't_start', 't_end', &
+      'damping', 'torque', 'drive_amplitude', 'drive_frequency', 'drive_phase', 'rtol', 'atol', 'dt', &
+      'cycloid_radius', 'gravity_distance', 'gravity_gradient', 'restitution', 'min_flight', 'sweep_t_max', &
+      'sweep_transient', 'eps', 'g', 'length']
+    msg = ''
     if ((g /= g) .neqv. (length /= length)) then
       msg = 'fields ''g'' and ''length'' go together (eps = g / length): give both or neither'; return
     end if
+    vals = [sc%theta0, sc%v0, sc%t_start, sc%t_end, sc%damping, sc%torque, sc%drive_amplitude, &
+            sc%drive_frequency, sc%drive_phase, sc%rtol, sc%atol, sc%dt, sc%cycloid_radius, sc%gravity_distance, &
+            sc%gravity_gradient, sc%restitution, sc%min_flight, sc%sweep_t_max, sc%sweep_transient, sc%eps, g, &
+            length]
+    do i = 1, size(vals)
+      if (i >= 20 .and. vals(i) /= vals(i)) cycle   ! eps, g, length: NaN is 'not given'
+      if (.not. finite(vals(i))) then
+        msg = 'field ''' // trim(finite_names(i)) // ''' must be finite, got ' // trim(num_text(vals(i))); return
+      end if
+    end do
     if (g == g) then
-      if (.not. (g > 0 .and. length > 0 .and. g <= huge(g) .and. length <= huge(g))) then
+      if (.not. (g > 0 .and. length > 0)) then
         msg = 'fields ''g'' and ''length'' must be positive and finite'; return
       end if
       if (sc%eps == sc%eps .and. sc%eps /= g / length) then
-        msg = 'fields ''eps'' and ''g'' / ''length'' contradict each other: give eps, or g and length'; return
+        msg = 'fields ''eps'' = ' // trim(num_text(sc%eps)) // ' and ''g'' / ''length'' = ' // &
+              trim(num_text(g / length)) // ' contradict each other: give eps, or g and length'; return
       end if
       sc%eps = g / length
     else if (sc%eps /= sc%eps) then
       sc%eps = 1.0_dp
     end if
-    if (.not. finite(sc%eps) .or. sc%eps <= 0) then
-      msg = 'field ''eps'' must be positive and finite (eps = g/l)'; return
-    end if
-    if (.not. (finite(sc%theta0) .and. finite(sc%v0) .and. finite(sc%t_start) .and. finite(sc%t_end))) then
-      msg = 'fields ''theta0'', ''v0'', ''t_start'', ''t_end'' must be finite'; return
-    end if
     if (sc%n_samples < 1 .or. sc%n_samples > 100000000) then
-      msg = 'field ''n_samples'' must be between 1 and 1e8'; return
-    end if
-    if (.not. finite(sc%damping) .or. sc%damping < 0) then
-      msg = 'field ''damping'' must be >= 0'; return
-    end if
-    if (.not. (finite(sc%torque) .and. finite(sc%drive_amplitude) .and. finite(sc%drive_phase))) then
-      msg = 'fields ''torque'', ''drive_amplitude'', ''drive_phase'' must be finite'; return
-    end if
-    if (.not. finite(sc%drive_frequency) .or. sc%drive_frequency < 0) then
-      msg = 'field ''drive_frequency'' must be >= 0'; return
+      msg = 'field ''n_samples'' must be between 1 and 1e8, got ' // trim(int_text(sc%n_samples)); return
     end if
     if (.not. (sc%rtol > 0) .or. .not. (sc%atol >= 0)) then
       msg = 'fields ''rtol'' must be > 0 and ''atol'' >= 0'; return
     end if
     if (.not. (sc%dt >= 0)) then
-      msg = 'field ''dt'' must be >= 0 (0: chosen by the method)'; return
+      msg = 'field ''dt'' must be >= 0 (0: chosen by the method), got ' // trim(num_text(sc%dt)); return
     end if
     if (.not. (sc%restitution >= 0 .and. sc%restitution < 1)) then
-      msg = 'field ''restitution'' must be in [0, 1)'; return
+      msg = 'field ''restitution'' must be in [0, 1), got ' // trim(num_text(sc%restitution)); return
     end if
     if (sc%max_flips < 0 .or. sc%max_flips > 100000000) then
-      msg = 'field ''max_flips'' must be between 0 and 1e8'; return
+      msg = 'field ''max_flips'' must be between 0 and 1e8, got ' // trim(int_text(sc%max_flips)); return
     end if
-    if (.not. (finite(sc%min_flight) .and. sc%min_flight >= 0)) then
-      msg = 'field ''min_flight'' must be >= 0'; return
+    if (.not. (sc%min_flight >= 0)) then
+      msg = 'field ''min_flight'' must be >= 0, got ' // trim(num_text(sc%min_flight)); return
     end if
-    if (sc%cord /= 'rigid' .and. sc%cord /= 'flexible') then
-      msg = 'field ''cord'' must be one of rigid, flexible; got ''' // trim(sc%cord) // ''''; return
+    if (.not. any(cords == sc%cord)) then
+      msg = 'field ''cord'' must be one of rigid, flexible; got ''' // trim(sc%cord) // '''' // &
+            suggest(sc%cord, cords); return
     end if
-    if (sc%guide /= 'none' .and. sc%guide /= 'cycloid') then
-      msg = 'field ''guide'' must be one of none, cycloid; got ''' // trim(sc%guide) // ''''; return
+    if (.not. any(guides == sc%guide)) then
+      msg = 'field ''guide'' must be one of none, cycloid; got ''' // trim(sc%guide) // '''' // &
+            suggest(sc%guide, guides); return
     end if
-    if (sc%gravity /= 'uniform' .and. sc%gravity /= 'inverse-square' .and. sc%gravity /= 'linear') then
-      msg = 'field ''gravity'' must be one of uniform, inverse-square, linear; got ''' // trim(sc%gravity) // ''''
-      return
+    if (.not. any(gravities == sc%gravity)) then
+      msg = 'field ''gravity'' must be one of uniform, inverse-square, linear; got ''' // trim(sc%gravity) // &
+            '''' // suggest(sc%gravity, gravities); return
     end if
     if (.not. any(methods == sc%method)) then
-      msg = 'field ''method'': unknown method ''' // trim(sc%method) // ''''; return
+      msg = 'field ''method'' must be one of auto, exact, rk4, verlet, yoshida4, yoshida6, yoshida8, gauss4, ' // &
+            'gauss6, dopri5, dop853, gsl-rk8pd; got ''' // trim(sc%method) // '''' // suggest(sc%method, methods)
+      return
     end if
-    do i = 1, max_outputs
-      if (len_trim(sc%outputs(i)) == 0) cycle
-      if (.not. any(known_outputs == lower(sc%outputs(i)))) then
-        msg = 'field ''outputs'': unknown output ''' // trim(sc%outputs(i)) // ''''; return
+    do i = 1, sc%n_outputs
+      if (.not. any(known_outputs == sc%outputs(i))) then
+        msg = 'field ''outputs'': unknown output ''' // trim(sc%outputs(i)) // '''; known: trajectory, ' // &
+              'theta_t, v_t, phase, energy, period, omega, theta_max, series, lindstedt, spectrum' // &
+              suggest(sc%outputs(i), known_outputs); return
       end if
-      sc%outputs(i) = lower(sc%outputs(i))
     end do
-    if (all(len_trim(sc%outputs) == 0)) sc%outputs(1) = 'trajectory'
+    if (sc%n_outputs == 0) then
+      sc%n_outputs = 1
+      sc%outputs(1) = 'trajectory'
+    end if
     if (len_trim(sc%sweep) > 0) then
       if (.not. any(sweepable == sc%sweep)) then
         msg = 'field ''sweep'' must name one of v0, theta0, eps, damping, torque, drive_amplitude, ' // &
-              'drive_frequency; got ''' // trim(sc%sweep) // ''''; return
+              'drive_frequency; got ''' // trim(sc%sweep) // '''' // suggest(sc%sweep, sweepable); return
       end if
       if (sc%n_sweep == 0) then
         msg = 'field ''sweep_values'' is empty but ''sweep'' names a field'; return
       end if
-      if (any(sc%sweep_values(1:sc%n_sweep) /= sc%sweep_values(1:sc%n_sweep)) .or. &
-          count(sc%sweep_values == sc%sweep_values) /= sc%n_sweep) then
-        msg = 'field ''sweep_values'' must be finite numbers, one after another'; return
+      if (.not. all(finite(sc%sweep_values(1:sc%n_sweep)))) then
+        msg = 'field ''sweep_values'' must be finite numbers'; return
       end if
-      select case (trim(sc%sweep))
-      case ('eps')
-        if (any(sc%sweep_values(1:sc%n_sweep) <= 0)) then
-          msg = 'field ''sweep_values'': eps must be > 0'; return
-        end if
-      case ('damping', 'drive_frequency')
-        if (any(sc%sweep_values(1:sc%n_sweep) < 0)) then
-          msg = 'field ''sweep_values'': ' // trim(sc%sweep) // ' must be >= 0'; return
-        end if
-      end select
     else if (sc%n_sweep > 0) then
       msg = 'field ''sweep_values'' is given but ''sweep'' does not name a field'; return
     end if
-    call check_issue13(sc, msg)
-    if (len_trim(msg) > 0) return
-    if (sc%method == 'exact' .and. len_trim(scene_effects(sc)) > 0 .and. sc%guide /= 'cycloid') then
-      msg = 'field ''method'': ''exact'' answers only the conservative rigid pendulum, but the scene names ' &
-            // trim(scene_effects(sc)); return
-    end if
-    status = 0
-    msg = ''
-  end subroutine check
+    call value_rules(sc, msg)
+  end subroutine check_fields
 
-  !> Issue 13: the cycloidal guide and the gravity fields (same rules as scene.py).  msg = '' when fine.
-  subroutine check_issue13(sc, msg)
+  !> The rules on the fields a sweep may change, and on the models' fields.
+  subroutine value_rules(sc, msg)
     type(scene_t), intent(in) :: sc
     character(len=*), intent(out) :: msg
     msg = ''
-    if (.not. (sc%cycloid_radius > 0 .and. finite(sc%cycloid_radius))) then
-      msg = 'field ''cycloid_radius'' must be positive (R / l)'; return
+    if (.not. (sc%eps > 0 .and. sc%eps <= eps_limit)) then
+      msg = 'field ''eps'' must be positive and at most 1e300 (eps = g/l), got ' // trim(num_text(sc%eps)); return
+    end if
+    if (.not. (abs(sc%theta0) <= theta0_limit)) then
+      msg = 'field ''theta0'' must be at most 2^52 in magnitude (beyond, a double holds no fraction of a ' // &
+            'turn), got ' // trim(num_text(sc%theta0)); return
+    end if
+    if (.not. (sc%damping >= 0)) then
+      msg = 'field ''damping'' must be >= 0, got ' // trim(num_text(sc%damping)); return
+    end if
+    if (.not. (sc%drive_frequency >= 0)) then
+      msg = 'field ''drive_frequency'' must be >= 0, got ' // trim(num_text(sc%drive_frequency)); return
+    end if
+    call model_rules(sc, msg)
+  end subroutine value_rules
+
+  !> The cycloidal guide, the gravity fields, the flexible cord, and the
+  !> method 'exact' (msg = '' when fine).
+  subroutine model_rules(sc, msg)
+    type(scene_t), intent(in) :: sc
+    character(len=*), intent(out) :: msg
+    real(dp) :: w2, s0, sd0, c
+    msg = ''
+    if (.not. (sc%cycloid_radius > 0)) then
+      msg = 'field ''cycloid_radius'' must be positive (R / l), got ' // trim(num_text(sc%cycloid_radius)); return
     end if
     if (sc%guide /= 'cycloid' .and. sc%cycloid_radius /= 0.25_dp) then
       msg = 'field ''cycloid_radius'' is used only with guide = ''cycloid'''; return
     end if
-    if (.not. (finite(sc%gravity_distance) .and. finite(sc%gravity_gradient))) then
-      msg = 'fields ''gravity_distance'', ''gravity_gradient'' must be finite'; return
-    end if
     if (sc%gravity == 'inverse-square') then
       if (.not. (sc%gravity_distance > 1)) then
         msg = 'field ''gravity_distance'' (D / l, the point mass below the pivot) must be > 1 with ' // &
-              'gravity = ''inverse-square'''; return
+              'gravity = ''inverse-square'', got ' // trim(num_text(sc%gravity_distance)); return
       end if
     else if (sc%gravity_distance /= 0) then
       msg = 'field ''gravity_distance'' is used only with gravity = ''inverse-square'''; return
@@ -471,7 +771,7 @@ contains
     if (sc%gravity == 'linear') then
       if (.not. (sc%gravity_gradient < 0.5_dp)) then
         msg = 'field ''gravity_gradient'' (kappa in g (1 - kappa h / l)) must be < 0.5 so that gravity ' // &
-              'points down at the top'; return
+              'points down at the top, got ' // trim(num_text(sc%gravity_gradient)); return
       end if
     else if (sc%gravity_gradient /= 0) then
       msg = 'field ''gravity_gradient'' is used only with gravity = ''linear'''; return
@@ -487,13 +787,179 @@ contains
       end if
       if (sc%method /= 'auto' .and. sc%method /= 'exact') then
         msg = 'field ''method'': the cycloidal pendulum is solved in closed form (method ''auto'' or ' // &
-              '''exact''), never integrated'; return
+              '''exact''), never integrated; got ''' // trim(sc%method) // ''''; return
       end if
       if (.not. (abs(sc%theta0) <= half_pi)) then
-        msg = 'field ''theta0'': on the cycloid |theta0| <= pi/2 (the cusps, |s| = 4R)'; return
+        msg = 'field ''theta0'': on the cycloid |theta0| <= pi/2 (the cusps, |s| = 4R), got ' // &
+              trim(num_text(sc%theta0)); return
+      end if
+      if (sc%damping == 0 .and. sc%drive_amplitude == 0) then
+        ! without damping or drive the amplitude about the torque's centre c is constant
+        w2 = cycloid_omega2(sc%eps, sc%cycloid_radius)
+        s0 = 4.0_dp * sc%cycloid_radius * sin(sc%theta0)
+        sd0 = 4.0_dp * sc%cycloid_radius * cos(sc%theta0) * sc%v0
+        c = sc%torque / w2
+        if (abs(c) + hypot(s0 - c, sd0 / sqrt(w2)) > 4.0_dp * sc%cycloid_radius) then
+          msg = 'field ''v0'': the cycloidal pendulum''s orbit (no damping, no drive) reaches the cusps ' // &
+                '(|s| = 4R, |theta| = pi/2): start lower, slower, or with less torque'; return
+        end if
       end if
     end if
-  end subroutine check_issue13
+    if (sc%cord == 'flexible') then
+      if (.not. (sc%t_start >= 0 .and. sc%t_end >= sc%t_start)) then
+        msg = 'field ''t_start'': a flexible cord runs forward only (0 <= t_start <= t_end)'; return
+      end if
+      if (sc%method /= 'auto' .and. sc%method /= 'exact' .and. sc%method /= 'dopri5' .and. &
+          sc%method /= 'dop853') then
+        msg = 'field ''method'': a flexible cord is integrated between flights by dopri5 or dop853 (auto: ' // &
+              'dop853), whose dense output locates the tension event; got ''' // trim(sc%method) // ''''; return
+      end if
+    end if
+    if (sc%gravity /= 'uniform' .and. sc%method == 'gsl-rk8pd') then
+      msg = 'field ''method'': gsl-rk8pd does not take a non-uniform gravity field; use dop853 or auto'; return
+    end if
+    select case (trim(sc%method))
+    case ('rk4', 'verlet', 'yoshida4', 'yoshida6', 'yoshida8', 'gauss4', 'gauss6')
+      if (.not. (sc%dt > 0)) then
+        msg = 'field ''dt'': fixed-step methods need dt > 0 (method ''' // trim(sc%method) // ''')'; return
+      end if
+    end select
+    if (sc%method == 'exact') then
+      if (sc%gravity /= 'uniform' .or. (sc%guide /= 'cycloid' .and. (sc%damping /= 0 .or. sc%torque /= 0 .or. &
+          sc%drive_amplitude /= 0))) then
+        msg = 'field ''method'': ''exact'' answers only the conservative rigid pendulum, the flexible cord ' // &
+              'and the cycloidal guide, but the scene names ' // trim(scene_effects(sc)); return
+      end if
+    end if
+  end subroutine model_rules
+
+  !> The rules of one run of the scene (the scene itself, or each member of
+  !> its sweep): its fields' values and what its outputs need.
+  subroutine check_member(m, msg)
+    type(scene_t), intent(in) :: m
+    character(len=*), intent(out) :: msg
+    type(pendulum_orbit) :: o
+    integer :: st
+    call value_rules(m, msg)
+    if (len_trim(msg) > 0) return
+    if (wants(m, 'period') .or. wants(m, 'omega') .or. wants(m, 'theta_max')) then
+      if (len_trim(scene_effects(m)) > 0 .and. .not. scene_has_orbit_facts(m)) then
+        msg = 'field ''outputs'': period/omega/theta_max are facts of the exact conservative orbit; the ' // &
+              'scene names ' // trim(scene_effects(m)); return
+      end if
+    end if
+    if (wants(m, 'series') .or. wants(m, 'lindstedt')) then
+      if (len_trim(scene_effects(m)) > 0) then
+        msg = 'field ''outputs'': series/lindstedt are the conservative rigid pendulum''s in uniform gravity; ' // &
+              'the scene names ' // trim(scene_effects(m)); return
+      end if
+      if (m%sweep /= 'theta0' .or. m%v0 /= 0) then
+        msg = 'field ''outputs'': series/lindstedt compare the period or motion released from rest over ' // &
+              'amplitudes: sweep theta0 with v0 = 0'; return
+      end if
+      if (wants(m, 'lindstedt') .and. .not. (abs(m%theta0) < pi)) then
+        msg = 'field ''outputs'': lindstedt''s amplitude theta0 must satisfy |theta0| < pi (a libration)'; return
+      end if
+    end if
+    if (wants(m, 'spectrum') .and. len_trim(scene_effects(m)) == 0) then
+      call orbit_setup(m%theta0, m%v0, m%eps, o, st)
+      if (st /= 0) then
+        msg = 'field ''outputs'': ''spectrum'': the initial state has no orbit'; return
+      end if
+      if (o%regime == regime_separatrix) then
+        msg = 'field ''outputs'': ''spectrum'': the separatrix has no spectrum (infinite period)'; return
+      end if
+    end if
+  contains
+    pure logical function wants(s, what)
+      type(scene_t), intent(in) :: s
+      character(len=*), intent(in) :: what
+      wants = any(s%outputs(1:s%n_outputs) == what)
+    end function wants
+  end subroutine check_member
+
+  !> The sweep grid's fields (msg = '' when fine).
+  subroutine check_grid(sc, msg)
+    type(scene_t), intent(inout) :: sc
+    character(len=*), intent(out) :: msg
+    character(len=16), parameter :: griddable(8) = [character(len=16) :: 'v0', 'theta0', 'eps', &
+      'damping', 'torque', 'drive_amplitude', 'drive_frequency', 'drive_phase']
+    character(len=16), parameter :: measures(5) = [character(len=16) :: 'final_well', 'mean_velocity', &
+      'locked', 'poincare', 'lyapunov']
+    character(len=1) :: kc
+    integer :: k, nv, nr
+    msg = ''
+    do k = 1, sc%n_grid
+      if (.not. any(griddable == sc%grid(k))) then
+        msg = 'field ''grid'': cannot sweep ''' // trim(sc%grid(k)) // '''; one of v0, theta0, eps, damping, ' // &
+              'torque, drive_amplitude, drive_frequency, drive_phase' // suggest(sc%grid(k), griddable); return
+      end if
+      if (any(sc%grid(1:k - 1) == sc%grid(k))) then
+        msg = 'field ''grid'' names an axis twice'; return
+      end if
+    end do
+    do k = 1, 3
+      write(kc, '(i1)') k
+      nv = sc%grid_nv(k)
+      nr = sc%grid_nr(k)
+      if (k > sc%n_grid) then
+        if (nv + nr > 0) then
+          msg = 'field ''grid' // kc // ''' or ''grid' // kc // '_range'' is given but ''grid'' names fewer axes'
+          return
+        end if
+        cycle
+      end if
+      if ((nv > 0) .eqv. (nr > 0)) then
+        msg = 'axis ' // kc // ' (''' // trim(sc%grid(k)) // '''): give exactly one of ''grid' // kc // &
+              ''' (values) or ''grid' // kc // '_range'' (start, stop, count)'; return
+      end if
+      if (nv > 0) then
+        if (.not. all(finite(sc%grid_values(1:nv, k)))) then
+          msg = 'field ''grid' // kc // ''' must be finite numbers'; return
+        end if
+        sc%grid_n(k) = nv
+      else
+        if (nr /= 3) then
+          msg = 'field ''grid' // kc // '_range'' must be start, stop, count (count a whole number >= 1)'; return
+        end if
+        if (.not. all(finite(sc%grid_range(:, k)))) then
+          msg = 'field ''grid' // kc // '_range'' must be finite numbers'; return
+        end if
+        if (sc%grid_range(3, k) /= aint(sc%grid_range(3, k)) .or. sc%grid_range(3, k) < 1.0_dp .or. &
+            sc%grid_range(3, k) > 1.0e8_dp) then
+          msg = 'field ''grid' // kc // '_range'' must be start, stop, count (count a whole number >= 1)'; return
+        end if
+        sc%grid_n(k) = nint(sc%grid_range(3, k))
+      end if
+    end do
+    if (len_trim(sc%measure) > 0 .and. .not. any(measures == sc%measure)) then
+      msg = 'field ''measure'' must be one of final_well, mean_velocity, locked, poincare, lyapunov; got ''' &
+            // trim(sc%measure) // '''' // suggest(sc%measure, measures); return
+    end if
+    if (sc%n_grid > 0 .and. len_trim(sc%measure) == 0) then
+      msg = 'field ''grid'' is given but ''measure'' is not'; return
+    end if
+    if (.not. (sc%sweep_t_max > 0.0_dp)) then
+      msg = 'field ''sweep_t_max'' must be > 0, got ' // trim(num_text(sc%sweep_t_max)); return
+    end if
+    if (.not. (sc%sweep_transient >= 0.0_dp)) then
+      msg = 'field ''sweep_transient'' must be >= 0, got ' // trim(num_text(sc%sweep_transient)); return
+    end if
+    if (sc%sweep_samples < 1 .or. sc%sweep_samples > 10000000) then
+      msg = 'field ''sweep_samples'' must be between 1 and 1e7, got ' // trim(int_text(sc%sweep_samples)); return
+    end if
+  end subroutine check_grid
+
+  !> Does the scene's model give the facts of its orbit (period, omega,
+  !> theta_max) in closed form or by quadrature?  A conservative cycloid
+  !> (the guide, perhaps a torque) or a scene whose only effect is a
+  !> non-uniform gravity field; the rigid pendulum without effects too
+  !> (not asked here: its facts are the exact orbit's).
+  pure logical function scene_has_orbit_facts(sc)
+    type(scene_t), intent(in) :: sc
+    scene_has_orbit_facts = (sc%guide == 'cycloid' .and. sc%damping == 0 .and. sc%drive_amplitude == 0) .or. &
+                            trim(scene_effects(sc)) == 'gravity'
+  end function scene_has_orbit_facts
 
   !> The effects a scene names, comma separated ('' when none).
   pure function scene_effects(sc) result(s)
@@ -533,7 +999,7 @@ contains
     s = trim(s) // new_line('a') // '# cord = ' // trim(sc%cord) // ', guide = ' // trim(sc%guide) // &
         ', gravity = ' // trim(sc%gravity) // ', method = ' // trim(sc%method)
     tmp = ''
-    do i = 1, max_outputs
+    do i = 1, sc%n_outputs
       if (len_trim(sc%outputs(i)) > 0) tmp = trim(tmp) // ' ' // trim(sc%outputs(i))
     end do
     s = trim(s) // new_line('a') // '# outputs =' // trim(tmp)
@@ -544,10 +1010,220 @@ contains
     if (len_trim(sc%name) > 0) s = trim(s) // new_line('a') // '# name = ' // trim(sc%name)
   end function scene_summary
 
+  !> ' (did you mean 'x'?)' when one of the choices is close to word (at
+  !> most a third of its letters edited), '' otherwise.
+  function suggest(word, choices) result(s)
+    character(len=*), intent(in) :: word, choices(:)
+    character(len=64) :: s
+    integer :: i, d, best, lw
+    s = ''
+    best = huge(1)
+    lw = len_trim(word)
+    if (lw == 0 .or. lw > 64) return
+    do i = 1, size(choices)
+      d = edit_distance(word(1:lw), trim(choices(i)))
+      if (d < best .and. 3 * d <= max(lw, len_trim(choices(i)))) then
+        best = d
+        s = ' (did you mean ''' // trim(choices(i)) // '''?)'
+      end if
+    end do
+  end function suggest
+
+  !> Edit distance: insertions, deletions, substitutions and transpositions
+  !> of neighbours ('dop835' is one edit from 'dop853').
+  pure integer function edit_distance(a, b) result(d)
+    character(len=*), intent(in) :: a, b
+    integer :: c(0:len(a), 0:len(b)), i, j
+    do i = 0, len(a)
+      c(i, 0) = i
+    end do
+    do j = 0, len(b)
+      c(0, j) = j
+    end do
+    do i = 1, len(a)
+      do j = 1, len(b)
+        c(i, j) = min(c(i - 1, j) + 1, c(i, j - 1) + 1, c(i - 1, j - 1) + merge(0, 1, a(i:i) == b(j:j)))
+        if (i > 1 .and. j > 1) then
+          if (a(i:i) == b(j - 1:j - 1) .and. a(i - 1:i - 1) == b(j:j)) c(i, j) = min(c(i, j), c(i - 2, j - 2) + 1)
+        end if
+      end do
+    end do
+    d = c(len(a), len(b))
+  end function edit_distance
+
+  !> A number as a short text that reads back to the same double (1.5, 2e-05, 1e+308, inf).
+  function num_text(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=40) :: s
+    character(len=40) :: t, f
+    real(dp) :: y
+    integer :: d, ios, e, p
+    if (x /= x) then
+      s = 'nan'; return
+    else if (x > huge(x)) then
+      s = 'inf'; return
+    else if (x < -huge(x)) then
+      s = '-inf'; return
+    end if
+    do d = 0, 16
+      write(f, '(a,i0,a)') '(es30.', d, 'e3)'
+      write(t, f) x
+      read(t, *, iostat=ios) y
+      if (ios == 0 .and. y == x) exit
+    end do
+    t = adjustl(t)
+    p = index(t, 'E')
+    read(t(p + 1:), *) e
+    if (e >= -4 .and. e < 16) then
+      do d = 0, 20
+        write(f, '(a,i0,a)') '(f40.', d, ')'
+        write(s, f) x
+        read(s, *, iostat=ios) y
+        if (ios == 0 .and. y == x) exit
+      end do
+      s = adjustl(s)
+      if (s(1:1) == '.') s = '0' // s
+      if (s(1:2) == '-.') s = '-0' // s(2:)
+      if (s(len_trim(s):len_trim(s)) == '.') s = trim(s) // '0'
+    else
+      f = t(1:p - 1)
+      if (f(len_trim(f):len_trim(f)) == '.') f = f(1:len_trim(f) - 1)
+      write(s, '(a,a,i0)') trim(f), 'e', e
+    end if
+  end function num_text
+
+  function int_text(i) result(s)
+    integer, intent(in) :: i
+    character(len=16) :: s
+    write(s, '(i0)') i
+  end function int_text
+
+  !> The position of the first value in s that is not of the kind wanted
+  !> ('r' a number, 'i' a whole number, 's' a quoted string), 0 if none.
+  !> s holds values bad_value_token accepts.
+  pure integer function first_token_not(s, kind) result(at)
+    character(len=*), intent(in) :: s
+    character(len=1), intent(in) :: kind
+    integer :: i, e
+    character(len=1) :: q, got
+    character(len=*), parameter :: seps = ' ,' // achar(9) // achar(10) // achar(13)
+    at = 0
+    i = 1
+    do while (i <= len(s))
+      if (index(seps, s(i:i)) > 0) then
+        i = i + 1
+        cycle
+      end if
+      if (s(i:i) == '''' .or. s(i:i) == '"') then
+        q = s(i:i)
+        e = i + 1
+        do while (e <= len(s))
+          if (s(e:e) == q) then
+            if (e < len(s)) then
+              if (s(e + 1:e + 1) == q) then
+                e = e + 2; cycle
+              end if
+            end if
+            exit
+          end if
+          e = e + 1
+        end do
+        got = 's'
+      else
+        e = i
+        do while (e < len(s))
+          if (index(seps // '*', s(e + 1:e + 1)) > 0) exit
+          e = e + 1
+        end do
+        if (e < len(s)) then
+          if (s(e + 1:e + 1) == '*') then   ! a repeat count: the value follows
+            i = e + 2
+            cycle
+          end if
+        end if
+        if (s(i:i) == '.' .and. scan(lower(s(i:e)), 'tf') > 0) then
+          got = 'l'
+        else if (verify(s(i:e), '+-0123456789') == 0) then
+          got = 'i'
+        else
+          got = 'r'
+        end if
+      end if
+      if (.not. (got == kind .or. (kind == 'r' .and. got == 'i'))) then
+        at = i; return
+      end if
+      i = e + 1
+    end do
+  end function first_token_not
+
+  !> How many values the text of an assignment holds (a repeat count r*
+  !> counts r) and whether a comma stands with no value before it.
+  pure subroutine count_values(s, n, nulls)
+    character(len=*), intent(in) :: s
+    integer, intent(out) :: n
+    logical, intent(out) :: nulls
+    integer :: i, e, r
+    logical :: value_since_comma
+    character(len=1) :: q
+    character(len=*), parameter :: blanks = ' ' // achar(9) // achar(10) // achar(13)
+    n = 0
+    nulls = .false.
+    value_since_comma = .false.
+    i = 1
+    do while (i <= len(s))
+      if (index(blanks, s(i:i)) > 0) then
+        i = i + 1
+      else if (s(i:i) == ',') then
+        if (.not. value_since_comma) nulls = .true.
+        value_since_comma = .false.
+        i = i + 1
+      else if (s(i:i) == '''' .or. s(i:i) == '"') then
+        q = s(i:i)
+        e = i + 1
+        do while (e <= len(s))
+          if (s(e:e) == q) then
+            if (e < len(s)) then
+              if (s(e + 1:e + 1) == q) then
+                e = e + 2; cycle
+              end if
+            end if
+            exit
+          end if
+          e = e + 1
+        end do
+        n = n + 1
+        value_since_comma = .true.
+        i = e + 1
+      else
+        e = i
+        do while (e <= len(s))
+          if (index(blanks // ',', s(e:e)) > 0) exit
+          if (s(e:e) == '*') exit
+          e = e + 1
+        end do
+        if (e <= len(s)) then
+          if (s(e:e) == '*' .and. e > i .and. e - i <= 9 .and. verify(s(i:e - 1), '0123456789') == 0) then
+            read(s(i:e - 1), *) r
+            n = n + r - 1   ! the value that follows counts the last one
+            i = e + 1
+            cycle
+          else if (s(e:e) == '*') then
+            n = n + huge(1) / 2   ! a repeat count beyond any list
+            i = e + 1
+            cycle
+          end if
+        end if
+        n = n + 1
+        value_since_comma = .true.
+        i = e
+      end if
+      n = min(n, huge(1) / 4)
+    end do
+  end subroutine count_values
+
   ! ------------------------------------------------------------ helpers
 
-  !> The lexicon of values both readers share (python/pendula/scene.py,
-  !> _TOKEN): numbers [+-]digits[.digits][(e|d)[+-]digits], quoted strings,
+  !> The lexicon of values: numbers [+-]digits[.digits][(e|d)[+-]digits], quoted strings,
   !> logicals .true./.false./.t./.f., a repeat count r* before a value, and
   !> blanks or commas between them.  0 when s is made of these, otherwise the
   !> position where the first bad token starts.
@@ -607,8 +1283,8 @@ contains
             if (i > n) then
               at = i - 1; return
             end if
-            if (index(' ,', s(i:i)) > 0) then
-              at = i; return
+            if (index(' ,' // achar(9) // achar(10) // achar(13), s(i:i)) > 0) then
+              at = i; return   ! a repeat count needs its value at once
             end if
             cycle
           end if
@@ -722,7 +1398,7 @@ contains
     end do
   end function utf8_error_at
 
-  pure logical function finite(x)
+  pure elemental logical function finite(x)
     real(dp), intent(in) :: x
     finite = abs(x) <= huge(x)
   end function finite

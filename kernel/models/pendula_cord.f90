@@ -25,6 +25,8 @@ module pendula_cord
   !> status codes of cord_run
   integer, parameter, public :: cord_ok = 0, cord_bad_eps = 1, cord_bad_state = 2, cord_bad_times = 3, &
     cord_bad_restitution = 4
+  !> status of a run stopped by its cancel flag (set by another thread: Ctrl-C)
+  integer, parameter, public :: cord_cancelled = 9
   !> stop reasons
   integer, parameter, public :: cord_stop_t_end = 0, cord_stop_max_flips = 1, cord_stop_min_flight = 2
   real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
@@ -156,7 +158,7 @@ contains
   !> Duration of the flight from p with velocity u under gravity eps: the
   !> root of |p(tau)|**2 - 1 = tau (c1 + c2 tau + c3 tau**2 + c4 tau**3).
   !> general = .false.: a tangential departure at zero tension (c1 = c2 = 0),
-  !> tau = -c3 / c4 (the seed's eq. 13.1), NaN when c3 >= 0 (the tension is
+  !> tau = -c3 / c4 (Garfinkel, eq. 13.1), NaN when c3 >= 0 (the tension is
   !> zero but rising: no flight).  general = .true. (an inward radial velocity
   !> or a negative tension): the smallest positive root of the cubic, or of
   !> the quadratic when the departure is tangential (c1 >= 0).
@@ -253,12 +255,15 @@ contains
   !> flips(:, k) = t_leave, theta_leave, t_return, theta_return, xi_before, xi_after,
   !> v_leave, v_return; at most min(max_flips, size(flips, 2)) flips.  Output times
   !> after a stop (max_flips, min_flight) are NaN; stop_reason says which.
-  pure subroutine cord_run(eps, theta0, v0, restitution, max_flips, min_flight, t, theta, v, x, y, r, &
-                           flips, nflips, stop_reason, status)
+  !> cancel (optional): read once per circle-flight cycle; non-zero stops the
+  !> run with status cord_cancelled (outputs not reached stay NaN).
+  subroutine cord_run(eps, theta0, v0, restitution, max_flips, min_flight, t, theta, v, x, y, r, &
+                      flips, nflips, stop_reason, status, cancel)
     real(dp), intent(in) :: eps, theta0, v0, restitution, min_flight, t(:)
     integer, intent(in) :: max_flips
     real(dp), intent(out) :: theta(:), v(:), x(:), y(:), r(:), flips(:, :)
     integer, intent(out) :: nflips, stop_reason, status
+    integer, intent(inout), volatile, optional :: cancel
     type(pendulum_orbit) :: o
     real(dp) :: tc, thc, vc, vr, xi, s, phi, phi0, dtd, sq, t1, th1, v1, xib, tau, tension
     real(dp) :: p(2), u(2), th2, v2, vr2, kk
@@ -275,6 +280,11 @@ contains
     tc = 0.0_dp; thc = theta0; vc = v0; vr = 0.0_dp
     i = 1
     do
+      if (present(cancel)) then
+        if (cancel /= 0) then
+          status = cord_cancelled; return
+        end if
+      end if
       ! ---- the circle (or an immediate flight)
       tension = vc * vc + eps * cos(thc)
       leaving = .false.
@@ -360,20 +370,21 @@ contains
   end function cord_log_room
 
   !> cord_run with a flip log that grows as needed (up to max_flips entries).
-  pure subroutine cord_run_all(eps, theta0, v0, restitution, max_flips, min_flight, t, theta, v, x, y, r, &
-                               flips, nflips, stop_reason, status)
+  subroutine cord_run_all(eps, theta0, v0, restitution, max_flips, min_flight, t, theta, v, x, y, r, &
+                          flips, nflips, stop_reason, status, cancel)
     real(dp), intent(in) :: eps, theta0, v0, restitution, min_flight, t(:)
     integer, intent(in) :: max_flips
     real(dp), intent(out) :: theta(:), v(:), x(:), y(:), r(:)
     real(dp), allocatable, intent(out) :: flips(:, :)
     integer, intent(out) :: nflips, stop_reason, status
+    integer, intent(inout), volatile, optional :: cancel
     integer :: cap
     cap = cord_log_room(0, max_flips, cord_ok, cord_stop_max_flips, 0)
     do
       if (allocated(flips)) deallocate(flips)
       allocate(flips(8, cap))
       call cord_run(eps, theta0, v0, restitution, max_flips, min_flight, t, theta, v, x, y, r, &
-                    flips, nflips, stop_reason, status)
+                    flips, nflips, stop_reason, status, cancel)
       cap = cord_log_room(cap, max_flips, status, stop_reason, nflips)
       if (cap == 0) exit
     end do

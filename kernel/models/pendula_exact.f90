@@ -17,7 +17,7 @@
 module pendula_exact
   use pendula_kinds, only: dp, pi, pi_lo, half_pi, two_pi, nan_dp, inf_dp
   use pendula_dd, only: two_sum, fast_two_sum, two_prod, dd_sqrt, dd_add, dd_mul, dd_sincos, dd_div_d, dd_div
-  use pendula_elliptic, only: jacobi_plan, jacobi_prepare_dd, jacobi_eval_array, ellip_f_sc
+  use pendula_elliptic, only: jacobi_plan, jacobi_prepare_dd, jacobi_eval_array, ellip_f_sc, ellip_nome
   use pendula_carlson_dd, only: ellip_f_dd
   use pendula_jacobi_theta, only: theta_plan, theta_prepare, theta_jacobi, theta_mc_max
   implicit none
@@ -147,7 +147,8 @@ contains
       o%rateh = o%sqh; o%ratel = o%sql
       o%plan = jacobi_prepare_dd(o%m, o%mch, o%mcl)
       o%near1 = o%mch <= theta_mc_max
-      if (o%near1) o%tp = theta_prepare(o%mch, o%mcl, o%plan%kh, o%plan%kl)
+      if (o%near1) o%tp = theta_prepare(o%mch, o%mcl, o%plan%kh, o%plan%kl, &
+                                     ellip_nome(o%mch, 1.0_dp - o%mch))
       ! sn(u0) = s0/k, cn(u0) = w/k, dn(u0) = cos(theta0/2): F from sine and
       ! cosine, never from an angle, next to the nearest multiple of K
       if (o%k > 0.0_dp) then
@@ -193,18 +194,29 @@ contains
       call fast_two_sum(p, e, o%rateh, o%ratel)
       o%plan = jacobi_prepare_dd(o%m, o%mch, o%mcl)
       o%near1 = o%mch <= theta_mc_max
-      if (o%near1) o%tp = theta_prepare(o%mch, o%mcl, o%plan%kh, o%plan%kl)
+      if (o%near1) o%tp = theta_prepare(o%mch, o%mcl, o%plan%kh, o%plan%kl, &
+                                     ellip_nome(o%mch, 1.0_dp - o%mch))
       ! theta = dir 2 am(u): sn = dir sin(th/2), cn = cos(th/2), dn = |w|/k on the
       ! reduced angle, and the n turns of theta0 as 2 n K more phase (in
       ! double-double): am then carries every turn itself, as j pi + a small
-      ! angle, and theta(t) is not the difference of two large numbers
+      ! angle, and theta(t) is not the difference of two large numbers.
+      ! Beyond 2^46 turns (|theta0| > 4.4e14) that phase would leave too
+      ! little of the 2^48 half periods the Jacobi functions reduce (NaN came
+      ! out from |theta0| ~ 9e14 on): the turns go into the offset 2 pi n
+      ! instead, as for a libration (theta then reaches the far side of 0
+      ! only after ~1e14 turns, beyond that range anyway)
       call dd_div(awh, awl, kh, kl, a, e)
       call phase_dd(o%dir * [s0, s0l], [c0, c0l], [a, e], o%plan%kh, o%plan%kl, o%m, &
                     [o%mch, o%mcl], o%u0, o%u0l)
-      call two_prod(o%dir * 2.0_dp * n, o%plan%kh, p, e)
-      e = e + o%dir * 2.0_dp * n * o%plan%kl
-      call two_sum(p, o%u0, qh, r)
-      call fast_two_sum(qh, (r + e) + o%u0l, o%u0, o%u0l)
+      if (abs(n) > 2.0_dp**46) then
+        call two_prod(2.0_dp * n, pi, o%offset, o%offl)
+        o%offl = o%offl + 2.0_dp * n * pi_lo
+      else
+        call two_prod(o%dir * 2.0_dp * n, o%plan%kh, p, e)
+        e = e + o%dir * 2.0_dp * n * o%plan%kl
+        call two_sum(p, o%u0, qh, r)
+        call fast_two_sum(qh, (r + e) + o%u0l, o%u0, o%u0l)
+      end if
     end if
   end subroutine orbit_setup
 
@@ -302,16 +314,21 @@ contains
   end function orbit_theta_max
 
   !> th + tl = theta0 - 2 pi n with pi in three parts (2n and each part's
-  !> products exact through two-products).
+  !> products exact through two-products), summed in double-double: the
+  !> error e of the first product is as large as an ulp of theta0 (0.06 at
+  !> |theta0| = 7e14), and added to the low part in double it lost 1e-17 of
+  !> the angle, which k^2 and so the rate carried: v was 170 eps off after
+  !> 2000 periods.
   pure subroutine reduce_2pi(theta0, n, th, tl)
     real(dp), intent(in) :: theta0, n
     real(dp), intent(out) :: th, tl
-    real(dp) :: p, e, q, f, s, r
+    real(dp) :: p, e, q, f, s, r, a, b
     call two_prod(2.0_dp * n, pi, p, e)
     call two_prod(2.0_dp * n, pi_lo, q, f)
     s = theta0 - p                     ! exact (Sterbenz) when n is the nearest quotient
-    call two_sum(s, -q, th, r)
-    tl = r - e - f - 2.0_dp * n * pi_lo2
+    call two_sum(s, -q, a, r)
+    call two_sum(a, -e, th, b)
+    tl = (r + b) - f - 2.0_dp * n * pi_lo2
     call fast_two_sum(th, tl, s, r)
     th = s
     tl = r

@@ -18,7 +18,10 @@ module pendula_spectrum
 
   integer, parameter, public :: window_none = 0, window_hann = 1
   integer, parameter, public :: spec_ok = 0, spec_too_short = 1, spec_bad_window = 2, &
-                                spec_no_memory = 3
+                                spec_no_memory = 3, spec_cancelled = 5
+  !> measured planning of one length stops after this many seconds with the best
+  !> plan found so far (FFTW's time limit): a 2^22-sample FFTW_MEASURE takes minutes
+  real(c_double), parameter, public :: plan_seconds = 10.0_c_double
 
 contains
 
@@ -44,7 +47,9 @@ contains
     ! into FFTW's wisdom).  Otherwise use a measured plan if the wisdom (loaded
     ! from the cache file) has one for n, else estimate.
     if (measure) then
+      call fftw_set_timelimit(plan_seconds)
       plan = fftw_plan_dft_r2c_1d(int(n, c_int), buf, spec, FFTW_MEASURE)
+      call fftw_set_timelimit(-1.0_c_double)
     else
       flags = ior(FFTW_MEASURE, FFTW_WISDOM_ONLY)
       plan = fftw_plan_dft_r2c_1d(int(n, c_int), buf, spec, flags)
@@ -81,12 +86,15 @@ contains
   !> Power spectra |A_k|^2 of the columns of signals (n samples, spacing dt each)
   !> with a plan made by spectrum_plan for this n, reused for every column.
   !> omega(k) = 2 pi k / (n dt), k = 0 .. n/2.
-  subroutine power_spectra(handle, signals, dt, window, omega, power, status)
+  !> cancel (optional): read before each signal; non-zero stops with status
+  !> spec_cancelled.
+  subroutine power_spectra(handle, signals, dt, window, omega, power, status, cancel)
     integer(c_intptr_t), intent(in) :: handle
     real(dp), intent(in) :: signals(:, :), dt
     integer, intent(in) :: window
     real(dp), intent(out) :: omega(:), power(:, :)
     integer, intent(out) :: status
+    integer, intent(inout), volatile, optional :: cancel
     type(c_ptr) :: plan, pin, pout
     real(c_double), pointer :: buf(:)
     complex(c_double_complex), pointer :: spec(:)
@@ -130,6 +138,11 @@ contains
       omega(k) = two_pi * real(k - 1, dp) / (real(n, dp) * dt)
     end do
     do j = 1, size(signals, 2)
+      if (present(cancel)) then
+        if (cancel /= 0) then
+          status = spec_cancelled; exit
+        end if
+      end if
       if (window == window_none) then
         buf = signals(:, j)
       else

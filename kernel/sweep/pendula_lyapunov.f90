@@ -31,17 +31,16 @@
 !> Thread safety: no module variables; pure helpers; status codes only.
 module pendula_lyapunov
   use pendula_kinds, only: dp, i8, two_pi, nan_dp
-  use pendula_integrators, only: pendulum_model, make_model, accel, dop853_error_norm, max_steps, &
+  use pendula_integrators, only: pendulum_model, make_model, dop853_step_6, dop853_error_norm, system_rhs, max_steps, &
     st_ok, st_step_underflow, st_nonfinite, st_too_many_steps
   implicit none
   private
   public :: lyapunov_point, lyapunov_intervals, ly_nblock
 
-  include 'pendula_rk_tables.inc'
-  !> DOP853's A transposed, so that each stage's weights are contiguous
-  real(dp), parameter :: at(0:15, 0:15) = transpose(d8_a)
   !> blocks of the averaging window for the convergence estimate
   integer, parameter :: ly_nblock = 8
+  !> status of a point stopped by its cancel flag
+  integer, parameter, public :: ly_cancelled = 9
 
 contains
 
@@ -78,10 +77,13 @@ contains
   !> periods).  status 0, or 100 + the integrator status (5 step underflow,
   !> 6 non-finite, 7 too many steps), or 2 for bad parameters (eps <= 0, a
   !> window too long to count in intervals).
-  pure subroutine lyapunov_point(p, rtol, atol, t_tr, t_avg, lam1, lam2, err, status)
+  !> cancel (optional): read once per renormalisation interval; non-zero
+  !> stops the point with status ly_cancelled.
+  subroutine lyapunov_point(p, rtol, atol, t_tr, t_avg, lam1, lam2, err, status, cancel)
     real(dp), intent(in) :: p(8), rtol, atol, t_tr, t_avg
     real(dp), intent(out) :: lam1, lam2, err
     integer, intent(out) :: status
+    integer, intent(inout), volatile, optional :: cancel
     real(dp) :: tb, hr, y(6), h, s1, s2, n1, n2, d, blk(ly_nblock), bsum, phase, tblk
     integer :: m, ntr, navg, j, jb, jstart, jend, s
     integer(i8) :: nsteps
@@ -105,6 +107,11 @@ contains
     jstart = 0
     status = st_ok
     do j = 0, ntr + navg - 1
+      if (present(cancel)) then
+        if (cancel /= 0) then
+          status = ly_cancelled; return
+        end if
+      end if
       ! the drive phase at the start of interval j: phi + Omega j h_r = phi +- 2 pi j / m (mod 2 pi);
       ! a drive of frequency 0 is a constant force A cos(phi)
       phase = p(6)
@@ -207,44 +214,22 @@ contains
     end do
   end subroutine interval
 
+  !> The 6-D right-hand side (orbit and two tangent vectors): the integrators' system_rhs.
   pure function rhs(md, p, t, y) result(f)
     type(pendulum_model), intent(in) :: md
     real(dp), intent(in) :: p(8), t, y(6)
-    real(dp) :: f(6), c
-    f(1) = y(2)
-    f(2) = accel(md, t, y(1), y(2))
-    ! the Jacobian of (v, accel) with respect to (theta, v): [[0, 1], [-eps cos(theta), -beta]]
-    c = -p(1) * cos(y(1))
-    f(3) = y(4)
-    f(4) = c * y(3) - p(2) * y(4)
-    f(5) = y(6)
-    f(6) = c * y(5) - p(2) * y(6)
+    real(dp) :: f(6)
+    f = system_rhs(md, t, y)
   end function rhs
 
-  !> One DOP853 step from (t, y) with f0 = f(t, y): ynew, fnew = f(t + h, ynew)
-  !> and Hairer's error norm (the 5th- and 3rd-order estimates combined).
+  !> One DOP853 step from (t, y) with f0 = f(t, y) (the integrators' n-dimensional
+  !> stepper on the 6-D system): ynew, fnew = f(t + h, ynew) and Hairer's error norm.
   pure subroutine step853(md, p, t, y, f0, h, rtol, atol, k, ynew, fnew, errn)
     type(pendulum_model), intent(in) :: md
     real(dp), intent(in) :: p(8), t, y(6), f0(6), h, rtol, atol
     real(dp), intent(out) :: k(0:12, 6), ynew(6), fnew(6), errn
-    real(dp) :: ys(6), sk(6), e3(6), e5(6)
-    integer :: st, i
-    k(0, :) = f0
-    do st = 1, 11
-      do i = 1, 6
-        ys(i) = y(i) + h * dot_product(at(0:st - 1, st), k(0:st - 1, i))
-      end do
-      k(st, :) = rhs(md, p, t + d8_c(st) * h, ys)
-    end do
-    do i = 1, 6
-      ynew(i) = y(i) + h * dot_product(d8_b, k(0:11, i))
-    end do
-    fnew = rhs(md, p, t + h, ynew)
-    k(12, :) = fnew
-    do i = 1, 6
-      e3(i) = dot_product(d8_e3, k(0:12, i))
-      e5(i) = dot_product(d8_e5, k(0:12, i))
-    end do
+    real(dp) :: sk(6), e3(6), e5(6)
+    call dop853_step_6(md, t, y, f0, h, k, ynew, fnew, e3, e5)
     ! (never 0: atol = 0 at the equilibrium theta = v = 0 must not divide 0 by 0)
     sk = max(atol + rtol * max(abs(y), abs(ynew)), tiny(1.0_dp))
     errn = dop853_error_norm(h, e3, e5, sk)

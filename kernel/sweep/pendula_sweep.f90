@@ -26,25 +26,43 @@
 !>                    whole base periods (pendula_lyapunov)
 !> Point status: 0 decided; 1 not settled / not decided by t_max; 2 the
 !> measure does not apply to this point (e.g. final_well without damping,
-!> no well when |tau| >= eps, poincare without a drive); 3 bad measure code;
+!> no well when |tau| >= eps, poincare without a drive, |theta0| > 2^52);
+!> 3 bad measure code; 5 stopped by the cancel flag;
 !> 100 + s: the integrator failed with status s.
+!>
+!> The rules every caller applies before a sweep (pendula.sweep, pendula.iv_curve,
+!> pendula-run) live here: sweep_model_rule (a sweep runs the rigid pendulum
+!> with damping, torque and drive; a scene naming another model is refused,
+!> the model named) and the limits sweep_max_threads, sweep_max_time and
+!> sweep_max_angle (sweep_limits gives them to the Python layer).
 module pendula_sweep
   use pendula_kinds, only: dp, pi, two_pi, nan_dp
   use pendula_scene, only: scene_t
   use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate, &
-    m_dop853, st_ok
-  use pendula_lyapunov, only: lyapunov_point
-  use pendula_outfile, only: outfile_t, out_line
+    m_dop853, st_ok, st_cancelled
+  use pendula_lyapunov, only: lyapunov_point, ly_cancelled
+  use pendula_outfile, only: outfile_t, out_line, out_reals
+  use pendula_simulate, only: select_model, registry, mid_rigid, sim_ok
+  use, intrinsic :: iso_fortran_env, only: int64
   implicit none
   private
-  public :: sweep_points, iv_branch, np_params, sweep_scene_csv
+  public :: sweep_points, iv_branch, np_params, sweep_scene_csv, sweep_model_rule, sweep_limits
   public :: ms_final_well, ms_mean_velocity, ms_locked, ms_poincare, ms_lyapunov
 
   integer, parameter :: np_params = 8   ! eps, beta, tau, amp, omega, phase, theta0, v0
   integer, parameter :: ms_final_well = 1, ms_mean_velocity = 2, ms_locked = 3, ms_poincare = 4, &
     ms_lyapunov = 5
   integer, parameter :: ps_decided = 0, ps_unsettled = 1, ps_not_applicable = 2, ps_bad_measure = 3, &
-    ps_uncertain = 4
+    ps_uncertain = 4, ps_cancelled = 5
+  !> OpenMP threads of one sweep call: 0 (OpenMP's default) or 1 .. sweep_max_threads;
+  !> the kernel clamps anything else into that range (the callers refuse it first)
+  integer, parameter, public :: sweep_max_threads = 256
+  !> the longest t_max and transient a sweep point may be asked for (time units:
+  !> about 1.6e7 small-oscillation periods at eps = 1, hours of work per point)
+  real(dp), parameter, public :: sweep_max_time = 1.0e8_dp
+  !> the largest |theta0| (2^52: beyond it theta0 has no fractional digits and the
+  !> well index no meaning)
+  real(dp), parameter, public :: sweep_max_angle = 4503599627370496.0_dp
   !> samples per window at which the stop test is applied
   integer, parameter :: nsub = 8
 
@@ -54,43 +72,90 @@ contains
   !> omega, phase, theta0, v0.  t_tr: transient (mean_velocity: time; poincare:
   !> drive periods); t_max: limit (final_well, locked) or averaging time
   !> (mean_velocity).  nout outputs per point (2, or 2 * samples for poincare).
-  subroutine sweep_points(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, nthreads)
+  !> cancel: set non-zero by another thread (Ctrl-C in Python) to stop the
+  !> block: every point not finished gets status 5 (ps_cancelled).  It is read
+  !> before each point and once per integration window inside a point.
+  subroutine sweep_points(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, nthreads, cancel)
     !$ use omp_lib, only: omp_get_max_threads
     integer, intent(in) :: measure, npts, nout, nthreads
     real(dp), intent(in) :: params(np_params, npts), rtol, atol, t_tr, t_max
     real(dp), intent(out) :: out(nout, npts)
     integer, intent(out) :: pstat(npts)
+    integer, intent(inout), volatile :: cancel
     integer :: i, nt
-    ! nthreads > 0: that many threads; otherwise OpenMP's default (OMP_NUM_THREADS, or all cores)
+    ! nthreads > 0: that many threads (at most sweep_max_threads); otherwise
+    ! OpenMP's default (OMP_NUM_THREADS, or all cores)
     nt = 1
     !$ nt = omp_get_max_threads()
-    if (nthreads > 0) nt = nthreads
+    if (nthreads > 0) nt = min(nthreads, sweep_max_threads)
+    nt = max(1, min(nt, sweep_max_threads))
     !$omp parallel do schedule(dynamic, 16) default(none) num_threads(nt) &
-    !$omp   shared(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat)
+    !$omp   shared(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, cancel)
     do i = 1, npts
-      call one_point(measure, params(:, i), rtol, atol, t_tr, t_max, out(:, i), pstat(i))
+      if (cancel /= 0) then
+        out(:, i) = nan_dp; pstat(i) = ps_cancelled
+      else
+        call one_point(measure, params(:, i), rtol, atol, t_tr, t_max, out(:, i), pstat(i), cancel)
+      end if
     end do
     !$omp end parallel do
   end subroutine sweep_points
 
-  subroutine one_point(measure, p, rtol, atol, t_tr, t_max, o, st)
+  !> The limits of sweep_points' arguments, for the Python layer's checks
+  !> (one statement of each rule): [max threads, max t_max and transient, max |theta0|].
+  pure subroutine sweep_limits(lim)
+    real(dp), intent(out) :: lim(3)
+    lim = [real(sweep_max_threads, dp), sweep_max_time, sweep_max_angle]
+  end subroutine sweep_limits
+
+  !> The model rule of every sweep and I-V curve: the kernel's sweep runs the
+  !> rigid pendulum (with damping, torque and drive) only; a scene naming
+  !> another model (a flexible cord, a cycloidal guide, non-uniform gravity)
+  !> gets status 3 and msg names the model (NotImplementedError in Python,
+  !> exit 3 from pendula-run).  what: the caller's name for the run.
+  subroutine sweep_model_rule(sc, what, status, msg)
+    type(scene_t), intent(in) :: sc
+    character(len=*), intent(in) :: what
+    integer, intent(out) :: status
+    character(len=*), intent(out) :: msg
+    integer :: id
+    call select_model(sc, id, status, msg)
+    if (status /= sim_ok) then
+      status = 3; return
+    end if
+    status = 0; msg = ''
+    if (id /= mid_rigid) then
+      status = 3
+      msg = trim(what) // ' runs the rigid pendulum only; the model ''' // trim(registry(id)%name) // &
+        ''' (cord = ''' // trim(sc%cord) // ''', guide = ''' // trim(sc%guide) // ''', gravity = ''' // &
+        trim(sc%gravity) // ''') is not implemented for sweeps: use pendula.simulate per point'
+    end if
+  end subroutine sweep_model_rule
+
+  subroutine one_point(measure, p, rtol, atol, t_tr, t_max, o, st, cancel)
     integer, intent(in) :: measure
     real(dp), intent(in) :: p(np_params), rtol, atol, t_tr, t_max
     real(dp), intent(out) :: o(:)
     integer, intent(out) :: st
+    integer, intent(inout), volatile :: cancel
     real(dp) :: th, v, tdec, vm, err, lam2
     integer :: n
+    integer(int64) :: nw
     logical :: settled
     o = nan_dp
+    if (.not. (abs(p(7)) <= sweep_max_angle) .or. .not. (t_max <= sweep_max_time) &
+        .or. .not. (t_tr <= sweep_max_time)) then
+      st = ps_not_applicable; return
+    end if
     select case (measure)
     case (ms_final_well)
       if (.not. (p(2) > 0.0_dp) .or. p(4) /= 0.0_dp .or. abs(p(3)) >= p(1)) then
         st = ps_not_applicable; return
       end if
-      call settle(p, rtol, atol, t_max, p(7), p(8), th, v, settled, n, tdec, st)
+      call settle(p, rtol, atol, t_max, p(7), p(8), th, v, settled, nw, tdec, st, cancel)
       if (st /= ps_decided) return
       if (settled) then
-        o(1) = real(n, dp); o(2) = tdec
+        o(1) = real(nw, dp); o(2) = tdec
       else
         st = ps_unsettled; o(2) = t_max
       end if
@@ -102,17 +167,17 @@ contains
         ! no equilibrium: every orbit runs
         o(1) = 0.0_dp; o(2) = 0.0_dp; st = ps_decided; return
       end if
-      call settle(p, rtol, atol, t_max, p(7), p(8), th, v, settled, n, tdec, st)
+      call settle(p, rtol, atol, t_max, p(7), p(8), th, v, settled, nw, tdec, st, cancel)
       if (st /= ps_decided) return
       if (settled) then
         o(1) = 1.0_dp; o(2) = tdec
-      else if (running(p, rtol, atol, th, v, st)) then
+      else if (running(p, rtol, atol, th, v, st, cancel)) then
         o(1) = 0.0_dp; o(2) = t_max
       else if (st == ps_decided) then
         st = ps_unsettled
       end if
     case (ms_mean_velocity)
-      call mean_velocity(p, rtol, atol, t_tr, t_max, p(7), p(8), vm, err, th, v, st)
+      call mean_velocity(p, rtol, atol, t_tr, t_max, p(7), p(8), vm, err, th, v, st, cancel)
       o(1) = vm; o(2) = err
     case (ms_poincare)
       ! the transient is a time: each point skips whole periods of its own drive
@@ -124,13 +189,14 @@ contains
         end if
         n = int(vm)
       end if
-      call poincare(p, rtol, atol, n, size(o) / 2, o, st)
+      call poincare(p, rtol, atol, n, size(o) / 2, o, st, cancel)
     case (ms_lyapunov)
       if (size(o) < 2) then
         st = ps_bad_measure; return
       end if
-      call lyapunov_point(p, rtol, atol, t_tr, t_max, vm, lam2, err, st)
+      call lyapunov_point(p, rtol, atol, t_tr, t_max, vm, lam2, err, st, cancel)
       if (st == 2) st = ps_not_applicable
+      if (st == ly_cancelled) st = ps_cancelled
       if (st /= ps_decided) return
       o(1) = vm; o(2) = err
       if (size(o) >= 3) o(3) = lam2
@@ -140,18 +206,24 @@ contains
   end subroutine one_point
 
   !> Advance (th, v) from time t0 by dt (model time origin shifted by t0).
-  subroutine advance(p, t0, rtol, atol, ts, th, v, ths, vs, st)
+  !> cancel: read by the integrator every few thousand steps (a window of a
+  !> fast orbit may take up to its work limit of 10^8 steps): status ps_cancelled.
+  subroutine advance(p, t0, rtol, atol, ts, th, v, ths, vs, st, cancel)
     real(dp), intent(in) :: p(np_params), t0, rtol, atol, ts(:)
     real(dp), intent(inout) :: th, v
     real(dp), intent(out) :: ths(:), vs(:)
     integer, intent(out) :: st
+    integer, intent(inout), volatile :: cancel
     type(pendulum_model) :: m
     type(event_spec) :: ev
     type(run_stats) :: stats
     integer :: nev, s
     real(dp) :: tev(1), thev(1), vev(1)
     m = make_model(p(1), p(2), p(3), p(4), p(5), p(6) + p(5) * t0)
-    call integrate(m, m_dop853, th, v, ts, rtol, atol, 0.0_dp, ths, vs, stats, s, ev, nev, tev, thev, vev)
+    call integrate(m, m_dop853, th, v, ts, rtol, atol, 0.0_dp, ths, vs, stats, s, ev, nev, tev, thev, vev, cancel)
+    if (s == st_cancelled) then
+      st = ps_cancelled; return
+    end if
     if (s /= st_ok) then
       st = 100 + s; return
     end if
@@ -165,11 +237,12 @@ contains
   pure subroutine trapped(p, th, v, yes, n)
     real(dp), intent(in) :: p(np_params), th, v
     logical, intent(out) :: yes
-    integer, intent(out) :: n
+    integer(int64), intent(out) :: n
     real(dp) :: ths, tl, tr, e, ul, ur
     ths = asin(p(3) / p(1))
     ! well n spans (-pi - ths + 2 pi n, pi - ths + 2 pi n) between two maxima of U
-    n = floor((th + pi + ths) / two_pi)
+    ! 64 bits: |theta| <= 2^52 (sweep_max_angle) gives |n| < 2^50
+    n = floor((th + pi + ths) / two_pi, int64)
     tl = -pi - ths + two_pi * n
     tr = tl + two_pi
     e = 0.5_dp * v * v + pot(th)
@@ -184,11 +257,13 @@ contains
   end subroutine trapped
 
   !> Integrate until trapped (decided) or t_max.
-  subroutine settle(p, rtol, atol, t_max, th0, v0, th, v, settled, n, tdec, st)
+  subroutine settle(p, rtol, atol, t_max, th0, v0, th, v, settled, n, tdec, st, cancel)
     real(dp), intent(in) :: p(np_params), rtol, atol, t_max, th0, v0
     real(dp), intent(out) :: th, v, tdec
     logical, intent(out) :: settled
-    integer, intent(out) :: n, st
+    integer(int64), intent(out) :: n
+    integer, intent(out) :: st
+    integer, intent(inout), volatile :: cancel
     real(dp) :: t, tw, ts(nsub), ths(nsub), vs(nsub)
     integer :: k
     th = th0; v = v0; t = 0.0_dp; st = ps_decided; tdec = 0.0_dp
@@ -196,8 +271,11 @@ contains
     if (settled) return
     tw = two_pi / sqrt(p(1))
     do while (t < t_max)
+      if (cancel /= 0) then
+        st = ps_cancelled; return
+      end if
       ts = [(tw * k / real(nsub, dp), k = 1, nsub)]
-      call advance(p, t, rtol, atol, ts, th, v, ths, vs, st)
+      call advance(p, t, rtol, atol, ts, th, v, ths, vs, st, cancel)
       if (st /= ps_decided) return
       do k = 1, nsub
         call trapped(p, ths(k), vs(k), settled, n)
@@ -211,17 +289,18 @@ contains
 
   !> An open orbit: over one more window, v keeps its sign and theta advances
   !> by more than 2 pi.
-  function running(p, rtol, atol, th, v, st) result(yes)
+  function running(p, rtol, atol, th, v, st, cancel) result(yes)
     real(dp), intent(in) :: p(np_params), rtol, atol
     real(dp), intent(inout) :: th, v
     integer, intent(out) :: st
+    integer, intent(inout), volatile :: cancel
     logical :: yes
     real(dp) :: tw, ts(4 * nsub), ths(4 * nsub), vs(4 * nsub), th1
     integer :: k
     tw = 4.0_dp * two_pi / sqrt(p(1))
     ts = [(tw * k / real(4 * nsub, dp), k = 1, 4 * nsub)]
     th1 = th
-    call advance(p, 0.0_dp, rtol, atol, ts, th, v, ths, vs, st)
+    call advance(p, 0.0_dp, rtol, atol, ts, th, v, ths, vs, st, cancel)
     yes = .false.
     if (st /= ps_decided) return
     yes = (all(vs > 0.0_dp) .or. all(vs < 0.0_dp)) .and. abs(ths(size(ts)) - th1) > two_pi
@@ -230,12 +309,14 @@ contains
   !> <v> over t_avg after a transient t_tr, from (th0, v0); the convergence
   !> estimate is |<v>_whole - <v>_second half|.  An undriven damped orbit
   !> trapped in a well has <v> = 0 exactly: decided as soon as it is trapped.
-  subroutine mean_velocity(p, rtol, atol, t_tr, t_avg, th0, v0, vm, err, th, v, st)
+  subroutine mean_velocity(p, rtol, atol, t_tr, t_avg, th0, v0, vm, err, th, v, st, cancel)
     real(dp), intent(in) :: p(np_params), rtol, atol, t_tr, t_avg, th0, v0
     real(dp), intent(out) :: vm, err, th, v
     integer, intent(out) :: st
+    integer, intent(inout), volatile :: cancel
     real(dp) :: t, tw, ts(1), ths(1), vs(1), tha, thh, seg_end(3)
-    integer :: n, seg
+    integer(int64) :: n
+    integer :: seg
     logical :: can_trap, tr
     th = th0; v = v0; t = 0.0_dp; st = ps_decided
     vm = nan_dp; err = nan_dp
@@ -245,6 +326,9 @@ contains
     tha = th; thh = th
     do seg = 1, 3
       do while (t < seg_end(seg))
+        if (cancel /= 0) then
+          st = ps_cancelled; return
+        end if
         if (can_trap) then
           call trapped(p, th, v, tr, n)
           if (tr) then
@@ -252,7 +336,7 @@ contains
           end if
         end if
         ts(1) = min(tw, seg_end(seg) - t)
-        call advance(p, t, rtol, atol, ts, th, v, ths, vs, st)
+        call advance(p, t, rtol, atol, ts, th, v, ths, vs, st, cancel)
         if (st /= ps_decided) return
         ! the segment ends exactly at seg_end, whatever the rounding of the sum
         if (ts(1) == seg_end(seg) - t) then
@@ -269,11 +353,12 @@ contains
   end subroutine mean_velocity
 
   !> Stroboscopic samples once per drive period after n_tr periods.
-  subroutine poincare(p, rtol, atol, n_tr, ns, o, st)
+  subroutine poincare(p, rtol, atol, n_tr, ns, o, st, cancel)
     real(dp), intent(in) :: p(np_params), rtol, atol
     integer, intent(in) :: n_tr, ns
     real(dp), intent(out) :: o(:)
     integer, intent(out) :: st
+    integer, intent(inout), volatile :: cancel
     real(dp) :: tp, t, th, v, ts(1), ths(1), vs(1)
     integer :: k
     o = nan_dp
@@ -284,8 +369,11 @@ contains
     th = p(7); v = p(8); t = 0.0_dp; st = ps_decided
     ts(1) = tp
     do k = 1, n_tr + ns
+      if (cancel /= 0) then
+        o = nan_dp; st = ps_cancelled; return
+      end if
       ! time origin at k tp exactly: the drive phase is p(6) + Omega * (k-1) tp
-      call advance(p, tp * (k - 1), rtol, atol, ts, th, v, ths, vs, st)
+      call advance(p, tp * (k - 1), rtol, atol, ts, th, v, ths, vs, st, cancel)
       if (st /= ps_decided) return
       th = th - two_pi * anint(th / two_pi)   ! keep theta small; the force is 2 pi periodic
       if (k > n_tr) then
@@ -300,11 +388,12 @@ contains
   !> after t_tr over t_avg, starting from the end state of the previous torque
   !> (the first from theta0, v0 in params).  params(3) (tau) is overridden.
   !> th, v: the end state (theta reduced to [-pi, pi]), to start another branch.
-  subroutine iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, vm, err, pstat, th, v)
+  subroutine iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, vm, err, pstat, th, v, cancel)
     integer, intent(in) :: ntau
     real(dp), intent(in) :: params(np_params), taus(ntau), rtol, atol, t_tr, t_avg
     real(dp), intent(out) :: vm(ntau), err(ntau), th, v
     integer, intent(out) :: pstat(ntau)
+    integer, intent(inout), volatile :: cancel
     real(dp) :: p(np_params)
     integer :: k
     p = params
@@ -320,7 +409,7 @@ contains
       end if
       p(3) = taus(k)
       p(7) = th - two_pi * anint(th / two_pi); p(8) = v
-      call mean_velocity(p, rtol, atol, t_tr, t_avg, p(7), p(8), vm(k), err(k), th, v, pstat(k))
+      call mean_velocity(p, rtol, atol, t_tr, t_avg, p(7), p(8), vm(k), err(k), th, v, pstat(k), cancel)
       if (pstat(k) /= ps_decided) exit
     end do
     th = th - two_pi * anint(th / two_pi)
@@ -335,7 +424,8 @@ contains
   !> pendula.sweep (boundary_recheck), with the row after each block computed
   !> ahead so that neighbours across block edges are seen; the answers are
   !> those of pendula.sweep whatever its chunks.
-  !> status: 0 ok, 2 bad scene for a sweep, 5 write error (f%err holds errno).
+  !> status: 0 ok, 2 bad scene for a sweep, 3 the scene's model is not one a
+  !> sweep runs (sweep_model_rule), 5 write error (f%err holds errno).
   subroutine sweep_scene_csv(sc, f, status, msg)
     type(scene_t), intent(in) :: sc
     type(outfile_t), intent(inout) :: f
@@ -348,8 +438,17 @@ contains
     real(dp) :: base(np_params), t_tr, a, b, step
     logical :: recheck, have_next
     character(len=256) :: head
-    character(len=1024) :: line
+    integer, volatile :: no_cancel
     status = 0; msg = ''
+    no_cancel = 0
+    call sweep_model_rule(sc, 'a sweep', status, msg)
+    if (status /= 0) return
+    if (.not. (sc%sweep_t_max <= sweep_max_time) .or. .not. (sc%sweep_transient <= sweep_max_time)) then
+      status = 2
+      write(msg, '(a, es8.1, a)') 'fields ''sweep_t_max'' and ''sweep_transient'' must be at most ', &
+        sweep_max_time, ' (the work of one sweep point is bounded)'
+      return
+    end if
     select case (trim(sc%measure))
     case ('final_well'); measure = ms_final_well
     case ('mean_velocity'); measure = ms_mean_velocity
@@ -379,6 +478,17 @@ contains
     end do
     base = [sc%eps, sc%damping, sc%torque, sc%drive_amplitude, sc%drive_frequency, sc%drive_phase, &
             sc%theta0, sc%v0]
+    do k = 0, sc%n_grid
+      if (k > 0) then
+        if (trim(sc%grid(k)) /= 'theta0') cycle
+        a = maxval(abs(ax(1:n(k), k)))
+      else
+        a = abs(sc%theta0)
+      end if
+      if (.not. (a <= sweep_max_angle)) then
+        status = 2; msg = 'field ''theta0'': |theta0| must be at most 2^52 in a sweep'; return
+      end if
+    end do
     nout = 2
     t_tr = sc%sweep_transient
     if (measure == ms_poincare) then
@@ -428,7 +538,7 @@ contains
       if (have_next) c0 = inner + 1
       if (c0 <= nrow * inner) then
         call sweep_points(measure, nrow * inner - c0 + 1, params(:, c0:nrow * inner), sc%rtol, sc%atol, &
-                          t_tr, sc%sweep_t_max, nout, o(:, c0:nrow * inner), pst(c0:nrow * inner), 0)
+                          t_tr, sc%sweep_t_max, nout, o(:, c0:nrow * inner), pst(c0:nrow * inner), 0, no_cancel)
       end if
       if (recheck) then
         ! answers of the previous row, this block's rows and the row ahead (first pass)
@@ -444,18 +554,11 @@ contains
         call unflatten((r0 - 1) * inner + i - 1, idx)
         if (measure == ms_poincare) then
           do s = 1, nout / 2
-            line = axes_text(idx)
-            write(line(len_trim(line) + 1:), '(",", i0, 2(",", es24.16e3), ",", i0)') &
-              s - 1, o(2 * s - 1, i), o(2 * s, i), pst(i)
-            call out_line(f, squeeze(line))
+            call out_line(f, axes_text(idx) // ',' // int_text(s - 1) // ',' // &
+              out_reals(o(2 * s - 1:2 * s, i)) // ',' // int_text(pst(i)))
           end do
         else
-          line = axes_text(idx)
-          do k = 1, nout
-            write(line(len_trim(line) + 1:), '(",", es24.16e3)') o(k, i)
-          end do
-          write(line(len_trim(line) + 1:), '(",", i0)') pst(i)
-          call out_line(f, squeeze(line))
+          call out_line(f, axes_text(idx) // ',' // out_reals(o(:, i)) // ',' // int_text(pst(i)))
         end if
       end do
       if (f%err /= 0) then
@@ -483,17 +586,18 @@ contains
 
     function axes_text(id) result(t)
       integer, intent(in) :: id(3)
-      character(len=1024) :: t
+      character(len=:), allocatable :: t
       integer :: kk
-      t = ''
-      do kk = 1, sc%n_grid
-        if (kk == 1) then
-          write(t, '(es24.16e3)') ax(id(kk), kk)
-        else
-          write(t(len_trim(t) + 1:), '(",", es24.16e3)') ax(id(kk), kk)
-        end if
-      end do
+      t = out_reals([(ax(id(kk), kk), kk = 1, sc%n_grid)])
     end function axes_text
+
+    function int_text(x) result(t)
+      integer, intent(in) :: x
+      character(len=:), allocatable :: t
+      character(len=16) :: b
+      write(b, '(i0)') x
+      t = trim(b)
+    end function int_text
 
     pure integer function slot(name)
       character(len=*), intent(in) :: name
@@ -511,20 +615,6 @@ contains
 
   end subroutine sweep_scene_csv
 
-  !> A line without blanks (the numbers' right-justified padding).
-  pure function squeeze(t) result(r)
-    character(len=*), intent(in) :: t
-    character(len=len(t)) :: r
-    integer :: i, k
-    r = ''
-    k = 0
-    do i = 1, len_trim(t)
-      if (t(i:i) /= ' ') then
-        k = k + 1
-        r(k:k) = t(i:i)
-      end if
-    end do
-  end function squeeze
 
   !> The answer of a point for the boundary test: out(1) when decided, else a
   !> value no answer takes (so decided/undecided neighbours also differ).
@@ -552,6 +642,7 @@ contains
     real(dp), allocatable :: p2(:, :), o2(:, :)
     integer, allocatable :: s2(:)
     integer :: r, j, i2, i3, c, m, q
+    integer, volatile :: no_cancel
     real(dp) :: a
     allocate(edge((r1 - r0 + 1) * inner))
     edge = .false.
@@ -575,7 +666,8 @@ contains
     allocate(id(m), p2(size(params, 1), m), o2(nout, m), s2(m))
     id = pack([(q, q = 1, size(edge))], edge)
     p2 = params(:, id)
-    call sweep_points(measure, m, p2, rtol * 1.0e-3_dp, atol * 1.0e-3_dp, t_tr, t_max, nout, o2, s2, 0)
+    no_cancel = 0
+    call sweep_points(measure, m, p2, rtol * 1.0e-3_dp, atol * 1.0e-3_dp, t_tr, t_max, nout, o2, s2, 0, no_cancel)
     do q = 1, m
       if (answer(o2(1, q), s2(q)) /= answer(o(1, id(q)), pst(id(q)))) then
         o(1, id(q)) = nan_dp

@@ -36,15 +36,17 @@ from .series import period_from_series, period_series, poincare_lindstedt  # noq
 from .systems import ModelInfo, models  # noqa: E402
 from .spectrum import Spectrum, fourier_series, odd_harmonics_above, spectra, spectrum  # noqa: E402
 
-# issue 13: Huygens' cycloidal pendulum, non-uniform gravity, the density of the angle
+# Huygens' cycloidal pendulum, non-uniform gravity, the density of the angle
 from .systems.cycloid import CycloidGeometry, cycloid_geometry, cycloid_period  # noqa: E402
 from .systems.gravity import gravity_orbit  # noqa: E402
 from .systems.cord import cord_state, flip_map, flip_sequence  # noqa: E402
-# sweeps over parameter grids (issue 14); xarray is imported only when a sweep runs
-from .sweeps import iv_curve, sweep  # noqa: E402
+# sweeps over parameter grids; xarray is imported only when a sweep runs
+from .sweeps import attractor_map, iv_curve, sweep  # noqa: E402
+from .dynamics import Equilibrium, PeriodicOrbit, equilibria, periodic_orbit  # noqa: E402
 from .spectrum import precompute_wisdom, wisdom_path  # noqa: E402
 
-__version__ = "0.1.0"
+# the version of the installed metadata (written once, in meson.build)
+from ._version import __version__  # noqa: E402
 
 __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Scene", "SceneError", "simulate", "period", "orbit", "exact_motion", "energy",
@@ -54,4 +56,5 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "models", "ModelInfo", "cycloid_geometry", "cycloid_period", "CycloidGeometry", "gravity_orbit",
            "angle_density", "angle_cdf", "arcsine_density", "flip_map", "cord_state", "flip_sequence",
            "sweep", "iv_curve",
-           "precompute_wisdom", "wisdom_path"]
+           "precompute_wisdom", "wisdom_path",
+           "equilibria", "Equilibrium", "periodic_orbit", "PeriodicOrbit", "attractor_map"]

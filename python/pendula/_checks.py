@@ -1,14 +1,33 @@
 """Argument checking shared by the public functions (private module).
 
-Every public function converts its arguments with :func:`as_float`, which
-accepts anything numeric (Python numbers, lists, numpy arrays of bool, int or
-float) and rejects strings, bytes, complex numbers and object arrays with a
-TypeError that names the argument.  Out-of-domain mathematics is not an error:
-it gives NaN and one RuntimeWarning, as numpy does.
+One checker per kind of argument, used by every public function that takes
+an argument of that kind, so that the same value gets the same verdict and
+the same message everywhere (docs/source/bad_input.rst lists the limits):
+
+=====================  =========================================================
+checker                arguments
+=====================  =========================================================
+:func:`as_float`       arrays of reals (elliptic functions, times, states ...)
+:func:`count`          whole numbers: ``samples``, ``n``, ``chunk_points``, sizes
+:func:`threads`        ``threads`` (0 or 1 .. the kernel's limit)
+:func:`real`           one real: a time (``t_max``, ``t_avg``, ``transient``)
+:func:`tolerances`     ``rtol``, ``atol``
+:func:`grid_values`    the values of a sweep axis (``over=``), ``torques``
+:func:`angle`          ``theta0`` (|theta0| <= 2^52)
+=====================  =========================================================
+
+:func:`as_float` accepts anything numeric (Python numbers, lists, numpy
+arrays of bool, int or float) and rejects strings, bytes, complex numbers,
+object arrays and masked arrays with masked values with a TypeError or
+ValueError that names the argument.  The scalar checkers accept Python and
+numpy numbers only: a bool, a string, bytes, a float where a whole number is
+wanted (``samples=1.5``) are refused, never converted.  Out-of-domain
+mathematics is not an error: it gives NaN and one RuntimeWarning, as numpy does.
 """
 
 from __future__ import annotations
 
+import math
 import warnings
 
 import numpy as np
@@ -20,6 +39,7 @@ def as_float(x, name: str) -> np.ndarray:
     """``x`` as a float64 array; TypeError naming ``name`` for non-numbers."""
     if isinstance(x, (str, bytes)):
         raise TypeError(f"{name} must be a real number or an array of them, not {type(x).__name__}")
+    _no_mask(x, name)
     try:
         arr = np.asarray(x)
     except Exception as exc:  # ragged lists and the like
@@ -84,3 +104,115 @@ def warn_domain(func: str, result: np.ndarray, *inputs: np.ndarray, what: str = 
     n = int(np.count_nonzero(born))
     if n:
         warnings.warn(f"{func}: {n} value(s) {what} gave NaN", RuntimeWarning, stacklevel=3)
+
+
+#: the largest |theta0| anywhere (2^52: beyond it an angle has no fractional
+#: digits left and a well index no meaning)
+MAX_ANGLE = 2.0 ** 52
+#: the most points of one sweep grid (absurd work is refused up front)
+MAX_GRID_POINTS = 10 ** 8
+
+
+def _no_mask(x, name: str) -> None:
+    """A masked array with masked values is refused (numpy would drop the mask)."""
+    if isinstance(x, np.ma.MaskedArray) and np.ma.count_masked(x):
+        raise ValueError(f"{name}: masked values are not supported (fill them first, e.g. x.filled(np.nan))")
+
+
+def _kind(x) -> str:
+    return type(x).__name__
+
+
+def count(x, name: str, lo: int = 0, hi: int | None = None) -> int:
+    """A whole number lo <= x <= hi as int.
+
+    Python and numpy integers only: a bool, a float (even 3.0), a string or
+    bytes is a TypeError naming ``name``; out of range a ValueError stating the
+    range."""
+    if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, np.integer)):
+        raise TypeError(f"{name} must be a whole number (int), not {_kind(x)} {x!r:.40}")
+    x = int(x)
+    if x < lo or (hi is not None and x > hi):
+        rng = f"between {lo} and {hi}" if hi is not None else f"at least {lo}"
+        raise ValueError(f"{name} must be {rng}, got {x}")
+    return x
+
+
+def _sweep_limits() -> tuple[int, float, float]:
+    from . import _kernel
+    lim = _kernel.sweep_limits_v()
+    return int(lim[0]), float(lim[1]), float(lim[2])
+
+
+def threads(x, name: str = "threads") -> int:
+    """OpenMP threads of a kernel call: 0 (OpenMP's default: OMP_NUM_THREADS or
+    all cores) or 1 .. the kernel's limit (256, pendula_sweep%sweep_max_threads)."""
+    return count(x, name, 0, _sweep_limits()[0])
+
+
+def real(x, name: str, lo: float | None = None, hi: float | None = None, lo_open: bool = False) -> float:
+    """One finite real lo <= x <= hi (lo < x when ``lo_open``) as float.
+
+    Python and numpy reals (ints included) only: a bool, a string, bytes, a
+    complex number, an array is a TypeError naming ``name``."""
+    if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, float, np.integer, np.floating)):
+        raise TypeError(f"{name} must be a real number, not {_kind(x)} {x!r:.40}")
+    try:
+        v = float(x)
+    except OverflowError:
+        raise ValueError(f"{name} must be finite, got a {len(str(x))}-digit integer") from None
+    if not math.isfinite(v):
+        raise ValueError(f"{name} must be finite, got {v!r}")
+    if lo is not None and (v < lo or (lo_open and v == lo)):
+        raise ValueError(f"{name} must be {'>' if lo_open else '>='} {lo:g}, got {v!r}")
+    if hi is not None and v > hi:
+        raise ValueError(f"{name} must be at most {hi:g}, got {v!r}")
+    return v
+
+
+def duration(x, name: str, positive: bool = True) -> float:
+    """A time of a sweep or I-V curve (``t_max``, ``t_avg``, ``transient``):
+    finite, > 0 (or >= 0 when not ``positive``), at most the kernel's limit 1e8."""
+    return real(x, name, 0.0, _sweep_limits()[1], lo_open=positive)
+
+
+def tolerances(rtol, atol) -> tuple[float, float]:
+    """The integrator's tolerances: 0 < rtol < 1, 0 <= atol < 1, both finite."""
+    r = real(rtol, "rtol", 0.0, lo_open=True)
+    a = real(atol, "atol", 0.0)
+    if r >= 1.0:
+        raise ValueError(f"rtol must be below 1, got {r!r}")
+    if a >= 1.0:
+        raise ValueError(f"atol must be below 1, got {a!r}")
+    return r, a
+
+
+def angle(x, name: str = "theta0") -> float:
+    """An initial angle: a finite real with |x| <= 2^52."""
+    return real(x, name, -MAX_ANGLE, MAX_ANGLE)
+
+
+def grid_values(vals, name: str) -> np.ndarray:
+    """The values of one grid axis: a non-empty 1-D list or array of finite
+    reals (ints and floats; no bools, strings, bytes or masked values)."""
+    if isinstance(vals, (str, bytes, bytearray)):
+        raise TypeError(f"{name} must be a list of numbers, not {_kind(vals)}")
+    _no_mask(vals, name)
+    seq = vals if isinstance(vals, np.ndarray) else None
+    if seq is None:
+        items = list(vals) if isinstance(vals, (list, tuple, range)) else [vals]
+        for v in items:
+            if isinstance(v, (bool, np.bool_)) or not isinstance(v, (int, float, np.integer, np.floating)):
+                raise TypeError(f"{name} must hold numbers only, not {_kind(v)} {v!r:.40}")
+        try:
+            a = np.array(items, dtype=float)
+        except OverflowError:
+            raise ValueError(f"{name} must hold finite numbers (an integer too large for a float)") from None
+    else:
+        if seq.dtype.kind not in "iuf":
+            raise TypeError(f"{name} must hold real numbers, not dtype {seq.dtype}")
+        a = np.asarray(seq, dtype=float)
+    a = np.atleast_1d(a)
+    if a.ndim != 1 or a.size == 0 or not np.all(np.isfinite(a)):
+        raise ValueError(f"{name} must be a non-empty 1-D list of finite numbers")
+    return a

@@ -40,7 +40,7 @@ def call(fn, *args, cancel: np.ndarray, long: bool = True):
     try:
         while worker.is_alive():
             worker.join(0.05)
-    except KeyboardInterrupt:
+    except BaseException:      # Ctrl-C, or SystemExit from a SIGTERM handler
         cancel[0] = 1
         worker.join()
         raise

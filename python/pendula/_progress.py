@@ -1,50 +1,56 @@
-"""A small progress bar on standard error (no dependency).
+"""Progress on long work, by tqdm (pendula's one progress library).
 
-On a terminal it redraws one line; elsewhere (CI logs) work that runs longer
-than two seconds prints a line at every 10 %, so long work shows it is moving.
+Library calls keep it off unless asked (``progress=True``); the command line
+turns it on.  Work shorter than two seconds draws nothing; tqdm redraws one
+line on a terminal and writes plain lines elsewhere; ``note`` shows what is
+being done.
 """
 
 from __future__ import annotations
 
 import sys
-import time
 
 
 class Progress:
+    """A tqdm bar over ``total`` steps, or nothing when ``enabled`` is False.
+
+    Parameters
+    ----------
+    total : int
+        Steps of the work.
+    label : str
+        What the work is (the bar's description).
+    stream : file, optional
+        Where to draw (default standard error).
+    enabled : bool, optional
+        False: a bar that counts but draws nothing.
+    """
+
     def __init__(self, total: int, label: str, stream=None, enabled: bool = True):
         self.total = max(int(total), 1)
-        self.label = label
-        self.stream = stream or sys.stderr
-        self.enabled = enabled
         self.done = 0
-        self.t0 = time.perf_counter()
-        self.tty = hasattr(self.stream, "isatty") and self.stream.isatty()
-        self._last_decile = -1
+        self._bar = None
+        if enabled:
+            from tqdm.auto import tqdm
+            self._bar = tqdm(total=self.total, desc=label, file=stream or sys.stderr, leave=True,
+                             mininterval=0.5, dynamic_ncols=True, delay=2.0)
 
     def update(self, n: int = 1, note: str = "") -> None:
+        """Count n steps done; note says what the last one was."""
         self.done = min(self.total, self.done + n)
-        if not self.enabled:
-            return
-        frac = self.done / self.total
-        el = time.perf_counter() - self.t0
-        if self.tty:
-            width = 30
-            bar = "#" * int(frac * width) + "-" * (width - int(frac * width))
-            self.stream.write(f"\r{self.label} [{bar}] {self.done}/{self.total} {el:6.1f}s {note[:40]:40s}")
-            if self.done == self.total:
-                self.stream.write("\n")
-            self.stream.flush()
-        else:
-            decile = int(frac * 10)
-            if el < 2.0 and self._last_decile < 0:
-                return  # short work stays quiet in logs
-            if decile != self._last_decile or self.done == self.total:
-                self._last_decile = decile
-                self.stream.write(f"{self.label}: {self.done}/{self.total} ({100 * frac:3.0f} %) {el:.1f}s {note}\n")
-                self.stream.flush()
+        if self._bar is not None:
+            if note:
+                self._bar.set_postfix_str(note[:40], refresh=False)
+            self._bar.update(n)
+
+    def close(self) -> None:
+        if self._bar is not None:
+            self._bar.close()
+            self._bar = None
 
     def __enter__(self):
         return self
 
     def __exit__(self, *exc):
+        self.close()
         return False

@@ -16,6 +16,8 @@ import csv
 import pathlib
 
 import numpy as np
+from ._optional import require
+from ._files import save_figure, open_text  # the one writer: regular files only, whole or absent
 
 EPS = np.finfo(np.float64).eps
 
@@ -51,7 +53,7 @@ def _worst(err):
 
 def elliptic_report(reference: str | pathlib.Path) -> list[dict]:
     """Worst errors per function and region: pendula, scipy.special, GSL."""
-    import scipy.special as sc
+    sc = require("scipy.special", "accuracy", "pendula accuracy elliptic")
 
     from . import _kernel
     from .elliptic import ellipe, ellipeinc, ellipf, ellipj, ellipk, nome
@@ -127,107 +129,14 @@ def print_report(rows: list[dict], markdown: bool = False) -> None:
 # What accuracy costs in time: the work-precision study of the integrators
 # ====================================================================
 
-WP_PROBLEMS = {
-    "libration v0 = 1.999": dict(theta0=0.0, v0=1.999, eps=1.0, t_end=100.0),
-    "rotation v0 = 2.5": dict(theta0=0.0, v0=2.5, eps=1.0, t_end=100.0),
-}
-WP_FIXED = {"rk4": [0.2, 0.1, 0.05, 0.025, 0.0125, 0.00625],
-            "verlet": [0.05, 0.025, 0.0125, 0.00625, 0.003125, 0.0015625],
-            "yoshida4": [0.2, 0.1, 0.05, 0.025, 0.0125, 0.00625],
-            "yoshida6": [0.4, 0.2, 0.1, 0.05, 0.025],
-            "yoshida8": [0.4, 0.2, 0.1, 0.05, 0.025],
-            "gauss4": [0.2, 0.1, 0.05, 0.025, 0.0125],
-            "gauss6": [0.4, 0.2, 0.1, 0.05, 0.025, 0.0125]}
-WP_TOLS = [1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-13, 1e-14]
-WP_ADAPTIVE = ("dopri5", "dop853", "gsl-rk8pd")
+def work_precision(outdir, quick: bool = False, progress: bool = True, record_to=None,
+                   problems=None) -> list[pathlib.Path]:
+    """The work-precision study of the integrators against the peers (pendula.workprecision):
+    the record work_precision.json and one figure per problem into outdir; quick: the short form
+    of ``make demo`` (one problem, four tolerances)."""
+    from .workprecision import study_main
 
-
-def work_precision(n_out: int = 201, repeat: int = 3, progress: bool = True) -> list[dict]:
-    """Global error in theta against the exact solution, and CPU time, for every
-    method over a range of steps or tolerances, on the two problems above."""
-    import time
-
-    from ._progress import Progress
-    from .integrate import integrate_scene
-    from .motion import exact_motion
-    from .scene import Scene
-
-    rows = []
-    total = len(WP_PROBLEMS) * (sum(len(v) for v in WP_FIXED.values()) + len(WP_TOLS) * len(WP_ADAPTIVE))
-    with Progress(total, "work-precision", enabled=progress) as bar:
-        for pname, p in WP_PROBLEMS.items():
-            t = np.linspace(0.0, p["t_end"], n_out)
-            exact, _ = exact_motion(p["theta0"], p["v0"], p["eps"], t)
-            runs = [(m, "dt", dt) for m, dts in WP_FIXED.items() for dt in dts]
-            runs += [(m, "rtol", tol) for m in WP_ADAPTIVE for tol in WP_TOLS]
-            for method, knob, value in runs:
-                kw = dict(dt=value) if knob == "dt" else dict(rtol=value, atol=value * 1e-2)
-                scene = Scene(theta0=p["theta0"], v0=p["v0"], eps=p["eps"], t_end=p["t_end"],
-                              method=method, **kw)
-                best = np.inf
-                for _ in range(repeat):
-                    t0 = time.process_time()
-                    tr = integrate_scene(scene, t, method)
-                    best = min(best, time.process_time() - t0)
-                err = float(np.max(np.abs(tr.theta - exact)))
-                rows.append({"problem": pname, "method": method, knob: value, "error": err, "seconds": best,
-                             "rhs_evaluations": tr.stats["rhs_evaluations"], "steps": tr.stats["steps"]})
-                bar.update(note=f"{method} {knob}={value:g}")
-    return rows
-
-
-def write_work_precision(rows: list[dict], outdir) -> list[pathlib.Path]:
-    """CSV of the study and one log-log diagram (error against CPU time) per problem."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    outdir = pathlib.Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
-    csv_path = outdir / "work_precision.csv"
-    with csv_path.open("w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(["problem", "method", "dt", "rtol", "max_error_theta", "cpu_seconds", "rhs_evaluations", "steps"])
-        for r in rows:
-            w.writerow([r["problem"], r["method"], r.get("dt", ""), r.get("rtol", ""), repr(r["error"]),
-                        repr(r["seconds"]), r["rhs_evaluations"], r["steps"]])
-    files = [csv_path]
-    for pname in WP_PROBLEMS:
-        fig, ax = plt.subplots(figsize=(8, 5.5))
-        for method in list(WP_FIXED) + list(WP_ADAPTIVE):
-            sel = [r for r in rows if r["problem"] == pname and r["method"] == method]
-            if not sel:
-                continue
-            err = np.maximum([r["error"] for r in sel], 1e-17)
-            sec = np.maximum([r["seconds"] for r in sel], 1e-6)
-            style = "o-" if method in WP_ADAPTIVE else "s--"
-            ax.loglog(sec, err, style, ms=3.5, lw=1.0, label=method)
-        ax.set_xlabel("CPU time (s), best of 3")
-        ax.set_ylabel("max |theta - theta_exact| over the run")
-        ax.set_title(f"work-precision: {pname}, eps = 1, 0 <= t <= 100", fontsize=10)
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7, ncol=2)
-        fig.tight_layout()
-        path = outdir / f"work_precision_{pname.split()[0]}.png"
-        fig.savefig(path, dpi=110)
-        plt.close(fig)
-        files.append(path)
-    return files
-
-
-def cheapest_table(rows: list[dict], targets=(1e-4, 1e-6, 1e-8, 1e-10, 1e-12)) -> list[tuple]:
-    """For each problem and target error, the method that reached it in the least time."""
-    out = []
-    for pname in WP_PROBLEMS:
-        for target in targets:
-            ok = [r for r in rows if r["problem"] == pname and r["error"] <= target]
-            if ok:
-                best = min(ok, key=lambda r: r["seconds"])
-                out.append((pname, target, best["method"], best.get("dt", best.get("rtol")), best["seconds"]))
-            else:
-                out.append((pname, target, "none reached it", None, None))
-    return out
+    return study_main(outdir, quick=quick, progress=progress, record_to=record_to, problems=problems)
 
 
 def long_run_energy(periods: float = 1e5, methods=("gauss6", "dop853"), progress: bool = True) -> dict:
@@ -271,7 +180,7 @@ def long_run_energy(periods: float = 1e5, methods=("gauss6", "dop853"), progress
 
 
 def write_long_run(res: dict, outdir, periods: float) -> list[pathlib.Path]:
-    import matplotlib
+    matplotlib = require("matplotlib", "accuracy", "pendula accuracy integrators (figures)")
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -289,10 +198,10 @@ def write_long_run(res: dict, outdir, periods: float) -> list[pathlib.Path]:
     ax.legend(fontsize=8)
     fig.tight_layout()
     path = outdir / "long_run_energy.png"
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     csv_path = outdir / "long_run_energy.csv"
-    with csv_path.open("w", newline="") as fh:
+    with open_text(csv_path, newline="") as fh:
         w = csv.writer(fh)
         w.writerow(["method", "t", "abs_energy_error"])
         for method, r in res.items():
@@ -306,7 +215,7 @@ def write_long_run(res: dict, outdir, periods: float) -> list[pathlib.Path]:
 #: the error measure of the grids: max over outputs of |got - ref| / max(1, |ref|)
 #: (absolute for values below 1, relative above), in units of eps
 GRID_CLASSES = {
-    "jac": "sn, cn, dn", "k": "K(m)", "e": "E(m)", "nome": "q(m)", "f": "F(phi|m)", "einc": "E(phi|m)",
+    "jac": "sn, cn, dn", "am": "am(u|m)", "k": "K(m)", "e": "E(m)", "nome": "q(m)", "f": "F(phi|m)", "einc": "E(phi|m)",
     "exact": "theta(t), v(t)", "period": "period",
 }
 
@@ -352,6 +261,9 @@ def grid_errors(cls: str, a: np.ndarray) -> np.ndarray:
                 m, mc = par(x)
                 res.append(ellipj(u, m, mc=mc)[:3])
             return err(np.array(res).T, a[:, 4:7].T)
+        if kind == "am":
+            got = [ellipj(u, *par(x)[:1], mc=par(x)[1])[3] for u, x in a[:, :2]]
+            return err(got, a[:, 4])
         if kind in ("k", "e", "nome"):
             f = {"k": ellipk, "e": ellipe, "nome": nome}[kind]
             got = [f(*par(x)[:1], mc=par(x)[1]) if via_mc else f(x) for x in a[:, 0]]
@@ -368,14 +280,35 @@ def grid_errors(cls: str, a: np.ndarray) -> np.ndarray:
     raise ValueError(f"unknown class {cls!r}")
 
 
+def grid_paths(path) -> list[pathlib.Path]:
+    """The stored grids: `path` (data/reference_grids.csv.gz) and, when it is
+    there, the set of ill-conditioned places beside it (reference_grids_edges.csv.gz)."""
+    path = pathlib.Path(path)
+    edges = path.with_name("reference_grids_edges.csv.gz")
+    return [path] + ([edges] if edges.is_file() and edges != path else [])
+
+
+#: the bound of every class, in eps: 4 (README's promise) unless a measured,
+#: explained limit is stated here
+GRID_BOUND = 4.0
+GRID_LIMITS: dict[str, float] = {}
+
+
+def grid_bound(cls: str) -> float:
+    """The bound (eps) a class of the grids is held to."""
+    return float(GRID_LIMITS.get(cls, GRID_BOUND))
+
+
 def grids_report(path) -> list[dict]:
-    """Worst error (eps) per class of the stored random grid."""
+    """Worst error (eps) per class of the stored random grids (`path` and the
+    edge set beside it, see grid_paths)."""
     out = []
-    for cls, a in sorted(load_grids(path).items()):
-        e = grid_errors(cls, a)
-        k = int(np.argmax(e))
-        out.append({"class": cls, "what": GRID_CLASSES[cls.split("_")[0]], "points": len(a),
-                    "worst_eps": float(e[k]), "at": a[k, :4].tolist()})
+    for p in grid_paths(path):
+        for cls, a in sorted(load_grids(p).items()):
+            e = grid_errors(cls, a)
+            k = int(np.argmax(e))
+            out.append({"class": cls, "what": GRID_CLASSES[cls.split("_")[0]], "points": len(a),
+                        "worst_eps": float(e[k]), "bound_eps": grid_bound(cls), "at": a[k, :4].tolist()})
     return out
 
 
@@ -383,14 +316,29 @@ def grids_report(path) -> list[dict]:
 GRID_ROWS = [("sn, cn, dn", "m > 1 via m", "jac_m_gt1_m"), ("sn, cn, dn", "m > 1 via mc < 0", "jac_m_gt1_mc"),
         ("sn, cn, dn", "0.5 ≤ m < 1 via m", "jac_m_mid"), ("sn, cn, dn", "m = 1 − 10^−x via m (x ≤ 16)", "jac_m_near1_m"),
         ("sn, cn, dn", "mc in [1e-300, 0.5] via mc", "jac_m_near1_mc"), ("sn, cn, dn", "m < 0 via m (\\|m\\| to 1e4)", "jac_m_neg"),
+        ("sn, cn, dn", "m from −1e3 to −1e100 (theta series of the core)", "jac_m_neg_far"),
         ("sn, cn, dn", "0 ≤ m < 0.5 via m, \\|u\\| to 1e4 periods", "jac_m_small"),
+        ("am", "0 ≤ m < 0.5 via m, \\|u\\| to 1e4 periods", "am_m_small"), ("am", "0.5 ≤ m < 1 via m", "am_m_mid"),
+        ("am", "mc in [1e-300, 0.5] via mc", "am_m_near1_mc"), ("am", "m < 0 via m (\\|m\\| to 1e12)", "am_m_neg"),
+        ("am", "m > 1 via m", "am_m_gt1_m"), ("am", "m > 1 via mc < 0", "am_m_gt1_mc"),
+        ("am", "m > 1 via m, next to sn = ±1/k", "am_edge_m"),
+        ("am", "m − 1 down to 1e-100 via mc, next to sn = ±1/k", "am_edge_mc"),
         ("K", "0.5 ≤ m < 1", "k_mid"), ("K", "mc in [1e-300, 0.5] via mc", "k_near1_mc"), ("K", "m < 0", "k_neg"),
         ("K", "0 ≤ m < 0.5", "k_small"), ("E", "0.5 ≤ m < 1", "e_mid"), ("E", "mc in [1e-300, 0.5] via mc", "e_near1_mc"),
         ("E", "m < 0", "e_neg"), ("E", "0 ≤ m < 0.5", "e_small"), ("nome q", "0 ≤ m ≤ 1 via m", "nome_m"),
         ("nome q", "via mc down to 1e-300", "nome_mc"), ("F(φ|m)", "m > 1, φ up to the domain's edge", "f_gt1_m"),
+        ("F(φ|m)", "m > 1 via m, φ next to the edge (both sides)", "f_edge_m"),
+        ("F(φ|m)", "m > 1 via mc < 0, φ next to the edge (both sides)", "f_edge_mc"),
         ("F(φ|m)", "m ≤ 1 via m, \\|φ\\| to 1e4 π", "f_m"), ("F(φ|m)", "via mc", "f_near1_mc"),
-        ("E(φ|m)", "m > 1, φ up to the domain's edge", "einc_gt1_m"), ("E(φ|m)", "m ≤ 1 via m", "einc_m"),
-        ("E(φ|m)", "via mc", "einc_near1_mc"), ("θ(t), v(t)", "libration, backward", "exact_libration_bwd"),
+        ("F(φ|m)", "φ next to N π/2, m in [−10, 1) via m", "f_halfpi_m"),
+        ("F(φ|m)", "φ next to N π/2, mc down to 1e-300", "f_halfpi_mc"),
+        ("E(φ|m)", "m > 1, φ up to the domain's edge", "einc_gt1_m"),
+        ("E(φ|m)", "m > 1 via m, φ next to the edge (both sides)", "einc_edge_m"),
+        ("E(φ|m)", "m > 1 via mc < 0, φ next to the edge (both sides)", "einc_edge_mc"),
+        ("E(φ|m)", "m ≤ 1 via m", "einc_m"), ("E(φ|m)", "via mc", "einc_near1_mc"),
+        ("E(φ|m)", "φ next to N π/2, m in [−10, 1) via m", "einc_halfpi_m"),
+        ("E(φ|m)", "φ next to N π/2, mc down to 1e-300", "einc_halfpi_mc"),
+        ("θ(t), v(t)", "libration, backward", "exact_libration_bwd"),
         ("θ(t), v(t)", "libration, forward (t to 1e4 periods)", "exact_libration_fwd"),
         ("θ(t), v(t)", "near the separatrix, backward", "exact_near_separatrix_bwd"),
         ("θ(t), v(t)", "1 ∓ 1e-15…1e-3 from the separatrix, forward", "exact_near_separatrix_fwd"),
@@ -399,18 +347,22 @@ GRID_ROWS = [("sn, cn, dn", "m > 1 via m", "jac_m_gt1_m"), ("sn, cn, dn", "m > 1
         ("θ(t), v(t)", "rotation, backward", "exact_rotation_bwd"), ("θ(t), v(t)", "rotation, forward", "exact_rotation_fwd"),
         ("θ(t), v(t)", "wrapped, backward", "exact_wrapped_bwd"),
         ("θ(t), v(t)", "\\|θ0\\| up to 1e3 (wrapped), forward", "exact_wrapped_fwd"),
+        ("θ(t), v(t)", "\\|θ0\\| from 1e3 to 2^52, backward", "exact_huge_theta0_bwd"),
+        ("θ(t), v(t)", "\\|θ0\\| from 1e3 to 2^52, forward", "exact_huge_theta0_fwd"),
         ("period", "librations", "period_libration"), ("period", "rotations", "period_rotation")]
 
 
 def grids_markdown(path) -> str:
-    """README's table of the worst error per class of the stored random grid
-    (``pendula accuracy grids``)."""
-    rep = {r["class"]: r["worst_eps"] for r in grids_report(path)}
+    """The accuracy report's table (docs/source/reports/accuracy.md) of the worst error per class of
+    the stored random grids (``pendula accuracy grids``): the points of each class, its worst error and
+    the bound the tests hold it to, in eps."""
+    rep = {r["class"]: r for r in grids_report(path)}
     missing = {c for *_, c in GRID_ROWS} ^ set(rep)
     if missing:
         raise ValueError(f"grid classes and README rows disagree: {sorted(missing)}")
-    lines = ["| function | class (2000 random draws each) | worst (eps) |", "|---|---|---:|"]
-    lines += [f"| {f} | {d} | {rep[c]:.3g} |" for f, d, c in GRID_ROWS]
+    lines = ["| function | class (random draws) | points | worst (eps) | bound (eps) |", "|---|---|---:|---:|---:|"]
+    lines += [f"| {f} | {d} | {rep[c]['points']} | {rep[c]['worst_eps']:.3g} | {rep[c]['bound_eps']:.3g} |"
+              for f, d, c in GRID_ROWS]
     return "\n".join(lines)
 
 

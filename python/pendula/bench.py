@@ -15,6 +15,8 @@ import platform
 import time
 
 import numpy as np
+from ._optional import require
+from ._files import open_text  # the one writer: regular files only, whole or absent
 
 
 def best_time(fn, repeat: int = 5) -> float:
@@ -48,7 +50,7 @@ def bench_elliptic(n: int = 1_000_000, seed: int = 1) -> list[dict]:
     (Cephes: descending Landen), GSL gsl_sf_elljac_e (Bulirsch) through
     pendula's C glue, numpy.sin as a yardstick.
     """
-    import scipy.special as sc
+    sc = require("scipy.special", "bench", "pendula bench")
 
     from . import _kernel
     from .elliptic import ellipj, ellipk
@@ -93,7 +95,7 @@ def bench_elliptic(n: int = 1_000_000, seed: int = 1) -> list[dict]:
 
 
 def bench_exact(n: int = 1_000_000, seed: int = 2) -> list[dict]:
-    """The exact pendulum path per sample against numpy.sin per sample (issue 15: at most 3x in every regime)."""
+    """The exact pendulum path per sample against numpy.sin per sample (target: at most 3x in every regime)."""
     from .systems.rigid import exact_motion
 
     t = np.sort(np.random.default_rng(seed).uniform(0.0, 1000.0, n))
@@ -108,7 +110,7 @@ def bench_exact(n: int = 1_000_000, seed: int = 2) -> list[dict]:
 
 def bench_integrators(n: int = 0, seed: int = 0) -> list[dict]:
     """DOP853 against scipy's solve_ivp DOP853 and GSL rk8pd; the cost of effects."""
-    import scipy.integrate as si
+    si = require("scipy.integrate", "bench", "pendula bench")
 
     from .scene import Scene
     from .systems.rigid import exact_motion
@@ -270,13 +272,13 @@ def bench_cord(n: int = 10_000, seed: int = 4) -> list[dict]:
 
 
 def bench_sweep(n: int = 1_000_000, seed: int = 14) -> list[dict]:
-    """Sweeps (issue 14): a sqrt(n) x sqrt(n) final-well map over (v0, beta)
+    """Sweeps: a sqrt(n) x sqrt(n) final-well map over (v0, beta)
     (goal: 10^6 points in 60 s on 2 cores), OpenMP threads 1 against 2, the
     per-point cost against a scipy solve_ivp loop with a terminal event on a
     20 x 20 subgrid, and the fraction of points decided early."""
     import os
 
-    from scipy.integrate import solve_ivp
+    solve_ivp = require("scipy.integrate", "bench", "pendula bench").solve_ivp
 
     from .scene import Scene
     from .sweeps import sweep
@@ -336,6 +338,73 @@ BENCHMARKS = {"elliptic": bench_elliptic, "exact": bench_exact, "integrators": b
               "spectrum": bench_spectrum, "cord": bench_cord, "sweep": bench_sweep}
 
 
+def _per_call(fn, calls: int = 20, repeat: int = 60) -> float:
+    """The best over ``repeat`` rounds of the mean wall time of ``calls`` calls of ``fn`` (seconds).
+
+    Short rounds, many of them: on a loaded machine a round that the scheduler
+    did not interrupt is then among them."""
+    fn()
+    best = np.inf
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        for _ in range(calls):
+            fn()
+        best = min(best, (time.perf_counter() - t0) / calls)
+    return best
+
+
+def bench_simulate(n: int = 0, seed: int = 0) -> list[dict]:
+    """What one :func:`pendula.simulate` call costs beside the work it asks for.
+
+    The checked scene is kept as the kernel takes it (numbers and words, made
+    once per frozen Scene), so a run parses nothing.  Two comparisons, each
+    on the same times: (1) simulate on an 11-sample conservative scene
+    against exact_motion (the exact path with no scene at all; target within
+    2x); (2) a short damped DOP853 run through simulate against the
+    integrator's binding called directly (the kernel's integration and the
+    f2py call alone; target within 1.5x).  Mean per call of 20 calls, best
+    of 60 rounds.
+    """
+    from . import _kernel
+    from .motion import simulate
+    from .scene import Scene
+    from .systems.rigid import exact_motion
+
+    t = np.linspace(0.0, 10.0, 11)
+    conservative = Scene(v0=1.0, t_end=10.0, n_samples=11)
+    rows = [("simulate, conservative scene, 11 samples", _per_call(lambda: simulate(conservative))),
+            ("exact_motion on the same 11 times", _per_call(lambda: exact_motion(0.0, 1.0, 1.0, t)))]
+    out = _report_calls("simulate against the exact path on the same times (target: within 2x)", rows,
+                        "exact_motion on the same 11 times")
+    damped = Scene(v0=1.0, damping=0.1, t_end=10.0, n_samples=11, rtol=1e-10, atol=1e-12)
+    params = np.array([1.0, 0.1, 0.0, 0.0, 0.0, 0.0])
+    cancel = np.zeros(1, dtype=np.int32)
+
+    def kernel_alone():
+        return _kernel.integrate_v(9, params, 0, 0.0, 0.0, 1.0, t, 1e-10, 1e-12, 0.0, 0, 0.0, 0, 0, 1, cancel)
+
+    if not np.array_equal(kernel_alone()[0], simulate(damped).theta):
+        raise RuntimeError("bench simulate: the two runs compared differ; they must be the same work")
+    rows = [("simulate, damped scene, dop853, 11 samples", _per_call(lambda: simulate(damped))),
+            ("the integrator's binding alone, same run", _per_call(kernel_alone))]
+    out += _report_calls("a short DOP853 run: simulate against the kernel's integration alone "
+                         "(target: within 1.5x)", rows, "the integrator's binding alone, same run")
+    return out
+
+
+def _report_calls(title, rows, ref):
+    base = dict(rows)[ref]
+    print(f"\n{title}")
+    out = []
+    for name, tsec in rows:
+        print(f"  {name:50s} {tsec * 1e6:9.1f} us per call {tsec / base:8.2f}x")
+        out.append({"what": name, "us_per_call": tsec * 1e6, "ratio": tsec / base})
+    return out
+
+
+BENCHMARKS["simulate"] = bench_simulate
+
+
 def machine_record() -> dict:
     """Machine, versions and date of a benchmark run (for the JSON record)."""
     import datetime
@@ -367,7 +436,7 @@ def machine_record() -> dict:
 
 
 def readme_tables(record: dict) -> str:
-    """Markdown tables for README from a recorded run (``pendula bench --readme FILE``)."""
+    """Markdown tables of the benchmark report (docs/source/reports/benchmarks.md) from a recorded run (``pendula bench --readme FILE``)."""
     m = record["machine"]
     load = m.get("load_average")
     load = "/".join(f"{x:.1f}" for x in load) if load else "unknown"
@@ -428,7 +497,7 @@ def main(argv=None) -> int:
         head, rest = text.split(begin)
         _, tail = rest.split(end)
         note = f"\n<!-- generated by: pendula bench --readme {args.readme} --into {args.into} -->\n"
-        with open(args.into, "w") as fh:
+        with open_text(args.into) as fh:
             fh.write(head + begin + note + tables.rstrip("\n") + "\n" + end + tail)
         print(f"README tables written into {args.into} from {args.readme}")
         return 0
@@ -441,7 +510,7 @@ def main(argv=None) -> int:
     for name in args.which or sorted(BENCHMARKS):
         record["results"][name] = BENCHMARKS[name](n=args.n)
     if args.json:
-        with open(args.json, "w") as fh:
+        with open_text(args.json) as fh:
             json.dump(record, fh, indent=1)
         print(f"\nrecorded in {args.json}")
     return 0

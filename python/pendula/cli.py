@@ -7,18 +7,54 @@
     pendula wisdom               precompute FFTW plans once per machine (cache file)
     pendula accuracy elliptic    worst errors vs mpmath, beside scipy and GSL
     pendula accuracy integrators work-precision diagram and long-run energy (CSV, PNG)
-    pendula accuracy grids       worst error per class of the stored random grids (README's table)
+    pendula accuracy grids       worst error per class of the stored random grids (the accuracy report's table)
+    pendula --version            the installed version
+
+A feature whose optional package is missing prints one line naming the extra
+to install (``pip install 'pendula[sweep]'``) and exits with status 6
+(pendula._optional.EXIT_MISSING_EXTRA).  Output into a pipe that closes early
+(``pendula models | head -3``) ends quietly with status 0.
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import math
 import sys
 
 import numpy as np
 
 from ._files import gallery_dir
+from ._optional import EXIT_MISSING_EXTRA, MissingExtraError, require
+
+
+def packaged_data(name: str):
+    """A reference file installed with the package (pendula/data; data/ in the repository)."""
+    from importlib.resources import files
+
+    return files("pendula") / "data" / name
+
+
+def _guarded(func, args) -> int:
+    """Run a subcommand: a missing optional package is one line and exit status 6;
+    a reader that closes the pipe early (``| head``) ends the output quietly."""
+    import os
+
+    try:
+        status = func(args)
+        sys.stdout.flush()  # a closed pipe shows here, not at interpreter exit
+        return status
+    except MissingExtraError as exc:
+        print(f"pendula: {exc}", file=sys.stderr)
+        return EXIT_MISSING_EXTRA
+    except BrokenPipeError:
+        # the reader has gone: send what remains in the buffer nowhere (Python's
+        # documented recipe), so that the flush at exit does not fail again
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+        return 0
 
 
 def elliptic_table() -> list[tuple[str, float, float]]:
@@ -73,11 +109,15 @@ def _run_file(args, command: str, outputs: tuple | None = None) -> int:
 
     try:
         scene = Scene.from_file(args.scene)
-    except SceneError as exc:
-        print(f"pendula {command}: {exc}", file=sys.stderr)
+        if outputs:
+            scene = scene.replace(outputs=outputs)
+    except (SceneError, ValueError, OverflowError) as exc:   # a reader's bare ValueError too: one line, exit 2
+        print(f"pendula {command}: {args.scene}: {exc}" if not isinstance(exc, SceneError)
+              else f"pendula {command}: {exc}", file=sys.stderr)
         return 2
-    if outputs:
-        scene = scene.replace(outputs=outputs)
+    except OSError as exc:
+        print(f"pendula {command}: cannot read {args.scene!r}: {exc.strerror or exc}", file=sys.stderr)
+        return 2
     # the exit codes of pendula-run: 3 model not implemented, 4 the computation
     # failed, 5 a write error; a message, never a traceback, and no partial file
     try:
@@ -113,6 +153,8 @@ def cmd_demo(args) -> int:
     from .run import run_scene
     from .scene import Scene
 
+    for module in ("matplotlib", "xarray", "tqdm", "scipy"):  # figures; sweeps (scipy: their NetCDF files)
+        require(module, "all", "pendula demo")
     print_elliptic_table()
     out = pathlib.Path(args.output)
     scenes = sorted(p for p in gallery_dir().iterdir() if p.name.endswith(".nml"))
@@ -123,11 +165,11 @@ def cmd_demo(args) -> int:
         files = run_scene(scene, out, stem=p.name[:-4], progress=not args.quiet)
         written += files
         print(f"  {p.name:40s} {len(files)} file(s): " + ", ".join(f.name for f in files))
-    written += huygens_gallery(out)  # issue 13: Huygens' clock, non-uniform gravity, density of the angle
+    written += huygens_gallery(out)  # Huygens' clock, non-uniform gravity, density of the angle
     written += cord_demo(out, gallery_dir(), quiet=args.quiet)  # the flexible cord (Garfinkel)
     print("\nwhat accuracy costs in time: the integrators against the exact solution")
-    integrator_study(out, 1e5, progress=not args.quiet)
-    sweep_demos.run(out / "sweeps", small=True, quiet=args.quiet)  # sweeps: basins, the seed's 8.2, I-V, chaos
+    integrator_study(out, 1e5, progress=not args.quiet, quick=True)
+    sweep_demos.run(out / "sweeps", small=True, quiet=args.quiet)  # sweeps: basins, Suzuki & Suzuki 8.2, I-V, chaos
     print(f"\n{len(written)} gallery files and the integrator study written to {out.resolve()}")
     return 0
 
@@ -138,21 +180,22 @@ def cmd_accuracy(args) -> int:
 
         from .accuracy import elliptic_report, print_report
 
-        if not pathlib.Path(args.reference).is_file():
-            print(f"pendula accuracy: reference file {args.reference!r} not found: run from the repository "
-                  "root or pass --reference (data/gen_elliptic_reference.py writes it)", file=sys.stderr)
+        reference = args.reference or packaged_data("elliptic_reference.csv")
+        if not pathlib.Path(reference).is_file():
+            print(f"pendula accuracy: reference file {str(reference)!r} not found: pass --reference "
+                  "(data/gen_elliptic_reference.py in the repository writes it)", file=sys.stderr)
             return 2
-        print_report(elliptic_report(args.reference), markdown=args.markdown)
+        print_report(elliptic_report(reference), markdown=args.markdown)
         return 0
     if args.what == "grids":
         import pathlib
 
         from .accuracy import grids_markdown
 
-        path = pathlib.Path("data/reference_grids.csv.gz")
+        path = pathlib.Path(packaged_data("reference_grids.csv.gz"))
         if not path.is_file():
-            print(f"pendula accuracy: {path} not found: run from the repository root "
-                  "(data/gen_reference_grids.py writes it)", file=sys.stderr)
+            print(f"pendula accuracy: {path} not found: reinstall pendula "
+                  "(data/gen_reference_grids.py in the repository writes it)", file=sys.stderr)
             return 2
         print(grids_markdown(path))
         models = pathlib.Path("data/model_grids.csv.gz")
@@ -162,19 +205,16 @@ def cmd_accuracy(args) -> int:
             print()
             print(model_grids_markdown(models))
         return 0
-    return integrator_study(args.output, args.periods, progress=not args.quiet)
+    return integrator_study(args.output, args.periods, progress=not args.quiet, quick=args.quick,
+                            record_to=args.record, problems=args.problems)
 
 
-def integrator_study(outdir, periods: float, progress: bool = True) -> int:
-    """The work-precision study and the long-run energy study; files into outdir."""
-    from .accuracy import cheapest_table, long_run_energy, work_precision, write_long_run, write_work_precision
+def integrator_study(outdir, periods: float, progress: bool = True, quick: bool = False, record_to=None,
+                     problems=None) -> int:
+    """The work-precision study (pendula.workprecision) and the long-run energy study; files into outdir."""
+    from .accuracy import long_run_energy, work_precision, write_long_run
 
-    rows = work_precision(progress=progress)
-    files = write_work_precision(rows, outdir)
-    print("cheapest method per target error (CPU time, this machine):")
-    for pname, target, method, knob, sec in cheapest_table(rows):
-        extra = f"({knob:g}, {sec * 1e3:.2f} ms)" if sec is not None else ""
-        print(f"  {pname:22s} error <= {target:7.0e}: {method} {extra}")
+    files = work_precision(outdir, quick=quick, progress=progress, record_to=record_to, problems=problems)
     res = long_run_energy(periods, progress=progress)
     files += write_long_run(res, outdir, periods)
     for f in files:
@@ -189,7 +229,7 @@ def cmd_bench(args) -> int:
 
 
 def cmd_sweep(args) -> int:
-    """pendula sweep SCENE -o OUT: the dataset (NetCDF chunks, resumable) and its figure."""
+    """pendula sweep SCENE -o OUT: the dataset (a Zarr store, resumable) and its figure."""
     from .sweeps import cli_main
 
     return cli_main(args)
@@ -214,7 +254,11 @@ def cmd_models(args) -> int:
 
 
 def main(argv=None) -> int:
+    # figures are written to files, never shown: no display needed
+    os.environ.setdefault("MPLBACKEND", "Agg")
     parser = argparse.ArgumentParser(prog="pendula", description="The nonlinear pendulum, exact and fast.")
+    from ._version import __version__
+    parser.add_argument("--version", action="version", version=f"pendula {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
     p = sub.add_parser("demo", help="run the main job on its embedded default (the gallery of the source notes)")
     p.add_argument("-o", "--output", default="out", help="output folder (default: out)")
@@ -230,9 +274,15 @@ def main(argv=None) -> int:
     p.add_argument("-o", "--output", default="out", help="output folder for the integrator study")
     p.add_argument("--periods", type=float, default=1e5, help="length of the long energy run, in periods")
     p.add_argument("-q", "--quiet", action="store_true")
-    p.add_argument("--reference", default="data/elliptic_reference.csv",
-                   help="reference CSV written by data/gen_elliptic_reference.py")
+    p.add_argument("--reference", default=None,
+                   help="reference CSV written by data/gen_elliptic_reference.py (default: the one installed "
+                        "with pendula)")
     p.add_argument("--markdown", action="store_true", help="print a Markdown table")
+    p.add_argument("--quick", action="store_true", help="integrators: the short form of the study (one problem)")
+    p.add_argument("--record", default=None,
+                   help="integrators: where to write the recorded run (default OUTPUT/work_precision.json)")
+    p.add_argument("--problems", nargs="+", default=None,
+                   help="integrators: only these problems (libration rotation damped torqued driven)")
     p.set_defaults(func=cmd_accuracy)
     p = sub.add_parser("spectrum", help="power spectra of a scene's theta(t): CSV and a log-power PNG")
     p.add_argument("scene", help="scene file (namelist group &scene)")
@@ -241,13 +291,14 @@ def main(argv=None) -> int:
     p.set_defaults(func=cmd_spectrum)
     p = sub.add_parser("models", help="the models pendula knows, the effects each accepts, which keep the exact path")
     p.set_defaults(func=cmd_models)
-    # sweeps (issue 14): the substance is in pendula.sweeps
-    p = sub.add_parser("sweep", help="a sweep scene (grid + measure): OUT/sweep.nc and OUT/sweep.png; resumes")
+    # sweeps: the substance is in pendula.sweeps
+    p = sub.add_parser("sweep", help="a sweep scene (grid + measure): OUT/sweep.zarr and OUT/sweep.png; resumes")
     p.add_argument("scene", help="scene file with 'grid' and 'measure'")
     p.add_argument("-o", "--output", default="out/sweep", help="output folder (chunks, dataset, figure)")
     p.add_argument("--threads", type=int, default=0, help="OpenMP threads (0: OMP_NUM_THREADS or all cores)")
-    p.add_argument("--workers", type=int, default=0, help="run the chunks on a local Dask cluster of N workers")
+    p.add_argument("--workers", type=int, default=0, help="run the chunks on a local Dask cluster of N worker processes (closed at the end)")
     p.add_argument("--chunk-points", type=int, default=20000, help="grid points per chunk")
+    p.add_argument("--netcdf", action="store_true", help="also export the dataset as OUT/sweep.nc (NetCDF3)")
     p.add_argument("-q", "--quiet", action="store_true")
     p.set_defaults(func=cmd_sweep)
     p = sub.add_parser("bench", help="benchmarks against scipy, GSL and numpy", add_help=False)
@@ -262,10 +313,12 @@ def main(argv=None) -> int:
     # --- spectra (spec): argparse's REMAINDER drops leading options ('bench --json F'), so pass them on
     argv = sys.argv[1:] if argv is None else list(argv)
     if argv[:1] == ["bench"]:
-        return cmd_bench(argparse.Namespace(rest=argv[1:]))
+        return _guarded(cmd_bench, argparse.Namespace(rest=argv[1:]))
     # --- end spectra
     args = parser.parse_args(argv)
-    return args.func(args)
+    from ._files import exit_on_sigterm
+    exit_on_sigterm()     # SIGTERM/SIGHUP unwind like Ctrl-C: no temporary file is left
+    return _guarded(args.func, args)
 
 
 if __name__ == "__main__":

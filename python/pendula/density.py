@@ -34,7 +34,37 @@ __all__ = ["angle_density", "angle_cdf", "arcsine_density"]
 
 
 def arcsine_density(theta, theta_init):
-    """The linear limit (Prusa & Tuma): 1 / (pi sqrt(theta_init^2 - theta^2)) inside, 0 outside."""
+    """The small-amplitude limit of the density of the angle: the arcsine law.
+
+    Parameters
+    ----------
+    theta : array_like
+        Angles.
+    theta_init : float
+        The amplitude.
+
+    Returns
+    -------
+    ndarray
+        1 / (pi sqrt(theta_init^2 - theta^2)) inside (-theta_init, theta_init),
+        0 outside.  (Prusa & Tuma, task 5, print it without the factor
+        1/theta_init that makes it integrate to 1: a slip.)
+
+    Raises
+    ------
+    TypeError
+        For a string, complex or object `theta`.
+
+    See Also
+    --------
+    angle_density : the exact density at any amplitude.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> float(pendula.arcsine_density(0.0, 0.1))       # 1 / (0.1 pi)
+    3.183098861837907
+    """
     theta = as_float(theta, "theta")
     a = float(theta_init)
     out = np.zeros_like(theta)
@@ -254,6 +284,20 @@ def angle_density(scene, theta):
         p(theta); it integrates to 1 over the orbit and is infinite (not
         returned: the endpoints are excluded) at the turning points.
 
+    Raises
+    ------
+    TypeError
+        If `scene` is not a :class:`Scene`, or for a string, complex or object `theta`.
+    ValueError
+        If the scene names damping or a drive (no period to average over).
+    NotImplementedError
+        For the flexible cord, and for the rigid pendulum with a torque.
+
+    See Also
+    --------
+    angle_cdf : its integral, exact through F(phi|m).
+    arcsine_density : the small-amplitude limit.
+
     Examples
     --------
     >>> import pendula
@@ -270,9 +314,35 @@ def angle_cdf(scene, theta):
     """The cumulative distribution of the angle over one period (see :func:`angle_density`).
 
     Exact through the incomplete elliptic integral F, so it is finite and
-    accurate up to the turning points.  Libration: 0 below -theta_max, 1
-    above theta_max.  Rotation: the fraction of a turn from -pi, continued by
-    whole turns (so it increases by 1 per 2 pi).
+    accurate up to the turning points.
+
+    Parameters
+    ----------
+    scene : Scene
+        A conservative scene, as for :func:`angle_density`.
+    theta : array_like
+        Angles.
+
+    Returns
+    -------
+    ndarray
+        The fraction of the period spent below theta.  Libration: 0 below
+        -theta_max, 1 above theta_max.  Rotation: the fraction of a turn from
+        -pi, continued by whole turns (so it increases by 1 per 2 pi).
+
+    Raises
+    ------
+    TypeError
+        If `scene` is not a :class:`Scene`, or for a string, complex or object `theta`.
+    ValueError
+        If the scene names damping or a drive (no period to average over).
+    NotImplementedError
+        For the flexible cord, and for the rigid pendulum with a torque.
+
+    See Also
+    --------
+    angle_density : its derivative.
+    ellipf : the integral it is made of.
 
     Examples
     --------

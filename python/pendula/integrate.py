@@ -2,7 +2,10 @@
 
 Method names (a contract): 'rk4', 'verlet', 'yoshida4', 'yoshida6', 'yoshida8',
 'gauss4', 'gauss6' (fixed step: they take ``dt``), 'dopri5', 'dop853',
-'gsl-rk8pd' (adaptive: they take ``rtol`` and ``atol``), 'exact' and 'auto'.
+'gsl-rk8pd', 'dprkn6' (adaptive: they take ``rtol`` and ``atol``; 'dprkn6', Dormand &
+Prince's Runge-Kutta-Nystrom pair RKN6(4), takes undamped scenes only and has no dense
+output, so no events), 'vern9' (Verner's 9(8) pair, any scene, no dense output: no
+events), 'exact' and 'auto'.
 The right-hand side holds only the effects the scene names.
 """
 
@@ -18,15 +21,16 @@ from . import _interrupt, _kernel
 from ._checks import as_float
 from .scene import Scene
 from .systems import run
-from .systems.gravity import field_of
+from .systems.cycloid import cycloid_motion, cycloid_period
+from .systems.gravity import field_of, gravity_orbit
 from .systems.rigid import orbit
 
 __all__ = ["integrate_scene", "find_events", "numerical_period", "Events", "FIXED_STEP", "ADAPTIVE"]
 
 CODES = {"rk4": 1, "verlet": 2, "yoshida4": 3, "yoshida6": 4, "yoshida8": 5, "gauss4": 6, "gauss6": 7,
-         "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10}
+         "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10, "dprkn6": 11, "vern9": 12}
 FIXED_STEP = ("rk4", "verlet", "yoshida4", "yoshida6", "yoshida8", "gauss4", "gauss6")
-ADAPTIVE = ("dopri5", "dop853", "gsl-rk8pd")
+ADAPTIVE = ("dopri5", "dop853", "gsl-rk8pd", "dprkn6", "vern9")
 _STATUS = {1: "the step dt must be positive", 2: "rtol must be > 0 and atol >= 0", 3: "unknown method",
            5: "step size underflow (the problem may be singular or the tolerance unreachable)",
            6: "the state became non-finite", 9: "events need a method with dense output (dopri5, dop853)",
@@ -34,15 +38,23 @@ _STATUS = {1: "the step dt must be positive", 2: "rtol must be > 0 and atol >= 0
               "or give a larger dt or rtol",
            8: "interrupted",
            11: "gsl-rk8pd integrates forward only: give times >= 0",
+           12: "the Runge-Kutta-Nystrom pair integrates theta'' = f(t, theta) only: no damping",
            20: "bad gravity field parameters (gravity_distance > 1, gravity_gradient < 0.5)"}
 _EVENT_KINDS = {"turning": 1, "theta": 2, "theta_mod_2pi": 3}
+#: the sense of a crossing, by name (the numbers are accepted too)
+_DIRECTIONS = {"rising": 1, "falling": -1, "both": 0}
 #: the most events one call records (memory: 24 bytes each)
 MAX_EVENTS = 10_000_000
+#: samples of the cycloid's exact path per shortest period when its events are bracketed
+CYCLOID_SAMPLES_PER_PERIOD = 64
+#: the most samples of the exact path one event search takes (in blocks of CYCLOID_BLOCK)
+CYCLOID_MAX_SAMPLES = 10**9
+CYCLOID_BLOCK = 1 << 16
 
 
 def choose_method(scene: Scene) -> str:
     """What 'auto' picks: the exact solution whenever the scene allows it,
-    otherwise DOP853.  The work-precision study (README) finds DOP853 and GSL's
+    otherwise DOP853.  The work-precision study (docs: What accuracy costs in time) finds DOP853 and GSL's
     rk8pd within a few per cent of each other at equal final error, and both
     far cheaper than every other method below 1e-6; DOP853 also has dense
     output, runs backwards in time and locates events, which rk8pd here does not."""
@@ -98,38 +110,130 @@ def integrate_scene(scene: Scene, t, method: str = "auto"):
 
 @dataclass
 class Events:
-    """Located events: times t, states theta and v, and the work done."""
+    """Located events: what :func:`find_events` returns.
+
+    Attributes
+    ----------
+    t : ndarray
+        Event times, increasing.
+    theta, v : ndarray
+        The state at each event.
+    stats : dict
+        Work done: ``steps``, ``accepted``, ``rejected``, ``rhs_evaluations``,
+        ``stopped_by_event``; ``path_evaluations`` where the events are roots of
+        an exact path (the cycloidal guide).
+
+    See Also
+    --------
+    find_events : makes it.
+    Trajectory : a motion at given times.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> ev = pendula.find_events(pendula.Scene(theta0=1.0), "turning", direction=-1, t_end=20)
+    >>> ev.t.round(6).tolist()             # maxima of theta: one per period 6.699976
+    [6.699976, 13.399951]
+    """
 
     t: np.ndarray
     theta: np.ndarray
     v: np.ndarray
     stats: dict
 
+    def to_xarray(self):
+        """The events as an :class:`xarray.Dataset` along the dimension ``event``.
 
-def find_events(scene: Scene, kind: str = "turning", level: float = 0.0, direction: int = 0,
+        Returns
+        -------
+        xarray.Dataset
+            ``t``, ``theta``, ``v`` on ``event``; the work counters as attributes.
+
+        Examples
+        --------
+        >>> import pendula
+        >>> ev = pendula.find_events(pendula.Scene(theta0=1.0), "turning", t_end=10.0)
+        >>> ev.to_xarray().sizes["event"] == ev.t.size
+        True
+        """
+        from ._optional import require
+        xr = require("xarray", "sweep", "Events.to_xarray")
+        return xr.Dataset({"t": ("event", self.t, {"long_name": "time of the event", "units": "s"}),
+                           "theta": ("event", self.theta, {"long_name": "angle at the event", "units": "rad"}),
+                           "v": ("event", self.v, {"long_name": "angular velocity at the event",
+                                                   "units": "rad s-1"})},
+                          coords={"event": np.arange(self.t.size)},
+                          attrs={k: (int(v) if isinstance(v, (bool, np.bool_)) else v) for k, v in self.stats.items()})
+
+
+def find_events(scene: Scene, kind: str = "turning", level: float = 0.0, direction: int | str = 0,
                 t_end: float | None = None, terminal: bool = False, method: str = "dop853",
                 max_events: int = 100_000) -> Events:
     """Locate events on the dense output of an adaptive integrator.
-
-    Parameters
-    ----------
-    kind : {'turning', 'theta', 'theta_mod_2pi'}
-        'turning': v = 0; 'theta': theta = level; 'theta_mod_2pi': theta = level + 2 pi k.
-    direction : {-1, 0, +1}
-        Only falling, both, or only rising crossings of the event function.
-    terminal : bool
-        Stop at the first event.
 
     Each accepted step is sampled at four interior points, so two crossings
     inside one step are both found; a crossing is refined by the Illinois
     method to a few ulps of t.  An event function that is exactly zero at the
     start (an event that starts at zero) is not reported there.
+
+    The cycloidal guide is never integrated: its events are roots of its
+    closed-form path, bracketed on CYCLOID_SAMPLES_PER_PERIOD samples per
+    shortest period (natural or drive) and bisected to adjacent doubles
+    (``method`` is ignored there; ``stats['path_evaluations']`` counts the work).
+
+    Parameters
+    ----------
+    scene : Scene
+        The motion to search (any effects; the exact path is not used, except
+        for the cycloidal guide, which has no other).
+    kind : {'turning', 'theta', 'theta_mod_2pi'}
+        'turning': v = 0; 'theta': theta = level; 'theta_mod_2pi': theta = level + 2 pi k.
+    level : float, optional
+        The angle for 'theta' and 'theta_mod_2pi'.
+    direction : {'both', 'rising', 'falling'} or {0, +1, -1}
+        Every crossing, or only those where the event function rises (+1) or
+        falls (-1).
+    t_end : float, optional
+        End of the search, > 0 (default the scene's `t_end`).
+    terminal : bool
+        Stop at the first event.
+    method : {'dop853', 'dopri5'}
+        The integrator (events need dense output).
+    max_events : int
+        At most this many events (1 to 1e7).
+
+    Returns
+    -------
+    Events
+        The event times and states, and the work done.
+
+    Raises
+    ------
+    TypeError
+        For a non-integer `max_events`, a non-bool `terminal` or a non-number `level`.
+    ValueError
+        For an unknown `kind`, a `direction` other than those above, a method
+        without dense output, `max_events` out of range, or `t_end` not
+        positive and finite.
+
+    See Also
+    --------
+    numerical_period : the period from events.
+    simulate : the motion at given times.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> ev = pendula.find_events(pendula.Scene(theta0=1.0), "turning", direction=-1, t_end=20)
+    >>> ev.t.size, round(float(ev.t[0]), 9)       # one maximum per period 6.699975664
+    (2, 6.699975664)
     """
     if kind not in _EVENT_KINDS:
         raise ValueError(f"kind must be one of {', '.join(_EVENT_KINDS)}, got {kind!r}")
-    if direction not in (-1, 0, 1):
-        raise ValueError("direction must be -1, 0 or +1")
-    if method not in ("dopri5", "dop853"):
+    direction = _DIRECTIONS.get(direction, direction) if isinstance(direction, str) else direction
+    if isinstance(direction, bool) or direction not in (-1, 0, 1):
+        raise ValueError(f"direction must be 'rising' (+1), 'falling' (-1) or 'both' (0), got {direction!r}")
+    if scene.guide != "cycloid" and method not in ("dopri5", "dop853"):
         raise ValueError("events need a method with dense output: 'dopri5' or 'dop853'")
     if isinstance(max_events, bool) or not isinstance(max_events, (int, np.integer)):
         raise TypeError(f"max_events must be a whole number, got {max_events!r}")
@@ -143,17 +247,24 @@ def find_events(scene: Scene, kind: str = "turning", level: float = 0.0, directi
     t_end = float(np.reshape(t_end, -1)[0]) if np.size(t_end) == 1 else math.nan
     if not t_end > 0 or not math.isfinite(t_end):
         raise ValueError(f"t_end must be positive and finite (events are located forward in time), got {t_end!r}")
+    if scene.guide == "cycloid":
+        return _cycloid_events(scene, kind, float(level), int(direction), t_end, bool(terminal), int(max_events))
     _, _, stats, tev, thev, vev = _run(scene, method, np.array([t_end]), _EVENT_KINDS[kind], float(level),
                                        int(direction), terminal, int(max_events))
     return Events(tev.copy(), thev.copy(), vev.copy(), stats)
 
 
 def numerical_period(scene: Scene, periods: int = 20, method: str = "dop853") -> float:
-    """The period measured by event location (source 003, task 2).
+    """The period measured by event location (Prusa & Tuma, task 2).
 
     Libration: the mean spacing of successive maxima (v falling through 0);
     rotation: the mean time per turn (theta passing theta0 + 2 pi k).  The
-    integration runs over ``periods`` estimated periods (at most 1e6).
+    integration runs over ``periods`` estimated periods (at most 1e6).  Every
+    conservative model: the rigid pendulum (its exact period from the elliptic
+    integral), the non-uniform gravity fields (their quadrature period,
+    :func:`pendula.gravity_orbit`) and the cycloidal guide (events on its exact
+    path; a torque only shifts its centre).  The measured period is compared
+    with the model's exact one.
 
     Next to the separatrix an integrator's energy error can carry the orbit
     across it (v0 = 2 - 1e-12 measured 49.2 at rtol 1e-10 against the exact
@@ -161,33 +272,155 @@ def numerical_period(scene: Scene, periods: int = 20, method: str = "dop853") ->
     separatrix (down to rtol = 1e-14), and where even that cannot resolve the
     orbit, or the measured period disagrees with the exact one by more than
     1e-6, a RuntimeWarning says so.
+
+    Parameters
+    ----------
+    scene : Scene
+        A conservative rigid scene.
+    periods : int, optional
+        How many periods to measure over (2 to 1e6).
+    method : {'dop853', 'dopri5'}
+        The integrator.
+
+    Returns
+    -------
+    float
+        The measured period; inf on the separatrix.
+
+    Raises
+    ------
+    TypeError
+        If `periods` is not a number.
+    ValueError
+        If `periods` is out of range or the scene has effects.
+    RuntimeError
+        If fewer than two events were found.
+
+    See Also
+    --------
+    period : the exact period.
+    find_events : the events it measures.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> s = pendula.Scene(theta0=1.0, rtol=1e-12, atol=1e-14)
+    >>> abs(pendula.numerical_period(s) / pendula.period(s) - 1) < 1e-12
+    True
     """
     if isinstance(periods, bool) or not isinstance(periods, (int, float, np.integer, np.floating)):
         raise TypeError(f"periods must be a number, got {periods!r}")
     if not 2 <= periods <= 1e6:
         raise ValueError(f"periods must be between 2 and 1e6, got {periods!r}")
-    if not scene.is_conservative_rigid:
-        raise ValueError("numerical_period measures the period of a conservative orbit")
-    o = orbit(scene.theta0, scene.v0, scene.eps)
-    if not math.isfinite(o.period):
-        return math.inf
-    dist = o.mc  # 1 - k^2 (libration) or 1 - 1/k^2 (rotation)
-    rtol = min(scene.rtol, max(1e-14, 0.01 * dist))
-    if rtol > 0.01 * dist:
-        warnings.warn(f"numerical_period: the orbit lies within {dist:.1e} (in k^2) of the separatrix; an "
-                      f"integrator at rtol = {rtol:.0e} cannot resolve it (the exact period is {o.period!r})",
-                      RuntimeWarning, stacklevel=2)
-    scene = scene.replace(rtol=rtol, atol=min(scene.atol, rtol * 1e-2))
-    span = periods * o.period * 1.02
-    if o.regime == "libration":
+    if scene.guide == "cycloid":
+        # Huygens: the period does not depend on the amplitude; a torque only shifts the centre
+        if scene.damping != 0.0 or scene.drive_amplitude != 0.0:
+            raise ValueError("numerical_period measures the period of a conservative orbit: this cycloid "
+                             "scene has damping or a drive")
+        exact, regime = cycloid_period(scene), "libration"
+    elif scene.cord != "rigid":
+        raise NotImplementedError("numerical_period: the flexible cord's motion is not periodic in general; its "
+                                  "departures and returns are in simulate(...).flips")
+    elif scene.damping != 0.0 or scene.torque != 0.0 or scene.drive_amplitude != 0.0:
+        raise ValueError("numerical_period measures the period of a conservative orbit: the scene has "
+                         + ", ".join(e for e in scene.effects if e in ("damping", "torque", "drive")))
+    else:
+        o = gravity_orbit(scene) if scene.gravity != "uniform" else orbit(scene.theta0, scene.v0, scene.eps)
+        if not math.isfinite(o.period):
+            return math.inf
+        exact, regime = o.period, o.regime
+        dist = o.mc  # 1 - k^2 (libration) or 1 - 1/k^2 (rotation): the distance from the separatrix
+        rtol = min(scene.rtol, max(1e-14, 0.01 * dist))
+        if rtol > 0.01 * dist:
+            warnings.warn(f"numerical_period: the orbit lies within {dist:.1e} (in k^2) of the separatrix; an "
+                          f"integrator at rtol = {rtol:.0e} cannot resolve it (the exact period is {exact!r})",
+                          RuntimeWarning, stacklevel=2)
+        scene = scene.replace(rtol=rtol, atol=min(scene.atol, rtol * 1e-2))
+    span = periods * exact * 1.02
+    if regime == "libration":
         ev = find_events(scene, "turning", direction=-1, t_end=span, method=method)
     else:
         ev = find_events(scene, "theta_mod_2pi", level=scene.theta0, direction=0, t_end=span, method=method)
     if ev.t.size < 2:
         raise RuntimeError("fewer than two events: cannot measure a period")
     measured = float((ev.t[-1] - ev.t[0]) / (ev.t.size - 1))
-    if abs(measured - o.period) > 1e-6 * o.period:
-        warnings.warn(f"numerical_period: measured {measured!r} differs from the exact period {o.period!r} by "
-                      f"{abs(measured / o.period - 1):.1e} (relative): the integration did not resolve the orbit",
+    if abs(measured - exact) > 1e-6 * exact:
+        warnings.warn(f"numerical_period: measured {measured!r} differs from the exact period {exact!r} by "
+                      f"{abs(measured / exact - 1):.1e} (relative): the integration did not resolve the orbit",
                       RuntimeWarning, stacklevel=2)
     return measured
+
+
+def _cycloid_event_function(scene, kind, level, t):
+    """The event function on the cycloid's exact path at the times t, and the state there."""
+    theta, v, s, sd = cycloid_motion(scene, t)
+    if kind == "turning":
+        return sd, theta, v          # s' = 4 R cos(theta) theta' has the sign of theta' between the cusps
+    return s - 4 * scene.cycloid_radius * math.sin(level), theta, v   # theta = level <=> s = 4 R sin(level)
+
+
+def _cycloid_events(scene, kind, level, direction, t_end, terminal, max_events) -> Events:
+    """Events of the cycloidal guide as roots of its exact path (no integration)."""
+    if kind == "theta_mod_2pi":
+        level = math.remainder(level, 2 * math.pi)
+    if kind != "turning" and not abs(level) <= math.pi / 2:
+        # the bob stays between the cusps, |theta| <= pi/2: that level is never crossed
+        empty = np.empty(0)
+        return Events(empty, empty.copy(), empty.copy(), {"steps": 0, "accepted": 0, "rejected": 0,
+                                                          "rhs_evaluations": 0, "stopped_by_event": False,
+                                                          "path_evaluations": 0})
+    w = math.sqrt(scene.eps / (4 * scene.cycloid_radius))
+    shortest = 2 * math.pi / max(w, abs(scene.drive_frequency) if scene.drive_amplitude else 0.0)
+    h = shortest / CYCLOID_SAMPLES_PER_PERIOD
+    n_total = math.ceil(t_end / h)
+    if n_total > CYCLOID_MAX_SAMPLES:
+        raise ValueError(f"t_end: {t_end!r} spans {t_end / shortest:.3g} periods; the cycloid's event search "
+                         f"samples at most {CYCLOID_MAX_SAMPLES // CYCLOID_SAMPLES_PER_PERIOD:.3g} periods")
+    found_t, found_th, found_v = [], [], []
+    evaluations = 0
+    count = 0
+    cancel = _interrupt.cancel_flag()
+    for start in range(0, n_total, CYCLOID_BLOCK):
+        if cancel[0]:
+            raise KeyboardInterrupt
+        idx = np.arange(start, min(start + CYCLOID_BLOCK, n_total) + 1, dtype=np.float64)
+        tt = np.minimum(idx * h, t_end)
+        g, _, _ = _cycloid_event_function(scene, kind, level, tt)
+        evaluations += tt.size
+        ga, gb = g[:-1], g[1:]
+        # a root in (a, b]: a sign change, or g(b) = 0 after a non-zero g(a); never at t = 0
+        hit = ((ga < 0) & (gb >= 0)) | ((ga > 0) & (gb <= 0))
+        rising = ga < 0
+        if direction:
+            hit &= rising if direction > 0 else ~rising
+        a, b = tt[:-1][hit], tt[1:][hit]
+        if a.size:
+            fa = ga[hit]
+            # bisection to adjacent doubles: every bracket at once, one path evaluation per step
+            for _ in range(200):
+                mid = 0.5 * (a + b)
+                open_ = (mid > a) & (mid < b)
+                if not open_.any():
+                    break
+                fm, _, _ = _cycloid_event_function(scene, kind, level, mid)
+                evaluations += mid.size
+                left = open_ & ((fm == 0) | (np.sign(fm) != np.sign(fa)))
+                right = open_ & ~left
+                b = np.where(left, mid, b)
+                a = np.where(right, mid, a)
+                fa = np.where(right, fm, fa)
+            _, th, vv = _cycloid_event_function(scene, kind, level, b)
+            take = b[: max_events - count]
+            found_t.append(take)
+            found_th.append(th[: take.size])
+            found_v.append(vv[: take.size])
+            count += take.size
+            if count >= max_events or terminal:
+                break
+    tev = np.concatenate(found_t) if found_t else np.empty(0)
+    if terminal:
+        tev = tev[:1]
+    thev = np.concatenate(found_th)[: tev.size] if found_th else np.empty(0)
+    vev = np.concatenate(found_v)[: tev.size] if found_v else np.empty(0)
+    return Events(tev, thev, vev, {"steps": 0, "accepted": 0, "rejected": 0, "rhs_evaluations": 0,
+                                   "stopped_by_event": bool(terminal and tev.size), "path_evaluations": evaluations})

@@ -33,16 +33,42 @@ def simulate(scene: Scene, t=None, method: str | None = None, rtol: float | None
     Parameters
     ----------
     scene : Scene
+        What to compute: the system, its initial state and its effects.
     t : array_like, optional
         Output times (default ``scene.times()``).
-    method, rtol, atol, dt : optional
-        The solver's knobs, as scipy's ``solve_ivp`` takes them: each given
-        keyword overrides the scene's field of that name (the scene fields stay
-        for files and the batch programs).
+    method : str, optional
+        The integrator ('auto', 'exact', 'rk4', 'verlet', 'yoshida4',
+        'yoshida6', 'yoshida8', 'gauss4', 'gauss6', 'dopri5', 'dop853',
+        'gsl-rk8pd'); overrides the scene's field.
+    rtol, atol : float, optional
+        Tolerances of the adaptive methods (scipy ``solve_ivp``'s names).
+    dt : float, optional
+        Step of the fixed-step methods.
 
     Returns
     -------
     Trajectory
+        The times, angle, angular velocity and energy, the method that
+        answered, and the work done (``stats``).
+
+    Raises
+    ------
+    TypeError
+        If `scene` is not a :class:`Scene`, or a time or knob has the wrong type.
+    SceneError
+        If a knob is invalid (an unknown method, a negative tolerance; a
+        subclass of ValueError naming the field).
+    ValueError
+        If the computation cannot be done as asked (e.g. a fixed-step method
+        for the flexible cord, more steps than the limit).
+    NotImplementedError
+        For a combination of model and effects not implemented.
+
+    See Also
+    --------
+    Scene : the question.
+    find_events : event times on the same integrators.
+    exact_motion : the exact motion from numbers instead of a scene.
 
     Examples
     --------
@@ -50,11 +76,13 @@ def simulate(scene: Scene, t=None, method: str | None = None, rtol: float | None
     >>> tr = pendula.simulate(pendula.Scene(v0=1.0, damping=0.1), [0.0, 1.0], rtol=1e-12, atol=1e-14)
     >>> tr.method
     'dop853'
+    >>> pendula.simulate(pendula.Scene(v0=1.9), [0.0, 1.0]).method     # conservative: exact
+    'exact'
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"simulate expects a pendula.Scene, got {type(scene).__name__}")
-    knobs = {k: v for k, v in (("method", method), ("rtol", rtol), ("atol", atol), ("dt", dt)) if v is not None}
-    if knobs:
+    if method is not None or rtol is not None or atol is not None or dt is not None:
+        knobs = {k: v for k, v in (("method", method), ("rtol", rtol), ("atol", atol), ("dt", dt)) if v is not None}
         scene = scene.replace(**knobs)
     t = scene.times() if t is None else as_float(t, "t")
     if scene.cord == "flexible":
@@ -65,13 +93,46 @@ def simulate(scene: Scene, t=None, method: str | None = None, rtol: float | None
 
 
 def period(scene: Scene) -> float:
-    """The period of the scene's conservative orbit (exact): see :class:`Orbit`.
+    """The period of the scene's conservative orbit (exact).
 
-    A scene with effects has no period in this sense: ValueError.
+    Parameters
+    ----------
+    scene : Scene
+        A conservative scene: the rigid pendulum (any regime), Huygens'
+        cycloid (also with a torque) or a non-uniform gravity field.
+
+    Returns
+    -------
+    float
+        The period of a libration, the time of one turn of a rotation, inf on
+        the separatrix (4K(m)/sqrt(eps) for the rigid pendulum; 4 pi sqrt(R/g)
+        on the cycloid; an exact quadrature in non-uniform gravity).
+
+    Raises
+    ------
+    TypeError
+        If `scene` is not a :class:`Scene`.
+    ValueError
+        If the scene has effects (damping, a drive, ...), which leave no period
+        in this sense; use :func:`numerical_period` for event-based periods.
+
+    See Also
+    --------
+    orbit : the period with the other facts of the orbit.
+    numerical_period : the period measured by events on an integrator.
+    period_series : the series of T/T0 in the amplitude.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> pendula.period(pendula.Scene(theta0=1.0))
+    6.699975664370453
+    >>> pendula.period(pendula.Scene(guide="cycloid", theta0=1.0))   # 2 pi at any amplitude
+    6.283185307179586
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"period expects a pendula.Scene, got {type(scene).__name__}")
-    # issue 13 hook: the cycloid (any amplitude) and non-uniform gravity (exact quadrature)
+    # the cycloid (any amplitude) and non-uniform gravity (exact quadrature) have their own periods
     if set(scene.effects) <= {"guide", "torque"} and scene.guide == "cycloid":
         return cycloid_period(scene)
     if scene.effects == ("gravity",):

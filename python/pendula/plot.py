@@ -1,7 +1,11 @@
-"""Figures (matplotlib, Agg backend): what a person would rather look at than read.
+"""Figures (matplotlib): what a person would rather look at than read.
 
-Each function takes computed data and a path, writes one PNG and returns the
-path.  matplotlib is needed only here (``pip install pendula[plot]``).
+Each function takes computed data, draws into ``ax`` (a new figure when it is
+None; the multi-panel figures take a sequence of axes) and returns the
+:class:`matplotlib.figure.Figure`.  Given a ``path`` it also writes the figure
+there as a PNG (and closes it, so loops that save many figures hold none in
+memory); the command line saves this way.  matplotlib is needed only here
+(``pip install 'pendula[plot]'``).
 """
 
 from __future__ import annotations
@@ -9,38 +13,60 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from ._optional import require
+from ._files import save_figure  # the one writer: regular files only, whole or absent
 
 
 def _plt():
-    try:
-        import matplotlib
-    except ImportError:  # pragma: no cover - depends on the environment
-        raise ImportError("pendula's figures need matplotlib: pip install 'pendula[plot]'") from None
-    matplotlib.use("Agg")
+    require("matplotlib", "plot", "pendula.plot (figures)")
     import matplotlib.pyplot as plt
 
     return plt
+
+
+def _axes(ax, n=None, figsize=(8, 4.5)):
+    """(figure, axes): the caller's axes, or a new figure with one (n None) or n stacked panels."""
+    plt = _plt()
+    if ax is not None:
+        if n is None:
+            return ax.figure, ax
+        axes = np.atleast_1d(np.asarray(ax, dtype=object)).ravel()
+        if axes.size != n:
+            raise ValueError(f"ax: this figure has {n} panels; got {axes.size} axes")
+        return axes[0].figure, axes
+    if n is None:
+        return plt.subplots(figsize=figsize)
+    fig, axes = plt.subplots(n, 1, figsize=figsize, sharex=True, squeeze=False)
+    return fig, axes[:, 0]
+
+
+def _save(fig, path, made_here):
+    """Write the figure to path (if any); close it when this module made it and saved it."""
+    if path is not None:
+        save_figure(fig, path, dpi=110)   # staged, then renamed: whole or absent
+        if made_here:
+            _plt().close(fig)
+    return fig
 
 
 def _label(scene, value):
     return f"{scene.sweep} = {value:.10g}" if scene.sweep else ""
 
 
-def _finish(fig, ax, title, path):
+def _finish(fig, ax, title, path, made_here):
     ax.set_title(title, fontsize=10)
     ax.grid(True, alpha=0.3)
     if ax.get_legend_handles_labels()[0]:
         ax.legend(fontsize=7, loc="best")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    _plt().close(fig)
-    return path
+    if made_here:
+        fig.tight_layout()
+    return _save(fig, path, made_here)
 
 
-def time_series(scene, runs, path, which="theta"):
+def time_series(scene, runs, path=None, which="theta", *, ax=None):
     """theta(t) (or v(t)) of every member of a sweep, like the source's Fig. 5."""
-    plt = _plt()
-    fig, ax = plt.subplots(figsize=(8, 4.5))
+    made_here = ax is None
+    fig, ax = _axes(ax, figsize=(8, 4.5))
     for value, tr in runs:
         ax.plot(tr.t, getattr(tr, which), lw=1.0, label=_label(scene, value))
     ax.set_xlabel("t")
@@ -51,7 +77,7 @@ def time_series(scene, runs, path, which="theta"):
             if k % 2:
                 ax.axhline(k * math.pi, color="k", lw=0.5, ls=":")
     method = runs[0][1].method if runs else ""
-    return _finish(fig, ax, f"{scene.name or which + '(t)'}   [eps = {scene.eps:g}, {method}]", path)
+    return _finish(fig, ax, f"{scene.name or which + '(t)'}   [eps = {scene.eps:g}, {method}]", path, made_here)
 
 
 def _wrapped(theta, v):
@@ -63,11 +89,11 @@ def _wrapped(theta, v):
     return w, v
 
 
-def phase_portrait(scene, runs, path):
+def phase_portrait(scene, runs, path=None, *, ax=None):
     """v against theta (folded into [-pi, pi)) for every member and its mirror
     image (-theta, -v), with the separatrix v = +-2 sqrt(eps) cos(theta/2)."""
-    plt = _plt()
-    fig, ax = plt.subplots(figsize=(8, 5))
+    made_here = ax is None
+    fig, ax = _axes(ax, figsize=(8, 5))
     for value, tr in runs:
         w, v = _wrapped(tr.theta, tr.v)
         line, = ax.plot(w, v, lw=1.0, label=_label(scene, value))
@@ -80,27 +106,27 @@ def phase_portrait(scene, runs, path):
     ax.set_xlim(-math.pi, math.pi)
     ax.set_xlabel("theta (rad)")
     ax.set_ylabel("v (rad/s)")
-    return _finish(fig, ax, scene.name or "phase portrait", path)
+    return _finish(fig, ax, scene.name or "phase portrait", path, made_here)
 
 
-def energy_drift(scene, runs, path):
+def energy_drift(scene, runs, path=None, *, ax=None):
     """Relative energy error (E - E0)/E0 along each run."""
-    plt = _plt()
-    fig, ax = plt.subplots(figsize=(8, 4))
+    made_here = ax is None
+    fig, ax = _axes(ax, figsize=(8, 4))
     for value, tr in runs:
         e0 = tr.energy[np.argmin(np.abs(tr.t))]
         ax.plot(tr.t, (tr.energy - e0) / (abs(e0) or 1.0), lw=0.8, label=_label(scene, value))
     ax.set_xlabel("t")
     ax.set_ylabel("(E - E0) / E0")
-    return _finish(fig, ax, scene.name or "energy", path)
+    return _finish(fig, ax, scene.name or "energy", path, made_here)
 
 
-def orbit_curves(scene, values, table, path):
-    """omega, theta_max and period against the swept field (Figs. 8, 10, 13)."""
-    plt = _plt()
+def orbit_curves(scene, values, table, path=None, *, ax=None):
+    """omega, theta_max and period against the swept field (Figs. 8, 10, 13), one panel each."""
     cols = [c for c in ("omega", "theta_max", "period") if c in table]
-    fig, axes = plt.subplots(len(cols), 1, figsize=(8, 2.8 * len(cols)), sharex=True, squeeze=False)
-    for ax, c in zip(axes[:, 0], cols):
+    made_here = ax is None
+    fig, axes = _axes(ax, len(cols), figsize=(8, 2.8 * len(cols)))
+    for ax, c in zip(axes, cols):
         y = np.asarray(table[c], dtype=float)
         ax.plot(values, np.where(np.isfinite(y), y, np.nan), "o-", ms=2.5, lw=1.0, label=c)
         if c == "theta_max" and scene.sweep == "v0":
@@ -110,19 +136,18 @@ def orbit_curves(scene, values, table, path):
         ax.set_ylabel(c)
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=7)
-    axes[-1, 0].set_xlabel(scene.sweep)
-    axes[0, 0].set_title(scene.name or "orbits", fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    axes[-1].set_xlabel(scene.sweep)
+    axes[0].set_title(scene.name or "orbits", fontsize=10)
+    if made_here:
+        fig.tight_layout()
+    return _save(fig, path, made_here)
 
 
-def critical_omega(scene, values, omega, path):
+def critical_omega(scene, values, omega, path=None, *, ax=None):
     """omega against |v0 - 2 sqrt(eps)| near the separatrix (Figs. 9 and 12) with the asymptotes
     (pi/2)/ln(4/sqrt(t)) below and pi/ln(4/sqrt(t)) above, t = |v0/sqrt(eps) - 2|."""
-    plt = _plt()
-    fig, ax = plt.subplots(figsize=(8, 4.5))
+    made_here = ax is None
+    fig, ax = _axes(ax, figsize=(8, 4.5))
     v = np.asarray(values) / math.sqrt(scene.eps)
     t = np.abs(v - 2.0)
     om = np.asarray(omega) / math.sqrt(scene.eps)
@@ -134,48 +159,47 @@ def critical_omega(scene, values, omega, path):
     ax.semilogx(tt, math.pi / np.log(4 / np.sqrt(tt)), "-", lw=0.8, label="pi / ln(4/sqrt(t))")
     ax.set_xlabel("t = |v0/sqrt(eps) - 2|")
     ax.set_ylabel("omega / sqrt(eps)")
-    return _finish(fig, ax, scene.name or "critical behaviour of omega", path)
+    return _finish(fig, ax, scene.name or "critical behaviour of omega", path, made_here)
 
 
-def period_series_figure(theta0, exact, approximations, path):
+def period_series_figure(theta0, exact, approximations, path=None, *, ax=None):
     """Relative error of the truncated period series against the exact period."""
-    plt = _plt()
-    fig, ax = plt.subplots(figsize=(8, 4.5))
+    made_here = ax is None
+    fig, ax = _axes(ax, figsize=(8, 4.5))
     for n, approx in approximations.items():
         err = np.abs(approx / exact - 1)
         ax.semilogy(theta0, np.where(err > 0, err, np.nan), lw=1.0, label=f"series to theta0^{2 * n}")
     ax.set_xlabel("theta0 (rad), released from rest")
     ax.set_ylabel("|T_series / T_exact - 1|")
-    return _finish(fig, ax, "period series against the exact period 4K/sqrt(eps)", path)
+    return _finish(fig, ax, "period series against the exact period 4K/sqrt(eps)", path, made_here)
 
 
-def lindstedt_figure(amplitudes, errors, path):
+def lindstedt_figure(amplitudes, errors, path=None, *, ax=None):
     """Max |theta_PL - theta_exact| over the run against the amplitude, per order."""
-    plt = _plt()
-    fig, ax = plt.subplots(figsize=(8, 4.5))
+    made_here = ax is None
+    fig, ax = _axes(ax, figsize=(8, 4.5))
     for order, err in errors.items():
         ax.loglog(amplitudes, err, "o-", ms=3, lw=1.0, label=f"Poincare-Lindstedt order {order}")
     ax.set_xlabel("amplitude a (rad)")
     ax.set_ylabel("max |theta_PL(t) - theta(t)|, 0 <= t <= t_end")
-    return _finish(fig, ax, "Poincare-Lindstedt against the exact solution", path)
+    return _finish(fig, ax, "Poincare-Lindstedt against the exact solution", path, made_here)
 
 
-def spectra_figure(scene, specs, labels, path):
+def spectra_figure(scene, specs, labels, path=None, *, ax=None):
     """Log power against omega, one panel per member (the source's Fig. 6 family)."""
-    plt = _plt()
     k = len(specs)
-    fig, axes = plt.subplots(k, 1, figsize=(8, 1.6 + 1.5 * k), sharex=True, squeeze=False)
+    made_here = ax is None
+    fig, axes = _axes(ax, k, figsize=(8, 1.6 + 1.5 * k))
     wmax = 16 * max(s.fundamental for s in specs)
-    for ax, s, lab in zip(axes[:, 0], specs, labels):
+    for ax, s, lab in zip(axes, specs, labels):
         sel = s.omega <= wmax
         ax.semilogy(s.omega[sel], np.maximum(s.power[sel], 1e-32), lw=0.8)
         ax.set_ylim(1e-30, 10)
         ax.set_ylabel("|A|^2", fontsize=8)
         ax.text(0.99, 0.85, lab, transform=ax.transAxes, ha="right", fontsize=8)
         ax.grid(True, alpha=0.3)
-    axes[-1, 0].set_xlabel("omega (rad/s)")
-    axes[0, 0].set_title(scene.name or "power spectra of theta(t)", fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    axes[-1].set_xlabel("omega (rad/s)")
+    axes[0].set_title(scene.name or "power spectra of theta(t)", fontsize=10)
+    if made_here:
+        fig.tight_layout()
+    return _save(fig, path, made_here)

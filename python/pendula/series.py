@@ -107,6 +107,26 @@ def period_series(n: int) -> tuple[Fr, ...]:
     sqrt(eps) the small-oscillation period:
     T/T0 = 1 + theta0^2/16 + 11 theta0^4/3072 + 173 theta0^6/737280 + ...
 
+    Parameters
+    ----------
+    n : int
+        The highest power kept is theta0^(2n) (n >= 0).
+
+    Returns
+    -------
+    tuple of fractions.Fraction
+        n + 1 coefficients, exact.
+
+    Raises
+    ------
+    ValueError
+        If `n` is not a non-negative whole number.
+
+    See Also
+    --------
+    period_from_series : the truncated series evaluated.
+    period : the exact period.
+
     Examples
     --------
     >>> from pendula import period_series
@@ -124,7 +144,40 @@ def period_series(n: int) -> tuple[Fr, ...]:
 
 
 def period_from_series(theta0, n: int, eps: float = 1.0):
-    """T from the series truncated after theta0^(2n) (float; for comparing with the exact period)."""
+    """T from the series truncated after theta0^(2n) (for comparing with the exact period).
+
+    Parameters
+    ----------
+    theta0 : array_like
+        Amplitude (rad) of a pendulum released from rest.
+    n : int
+        The highest power kept is theta0^(2n).
+    eps : float, optional
+        g / l (default 1).
+
+    Returns
+    -------
+    ndarray or float
+        (2 pi / sqrt(eps)) sum_j c_j theta0^(2j), broadcast over `theta0`.
+
+    Raises
+    ------
+    TypeError
+        For a string, complex or object `theta0`.
+    ValueError
+        If `n` is not a non-negative whole number.
+
+    See Also
+    --------
+    period_series : the coefficients.
+    period : the exact period.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> float(pendula.period_from_series(0.5, 3))            # exact: 6.382789697677741
+    6.382789263003258
+    """
     theta0 = as_float(theta0, "theta0")
     c = period_series(n)
     x = theta0 * theta0
@@ -201,7 +254,7 @@ def poincare_lindstedt(a, t, eps: float = 1.0, order: int = 3):
     Parameters
     ----------
     a : float
-        Amplitude (rad), |a| < pi.
+        Amplitude (rad), abs(a) < pi.
     t : array_like
         Times.
     eps : float
@@ -213,6 +266,33 @@ def poincare_lindstedt(a, t, eps: float = 1.0, order: int = 3):
     Returns
     -------
     theta : ndarray
+        The approximation at the times `t`.
+
+    Raises
+    ------
+    ValueError
+        If abs(a) >= pi, eps <= 0, or `order` is not an odd whole number >= 1.
+    TypeError
+        For a string, complex or object argument.
+
+    See Also
+    --------
+    exact_motion : the exact motion it approximates.
+    period_series : the series of the period.
+
+    Notes
+    -----
+    The coefficients are exact fractions to any order, from the Fourier series
+    of the exact solution in the nome.  Prusa & Tuma (3.36) and (3.41) print
+    the third-order term with the opposite sign (a slip).
+
+    Examples
+    --------
+    >>> import pendula
+    >>> pendula.poincare_lindstedt(0.1, [0.0, 1.0], order=3).round(8).tolist()
+    [0.1, 0.05409078]
+    >>> pendula.exact_motion(0.1, 0.0, 1.0, [1.0])[0].round(8).tolist()
+    [0.05409079]
     """
     a = float(as_float(a, "a"))
     if not abs(a) < math.pi:

@@ -21,8 +21,13 @@ from pathlib import Path
 
 import numpy as np
 
-from . import _kernel
+from . import _checks, _interrupt, _kernel
 from ._checks import as_float
+from ._files import atomic_path
+
+#: the longest record a spectrum or a wisdom plan takes (2^27 samples: 1 GiB
+#: per signal); longer is refused up front
+MAX_SAMPLES = 1 << 27
 
 __all__ = ["Spectrum", "spectrum", "spectra", "fourier_series", "odd_harmonics_above",
            "precompute_wisdom", "wisdom_path"]
@@ -35,7 +40,7 @@ _WINDOWS = {None: 0, "none": 0, "hann": 1}
 # is thread-safe and runs without the lock (and without the GIL).  A plan is
 # counted while a call uses it: evicting a plan in use only retires it, and
 # the last user frees it (without this, one thread could free a plan between
-# another's look-up and its execution: a segfault, issue 11).
+# another's look-up and its execution: a segfault).
 class _Plan:
     __slots__ = ("handle", "users", "retired")
 
@@ -56,8 +61,24 @@ _WISDOM_LOADED = False
 
 
 def wisdom_path() -> Path:
-    """The FFTW wisdom cache file: $PENDULA_WISDOM, else
-    $XDG_CACHE_HOME/pendula/fftw-wisdom, else ~/.cache/pendula/fftw-wisdom."""
+    """The FFTW wisdom cache file.
+
+    Returns
+    -------
+    pathlib.Path
+        $PENDULA_WISDOM, else $XDG_CACHE_HOME/pendula/fftw-wisdom, else
+        ~/.cache/pendula/fftw-wisdom (the file need not exist).
+
+    See Also
+    --------
+    precompute_wisdom : writes it.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> pendula.wisdom_path().name
+    'fftw-wisdom'
+    """
     env = os.environ.get("PENDULA_WISDOM")
     if env:
         return Path(env)
@@ -95,47 +116,86 @@ def precompute_wisdom(sizes=None, path=None, progress: bool = False) -> Path:
     ----------
     sizes : iterable of int, optional
         Record lengths (default: powers of two 2^6 .. 2^20, and 3 * 2^k).
-    path : str or Path, optional
+    path : str or pathlib.Path, optional
         Where to save (default: `wisdom_path()`).
+    progress : bool, optional
+        Print each length as it is planned.
 
     Returns
     -------
-    Path
-        The file written.
+    pathlib.Path
+        The file written (under a temporary name, then renamed).
+
+    Raises
+    ------
+    TypeError, ValueError
+        A size that is not a whole number between 4 and 2^27.
+    MemoryError
+        If FFTW cannot plan a length.
+    OSError
+        ``path`` names something other than a regular file (a device such as
+        /dev/full is never replaced), or its folder does not exist (only the
+        default cache folder is created), or the write failed; the file is
+        then left as it was and no temporary file remains.
+
+    Notes
+    -----
+    Measured planning stops after 10 s per length with the best plan found
+    (FFTW's time limit), so every length costs at most that.
+
+    See Also
+    --------
+    wisdom_path : the default file.
+    spectra : uses the wisdom.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile, pendula
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     p = pendula.precompute_wisdom([64, 128], path=pathlib.Path(d) / "wisdom")
+    ...     print(p.name, p.stat().st_size > 0)
+    wisdom True
     """
     if sizes is None:
         sizes = [1 << k for k in range(6, 21)] + [3 << k for k in range(5, 18)]
-    sizes = sorted({int(n) for n in sizes})
-    if any(n < 4 for n in sizes):
-        raise ValueError("sizes must be record lengths of at least 4")
-    path = Path(path) if path is not None else wisdom_path()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(path.name + f".tmp{os.getpid()}")
-    with _PLAN_LOCK:
-        _load_wisdom_locked()
-        for n in sizes:
-            if progress:
-                print(f"  planning {n} samples", flush=True)
-            handle = int(_kernel.spectrum_plan_v(n, 1))
-            if handle == 0:
-                raise MemoryError(f"FFTW could not plan a transform of {n} samples")
-            _kernel.spectrum_plan_free_v(handle)
-        if not _kernel.spectrum_wisdom_v(str(tmp), 1):
-            raise OSError(f"could not write FFTW wisdom to {tmp}")
-    os.replace(tmp, path)
-    return path
+    if isinstance(sizes, (str, bytes)):
+        raise TypeError("sizes must be a list of record lengths")
+    sizes = sorted({_checks.count(n, "sizes", 4, MAX_SAMPLES) for n in sizes})
+    if path is None:
+        path = wisdom_path()
+        path.parent.mkdir(parents=True, exist_ok=True)    # the cache folder only
+    with atomic_path(path) as tmp:
+        with _PLAN_LOCK:
+            _load_wisdom_locked()
+            for n in sizes:
+                if progress:
+                    print(f"  planning {n} samples", flush=True)
+                cancel = _interrupt.cancel_flag()
+                handle = int(_interrupt.call(_kernel.spectrum_plan_v, n, 1, cancel=cancel))
+                if handle == 0:
+                    raise MemoryError(f"FFTW could not plan a transform of {n} samples")
+                _kernel.spectrum_plan_free_v(handle)
+            if not _kernel.spectrum_wisdom_v(str(tmp), 1):
+                raise OSError(f"could not write FFTW wisdom to {path}")
+    return Path(path)
 
 
 def wisdom_main(args) -> int:
     """``pendula wisdom [SIZES ...] [--path FILE]``."""
     import time
 
+    import sys
+
     t0 = time.perf_counter()
     try:
         path = precompute_wisdom(args.sizes or None, args.path, progress=True)
-    except (ValueError, OSError, MemoryError) as exc:
-        print(f"pendula wisdom: {exc}")
+    except (ValueError, TypeError, MemoryError) as exc:
+        print(f"pendula wisdom: {exc}", file=sys.stderr)
         return 2
+    except OSError as exc:
+        where = f"{exc.filename}: " if exc.filename else ""
+        print(f"pendula wisdom: cannot write the wisdom: {where}{exc.strerror or exc}", file=sys.stderr)
+        return 5
     print(f"FFTW wisdom saved to {path} ({time.perf_counter() - t0:.1f} s of planning)")
     return 0
 
@@ -153,7 +213,9 @@ def _plan(n: int, measure: bool):
                 old.retired = True
                 if old.users == 0:
                     _kernel.spectrum_plan_free_v(old.handle)
-            handle = int(_kernel.spectrum_plan_v(n, int(bool(measure))))
+            cancel = _interrupt.cancel_flag()
+            handle = int(_interrupt.call(_kernel.spectrum_plan_v, n, int(bool(measure)), cancel=cancel,
+                                         long=bool(measure)))
             if handle == 0:
                 raise MemoryError(f"FFTW could not plan a transform of {n} samples")
             entry = _PLANS[key] = _Plan(handle)
@@ -181,26 +243,68 @@ def _free_plans() -> None:  # pragma: no cover - runs at interpreter exit
 
 @dataclass
 class Spectrum:
-    """A one-sided power spectrum.
+    """A one-sided power spectrum: what :func:`spectrum` and :func:`spectra` return.
 
     Attributes
     ----------
     omega : ndarray
         Angular frequencies 2 pi k / (n dt), k = 0 .. n/2.
     power : ndarray
-        |A_k|^2, with A_k normalised so that a sin(w t) over whole periods has |A| = a.
+        The squared amplitude of each line, normalised so that a sin(w t) over
+        whole periods has amplitude a.
     amplitude : ndarray
-        |A_k|.
+        The square root of `power`.
     window : str or None
+        The window applied, or None.
+    fundamental : float
+        The angular frequency of the strongest non-constant line, refined
+        between bins (NaN with a RuntimeWarning for a signal without one).
+
+    See Also
+    --------
+    spectrum, spectra : make it.
+    odd_harmonics_above : the odd harmonics that stand out.
+
+    Examples
+    --------
+    >>> import numpy as np, pendula
+    >>> t = np.linspace(0, 8 * np.pi, 256, endpoint=False)
+    >>> s = pendula.spectrum(t, np.sin(t))
+    >>> s.fundamental, float(s.amplitude.max())
+    (1.0, 1.0)
     """
 
     omega: np.ndarray
     power: np.ndarray
     window: str | None
 
+    def to_xarray(self):
+        """The spectrum as an :class:`xarray.Dataset` along ``omega``, with CF attributes.
+
+        Returns
+        -------
+        xarray.Dataset
+            ``power`` and ``amplitude`` on the dimension ``omega``; the window as an attribute.
+
+        Examples
+        --------
+        >>> import numpy as np, pendula
+        >>> t = np.arange(64) * 0.1
+        >>> ds = pendula.spectrum(t, np.sin(2 * np.pi * t / 6.4)).to_xarray()
+        >>> ds.power.attrs["long_name"]
+        'one-sided power |A_k|^2'
+        """
+        from ._optional import require
+        xr = require("xarray", "sweep", "Spectrum.to_xarray")
+        return xr.Dataset(
+            {"power": ("omega", self.power, {"long_name": "one-sided power |A_k|^2", "units": "rad2"}),
+             "amplitude": ("omega", self.amplitude, {"long_name": "amplitude |A_k|", "units": "rad"})},
+            coords={"omega": ("omega", self.omega, {"long_name": "angular frequency", "units": "rad s-1"})},
+            attrs={"window": self.window or "none"})
+
     @property
     def amplitude(self) -> np.ndarray:
-        """|A_k| = sqrt(power)."""
+        """The amplitude of each line: the square root of `power`."""
         return np.sqrt(self.power)
 
     @functools.cached_property
@@ -241,8 +345,26 @@ class Spectrum:
         return float(self.omega[k] + delta * dw)
 
     def harmonics(self, n: int) -> np.ndarray:
-        """Amplitudes of the first n odd harmonics w, 3w, 5w, ... of the fundamental
-        (the lines of a libration), read at the nearest bins."""
+        """Amplitudes of the first n odd harmonics w, 3w, 5w, ... of the fundamental.
+
+        The lines of a libration, read at the nearest bins.
+
+        Parameters
+        ----------
+        n : int
+            How many (n >= 1).
+
+        Returns
+        -------
+        ndarray
+            n amplitudes; NaN beyond the Nyquist frequency, and all NaN (with a
+            RuntimeWarning) when the signal has no fundamental.
+
+        Raises
+        ------
+        ValueError
+            If `n` is not a positive whole number.
+        """
         if not (isinstance(n, (int, np.integer)) and n >= 1):
             raise ValueError(f"n must be a positive whole number, got {n!r}")
         dw = self.omega[1] - self.omega[0]
@@ -281,6 +403,7 @@ def spectra(t, signals, window: str | None = None, measure: bool = False) -> lis
         NaN in a signal gives NaN in its spectrum (as numpy.fft does).
         m = 0 (no signals) gives an empty list.
     window : {None, 'hann'}
+        A window applied before the transform.
     measure : bool
         Plan with FFTW_MEASURE (~25 s of planning for 2^20 samples here, then
         transforms about twice as fast).  Without it, a measured plan is still
@@ -299,6 +422,21 @@ def spectra(t, signals, window: str | None = None, measure: bool = False) -> lis
     ValueError
         Fewer than 4 samples, non-uniform or non-finite t, mismatched shapes,
         an unknown window.
+    TypeError
+        For a string, complex or object argument.
+
+    See Also
+    --------
+    spectrum : one signal.
+    numpy.fft.rfft : the peer.
+
+    Examples
+    --------
+    >>> import numpy as np, pendula
+    >>> t = np.linspace(0, 8 * np.pi, 256, endpoint=False)
+    >>> specs = pendula.spectra(t, np.vstack([np.sin(t), 2 * np.sin(3 * t)]))
+    >>> [round(s.fundamental, 12) for s in specs]
+    [1.0, 3.0]
     """
     t = as_float(t, "t")
     dt = _uniform_step(t)
@@ -310,11 +448,17 @@ def spectra(t, signals, window: str | None = None, measure: bool = False) -> lis
     if window not in _WINDOWS:
         raise ValueError(f"window must be None or 'hann', got {window!r}")
     n = t.size
+    if n > MAX_SAMPLES:
+        raise ValueError(f"t: at most 2^27 samples, got {n}")
+    if not isinstance(measure, (bool, np.bool_)):
+        raise TypeError(f"measure must be True or False, not {type(measure).__name__}")
     if x.shape[0] == 0:                         # no signals in, no spectra out
         return []
     cols = np.asfortranarray(x.T)
     with _plan(n, measure) as handle:
-        omega, power, status = _kernel.spectra_v(handle, cols, dt, _WINDOWS[window], n // 2 + 1)
+        cancel = _interrupt.cancel_flag()
+        omega, power, status = _interrupt.call(_kernel.spectra_v, handle, cols, dt, _WINDOWS[window], n // 2 + 1,
+                                               cancel, cancel=cancel, long=cols.size > 1 << 22)
     if status:
         raise RuntimeError(f"pendula kernel: spectrum status {status}")
     finite_in = np.all(np.isfinite(x), axis=1)
@@ -326,7 +470,34 @@ def spectra(t, signals, window: str | None = None, measure: bool = False) -> lis
 
 
 def spectrum(t, theta, window: str | None = None) -> Spectrum:
-    """Power spectrum |A|^2 of theta(t) against angular frequency (FFTW).
+    """Power spectrum of theta(t) against angular frequency (FFTW).
+
+    Parameters
+    ----------
+    t : array_like, shape (n,)
+        Uniformly spaced times (n >= 4).
+    theta : array_like, shape (n,)
+        The signal.
+    window : {None, 'hann'}
+        A window applied before the transform.
+
+    Returns
+    -------
+    Spectrum
+        The one-sided power spectrum.
+
+    Raises
+    ------
+    ValueError
+        Fewer than 4 samples, non-uniform or non-finite t, mismatched shapes,
+        an unknown window.
+    TypeError
+        For a string, complex or object argument.
+
+    See Also
+    --------
+    spectra : many signals with one plan.
+    fourier_series : the exact amplitudes of the pendulum's lines.
 
     Examples
     --------
@@ -350,6 +521,40 @@ def fourier_series(theta0: float, v0: float, eps: float = 1.0, n: int = 10) -> t
     j = 1..n, omega = pi k sqrt(eps) / K(1/k^2), theta = omega t + sum c_j sin(j omega t).
     q is the nome of the parameter (k^2 or 1/k^2).  (Phases: for an orbit through
     theta = 0 at t = 0.)
+
+    Parameters
+    ----------
+    theta0, v0 : float
+        A state on the orbit.
+    eps : float, optional
+        g / l (default 1).
+    n : int, optional
+        Number of amplitudes (>= 1).
+
+    Returns
+    -------
+    omega : float
+        The angular frequency 2 pi / T.
+    amplitudes : ndarray
+        n amplitudes, as above.
+
+    Raises
+    ------
+    ValueError
+        If `n` is not a positive whole number, or the orbit is the separatrix
+        (infinite period).
+
+    See Also
+    --------
+    spectrum : the measured spectrum.
+    nome : the q of the series.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> omega, b = pendula.fourier_series(0.0, 1.9, 1.0, 4)
+    >>> round(omega, 12), b.round(6).tolist()
+    (0.606482438404, [2.637235, 0.141741, 0.012079, 0.001222])
     """
     from .elliptic import nome
     from .systems.rigid import orbit
@@ -370,7 +575,34 @@ def fourier_series(theta0: float, v0: float, eps: float = 1.0, n: int = 10) -> t
 
 
 def odd_harmonics_above(spec: Spectrum, threshold: float = 1e-6, n_max: int = 50) -> list[int]:
-    """The odd harmonics (1, 3, 5, ...) whose power exceeds threshold times the fundamental's."""
+    """The odd harmonics (1, 3, 5, ...) whose power exceeds threshold times the fundamental's.
+
+    Parameters
+    ----------
+    spec : Spectrum
+        A spectrum with a fundamental.
+    threshold : float, optional
+        The fraction of the fundamental's power (default 1e-6).
+    n_max : int, optional
+        How many odd harmonics to look at.
+
+    Returns
+    -------
+    list of int
+        The harmonic numbers, in increasing order.
+
+    See Also
+    --------
+    Spectrum.harmonics : their amplitudes.
+
+    Examples
+    --------
+    >>> import numpy as np, pendula
+    >>> T = pendula.orbit(0.0, 1.9).period
+    >>> t = np.arange(4096) * (8 * T / 4096)
+    >>> pendula.odd_harmonics_above(pendula.spectrum(t, pendula.exact_motion(0.0, 1.9, 1.0, t)[0]))
+    [1, 3, 5]
+    """
     a = spec.harmonics(n_max)
     p = a**2
     return [2 * j + 1 for j in range(n_max) if np.isfinite(p[j]) and p[j] > threshold * p[0]]

@@ -31,11 +31,15 @@ Measures
     the window; ``lyapunov2`` = the second exponent (lyapunov + lyapunov2 =
     -damping exactly in theory: a check).  See kernel/sweep/pendula_lyapunov.f90.
 
-Scale: the grid is cut into chunks along its first axis; each chunk goes to
-``out/chunks/`` as a NetCDF file written atomically (temporary name, then
-rename) as soon as it is done, so a run killed and started again with the same
-``out`` recomputes only missing chunks and gives the same dataset bit for bit.
-A Dask distributed ``client`` spreads the chunks over its workers.
+Scale: the grid is cut into chunks along its first axis.  With ``out``, the
+result is a Zarr (v3) store ``out/sweep.zarr`` with CF attributes, filled by
+region as each chunk finishes and committed chunk by chunk (checksummed,
+fsynced), so a run killed and started again with the same ``out`` computes
+only the missing or damaged chunks and gives the same dataset bit for bit;
+one sweep at a time writes a store (a lock file).  A Dask distributed
+``client`` spreads the chunks over its workers, each task's OpenMP threads
+set so that no machine runs more threads than it has cores.  See
+``docs/source/sweeps_at_scale.rst``.
 """
 
 from __future__ import annotations
@@ -46,16 +50,26 @@ import os
 import pathlib
 
 import numpy as np
+from ._optional import require
 
+from ._store import StoreBusyError, SweepStoreWarning  # noqa: F401 - raised and warned by sweep(out=...)
+from . import _checks, _interrupt
+from ._files import atomic_path, save_figure
 from .scene import GRIDDABLE, MEASURES, Scene, SceneError
 
-__all__ = ["sweep", "iv_curve", "grid_of", "MEASURE_CODES"]
+__all__ = ["sweep", "iv_curve", "grid_of", "MEASURE_CODES", "attractor_map"]
 
 #: kernel codes of the measures (kernel/sweep/pendula_sweep.f90)
 MEASURE_CODES = {"final_well": 1, "mean_velocity": 2, "locked": 3, "poincare": 4, "lyapunov": 5}
 #: point status codes
 STATUS = {0: "decided", 1: "not settled / undecided by the limit", 2: "measure does not apply",
-          3: "bad measure", 4: "uncertain: the answer changes with the tolerance"}
+          3: "bad measure", 4: "uncertain: the answer changes with the tolerance",
+          5: "stopped (cancelled)",
+          # 100 + s: the integrator's status s (pendula_integrators st_*)
+          **{100 + s: f"the integrator failed: {w}" for s, w in (
+              (1, "bad step"), (2, "bad tolerances"), (3, "bad method"), (5, "step size underflow"),
+              (6, "non-finite state"), (7, "too many steps"), (8, "cancelled"), (9, "no dense output"),
+              (10, "stopped by an event"))}}
 _PARAM_ORDER = ("eps", "damping", "torque", "drive_amplitude", "drive_frequency", "drive_phase", "theta0", "v0")
 
 
@@ -77,11 +91,11 @@ def _check_over(scene: Scene, over) -> dict:
         raise ValueError("parameter 'over' must be a dict of 1 to 3 {field: values}")
     out = {}
     for name, vals in over.items():
-        if name not in GRIDDABLE:
+        if not isinstance(name, str) or name not in GRIDDABLE:
             raise ValueError(f"parameter 'over': cannot sweep {name!r}; one of {', '.join(GRIDDABLE)}")
-        a = np.atleast_1d(np.asarray(vals, dtype=float))
-        if a.ndim != 1 or a.size == 0 or not np.all(np.isfinite(a)):
-            raise ValueError(f"parameter 'over[{name!r}]' must be a non-empty 1-D list of finite numbers")
+        a = _checks.grid_values(vals, f"parameter 'over[{name!r}]'")
+        if name == "theta0" and not np.all(np.abs(a) <= _checks.MAX_ANGLE):
+            raise ValueError("parameter 'over['theta0']': |theta0| must be at most 2^52 in a sweep")
         # each value must make a valid scene (damping >= 0, eps > 0 ...)
         for v in (a.min(), a.max()):
             try:
@@ -89,7 +103,36 @@ def _check_over(scene: Scene, over) -> dict:
             except SceneError as exc:
                 raise ValueError(f"parameter 'over[{name!r}]': {exc}") from None
         out[name] = a
+    npts = math.prod(len(a) for a in out.values())
+    if npts > _checks.MAX_GRID_POINTS:
+        raise ValueError(f"parameter 'over': {npts} grid points; a sweep takes at most "
+                         f"{_checks.MAX_GRID_POINTS:.0e} (split it, or use a coarser grid)")
     return out
+
+
+def _model_rule(scene: Scene, what: str) -> None:
+    """The kernel's sweep model rule (pendula_sweep%sweep_model_rule): a
+    NotImplementedError naming the model when a sweep cannot run it."""
+    from . import _kernel
+    x, words, wlen, nout, ngrid = scene._kernel_fields     # the scene as the kernel checked it
+    status, msg = _kernel.sweep_model_check_v(x, words, wlen, nout, ngrid, what.encode())
+    msg = msg.decode(errors="replace").strip() if isinstance(msg, bytes) else str(msg).strip()
+    if status == 3:
+        raise NotImplementedError(msg)
+    if status != 0:
+        raise ValueError(f"parameter 'scene': {msg}")
+
+
+def _block(code, p, rtol, atol, t_tr, t_max, nout, threads):
+    """One kernel sweep block that Ctrl-C stops (KeyboardInterrupt within a
+    few integration windows; the process stays usable)."""
+    from . import _kernel
+    cancel = _interrupt.cancel_flag()
+    out, st = _interrupt.call(_kernel.sweep_block, code, p, rtol, atol, t_tr, t_max, nout, int(threads), cancel,
+                              cancel=cancel)
+    if cancel[0]:
+        raise KeyboardInterrupt
+    return out, st
 
 
 class _Plan:
@@ -148,10 +191,9 @@ def _answers(out, st):
 
 
 def _compute_chunk(plan: _Plan, i: int, threads: int):
-    from . import _kernel
     p, shape = plan.params(i)
     code = MEASURE_CODES[plan.measure]
-    out, st = _kernel.sweep_block(code, p, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout, int(threads))
+    out, st = _block(code, p, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout, threads)
     out = out.T.reshape(shape + (plan.nout,))
     st = st.reshape(shape)
     if plan.measure in ("final_well", "locked"):
@@ -167,13 +209,11 @@ def _compute_chunk(plan: _Plan, i: int, threads: int):
         parts = [_answers(out, st)]
         if lo > 0:
             pb, sb = plan.params_rows(lo - 1, lo)
-            ob, tb = _kernel.sweep_block(code, pb, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout,
-                                         int(threads))
+            ob, tb = _block(code, pb, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout, threads)
             parts.insert(0, _answers(ob.T.reshape(sb + (plan.nout,)), tb.reshape(sb)))
         if hi < plan.shape[0]:
             pa, sa = plan.params_rows(hi, hi + 1)
-            oa, ta = _kernel.sweep_block(code, pa, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout,
-                                         int(threads))
+            oa, ta = _block(code, pa, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout, threads)
             parts.append(_answers(oa.T.reshape(sa + (plan.nout,)), ta.reshape(sa)))
         ans = np.concatenate(parts, axis=0)
         edge = np.zeros(ans.shape, dtype=bool)
@@ -188,8 +228,8 @@ def _compute_chunk(plan: _Plan, i: int, threads: int):
         idx = np.flatnonzero(edge.ravel())
         if idx.size:
             p2 = np.asfortranarray(p[:, idx])
-            o2, s2 = _kernel.sweep_block(code, p2, plan.rtol * 1e-3, plan.atol * 1e-3, plan.t_tr, plan.t_max,
-                                         plan.nout, int(threads))
+            o2, s2 = _block(code, p2, plan.rtol * 1e-3, plan.atol * 1e-3, plan.t_tr, plan.t_max, plan.nout,
+                            threads)
             flat_o = out.reshape(-1, plan.nout)
             flat_s = st.reshape(-1)
             a1 = np.where(flat_s[idx] == 0, flat_o[idx, 0], -1e300)
@@ -200,38 +240,85 @@ def _compute_chunk(plan: _Plan, i: int, threads: int):
     return i, out, st
 
 
-def _chunk_dataset(plan: _Plan, i: int, out: np.ndarray, st: np.ndarray):
-    import xarray as xr
-    names = list(plan.over)
-    lo = i * plan.rows
-    coords = {names[0]: plan.over[names[0]][lo:lo + out.shape[0]]}
-    coords.update({n: plan.over[n] for n in names[1:]})
-    dims = tuple(names)
-    data = {"status": (dims, st.astype(np.int32))}
-    if plan.measure == "final_well":
-        data["well"] = (dims, out[..., 0])
-        data["t_decided"] = (dims, out[..., 1])
-    elif plan.measure == "locked":
-        data["locked"] = (dims, out[..., 0])
-        data["t_decided"] = (dims, out[..., 1])
-    elif plan.measure == "mean_velocity":
-        data["mean_velocity"] = (dims, out[..., 0])
-        data["mean_velocity_err"] = (dims, out[..., 1])
-    elif plan.measure == "poincare":
-        data["theta"] = (dims + ("sample",), out[..., 0::2])
-        data["v"] = (dims + ("sample",), out[..., 1::2])
-        coords["sample"] = np.arange(plan.samples)
-    elif plan.measure == "lyapunov":
-        data["lyapunov"] = (dims, out[..., 0])
-        data["lyapunov_err"] = (dims, out[..., 1])
-        data["lyapunov2"] = (dims, out[..., 2])
+#: long_name and CF units of every variable a measure gives (time in the scene's unit, the second)
+_VAR_META = {
+    "well": ("well n of the rest angle asin(tau/eps) + 2 pi n where the orbit ends", "1"),
+    "t_decided": ("time at which the answer was decided", "s"),
+    "locked": ("1 when the orbit spirals into an equilibrium, 0 when it runs", "1"),
+    "mean_velocity": ("mean angular velocity over t_max after the transient", "rad s-1"),
+    "mean_velocity_err": ("|mean angular velocity - its mean over the second half of the window|", "rad s-1"),
+    "theta": ("stroboscopic angle once per drive period, in [-pi, pi)", "rad"),
+    "v": ("stroboscopic angular velocity once per drive period", "rad s-1"),
+    "lyapunov": ("largest Lyapunov exponent", "s-1"),
+    "lyapunov_err": ("standard error of the largest Lyapunov exponent over 8 blocks", "s-1"),
+    "lyapunov2": ("second Lyapunov exponent", "s-1"),
+}
+#: long_name and CF units of the axes a sweep can take (and of the Poincare sample number)
+_AXIS_META = {
+    "v0": ("initial angular velocity", "rad s-1"), "theta0": ("initial angle", "rad"),
+    "eps": ("g / l, the square of the small-oscillation angular frequency", "s-2"),
+    "damping": ("linear damping beta", "s-1"), "torque": ("constant torque tau", "rad s-2"),
+    "drive_amplitude": ("drive amplitude A", "rad s-2"), "drive_frequency": ("drive angular frequency Omega", "rad s-1"),
+    "drive_phase": ("drive phase", "rad"), "sample": ("stroboscopic sample number", "1"),
+}
+#: the variables of each measure, in the kernel's output order
+_MEASURE_VARS = {"final_well": ("well", "t_decided"), "locked": ("locked", "t_decided"),
+                 "mean_velocity": ("mean_velocity", "mean_velocity_err"), "poincare": ("theta", "v"),
+                 "lyapunov": ("lyapunov", "lyapunov_err", "lyapunov2")}
+
+
+def _status_attrs() -> dict:
+    """CF flag attributes of 'status', from STATUS (flag_meanings: one word per code)."""
+    import re
+    codes = sorted(STATUS)
+    return {"long_name": "status of the point's answer",
+            "flag_values": np.array(codes, dtype=np.int32),
+            "flag_meanings": " ".join(re.sub(r"[^0-9A-Za-z]+", "_", STATUS[c]).strip("_") for c in codes),
+            "comment": "-1 (the store's fill value) only in a store whose sweep has not finished: not computed yet"}
+
+
+def _layout(plan: _Plan):
+    """What a sweep's dataset holds, apart from the values: the store's and the in-memory run's common form."""
+    from ._store import Layout, Variable
+
+    dims = tuple(plan.over)
+
+    def meta(name):
+        long_name, units = _AXIS_META.get(name, _VAR_META.get(name, (name, "1")))
+        return {"long_name": long_name, "units": units}
+    coords = {n: (plan.over[n], meta(n)) for n in dims}
+    vdims = dims
+    if plan.measure == "poincare":
+        coords["sample"] = (np.arange(plan.samples), meta("sample"))
+        vdims = dims + ("sample",)
+    variables = {"status": Variable(dims, np.dtype(np.int32), _status_attrs(), -1)}
+    for n in _MEASURE_VARS[plan.measure]:
+        variables[n] = Variable(vdims, np.dtype(np.float64), meta(n), np.nan)
+    attrs = {"Conventions": "CF-1.10", "title": f"pendula sweep: {plan.measure}", "scene": plan.scene.to_namelist(),
+             "measure": plan.measure, "rtol": plan.rtol, "atol": plan.atol, "t_max": plan.t_max,
+             "transient": plan.transient, "samples": plan.samples, "status_codes": json.dumps(STATUS)}
+    return Layout(axes={n: plan.over[n] for n in dims}, coords=coords, variables=variables, rows=plan.rows,
+                  identity=json.dumps(plan.key(), sort_keys=True), attrs=attrs)
+
+
+def _chunk_vars(plan: _Plan, out: np.ndarray, st: np.ndarray) -> dict:
+    """The kernel's output of one chunk as {variable: values}."""
+    if plan.measure == "poincare":
+        vals = {"theta": out[..., 0::2], "v": out[..., 1::2]}
+    else:
+        vals = {n: out[..., k] for k, n in enumerate(_MEASURE_VARS[plan.measure])}
+    vals["status"] = st.astype(np.int32)
+    return vals
+
+
+def _chunk_dataset(plan: _Plan, layout, i: int, out: np.ndarray, st: np.ndarray):
+    xr = require("xarray", "sweep", "pendula.sweep")
+    lo, hi = layout.rows_of(i)
+    vals = _chunk_vars(plan, out, st)
+    coords = {n: xr.Variable((n,), v[lo:hi] if n == layout.first else v, dict(a))
+              for n, (v, a) in layout.coords.items()}
+    data = {n: (var.dims, vals[n], dict(var.attrs)) for n, var in layout.variables.items()}
     return xr.Dataset(data, coords=coords)
-
-
-def _write_atomic(ds, path: pathlib.Path) -> None:
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    ds.to_netcdf(tmp, engine="scipy")
-    os.replace(tmp, path)   # atomic on POSIX: a chunk file is whole or absent
 
 
 def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, transient=None,
@@ -247,8 +334,12 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
         torque, drive_amplitude, drive_frequency, drive_phase).  Default: the
         scene's own grid (``grid``, ``grid1`` ... fields).
     measure : str, optional
-        'final_well', 'mean_velocity', 'locked', 'poincare', 'lyapunov'.
-        Default: the scene's ``measure``.
+        'final_well', 'mean_velocity', 'locked', 'poincare', 'lyapunov', or
+        'attractor' (the attractor each point's orbit ends on, found by
+        recurrence: :func:`attractor_map`, whose options it takes from
+        ``transient``, ``samples``, ``rtol`` and ``atol``; its measures and
+        attractors are in the Dataset's attributes).  Default: the scene's
+        ``measure`` (a scene file names one of the kernel's measures).
     rtol, atol : float, optional
         DOP853 tolerances (default: the scene's).
     t_max : float, optional
@@ -259,26 +350,51 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
     samples : int, optional
         Poincare samples per point (default ``sweep_samples``).
     out : str or path, optional
-        Folder for the chunks (and resume).  Without it everything stays in memory.
+        Folder of the result's Zarr store ``out/sweep.zarr`` (filled chunk by
+        chunk; a sweep started again with the same ``out`` resumes, checking
+        every chunk already there and computing damaged ones again).  Without
+        it everything stays in memory.  One sweep at a time writes a store.
     chunk_points : int
         Points per chunk (whole rows of the first axis).
     client : dask.distributed.Client, optional
-        Spread chunks over its workers.
+        Spread chunks over its workers; a task's OpenMP threads are
+        ``max(1, cores // slots)`` with ``slots`` the tasks the machine's
+        workers run at once (their nthreads summed), so no machine runs more
+        threads than it has cores.
     threads : int
-        OpenMP threads per chunk (0: OMP_NUM_THREADS or all cores).
+        OpenMP threads per chunk (0: OMP_NUM_THREADS or all cores; with a
+        ``client``: the rule above, which a positive ``threads`` can lower).
     progress : bool
         Show a tqdm bar of chunks done and the time left.
 
     Returns
     -------
     xarray.Dataset
-        Lazy (dask-backed, read from the chunk files) when ``out`` is given
-        and there is more than one chunk.  Coordinates = the axes; variables per measure plus ``status``
+        Lazy (dask-backed, read from the Zarr store) when ``out`` is given.
+        Coordinates = the axes (with CF ``units`` and ``long_name``); variables per measure plus ``status``
         (0 decided, 1 not settled by the limit, 2 measure does not apply,
         4 uncertain: a basin-boundary point -- a grid neighbour along any axis,
         across chunk edges too, answers differently -- whose answer changed when
         computed again at 1000 times tighter tolerances; final_well and locked);
         the scene and options as attributes.
+
+    Raises
+    ------
+    ValueError
+        A bad argument (named): an unknown measure or grid field, grid values
+        that are empty, not finite or out of the field's range, bad tolerances
+        or times, 'poincare' without a drive, or an `out` that holds a
+        different sweep.
+    pendula._store.StoreBusyError
+        (an OSError) another sweep is writing the same ``out``; the message
+        names the store and that sweep's pid.
+    SceneError
+        If `scene` is a file that does not hold a valid scene.
+
+    See Also
+    --------
+    iv_curve : the adiabatic torque ramp (hysteresis), which a grid cannot give.
+    simulate : one point of the grid, in full.
 
     Examples
     --------
@@ -299,116 +415,188 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
     >>> bool(abs(ly.lyapunov[0] + ly.lyapunov2[0] + 0.5) < 1e-8)     # lambda_1 + lambda_2 = -beta
     True
     """
-    import xarray as xr
+    xr = require("xarray", "sweep", "pendula.sweep")
 
     if not isinstance(scene, Scene):
         scene = Scene.from_file(scene)
     measure = measure or scene.measure
-    if measure not in MEASURES:
-        raise ValueError(f"parameter 'measure' must be one of {', '.join(MEASURES)}; got {measure!r}")
+    if measure == "attractor":
+        # the kernel's poincare samples, read for recurrence (pendula.attractor_map)
+        kw = {k: v for k, v in (("transient", transient), ("samples", samples), ("rtol", rtol),
+                                ("atol", atol)) if v is not None}
+        return attractor_map(scene, grid_of(scene) if over is None else over, threads=threads, out=out,
+                             client=client, progress=progress, chunk_points=chunk_points, **kw).dataset
+    if not isinstance(measure, str) or measure not in MEASURES:
+        raise ValueError(f"parameter 'measure' must be one of {', '.join(MEASURES + ('attractor',))}; "
+                         f"got {measure!r}")
+    _model_rule(scene, f"measure '{measure}'")
+    _checks.angle(scene.theta0, "field 'theta0'")
     over = grid_of(scene) if over is None else over
     over = _check_over(scene, over)
-    rtol = scene.rtol if rtol is None else float(rtol)
-    atol = scene.atol if atol is None else float(atol)
-    if not (rtol > 0 and atol >= 0):
-        raise ValueError("parameters 'rtol' must be > 0 and 'atol' >= 0")
-    t_max = scene.sweep_t_max if t_max is None else float(t_max)
-    transient = scene.sweep_transient if transient is None else float(transient)
-    samples = scene.sweep_samples if samples is None else int(samples)
-    if not (t_max > 0 and math.isfinite(t_max)):
-        raise ValueError(f"parameter 't_max' must be positive and finite, got {t_max!r}")
-    if not (transient >= 0 and math.isfinite(transient)):
-        raise ValueError(f"parameter 'transient' must be >= 0 and finite, got {transient!r}")
-    if samples < 1:
-        raise ValueError(f"parameter 'samples' must be >= 1, got {samples!r}")
-    if not (isinstance(chunk_points, (int, np.integer)) and chunk_points >= 1):
-        raise ValueError(f"parameter 'chunk_points' must be a positive integer, got {chunk_points!r}")
+    rtol, atol = _checks.tolerances(scene.rtol if rtol is None else rtol, scene.atol if atol is None else atol)
+    t_max = _checks.duration(scene.sweep_t_max if t_max is None else t_max, "t_max")
+    transient = _checks.duration(scene.sweep_transient if transient is None else transient, "transient",
+                                 positive=False)
+    samples = _checks.count(scene.sweep_samples if samples is None else samples, "samples", 1, 100000)
+    chunk_points = _checks.count(chunk_points, "chunk_points", 1)
+    threads = _checks.threads(threads)
+    if measure == "poincare" and math.prod(len(v) for v in over.values()) * samples > _checks.MAX_GRID_POINTS:
+        raise ValueError(f"parameter 'samples': {samples} samples at each grid point is more than "
+                         f"{_checks.MAX_GRID_POINTS:.0e} values")
     if measure == "poincare" and not scene.drive_frequency > 0 and "drive_frequency" not in over:
         raise ValueError("measure 'poincare' needs a drive (drive_frequency > 0)")
     plan = _Plan(scene, over, measure, rtol, atol, t_max, transient, samples, int(chunk_points))
 
+    layout = _layout(plan)
     chunks: dict[int, object] = {}
-    folder = None
+    store = None
     if out is not None:
-        folder = pathlib.Path(out) / "chunks"
-        folder.mkdir(parents=True, exist_ok=True)
-        manifest = folder.parent / "sweep.json"
-        key = json.dumps(plan.key(), sort_keys=True)
-        if manifest.exists():
-            if manifest.read_text() != key:
-                raise ValueError(f"parameter 'out': {out} holds a different sweep; use another folder")
-        else:
-            tmp = manifest.with_name(".sweep.json.tmp")
-            tmp.write_text(key)
-            os.replace(tmp, manifest)
-    if folder is not None:
-        # a run killed while writing leaves a partial temporary file: never a chunk, removed here
-        for stale in folder.glob(".chunk_*.tmp"):
-            stale.unlink(missing_ok=True)
-    todo = []
-    for i in range(plan.nchunks):
-        f = folder / f"chunk_{i:06d}.nc" if folder else None
-        if f is not None and f.exists():
-            chunks[i] = f
-        else:
-            todo.append(i)
-
-    bar = None
-    if progress:
-        from tqdm.auto import tqdm
-        bar = tqdm(total=plan.nchunks, initial=plan.nchunks - len(todo), unit="chunk", desc=f"sweep {measure}")
-
-    def done(i, o, st):
-        ds = _chunk_dataset(plan, i, o, st)
-        if folder is not None:
-            _write_atomic(ds, folder / f"chunk_{i:06d}.nc")
-            chunks[i] = folder / f"chunk_{i:06d}.nc"
-        else:
-            chunks[i] = ds
-        if bar is not None:
-            bar.update(1)
-
+        from ._store import SweepStore
+        store = SweepStore(out, layout)   # takes the store's lock; finds the chunks done and sound
+        store.open()
     try:
-        if client is not None:
-            from dask.distributed import as_completed
-            futs = [client.submit(_compute_chunk, plan, i, threads, pure=False) for i in todo]
-            for fut in as_completed(futs):
-                done(*fut.result())
-        else:
-            for i in todo:
-                done(*_compute_chunk(plan, i, threads))
-    finally:
-        if bar is not None:
-            bar.close()
+        todo = [i for i in range(plan.nchunks) if store is None or i not in store.done]
+        bar = None
+        if progress:
+            tqdm = require("tqdm.auto", "sweep", "the progress bar of pendula.sweep").tqdm
+            bar = tqdm(total=plan.nchunks, initial=plan.nchunks - len(todo), unit="chunk", desc=f"sweep {measure}")
 
-    if folder is not None and plan.nchunks > 1:
-        # lazily (dask): the grid is never held in memory at once; writing it
-        # (to_netcdf) streams chunk by chunk
-        ds = xr.open_mfdataset([chunks[i] for i in range(plan.nchunks)], combine="nested",
-                               concat_dim=list(over)[0], engine="scipy", data_vars="all",
-                               coords="different", compat="equals", join="outer")
-    else:
-        parts = []
-        for i in range(plan.nchunks):
-            c = chunks[i]
-            if isinstance(c, pathlib.Path):
-                with xr.open_dataset(c, engine="scipy") as d:
-                    c = d.load()
-            parts.append(c)
-        ds = xr.concat(parts, dim=list(over)[0]) if len(parts) > 1 else parts[0]
-    ds.attrs.update({"scene": scene.to_namelist(), "measure": measure, "rtol": rtol, "atol": atol,
-                     "t_max": t_max, "transient": transient, "samples": samples,
-                     "status_codes": json.dumps(STATUS)})
+        def done(i, o, st):
+            if store is not None:
+                store.write_chunk(i, _chunk_vars(plan, o, st))
+            else:
+                chunks[i] = _chunk_dataset(plan, layout, i, o, st)
+            if bar is not None:
+                bar.update(1)
+
+        try:
+            if client is not None:
+                from ._cluster import run_chunks
+                run_chunks(client, _compute_chunk, plan, todo, threads, done)
+            else:
+                for i in todo:
+                    done(*_compute_chunk(plan, i, threads))
+        finally:
+            if bar is not None:
+                bar.close()
+        if store is not None:
+            # lazily (dask): the grid is never held in memory at once
+            ds = store.dataset()
+        else:
+            parts = [chunks[i] for i in range(plan.nchunks)]
+            ds = xr.concat(parts, dim=list(over)[0]) if len(parts) > 1 else parts[0]
+    finally:
+        if store is not None:
+            store.close()
+    ds.attrs.update(layout.attrs)
     if plan.measure == "final_well" or plan.measure == "locked":
-        ds.attrs["fraction_decided"] = float((ds.status == 0).mean())
+        # read from the store in this process (threads): a cluster's workers need not see 'out'
+        ds.attrs["fraction_decided"] = float((ds.status == 0).mean().compute(scheduler="threads"))
     return ds
 
 
-def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, rtol=None, atol=None):
+def attractor_map(scene: Scene, over: dict, *, transient: float = 600.0, samples: int = 48, tol: float = 1e-6,
+                  merge_tol: float = 1e-3, max_period: int | None = None, cell: float = 0.05,
+                  rtol: float = 1e-10, atol: float = 1e-12, threads: int = 0, out=None, client=None,
+                  progress: bool = False, chunk_points: int = 20000) -> AttractorMap:
+    """Find the attractors of a driven scene and label each grid point by the one its orbit ends on.
+
+    Parameters
+    ----------
+    scene : Scene
+        A periodically driven scene (``drive_frequency > 0``).
+    over : dict
+        The grid, as for :func:`pendula.sweep` (e.g. ``{'theta0': ..., 'v0': ...}`` for a basin map).
+    transient : float, optional
+        Time skipped before sampling (rounded up to whole drive periods; default 600).
+    samples : int, optional
+        Stroboscopic samples per point read for recurrence (default 48).
+    tol, merge_tol, max_period, cell : optional
+        See :func:`label_attractors`.
+    rtol, atol : float, optional
+        The integrator's tolerances (default 1e-10, 1e-12).
+    threads, out, client, progress, chunk_points : optional
+        As for :func:`pendula.sweep` (a stored, resumable run with ``out``); the
+        labels do not depend on them.
+
+    Returns
+    -------
+    AttractorMap
+        The label map as a Dataset, the attractors, and the basin measures.
+
+    Raises
+    ------
+    ValueError
+        If the scene is not driven or an argument is out of range.
+
+    See Also
+    --------
+    sweep : ``measure='attractor'`` gives the same map's Dataset.
+    periodic_orbit : Newton's method on one periodic attractor.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> sc = pendula.Scene(damping=0.5, drive_amplitude=1.35, drive_frequency=2/3)
+    >>> am = pendula.attractor_map(sc, {"theta0": [-2.0, 0.0, 2.0], "v0": [-3.0, 0.0, 3.0]}, transient=300, samples=16)
+    >>> [(a.kind, a.period) for a in am.attractors]      # two period-1 rotations, one each way
+    [('periodic', 1), ('periodic', 1)]
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a pendula.Scene, got {type(scene).__name__}")
+    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or not 4 <= samples <= 4096:
+        raise ValueError(f"samples must be a whole number between 4 and 4096, got {samples!r}")
+    for name, val in (("tol", tol), ("merge_tol", merge_tol), ("cell", cell)):
+        if not (isinstance(val, (int, float, np.floating)) and math.isfinite(val) and val > 0):
+            raise ValueError(f"{name} must be a positive finite number, got {val!r}")
+    if not (scene.drive_frequency > 0 and scene.drive_amplitude != 0) and "drive_frequency" not in over:
+        raise ValueError("drive_amplitude, drive_frequency: attractor maps read the stroboscopic map of a "
+                         "periodically driven scene (drive_frequency > 0, drive_amplitude != 0)")
+    pc = sweep(scene, over=over, measure="poincare", transient=transient, samples=int(samples), rtol=rtol,
+               atol=atol, threads=threads, out=out, client=client, progress=progress, chunk_points=chunk_points)
+    from .attractors import AttractorMap, basin_entropy, boundary_fraction, label_attractors, \
+        uncertainty_exponent
+    labels, atts = label_attractors(pc.theta.values, pc.v.values, tol=tol, merge_tol=merge_tol,
+                                    max_period=max_period, cell=cell)
+    labels = np.where(pc.status.values == 0, labels, -1)
+    xr = require("xarray", "sweep", "pendula.attractor_map")
+    dims = tuple(d for d in pc.theta.dims if d != "sample")
+    per = np.array([a.period for a in atts] + [-1])[labels]
+    ds = xr.Dataset(
+        {"attractor": (dims, labels.astype(np.int32), {
+            "long_name": "attractor of the stroboscopic map the orbit ends on",
+            "flag_values": np.arange(-1, len(atts), dtype=np.int32),
+            "flag_meanings": " ".join(["undecided"] + [f"{a.kind}_period_{a.period}_{a.label}" if a.period
+                                                       else f"chaotic_{a.label}" for a in atts])}),
+         "period": (dims, per.astype(np.int32), {"long_name": "period of the attractor in drive periods "
+                                                              "(0 chaotic, -1 undecided)",
+                                                 "units": "1"})},
+        coords={d: pc[d] for d in dims})
+    ds.attrs.update({k: pc.attrs[k] for k in pc.attrs if k != "measure"})
+    bf = boundary_fraction(labels)
+    sb, sbb = basin_entropy(labels) if labels.ndim == 2 and min(labels.shape) >= 5 else (math.nan, math.nan)
+    alpha = uncertainty_exponent(labels)[0] if len(atts) > 1 else math.nan
+    ds.attrs.update({"measure": "attractor", "tol": tol, "merge_tol": merge_tol, "cell": cell,
+                     "boundary_fraction": bf, "basin_entropy": sb, "boundary_basin_entropy": sbb,
+                     "uncertainty_exponent": alpha,
+                     "attractors": json.dumps([{"label": x.label, "kind": x.kind, "period": x.period,
+                                                "theta": x.theta.tolist(), "v": x.v.tolist(),
+                                                "fraction": x.fraction} for x in atts])})
+    return AttractorMap(ds, atts, bf, sb, sbb, alpha)
+
+
+def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, rtol=None, atol=None,
+             start="ramp"):
     """The I-V curve of the constant-torque pendulum (RCSJ junction), adiabatically.
 
-    Each torque starts from the end state of the previous one (the first from
-    the scene's theta0, v0), so the up and down branches show the hysteresis.
+    Each torque starts from the end state of the previous one, so the up and
+    down branches show the hysteresis: the junction switches to running at
+    tau = eps on the way up and is retrapped near the Stewart-McCumber torque
+    4 beta / pi (small beta) on the way down.
+
+    Where the first torque starts matters: a run that begins at a high torque
+    from rest is a step, not a ramp, and lands on whichever branch the step
+    reaches.  ``start`` says what the branch begins from.
 
     Parameters
     ----------
@@ -417,13 +605,40 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
     torques : array_like
         Torque values, ascending; 'down' runs them in reverse.
     direction : {'up', 'down', 'both'}
+        The branches: torque ramped up, down, or up then down (the down branch
+        starting where the up branch ended).
     transient, t_avg : float
         Time skipped, then time averaged, at each torque.
+    rtol, atol : float, optional
+        DOP853 tolerances (default: the scene's).
+    start : {'ramp', 'scene'} or (float, float), optional
+        ``'ramp'`` (default): where an adiabatic ramp from rest at zero torque
+        would be.  The up branch starts at rest at tau = 0 and, when its first
+        torque is not 0, ramps to it first through steps of the torques' own
+        spacing (at most 1000 steps; those values are not reported); a
+        ``'down'`` branch alone first runs that up ramp through all the torques
+        (not reported), so it starts on the running branch when the largest
+        torque exceeds eps.  ``'scene'``: the scene's theta0, v0 (the first
+        torque is a step).  A pair ``(theta, v)``: that state.
 
     Returns
     -------
     dict
-        {'up': (tau, <v>, err, status), 'down': (...)} for the branches asked.
+        {'up': (tau, <v>, err, status), 'down': (...)} for the branches asked:
+        arrays of the torques (in the order run), the mean velocity, its
+        convergence estimate and the status (0 decided).
+
+    Raises
+    ------
+    TypeError
+        If `scene` is not a :class:`Scene`.
+    ValueError
+        For an unknown `direction`, empty or non-finite torques, or a negative
+        `transient` or non-positive `t_avg`.
+
+    See Also
+    --------
+    sweep : grids of scenes, each from its own initial state.
 
     Examples
     --------
@@ -437,19 +652,54 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
     from . import _kernel
     if not isinstance(scene, Scene):
         raise TypeError("parameter 'scene' must be a pendula.Scene")
-    if direction not in ("up", "down", "both"):
+    if not isinstance(direction, str) or direction not in ("up", "down", "both"):
         raise ValueError(f"parameter 'direction' must be 'up', 'down' or 'both'; got {direction!r}")
-    tau = np.asarray(torques, dtype=float)
-    if tau.ndim != 1 or tau.size == 0 or not np.all(np.isfinite(tau)):
-        raise ValueError("parameter 'torques' must be a non-empty 1-D list of finite numbers")
-    if not (transient >= 0 and t_avg > 0):
-        raise ValueError("parameters 'transient' must be >= 0 and 't_avg' > 0")
-    rtol = scene.rtol if rtol is None else float(rtol)
-    atol = scene.atol if atol is None else float(atol)
+    _model_rule(scene, "iv_curve")
+    _checks.angle(scene.theta0, "field 'theta0'")
+    if not scene.damping > 0:
+        raise ValueError("field 'damping' must be > 0 for an I-V curve (without damping <v> grows without bound)")
+    tau = _checks.grid_values(torques, "parameter 'torques'")
+    if tau.size > 10 ** 6:
+        raise ValueError(f"parameter 'torques': at most 1e6 values, got {tau.size}")
+    transient = _checks.duration(transient, "transient", positive=False)
+    t_avg = _checks.duration(t_avg, "t_avg")
+    rtol, atol = _checks.tolerances(scene.rtol if rtol is None else rtol, scene.atol if atol is None else atol)
     p = np.array([getattr(scene, f) for f in _PARAM_ORDER], dtype=float)
+
+    def branch(p, taus):
+        cancel = _interrupt.cancel_flag()
+        r = _interrupt.call(_kernel.sweep_iv_branch, p, taus, rtol, atol, transient, t_avg, cancel, cancel=cancel)
+        if cancel[0]:
+            raise KeyboardInterrupt
+        return r
+
+    if isinstance(start, str):
+        if start not in ("ramp", "scene"):
+            raise ValueError(f"parameter 'start' must be 'ramp', 'scene' or a state (theta, v); got {start!r}")
+    else:
+        try:
+            th_s, v_s = (float(x) for x in start)
+        except (TypeError, ValueError):
+            raise ValueError(f"parameter 'start' must be 'ramp', 'scene' or a state (theta, v); got {start!r}") \
+                from None
+        if not (math.isfinite(th_s) and math.isfinite(v_s)):
+            raise ValueError(f"parameter 'start' must be a finite state (theta, v); got {start!r}")
+        p[6], p[7] = th_s, v_s
+    if start == "ramp":
+        p[6], p[7] = 0.0, 0.0
+        first = tau[0] if direction != "down" else tau[-1]
+        spacing = float(np.min(np.abs(np.diff(tau)))) if tau.size > 1 else 0.0
+        spacing = spacing if spacing > 0 else abs(first) / 100.0
+        lead = tau if direction == "down" else np.array([])
+        if direction != "down" and first != 0.0:
+            steps = min(1000, max(1, math.ceil(abs(first) / spacing)))
+            lead = np.linspace(0.0, first, steps + 1)[:-1]
+        if lead.size:
+            _, _, _, th_end, v_end = branch(p, np.ascontiguousarray(lead, dtype=float))
+            p[6], p[7] = th_end, v_end
     res = {}
     if direction in ("up", "both"):
-        vm, err, st, th_end, v_end = _kernel.sweep_iv_branch(p, tau, rtol, atol, float(transient), float(t_avg))
+        vm, err, st, th_end, v_end = branch(p, tau)
         res["up"] = (tau, vm, err, st)
     if direction in ("down", "both"):
         td = tau[::-1].copy()
@@ -457,7 +707,7 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
             # the down branch starts where the up branch ended
             p = p.copy()
             p[6], p[7] = th_end, v_end
-        vm, err, st, _, _ = _kernel.sweep_iv_branch(p, td, rtol, atol, float(transient), float(t_avg))
+        vm, err, st, _, _ = branch(p, td)
         res["down"] = (td, vm, err, st)
     return res
 
@@ -465,7 +715,7 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_avg=400.0, 
 def plot_sweep(ds, path) -> pathlib.Path:
     """A figure of a sweep: a map (2 axes; discrete colours for wells), a curve
     (1 axis), or a bifurcation diagram (poincare over 1 axis)."""
-    import matplotlib
+    matplotlib = require("matplotlib", "plot", "pendula.sweeps.plot_sweep (figures)")
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
@@ -502,32 +752,66 @@ def plot_sweep(ds, path) -> pathlib.Path:
         ax.set_xlabel(dims[0]); ax.set_ylabel(dims[1])
     ax.set_title(f"pendula sweep: {measure}")
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    try:
+        save_figure(fig, path, dpi=120)     # whole under its name, or absent
+    finally:
+        plt.close(fig)
     return path
 
 
 def cli_main(args) -> int:
-    """``pendula sweep SCENE.nml -o OUT``: the dataset (OUT/sweep.nc) and its figure (OUT/sweep.png)."""
+    """``pendula sweep SCENE.nml -o OUT``: the dataset (the Zarr store OUT/sweep.zarr; with ``--netcdf``
+    also OUT/sweep.nc) and its figure (OUT/sweep.png).
+
+    One line on standard error for every failure, and the exit status of
+    pendula-run: 2 bad scene or arguments (``--threads``, ``--workers``,
+    ``--chunk-points`` out of range), 3 the scene's model is not one a sweep
+    runs, 4 the computation failed, 5 the output cannot be written (OUT is a
+    file, a device, read-only, a full disk, or another sweep is writing it);
+    nothing is left under a final name after a failure (the resumable store
+    stays).  A cluster started for ``--workers`` is closed on every path."""
+    import contextlib
     import sys
+
+    def say(msg: str, code: int) -> int:
+        print(f"pendula sweep: {msg}", file=sys.stderr)
+        return code
+
+    out = pathlib.Path(args.output)
     try:
+        workers = _checks.count(args.workers, "--workers", 0, 256)
+        threads = _checks.threads(args.threads, "--threads")
+        chunk_points = _checks.count(args.chunk_points, "--chunk-points", 1)
         scene = Scene.from_file(args.scene)
         if not scene.grid:
             raise SceneError(f"{args.scene}: field 'grid' is empty: a sweep scene names 1 to 3 axes")
-        client = None
-        if args.workers:
-            from dask.distributed import Client, LocalCluster
-            client = Client(LocalCluster(n_workers=args.workers, threads_per_worker=1))
-        ds = sweep(scene, out=args.output, chunk_points=args.chunk_points, client=client,
-                   threads=args.threads, progress=not args.quiet)
-    except (SceneError, ValueError) as exc:
-        print(f"pendula sweep: {exc}", file=sys.stderr)
-        return 2
-    out = pathlib.Path(args.output)
-    tmp = out / ".sweep.nc.tmp"
-    ds.to_netcdf(tmp, engine="scipy")
-    os.replace(tmp, out / "sweep.nc")
-    png = plot_sweep(ds, out / "sweep.png")
+        if out.exists() and not out.is_dir():
+            raise NotADirectoryError(20, "is not a folder", str(out))
+        with contextlib.ExitStack() as stack:
+            client = None
+            if workers:
+                from ._cluster import local_client
+                client = stack.enter_context(local_client(workers))   # closed, cluster and all, on leaving
+            ds = sweep(scene, out=out, chunk_points=chunk_points, client=client, threads=threads,
+                       progress=not args.quiet)
+        files = [out / "sweep.zarr"]
+        if getattr(args, "netcdf", False):
+            with atomic_path(out / "sweep.nc") as tmp:
+                ds.to_netcdf(tmp, engine="scipy")
+            files.append(out / "sweep.nc")
+        files.append(plot_sweep(ds, out / "sweep.png"))
+    except (SceneError, ValueError, TypeError) as exc:
+        return say(str(exc), 2)
+    except NotImplementedError as exc:
+        return say(f"{args.scene}: {exc}", 3)
+    except StoreBusyError as exc:     # another sweep writes the same output folder
+        return say(exc.strerror, 5)
+    except OSError as exc:
+        where = f"{exc.filename}: " if exc.filename else f"{out}: "
+        return say(f"cannot write the output: {where}{exc.strerror or exc}", 5)
+    except (ArithmeticError, RuntimeError) as exc:
+        return say(f"{args.scene}: {exc}", 4)
     st = ds.status.values
-    print(f"pendula sweep: {st.size} points, {np.mean(st == 0) * 100:.1f} % decided -> {out / 'sweep.nc'}, {png}")
+    print(f"pendula sweep: {st.size} points, {np.mean(st == 0) * 100:.1f} % decided -> "
+          f"{', '.join(map(str, files))}")
     return 0

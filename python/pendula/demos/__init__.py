@@ -1,1 +1,1 @@
-"""Gallery demos of the seed systems, run by ``pendula demo``."""
+"""Gallery demos of the source texts' systems, run by ``pendula demo``."""

@@ -18,6 +18,7 @@ import numpy as np
 from ..systems.cord import cord_state, flip_map, flip_sequence
 from ..motion import simulate
 from ..scene import Scene
+from .._files import save_figure, open_text  # the one writer: regular files only, whole or absent
 
 __all__ = ["cord_demo", "one_flip", "table1", "table2"]
 
@@ -74,7 +75,7 @@ def table2(kmax: int = 12, odd_extra: int = 30):
 
 
 def _write(path, header, rows):
-    with open(path, "w", newline="") as fh:
+    with open_text(path, newline="") as fh:
         w = csv.writer(fh)
         w.writerow(header)
         w.writerows(rows)
@@ -103,7 +104,7 @@ def _path_png(tr, title, path):
     ax.set_ylabel("y / l")
     ax.set_title(title, fontsize=8)
     ax.legend(fontsize=7, loc="lower right")
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     return path
 
@@ -150,7 +151,7 @@ def cord_demo(outdir, scenes_dir=None, quiet: bool = False) -> list[pathlib.Path
     ax.set_ylabel("f(x) (energy after)")
     ax.legend(fontsize=8)
     ax.set_title("Garfinkel's flip map (Fig. 1)")
-    fig.savefig(out / "cord_flip_map.png", dpi=110)
+    save_figure(fig, out / "cord_flip_map.png", dpi=110)
     plt.close(fig)
     files.append(out / "cord_flip_map.png")
     files.append(_write(out / "cord_flip_map.csv", ["x", "f_simulated", "f_closed_form"],
@@ -185,7 +186,7 @@ def cord_demo(outdir, scenes_dir=None, quiet: bool = False) -> list[pathlib.Path
     ax.set_xlabel("1 + flip number")
     ax.set_ylabel("xi")
     ax.set_title("xi(0) = 0.777: one flip to state k = 1, then xi -> 0")
-    fig.savefig(out / "cord_history_0777.png", dpi=110)
+    save_figure(fig, out / "cord_history_0777.png", dpi=110)
     plt.close(fig)
     files.append(out / "cord_history_0777.png")
     files.append(_write(out / "cord_history_0777.csv", ["flip", "xi", "state"],

@@ -1,9 +1,9 @@
-"""Gallery demo for issue 13: Huygens' clock, non-uniform gravity, the density of the angle.
+"""Gallery demo: Huygens' clock, non-uniform gravity, the density of the angle.
 
 ``huygens_gallery(outdir)`` writes (in seconds):
 
 - huygens_clock.png: the cheeks, the cord wrapping them at several instants,
-  the bob's cycloid and the rigid pendulum's circle (the seed's Figures 3/4);
+  the bob's cycloid and the rigid pendulum's circle (Prusa & Tuma, Figures 3/4);
   huygens_period.csv/png: the period against amplitude, cycloid and rigid.
 - gravity_period.csv/png: the period against amplitude for a few strengths of
   both non-uniform fields, with the uniform (elliptic) period.
@@ -22,6 +22,7 @@ from ..density import angle_cdf, angle_density, arcsine_density
 from ..systems.cycloid import cycloid_geometry, cycloid_motion, cycloid_period
 from ..motion import period, simulate
 from ..scene import Scene
+from .._files import save_figure, open_text  # the one writer: regular files only, whole or absent
 
 __all__ = ["huygens_gallery", "gravity_period_table"]
 
@@ -33,7 +34,7 @@ def _finish(plt, fig, ax, title, path, legend_size=8):
     ax.grid(alpha=0.3)
     ax.set_title(title, fontsize=10)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     return path
 
@@ -107,7 +108,7 @@ def huygens_gallery(outdir) -> list[pathlib.Path]:
     ax.set_title("Huygens' clock: the cord wraps on the cheeks (7 instants over half a period)", fontsize=9)
     fig.tight_layout()
     files.append(out / "huygens_clock.png")
-    fig.savefig(files[-1], dpi=110)
+    save_figure(fig, files[-1], dpi=110)
     plt.close(fig)
 
     # --- period against amplitude: cycloid (measured from the closed form) and rigid
@@ -127,7 +128,7 @@ def huygens_gallery(outdir) -> list[pathlib.Path]:
 
     # --- non-uniform gravity: period against amplitude
     rows = gravity_period_table()
-    with open(out / "gravity_period.csv", "w") as f:
+    with open_text(out / "gravity_period.csv") as f:
         f.write("field,parameter,theta0,period,period_over_uniform,period_times_omega0_over_2pi\n")
         for r in rows:
             f.write(",".join(str(x) for x in r) + "\n")

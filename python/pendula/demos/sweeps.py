@@ -1,5 +1,5 @@
-"""Sweep gallery (issue 14): basins of the damped pendulum with the
-energy-balance prediction, the seed's section 8.2 (wells against torque), the
+"""Sweep gallery: basins of the damped pendulum with the
+energy-balance prediction, Suzuki & Suzuki's section 8.2 (wells against torque), the
 I-V loop of the RCSJ junction with its retrapping torque, the bifurcation
 diagram of the driven damped pendulum and, beside it, its largest Lyapunov
 exponent against the drive amplitude.  ``run(out, small=True)`` is what
@@ -15,6 +15,7 @@ import numpy as np
 from ..elliptic import ellipe
 from ..scene import Scene
 from ..sweeps import iv_curve, plot_sweep, sweep
+from .._files import save_figure, open_text  # the one writer: regular files only, whole or absent
 
 #: seed (Suzuki & Suzuki, section 8.2): v0 -> the wells n (theta ~ 2 pi n) the text lists
 SEED_8_2 = {2.01: {0, 1}, 2.05: {0, 1, 2}, 2.10: {0, 1, 3}, 2.14: {0, 1, 2, 3}, 2.27: {0, 1, 2, 4},
@@ -66,7 +67,7 @@ def _basins(out, small):
     fig.colorbar(im, ax=ax, label="final well n")
     ax.set_xlabel("v0"); ax.set_ylabel("damping beta")
     ax.set_title(f"final well; black: energy balance (disagrees at {100 * dis:.1f} % of points)")
-    fig.tight_layout(); fig.savefig(out / "sweep_basins_energy_balance.png", dpi=120); plt.close(fig)
+    fig.tight_layout(); save_figure(fig, out / "sweep_basins_energy_balance.png", dpi=120); plt.close(fig)
     s2 = Scene(damping=0.1, grid=("theta0", "v0"), grid1_range=(-math.pi, math.pi, nv // 2),
                grid2_range=(-4.0, 4.0, nb), measure="final_well", rtol=1e-8, atol=1e-10)
     ds2 = sweep(s2)
@@ -87,7 +88,7 @@ def _seed_8_2(out, t_max=300.0):
         got = {int(x) for x in ds.well.values[i][st == 0]}
         run = taus[lk.locked.values[i] == 0]
         rows.append((v, sorted(got), sorted(SEED_8_2[v]), float(run.min()) if run.size else math.nan))
-    with open(out / "sweep_seed_8_2.csv", "w") as f:
+    with open_text(out / "sweep_seed_8_2.csv") as f:
         f.write("v0,wells_pendula,wells_seed,first_running_tau\n")
         for v, g, sd, r in rows:
             f.write(f"{v},{' '.join(map(str, g))},{' '.join(map(str, sd))},{r}\n")
@@ -124,7 +125,8 @@ def _iv(out):
     for b in betas:
         t2 = np.round(np.arange(0.0, 1.0, 0.005), 10)   # run downwards from 0.995
         # a transient of several damping times 1/beta
-        rr = iv_curve(Scene(damping=b, v0=1.0 / b), t2, "down", transient=max(60.0, 6.0 / b), t_avg=120.0)["down"]
+        rr = iv_curve(Scene(damping=b, v0=1.0 / b), t2, "down", transient=max(60.0, 6.0 / b), t_avg=120.0,
+                     start="scene")["down"]
         running = rr[0][rr[1] > 0]
         tr.append(running.min() if running.size else math.nan)
     tr = np.array(tr)
@@ -132,7 +134,7 @@ def _iv(out):
     bb = np.linspace(0, 0.32, 50)
     a2.plot(bb, 4 * bb / math.pi, "-", label="Stewart-McCumber 4 beta / pi")
     a2.set_xlabel("beta"); a2.set_ylabel("tau_r"); a2.legend()
-    fig.tight_layout(); fig.savefig(out / "sweep_iv_loop.png", dpi=120); plt.close(fig)
+    fig.tight_layout(); save_figure(fig, out / "sweep_iv_loop.png", dpi=120); plt.close(fig)
     up = r["up"]
     switch = float(up[0][up[1] > 0].min())
     return {"switch_up": switch, "retrap": dict(zip(betas.tolist(), tr.tolist()))}
@@ -207,7 +209,7 @@ def _lyapunov(out, small, bif):
     a2.set_ylim(-0.3, 0.2)
     a2.set_xlabel("drive amplitude A"); a2.set_ylabel("lambda_1")
     a2.legend(loc="upper left", fontsize=8)
-    fig.tight_layout(); fig.savefig(out / "sweep_lyapunov.png", dpi=120); plt.close(fig)
+    fig.tight_layout(); save_figure(fig, out / "sweep_lyapunov.png", dpi=120); plt.close(fig)
     bands = []
     for k, c in enumerate(chaotic):
         if c and (k == 0 or not chaotic[k - 1]):
@@ -232,7 +234,7 @@ def run(out, small: bool = True, quiet: bool = False) -> dict:
         print(f"sweeps: basin map {b['points']} points, {100 * b['decided']:.1f} % decided, "
               f"{b['uncertain']} uncertain; energy balance disagrees at {100 * b['energy_balance_disagreement']:.1f} %")
         for v, g, sd, r in res["seed_8_2"]:
-            flag = "" if set(g) == set(sd) else "  <- differs from the seed"
+            flag = "" if set(g) == set(sd) else "  <- differs from Suzuki & Suzuki"
             print(f"  seed 8.2 v0 = {v:4.2f}: wells {g} (seed {sd}); running from tau = {r}{flag}")
         r1 = res["seed_8_2_1"]
         print(f"  seed 8.2.1 (v0 = 0.2): locked up to tau = {r1['last_locked']}, running from {r1['first_running']}; "

@@ -13,13 +13,13 @@ model returns more than theta, v and its invariant.
 
 from __future__ import annotations
 
-import functools
 import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from .. import _interrupt, _kernel
+from .. import _checks
 from .._checks import as_float
 from ..scene import Scene, SceneError
 from ..trajectory import Trajectory
@@ -28,15 +28,16 @@ __all__ = ["ModelInfo", "models", "run", "METHOD_NAMES"]
 
 #: the kernel's method codes (kernel/dispatch/pendula_simulate.f90)
 METHOD_NAMES = {0: "exact", 1: "rk4", 2: "verlet", 3: "yoshida4", 4: "yoshida6", 5: "yoshida8",
-                6: "gauss4", 7: "gauss6", 8: "dopri5", 9: "dop853", 10: "gsl-rk8pd"}
+                6: "gauss4", 7: "gauss6", 8: "dopri5", 9: "dop853", 10: "gsl-rk8pd", 11: "dprkn6", 12: "vern9"}
 
 # kernel status -> exception type (the kernel's message is the text)
 _NOT_IMPLEMENTED = 14
+_UNSORTED = 12
 
 
 @dataclass(frozen=True)
 class ModelInfo:
-    """One model of the registry.
+    """One model of the registry: what :func:`models` lists.
 
     Attributes
     ----------
@@ -55,6 +56,19 @@ class ModelInfo:
     implemented : bool
         False for a model the scene format names but pendula cannot run yet.
     summary : str
+        One line about the model.
+
+    See Also
+    --------
+    models : the registry.
+    simulate : runs a scene on its model.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> cyc = [m for m in pendula.models() if m.name == "cycloid"][0]
+    >>> cyc.selector, cyc.path, cyc.exact_with
+    ("guide='cycloid'", 'exact', ('damping', 'torque', 'drive'))
     """
 
     name: str
@@ -69,11 +83,26 @@ class ModelInfo:
 def models() -> list[ModelInfo]:
     """The models pendula knows, from the kernel's registry.
 
+    The scene's ``cord``, ``guide`` and ``gravity`` fields select one model;
+    the dispatcher then answers by the model's exact path when the scene's
+    effects allow it and otherwise by an integrator.  ``pendula models``
+    prints the same table.
+
+    Returns
+    -------
+    list of ModelInfo
+        One entry per model, the rigid pendulum first.
+
+    See Also
+    --------
+    ModelInfo : the fields of an entry.
+    Scene : the fields that select a model.
+
     Examples
     --------
     >>> import pendula
-    >>> [m.name for m in pendula.models()][0]
-    'rigid'
+    >>> [m.name for m in pendula.models()]
+    ['rigid', 'cord', 'cycloid', 'gravity']
     """
     table = _kernel.models_v()
     text = table.decode() if isinstance(table, bytes) else str(table)
@@ -97,39 +126,53 @@ def run(scene: Scene, t) -> Trajectory:
         'exact' with effects, ...), or the integrator failed.
     """
     t = as_float(t, "t")
+    _checks.angle(scene.theta0, "field 'theta0'")     # |theta0| <= 2^52, as in every function
     flat = np.ascontiguousarray(t, dtype=np.float64).reshape(-1)
-    order = np.argsort(flat, kind="stable")
-    sorted_t = np.ascontiguousarray(flat[order])
-    cancel = _interrupt.cancel_flag()
-    theta_s, v_s, e_s, stats, method, status, msg = _interrupt.call(
-        _kernel.simulate_v, _kernel_text(scene).encode("utf-8"), sorted_t, cancel, cancel=cancel,
-        long=bool(scene.effects) and _long_run(scene, sorted_t))
-    msg = (msg.decode(errors="replace") if isinstance(msg, bytes) else str(msg)).strip()
-    if status == _NOT_IMPLEMENTED:
-        raise NotImplementedError(msg)
-    if status == 100:
-        raise SceneError(f"the kernel refused the scene: {msg}")
+    x, words, wlen, nout, ngrid = scene._kernel_fields
+    # the times as given: the exact paths take any order, and an integrator
+    # refuses unsorted times (status 12) before any work, so they are sorted
+    # only then (the scene's own times and most others come in order)
+    order, sorted_t = None, flat
+    while True:
+        cancel = _interrupt.cancel_flag()
+        long = bool(scene.effects) and _long_run(scene, sorted_t)
+        theta_s, v_s, e_s, stats, method, status, msg = _interrupt.call(
+            _kernel.simulate_v, x, words, wlen, nout, ngrid, sorted_t, cancel, cancel=cancel, long=long)
+        if status != _UNSORTED or order is not None:
+            break
+        order = np.argsort(flat, kind="stable")
+        sorted_t = np.ascontiguousarray(flat[order])
     if status:
-        raise ValueError(f"{scene.method}: {msg}")
-    theta = np.empty_like(flat)
-    v = np.empty_like(flat)
-    e = np.empty_like(flat)
-    theta[order] = theta_s
-    v[order] = v_s
-    e[order] = e_s
-    theta, v, e = (a.reshape(t.shape) for a in (theta, v, e))
+        msg = (msg.decode(errors="replace") if isinstance(msg, bytes) else str(msg)).strip()
+        if status == _NOT_IMPLEMENTED:
+            raise NotImplementedError(msg)
+        if status == 100:
+            raise SceneError(f"the kernel refused the scene: {msg}")
+        raise ValueError(msg)
+    if order is None:
+        theta, v, e = theta_s, v_s, e_s
+    else:
+        theta = np.empty_like(flat)
+        v = np.empty_like(flat)
+        e = np.empty_like(flat)
+        theta[order] = theta_s
+        v[order] = v_s
+        e[order] = e_s
+    if t.shape != theta.shape:
+        theta, v, e = (a.reshape(t.shape) for a in (theta, v, e))
     name = METHOD_NAMES[int(method)]
     st = {} if method == 0 else {"steps": int(stats[0]), "accepted": int(stats[1]), "rejected": int(stats[2]),
                                  "rhs_evaluations": int(stats[3]), "stopped_by_event": False}
-    nan_out = ~(np.isfinite(theta) & np.isfinite(v)) & ~np.isnan(t)
-    if np.any(nan_out & ~np.isfinite(t)):
-        warnings.warn(f"simulate: {int(np.sum(nan_out & ~np.isfinite(t)))} non-finite time(s) gave NaN",
-                      RuntimeWarning, stacklevel=3)
-    if np.any(nan_out & np.isfinite(t)):
-        warnings.warn(f"simulate: {int(np.sum(nan_out & np.isfinite(t)))} value(s) at finite times are NaN: the "
-                      "state has no value there (at a cusp of the cycloidal guide the cord is horizontal and v "
-                      "is undefined; beyond 2**48 half periods the exact path cannot reduce its phase)",
-                      RuntimeWarning, stacklevel=3)
+    if not np.isfinite(theta_s.sum() + v_s.sum()):   # (a finite sum: every value finite)
+        nan_out = ~(np.isfinite(theta) & np.isfinite(v)) & ~np.isnan(t)
+        if np.any(nan_out & ~np.isfinite(t)):
+            warnings.warn(f"simulate: {int(np.sum(nan_out & ~np.isfinite(t)))} non-finite time(s) gave NaN",
+                          RuntimeWarning, stacklevel=3)
+        if np.any(nan_out & np.isfinite(t)):
+            warnings.warn(f"simulate: {int(np.sum(nan_out & np.isfinite(t)))} value(s) at finite times are NaN: "
+                          "the state has no value there (at a cusp of the cycloidal guide the cord is horizontal "
+                          "and v is undefined; beyond 2**48 half periods the exact path cannot reduce its phase)",
+                          RuntimeWarning, stacklevel=3)
     return Trajectory(t, theta, v, e, name, scene, st)
 
 
@@ -138,21 +181,8 @@ def _long_run(scene: Scene, t: np.ndarray) -> bool:
     runs where Ctrl-C can stop it; short runs skip the thread's ~50 us.)"""
     if t.size == 0:
         return False
-    span = float(np.max(np.abs(t)))
+    span = max(abs(float(t[0])), abs(float(t[-1]))) if t.size < 2 or t[-1] >= t[0] else float(np.max(np.abs(t)))
     if scene.dt > 0 and scene.method not in ("auto", "dop853", "dopri5", "gsl-rk8pd"):
         return span / scene.dt > 1e5
     rate = max(1.0, scene.eps ** 0.5, scene.drive_frequency, scene.damping)
     return span * rate > 1e3 or scene.rtol < 1e-12
-
-
-_SKIP = ("outputs", "sweep", "sweep_values", "name")
-
-
-@functools.lru_cache(maxsize=256)
-def _kernel_text(scene: Scene) -> str:
-    """The scene as the kernel's dispatcher reads it (without the fields that
-    only say what to write: outputs, sweeps and the title).  Scenes are frozen,
-    so the text is formed once per scene, not at every run of it (it was a
-    third of a short run's time)."""
-    return "\n".join(line for line in scene.to_namelist().splitlines()
-                     if line.split("=", 1)[0].strip() not in _SKIP) + "\n"

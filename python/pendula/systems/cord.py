@@ -19,12 +19,12 @@ circle
     kernel integrators), in the kernel's hybrid loop
     (kernel/dispatch/pendula_cord_hybrid.f90).  Both run through the
     dispatcher (``cord_scene_run``), as in ``pendula-run``.  Fixed-step methods have
-    no dense output: they are refused with a ValueError naming the method.
+    no dense output: a scene naming one is refused (SceneError, a ValueError) naming the method.
 flight
     A parabola in closed form.  |p(tau)|^2 - 1 is a quartic in the flight time
     tau whose low coefficients vanish at a tangential departure (r' = 0 and
     zero tension make tau^3 a factor), so the re-entry time is the root of the
-    remaining linear factor: tau = -4 (u . g) / |g|^2 (Garfinkel's eq. 13.1),
+    remaining linear factor: tau = -4 (u . g) / |g|^2 (Garfinkel, eq. 13.1),
     never the departure point itself.  After a springy re-entry (restitution
     e > 0) the flight starts with an inward radial velocity: then tau is the
     smallest positive root of a cubic, taken from its companion matrix and
@@ -49,6 +49,7 @@ import warnings
 import numpy as np
 
 from .. import _kernel
+from .. import _checks
 from .._checks import as_float
 from .rigid import energy
 
@@ -63,10 +64,32 @@ MAX_SEQUENCE_TERMS = 100_000
 
 
 def flip_map(xi):
-    """Garfinkel's flip map f (Garfinkel eqs. 14-15), vectorised.
+    """Garfinkel's flip map f (his eqs. 14-15), vectorised.
 
-    f(x) = x - (64/3) [x (1 - x^2)]^3 for 0 <= x <= 1, and f(x) = x outside
-    (the kernel's elemental ``flip_map``, kernel/models/pendula_cord.f90).
+    The energy xi' after one flip (departure from the circle, free flight,
+    inelastic jerk at re-entry) as a function of the energy xi before it.
+
+    Parameters
+    ----------
+    xi : array_like
+        Garfinkel's energy xi = (theta'^2 - 2 eps cos theta) / (3 eps).
+
+    Returns
+    -------
+    ndarray or float
+        f(x) = x - (64/3) [x (1 - x^2)]^3 for 0 <= x <= 1, and f(x) = x outside
+        (no flight there).
+
+    Raises
+    ------
+    TypeError
+        For a string, complex or object argument.
+
+    See Also
+    --------
+    flip_sequence : the sequence x_k of the map's preimages.
+    cord_state : the state index k of an energy.
+    simulate : the simulated flips (``Scene(cord='flexible')``), which the map is checked against.
 
     Examples
     --------
@@ -119,11 +142,31 @@ _XMIN = _argmin_f()
 
 
 def flip_sequence(n: int) -> np.ndarray:
-    """The first n terms of Garfinkel's sequence x_k (Garfinkel eqs. 16-17).
+    """The first n terms of Garfinkel's sequence x_k (his eqs. 16-17).
 
     x_0 = -2/3, x_1, x_2, x_3 the zeros of f (0, 0.2360, 0.7511), then
     x_{k+4} = f^{-1}(x_{k+2}) on the branch of f above its minimum, found by
     bisection (f is monotone there), so every term is good to about 1 ulp.
+
+    Parameters
+    ----------
+    n : int
+        How many terms (>= 0).
+
+    Returns
+    -------
+    ndarray
+        x_0 ... x_{n-1}, increasing towards 1.
+
+    Raises
+    ------
+    ValueError
+        If `n` is not a non-negative whole number.
+
+    See Also
+    --------
+    cord_state : where an energy falls in the sequence.
+    flip_map : the map.
 
     Examples
     --------
@@ -131,8 +174,9 @@ def flip_sequence(n: int) -> np.ndarray:
     >>> [round(float(x), 3) for x in pendula.flip_sequence(5)]
     [-0.667, 0.0, 0.236, 0.751, 0.791]
     """
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 0 <= n <= MAX_SEQUENCE_TERMS:
-        raise ValueError(f"n must be a whole number from 0 to {MAX_SEQUENCE_TERMS}, got {n!r}")
+    # the terms approach 1 (x_200 is 1e-3 below it) and each costs a bisection:
+    # at most MAX_SEQUENCE_TERMS terms (absurd sizes refused up front)
+    n = _checks.count(n, "n", 0, MAX_SEQUENCE_TERMS)
     # the zeros of f in (0, 1): w^3 = 3 x / 64 with w = x (1 - x^2), i.e. (1 - x^2)^3 x^2 = 3/64;
     # g(x) = x^2 (1 - x^2)^3 rises on (0, 1/2) and falls on (1/2, 1): one root on each side.
     def g(x):
@@ -157,34 +201,40 @@ def flip_sequence(n: int) -> np.ndarray:
 
 
 def cord_state(xi, nmax: int = 200):
-    """Garfinkel's state index k of an energy xi (Garfinkel eq. 18), vectorised.
-
-    k such that x_k <= xi < x_{k+1} for -2/3 <= xi < 1; ``math.inf`` for xi >= 1
-    (circulation).  The sequence is computed to ``nmax`` terms (x_200 lies
-    1e-3 below 1); xi beyond the last term gives k = nmax - 1 with a
-    RuntimeWarning.  xi < -2/3 is not an energy: NaN with a RuntimeWarning.
+    """Garfinkel's state index k of an energy xi (his eq. 18), vectorised.
 
     Parameters
     ----------
     xi : array_like
-        Garfinkel's energies.
-    nmax : int
-        Terms of the sequence x_k computed, 1 to ``MAX_SEQUENCE_TERMS``.
+        Garfinkel's energy.
+    nmax : int, optional
+        Terms of the sequence x_k to compute, 1 to ``MAX_SEQUENCE_TERMS``
+        (x_200 lies 1e-3 below 1).
 
     Returns
     -------
-    float or ndarray
-        k (``math.inf`` for circulation, NaN below -2/3).
+    ndarray or float
+        k such that x_k <= xi < x_{k+1} for -2/3 <= xi < 1; ``math.inf`` for
+        xi >= 1 (circulation).  xi beyond the last term gives k = nmax - 1
+        with a RuntimeWarning; xi < -2/3 is not an energy: NaN with a
+        RuntimeWarning.
 
     Raises
     ------
+    TypeError
+        For a string, complex or object `xi`.
     ValueError
-        nmax is not a whole number from 1 to ``MAX_SEQUENCE_TERMS``.
+        If `nmax` is not a whole number from 1 to ``MAX_SEQUENCE_TERMS``.
+
+    See Also
+    --------
+    flip_sequence : the sequence x_k.
+    flip_map : the map that moves an energy down the sequence.
 
     Examples
     --------
     >>> import pendula
-    >>> float(pendula.cord_state(0.777))
+    >>> float(pendula.cord_state(0.777))      # state 3: one flip to state 1, then flips without end
     3.0
     """
     if isinstance(nmax, bool) or not isinstance(nmax, (int, np.integer)) or not 1 <= nmax <= MAX_SEQUENCE_TERMS:
@@ -236,10 +286,9 @@ def simulate_cord(scene, t):
     integrated, the integrator's work ('steps', 'rhs_evaluations').
     """
     from .. import _interrupt
-    from ..integrate import ADAPTIVE, FIXED_STEP
     from ..scene import SceneError
     from ..trajectory import Trajectory
-    from . import METHOD_NAMES, _kernel_text, _long_run
+    from . import METHOD_NAMES, _long_run
 
     t = as_float(t, "t")
     flat = np.ascontiguousarray(t, dtype=np.float64).reshape(-1)
@@ -247,14 +296,8 @@ def simulate_cord(scene, t):
         raise ValueError("t must be finite")
     if flat.size and flat.min() < 0:
         raise ValueError("t: a flexible cord runs forward only (the jerk is irreversible): give times >= 0")
-    method = scene.method
-    integrated = any(e for e in scene.effects if e != "cord") or method not in ("auto", "exact")
-    if integrated:
-        if method in FIXED_STEP:
-            raise ValueError(f"method {method!r}: a flexible cord with effects needs the tension event located "
-                             f"on dense output; {method!r} is fixed-step and has none: use dopri5 or dop853")
-        if method != "auto" and (method not in ADAPTIVE or method == "gsl-rk8pd"):
-            raise ValueError(f"method {method!r} cannot locate the tension event: use dopri5 or dop853")
+    # (which methods can run a flexible cord is a rule of the scene, checked when it was made)
+    integrated = any(e for e in scene.effects if e != "cord") or scene.method not in ("auto", "exact")
 
     order = np.argsort(flat, kind="stable")
     ts = np.ascontiguousarray(flat[order])
@@ -264,13 +307,13 @@ def simulate_cord(scene, t):
     def back(a):
         return a[inv].reshape(t.shape)
 
-    text = _kernel_text(scene).encode("utf-8")
+    fields = scene._kernel_fields
     maxf = max(1, min(scene.max_flips, 65536))
     while True:
         cancel = _interrupt.cancel_flag()
         th, v, x, y, r, fl, nf, stop, stats, code, status, msg = _interrupt.call(
-            _kernel.cord_scene_v, text, maxf, ts, cancel, cancel=cancel,
-            long=integrated and _long_run(scene, ts))
+            _kernel.cord_scene_v, *fields, maxf, ts, cancel, cancel=cancel,
+            long=_long_run(scene, ts))   # the closed-form loop is cancellable too
         if status or nf <= maxf:
             break
         maxf = int(nf)  # the flip log had no room for every flip: once more with room
@@ -278,7 +321,7 @@ def simulate_cord(scene, t):
     if status == 100:
         raise SceneError(f"the kernel refused the scene: {msg}")
     if status:
-        raise ValueError(f"{method}: {msg}")
+        raise ValueError(msg)
     nan_after = int(np.count_nonzero(np.isnan(th)))
     if nan_after:
         warnings.warn(f"flexible cord: the run stopped ({_STOPS[int(stop)]}) at flip {nf}; "

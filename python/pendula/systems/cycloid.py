@@ -29,6 +29,7 @@ import math
 import numpy as np
 
 from .. import _kernel
+from .. import _checks
 from .._checks import as_float
 
 __all__ = ["cycloid_motion", "cycloid_period", "cycloid_energy", "cycloid_geometry", "CycloidGeometry"]
@@ -115,18 +116,20 @@ def cycloid_amplitude(scene) -> tuple[float, float]:
 
 
 def cycloid_period(scene) -> float:
-    """T = 2 pi / sqrt(w2) = 4 pi sqrt(R/g), independent of the amplitude.
+    """The period of Huygens' cycloidal pendulum, the same at every amplitude.
 
     Parameters
     ----------
     scene : Scene
-        With ``guide = 'cycloid'``; the period is that of the conservative
-        motion (damping and drive are not part of it).
+        A scene with ``guide = 'cycloid'`` (its `eps` and `cycloid_radius`);
+        the period is that of the conservative motion (damping and drive are
+        not part of it).
 
     Returns
     -------
     float
-        The period, the same for every orbit that stays between the cusps.
+        T = 2 pi / sqrt(w2) = 4 pi sqrt(R/g), w2 = eps / (4 cycloid_radius):
+        the same for every orbit that stays between the cusps.
 
     Raises
     ------
@@ -136,11 +139,16 @@ def cycloid_period(scene) -> float:
         The scene's guide is not the cycloid, or its orbit runs beyond a cusp
         (|s| > 4R), where :func:`pendula.simulate` refuses it too.
 
+    See Also
+    --------
+    period : the period of any conservative scene (calls this one for the cycloid).
+    cycloid_geometry : the construction.
+
     Examples
     --------
     >>> import pendula
-    >>> round(pendula.cycloid_period(pendula.Scene(guide='cycloid', theta0=1.2)), 12)   # 4 pi sqrt(R/g)
-    6.28318530718
+    >>> pendula.cycloid_period(pendula.Scene(guide="cycloid", theta0=1.0))   # R = l/4: 2 pi
+    6.283185307179586
     """
     _scene_arg(scene, "cycloid_period")
     cycloid_amplitude(scene)
@@ -158,14 +166,38 @@ def cycloid_energy(scene, s, sd):
 class CycloidGeometry:
     """Huygens' construction: the bob's cycloid, the cheeks and the cord.
 
-    Attributes (lengths in units of R; pivot at (0, 4R), lowest point at the origin)
+    Lengths in the units of `R` (units of l for R = R / l); the pivot at
+    (0, 4R), the lowest point of the path at the origin.
+
+    Parameters
     ----------
+    R : float
+        Radius of the generating circle (> 0).
+    n : int
+        Points per curve (>= 2).
+
+    Attributes
+    ----------
+    R : float
+        Radius of the generating circle; the cord is 4R long.
     path : (2, n) ndarray
         The bob's cycloid x = R (phi + sin phi), y = R (1 - cos phi), phi in [-pi, pi].
     cheek_left, cheek_right : (2, n) ndarray
         The cheeks, the evolute of the path: x = R (phi - sin phi), y = R (3 + cos phi).
     circle : (2, n) ndarray
         The rigid pendulum's circle of radius 4R about the pivot, for comparison.
+
+    See Also
+    --------
+    cycloid_geometry : makes it, with the arguments checked.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> g = pendula.cycloid_geometry(0.25)
+    >>> wrapped, contact, bob = g.cord(0.5)       # the cord at a free-cord angle of 0.5 rad
+    >>> bob.round(6).tolist()
+    [0.460368, 0.114924]
     """
 
     def __init__(self, R: float, n: int):
@@ -181,7 +213,24 @@ class CycloidGeometry:
     def cord(self, theta: float):
         """The cord at free-cord angle theta: the wrapped part on the cheek and the free part.
 
-        Returns (wrapped (2, k) array, contact point, bob position).
+        Parameters
+        ----------
+        theta : float
+            The angle of the free part of the cord, abs(theta) <= pi/2.
+
+        Returns
+        -------
+        wrapped : (2, 64) ndarray
+            The part of the cord wrapped on the cheek.
+        contact : (2,) ndarray
+            Where the cord leaves the cheek.
+        bob : (2,) ndarray
+            The bob's position.
+
+        Raises
+        ------
+        ValueError
+            Beyond the cusps, abs(theta) > pi/2.
         """
         if not abs(theta) <= math.pi / 2:
             raise ValueError(f"theta must satisfy |theta| <= pi/2 (the cusps), got {theta!r}")
@@ -195,7 +244,7 @@ class CycloidGeometry:
 
 
 def cycloid_geometry(R: float = 0.25, n: int = 401) -> CycloidGeometry:
-    """The path, the cheeks and the comparison circle of Huygens' clock (section 4.3).
+    """The path, the cheeks and the comparison circle of Huygens' clock (Prusa & Tuma, section 4.3).
 
     Parameters
     ----------
@@ -203,6 +252,21 @@ def cycloid_geometry(R: float = 0.25, n: int = 401) -> CycloidGeometry:
         Radius of the generating circle (> 0); the cord is 4R long.
     n : int
         Points per curve, 2 to ``MAX_GEOMETRY_POINTS`` (10^7).
+
+    Returns
+    -------
+    CycloidGeometry
+        The curves, and the cord at any angle (its ``cord`` method).
+
+    Raises
+    ------
+    ValueError
+        If `R` is not positive and finite or `n` is not a whole number >= 2.
+
+    See Also
+    --------
+    cycloid_period : the period on this path.
+    simulate : the motion (``Scene(guide='cycloid')``).
 
     Examples
     --------
@@ -216,6 +280,6 @@ def cycloid_geometry(R: float = 0.25, n: int = 401) -> CycloidGeometry:
     R = float(R)
     if not (R > 0 and math.isfinite(R)):
         raise ValueError(f"R must be positive and finite, got {R!r}")
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 2 <= n <= MAX_GEOMETRY_POINTS:
-        raise ValueError(f"n must be a whole number from 2 to {MAX_GEOMETRY_POINTS}, got {n!r}")
-    return CycloidGeometry(R, int(n))
+    # a drawing: at most MAX_GEOMETRY_POINTS points per curve (absurd sizes refused up front)
+    n = _checks.count(n, "n", 2, MAX_GEOMETRY_POINTS)
+    return CycloidGeometry(R, n)

@@ -126,15 +126,22 @@ def gravity_orbit(scene) -> GravityOrbit:
     double-double, and mc follows from it; the uniform field is answered by the
     exact pendulum itself (the same bits as :func:`pendula.orbit`).
 
+    Both fields depend on theta through w = sin^2(theta/2) only, so the
+    substitution sin(theta/2) = sqrt(w_m) sn(u | w_m) turns the energy
+    integral into T = 4 int_0^K h(u) du with h smooth and periodic, which the
+    trapezoid rule integrates to a few eps.
+
     Parameters
     ----------
     scene : Scene
-        Its field (``gravity``, ``gravity_distance``, ``gravity_gradient``),
-        ``eps``, ``theta0`` and ``v0``; other effects are ignored.
+        A conservative scene in uniform or non-uniform gravity (``gravity``
+        and its ``gravity_distance`` or ``gravity_gradient``).
 
     Returns
     -------
     GravityOrbit
+        regime, energy, m, K, theta_max, period, mc (the fields of
+        :class:`Orbit` it shares have the same meaning).
 
     Raises
     ------
@@ -145,12 +152,20 @@ def gravity_orbit(scene) -> GravityOrbit:
         inverse-square mass closer than about 2e-5 l below the circle (the
         quadrature of the period does not converge); the message names it.
 
+    See Also
+    --------
+    period : the period of any conservative scene.
+    orbit : the same facts in uniform gravity.
+
     Examples
     --------
     >>> import pendula
     >>> o = pendula.gravity_orbit(pendula.Scene(gravity='linear', gravity_gradient=0.2, theta0=1.0))
     >>> o.regime, round(o.theta_max, 15)
     ('libration', 1.0)
+    >>> s = pendula.Scene(gravity="inverse-square", gravity_distance=2.0, theta0=2.5)
+    >>> pendula.gravity_orbit(s).period == pendula.period(s)
+    True
     """
     from ..scene import Scene
 
@@ -172,7 +187,7 @@ def h_samples(scene, orb: GravityOrbit, u):
                                orb.energy, u)
 
 
-def conservative_orbit(scene):
+def model_orbit_facts(scene):
     """The orbit facts (a :class:`pendula.Orbit`) of a conservative cycloid scene (the
     guide, perhaps a torque) or of a scene whose only effect is non-uniform gravity;
     None for any other scene.  k is sqrt(m) in libration and 1/sqrt(m) in rotation

@@ -49,6 +49,19 @@ class Orbit:
     theta_max : float
         Amplitude 2 arcsin(k) of a libration; pi on the separatrix; inf for a
         rotation.
+
+    See Also
+    --------
+    orbit : makes it.
+    gravity_orbit : the orbit in a non-uniform field (``GravityOrbit``, the
+        shared facts under the same names).
+
+    Examples
+    --------
+    >>> import pendula
+    >>> o = pendula.orbit(0.0, 3.0)
+    >>> o.regime, round(o.period, 12), o.theta_max
+    ('rotation', 2.412889993982, inf)
     """
 
     regime: str
@@ -75,12 +88,42 @@ def _scalar(x, name: str) -> float:
 def orbit(theta0: float, v0: float, eps: float = 1.0) -> Orbit:
     """Regime, modulus, period, frequency and amplitude of the orbit through (theta0, v0).
 
+    Parameters
+    ----------
+    theta0 : float
+        Angle at t = 0 (rad, from the bottom; any value).
+    v0 : float
+        Angular velocity at t = 0 (any sign).
+    eps : float, optional
+        g / l > 0 (default 1).
+
+    Returns
+    -------
+    Orbit
+        The orbit's facts, from the exact solution (periods within a few eps).
+
+    Raises
+    ------
+    TypeError
+        For a string, complex or array argument.
+    ValueError
+        For eps <= 0 or beyond 1e300, abs(theta0) beyond 2**52, or abs(v0)
+        beyond 1e154 sqrt(eps).
+
+    See Also
+    --------
+    exact_motion : the motion itself.
+    period : the period of a scene.
+    gravity_orbit : the same facts in a non-uniform gravity field.
+
     Examples
     --------
     >>> import pendula
     >>> o = pendula.orbit(0.0, 1.0)          # libration, k = 1/2
-    >>> round(o.period, 12)
-    6.74300141925
+    >>> o.regime, o.k, round(o.period, 12)
+    ('libration', 0.5, 6.74300141925)
+    >>> pendula.orbit(0.0, 2 - 1e-12).period   # 1e-12 below the separatrix
+    60.807041883089525
     """
     info, status = _kernel.exact_info_v(_scalar(theta0, "theta0"), _scalar(v0, "v0"), _scalar(eps, "eps"))
     _check_status(status)
@@ -104,7 +147,29 @@ def exact_motion(theta0: float, v0: float, eps: float, t) -> tuple[np.ndarray, n
     Returns
     -------
     theta, v : ndarray
-        The angle is continuous: it grows without bound in a rotation.
+        Arrays of the shape of `t`.  The angle is continuous: it grows without
+        bound in a rotation.  NaN (with a RuntimeWarning) at infinite times
+        or beyond 2**48 half periods.
+
+    Raises
+    ------
+    TypeError
+        For a string, complex or object argument.
+    ValueError
+        For eps <= 0 or an out-of-range initial state (as :func:`orbit`).
+
+    See Also
+    --------
+    orbit : the facts of the orbit (regime, period, amplitude).
+    simulate : the same motion from a scene, with effects.
+    ellipj : the Jacobi functions it is made of.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> theta, v = pendula.exact_motion(0.0, 2.0, 1.0, [0.0, 10.0, 40.0])   # on the separatrix
+    >>> [round(float(x), 6) for x in theta]                                 # -> pi, never over
+    [0.0, 3.141411, 3.141593]
     """
     t = as_float(t, "t")
     tf = np.ascontiguousarray(t, dtype=np.float64).reshape(-1)
@@ -125,7 +190,44 @@ def exact_motion(theta0: float, v0: float, eps: float, t) -> tuple[np.ndarray, n
 
 
 def energy(theta, v, eps: float = 1.0) -> np.ndarray:
-    """E = v^2/2 + eps (1 - cos theta), written as v^2/2 + 2 eps sin^2(theta/2) (no cancellation)."""
+    """The energy E = v^2/2 + eps (1 - cos theta) of the rigid pendulum.
+
+    Parameters
+    ----------
+    theta : array_like
+        Angle (rad).
+    v : array_like
+        Angular velocity.
+    eps : float or array_like, optional
+        g / l (default 1).
+
+    Returns
+    -------
+    ndarray
+        E, broadcast over the arguments, per unit m l^2; 2 eps on the
+        separatrix.
+
+    Raises
+    ------
+    TypeError
+        For a string, complex or object argument.
+
+    See Also
+    --------
+    exact_motion : a path along which E is constant.
+    Trajectory : carries the energy along any computed path.
+
+    Notes
+    -----
+    Written as v^2/2 + 2 eps sin^2(theta/2), so no digits cancel near the
+    bottom.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> float(pendula.energy(0.0, 2.0)), float(pendula.energy(3.141592653589793, 0.0))
+    (2.0, 2.0)
+    """
     theta = as_float(theta, "theta")
     v = as_float(v, "v")
     eps = as_float(eps, "eps")

@@ -1,0 +1,42 @@
+"""
+Damping, torque and the Josephson junction
+==========================================
+
+Suzuki & Suzuki, sections 7 and 8.  Left: the well θ = 2πn a damped
+pendulum (θ0 = 0) settles in, over a grid of starting velocities v0 and
+damping β, by :func:`pendula.sweep` with the measure ``final_well`` (a
+small version of the ``make demo`` map; each point stops as soon as its
+energy is below the barrier of its well).  Right: with a constant torque τ
+the mean velocity ⟨v⟩ against τ is the I–V curve of a Josephson junction
+(RCSJ model): locked (⟨v⟩ = 0) up to τ = ε, running above, and on the way
+down running until the retrapping torque near 4β/π: a hysteresis loop.
+"""
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+import pendula
+
+s = pendula.Scene(damping=0.1, rtol=1e-8, atol=1e-10)
+ds = pendula.sweep(s, over={"v0": np.linspace(0.0, 4.0, 60), "damping": np.linspace(0.02, 0.3, 36)},
+                   measure="final_well")
+print(ds)
+
+fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.3))
+wells = ds.well.values.T
+im = ax1.pcolormesh(ds.v0, ds.damping, wells, cmap="tab20", shading="nearest")
+fig.colorbar(im, ax=ax1, label="final well n (θ → 2πn)")
+ax1.set(xlabel="v0", ylabel="damping β", title="basins of the damped pendulum")
+
+beta = 0.1
+r = pendula.iv_curve(pendula.Scene(damping=beta), np.arange(0.0, 1.3001, 0.02), "both",
+                     transient=100.0, t_avg=200.0)
+ax2.plot(r["up"][0], r["up"][1], ".-", label="torque ramped up")
+ax2.plot(r["down"][0], r["down"][1], ".-", label="torque ramped down")
+ax2.plot([0, 1.3], [0, 1.3 / beta], color="0.8", lw=0.8, label="ohmic line τ/β")
+ax2.axvline(4 * beta / np.pi, color="0.6", ls=":", label="4β/π (Stewart–McCumber)")
+ax2.set(xlabel="torque τ (bias current)", ylabel="⟨v⟩ (voltage)", ylim=(-0.5, 14),
+        title=f"I–V loop, β = {beta}, ε = 1")
+ax2.legend(fontsize=8)
+fig.tight_layout()
+plt.show()

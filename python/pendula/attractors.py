@@ -1,0 +1,355 @@
+"""Attractors of the driven damped pendulum and their basins.
+
+The stroboscopic map of a periodically driven scene is sampled once per drive
+period after a transient (the sweep measure ``poincare``, computed by the
+kernel on OpenMP threads; :func:`pendula.attractor_map` and the sweep measure
+``attractor`` run it and call this module); each grid point's samples are then
+read for recurrence, without being told the attractors in advance (in the spirit of
+Datseris & Wagemakers' AttractorsViaRecurrences):
+
+- **periodic**: the smallest k such that every sample of the tail recurs
+  after k drive periods to within ``tol`` (angles compared modulo 2 pi).  The
+  cycle's k points identify the attractor; two points share it when each
+  point of one cycle lies within ``merge_tol`` of a point of the other.
+- **chaotic**: no period up to ``max_period``.  Such points share an
+  attractor when the cells of a coarse grid (``cell`` wide) that their
+  samples visit overlap, directly or through other chaotic points (connected
+  components of the point-cell graph).
+
+Labels are numbered by a rule on the attractors alone (periodic ones by
+period, then by the angle and velocity of their first point; chaotic ones
+after them by the size of their basin), so they depend on the grid and the
+options only, never on the chunking, the thread count or a resumed run.
+
+Measured quantities of a 2-D map (Daza et al. 2016; Grebogi, McDonald, Ott
+& Yorke 1983): the basin-boundary fraction (points with a grid neighbour of
+another attractor), the basin entropy S_b and the boundary basin entropy
+S_bb (boxes of ``box`` x ``box`` points), and the uncertainty exponent alpha:
+the fraction f(e) of points whose attractor changes within a distance e
+along an axis scales as e^alpha (alpha = 1 for a smooth boundary, < 1 for a
+fractal one), fitted over e = 1, 2, 4, ... grid steps.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .scene import Scene
+
+__all__ = ["Attractor", "AttractorMap", "label_attractors", "basin_entropy", "uncertainty_exponent",
+           "boundary_fraction"]
+
+TWO_PI = 2 * math.pi
+
+
+@dataclass(frozen=True)
+class Attractor:
+    """One attractor of the stroboscopic map.
+
+    Attributes
+    ----------
+    label : int
+        Its label in the map (0, 1, ...).
+    kind : str
+        'periodic' or 'chaotic'.
+    period : int
+        Drive periods of the cycle (0 for a chaotic attractor).
+    theta, v : numpy.ndarray
+        The cycle's points on the section (theta in [-pi, pi)), or, for a chaotic
+        attractor, the samples of one of its points.
+    fraction : float
+        The fraction of the grid in its basin.
+    """
+
+    label: int
+    kind: str
+    period: int
+    theta: np.ndarray
+    v: np.ndarray
+    fraction: float
+
+
+def _wrap(x):
+    return (x + math.pi) % TWO_PI - math.pi
+
+
+def _dist(th1, v1, th2, v2):
+    return np.maximum(np.abs(_wrap(th1 - th2)), np.abs(v1 - v2))
+
+
+def label_attractors(theta, v, *, tol=1e-6, merge_tol=1e-3, max_period=None, cell=0.05):
+    """Label each point's attractor from its stroboscopic samples.
+
+    Parameters
+    ----------
+    theta, v : array_like, shape (..., S)
+        The samples of each point (theta modulo 2 pi), S per point, after the transient.
+    tol : float, optional
+        Recurrence tolerance of a periodic cycle (max-norm, default 1e-6).
+    merge_tol : float, optional
+        Two cycles are one attractor when each point of one lies within this of the other's (default 1e-3).
+    max_period : int, optional
+        The longest period looked for (default S // 2).
+    cell : float, optional
+        Cell width of the grid on which chaotic attractors are told apart (default 0.05).
+
+    Returns
+    -------
+    labels : numpy.ndarray of int, shape (...)
+        The attractor of each point; -1 where the samples are not finite.
+    attractors : list of Attractor
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pendula.attractors import label_attractors
+    >>> th = np.array([[0.1, 0.1, 0.1, 0.1], [1.0, 2.0, 1.0, 2.0], [0.1, 0.1, 0.1, 0.1]])
+    >>> labels, atts = label_attractors(th, np.zeros_like(th))
+    >>> labels.tolist(), [a.period for a in atts]
+    ([0, 1, 0], [1, 2])
+    """
+    theta = np.asarray(theta, dtype=float)
+    v = np.asarray(v, dtype=float)
+    if theta.shape != v.shape or theta.ndim < 1:
+        raise ValueError("theta and v must have the same shape (..., samples)")
+    shape = theta.shape[:-1]
+    S = theta.shape[-1]
+    th = _wrap(theta.reshape(-1, S))
+    vv = v.reshape(-1, S)
+    n = th.shape[0]
+    kmax = S // 2 if max_period is None else int(max_period)
+    if not 1 <= kmax <= S - 1:
+        raise ValueError(f"max_period must be between 1 and samples - 1 = {S - 1}, got {kmax}")
+    finite = np.all(np.isfinite(th) & np.isfinite(vv), axis=1)
+    period = np.zeros(n, dtype=np.int64)
+    for k in range(1, kmax + 1):
+        todo = np.flatnonzero(finite & (period == 0))
+        if todo.size == 0:
+            break
+        # every sample of the tail recurs after k periods
+        d = _dist(th[todo, k:], vv[todo, k:], th[todo, :-k], vv[todo, :-k]).max(axis=1)
+        period[todo[d < tol]] = k
+    labels = np.full(n, -1, dtype=np.int64)
+    found = []   # (period, theta points, v points, indices)
+
+    # periodic: one representative cycle per attractor, taken in a fixed order of the points
+    per = np.flatnonzero(period > 0)
+    # the cycle of each periodic point: its last k samples
+    for k in np.unique(period[per]):
+        idx = per[period[per] == k]
+        cth = th[idx, S - k:]
+        cv = vv[idx, S - k:]
+        # a rotation-independent key: the cycle point of smallest angle
+        first = np.argmin(cth, axis=1)
+        key_th = cth[np.arange(idx.size), first]
+        order = np.lexsort((cv[np.arange(idx.size), first], key_th))
+        unassigned = np.ones(idx.size, dtype=bool)
+        for j in order:
+            if not unassigned[j]:
+                continue
+            rep_th, rep_v = cth[j], cv[j]
+            # members: every cycle point of theirs lies within merge_tol of a point of the representative
+            cand = np.flatnonzero(unassigned)
+            dmin = np.full((cand.size, k), np.inf)
+            for q in range(k):
+                dmin = np.minimum(dmin, _dist(cth[cand], cv[cand], rep_th[q], rep_v[q]))
+            members = cand[dmin.max(axis=1) < merge_tol]
+            unassigned[members] = False
+            found.append(("periodic", int(k), rep_th.copy(), rep_v.copy(), idx[members]))
+
+    # chaotic: connected components of the graph point - visited cell
+    cha = np.flatnonzero(finite & (period == 0))
+    if cha.size:
+        ci = np.floor((th[cha] + math.pi) / cell).astype(np.int64)
+        cj = np.floor(vv[cha] / cell).astype(np.int64)
+        cj -= cj.min()
+        cells = ci * (int(cj.max()) + 1) + cj                       # (npts, S) cell ids
+        _, cells = np.unique(cells, return_inverse=True)
+        cells = cells.reshape(cha.size, S)
+        comp = np.arange(cha.size)
+        while True:
+            # each cell takes the smallest component of its points, each point the smallest of its cells
+            cell_min = np.full(cells.max() + 1, cha.size, dtype=np.int64)
+            np.minimum.at(cell_min, cells, comp[:, None])
+            new = cell_min[cells].min(axis=1)
+            new = np.minimum(new, comp)
+            new = new[new]   # pointer jumping
+            if np.array_equal(new, comp):
+                break
+            comp = new
+        for c in np.unique(comp):
+            members = cha[comp == c]
+            found.append(("chaotic", 0, th[members[0]].copy(), vv[members[0]].copy(), members))
+
+    # numbering: periodic by (period, first point's angle, velocity), then chaotic by basin size
+    def sort_key(f):
+        kind, k, rth, rv, members = f
+        if kind == "periodic":
+            q = int(np.argmin(rth))
+            return (0, k, round(float(rth[q]), 6), round(float(rv[q]), 6), 0)
+        return (1, 0, 0.0, 0.0, -members.size)
+
+    found.sort(key=sort_key)
+    atts = []
+    for lab, (kind, k, rth, rv, members) in enumerate(found):
+        labels[members] = lab
+        if kind == "periodic":
+            q = int(np.argmin(rth))
+            rth, rv = np.roll(rth, -q), np.roll(rv, -q)
+        atts.append(Attractor(lab, kind, k, rth, rv, members.size / max(n, 1)))
+    return labels.reshape(shape), atts
+
+
+def boundary_fraction(labels) -> float:
+    """The fraction of points of a label map with a grid neighbour (along any axis) of another label.
+
+    Parameters
+    ----------
+    labels : array_like of int
+        A label map (any number of axes).
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> from pendula.attractors import boundary_fraction
+    >>> boundary_fraction([[0, 0, 1, 1]])
+    0.5
+    """
+    lab = np.asarray(labels)
+    edge = np.zeros(lab.shape, dtype=bool)
+    for ax in range(lab.ndim):
+        d = np.diff(lab, axis=ax) != 0
+        lo = [slice(None)] * lab.ndim
+        hi = [slice(None)] * lab.ndim
+        lo[ax] = slice(0, -1)
+        hi[ax] = slice(1, None)
+        edge[tuple(lo)] |= d
+        edge[tuple(hi)] |= d
+    return float(edge.mean())
+
+
+def basin_entropy(labels, box: int = 5) -> tuple[float, float]:
+    """The basin entropy S_b and boundary basin entropy S_bb of a 2-D label map (Daza et al. 2016).
+
+    Parameters
+    ----------
+    labels : array_like of int, 2-D
+        The label map.
+    box : int, optional
+        The side of the boxes in points (default 5).
+
+    Returns
+    -------
+    S_b, S_bb : float
+        The mean over all boxes, and over the boxes that hold more than one label,
+        of -sum p log p (natural log); S_bb is 0 when no box holds two labels.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pendula.attractors import basin_entropy
+    >>> lab = np.zeros((10, 10), int); lab[:, 5:] = 1
+    >>> [round(x, 6) for x in basin_entropy(lab)]
+    [0.0, 0.0]
+    """
+    lab = np.asarray(labels)
+    if lab.ndim != 2:
+        raise ValueError("basin_entropy needs a 2-D label map")
+    nx, ny = lab.shape[0] // box, lab.shape[1] // box
+    if nx == 0 or ny == 0:
+        raise ValueError(f"the map ({lab.shape}) is smaller than one box of {box} x {box} points")
+    blocks = lab[:nx * box, :ny * box].reshape(nx, box, ny, box).transpose(0, 2, 1, 3).reshape(nx * ny, -1)
+    ent = np.zeros(blocks.shape[0])
+    for u in np.unique(blocks):
+        p = (blocks == u).mean(axis=1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ent -= np.where(p > 0, p * np.log(p), 0.0)
+    boundary = ent > 0
+    return float(ent.mean()), float(ent[boundary].mean()) if boundary.any() else 0.0
+
+
+def uncertainty_exponent(labels, max_shift: int | None = None) -> tuple[float, np.ndarray, np.ndarray]:
+    """The uncertainty exponent of a label map from the grid itself.
+
+    f(e) is the fraction of points whose label differs from that of a point
+    e grid steps away along some axis (either side), for e = 1, 2, 4, ...;
+    alpha is the least-squares slope of log f against log e.
+
+    Parameters
+    ----------
+    labels : array_like of int
+        The label map.
+    max_shift : int, optional
+        The largest e (default a sixteenth of the smallest axis).
+
+    Returns
+    -------
+    alpha : float
+        NaN when the map has one label only.
+    e, f : numpy.ndarray
+        The shifts (grid steps) and the fractions.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pendula.attractors import uncertainty_exponent
+    >>> x, y = np.meshgrid(np.linspace(-1, 1, 400), np.linspace(-1, 1, 400))
+    >>> round(uncertainty_exponent((x**2 + y**2 < 0.5).astype(int))[0], 2)   # a smooth boundary
+    1.0
+    """
+    lab = np.asarray(labels)
+    m = max(1, min(lab.shape) // 16) if max_shift is None else int(max_shift)
+    es, fs = [], []
+    e = 1
+    while e <= m:
+        changed = np.zeros(lab.shape, dtype=bool)
+        for ax in range(lab.ndim):
+            if lab.shape[ax] <= e:
+                continue
+            d = np.take(lab, range(e, lab.shape[ax]), axis=ax) != np.take(lab, range(0, lab.shape[ax] - e), axis=ax)
+            lo = [slice(None)] * lab.ndim
+            hi = [slice(None)] * lab.ndim
+            lo[ax] = slice(0, lab.shape[ax] - e)
+            hi[ax] = slice(e, None)
+            changed[tuple(lo)] |= d
+            changed[tuple(hi)] |= d
+        es.append(e)
+        fs.append(changed.mean())
+        e *= 2
+    es, fs = np.array(es, dtype=float), np.array(fs)
+    ok = fs > 0
+    if ok.sum() < 2:
+        return math.nan, es, fs
+    alpha = float(np.polyfit(np.log(es[ok]), np.log(fs[ok]), 1)[0])
+    return alpha, es, fs
+
+
+@dataclass
+class AttractorMap:
+    """The attractor of each initial state on a grid, the attractors, and the basin measures.
+
+    Attributes
+    ----------
+    dataset : xarray.Dataset
+        ``attractor`` (int label, -1 undecided) and ``period`` on the grid's
+        axes, with CF attributes; the sweep's options as attributes.
+    attractors : list of Attractor
+    boundary_fraction : float
+    basin_entropy, boundary_basin_entropy : float
+        NaN unless the grid has two axes.
+    uncertainty_exponent : float
+        NaN when the map holds one attractor.
+    """
+
+    dataset: object
+    attractors: list
+    boundary_fraction: float
+    basin_entropy: float
+    boundary_basin_entropy: float
+    uncertainty_exponent: float

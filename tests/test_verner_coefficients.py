@@ -1,0 +1,122 @@
+"""Verner's 9(8) pair of the kernel (method 'vern9'): the Butcher order conditions.
+
+Every rooted tree t of order <= 9 (486 trees) gives one condition b . Phi(t) = 1 / gamma(t)
+(Butcher; Hairer, Norsett & Wanner, Solving ODEs I, section II.2).  They are checked for the
+45-digit coefficients (data/verner98_coefficients.csv) to 1e-35, for the doubles the kernel
+uses (kernel/integrators/pendula_rk_tables.inc) to 1e-13, and for the embedded weights
+b - e to order 8 only (some order-9 condition fails by far more: the estimate measures).
+"""
+
+import functools
+import pathlib
+import re
+import sys
+
+import mpmath as mp
+import numpy as np
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "data"))
+from gen_rk_tables import verner98_matrices  # noqa: E402
+
+TABLE = ROOT / "kernel" / "integrators" / "pendula_rk_tables.inc"
+
+
+@functools.lru_cache(maxsize=None)
+def trees(n):
+    """Canonical rooted trees with n nodes: a tree is the sorted tuple of its children."""
+    if n == 1:
+        return [()]
+    out = set()
+
+    def build(remaining, max_child, acc):
+        if remaining == 0:
+            out.add(tuple(sorted(acc)))
+            return
+        for k in range(min(remaining, max_child), 0, -1):
+            for t in trees(k):
+                build(remaining - k, k, acc + [t])
+    build(n - 1, n - 1, [])
+    return sorted(out)
+
+
+def order(t):
+    return 1 + sum(order(c) for c in t)
+
+
+def gamma(t):
+    g = order(t)
+    for c in t:
+        g *= gamma(c)
+    return g
+
+
+def residuals(c, A, b, max_order):
+    """max |b . Phi(t) - 1/gamma(t)| per order, for the tableau (any number type)."""
+    s = len(b)
+    memo = {}
+
+    def phi(t):   # vector over stages
+        if t not in memo:
+            v = [1] * s
+            for ch in t:
+                p = phi(ch)
+                ap = [sum(A[i][j] * p[j] for j in range(s)) for i in range(s)]
+                v = [v[i] * ap[i] for i in range(s)]
+            memo[t] = v
+        return memo[t]
+
+    res = {}
+    for n in range(1, max_order + 1):
+        res[n] = max(abs(sum(b[i] * phi(t)[i] for i in range(s)) - mp.mpf(1) / gamma(t)) for t in trees(n))
+    return res
+
+
+def test_tree_counts_are_the_known_ones():
+    assert [len(trees(n)) for n in range(1, 10)] == [1, 1, 2, 4, 9, 20, 48, 115, 286]
+
+
+@pytest.fixture(scope="module")
+def exact():
+    mp.mp.dps = 50
+    return verner98_matrices()
+
+
+def test_verner_rows_sum_to_the_nodes(exact):
+    c, A, b, e = exact
+    assert max(abs(sum(A[i]) - c[i]) for i in range(16)) < mp.mpf("1e-40")
+
+
+def test_verner_weights_satisfy_all_conditions_to_order_nine(exact):
+    c, A, b, e = exact
+    res = residuals(c, A, b, 9)
+    assert max(res.values()) < mp.mpf("1e-35"), res
+
+
+def test_verner_embedded_weights_are_of_order_eight_exactly(exact):
+    c, A, b, e = exact
+    bhat = [b[i] - e[i] for i in range(16)]
+    res = residuals(c, A, bhat, 9)
+    assert max(res[n] for n in range(1, 9)) < mp.mpf("1e-35"), res
+    assert res[9] > mp.mpf("1e-6"), res
+
+
+def stored(name):
+    text = TABLE.read_text()
+    m = re.search(rf"real\(dp\), parameter :: {name}\((0:\d+)(?:, (0:\d+))?\) = (?:reshape\()?\[(.*?)\]", text, re.S)
+    assert m, name
+    vals = [float(v.replace("_dp", "")) for v in re.findall(r"-?[0-9.]+(?:[eE][-+]?\d+)?_dp", m.group(3))]
+    n = int(m.group(1).split(":")[1]) + 1
+    a = np.array(vals)
+    return a.reshape((n, n), order="F") if m.group(2) else a
+
+
+def test_verner_doubles_of_the_kernel_satisfy_the_conditions(exact):
+    mp.mp.dps = 30
+    c, A, b = stored("v9_c"), stored("v9_a"), stored("v9_b")
+    res = residuals([mp.mpf(x) for x in c], [[mp.mpf(x) for x in r] for r in A], [mp.mpf(x) for x in b], 9)
+    assert max(res.values()) < 1e-13, res
+    # and each double is its exact coefficient rounded
+    ce, Ae, be, ee = exact
+    assert all(float(x) == y for x, y in zip(be, b)) and all(float(x) == y for x, y in zip(ce, c))
