@@ -381,7 +381,7 @@ def gen_density(rng, rows, n_per_kind):
                 continue
             if o["regime"] == 0:
                 thm = float(o["theta_max"])
-                if j % 2:
+                if rng.random() < 0.5:
                     sub = "libration-turning"
                     theta = math.copysign(thm * (1 - loguni(rng, 1e-14, 1e-3)), rng.uniform(-1, 1))
                 else:
@@ -610,7 +610,7 @@ def main():
     """python data/gen_model_grids.py [STEP ...]: all steps, or only the named ones (their rows replaced
     in the stored file).  Each step draws from its own seeded generator, so a step run alone
     reproduces its rows of a full run."""
-    gens = {"gravity": lambda r, rows: gen_gravity(r, rows, 36), "density": lambda r, rows: gen_density(r, rows, 36),
+    gens = {"gravity": lambda r, rows: gen_gravity(r, rows, 36), "density": lambda r, rows: gen_density(r, rows, 48),
             "cycloid": lambda r, rows: gen_cycloid(r, rows, 60), "damped": lambda r, rows: gen_cycloid_damped(r, rows, 60),
             "cord": lambda r, rows: gen_cord(r, rows, 80), "events": lambda r, rows: gen_events(r, rows, 48)}
     only = sys.argv[1:] or list(gens)

@@ -259,3 +259,17 @@ def test_cdf_next_to_the_turning_point_of_a_libration_near_the_top():
     th = 3.141526426620049
     ref = _cdf_uniform_mp(sc.theta0, sc.v0, sc.eps, th)
     assert abs(float(angle_cdf(sc, th)) - float(ref)) <= 4 * EPS
+
+
+def test_rotation_angle_beyond_2_52_is_nan_with_a_warning():
+    sc = Scene(theta0=0.2, v0=5.0)
+    with pytest.warns(RuntimeWarning, match="theta beyond 2"):
+        assert math.isnan(float(angle_density(sc, 1e300)))
+    with pytest.warns(RuntimeWarning, match="theta beyond 2"):
+        c = angle_cdf(sc, [1e300, np.inf, -np.inf, 7.0])
+    assert math.isnan(c[0]) and c[1] == np.inf and c[2] == -np.inf and 1 < c[3] < 2
+
+
+def test_empty_angles_give_empty_answers():
+    for sc in (Scene(theta0=1.0), Scene(theta0=0.2, v0=5.0)):
+        assert angle_cdf(sc, []).shape == (0,) and angle_density(sc, []).shape == (0,)

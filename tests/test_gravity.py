@@ -330,3 +330,37 @@ def test_inverse_square_mass_far_away_is_the_uniform_field(distance):
 def test_gravity_orbit_of_something_else_names_the_scene():
     with pytest.raises(TypeError, match="scene"):
         gravity_orbit(0.25)
+
+
+@pytest.mark.parametrize("field", [dict(gravity="inverse-square", gravity_distance=1.5),
+                                   dict(gravity="linear", gravity_gradient=0.3),
+                                   dict(gravity="linear", gravity_gradient=-1e3)])
+@pytest.mark.parametrize("eps", [1e-300, 1e-150, 1e150, 1e300])
+def test_period_scales_as_one_over_sqrt_eps_to_the_ends_of_the_doubles(field, eps):
+    # V is proportional to eps: the same orbit (v0 scaled by sqrt(eps)) takes 1/sqrt(eps) as long;
+    # the kernel works in units of eps, so nothing under- or overflows on the way
+    base = gravity_orbit(Scene(theta0=1.0, v0=0.0, eps=1.0, **field))
+    o = gravity_orbit(Scene(theta0=1.0, v0=0.0, eps=eps, **field))
+    assert o.regime == base.regime and o.mc == base.mc
+    assert abs(o.period * math.sqrt(eps) / base.period - 1) <= 4 * EPS
+
+
+@pytest.mark.parametrize("kw,words", [
+    (dict(gravity="linear", gravity_gradient=-1e300, theta0=1.0), "gravity_gradient = -1e+300"),
+    (dict(gravity="inverse-square", gravity_distance=1.5, eps=1e-300, v0=1e140), "gravity_distance = 1.5"),
+    (dict(gravity="inverse-square", gravity_distance=1.0 + 2.0 ** -52, theta0=1.0), "gravity_distance"),
+])
+def test_orbit_beyond_double_precision_is_refused_naming_the_field(kw, words):
+    with pytest.raises(ValueError, match=words.replace("+", r"\+")):
+        gravity_orbit(Scene(**kw))
+
+
+@pytest.mark.parametrize("field", [dict(gravity="inverse-square", gravity_distance=8.38905609893065),
+                                   dict(gravity="linear", gravity_gradient=0.3)])
+@pytest.mark.parametrize("v0", [2.2e-242, 1e-160, 1e-8])
+def test_tiny_swing_at_the_bottom_is_a_libration(field, v0):
+    # v0^2 underflows (or nearly): mc = Q(w0, 1) / Q(m, 1) rounds to either side of 1; it is 1
+    o = gravity_orbit(Scene(theta0=0.0, v0=v0, **field))
+    small = 2 * math.pi / small_oscillation_omega(Scene(theta0=0.0, v0=v0, **field))
+    assert o.regime == "libration" and 0.0 <= o.m < 1e-15 and o.mc == 1.0
+    assert abs(o.period / small - 1) <= 1e-15

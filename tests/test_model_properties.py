@@ -6,6 +6,7 @@ conserves energy."""
 from __future__ import annotations
 
 import math
+import os
 import warnings
 
 import numpy as np
@@ -17,7 +18,9 @@ from pendula import Scene
 from pendula.systems.cycloid import cycloid_motion
 
 EPS = 2.0 ** -52
-SETTINGS = settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+#: 40 examples per property in `make test`; PENDULA_HYPOTHESIS_EXAMPLES=1000 for a longer run by hand
+SETTINGS = settings(max_examples=int(os.environ.get("PENDULA_HYPOTHESIS_EXAMPLES", "40")), deadline=None,
+                    suppress_health_check=[HealthCheck.too_slow])
 
 
 def logu(lo, hi):
@@ -69,7 +72,10 @@ def test_angle_cdf_is_monotone_from_0_to_1_and_its_derivative_is_the_density(fie
         assert c[0] == 0.0 and c[-1] == 1.0
         assert pendula.angle_cdf(sc, hi * 1.5) == 1.0 and pendula.angle_cdf(sc, lo * 1.5) == 0.0
     else:
-        assert abs(c[0]) <= 4 * EPS and abs(c[-1] - 1.0) <= 4 * EPS
+        # +-pi are not doubles: the CDF there is off by the density times the rounding of pi
+        # (the condition number: next to the separatrix the density peaks at the top)
+        tol = 4 * EPS + 2 * EPS * math.pi * float(pendula.angle_density(sc, math.pi))
+        assert abs(c[0]) <= tol and abs(c[-1] - 1.0) <= tol
     # the derivative: central differences away from the turning points
     inner = th[(np.abs(th) < 0.8 * hi)][::50]
     h = 1e-5 * (hi - lo)

@@ -1,4 +1,4 @@
-!> Non-uniform gravity (source 003, task 4): the pendulum of length l in a
+!> Non-uniform gravity (Prusa & Tuma, task 4): the pendulum of length l in a
 !> conservative field that is not uniform, still one-dimensional:
 !>   theta'' = -V'(theta),   E = theta'^2 / 2 + V(theta),   V(0) = 0,
 !> in units of m l^2, with eps = g / l and g the field strength at the lowest
@@ -35,7 +35,7 @@
 module pendula_gravity
   use pendula_kinds, only: dp, nan_dp, inf_dp, pi
   use pendula_elliptic, only: ellip_k, jacobi_sncndn
-  use pendula_dd, only: two_sum, two_prod, dd_add, dd_mul, dd_div, dd_sqrt
+  use pendula_dd, only: two_sum, two_prod, dd_add, dd_mul, dd_div, dd_div_d, dd_sqrt
   use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_period, orbit_theta_max, &
     regime_libration, regime_separatrix
   implicit none
@@ -46,7 +46,7 @@ module pendula_gravity
   integer, parameter, public :: gk_uniform = 0, gk_inverse_square = 1, gk_linear = 2
   integer, parameter, public :: gr_libration = 0, gr_separatrix = 1, gr_rotation = 2
   integer, parameter, public :: gs_ok = 0, gs_bad_param = 1, gs_bad_state = 2, gs_no_convergence = 3, &
-    gs_theta0_too_large = 4, gs_too_fast = 5
+    gs_theta0_too_large = 4, gs_too_fast = 5, gs_out_of_range = 6
 
 contains
 
@@ -143,15 +143,26 @@ contains
   elemental function gravity_h(kind, par, eps, regime, m, mc, e, u) result(h)
     integer, intent(in) :: kind, regime
     real(dp), intent(in) :: par, eps, m, mc, e, u
-    real(dp) :: h, sn, cn, dn, am, w, f1, de, hh
+    real(dp) :: h, sn, cn, dn, am, w, f1, de, hh, q1
     call jacobi_sncndn(u, m, mc, sn, cn, dn, am)
     if (regime == gr_libration) then
-      h = sqrt(2.0_dp / gravity_q(kind, par, eps, m * sn * sn, m))
+      if (kind == gk_linear) then
+        ! Q = 2 eps (1 - kappa (w + w_m)) = 2 eps ((1 - 2 kappa) + kappa (dn^2 + mc)): no cancellation
+        ! next to the top when kappa is next to 1/2
+        h = sqrt(2.0_dp / (2.0_dp * eps * ((1.0_dp - 2.0_dp * par) + par * (dn * dn + mc))))
+      else
+        h = sqrt(2.0_dp / gravity_q(kind, par, eps, m * sn * sn, m))
+      end if
     else
       w = sn * sn
       f1 = gravity_f(kind, par, eps, 1.0_dp)
       de = mc * e                    ! E - f(1) = mc E, without the cancellation of e - f1
-      hh = (de + gravity_q(kind, par, eps, w, 1.0_dp) * cn * cn) / (de + f1 * cn * cn)
+      if (kind == gk_linear) then    ! Q(w, 1) = 2 eps ((1 - 2 kappa) + kappa cn^2)
+        q1 = 2.0_dp * eps * ((1.0_dp - 2.0_dp * par) + par * cn * cn)
+      else
+        q1 = gravity_q(kind, par, eps, w, 1.0_dp)
+      end if
+      hh = (de + q1 * cn * cn) / (de + f1 * cn * cn)
       h = sqrt(2.0_dp / (e * hh))
     end if
   end function gravity_h
@@ -171,8 +182,8 @@ contains
     real(dp), intent(in) :: par, eps, theta0, v0
     real(dp), intent(out) :: e, m, mc, kk, theta_max, period
     integer, intent(out) :: regime, status
-    real(dp) :: w0, f1, c, s_old, s_new, scale, g, qh, ql, dh, dl, ph, pl
-    integer :: n, st
+    real(dp) :: w0, f1, c, s_old, s_new, sfac, g, qh, ql, dh, dl, ph, pl, ah, al, eu
+    integer :: n, st, ie, je
     type(pendulum_orbit) :: o
     e = nan_dp; m = nan_dp; mc = nan_dp; kk = nan_dp; theta_max = nan_dp; period = nan_dp; regime = -1
     status = gravity_check(kind, par, eps)
@@ -204,38 +215,54 @@ contains
     if (status == gs_ok .and. .not. (eps <= 1.0e300_dp)) status = gs_bad_param
     if (status == gs_ok .and. .not. (abs(v0) < 1.0e150_dp)) status = gs_too_fast
     if (status /= gs_ok) return
+    ! everything in units of eps (V is proportional to eps; time scales as 1/sqrt(eps)), so that
+    ! no product under- or overflows for any eps: eu = E / eps, the distance d = (f(1) - E) / eps
     w0 = sin(0.5_dp * theta0)**2
-    e = 0.5_dp * v0 * v0 + gravity_f(kind, par, eps, w0)
-    f1 = gravity_f(kind, par, eps, 1.0_dp)
-    ! the distance from the separatrix f(1) - E = Q(w0, 1) c^2 - v0^2 / 2 (double-double)
-    call gravity_q1_dd(kind, par, eps, o%mch, o%mcl, qh, ql)
-    call dd_mul(qh, ql, o%mch, o%mcl, dh, dl)
+    ! v0^2 / (2 eps) in double-double, both scaled to [0.5, 1) by exact powers of two first
+    ! (Dekker's splitting overflows beyond ~1e300), the quotient scaled back
     call two_prod(v0, v0, ph, pl)
-    call dd_add(dh, dl, -0.5_dp * ph, -0.5_dp * pl, dh, dl)
+    ie = exponent(ph); je = exponent(2.0_dp * eps)
+    call dd_div_d(scale(ph, -ie), scale(pl, -ie), scale(2.0_dp * eps, -je), ah, al)
+    ah = scale(ah, ie - je); al = scale(al, ie - je)
+    eu = ah + gravity_f(kind, par, 1.0_dp, w0)
+    e = eps * eu
+    f1 = gravity_f(kind, par, 1.0_dp, 1.0_dp)
+    ! the distance from the separatrix (f(1) - E) / eps = Q(w0, 1) c^2 / eps - v0^2 / (2 eps)
+    call gravity_q1_dd(kind, par, 1.0_dp, o%mch, o%mcl, qh, ql)
+    call dd_mul(qh, ql, o%mch, o%mcl, dh, dl)
+    call dd_add(dh, dl, -ah, -al, dh, dl)
     if (dh > 0.0_dp) then
       regime = gr_libration
       if (v0 == 0.0_dp) then
         m = w0                       ! exactly, when starting at rest
       else
-        select case (kind)           ! invert f(m) = E without cancellation
+        select case (kind)           ! invert f(m) = E without cancellation (or overflow)
         case (gk_inverse_square)
-          c = e / (eps * (par - 1.0_dp))
+          c = eu / (par - 1.0_dp)
           g = par / (par - 1.0_dp)
-          m = (e / eps) * (2.0_dp - c) / (4.0_dp * g * (1.0_dp - c)**2)
+          m = eu * (2.0_dp - c) / (4.0_dp * g * (1.0_dp - c)**2)
         case default
-          m = e / (eps * (1.0_dp + sqrt(1.0_dp - 2.0_dp * par * e / eps)))
+          if (abs(par) <= 1.0_dp) then
+            m = eu / (1.0_dp + sqrt(1.0_dp - 2.0_dp * par * eu))
+          else                       ! sqrt(1 - 2 kappa eu) = sqrt|kappa| sqrt(1/|kappa| - 2 sgn(kappa) eu)
+            m = eu / (1.0_dp + sqrt(abs(par)) * sqrt(1.0_dp / abs(par) - 2.0_dp * sign(1.0_dp, par) * eu))
+          end if
         end select
       end if
       ! 1 - m = (f(1) - E) / Q(m, 1)
       if (v0 == 0.0_dp) then
         mc = o%mch + o%mcl           ! cos^2(theta0/2), rounded once
+      else if (kind == gk_linear .and. par > 0.0_dp) then
+        ! Q(m, 1) = 2 ((1 - 2 kappa) + kappa mc): mc solves 2 kappa mc^2 + 2 (1 - 2 kappa) mc = d,
+        ! taken in its stable form (1 - kappa (m + 1) would cancel next to the top, kappa near 1/2)
+        mc = (dh + dl) / ((1.0_dp - 2.0_dp * par) + sqrt((1.0_dp - 2.0_dp * par)**2 + 2.0_dp * par * (dh + dl)))
       else
-        mc = (dh + dl) / gravity_q(kind, par, eps, m, 1.0_dp)
+        mc = (dh + dl) / gravity_q(kind, par, 1.0_dp, m, 1.0_dp)
       end if
       if (mc < 0.5_dp) m = 1.0_dp - mc         ! next to the top, m from its complement
       theta_max = 2.0_dp * atan2(sqrt(m), sqrt(mc))
       if (v0 == 0.0_dp) theta_max = abs((theta0 - o%offset) - o%offl)
-      scale = 4.0_dp
+      sfac = 4.0_dp
     else if (dh == 0.0_dp) then
       regime = gr_separatrix
       m = 1.0_dp
@@ -246,15 +273,25 @@ contains
       return
     else
       regime = gr_rotation
-      mc = -(dh + dl) / e            ! (E - f(1)) / E
-      m = f1 / e
+      mc = -(dh + dl) / eu           ! (E - f(1)) / E
+      m = f1 / eu
       if (mc < 0.5_dp) m = 1.0_dp - mc
       theta_max = inf_dp
-      scale = 2.0_dp
+      sfac = 2.0_dp
+    end if
+    ! (at the bottom mc = Q(w0, 1) / Q(m, 1) rounds to either side of 1: it is 1 there)
+    if (mc > 1.0_dp .and. mc <= 1.0_dp + 8.0_dp * epsilon(1.0_dp)) mc = 1.0_dp
+    ! what double precision cannot hold for this field (a parameter so extreme that a quantity of
+    ! the orbit under- or overflows): refused, never a wrong number
+    if (.not. (m >= 0.0_dp .and. m <= 1.0_dp .and. mc > 0.0_dp .and. mc <= 1.0_dp .and. &
+               abs(eu) < huge(eu) .and. abs(e) < huge(e) .and. qh > 0.0_dp .and. qh < huge(qh))) then
+      status = gs_out_of_range
+      e = nan_dp; m = nan_dp; mc = nan_dp; theta_max = nan_dp; regime = -1
+      return
     end if
     if (m == 0.0_dp) then            ! at rest at the bottom: the small-oscillation limit
       kk = 0.5_dp * pi
-      period = scale * kk * gravity_h(kind, par, eps, regime, m, mc, e, 0.0_dp)
+      period = sfac * kk * gravity_h(kind, par, 1.0_dp, regime, m, mc, eu, 0.0_dp) / sqrt(eps)
       return
     end if
     kk = ellip_k(m, mc)
@@ -269,7 +306,10 @@ contains
       end if
       s_old = s_new
     end do
-    period = scale * s_new
+    period = sfac * s_new / sqrt(eps)
+    if (.not. (period > 0.0_dp .and. period < huge(period))) then
+      status = gs_out_of_range; period = nan_dp
+    end if
   contains
     !> trapezoid sum on [0, K] with n panels
     pure function trap(np) result(s)
@@ -277,10 +317,10 @@ contains
       real(dp) :: s, hu
       integer :: j
       hu = kk / np
-      s = 0.5_dp * (gravity_h(kind, par, eps, regime, m, mc, e, 0.0_dp) + &
-                    gravity_h(kind, par, eps, regime, m, mc, e, kk))
+      s = 0.5_dp * (gravity_h(kind, par, 1.0_dp, regime, m, mc, eu, 0.0_dp) + &
+                    gravity_h(kind, par, 1.0_dp, regime, m, mc, eu, kk))
       do j = 1, np - 1
-        s = s + gravity_h(kind, par, eps, regime, m, mc, e, j * hu)
+        s = s + gravity_h(kind, par, 1.0_dp, regime, m, mc, eu, j * hu)
       end do
       s = s * hu
     end function trap
@@ -294,7 +334,7 @@ contains
       s = 0.0_dp
       c = 0.0_dp
       do j = 1, np - 1, 2
-        y = gravity_h(kind, par, eps, regime, m, mc, e, j * hu) - c
+        y = gravity_h(kind, par, 1.0_dp, regime, m, mc, eu, j * hu) - c
         tt = s + y
         c = (tt - s) - y
         s = tt

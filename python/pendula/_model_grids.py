@@ -32,7 +32,7 @@ TOLERANCES = {
                             "amplitude's rounding)"),
     "angle_density": (4.0, 2.0, "relative; next to a turning point the density ~ 1/sqrt(theta_max - theta) is "
                                 "as ill-conditioned as theta_max - theta"),
-    "cycloid_period": (4.0, 0.0, "4 pi sqrt(R / eps): four roundings"),
+    "cycloid_period": (4.0, 0.0, "2 pi / sqrt(eps / (4 R)): four roundings"),
     "cycloid_geometry": (4.0, 1.0, "absolute in units of R; the nodes' rounding times the slope"),
     "cycloid_motion": (4.0, 2.0, "the over-damped slow mode -w2 / (h + mu) without cancellation"),
     "cord_flip": (8.0, 2.0, "Garfinkel's closed forms through the exact circle motion and the closed-form "
@@ -83,10 +83,12 @@ def _err(got, ref, scale):
 
 def evaluate(rows: list[dict]) -> list[dict]:
     """pendula's error (eps) and the tolerance (eps) at every row."""
-    from . import angle_cdf, angle_density, cycloid_geometry, cycloid_period, gravity_orbit, simulate
+    from .density import angle_cdf, angle_density
     from .integrate import find_events, numerical_period
+    from .motion import simulate
     from .scene import Scene
-    from .systems.cycloid import cycloid_motion
+    from .systems.cycloid import cycloid_geometry, cycloid_motion, cycloid_period
+    from .systems.gravity import gravity_orbit
 
     out = []
     cache: dict = {}

@@ -1,4 +1,4 @@
-"""The density of the angle (source 003, task 5): how much of its time a
+"""The density of the angle (Prusa & Tuma, task 5): how much of its time a
 conservative orbit spends near each angle.
 
 Over one period of a libration the bob passes every angle twice, so the
@@ -23,6 +23,7 @@ the arcsine law at every amplitude: p(s) = 1 / (pi sqrt(A^2 - (s - s_c)^2)).
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 
@@ -131,8 +132,8 @@ class _Model:
         self.mc = o.mc
         # the amplitude: exactly |theta0| when starting at rest (the kernel's 2 asin(sqrt(m)) rounds)
         # (|theta0| <= pi: no reduction needed, exact; otherwise the kernel's reduced amplitude)
-        self.thm = abs(sc.theta0) if (sc.v0 == 0.0 and o.regime == "libration" and abs(sc.theta0) <= math.pi) \
-            else o.theta_max
+        self.at_rest = sc.v0 == 0.0 and o.regime == "libration" and abs(sc.theta0) <= math.pi
+        self.thm = abs(sc.theta0) if self.at_rest else o.theta_max
         K = o.K
         # cosine coefficients of h on its period 2K: doubling until the last ones are below rounding
         n = 16
@@ -182,8 +183,17 @@ class _Model:
         angle difference (m cos^2 phi = sin((theta_m - theta)/2) sin((theta_m + theta)/2)), so that
         they keep their accuracy at the turning points where arcsin(sin(theta/2)/k) would not."""
         a = np.abs(theta)
-        kc = np.sqrt(np.maximum(0.0, np.sin(0.5 * (self.thm - a)) * np.sin(0.5 * (self.thm + a))))
         sa = np.sin(0.5 * a)
+        if self.at_rest:
+            # theta_max = |theta0| exactly: from the angle difference
+            kc2 = np.sin(0.5 * (self.thm - a)) * np.sin(0.5 * (self.thm + a))
+        else:
+            # theta_max is rounded: m - sin^2(theta/2), or cos^2(theta/2) - mc next to the top, from
+            # the orbit's m and mc (each to a few ulps), which keeps more digits next to the turning point
+            m, mc = self.orbit.m, self.mc
+            kc2 = m - sa * sa if m < 0.5 else np.cos(0.5 * a) ** 2 - mc
+            kc2 = np.where(a >= self.thm, 0.0, kc2)
+        kc = np.sqrt(np.maximum(0.0, kc2))
         r = np.hypot(sa, kc)
         r = np.where(r > 0, r, 1.0)
         return sa / r, kc / r, kc
@@ -192,14 +202,24 @@ class _Model:
         """F(phi | m) from sin(phi) and cos(phi), never from phi (dF/dphi ~ 1/sqrt(mc) next to
         pi/2 would amplify the rounding of an angle)."""
         shape = np.shape(s)
+        if np.size(s) == 0:
+            return np.zeros(shape)
         s = np.ascontiguousarray(s, dtype=np.float64).reshape(-1)
         c = np.ascontiguousarray(c, dtype=np.float64).reshape(-1)
         return _kernel.gravity_f_sc_v(s, c, self.orbit.m, self.mc).reshape(shape)
 
     def _turn(self, theta):
-        """(whole turns, theta - 2 pi turns in [-pi, pi)): theta itself when it is in [-pi, pi)."""
-        turns = np.floor((theta + math.pi) / (2 * math.pi))
-        w = theta - 2 * math.pi * turns
+        """(whole turns, theta - 2 pi turns in [-pi, pi)): theta itself when it is in [-pi, pi).
+        Beyond 2^52 (and at +-inf) theta cannot be reduced modulo 2 pi: w is NaN there, with a
+        RuntimeWarning naming theta."""
+        far = ~(np.abs(theta) <= 2.0 ** 52) & ~np.isnan(theta)
+        if np.any(far):
+            warnings.warn("angle density of a rotation: theta beyond 2**52 (4.5e15) or infinite cannot be "
+                          "reduced modulo 2 pi: NaN there (the CDF, continued by whole turns, is +-inf at "
+                          "+-inf)", RuntimeWarning, stacklevel=4)
+        t = np.where(far, np.nan, theta)
+        turns = np.floor((t + math.pi) / (2 * math.pi))
+        w = t - 2 * math.pi * turns
         return turns, w
 
     def density(self, theta):
@@ -241,7 +261,8 @@ class _Model:
         # rotation: the CDF over [-pi, pi), continued by whole turns
         turns, w = self._turn(theta)
         U = self._f(np.sin(0.5 * w), np.cos(0.5 * w))
-        return turns + 0.5 + self._time(U) / self.T
+        out = turns + 0.5 + self._time(U) / self.T
+        return np.where(np.isinf(theta), theta, out)     # continued by whole turns: +-inf at +-inf
 
 
 def angle_density(scene, theta):

@@ -1,4 +1,4 @@
-"""The pendulum on a flexible cord (Garfinkel 1957, seed 000).
+"""The pendulum on a flexible cord (Garfinkel 1957).
 
 A bob on a massless inextensible cord of length l that can go slack.  Units:
 lengths in l (the pivot at the origin, x to the right, y up, the bob at
@@ -208,7 +208,8 @@ def cord_state(xi, nmax: int = 200):
     xi : array_like
         Garfinkel's energy.
     nmax : int, optional
-        Terms of the sequence x_k to compute (x_200 lies 1e-3 below 1).
+        Terms of the sequence x_k to compute, 1 to ``MAX_SEQUENCE_TERMS``
+        (x_200 lies 1e-3 below 1).
 
     Returns
     -------
@@ -223,7 +224,7 @@ def cord_state(xi, nmax: int = 200):
     TypeError
         For a string, complex or object `xi`.
     ValueError
-        If `nmax` is not a non-negative whole number.
+        If `nmax` is not a whole number from 1 to ``MAX_SEQUENCE_TERMS``.
 
     See Also
     --------

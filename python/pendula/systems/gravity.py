@@ -1,4 +1,4 @@
-"""Non-uniform gravity (source 003, task 4): the rigid pendulum in a
+"""Non-uniform gravity (Prusa & Tuma, task 4): the rigid pendulum in a
 conservative field that is not uniform.
 
 Fields (scene ``gravity``), each parameterised so that g is the strength at the
@@ -34,10 +34,20 @@ KINDS = {"uniform": 0, "inverse-square": 1, "linear": 2}
 _REGIMES = {0: "libration", 1: "separatrix", 2: "rotation"}
 _STATUS = {1: "bad field parameters (eps > 0; gravity_distance > 1; gravity_gradient < 0.5)",
            2: "theta0 and v0 must be finite",
-           3: "the period quadrature did not converge in 2^20 panels (inverse-square field with the "
-              "mass closer than about 2e-5 l below the circle: gravity_distance - 1 too small)",
+           3: "the period quadrature did not converge in 2^20 panels ({field})",
            4: "theta0 beyond 2**52 (4.5e15) cannot be reduced modulo 2 pi in double precision",
-           5: "v0 too large for this field: |v0| / sqrt(2 Q) must stay below 1e154"}
+           5: "v0 must stay below 1e150 in a non-uniform field (its square must be a double)",
+           6: "this orbit is beyond double precision in this field ({field}): a quantity of it under- or "
+              "overflows"}
+
+
+def _field_words(scene) -> str:
+    if scene.gravity == "inverse-square":
+        return (f"inverse-square field, gravity_distance = {scene.gravity_distance!r}: the mass closer than "
+                f"about 2e-5 l below the circle, or eps = {scene.eps!r} extreme")
+    if scene.gravity == "linear":
+        return f"linear field, gravity_gradient = {scene.gravity_gradient!r}, eps = {scene.eps!r}"
+    return f"uniform field, eps = {scene.eps!r}"
 
 
 def field_of(scene) -> tuple[int, float]:
@@ -111,6 +121,11 @@ class GravityOrbit:
 def gravity_orbit(scene) -> GravityOrbit:
     """Energy, regime, amplitude and period of the scene's orbit (exact quadrature).
 
+    One classifier for every field: the regime is the sign of the distance from
+    the separatrix f(1) - E = Q(w0, 1) cos^2(theta0/2) - v0^2/2, formed in
+    double-double, and mc follows from it; the uniform field is answered by the
+    exact pendulum itself (the same bits as :func:`pendula.orbit`).
+
     Both fields depend on theta through w = sin^2(theta/2) only, so the
     substitution sin(theta/2) = sqrt(w_m) sn(u | w_m) turns the energy
     integral into T = 4 int_0^K h(u) du with h smooth and periodic, which the
@@ -130,10 +145,12 @@ def gravity_orbit(scene) -> GravityOrbit:
 
     Raises
     ------
+    TypeError
+        scene is not a :class:`pendula.Scene`.
     ValueError
-        When the quadrature cannot reach double precision (a point mass
-        closer than about 2e-5 l under the circle): the message names
-        `gravity_distance`.
+        theta0 beyond 2^52, v0 beyond 1e150, eps beyond 1e300, or the
+        inverse-square mass closer than about 2e-5 l below the circle (the
+        quadrature of the period does not converge); the message names it.
 
     See Also
     --------
@@ -157,7 +174,8 @@ def gravity_orbit(scene) -> GravityOrbit:
     kind, par = field_of(scene)
     info, status = _kernel.gravity_orbit_v(kind, par, scene.eps, scene.theta0, scene.v0)
     if status:
-        raise ValueError(_STATUS.get(status, f"kernel status {status}"))
+        raise ValueError("gravity_orbit: " + _STATUS.get(status, f"kernel status {status}").format(
+            field=_field_words(scene)))
     return GravityOrbit(_REGIMES[int(info[0])], *(float(x) for x in info[1:7]))
 
 
