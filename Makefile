@@ -13,7 +13,8 @@ APT_PKGS := gfortran libgsl-dev libfftw3-dev pkg-config python3-venv
 export PATH := $(CURDIR)/$(VENV)/bin:$(PATH)
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 SOURCES := $(shell find kernel python data/scenes -type f \( -name "*.f90" -o -name "*.c" -o -name "*.py" -o -name "*.inc" -o -name "*.nml" \)) meson.build meson.options pyproject.toml \
-           data/elliptic_reference.csv data/reference_grids.csv.gz
+           data/elliptic_reference.csv data/reference_grids.csv.gz data/reference_grids_edges.csv.gz \
+           data/model_grids.csv.gz
 
 .PHONY: demo test test-debug bench bench-peers system-deps clean wheel sdist test-wheel docs docs-check docs-deps docs-browser
 

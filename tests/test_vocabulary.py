@@ -110,3 +110,12 @@ def test_progress_is_tqdm():
     with Progress(3, "quiet", stream=buf, enabled=False) as bar:
         bar.update(3)
     assert "quiet" not in buf.getvalue() and bar.done == 3
+
+
+def test_orbit_and_gravity_orbit_share_the_names_of_shared_facts():
+    import math
+    s = Scene(theta0=1.0)
+    o, g = pendula.orbit(s.theta0, s.v0, s.eps), pendula.gravity_orbit(s)
+    for name in ("regime", "m", "mc", "period", "omega", "theta_max"):
+        assert getattr(o, name) == getattr(g, name), name    # the uniform field: the same orbit, to the bit
+    assert pendula.gravity_orbit(Scene(v0=2.0)).omega == 0.0 and math.isinf(pendula.gravity_orbit(Scene(v0=2.0)).period)

@@ -111,8 +111,8 @@ SECTIONS = {
     "getting_started": ["install*"],
     "guide": ["guide/exact", "guide/integrators", "guide/spectra", "guide/damping", "guide/driven",
               "guide/cord", "guide/cycloid", "guide/gravity", "guide/density", "guide/dynamics", "guide/sweeps",
-              "sweeps_at_scale*", "guide/scenes", "vocabulary", "guide/architecture"],
-    "reports": ["reports/accuracy", "accuracy*", "reports/cost", "work_precision*", "reports/benchmarks",
+              "sweeps_at_scale*", "guide/scenes", "scenes*", "vocabulary", "guide/architecture"],
+    "reports": ["reports/accuracy", "accuracy*", "elliptic_edges*", "model_accuracy*", "reports/cost", "work_precision*", "reports/benchmarks",
                 "reports/limits"],
     "about": ["bad_input*", "slips", "changelog", "license*", "develop"],
 }

@@ -198,7 +198,7 @@ def cmd_accuracy(args) -> int:
                   "(data/gen_reference_grids.py in the repository writes it)", file=sys.stderr)
             return 2
         print(grids_markdown(path))
-        models = pathlib.Path("data/model_grids.csv.gz")
+        models = pathlib.Path(packaged_data("model_grids.csv.gz"))
         if models.is_file():
             from .accuracy import model_grids_markdown
 

@@ -107,6 +107,11 @@ class GravityOrbit:
         Amplitude (pi on the separatrix, inf for a rotation).
     period : float
         Period of the libration, time of one turn of a rotation, inf on the separatrix.
+    omega : float
+        2 pi / period (0 on the separatrix), as :class:`pendula.Orbit` has it.
+
+    The facts both orbits give have the same names in both: ``regime``, ``m``,
+    ``mc``, ``period``, ``omega``, ``theta_max``.
     """
 
     regime: str
@@ -116,6 +121,11 @@ class GravityOrbit:
     theta_max: float
     period: float
     mc: float
+
+    @property
+    def omega(self) -> float:
+        """2 pi / period, 0 on the separatrix (the name :class:`pendula.Orbit` gives it)."""
+        return 2 * math.pi / self.period if math.isfinite(self.period) else 0.0
 
 
 def gravity_orbit(scene) -> GravityOrbit:
