@@ -105,5 +105,47 @@ def test_numerical_period_refuses_effects_and_names_them():
         pendula.numerical_period(Scene(gravity="linear", gravity_gradient=0.1, damping=0.1, theta0=1.0))
     with pytest.raises(ValueError, match="damping"):
         pendula.numerical_period(Scene(guide="cycloid", damping=0.1, theta0=1.0))
+
+
+@pytest.mark.parametrize("v0", [1.5, 1.8, 1.95])
+def test_cord_departure_where_and_when_the_tension_vanishes(v0):
+    # tension / m = l theta'^2 + g cos(theta) = 0 with theta'^2 = v0^2 - 2 eps (1 - cos theta):
+    # cos(theta) = -(v0^2 - 2) / 3 (eps = 1); reached at sin(theta/2) = k sn(t), k = v0 / 2
+    ev = pendula.find_events(Scene(cord="flexible", v0=v0), "departure", t_end=30.0)
+    assert ev.t.size >= 1 and ev.stats["flips"] >= 1
+    mpmath.mp.dps = 40
+    th = mpmath.acos(-(mpmath.mpf(v0) ** 2 - 2) / 3)
+    k = mpmath.mpf(v0) / 2
+    t = mpmath.ellipf(mpmath.asin(mpmath.sin(th / 2) / k), k * k)
+    assert abs(ev.theta[0] - float(th)) <= 1e-12 * float(th)
+    assert abs(ev.t[0] - float(t)) <= 1e-12 * float(t)
+    # the velocity there: theta'^2 = -cos(theta)
+    assert abs(ev.v[0] - float(mpmath.sqrt(-mpmath.cos(th)))) <= 1e-12
+
+
+def test_cord_returns_follow_departures():
+    sc = Scene(cord="flexible", v0=2.2)            # Garfinkel's state above 3/4: several flips
+    dep = pendula.find_events(sc, "departure", t_end=50.0)
+    ret = pendula.find_events(sc, "return", t_end=50.0)
+    n = min(dep.t.size, ret.t.size)
+    assert n >= 2 and np.all(ret.t[:n] > dep.t[:n])
+    assert pendula.find_events(sc, "departure", t_end=50.0, terminal=True).t.tolist() == dep.t[:1].tolist()
+    # the same flips as the trajectory's log
+    log = pendula.simulate(sc.replace(t_end=50.0, n_samples=2)).flips
+    np.testing.assert_array_equal(dep.t, log["t_leave"][(log["t_leave"] > 0) & (log["t_leave"] <= 50.0)])
+
+
+def test_cord_that_never_slackens_has_the_rigid_period_and_one_that_does_has_none():
+    taut = Scene(cord="flexible", theta0=1.0)       # |theta| <= 1 < pi/2: the tension stays positive
+    assert pendula.numerical_period(taut) == pendula.numerical_period(taut.replace(cord="rigid"))
+    with pytest.raises(ValueError, match="slackens"):
+        pendula.numerical_period(Scene(cord="flexible", v0=1.9))
+
+
+def test_cord_events_refuse_other_kinds_and_rigid_scenes():
     with pytest.raises(NotImplementedError, match="flexible cord"):
-        pendula.numerical_period(Scene(cord="flexible", theta0=1.0))
+        pendula.find_events(Scene(cord="flexible", v0=1.9), "turning", t_end=10.0)
+    with pytest.raises(ValueError, match="cord"):
+        pendula.find_events(Scene(v0=1.9), "departure", t_end=10.0)
+    with pytest.raises(ValueError, match="direction"):
+        pendula.find_events(Scene(cord="flexible", v0=1.9), "departure", direction="rising", t_end=10.0)

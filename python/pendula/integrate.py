@@ -21,6 +21,7 @@ from . import _interrupt, _kernel
 from ._checks import as_float
 from .scene import Scene
 from .systems import run
+from .systems.cord import simulate_cord
 from .systems.cycloid import cycloid_motion, cycloid_period
 from .systems.gravity import field_of, gravity_orbit
 from .systems.rigid import orbit
@@ -41,6 +42,8 @@ _STATUS = {1: "the step dt must be positive", 2: "rtol must be > 0 and atol >= 0
            12: "the Runge-Kutta-Nystrom pair integrates theta'' = f(t, theta) only: no damping",
            20: "bad gravity field parameters (gravity_distance > 1, gravity_gradient < 0.5)"}
 _EVENT_KINDS = {"turning": 1, "theta": 2, "theta_mod_2pi": 3}
+#: the flexible cord's events: the cord slackens (the bob leaves the circle) or is taut again
+CORD_EVENT_KINDS = ("departure", "return")
 #: the sense of a crossing, by name (the numbers are accepted too)
 _DIRECTIONS = {"rising": 1, "falling": -1, "both": 0}
 #: the most events one call records (memory: 24 bytes each)
@@ -176,6 +179,10 @@ def find_events(scene: Scene, kind: str = "turning", level: float = 0.0, directi
     method to a few ulps of t.  An event function that is exactly zero at the
     start (an event that starts at zero) is not reported there.
 
+    The flexible cord's events are its flips, from the kernel's flip log (the
+    departure point and the re-entry are found in closed form there); its
+    other crossings are not located (NotImplementedError).
+
     The cycloidal guide is never integrated: its events are roots of its
     closed-form path, bracketed on CYCLOID_SAMPLES_PER_PERIOD samples per
     shortest period (natural or drive) and bisected to adjacent doubles
@@ -186,8 +193,11 @@ def find_events(scene: Scene, kind: str = "turning", level: float = 0.0, directi
     scene : Scene
         The motion to search (any effects; the exact path is not used, except
         for the cycloidal guide, which has no other).
-    kind : {'turning', 'theta', 'theta_mod_2pi'}
-        'turning': v = 0; 'theta': theta = level; 'theta_mod_2pi': theta = level + 2 pi k.
+    kind : {'turning', 'theta', 'theta_mod_2pi', 'departure', 'return'}
+        'turning': v = 0; 'theta': theta = level; 'theta_mod_2pi': theta = level + 2 pi k;
+        the flexible cord's flips: 'departure' (the tension vanishes and the bob
+        leaves the circle) and 'return' (the cord is taut again; the state just
+        after the jerk).
     level : float, optional
         The angle for 'theta' and 'theta_mod_2pi'.
     direction : {'both', 'rising', 'falling'} or {0, +1, -1}
@@ -228,12 +238,12 @@ def find_events(scene: Scene, kind: str = "turning", level: float = 0.0, directi
     >>> ev.t.size, round(float(ev.t[0]), 9)       # one maximum per period 6.699975664
     (2, 6.699975664)
     """
-    if kind not in _EVENT_KINDS:
-        raise ValueError(f"kind must be one of {', '.join(_EVENT_KINDS)}, got {kind!r}")
+    if kind not in _EVENT_KINDS and kind not in CORD_EVENT_KINDS:
+        raise ValueError(f"kind must be one of {', '.join(tuple(_EVENT_KINDS) + CORD_EVENT_KINDS)}, got {kind!r}")
     direction = _DIRECTIONS.get(direction, direction) if isinstance(direction, str) else direction
     if isinstance(direction, bool) or direction not in (-1, 0, 1):
         raise ValueError(f"direction must be 'rising' (+1), 'falling' (-1) or 'both' (0), got {direction!r}")
-    if scene.guide != "cycloid" and method not in ("dopri5", "dop853"):
+    if scene.guide != "cycloid" and scene.cord != "flexible" and method not in ("dopri5", "dop853"):
         raise ValueError("events need a method with dense output: 'dopri5' or 'dop853'")
     if isinstance(max_events, bool) or not isinstance(max_events, (int, np.integer)):
         raise TypeError(f"max_events must be a whole number, got {max_events!r}")
@@ -247,6 +257,8 @@ def find_events(scene: Scene, kind: str = "turning", level: float = 0.0, directi
     t_end = float(np.reshape(t_end, -1)[0]) if np.size(t_end) == 1 else math.nan
     if not t_end > 0 or not math.isfinite(t_end):
         raise ValueError(f"t_end must be positive and finite (events are located forward in time), got {t_end!r}")
+    if scene.cord == "flexible" or kind in CORD_EVENT_KINDS:
+        return _cord_events(scene, kind, int(direction), t_end, bool(terminal), int(max_events))
     if scene.guide == "cycloid":
         return _cycloid_events(scene, kind, float(level), int(direction), t_end, bool(terminal), int(max_events))
     _, _, stats, tev, thev, vev = _run(scene, method, np.array([t_end]), _EVENT_KINDS[kind], float(level),
@@ -318,9 +330,21 @@ def numerical_period(scene: Scene, periods: int = 20, method: str = "dop853") ->
             raise ValueError("numerical_period measures the period of a conservative orbit: this cycloid "
                              "scene has damping or a drive")
         exact, regime = cycloid_period(scene), "libration"
-    elif scene.cord != "rigid":
-        raise NotImplementedError("numerical_period: the flexible cord's motion is not periodic in general; its "
-                                  "departures and returns are in simulate(...).flips")
+    elif scene.cord == "flexible":
+        # a cord that never slackens moves as the rigid pendulum does, to the bit (tested): its period is
+        # that motion's; one that slackens has no period (its flips are find_events(..., 'departure'))
+        rigid = scene.replace(cord="rigid")
+        if rigid.effects:
+            raise ValueError("numerical_period measures the period of a conservative orbit: the scene has "
+                             + ", ".join(e for e in rigid.effects if e in ("damping", "torque", "drive")))
+        o = orbit(scene.theta0, scene.v0, scene.eps)
+        if not math.isfinite(o.period):
+            return math.inf
+        fl = _cord_events(scene, "departure", 0, float(periods) * o.period * 1.02, True, 1)
+        if fl.t.size:
+            raise ValueError(f"the flexible cord slackens (first at t = {fl.t[0]!r}, theta = {fl.theta[0]!r}): its "
+                             "motion is not periodic; its flips are find_events(scene, 'departure')")
+        return numerical_period(rigid, periods, method)
     elif scene.damping != 0.0 or scene.torque != 0.0 or scene.drive_amplitude != 0.0:
         raise ValueError("numerical_period measures the period of a conservative orbit: the scene has "
                          + ", ".join(e for e in scene.effects if e in ("damping", "torque", "drive")))
@@ -424,3 +448,26 @@ def _cycloid_events(scene, kind, level, direction, t_end, terminal, max_events) 
     vev = np.concatenate(found_v)[: tev.size] if found_v else np.empty(0)
     return Events(tev, thev, vev, {"steps": 0, "accepted": 0, "rejected": 0, "rhs_evaluations": 0,
                                    "stopped_by_event": bool(terminal and tev.size), "path_evaluations": evaluations})
+
+
+def _cord_events(scene, kind, direction, t_end, terminal, max_events) -> Events:
+    """The flexible cord's flips up to t_end, from the kernel's flip log."""
+    if scene.cord != "flexible":
+        raise ValueError(f"kind {kind!r}: departures and returns are the flexible cord's events; this scene's "
+                         "cord is rigid (cord = 'flexible')")
+    if kind not in CORD_EVENT_KINDS:
+        raise NotImplementedError(f"find_events on the flexible cord locates its flips ({', '.join(CORD_EVENT_KINDS)});"
+                                  f" {kind!r} crossings of its motion are not located (simulate samples them)")
+    if direction != 0:
+        raise ValueError("direction: a departure or a return has no sense of crossing; give 'both'")
+    tr = simulate_cord(scene, np.array([0.0, t_end]))
+    fl = tr.flips
+    key = "leave" if kind == "departure" else "return"
+    t, th, v = fl[f"t_{key}"], fl[f"theta_{key}"], fl[f"v_{key}"]
+    keep = np.isfinite(t) & (t > 0) & (t <= t_end)
+    n = 1 if terminal else max_events
+    t, th, v = t[keep][:n], th[keep][:n], v[keep][:n]
+    return Events(t.copy(), th.copy(), v.copy(), {"steps": 0, "accepted": 0, "rejected": 0, "rhs_evaluations": 0,
+                                                 "stopped_by_event": bool(terminal and t.size),
+                                                 "flips": int(tr.stats.get("flips", 0)),
+                                                 "stop_reason": tr.stats.get("stop_reason", "")})
