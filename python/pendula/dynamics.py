@@ -40,7 +40,7 @@ class Equilibrium:
     eigenvalues : numpy.ndarray
         The two eigenvalues of the linearisation (complex), largest real part first.
     kind : str
-        One of :data:`EQUILIBRIUM_KINDS`: ``'stable node'``, ``'stable spiral'``, ``'centre'``,
+        One of ``pendula.dynamics.EQUILIBRIUM_KINDS``: ``'stable node'``, ``'stable spiral'``, ``'centre'``,
         ``'saddle'``, ``'unstable node'``, ``'unstable spiral'``, ``'saddle-node'``.
 
     See Also

@@ -162,7 +162,7 @@ def ellipf(phi, m, mc=None):
         Amplitude in radians, any real value (F(phi + j pi) = F(phi) + 2 j K).
     m : array_like
         Parameter m = k^2, any real value.  For m > 1 the integral is real
-        only while m sin^2 phi <= 1 with |phi| < pi/2; elsewhere NaN.  May be
+        only while m sin^2 phi <= 1 with abs(phi) < pi/2; elsewhere NaN.  May be
         None when `mc` is given.
     mc : array_like, optional
         Complementary parameter 1 - m; used instead of `m` when given.

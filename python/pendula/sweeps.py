@@ -514,7 +514,7 @@ def attractor_map(scene: Scene, over: dict, *, transient: float = 600.0, samples
     samples : int, optional
         Stroboscopic samples per point read for recurrence (default 48).
     tol, merge_tol, max_period, cell : optional
-        See :func:`label_attractors`.
+        See ``pendula.attractors.label_attractors``.
     rtol, atol : float, optional
         The integrator's tolerances (default 1e-10, 1e-12).
     threads, out, client, progress, chunk_points : optional
@@ -633,8 +633,8 @@ def iv_curve(scene, torques, direction="both", *, transient=200.0, t_max=None, r
         Dimensions ``direction`` (the branches asked, 'up' and/or 'down') and
         ``torque`` (the torques as given; the down branch runs them in
         reverse, and its values are stored against their torque):
-        ``mean_velocity`` <v>, ``mean_velocity_err`` (|<v> - <v> over the
-        second half of the window) and ``status`` (0 decided; CF flags), with
+        ``mean_velocity`` <v>, ``mean_velocity_err`` (abs(<v> - <v> over the
+        second half of the window)) and ``status`` (0 decided; CF flags), with
         CF units and the options as attributes.
 
     Raises

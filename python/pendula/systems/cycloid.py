@@ -137,7 +137,7 @@ def cycloid_period(scene) -> float:
         scene is not a :class:`pendula.Scene`.
     ValueError
         The scene's guide is not the cycloid, or its orbit runs beyond a cusp
-        (|s| > 4R), where :func:`pendula.simulate` refuses it too.
+        (abs(s) > 4R), where :func:`pendula.simulate` refuses it too.
 
     See Also
     --------
