@@ -26,14 +26,16 @@ import math
 import warnings
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ._checks import as_float
 from . import _kernel
+from .scene import Scene
 
 __all__ = ["angle_density", "angle_cdf", "arcsine_density"]
 
 
-def arcsine_density(theta, theta_init):
+def arcsine_density(theta: ArrayLike, theta_init: float) -> NDArray[np.float64]:
     """The small-amplitude limit of the density of the angle: the arcsine law.
 
     Parameters
@@ -265,7 +267,7 @@ class _Model:
         return np.where(np.isinf(theta), theta, out)     # continued by whole turns: +-inf at +-inf
 
 
-def angle_density(scene, theta):
+def angle_density(scene: Scene, theta: ArrayLike) -> NDArray[np.float64] | np.float64:
     """The time-averaged probability density of the angle over one period.
 
     Parameters
@@ -310,7 +312,7 @@ def angle_density(scene, theta):
     return _Model(scene).density(theta)
 
 
-def angle_cdf(scene, theta):
+def angle_cdf(scene: Scene, theta: ArrayLike) -> NDArray[np.float64] | np.float64:
     """The cumulative distribution of the angle over one period (see :func:`angle_density`).
 
     Exact through the incomplete elliptic integral F, so it is finite and

@@ -205,8 +205,8 @@ _PO_STATUS = {1: "Newton's iteration did not converge (try another guess, or a l
               3: "Newton's iteration stalled without reaching the tolerance (try another guess)"}
 
 
-def periodic_orbit(scene: Scene, guess=None, k: int = 1, winding: int = 0, tol: float = 1e-11,
-                   rtol: float = 1e-12, atol: float = 1e-12, maxit: int = 100) -> PeriodicOrbit:
+def periodic_orbit(scene: Scene, guess: tuple[float, float] | None = None, k: int = 1, winding: int = 0,
+                   tol: float = 1e-11, rtol: float = 1e-12, atol: float = 1e-12, maxit: int = 100) -> PeriodicOrbit:
     """A period-k orbit of a driven scene's stroboscopic map, by Newton on the monodromy.
 
     The map ``P`` takes the state at ``t = 0`` to the state ``k`` drive periods

@@ -14,6 +14,7 @@ their domain.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from . import _kernel
 from ._checks import as_float, flat, parameter, shaped, warn_domain
@@ -60,7 +61,7 @@ def _incomplete(kfunc, name, phi, m, mc):
     return shaped(out, shape)
 
 
-def ellipk(m, mc=None):
+def ellipk(m: ArrayLike | None, mc: ArrayLike | None = None) -> NDArray[np.float64] | np.float64:
     """Complete elliptic integral of the first kind K(m).
 
     Parameters
@@ -107,7 +108,7 @@ def ellipk(m, mc=None):
     return _unary(_kernel.ellipk_v, "ellipk", m, mc)
 
 
-def ellipe(m, mc=None):
+def ellipe(m: ArrayLike | None, mc: ArrayLike | None = None) -> NDArray[np.float64] | np.float64:
     """Complete elliptic integral of the second kind E(m), m <= 1.
 
     Parameters
@@ -153,7 +154,7 @@ def ellipe(m, mc=None):
     return _unary(_kernel.ellipe_v, "ellipe", m, mc)
 
 
-def ellipf(phi, m, mc=None):
+def ellipf(phi: ArrayLike, m: ArrayLike | None, mc: ArrayLike | None = None) -> NDArray[np.float64] | np.float64:
     """Incomplete elliptic integral of the first kind F(phi|m).
 
     Parameters
@@ -206,7 +207,7 @@ def ellipf(phi, m, mc=None):
     return _incomplete(_kernel.ellipf_v, "ellipf", phi, m, mc)
 
 
-def ellipeinc(phi, m, mc=None):
+def ellipeinc(phi: ArrayLike, m: ArrayLike | None, mc: ArrayLike | None = None) -> NDArray[np.float64] | np.float64:
     """Incomplete elliptic integral of the second kind E(phi|m).
 
     Parameters
@@ -254,7 +255,7 @@ def ellipeinc(phi, m, mc=None):
     return _incomplete(_kernel.ellipeinc_v, "ellipeinc", phi, m, mc)
 
 
-def nome(m, mc=None):
+def nome(m: ArrayLike | None, mc: ArrayLike | None = None) -> NDArray[np.float64] | np.float64:
     """The nome q(m) = exp(-pi K(1-m) / K(m)) for 0 <= m <= 1.
 
     Parameters
@@ -302,7 +303,9 @@ def nome(m, mc=None):
     return _unary(_kernel.nome_v, "nome", m, mc)
 
 
-def ellipj(u, m, mc=None):
+def ellipj(u: ArrayLike, m: ArrayLike | None, mc: ArrayLike | None = None
+           ) -> tuple[NDArray[np.float64] | np.float64, NDArray[np.float64] | np.float64,
+                      NDArray[np.float64] | np.float64, NDArray[np.float64] | np.float64]:
     """Jacobi elliptic functions sn, cn, dn and the amplitude am of (u|m).
 
     Parameters

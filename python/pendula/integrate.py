@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -25,6 +26,9 @@ from .systems.cord import simulate_cord
 from .systems.cycloid import cycloid_motion, cycloid_period
 from .systems.gravity import field_of, gravity_orbit
 from .systems.rigid import orbit
+
+if TYPE_CHECKING:   # xarray is optional: named in annotations only
+    import xarray
 
 __all__ = ["integrate_scene", "find_events", "numerical_period", "Events", "FIXED_STEP", "ADAPTIVE"]
 
@@ -144,7 +148,7 @@ class Events:
     v: np.ndarray
     stats: dict
 
-    def to_xarray(self):
+    def to_xarray(self) -> xarray.Dataset:
         """The events as an :class:`xarray.Dataset` along the dimension ``event``.
 
         Returns

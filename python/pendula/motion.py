@@ -7,6 +7,8 @@ The rigid model's functions are re-exported here for compatibility.
 
 from __future__ import annotations
 
+from numpy.typing import ArrayLike
+
 from ._checks import as_float
 from .systems.rigid import Orbit, energy, exact_motion, orbit
 from .scene import Scene
@@ -19,7 +21,7 @@ from .trajectory import Trajectory
 __all__ = ["Orbit", "Trajectory", "orbit", "exact_motion", "energy", "simulate", "period"]
 
 
-def simulate(scene: Scene, t=None, method: str | None = None, rtol: float | None = None,
+def simulate(scene: Scene, t: ArrayLike | None = None, method: str | None = None, rtol: float | None = None,
              atol: float | None = None, dt: float | None = None) -> Trajectory:
     """Run one scene at the times ``t`` (default: the scene's own output times).
 

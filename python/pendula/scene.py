@@ -30,6 +30,7 @@ import dataclasses
 import math
 import os
 from dataclasses import dataclass, field, fields
+from typing import Any
 
 import numpy as np
 
@@ -216,7 +217,7 @@ class Scene:
 
     # -- construction -------------------------------------------------------
     @classmethod
-    def from_file(cls, path) -> "Scene":
+    def from_file(cls, path: str | os.PathLike[str]) -> "Scene":
         """Read a scene from a namelist file (group ``&scene``).
 
         The kernel reads and checks the text, as ``pendula-run`` does.
@@ -309,7 +310,7 @@ class Scene:
         except SceneError as exc:
             raise SceneError(f"{source}: {exc}") from None
 
-    def replace(self, **changes) -> "Scene":
+    def replace(self, **changes: Any) -> "Scene":
         """A copy with some fields changed (validated again).
 
         eps, g and length stay consistent: changing eps alone drops g and

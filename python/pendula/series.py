@@ -21,6 +21,7 @@ from fractions import Fraction as Fr
 from functools import lru_cache
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ._checks import as_float
 
@@ -143,7 +144,7 @@ def period_series(n: int) -> tuple[Fr, ...]:
     return tuple(t[2 * j] for j in range(n + 1))
 
 
-def period_from_series(theta0, n: int, eps: float = 1.0):
+def period_from_series(theta0: ArrayLike, n: int, eps: float = 1.0) -> NDArray[np.float64] | np.float64:
     """T from the series truncated after theta0^(2n) (for comparing with the exact period).
 
     Parameters
@@ -248,7 +249,7 @@ def _eval(series, a):
     return out
 
 
-def poincare_lindstedt(a, t, eps: float = 1.0, order: int = 3):
+def poincare_lindstedt(a: float, t: ArrayLike, eps: float = 1.0, order: int = 3) -> NDArray[np.float64] | np.float64:
     """The Poincare-Lindstedt approximation of theta(t), released from rest at theta(0) = a.
 
     Parameters

@@ -16,14 +16,20 @@ import math
 import os
 import threading
 import warnings
+from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from . import _checks, _interrupt, _kernel
 from ._checks import as_float
 from ._files import atomic_path
+
+if TYPE_CHECKING:   # xarray is optional: named in annotations only
+    import xarray
 
 #: the longest record a spectrum or a wisdom plan takes (2^27 samples: 1 GiB
 #: per signal); longer is refused up front
@@ -104,7 +110,8 @@ def _load_wisdom_locked() -> None:
                       "(rerun `pendula wisdom` to remake it)", RuntimeWarning, stacklevel=4)
 
 
-def precompute_wisdom(sizes=None, path=None, progress: bool = False) -> Path:
+def precompute_wisdom(sizes: Iterable[int] | None = None, path: str | os.PathLike[str] | None = None,
+                      progress: bool = False) -> Path:
     """Measure FFTW plans for the given record lengths and save the wisdom.
 
     Later processes load it before their first spectrum and then use the
@@ -278,7 +285,7 @@ class Spectrum:
     power: np.ndarray
     window: str | None
 
-    def to_xarray(self):
+    def to_xarray(self) -> xarray.Dataset:
         """The spectrum as an :class:`xarray.Dataset` along ``omega``, with CF attributes.
 
         Returns
@@ -392,7 +399,8 @@ def _uniform_step(t: np.ndarray) -> float:
     return float(dt)
 
 
-def spectra(t, signals, window: str | None = None, measure: bool = False) -> list[Spectrum]:
+def spectra(t: ArrayLike, signals: ArrayLike, window: Literal["hann", "none"] | None = None,
+            measure: bool = False) -> list[Spectrum]:
     """Power spectra of many signals on one time grid: one FFTW plan, reused.
 
     Parameters
@@ -469,7 +477,7 @@ def spectra(t, signals, window: str | None = None, measure: bool = False) -> lis
     return [Spectrum(omega, power[:, j], win) for j in range(x.shape[0])]
 
 
-def spectrum(t, theta, window: str | None = None) -> Spectrum:
+def spectrum(t: ArrayLike, theta: ArrayLike, window: Literal["hann", "none"] | None = None) -> Spectrum:
     """Power spectrum of theta(t) against angular frequency (FFTW).
 
     Parameters

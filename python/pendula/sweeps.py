@@ -48,14 +48,21 @@ import json
 import math
 import os
 import pathlib
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
+from numpy.typing import ArrayLike
 from ._optional import require
 
 from ._store import StoreBusyError, SweepStoreWarning  # noqa: F401 - raised and warned by sweep(out=...)
 from . import _checks, _interrupt
 from ._files import atomic_path, save_figure
 from .scene import GRIDDABLE, MEASURES, Scene, SceneError
+from .attractors import AttractorMap
+
+if TYPE_CHECKING:   # xarray and distributed are optional: named in annotations only
+    import distributed
+    import xarray
 
 __all__ = ["sweep", "iv_curve", "grid_of", "MEASURE_CODES", "attractor_map"]
 
@@ -321,8 +328,12 @@ def _chunk_dataset(plan: _Plan, layout, i: int, out: np.ndarray, st: np.ndarray)
     return xr.Dataset(data, coords=coords)
 
 
-def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, transient=None,
-          samples=None, out=None, chunk_points=20000, client=None, threads=0, progress=False):
+def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | None = None,
+          measure: Literal["final_well", "mean_velocity", "locked", "poincare", "lyapunov", "attractor"]
+          | None = None, *, rtol: float | None = None, atol: float | None = None, t_max: float | None = None,
+          transient: float | None = None, samples: int | None = None, out: str | os.PathLike[str] | None = None,
+          chunk_points: int = 20000, client: distributed.Client | None = None, threads: int = 0,
+          progress: bool = False) -> xarray.Dataset:
     """Evaluate a measure over a grid of one scene's fields.
 
     Parameters
@@ -499,7 +510,8 @@ def sweep(scene, over=None, measure=None, *, rtol=None, atol=None, t_max=None, t
 
 def attractor_map(scene: Scene, over: dict, *, transient: float = 600.0, samples: int = 48, tol: float = 1e-6,
                   merge_tol: float = 1e-3, max_period: int | None = None, cell: float = 0.05,
-                  rtol: float = 1e-10, atol: float = 1e-12, threads: int = 0, out=None, client=None,
+                  rtol: float = 1e-10, atol: float = 1e-12, threads: int = 0,
+                  out: str | os.PathLike[str] | None = None, client: distributed.Client | None = None,
                   progress: bool = False, chunk_points: int = 20000) -> AttractorMap:
     """Find the attractors of a driven scene and label each grid point by the one its orbit ends on.
 
@@ -587,8 +599,11 @@ def attractor_map(scene: Scene, over: dict, *, transient: float = 600.0, samples
     return AttractorMap(ds, atts, bf, sb, sbb, alpha)
 
 
-def iv_curve(scene, torques, direction="both", *, transient=200.0, t_max=None, rtol=None, atol=None,
-             start="ramp", t_avg=None):
+def iv_curve(scene: Scene | str | os.PathLike[str], torques: ArrayLike,
+             direction: Literal["up", "down", "both"] = "both", *, transient: float = 200.0,
+             t_max: float | None = None, rtol: float | None = None, atol: float | None = None,
+             start: Literal["ramp", "scene"] | tuple[float, float] = "ramp", t_avg: float | None = None
+             ) -> xarray.Dataset:
     """The I-V curve of the constant-torque pendulum (RCSJ junction), adiabatically.
 
     Each torque starts from the end state of the previous one, so the up and

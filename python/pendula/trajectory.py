@@ -3,11 +3,15 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ._optional import require
 from .scene import Scene
+
+if TYPE_CHECKING:   # xarray is optional: named in annotations only
+    import xarray
 
 __all__ = ["Trajectory", "FlipLog"]
 
@@ -80,7 +84,7 @@ class Trajectory:
         """
         return np.column_stack([self.t, self.theta, self.v, self.energy])
 
-    def to_xarray(self):
+    def to_xarray(self) -> xarray.Dataset:
         """The trajectory as an :class:`xarray.Dataset` along ``t``, with CF attributes.
 
         Returns
@@ -136,7 +140,7 @@ class FlipLog(dict):
     state); :meth:`to_xarray` gives them as a Dataset along ``flip``.
     """
 
-    def to_xarray(self):
+    def to_xarray(self) -> xarray.Dataset:
         """The flip log as an :class:`xarray.Dataset` along the dimension ``flip``.
 
         Returns

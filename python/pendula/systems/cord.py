@@ -47,6 +47,7 @@ import math
 import warnings
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .. import _kernel
 from .. import _checks
@@ -63,7 +64,7 @@ __all__ = ["flip_map", "cord_state", "flip_sequence", "simulate_cord", "xi_of"]
 MAX_SEQUENCE_TERMS = 100_000
 
 
-def flip_map(xi):
+def flip_map(xi: ArrayLike) -> NDArray[np.float64] | np.float64:
     """Garfinkel's flip map f (his eqs. 14-15), vectorised.
 
     The energy xi' after one flip (departure from the circle, free flight,
@@ -200,7 +201,7 @@ def flip_sequence(n: int) -> np.ndarray:
     return np.array(xs[:n])
 
 
-def cord_state(xi, nmax: int = 200):
+def cord_state(xi: ArrayLike, nmax: int = 200) -> NDArray[np.float64] | np.float64:
     """Garfinkel's state index k of an energy xi (his eq. 18), vectorised.
 
     Parameters

@@ -27,10 +27,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import NDArray
 
 from .. import _kernel
 from .. import _checks
 from .._checks import as_float
+from ..scene import Scene
 
 __all__ = ["cycloid_motion", "cycloid_period", "cycloid_energy", "cycloid_geometry", "CycloidGeometry"]
 
@@ -115,7 +117,7 @@ def cycloid_amplitude(scene) -> tuple[float, float]:
     return c, a
 
 
-def cycloid_period(scene) -> float:
+def cycloid_period(scene: Scene) -> float:
     """The period of Huygens' cycloidal pendulum, the same at every amplitude.
 
     Parameters
@@ -200,7 +202,7 @@ class CycloidGeometry:
     [0.460368, 0.114924]
     """
 
-    def __init__(self, R: float, n: int):
+    def __init__(self, R: float, n: int) -> None:
         phi = np.linspace(-math.pi, math.pi, n)
         self.R = R
         self.path = R * np.array([phi + np.sin(phi), 1 - np.cos(phi)])
@@ -210,7 +212,7 @@ class CycloidGeometry:
         a = np.linspace(-math.pi / 2, math.pi / 2, n)
         self.circle = np.array([4 * R * np.sin(a), 4 * R - 4 * R * np.cos(a)])
 
-    def cord(self, theta: float):
+    def cord(self, theta: float) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
         """The cord at free-cord angle theta: the wrapped part on the cheek and the free part.
 
         Parameters

@@ -26,6 +26,7 @@ import numpy as np
 
 from .. import _kernel
 from .._checks import as_float
+from ..scene import Scene
 
 __all__ = ["KINDS", "field_of", "potential", "acceleration", "gravity_orbit", "GravityOrbit",
            "small_oscillation_omega"]
@@ -128,7 +129,7 @@ class GravityOrbit:
         return 2 * math.pi / self.period if math.isfinite(self.period) else 0.0
 
 
-def gravity_orbit(scene) -> GravityOrbit:
+def gravity_orbit(scene: Scene) -> GravityOrbit:
     """Energy, regime, amplitude and period of the scene's orbit (exact quadrature).
 
     One classifier for every field: the regime is the sign of the distance from

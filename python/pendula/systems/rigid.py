@@ -13,6 +13,7 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .. import _kernel
 from .._checks import as_float
@@ -132,7 +133,8 @@ def orbit(theta0: float, v0: float, eps: float = 1.0) -> Orbit:
     return Orbit(regime, float(k), float(m), float(mc), float(per), omega, float(tmax))
 
 
-def exact_motion(theta0: float, v0: float, eps: float, t) -> tuple[np.ndarray, np.ndarray]:
+def exact_motion(theta0: float, v0: float, eps: float, t: ArrayLike
+                 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """theta(t) and v(t) of the conservative pendulum from the exact solution.
 
     Parameters
@@ -189,7 +191,7 @@ def exact_motion(theta0: float, v0: float, eps: float, t) -> tuple[np.ndarray, n
     return theta.reshape(t.shape), v.reshape(t.shape)
 
 
-def energy(theta, v, eps: float = 1.0) -> np.ndarray:
+def energy(theta: ArrayLike, v: ArrayLike, eps: ArrayLike = 1.0) -> NDArray[np.float64] | np.float64:
     """The energy E = v^2/2 + eps (1 - cos theta) of the rigid pendulum.
 
     Parameters
