@@ -43,10 +43,10 @@ contains
   !> The circle from (tc, thc, vc) integrated over the remaining output
   !> times t(i:) (or to the departure); status cord_integrator_failed + s
   !> when the integrator fails with its status s.
-  subroutine integrated_circle_phase(self, eps, tc, thc, vc, vr, t, i, theta, v, x, y, r, j, leaving, &
+  subroutine integrated_circle_phase(self, eps, tc, thc, vc, cth, vr, t, i, theta, v, x, y, r, j, leaving, &
                                      t1, th1, v1, p, u, xib, status, cancel)
     class(cord_circle_integrated), intent(inout) :: self
-    real(dp), intent(in) :: eps, tc, thc, vc, vr, t(:)
+    real(dp), intent(in) :: eps, tc, thc, vc, cth, vr, t(:)
     integer, intent(in) :: i
     real(dp), intent(inout) :: theta(:), v(:), x(:), y(:), r(:)
     integer, intent(out) :: j, status

@@ -35,7 +35,7 @@ module pendula_cord
   real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
 
   !> A circle phase of the cord loop (cord_loop): from (tc, thc, vc) on the
-  !> taut cord, the outputs theta, v, x, y, r (= 1) at the times t(i:j-1) it
+  !> taut cord (cth = cos(thc)), the outputs theta, v, x, y, r (= 1) at the times t(i:j-1) it
   !> covers (j = cord_circle_end), and whether the bob leaves the circle (leaving), where (t1, th1,
   !> v1) and how (p, u, xib as cord_depart).  graze_restarts: the phase cannot
   !> see a departure at its own start (see cord_loop).
@@ -46,11 +46,11 @@ module pendula_cord
   end type cord_circle
 
   abstract interface
-    subroutine circle_phase(self, eps, tc, thc, vc, vr, t, i, theta, v, x, y, r, j, leaving, &
+    subroutine circle_phase(self, eps, tc, thc, vc, cth, vr, t, i, theta, v, x, y, r, j, leaving, &
                             t1, th1, v1, p, u, xib, status, cancel)
       import :: cord_circle, dp
       class(cord_circle), intent(inout) :: self
-      real(dp), intent(in) :: eps, tc, thc, vc, vr, t(:)
+      real(dp), intent(in) :: eps, tc, thc, vc, cth, vr, t(:)
       integer, intent(in) :: i
       real(dp), intent(inout) :: theta(:), v(:), x(:), y(:), r(:)
       integer, intent(out) :: j, status
@@ -65,6 +65,7 @@ module pendula_cord
   type, extends(cord_circle), public :: cord_circle_exact
   contains
     procedure :: phase => exact_circle_phase
+    procedure :: fill => exact_circle_fill
   end type cord_circle_exact
 
 contains
@@ -252,7 +253,7 @@ contains
     end if
   end function cord_flight_verdict
 
-  !> One flight, shared by the closed-form and the hybrid loops: from (p, u),
+  !> One flight of the cord loop (every circle phase): from (p, u),
   !> left at (t1, th1, v1) with energy xib, for tau; the output times from
   !> t(i) on that fall inside it are filled (i advanced past them); row: the
   !> flip log's entry; th2, v2, vr2: the state after the jerk (cord_land).
@@ -307,10 +308,10 @@ contains
   !> The closed-form circle phase from (tc, thc, vc): the exact elliptic
   !> motion, left where the energy xi = (v**2 - 2 eps cos theta) / (3 eps)
   !> lies in (0, 1), at cos theta1 = -xi after the time of time_to_departure.
-  subroutine exact_circle_phase(self, eps, tc, thc, vc, vr, t, i, theta, v, x, y, r, j, leaving, &
+  subroutine exact_circle_phase(self, eps, tc, thc, vc, cth, vr, t, i, theta, v, x, y, r, j, leaving, &
                                 t1, th1, v1, p, u, xib, status, cancel)
     class(cord_circle_exact), intent(inout) :: self
-    real(dp), intent(in) :: eps, tc, thc, vc, vr, t(:)
+    real(dp), intent(in) :: eps, tc, thc, vc, cth, vr, t(:)
     integer, intent(in) :: i
     real(dp), intent(inout) :: theta(:), v(:), x(:), y(:), r(:)
     integer, intent(out) :: j, status
@@ -320,8 +321,7 @@ contains
     real(dp) :: xi, s, phi, phi0, kk, sq
     status = cord_ok
     leaving = .false.
-    t1 = nan_dp; th1 = nan_dp; v1 = nan_dp; p = nan_dp; u = nan_dp; xib = nan_dp
-    xi = (vc * vc - 2.0_dp * eps * cos(thc)) / (3.0_dp * eps)
+    xi = (vc * vc - 2.0_dp * eps * cth) / (3.0_dp * eps)
     if (xi > 0.0_dp .and. xi < 1.0_dp) then
       s = sign(1.0_dp, vc)
       phi = s * thc
@@ -335,16 +335,20 @@ contains
       u = [-v1 * xi, v1 * s * sq]
       xib = xi
       leaving = .true.
+    else
+      t1 = nan_dp; th1 = nan_dp; v1 = nan_dp; p = nan_dp; u = nan_dp; xib = nan_dp
     end if
     j = cord_circle_end(t, i, leaving, t1)
-    if (j > i) call exact_circle_fill(eps, tc, thc, vc, t(i:j - 1), theta(i:j - 1), v(i:j - 1), &
+    if (j > i) call self%fill(eps, tc, thc, vc, t(i:j - 1), theta(i:j - 1), v(i:j - 1), &
                                       x(i:j - 1), y(i:j - 1), r(i:j - 1))
   end subroutine exact_circle_phase
 
   !> The exact motion from (tc, thc, vc) at the times t: theta, v, x, y, r (= 1).
-  !> (Its own procedure: the orbit's default initialisation is paid only
-  !> where a circle phase has output times, not once per flip.)
-  pure subroutine exact_circle_fill(eps, tc, thc, vc, t, theta, v, x, y, r)
+  !> (Its own procedure, called through the type so that it stays out of
+  !> line: the orbit's large default initialisation and stack frame are paid
+  !> only where a circle phase has output times, not once per flip.)
+  pure subroutine exact_circle_fill(self, eps, tc, thc, vc, t, theta, v, x, y, r)
+    class(cord_circle_exact), intent(in) :: self
     real(dp), intent(in) :: eps, tc, thc, vc, t(:)
     real(dp), intent(inout) :: theta(:), v(:), x(:), y(:), r(:)
     type(pendulum_orbit) :: o
@@ -386,7 +390,7 @@ contains
     real(dp), intent(out) :: theta(:), v(:), x(:), y(:), r(:), flips(:, :)
     integer, intent(out) :: nflips, stop_reason, status
     integer, intent(inout), volatile, optional :: cancel
-    real(dp) :: tc, thc, vc, vr, t1, th1, v1, xib, tau, tension
+    real(dp) :: tc, thc, vc, cth, vr, t1, th1, v1, xib, tau, tension
     real(dp) :: p(2), u(2), th2, v2, vr2
     integer :: n, i, j, cap, nstay
     logical :: leaving, general, stay
@@ -407,7 +411,8 @@ contains
         end if
       end if
       ! ---- the circle from (tc, thc, vc), unless the bob is in flight or slack
-      tension = vc * vc + eps * cos(thc)
+      cth = cos(thc)
+      tension = vc * vc + eps * cth
       general = .false.
       if ((vr < 0.0_dp .or. tension <= 0.0_dp) .and. .not. stay) then
         leaving = .true.; general = vr < 0.0_dp .or. tension < 0.0_dp
@@ -415,7 +420,7 @@ contains
         call cord_depart(eps, th1, v1, vr, p, u, xib)
       else
         stay = .false.
-        call circ%phase(eps, tc, thc, vc, vr, t, i, theta, v, x, y, r, j, leaving, t1, th1, v1, p, u, xib, &
+        call circ%phase(eps, tc, thc, vc, cth, vr, t, i, theta, v, x, y, r, j, leaving, t1, th1, v1, p, u, xib, &
                         status, cancel)
         if (status /= cord_ok) return
         i = j
