@@ -250,7 +250,7 @@ contains
   end subroutine simulate_cord
 
   !> The flexible cord: closed form without effects (kernel/models/pendula_cord.f90),
-  !> the hybrid loop with them (kernel/dispatch/pendula_cord_hybrid.f90: dopri5 or
+  !> integrated circles with them (kernel/dispatch/pendula_cord_hybrid.f90: dopri5 or
   !> dop853, 'auto' meaning dop853; fixed-step methods have no dense output to
   !> locate the tension event on).  x, y, r: the bob's position (r < 1 in flight);
   !> flips(8, nflips): the flip log (pendula_cord%cord_run); stop_reason:
@@ -302,7 +302,7 @@ contains
     end if
   end subroutine cord_scene_run
 
-  !> Does a flexible-cord scene run the hybrid loop (effects, or an integrator named)?
+  !> Does a flexible-cord scene integrate its circles (effects, or an integrator named)?
   pure logical function cord_integrated(sc)
     type(scene_t), intent(in) :: sc
     cord_integrated = sc%damping /= 0.0_dp .or. sc%torque /= 0.0_dp .or. sc%drive_amplitude /= 0.0_dp .or. &

@@ -11,6 +11,9 @@
 !>   springy jerk, the smallest positive root of a cubic, isolated between the
 !>   roots of its derivative and bisected).
 !> jerk: the radial velocity removed (reversed times e, the restitution).
+!> One loop (cord_loop) runs circle and flight in turn for every circle
+!> phase: the closed form here (cord_circle_exact) and the integrated one
+!> with effects (pendula_cord_hybrid).
 module pendula_cord
   use pendula_kinds, only: dp, nan_dp
   use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_eval
@@ -19,7 +22,7 @@ module pendula_cord
   private
   public :: flip_map, cord_run, cord_run_all
   public :: cord_check, cord_depart, cord_flight_time, cord_land, cord_flight_state, cord_fly, cord_log_room
-  public :: cord_flight_verdict
+  public :: cord_flight_verdict, cord_loop, cord_blank, cord_circle_end
   !> what cord_flight_verdict says of a flight
   integer, parameter, public :: verdict_fly = 0, verdict_absorbed = 1, verdict_too_short = 2
   !> status codes of cord_run
@@ -30,6 +33,40 @@ module pendula_cord
   !> stop reasons
   integer, parameter, public :: cord_stop_t_end = 0, cord_stop_max_flips = 1, cord_stop_min_flight = 2
   real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
+
+  !> A circle phase of the cord loop (cord_loop): from (tc, thc, vc) on the
+  !> taut cord (cth = cos(thc)), the outputs theta, v, x, y, r (= 1) at the times t(i:j-1) it
+  !> covers (j = cord_circle_end), and whether the bob leaves the circle (leaving), where (t1, th1,
+  !> v1) and how (p, u, xib as cord_depart).  graze_restarts: the phase cannot
+  !> see a departure at its own start (see cord_loop).
+  type, abstract, public :: cord_circle
+    logical :: graze_restarts = .false.
+  contains
+    procedure(circle_phase), deferred :: phase
+  end type cord_circle
+
+  abstract interface
+    subroutine circle_phase(self, eps, tc, thc, vc, cth, vr, t, i, theta, v, x, y, r, j, leaving, &
+                            t1, th1, v1, p, u, xib, status, cancel)
+      import :: cord_circle, dp
+      class(cord_circle), intent(inout) :: self
+      real(dp), intent(in) :: eps, tc, thc, vc, cth, vr, t(:)
+      integer, intent(in) :: i
+      real(dp), intent(inout) :: theta(:), v(:), x(:), y(:), r(:)
+      integer, intent(out) :: j, status
+      logical, intent(out) :: leaving
+      real(dp), intent(out) :: t1, th1, v1, p(2), u(2), xib
+      integer, intent(inout), volatile, optional :: cancel
+    end subroutine circle_phase
+  end interface
+
+  !> The closed-form circle phase: the exact elliptic motion (pendula_exact)
+  !> and Garfinkel's departure point and time.
+  type, extends(cord_circle), public :: cord_circle_exact
+  contains
+    procedure :: phase => exact_circle_phase
+    procedure :: fill => exact_circle_fill
+  end type cord_circle_exact
 
 contains
 
@@ -216,7 +253,7 @@ contains
     end if
   end function cord_flight_verdict
 
-  !> One flight, shared by the closed-form and the hybrid loops: from (p, u),
+  !> One flight of the cord loop (every circle phase): from (p, u),
   !> left at (t1, th1, v1) with energy xib, for tau; the output times from
   !> t(i) on that fall inside it are filled (i advanced past them); row: the
   !> flip log's entry; th2, v2, vr2: the state after the jerk (cord_land).
@@ -251,77 +288,142 @@ contains
     if (r > 0.0_dp) v = (x * (u2 - eps * tt) - y * u1) / (r * r)
   end subroutine cord_flight_state
 
-  !> Simulate a conservative flexible-cord pendulum at the sorted times t (>= 0).
-  !> flips(:, k) = t_leave, theta_leave, t_return, theta_return, xi_before, xi_after,
-  !> v_leave, v_return; at most min(max_flips, size(flips, 2)) flips.  Output times
+  !> The first output index j >= i past the circle phase: past the departure
+  !> time t1 when the bob leaves the circle, else past every output time (n + 1).
+  pure integer function cord_circle_end(t, i, leaving, t1) result(j)
+    real(dp), intent(in) :: t(:), t1
+    integer, intent(in) :: i
+    logical, intent(in) :: leaving
+    j = i
+    if (.not. leaving) then
+      j = size(t) + 1
+      return
+    end if
+    do while (j <= size(t))
+      if (t(j) > t1) exit
+      j = j + 1
+    end do
+  end function cord_circle_end
+
+  !> The closed-form circle phase from (tc, thc, vc): the exact elliptic
+  !> motion, left where the energy xi = (v**2 - 2 eps cos theta) / (3 eps)
+  !> lies in (0, 1), at cos theta1 = -xi after the time of time_to_departure.
+  subroutine exact_circle_phase(self, eps, tc, thc, vc, cth, vr, t, i, theta, v, x, y, r, j, leaving, &
+                                t1, th1, v1, p, u, xib, status, cancel)
+    class(cord_circle_exact), intent(inout) :: self
+    real(dp), intent(in) :: eps, tc, thc, vc, cth, vr, t(:)
+    integer, intent(in) :: i
+    real(dp), intent(inout) :: theta(:), v(:), x(:), y(:), r(:)
+    integer, intent(out) :: j, status
+    logical, intent(out) :: leaving
+    real(dp), intent(out) :: t1, th1, v1, p(2), u(2), xib
+    integer, intent(inout), volatile, optional :: cancel
+    real(dp) :: xi, s, phi, phi0, kk, sq
+    status = cord_ok
+    leaving = .false.
+    xi = (vc * vc - 2.0_dp * eps * cth) / (3.0_dp * eps)
+    if (xi > 0.0_dp .and. xi < 1.0_dp) then
+      s = sign(1.0_dp, vc)
+      phi = s * thc
+      kk = anint(phi / two_pi)
+      phi0 = phi - two_pi * kk
+      t1 = tc + time_to_departure(phi0, xi, eps)
+      th1 = s * (two_pi * kk + acos(-xi))
+      v1 = s * sqrt(eps * xi)
+      sq = sqrt((1.0_dp - xi) * (1.0_dp + xi))
+      p = [s * sq, xi]
+      u = [-v1 * xi, v1 * s * sq]
+      xib = xi
+      leaving = .true.
+    else
+      t1 = nan_dp; th1 = nan_dp; v1 = nan_dp; p = nan_dp; u = nan_dp; xib = nan_dp
+    end if
+    j = cord_circle_end(t, i, leaving, t1)
+    if (j > i) call self%fill(eps, tc, thc, vc, t(i:j - 1), theta(i:j - 1), v(i:j - 1), &
+                                      x(i:j - 1), y(i:j - 1), r(i:j - 1))
+  end subroutine exact_circle_phase
+
+  !> The exact motion from (tc, thc, vc) at the times t: theta, v, x, y, r (= 1).
+  !> (Its own procedure, called through the type so that it stays out of
+  !> line: the orbit's large default initialisation and stack frame are paid
+  !> only where a circle phase has output times, not once per flip.)
+  pure subroutine exact_circle_fill(self, eps, tc, thc, vc, t, theta, v, x, y, r)
+    class(cord_circle_exact), intent(in) :: self
+    real(dp), intent(in) :: eps, tc, thc, vc, t(:)
+    real(dp), intent(inout) :: theta(:), v(:), x(:), y(:), r(:)
+    type(pendulum_orbit) :: o
+    integer :: ost
+    call orbit_setup(thc, vc, eps, o, ost)
+    call orbit_eval(o, t - tc, theta, v)
+    x = sin(theta); y = -cos(theta); r = 1.0_dp
+  end subroutine exact_circle_fill
+
+  !> The outputs blank (NaN), no flips, stop reason t_end: a cord run's start.
+  pure subroutine cord_blank(theta, v, x, y, r, flips, nflips, stop_reason)
+    real(dp), intent(out) :: theta(:), v(:), x(:), y(:), r(:), flips(:, :)
+    integer, intent(out) :: nflips, stop_reason
+    theta = nan_dp; v = nan_dp; x = nan_dp; y = nan_dp; r = nan_dp
+    flips = nan_dp
+    nflips = 0; stop_reason = cord_stop_t_end
+  end subroutine cord_blank
+
+  !> The cord loop, one for every circle phase: circle (circ%phase) and
+  !> flight (cord_fly) in turn from (theta0, v0) at t = 0, the outputs at the
+  !> sorted times t (>= 0) filled as they are passed.  flips(:, k) = t_leave,
+  !> theta_leave, t_return, theta_return, xi_before, xi_after, v_leave,
+  !> v_return; at most min(max_flips, size(flips, 2)) flips.  Output times
   !> after a stop (max_flips, min_flight) are NaN; stop_reason says which.
-  !> cancel (optional): read once per circle-flight cycle; non-zero stops the
+  !> status: cord_ok, a cord_bad_* of cord_check, or the circle phase's own.
+  !> cancel (optional): read once per circle-flight cycle (a run of many short
+  !> cycles may never reach an integrator's own polling); non-zero stops the
   !> run with status cord_cancelled (outputs not reached stay NaN).
-  subroutine cord_run(eps, theta0, v0, restitution, max_flips, min_flight, t, theta, v, x, y, r, &
-                      flips, nflips, stop_reason, status, cancel)
+  !> A flight that cannot start (zero tension, but rising) hands the bob back
+  !> to the circle: with circ%graze_restarts (a circle phase that cannot see
+  !> a departure at its own start, an integrator's event) at most 1000 times
+  !> in a row (then stop_reason min_flight); otherwise the closed-form circle
+  !> finds it again, and a start that was already slack ends the run.
+  subroutine cord_loop(circ, eps, theta0, v0, restitution, max_flips, min_flight, t, theta, v, x, y, r, &
+                       flips, nflips, stop_reason, status, cancel)
+    class(cord_circle), intent(inout) :: circ
     real(dp), intent(in) :: eps, theta0, v0, restitution, min_flight, t(:)
     integer, intent(in) :: max_flips
     real(dp), intent(out) :: theta(:), v(:), x(:), y(:), r(:), flips(:, :)
     integer, intent(out) :: nflips, stop_reason, status
     integer, intent(inout), volatile, optional :: cancel
-    type(pendulum_orbit) :: o
-    real(dp) :: tc, thc, vc, vr, xi, s, phi, phi0, dtd, sq, t1, th1, v1, xib, tau, tension
-    real(dp) :: p(2), u(2), th2, v2, vr2, kk
-    integer :: n, i, j, ost, cap
-    logical :: leaving, general
+    real(dp) :: tc, thc, vc, cth, vr, t1, th1, v1, xib, tau, tension
+    real(dp) :: p(2), u(2), th2, v2, vr2
+    integer :: n, i, j, cap, nstay
+    logical :: leaving, general, stay
 
     n = size(t)
-    theta = nan_dp; v = nan_dp; x = nan_dp; y = nan_dp; r = nan_dp
-    flips = nan_dp
-    nflips = 0; stop_reason = cord_stop_t_end; status = cord_ok
+    call cord_blank(theta, v, x, y, r, flips, nflips, stop_reason)
     status = cord_check(eps, theta0, v0, restitution, t)
     if (status /= cord_ok) return
     cap = min(max_flips, size(flips, 2))
     tc = 0.0_dp; thc = theta0; vc = v0; vr = 0.0_dp
     i = 1
+    stay = .false.
+    nstay = 0
     do
       if (present(cancel)) then
         if (cancel /= 0) then
           status = cord_cancelled; return
         end if
       end if
-      ! ---- the circle (or an immediate flight)
-      tension = vc * vc + eps * cos(thc)
-      leaving = .false.
+      ! ---- the circle from (tc, thc, vc), unless the bob is in flight or slack
+      cth = cos(thc)
+      tension = vc * vc + eps * cth
       general = .false.
-      xib = nan_dp
-      if (vr < 0.0_dp .or. tension <= 0.0_dp) then
+      if ((vr < 0.0_dp .or. tension <= 0.0_dp) .and. .not. stay) then
         leaving = .true.; general = vr < 0.0_dp .or. tension < 0.0_dp
         t1 = tc; th1 = thc; v1 = vc
         call cord_depart(eps, th1, v1, vr, p, u, xib)
       else
-        xi = (vc * vc - 2.0_dp * eps * cos(thc)) / (3.0_dp * eps)
-        if (xi > 0.0_dp .and. xi < 1.0_dp) then
-          s = sign(1.0_dp, vc)
-          phi = s * thc
-          kk = anint(phi / two_pi)
-          phi0 = phi - two_pi * kk
-          dtd = time_to_departure(phi0, xi, eps)
-          t1 = tc + dtd
-          th1 = s * (two_pi * kk + acos(-xi))
-          v1 = s * sqrt(eps * xi)
-          sq = sqrt((1.0_dp - xi) * (1.0_dp + xi))
-          p = [s * sq, xi]
-          u = [-v1 * xi, v1 * s * sq]
-          xib = xi
-          leaving = .true.
-        end if
-        j = i
-        do while (j <= n)
-          if (leaving .and. t(j) > t1) exit
-          j = j + 1
-        end do
-        if (j > i) then
-          call orbit_setup(thc, vc, eps, o, ost)
-          call orbit_eval(o, t(i:j - 1) - tc, theta(i:j - 1), v(i:j - 1))
-          x(i:j - 1) = sin(theta(i:j - 1)); y(i:j - 1) = -cos(theta(i:j - 1)); r(i:j - 1) = 1.0_dp
-          i = j
-        end if
+        stay = .false.
+        call circ%phase(eps, tc, thc, vc, cth, vr, t, i, theta, v, x, y, r, j, leaving, t1, th1, v1, p, u, xib, &
+                        status, cancel)
+        if (status /= cord_ok) return
+        i = j
       end if
       if (.not. leaving) exit
       if (n > 0) then
@@ -332,9 +434,17 @@ contains
       end if
       ! ---- the flight
       tau = cord_flight_time(eps, p, u, general)
-      if (tau /= tau) then  ! no flight: zero tension but rising (only at a grazing start)
+      if (tau /= tau) then  ! no flight: zero tension but rising
         tc = t1; thc = th1; vc = v1; vr = 0.0_dp
-        if (tension <= 0.0_dp) exit
+        if (circ%graze_restarts) then
+          stay = .true.
+          nstay = nstay + 1
+          if (nstay > 1000) then  ! a grazing sequence that never gets off the circle
+            stop_reason = cord_stop_min_flight; exit
+          end if
+        else
+          if (tension <= 0.0_dp) exit
+        end if
         cycle
       end if
       select case (cord_flight_verdict(eps, min_flight, general, vr, tau))
@@ -345,6 +455,7 @@ contains
         stop_reason = cord_stop_min_flight; exit
       end select
       nflips = nflips + 1
+      nstay = 0
       call cord_fly(eps, restitution, p, u, tau, t1, th1, v1, xib, t, i, theta, v, x, y, r, &
                     flips(:, nflips), th2, v2, vr2)
       tc = t1 + tau; thc = th2; vc = v2; vr = vr2
@@ -352,6 +463,20 @@ contains
         if (tc > t(n)) exit
       end if
     end do
+  end subroutine cord_loop
+
+  !> Simulate a conservative flexible-cord pendulum at the sorted times t (>= 0):
+  !> cord_loop with the closed-form circle phase (arguments and outputs as there).
+  subroutine cord_run(eps, theta0, v0, restitution, max_flips, min_flight, t, theta, v, x, y, r, &
+                      flips, nflips, stop_reason, status, cancel)
+    real(dp), intent(in) :: eps, theta0, v0, restitution, min_flight, t(:)
+    integer, intent(in) :: max_flips
+    real(dp), intent(out) :: theta(:), v(:), x(:), y(:), r(:), flips(:, :)
+    integer, intent(out) :: nflips, stop_reason, status
+    integer, intent(inout), volatile, optional :: cancel
+    type(cord_circle_exact) :: circ
+    call cord_loop(circ, eps, theta0, v0, restitution, max_flips, min_flight, t, theta, v, x, y, r, &
+                   flips, nflips, stop_reason, status, cancel)
   end subroutine cord_run
 
   !> The flip log's room for a (re)run of a cord loop: the first capacity

@@ -16,8 +16,9 @@ circle
     ``cord_run``), about 1 us per flip.  With damping, torque or drive the
     circle is integrated by the scene's adaptive method (dopri5/dop853) and the
     departure is located as an event of the tension (event kind 4 of the
-    kernel integrators), in the kernel's hybrid loop
-    (kernel/dispatch/pendula_cord_hybrid.f90).  Both run through the
+    kernel integrators: kernel/dispatch/pendula_cord_hybrid.f90).  One kernel
+    loop (``cord_loop``) runs both, the circle phase behind one interface;
+    both run through the
     dispatcher (``cord_scene_run``), as in ``pendula-run``.  Fixed-step methods have
     no dense output: a scene naming one is refused (SceneError, a ValueError) naming the method.
 flight
