@@ -77,7 +77,8 @@ def _measured_period(sc) -> float:
 
 
 def huygens_gallery(outdir) -> list[pathlib.Path]:
-    """Write the issue-13 figures and tables into outdir; return the paths."""
+    """Write the figures and tables of Huygens' clock, non-uniform gravity and the angle
+    density into outdir; return the paths."""
     plt = _plt()
     out = pathlib.Path(outdir)
     out.mkdir(parents=True, exist_ok=True)
