@@ -222,7 +222,7 @@ def test_both_readers_refuse_the_same_cycloid_scenes(tmp_path, body, name):
     assert p.returncode == 2 and name in p.stderr, p.stderr
 
 
-def test_seed_involute_formula_4_22_slip():
+def test_prusa_tuma_involute_formula_4_22_slip():
     # Source 003 (4.21) with L = 4R, evaluated by mpmath, is [0, -2R] + [R(p + sin p), -R(1 + cos p)]
     # (the hanging cord reaches -4R at p = 0), not the printed (4.22) [0, -R] + [R(p - sin p), -R(1 + cos p)].
     mp.mp.dps = 30

@@ -17,8 +17,8 @@ from ..scene import Scene
 from ..sweeps import iv_curve, plot_sweep, sweep
 from .._files import save_figure, open_text  # the one writer: regular files only, whole or absent
 
-#: seed (Suzuki & Suzuki, section 8.2): v0 -> the wells n (theta ~ 2 pi n) the text lists
-SEED_8_2 = {2.01: {0, 1}, 2.05: {0, 1, 2}, 2.10: {0, 1, 3}, 2.14: {0, 1, 2, 3}, 2.27: {0, 1, 2, 4},
+#: Suzuki & Suzuki, section 8.2: v0 -> the wells n (theta ~ 2 pi n) the text lists
+SUZUKI_8_2 = {2.01: {0, 1}, 2.05: {0, 1, 2}, 2.10: {0, 1, 3}, 2.14: {0, 1, 2, 3}, 2.27: {0, 1, 2, 4},
             2.40: {0, 1, 2, 3, 4}, 2.60: {0, 1, 2, 3, 5}, 2.80: {0, 1, 2, 3, 4, 5},
             2.95: {0, 1, 2, 3, 4, 6}, 3.15: {0, 1, 2, 3, 4, 5, 6}}
 
@@ -76,8 +76,8 @@ def _basins(out, small):
             "uncertain": int(np.sum(ds.status.values == 4)), "energy_balance_disagreement": dis, "png": png}
 
 
-def _seed_8_2(out, t_max=300.0):
-    v0s = sorted(SEED_8_2)
+def _suzuki_8_2(out, t_max=300.0):
+    v0s = sorted(SUZUKI_8_2)
     taus = np.round(np.arange(-0.01, 0.4001, 0.01), 10)
     s = Scene(damping=0.16)
     ds = sweep(s, over={"v0": v0s, "torque": taus}, measure="final_well", t_max=t_max)
@@ -87,16 +87,16 @@ def _seed_8_2(out, t_max=300.0):
         st = ds.status.values[i]
         got = {int(x) for x in ds.well.values[i][st == 0]}
         run = taus[lk.locked.values[i] == 0]
-        rows.append((v, sorted(got), sorted(SEED_8_2[v]), float(run.min()) if run.size else math.nan))
-    with open_text(out / "sweep_seed_8_2.csv") as f:
-        f.write("v0,wells_pendula,wells_seed,first_running_tau\n")
+        rows.append((v, sorted(got), sorted(SUZUKI_8_2[v]), float(run.min()) if run.size else math.nan))
+    with open_text(out / "sweep_suzuki_8_2.csv") as f:
+        f.write("v0,wells_pendula,wells_suzuki,first_running_tau\n")
         for v, g, sd, r in rows:
             f.write(f"{v},{' '.join(map(str, g))},{' '.join(map(str, sd))},{r}\n")
     return rows
 
 
-def _seed_8_2_1():
-    """Seed 8.2.1: beta = 0.16, v0 = 0.2, tau = 0 ... 0.8: where locking gives way to
+def _suzuki_8_2_1():
+    """Suzuki & Suzuki, section 8.2.1: beta = 0.16, v0 = 0.2, tau = 0 ... 0.8: where locking gives way to
     running, and the resting angle of locked orbits (single simulate runs) against asin(tau)."""
     from ..motion import simulate
     taus = np.round(np.arange(0.0, 0.8001, 0.01), 10)
@@ -226,18 +226,18 @@ def run(out, small: bool = True, quiet: bool = False) -> dict:
     """Run the sweep gallery into folder ``out``; returns the measured figures."""
     out = pathlib.Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    res = {"basins": _basins(out, small), "seed_8_2": _seed_8_2(out), "seed_8_2_1": _seed_8_2_1(), "iv": _iv(out),
+    res = {"basins": _basins(out, small), "suzuki_8_2": _suzuki_8_2(out), "suzuki_8_2_1": _suzuki_8_2_1(), "iv": _iv(out),
            "bifurcation": _bifurcation(out, small)}
     res["lyapunov"] = _lyapunov(out, small, res["bifurcation"])
     if not quiet:
         b = res["basins"]
         print(f"sweeps: basin map {b['points']} points, {100 * b['decided']:.1f} % decided, "
               f"{b['uncertain']} uncertain; energy balance disagrees at {100 * b['energy_balance_disagreement']:.1f} %")
-        for v, g, sd, r in res["seed_8_2"]:
+        for v, g, sd, r in res["suzuki_8_2"]:
             flag = "" if set(g) == set(sd) else "  <- differs from Suzuki & Suzuki"
-            print(f"  seed 8.2 v0 = {v:4.2f}: wells {g} (seed {sd}); running from tau = {r}{flag}")
-        r1 = res["seed_8_2_1"]
-        print(f"  seed 8.2.1 (v0 = 0.2): locked up to tau = {r1['last_locked']}, running from {r1['first_running']}; "
+            print(f"  Suzuki 8.2 v0 = {v:4.2f}: wells {g} (the text {sd}); running from tau = {r}{flag}")
+        r1 = res["suzuki_8_2_1"]
+        print(f"  Suzuki 8.2.1 (v0 = 0.2): locked up to tau = {r1['last_locked']}, running from {r1['first_running']}; "
               f"resting angle - asin(tau) <= {r1['theta_s_vs_asin_tau']:.1e}")
         print(f"  I-V: switches to running at tau = {res['iv']['switch_up']}; retrapping "
               + ", ".join(f"beta {k}: {v:.3f} (4b/pi {4 * k / math.pi:.3f})" for k, v in res["iv"]["retrap"].items()))
