@@ -442,16 +442,16 @@ contains
     real(dp), intent(in) :: phi
     real(dp), intent(inout) :: j, rh
     real(dp), intent(out) :: sg, dh, dl
-    real(dp) :: p, e, q, f, a, b, en
+    real(dp) :: p, e, q, f, a, a2, b, en
     sg = sign(1.0_dp, rh)
     ! delta = phi - en pi/2, en = 2 j + sg odd (exact below 2^53)
     en = 2.0_dp * j + sg
     call two_prod(en, half_pi, p, e)
     call two_prod(en, 0.5_dp * pi_lo, q, f)
     call two_sum(phi - p, -e, a, b)          ! phi - p exact (Sterbenz)
-    call two_sum(a, -q, a, e)
+    call two_sum(a, -q, a2, e)               ! (never an output aliased to an input)
     b = (b + e) - f - en * (0.5_dp * pi_lo2)
-    call fast_two_sum(a, b, dh, dl)
+    call fast_two_sum(a2, b, dh, dl)
     ! r = sg pi/2 + delta: inside when sg delta <= 0, else the next multiple of pi
     if (sg * dh > 0.0_dp) then
       j = j + sg

@@ -182,7 +182,7 @@ contains
     real(dp), intent(in) :: par, eps, theta0, v0
     real(dp), intent(out) :: e, m, mc, kk, theta_max, period
     integer, intent(out) :: regime, status
-    real(dp) :: w0, f1, c, s_old, s_new, sfac, g, qh, ql, dh, dl, ph, pl, ah, al, eu
+    real(dp) :: w0, f1, c, s_old, s_new, sfac, g, qh, ql, dh, dl, ph, pl, ah, al, eu, xh, xl
     integer :: n, st, ie, je
     type(pendulum_orbit) :: o
     e = nan_dp; m = nan_dp; mc = nan_dp; kk = nan_dp; theta_max = nan_dp; period = nan_dp; regime = -1
@@ -229,8 +229,8 @@ contains
     f1 = gravity_f(kind, par, 1.0_dp, 1.0_dp)
     ! the distance from the separatrix (f(1) - E) / eps = Q(w0, 1) c^2 / eps - v0^2 / (2 eps)
     call gravity_q1_dd(kind, par, 1.0_dp, o%mch, o%mcl, qh, ql)
-    call dd_mul(qh, ql, o%mch, o%mcl, dh, dl)
-    call dd_add(dh, dl, -ah, -al, dh, dl)
+    call dd_mul(qh, ql, o%mch, o%mcl, xh, xl)
+    call dd_add(xh, xl, -ah, -al, dh, dl)          ! (outputs never alias inputs)
     if (dh > 0.0_dp) then
       regime = gr_libration
       if (v0 == 0.0_dp) then
@@ -368,7 +368,7 @@ contains
     integer, intent(in) :: kind
     real(dp), intent(in) :: par, eps, ch, cl
     real(dp), intent(out) :: qh, ql
-    real(dp) :: ah, al, bh, bl, gh, gl, wh, wl, rh, rl, sh, sl, th, tl
+    real(dp) :: ah, al, bh, bl, gh, gl, wh, wl, rh, rl, sh, sl, th, tl, uh, ul
     select case (kind)
     case (gk_linear)
       call two_sum(1.0_dp, -2.0_dp * par, ah, al)
@@ -380,17 +380,18 @@ contains
       call dd_div(par, 0.0_dp, ah, al, gh, gl)            ! g = d / a
       call two_sum(1.0_dp, -ch, wh, wl)                   ! w0 = 1 - c^2
       wl = wl - cl
+      ! (outputs never alias inputs: th, tl / uh, ul take turns)
       call dd_mul(4.0_dp * gh, 4.0_dp * gl, wh, wl, th, tl)
-      call dd_div(th, tl, ah, al, th, tl)                 ! 4 g w0 / a
-      call dd_add(1.0_dp, 0.0_dp, th, tl, th, tl)
+      call dd_div(th, tl, ah, al, uh, ul)                 ! 4 g w0 / a
+      call dd_add(1.0_dp, 0.0_dp, uh, ul, th, tl)
       call dd_sqrt(th, tl, rh, rl)                        ! r0
       call two_sum(par, 1.0_dp, bh, bl)
       call dd_div(bh, bl, ah, al, sh, sl)                 ! r1 = (d + 1) / a
       call dd_add(rh, rl, sh, sl, th, tl)                 ! r0 + r1
-      call dd_mul(th, tl, rh, rl, th, tl)
-      call dd_mul(th, tl, sh, sl, th, tl)                 ! r0 r1 (r0 + r1)
-      call dd_div(4.0_dp * gh, 4.0_dp * gl, th, tl, qh, ql)
-      call dd_mul(qh, ql, eps, 0.0_dp, qh, ql)
+      call dd_mul(th, tl, rh, rl, uh, ul)
+      call dd_mul(uh, ul, sh, sl, th, tl)                 ! r0 r1 (r0 + r1)
+      call dd_div(4.0_dp * gh, 4.0_dp * gl, th, tl, uh, ul)
+      call dd_mul(uh, ul, eps, 0.0_dp, qh, ql)
     case default
       qh = 2.0_dp * eps; ql = 0.0_dp
     end select
