@@ -1,6 +1,6 @@
 """Write data/work_precision_reference.json: the reference solutions of the work-precision study.
 
-Every problem of the study (python/pendula/workprecision.py, PROBLEMS) is
+Every problem of the study (python/pendula/studies/workprecision.py, PROBLEMS) is
 
     theta'' = -eps sin(theta) - beta theta' + tau + A cos(Omega t + phase),
 
@@ -48,7 +48,7 @@ OUT = HERE / "work_precision_reference.json"
 
 sys.path.insert(0, str(HERE.parent / "python"))
 # the problem definitions are data: read them from the study without importing the compiled package
-_src = (HERE.parent / "python" / "pendula" / "workprecision.py").read_text()
+_src = (HERE.parent / "python" / "pendula" / "studies" / "workprecision.py").read_text()
 _ns: dict = {}
 exec(compile(_src.split("# ---- end of problem definitions")[0], "workprecision.py", "exec"), _ns)
 PROBLEMS = _ns["PROBLEMS"]

@@ -12,7 +12,7 @@ import pytest
 import pendula
 from pendula import Scene
 from pendula import attractor_map
-from pendula.attractors import basin_entropy, boundary_fraction, label_attractors, \
+from pendula.dynamics.attractors import basin_entropy, boundary_fraction, label_attractors, \
     uncertainty_exponent
 
 ROT = Scene(damping=0.5, drive_amplitude=1.35, drive_frequency=2.0 / 3.0)

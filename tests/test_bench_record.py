@@ -10,7 +10,7 @@ cannot drift from the recorded run).
 import json
 import pathlib
 
-from pendula.bench import readme_tables
+from pendula.studies.bench import readme_tables
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 

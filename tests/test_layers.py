@@ -88,7 +88,7 @@ def test_no_import_circle():
 @pytest.mark.parametrize("low", ["pendula.elliptic", "pendula.series", "pendula.scene", "pendula.trajectory",
                                  "pendula.systems.rigid", "pendula._checks", "pendula._files"])
 def test_lower_layers_do_not_import_the_user_facing_ones(low):
-    top = {"pendula", "pendula.motion", "pendula.run", "pendula.cli", "pendula.plot", "pendula.accuracy", "pendula.bench"}
+    top = {"pendula", "pendula.motion", "pendula.run", "pendula.cli", "pendula.plot", "pendula.studies", "pendula.studies.accuracy", "pendula.studies.bench", "pendula.studies.workprecision"}
     g = _graph()
     seen, todo = set(), [low]
     while todo:
@@ -106,3 +106,18 @@ def test_modules_do_not_import_from_the_package_front():
     g = _graph()
     bad = sorted(n for n, deps in g.items() if "pendula" in deps and n != "pendula")
     assert not bad, f"import from pendula/__init__ inside the package: {bad}"
+
+
+def test_the_library_does_not_import_its_measuring_apparatus():
+    """pendula.studies measures the library; only the command line reaches it, never a library module."""
+    g = _graph()
+    bad = sorted(n for n, deps in g.items()
+                 if not n.startswith("pendula.studies") and n != "pendula.cli"
+                 and any(d.startswith("pendula.studies") for d in deps))
+    assert not bad, f"library modules importing pendula.studies: {bad}"
+
+
+def test_dynamics_is_one_subpackage():
+    g = _graph()
+    for name in ("pendula.dynamics.equilibria", "pendula.dynamics.periodic", "pendula.dynamics.attractors"):
+        assert name in g, f"{name} is not a module of the package"

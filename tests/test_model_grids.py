@@ -1,6 +1,6 @@
 """The models against their stored random mpmath grids (data/model_grids.csv.gz, written by
 data/gen_model_grids.py): every class within its stated tolerance A + B cond eps
-(pendula._model_grids.TOLERANCES gives A, B and the reason of each family)."""
+(pendula.studies.model_grids.TOLERANCES gives A, B and the reason of each family)."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ import pathlib
 
 import pytest
 
-from pendula import _model_grids as mg
+from pendula.studies import model_grids as mg
 
 PATH = pathlib.Path(__file__).resolve().parents[1] / "data" / "model_grids.csv.gz"
 ROWS = mg.load(PATH)

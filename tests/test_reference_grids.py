@@ -12,7 +12,7 @@
 The error of a point is max over outputs of |got - ref| / max(1, |ref|), in
 eps; a NaN where the reference is finite, or the reverse, is an infinite
 error.  The bound is 4 eps for every class (README's promise), unless
-pendula.accuracy.GRID_LIMITS states a measured, explained limit (none does).
+pendula.studies.accuracy.GRID_LIMITS states a measured, explained limit (none does).
 """
 
 import pathlib
@@ -20,7 +20,7 @@ import pathlib
 import numpy as np
 import pytest
 
-from pendula.accuracy import grid_bound, grid_errors, grid_paths, load_grids
+from pendula.studies.accuracy import grid_bound, grid_errors, grid_paths, load_grids
 
 PATH = pathlib.Path(__file__).resolve().parents[1] / "data" / "reference_grids.csv.gz"
 EDGES = PATH.with_name("reference_grids_edges.csv.gz")
@@ -79,7 +79,7 @@ def test_accuracy_page_grid_table_is_the_generated_one():
     """The accuracy report's worst-error table (docs/source/reports/accuracy.md)
     is what `pendula accuracy grids` prints for the stored grid and the code as
     it is (a table that drifted from the code would be a claim nobody measured)."""
-    from pendula.accuracy import grids_markdown
+    from pendula.studies.accuracy import grids_markdown
 
     page = (PATH.parents[1] / "docs" / "source" / "reports" / "accuracy.md").read_text()
     table = grids_markdown(PATH)

@@ -1,4 +1,4 @@
-"""The work-precision study (pendula.workprecision): its references, its clock, its record
+"""The work-precision study (pendula.studies.workprecision): its references, its clock, its record
 and the report page made from the record.  Timings are never asserted (benchmarks are not
 tests); what is checked is that the numbers the study reports are the ones it measured."""
 
@@ -11,7 +11,7 @@ import pytest
 
 import pendula
 from pendula import _kernel
-from pendula import workprecision as wp
+from pendula.studies import workprecision as wp
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 RECORD = ROOT / "data" / "bench" / "work_precision.json"

@@ -3,7 +3,7 @@
 Both maps are n x n grids over (theta0, v0) of the damped pendulum (beta = 0.5):
 the final-well map of the undriven pendulum (measure ``final_well``, each point
 stops when its well is decided) and the attractor map of the driven one
-(A = 1.35, Omega = 2/3: ``pendula.attractors.attractor_map``, a transient and
+(A = 1.35, Omega = 2/3: ``pendula.attractor_map``, a transient and
 stroboscopic samples for every point, then the recurrence labelling).  Each is
 timed once in this process (wall and CPU), the labelling separately, and the
 result written as JSON beside this file.
@@ -22,7 +22,7 @@ import numpy as np
 
 import pendula
 from pendula import attractor_map
-from pendula.attractors import label_attractors
+from pendula.dynamics.attractors import label_attractors
 
 
 def main():

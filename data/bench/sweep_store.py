@@ -128,7 +128,7 @@ def main(argv=None) -> int:
 
     import importlib.metadata as md
 
-    from pendula.bench import machine_record
+    from pendula.studies.bench import machine_record
 
     record = {"what": "final-well map swept to a Zarr store on a local Dask process cluster",
               "grid": f"{args.side} x {args.side} over v0 in [0, 4], damping in [0.02, 0.3]",

@@ -178,7 +178,7 @@ def cmd_accuracy(args) -> int:
     if args.what == "elliptic":
         import pathlib
 
-        from .accuracy import elliptic_report, print_report
+        from .studies.accuracy import elliptic_report, print_report
 
         reference = args.reference or packaged_data("elliptic_reference.csv")
         if not pathlib.Path(reference).is_file():
@@ -190,7 +190,7 @@ def cmd_accuracy(args) -> int:
     if args.what == "grids":
         import pathlib
 
-        from .accuracy import grids_markdown
+        from .studies.accuracy import grids_markdown
 
         path = pathlib.Path(packaged_data("reference_grids.csv.gz"))
         if not path.is_file():
@@ -200,7 +200,7 @@ def cmd_accuracy(args) -> int:
         print(grids_markdown(path))
         models = pathlib.Path(packaged_data("model_grids.csv.gz"))
         if models.is_file():
-            from .accuracy import model_grids_markdown
+            from .studies.accuracy import model_grids_markdown
 
             print()
             print(model_grids_markdown(models))
@@ -211,8 +211,8 @@ def cmd_accuracy(args) -> int:
 
 def integrator_study(outdir, periods: float, progress: bool = True, quick: bool = False, record_to=None,
                      problems=None) -> int:
-    """The work-precision study (pendula.workprecision) and the long-run energy study; files into outdir."""
-    from .accuracy import long_run_energy, work_precision, write_long_run
+    """The work-precision study (pendula.studies.workprecision) and the long-run energy study; files into outdir."""
+    from .studies.accuracy import long_run_energy, work_precision, write_long_run
 
     files = work_precision(outdir, quick=quick, progress=progress, record_to=record_to, problems=problems)
     res = long_run_energy(periods, progress=progress)
@@ -223,7 +223,7 @@ def integrator_study(outdir, periods: float, progress: bool = True, quick: bool 
 
 
 def cmd_bench(args) -> int:
-    from .bench import main as bench_main
+    from .studies.bench import main as bench_main
 
     return bench_main(args.rest)
 

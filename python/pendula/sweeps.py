@@ -58,7 +58,7 @@ from ._store import StoreBusyError, SweepStoreWarning  # noqa: F401 - raised and
 from . import _checks, _interrupt
 from ._files import atomic_path, save_figure
 from .scene import GRIDDABLE, MEASURES, Scene, SceneError
-from .attractors import AttractorMap
+from .dynamics.attractors import AttractorMap
 
 if TYPE_CHECKING:   # xarray and distributed are optional: named in annotations only
     import distributed
@@ -526,7 +526,7 @@ def attractor_map(scene: Scene, over: dict, *, transient: float = 600.0, samples
     samples : int, optional
         Stroboscopic samples per point read for recurrence (default 48).
     tol, merge_tol, max_period, cell : optional
-        See ``pendula.attractors.label_attractors``.
+        See ``pendula.dynamics.attractors.label_attractors``.
     rtol, atol : float, optional
         The integrator's tolerances (default 1e-10, 1e-12).
     threads, out, client, progress, chunk_points : optional
@@ -568,7 +568,7 @@ def attractor_map(scene: Scene, over: dict, *, transient: float = 600.0, samples
                          "periodically driven scene (drive_frequency > 0, drive_amplitude != 0)")
     pc = sweep(scene, over=over, measure="poincare", transient=transient, samples=int(samples), rtol=rtol,
                atol=atol, threads=threads, out=out, client=client, progress=progress, chunk_points=chunk_points)
-    from .attractors import AttractorMap, basin_entropy, boundary_fraction, label_attractors, \
+    from .dynamics.attractors import AttractorMap, basin_entropy, boundary_fraction, label_attractors, \
         uncertainty_exponent
     labels, atts = label_attractors(pc.theta.values, pc.v.values, tol=tol, merge_tol=merge_tol,
                                     max_period=max_period, cell=cell)

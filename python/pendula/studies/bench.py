@@ -5,7 +5,7 @@ nanoseconds per element (the best of several repeats) and the ratios, so a
 reader sees what pendula costs next to scipy, GSL and numpy on the same
 machine at the same moment.
 
-Run ``python -m pendula.bench elliptic`` (or ``pendula bench elliptic``).
+Run ``python -m pendula.studies.bench elliptic`` (or ``pendula bench elliptic``).
 """
 
 from __future__ import annotations
@@ -15,8 +15,8 @@ import platform
 import time
 
 import numpy as np
-from ._optional import require
-from ._files import open_text  # the one writer: regular files only, whole or absent
+from .._optional import require
+from .._files import open_text  # the one writer: regular files only, whole or absent
 
 
 def best_time(fn, repeat: int = 5) -> float:
@@ -52,8 +52,8 @@ def bench_elliptic(n: int = 1_000_000, seed: int = 1) -> list[dict]:
     """
     sc = require("scipy.special", "bench", "pendula bench")
 
-    from . import _kernel
-    from .elliptic import ellipj, ellipk
+    from .. import _kernel
+    from ..elliptic import ellipj, ellipk
 
     rng = np.random.default_rng(seed)
     u = rng.uniform(-10.0, 10.0, n)
@@ -96,7 +96,7 @@ def bench_elliptic(n: int = 1_000_000, seed: int = 1) -> list[dict]:
 
 def bench_exact(n: int = 1_000_000, seed: int = 2) -> list[dict]:
     """The exact pendulum path per sample against numpy.sin per sample (target: at most 3x in every regime)."""
-    from .systems.rigid import exact_motion
+    from ..systems.rigid import exact_motion
 
     t = np.sort(np.random.default_rng(seed).uniform(0.0, 1000.0, n))
     rows = [
@@ -112,9 +112,9 @@ def bench_integrators(n: int = 0, seed: int = 0) -> list[dict]:
     """DOP853 against scipy's solve_ivp DOP853 and GSL rk8pd; the cost of effects."""
     si = require("scipy.integrate", "bench", "pendula bench")
 
-    from .scene import Scene
-    from .systems.rigid import exact_motion
-    from .integrate import integrate_scene
+    from ..scene import Scene
+    from ..systems.rigid import exact_motion
+    from ..integrate import integrate_scene
 
     results = []
     # 1. the same damped scene at the same tolerances, 201 outputs on [0, 100]
@@ -189,7 +189,7 @@ def _report_whole(title, rows, ref):
 def bench_spectrum(n: int = 1 << 20, seed: int = 3) -> list[dict]:
     """Power spectra of 2^20 samples: pendula (FFTW, one plan reused across a
     sweep) against numpy.fft.rfft on the same signals, in one run."""
-    from .spectrum import spectra, spectrum
+    from ..spectrum import spectra, spectrum
 
     n = 1 << 20
     rng = np.random.default_rng(seed)
@@ -206,7 +206,7 @@ def bench_spectrum(n: int = 1 << 20, seed: int = 3) -> list[dict]:
     t0 = time.perf_counter()
     spectrum(t, one)
     first = time.perf_counter() - t0
-    from .spectrum import wisdom_path
+    from ..spectrum import wisdom_path
 
     spectra(t, one, measure=True)               # measured plan, paid once here (as `pendula wisdom` does)
     rows = [
@@ -248,10 +248,10 @@ def bench_cord(n: int = 10_000, seed: int = 4) -> list[dict]:
     """
     import warnings
 
-    from .demos.cord import table2
-    from .systems.cord import flip_map
-    from .motion import simulate
-    from .scene import Scene
+    from ..demos.cord import table2
+    from ..systems.cord import flip_map
+    from ..motion import simulate
+    from ..scene import Scene
 
     nf = min(int(n), 10_000)
     sc = Scene(cord="flexible", v0=(3 * 0.2 + 2) ** 0.5, t_end=1e12, n_samples=2, max_flips=nf)
@@ -280,8 +280,8 @@ def bench_sweep(n: int = 1_000_000, seed: int = 14) -> list[dict]:
 
     solve_ivp = require("scipy.integrate", "bench", "pendula bench").solve_ivp
 
-    from .scene import Scene
-    from .sweeps import sweep
+    from ..scene import Scene
+    from ..sweeps import sweep
 
     side = max(20, int(round(n ** 0.5)))
     s = Scene(damping=0.1)
@@ -365,10 +365,10 @@ def bench_simulate(n: int = 0, seed: int = 0) -> list[dict]:
     f2py call alone; target within 1.5x).  Mean per call of 20 calls, best
     of 60 rounds.
     """
-    from . import _kernel
-    from .motion import simulate
-    from .scene import Scene
-    from .systems.rigid import exact_motion
+    from .. import _kernel
+    from ..motion import simulate
+    from ..scene import Scene
+    from ..systems.rigid import exact_motion
 
     t = np.linspace(0.0, 10.0, 11)
     conservative = Scene(v0=1.0, t_end=10.0, n_samples=11)

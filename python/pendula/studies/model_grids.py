@@ -65,7 +65,7 @@ def _f(x):
 
 
 def _scene(field, eps, par, theta0, v0):
-    from .scene import Scene
+    from ..scene import Scene
 
     kw = dict(theta0=theta0, v0=v0, eps=eps)
     if field != "uniform":
@@ -83,12 +83,12 @@ def _err(got, ref, scale):
 
 def evaluate(rows: list[dict]) -> list[dict]:
     """pendula's error (eps) and the tolerance (eps) at every row."""
-    from .density import angle_cdf, angle_density
-    from .integrate import find_events, numerical_period
-    from .motion import simulate
-    from .scene import Scene
-    from .systems.cycloid import cycloid_geometry, cycloid_motion, cycloid_period
-    from .systems.gravity import gravity_orbit
+    from ..density import angle_cdf, angle_density
+    from ..integrate import find_events, numerical_period
+    from ..motion import simulate
+    from ..scene import Scene
+    from ..systems.cycloid import cycloid_geometry, cycloid_motion, cycloid_period
+    from ..systems.gravity import gravity_orbit
 
     out = []
     cache: dict = {}

@@ -96,7 +96,7 @@ def load_reference(path=None) -> dict:
 
     Examples
     --------
-    >>> from pendula.workprecision import load_reference
+    >>> from pendula.studies.workprecision import load_reference
     >>> ref = load_reference()                                  # doctest: +SKIP
     >>> ref["damped"]["reference_check"] < 1e-20                # doctest: +SKIP
     True
@@ -139,7 +139,7 @@ def errors(p, ref, theta, v) -> dict:
     Examples
     --------
     >>> import numpy as np
-    >>> from pendula.workprecision import PROBLEMS, errors
+    >>> from pendula.studies.workprecision import PROBLEMS, errors
     >>> ref = {"theta": np.zeros(3), "v": np.zeros(3)}
     >>> errors(PROBLEMS["damped"], ref, [0.0, 1e-9, 0.0], [0.0, 0.0, 2e-12])["error_max"]
     1e-09
@@ -184,7 +184,7 @@ def best_time(run_batch, batch_seconds=BATCH_SECONDS, max_batches=MAX_BATCHES) -
 
     Examples
     --------
-    >>> from pendula.workprecision import best_time
+    >>> from pendula.studies.workprecision import best_time
     >>> best_time(lambda n: 1e-3)["seconds"]
     0.001
     """
@@ -225,7 +225,7 @@ _KCODES = {"exact": 0, "rk4": 1, "verlet": 2, "yoshida4": 3, "yoshida6": 4, "yos
 def run_pendula(p, t, method, rtol=0.0, dt=0.0, batch=BATCH_SECONDS, max_batches=MAX_BATCHES):
     """theta, v and the timing of one pendula run, timed by the kernel's own clock
     (integrate_timed_v: the integration repeated inside the kernel)."""
-    from . import _kernel
+    from .. import _kernel
 
     code = _KCODES[method]
     prm = _params(p)
@@ -457,7 +457,7 @@ def run_study(problems=None, tols=None, quick=False, progress=True, reference=No
 
     Examples
     --------
-    >>> from pendula.workprecision import run_study
+    >>> from pendula.studies.workprecision import run_study
     >>> rec = run_study(problems=("damped",), tols=[1e-6], quick=True, progress=False)  # doctest: +SKIP
     >>> sorted({r["package"] for r in rec["rows"]})                                      # doctest: +SKIP
     ['gsl', 'pendula', 'scipy']
@@ -569,7 +569,7 @@ def answer_table(record: dict, targets=TARGETS) -> list[dict]:
 
     Examples
     --------
-    >>> from pendula.workprecision import answer_table
+    >>> from pendula.studies.workprecision import answer_table
     >>> rows = [{"problem": "damped", "package": "pendula", "method": "dop853", "error_max": 1e-7, "seconds": 1e-4},
     ...         {"problem": "damped", "package": "scipy", "method": "RK45", "error_max": 1e-7, "seconds": 1e-2}]
     >>> answer_table({"rows": rows}, targets=[1e-6])[0]["scipy_ratio"]
@@ -698,7 +698,7 @@ def write_figures(record: dict, outdir) -> list[pathlib.Path]:
     Examples
     --------
     >>> import json
-    >>> from pendula.workprecision import record_path, write_figures
+    >>> from pendula.studies.workprecision import record_path, write_figures
     >>> write_figures(json.loads(record_path().read_text()), "out")   # doctest: +SKIP
     """
     import matplotlib
@@ -784,7 +784,7 @@ def study_main(outdir, quick=False, progress=True, record_to=None, problems=None
 
     Examples
     --------
-    >>> from pendula.workprecision import study_main
+    >>> from pendula.studies.workprecision import study_main
     >>> study_main("out", quick=True)      # doctest: +SKIP
     """
     outdir = pathlib.Path(outdir)
@@ -799,11 +799,11 @@ def study_main(outdir, quick=False, progress=True, record_to=None, problems=None
 
 #: the report page and the markers around its generated parts
 PAGE = pathlib.Path("docs") / "source" / "work_precision.rst"
-GENERATED = {"table": (".. generated answer table (pendula.workprecision.answer_rst): do not edit by hand",
+GENERATED = {"table": (".. generated answer table (pendula.studies.workprecision.answer_rst): do not edit by hand",
                        ".. end of the generated answer table"),
-             "versions": (".. generated run description (pendula.workprecision.versions_rst): do not edit",
+             "versions": (".. generated run description (pendula.studies.workprecision.versions_rst): do not edit",
                           ".. end of the generated run description"),
-             "summary": (".. generated verdicts (pendula.workprecision.summary_rst): do not edit",
+             "summary": (".. generated verdicts (pendula.studies.workprecision.summary_rst): do not edit",
                          ".. end of the generated verdicts")}
 
 
@@ -847,7 +847,7 @@ def regenerate_docs(record_file=None) -> list[pathlib.Path]:
 
     Examples
     --------
-    >>> from pendula.workprecision import regenerate_docs
+    >>> from pendula.studies.workprecision import regenerate_docs
     >>> regenerate_docs()          # doctest: +SKIP
     """
     record = json.loads(pathlib.Path(record_file or record_path()).read_text())

@@ -16,8 +16,8 @@ import csv
 import pathlib
 
 import numpy as np
-from ._optional import require
-from ._files import save_figure, open_text  # the one writer: regular files only, whole or absent
+from .._optional import require
+from .._files import save_figure, open_text  # the one writer: regular files only, whole or absent
 
 EPS = np.finfo(np.float64).eps
 
@@ -55,8 +55,8 @@ def elliptic_report(reference: str | pathlib.Path) -> list[dict]:
     """Worst errors per function and region: pendula, scipy.special, GSL."""
     sc = require("scipy.special", "accuracy", "pendula accuracy elliptic")
 
-    from . import _kernel
-    from .elliptic import ellipe, ellipeinc, ellipf, ellipj, ellipk, nome
+    from .. import _kernel
+    from ..elliptic import ellipe, ellipeinc, ellipf, ellipj, ellipk, nome
 
     ref = _load(reference)
     out = []
@@ -131,7 +131,7 @@ def print_report(rows: list[dict], markdown: bool = False) -> None:
 
 def work_precision(outdir, quick: bool = False, progress: bool = True, record_to=None,
                    problems=None) -> list[pathlib.Path]:
-    """The work-precision study of the integrators against the peers (pendula.workprecision):
+    """The work-precision study of the integrators against the peers (pendula.studies.workprecision):
     the record work_precision.json and one figure per problem into outdir; quick: the short form
     of ``make demo`` (one problem, four tolerances)."""
     from .workprecision import study_main
@@ -146,9 +146,9 @@ def long_run_energy(periods: float = 1e5, methods=("gauss6", "dop853"), progress
     compensated summation; 1 for the linear drift of a non-symplectic method)."""
     import time
 
-    from .integrate import integrate_scene
-    from .motion import orbit
-    from .scene import Scene
+    from ..integrate import integrate_scene
+    from ..motion import orbit
+    from ..scene import Scene
 
     P = orbit(0.0, 1.0, 1.0).period
     t = np.unique(np.concatenate([np.geomspace(P, periods * P, 400), [0.0]]))
@@ -237,8 +237,8 @@ def grid_errors(cls: str, a: np.ndarray) -> np.ndarray:
     """pendula's error (in eps) at every point of one class of the grid."""
     import warnings
 
-    from .elliptic import ellipe, ellipeinc, ellipf, ellipj, ellipk, nome
-    from .systems.rigid import exact_motion, orbit
+    from ..elliptic import ellipe, ellipeinc, ellipf, ellipj, ellipk, nome
+    from ..systems.rigid import exact_motion, orbit
 
     kind = cls.split("_")[0]
     via_mc = cls.endswith("_mc")
@@ -369,7 +369,7 @@ def grids_markdown(path) -> str:
 def model_grids_markdown(path) -> str:
     """The models' grid table (data/model_grids.csv.gz: gravity, the angle density, the
     cycloid, the cord's flips, the events): worst error per class and its tolerance
-    (see pendula._model_grids)."""
-    from ._model_grids import markdown
+    (see pendula.studies.model_grids)."""
+    from .model_grids import markdown
 
     return markdown(path)

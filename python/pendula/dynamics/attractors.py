@@ -37,7 +37,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .scene import Scene
+from ..scene import Scene
 
 __all__ = ["Attractor", "AttractorMap", "label_attractors", "basin_entropy", "uncertainty_exponent",
            "boundary_fraction"]
@@ -105,7 +105,7 @@ def label_attractors(theta, v, *, tol=1e-6, merge_tol=1e-3, max_period=None, cel
     Examples
     --------
     >>> import numpy as np
-    >>> from pendula.attractors import label_attractors
+    >>> from pendula.dynamics.attractors import label_attractors
     >>> th = np.array([[0.1, 0.1, 0.1, 0.1], [1.0, 2.0, 1.0, 2.0], [0.1, 0.1, 0.1, 0.1]])
     >>> labels, atts = label_attractors(th, np.zeros_like(th))
     >>> labels.tolist(), [a.period for a in atts]
@@ -217,7 +217,7 @@ def boundary_fraction(labels) -> float:
 
     Examples
     --------
-    >>> from pendula.attractors import boundary_fraction
+    >>> from pendula.dynamics.attractors import boundary_fraction
     >>> boundary_fraction([[0, 0, 1, 1]])
     0.5
     """
@@ -253,7 +253,7 @@ def basin_entropy(labels, box: int = 5) -> tuple[float, float]:
     Examples
     --------
     >>> import numpy as np
-    >>> from pendula.attractors import basin_entropy
+    >>> from pendula.dynamics.attractors import basin_entropy
     >>> lab = np.zeros((10, 10), int); lab[:, 5:] = 1
     >>> [round(x, 6) for x in basin_entropy(lab)]
     [0.0, 0.0]
@@ -298,7 +298,7 @@ def uncertainty_exponent(labels, max_shift: int | None = None) -> tuple[float, n
     Examples
     --------
     >>> import numpy as np
-    >>> from pendula.attractors import uncertainty_exponent
+    >>> from pendula.dynamics.attractors import uncertainty_exponent
     >>> x, y = np.meshgrid(np.linspace(-1, 1, 400), np.linspace(-1, 1, 400))
     >>> round(uncertainty_exponent((x**2 + y**2 < 0.5).astype(int))[0], 2)   # a smooth boundary
     1.0

@@ -1,0 +1,17 @@
+"""The dynamics of the pendulum models: equilibria, periodic orbits, attractors.
+
+- :mod:`.equilibria`: the rest points of an autonomous scene and their linear stability;
+- :mod:`.periodic`: periodic orbits of a driven scene, by Newton on the stroboscopic
+  map with its monodromy (the Floquet multipliers); the one Newton/monodromy core
+  the rest of this package builds on;
+- :mod:`.attractors`: the attractors of the stroboscopic map and their basins.
+
+The public names are importable from :mod:`pendula` as well.
+"""
+
+from .attractors import Attractor, AttractorMap
+from .equilibria import EQUILIBRIUM_KINDS, Equilibrium, equilibria
+from .periodic import PeriodicOrbit, periodic_orbit
+
+__all__ = ["Equilibrium", "equilibria", "EQUILIBRIUM_KINDS", "PeriodicOrbit", "periodic_orbit",
+           "Attractor", "AttractorMap"]
