@@ -178,10 +178,9 @@ def test_uniform_integrator_path_unchanged():
     from pendula import _kernel
 
     t = np.linspace(0, 30, 301)
-    p = np.array([1.3, 0.1, 0.0, 0.2, 0.9, 0.0])
-    a = _kernel.integrate_v(9, p, 0, 0.0, 1.0, 0.3, t, 1e-10, 1e-12, 0.0, 0, 0.0, 0, 0, 1, np.zeros(1, np.int32))
-    b = pendula.simulate(pendula.Scene(eps=1.3, damping=0.1, drive_amplitude=0.2, drive_frequency=0.9,
-                                       theta0=1.0, v0=0.3), t)
+    sc = pendula.Scene(eps=1.3, damping=0.1, drive_amplitude=0.2, drive_frequency=0.9, theta0=1.0, v0=0.3)
+    a = _kernel.integrate_v(*sc._kernel_fields, 9, t, 0, 0.0, 0, 0, 1, np.zeros(1, np.int32))
+    b = pendula.simulate(sc, t)
     assert np.array_equal(a[0], b.theta) and np.array_equal(a[1], b.v)
 
 

@@ -67,8 +67,8 @@ def test_kernel_clock_runs_the_same_integration_as_the_binding(method, code):
     th, v, stats, sec, status = _kernel.integrate_timed_v(3, code, prm, p["theta0"], p["v0"], t, 1e-9, 1e-9, dt)
     assert status == 0 and sec > 0
     cancel = np.zeros(1, dtype=np.int32)
-    th2, v2, stats2, status2, *_ = _kernel.integrate_v(code, prm, 0, 0.0, p["theta0"], p["v0"], t, 1e-9, 1e-9, dt,
-                                                       0, 0.0, 0, 0, 1, cancel)
+    scene = pendula.Scene(eps=p["eps"], theta0=p["theta0"], v0=p["v0"], rtol=1e-9, atol=1e-9, dt=dt)
+    th2, v2, stats2, status2, *_ = _kernel.integrate_v(*scene._kernel_fields, code, t, 0, 0.0, 0, 0, 1, cancel)
     assert status2 == 0
     assert np.array_equal(th, th2) and np.array_equal(v, v2) and np.array_equal(stats, stats2)
 

@@ -293,51 +293,63 @@ subroutine models_v(table)
   end do
 end subroutine models_v
 
-! Integrate a scene's model: method codes 1..9, 11, 12 (see pendula_integrators), 10 = GSL rk8pd.
-! t must be sorted ascending.  stats = [steps, accepted, rejected, rhs evaluations].
-subroutine integrate_v(n, method, params, gkind, gpar, theta0, v0, t, rtol, atol, dt, ev_kind, ev_level, &
+! Integrate a checked scene's model (its fields, as scene_check_v returns
+! them) from its theta0, v0: method codes 1..9, 11, 12 (see
+! pendula_integrators), 10 = GSL rk8pd.  t must be sorted ascending.
+! stats = [steps, accepted, rejected, rhs evaluations]; status 100: the
+! fields do not form a scene.
+subroutine integrate_v(x, words, nw, wlen, nout, ngrid, n, method, t, ev_kind, ev_level, &
                        ev_dir, ev_terminal, max_ev, cancel, theta, v, stats, status, nev, tev, thev, vev)
+  use, intrinsic :: iso_c_binding, only: c_loc
   use pendula_kinds, only: dp
-  use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate
+  use pendula_scene, only: scene_t, scene_from_fields
+  use pendula_simulate, only: scene_model
+  use pendula_integrators, only: pendulum_model, event_spec, run_stats, integrate
   use pendula_gsl_iface, only: pendula_gsl_rk8pd
-  use pendula_gravity, only: gravity_check
   implicit none
-  integer, intent(in) :: n, method, gkind, ev_kind, ev_dir, ev_terminal, max_ev
   !f2py threadsafe
-  double precision, intent(in) :: params(6), gpar, theta0, v0, t(n), rtol, atol, dt, ev_level
+  double precision, intent(in) :: x(25)
+  character(len=*), intent(in) :: words
+  integer, intent(in) :: nw, nout, ngrid, n, method, ev_kind, ev_dir, ev_terminal, max_ev
+  integer, intent(in) :: wlen(nw)
+  double precision, intent(in) :: t(n), ev_level
   integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: theta(n), v(n), stats(4)
   integer, intent(out) :: status, nev
   double precision, intent(out) :: tev(max_ev), thev(max_ev), vev(max_ev)
+  !f2py intent(hide), depend(wlen) :: nw = len(wlen)
   !f2py intent(hide), depend(t) :: n = len(t)
-  type(pendulum_model) :: m
+  type(scene_t) :: sc
+  type(pendulum_model), target :: m
   type(event_spec) :: ev
   type(run_stats) :: st
-  double precision :: gs(2)
+  double precision :: gs(2), g, length, none(0)
+  character(len=512) :: msg
   tev = 0; thev = 0; vev = 0
+  theta = 0; v = 0; stats = 0
   nev = 0
+  call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
+                         g, length, status, msg)
+  if (status /= 0) then
+    status = 100
+    return
+  end if
+  m = scene_model(sc)
   if (method == 10) then
-    stats = 0
     if (n > 0) then
       if (t(1) < 0) then
         status = 11
         return
       end if
     end if
-    status = pendula_gsl_rk8pd(params, theta0, v0, n, t, rtol, atol, theta, v, gs)
+    status = pendula_gsl_rk8pd(c_loc(m), sc%theta0, sc%v0, n, t, sc%rtol, sc%atol, theta, v, gs)
     if (status /= 0) status = 100 + status
     stats = [gs(1), gs(1), 0.0d0, gs(2)]
     return
   end if
-  if (gravity_check(gkind, gpar, params(1)) /= 0) then
-    status = 20
-    return
-  end if
-  m = make_model(params(1), params(2), params(3), params(4), params(5), params(6))
-  m%gkind = gkind
-  m%gpar = gpar
   ev%kind = ev_kind; ev%level = ev_level; ev%direction = ev_dir; ev%terminal = ev_terminal /= 0
-  call integrate(m, method, theta0, v0, t, rtol, atol, dt, theta, v, st, status, ev, nev, tev, thev, vev, cancel(1))
+  call integrate(m, method, sc%theta0, sc%v0, t, sc%rtol, sc%atol, sc%dt, theta, v, st, status, ev, nev, &
+                 tev, thev, vev, cancel(1))
   stats = [dble(st%nsteps), dble(st%naccept), dble(st%nreject), dble(st%nfev)]
 end subroutine integrate_v
 
@@ -617,6 +629,7 @@ end subroutine ellipj_dd_v
 ! theta, v, stats: those of the last run.  status as integrate_v.
 subroutine integrate_timed_v(nrep, n, method, params, theta0, v0, t, rtol, atol, dt, theta, v, stats, &
                              seconds, status)
+  use, intrinsic :: iso_c_binding, only: c_loc
   use pendula_kinds, only: dp
   use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate
   use pendula_gsl_iface, only: pendula_gsl_rk8pd
@@ -627,7 +640,7 @@ subroutine integrate_timed_v(nrep, n, method, params, theta0, v0, t, rtol, atol,
   double precision, intent(out) :: theta(n), v(n), stats(4), seconds
   integer, intent(out) :: status
   !f2py intent(hide), depend(t) :: n = len(t)
-  type(pendulum_model) :: m
+  type(pendulum_model), target :: m
   type(event_spec) :: ev
   type(run_stats) :: st
   type(pendulum_orbit) :: o
@@ -648,7 +661,7 @@ subroutine integrate_timed_v(nrep, n, method, params, theta0, v0, t, rtol, atol,
       if (status /= 0) exit
       call orbit_eval(o, t, theta, v)
     case (10)
-      status = pendula_gsl_rk8pd(params, theta0, v0, n, t, rtol, atol, theta, v, gs)
+      status = pendula_gsl_rk8pd(c_loc(m), theta0, v0, n, t, rtol, atol, theta, v, gs)
       if (status /= 0) status = 100 + status
       stats = [gs(1), gs(1), 0.0d0, gs(2)]
     case default
@@ -682,19 +695,42 @@ subroutine equilibria_v(nmax, model, kind, par, eps, r, beta, tau, lo, hi, theta
   end do
 end subroutine equilibria_v
 
-! A periodic orbit of the stroboscopic map over period (k drive periods) of the rigid pendulum
-! params = [eps, beta, tau, amp, omega, phase], advancing theta by 2 pi winding: Newton (GSL hybridsj)
-! on the monodromy.  x0: the guess, x: the orbit; mono: row-major monodromy; info: [iterations, rhs
-! evaluations, residual].  status 0 ok, 1 no convergence, 2 the flow failed, 3 stalled.
-subroutine periodic_orbit_v(params, period, winding, rtol, atol, tol, maxit, x0, x, mono, info, status)
+! A periodic orbit of the stroboscopic map over period (k drive periods) of a checked scene's model
+! (its fields, as scene_check_v returns them; the model is the dispatcher's scene_model), advancing
+! theta by 2 pi winding: Newton (GSL hybridsj) on the monodromy.  x0: the guess, xo: the orbit; mono:
+! row-major monodromy; info: [iterations, rhs evaluations, residual].  status 0 ok, 1 no convergence,
+! 2 the flow failed, 3 stalled, 100 the fields do not form a scene.
+subroutine periodic_orbit_v(x, words, nw, wlen, nout, ngrid, period, winding, rtol, atol, tol, maxit, x0, &
+                            xo, mono, info, status)
+  use, intrinsic :: iso_c_binding, only: c_loc
+  use pendula_scene, only: scene_t, scene_from_fields
+  use pendula_simulate, only: scene_model
+  use pendula_integrators, only: pendulum_model
   use pendula_gsl_iface, only: pendula_gsl_periodic_orbit
   implicit none
-  double precision, intent(in) :: params(6), period, winding, rtol, atol, tol, x0(2)
+  !f2py threadsafe
+  double precision, intent(in) :: x(25)
+  character(len=*), intent(in) :: words
+  integer, intent(in) :: nw, nout, ngrid
+  integer, intent(in) :: wlen(nw)
+  double precision, intent(in) :: period, winding, rtol, atol, tol, x0(2)
   integer, intent(in) :: maxit
-  double precision, intent(out) :: x(2)
+  double precision, intent(out) :: xo(2)
   double precision, intent(out) :: mono(4), info(3)
   integer, intent(out) :: status
-  !f2py threadsafe
-  x = x0
-  status = pendula_gsl_periodic_orbit(params, period, winding, rtol, atol, tol, maxit, x, mono, info)
+  !f2py intent(hide), depend(wlen) :: nw = len(wlen)
+  type(scene_t) :: sc
+  type(pendulum_model), target :: m
+  double precision :: g, length, none(0)
+  character(len=512) :: msg
+  xo = x0
+  mono = 0; info = 0
+  call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
+                         g, length, status, msg)
+  if (status /= 0) then
+    status = 100
+    return
+  end if
+  m = scene_model(sc)
+  status = pendula_gsl_periodic_orbit(c_loc(m), period, winding, rtol, atol, tol, maxit, xo, mono, info)
 end subroutine periodic_orbit_v

@@ -11,6 +11,7 @@
 !> Adding a model: one module in kernel/models, one entry in `registry`, one
 !> case in simulate_scene (and one line in python/pendula/models/__init__.py).
 module pendula_simulate
+  use, intrinsic :: iso_c_binding, only: c_loc
   use pendula_kinds, only: dp, nan_dp, two_pi
   use pendula_scene, only: scene_t, scene_effects, scene_has_orbit_facts
   use pendula_rigid, only: rigid_has_exact, rigid_exact, rigid_energy
@@ -24,7 +25,7 @@ module pendula_simulate
   implicit none
   private
   public :: model_info_t, registry, select_model, method_code, simulate_scene, simulate_status_text, &
-            scene_energy, model_orbit_facts, cord_integrated, cord_scene_run
+            scene_energy, model_orbit_facts, cord_integrated, cord_scene_run, scene_model
 
   integer, parameter, public :: sim_ok = 0, sim_bad_state = 1, sim_unsupported = 10, &
     sim_needs_dt = 11, sim_unsorted = 12, sim_integrator_failed = 13, sim_not_implemented = 14, &
@@ -174,6 +175,23 @@ contains
     if (status /= sim_ok) msg = simulate_status_text(status)
   end subroutine simulate_scene
 
+  !> The right-hand side a scene calls for: the pendulum model of the
+  !> integrators with exactly the effects the scene names (its field, damping,
+  !> torque, drive).  The one map from a scene's fields to its force law: the
+  !> dispatcher's integrations, the periodic orbits and their monodromy (the
+  !> binding's periodic_orbit_v) and the events of the Python layer all take
+  !> their model from here.
+  pure function scene_model(sc) result(model)
+    type(scene_t), intent(in) :: sc
+    type(pendulum_model) :: model
+    model = make_model(sc%eps, sc%damping, sc%torque, sc%drive_amplitude, sc%drive_frequency, sc%drive_phase)
+    select case (trim(sc%gravity))
+    case ('inverse-square'); model%gkind = gk_inverse_square; model%gpar = sc%gravity_distance
+    case ('linear');         model%gkind = gk_linear;         model%gpar = sc%gravity_gradient
+    case default;            model%gkind = gk_uniform
+    end select
+  end function scene_model
+
   !> The scene's integrator on the rigid pendulum's force law with its effects.
   subroutine integrate_model(sc, t, theta, v, stats, method, status, cancel)
     type(scene_t), intent(in) :: sc
@@ -184,8 +202,8 @@ contains
     type(event_spec) :: ev
     type(run_stats) :: st
     integer :: nev
-    real(dp) :: tev(1), thev(1), vev(1), params(6), gs(2)
-    type(pendulum_model) :: model
+    real(dp) :: tev(1), thev(1), vev(1), gs(2)
+    type(pendulum_model), target :: model
     method = method_code(sc%method)
     if (sc%method == 'auto') method = m_dop853
     if (method < 1) then
@@ -202,7 +220,7 @@ contains
         status = sim_unsorted; return
       end if
     end if
-    params = [sc%eps, sc%damping, sc%torque, sc%drive_amplitude, sc%drive_frequency, sc%drive_phase]
+    model = scene_model(sc)
     if (method == m_gsl_rk8pd .and. trim(sc%gravity) /= 'uniform') then
       status = sim_unsupported; return
     end if
@@ -212,17 +230,11 @@ contains
           status = sim_backward; return
         end if
       end if
-      status = pendula_gsl_rk8pd(params, sc%theta0, sc%v0, size(t), t, sc%rtol, sc%atol, theta, v, gs)
+      status = pendula_gsl_rk8pd(c_loc(model), sc%theta0, sc%v0, size(t), t, sc%rtol, sc%atol, theta, v, gs)
       stats = [gs(1), gs(1), 0.0_dp, gs(2)]
       if (status /= 0) status = sim_gsl_failed
       return
     end if
-    model = make_model(params(1), params(2), params(3), params(4), params(5), params(6))
-    select case (trim(sc%gravity))
-    case ('inverse-square'); model%gkind = gk_inverse_square; model%gpar = sc%gravity_distance
-    case ('linear');         model%gkind = gk_linear;         model%gpar = sc%gravity_gradient
-    case default;            model%gkind = gk_uniform
-    end select
     call integrate(model, method, sc%theta0, sc%v0, t, sc%rtol, sc%atol, sc%dt, theta, v, st, status, &
                    ev, nev, tev, thev, vev, cancel)
     stats = [real(st%nsteps, dp), real(st%naccept, dp), real(st%nreject, dp), real(st%nfev, dp)]

@@ -44,14 +44,16 @@ int pendula_gsl_kcomp(int n, const double *m, double *k) {
 
 #include <gsl/gsl_odeiv2.h>
 
-double pendula_accel_c(const double *params, double t, double th, double v);
+/* The model's theta'' (kernel/glue/pendula_capi.f90); model is the opaque
+ * address of a Fortran pendulum_model, owned by the caller. */
+double pendula_accel_c(const void *model, double t, double th, double v);
 
-struct pendula_sys { const double *params; long nfev; };
+struct pendula_sys { const void *model; long nfev; };
 
 static int pendula_gsl_rhs(double t, const double y[], double f[], void *p) {
   struct pendula_sys *s = (struct pendula_sys *)p;
   f[0] = y[1];
-  f[1] = pendula_accel_c(s->params, t, y[0], y[1]);
+  f[1] = pendula_accel_c(s->model, t, y[0], y[1]);
   s->nfev++;
   return GSL_SUCCESS;
 }
@@ -59,9 +61,9 @@ static int pendula_gsl_rhs(double t, const double y[], double f[], void *p) {
 /* Integrate from t = 0 through the ascending times tout (all >= 0).
  * Returns 0, or the GSL status of the failure (outputs after it are NaN).
  * stats: [steps, rhs evaluations]. */
-int pendula_gsl_rk8pd(const double *params, double theta0, double v0, int n, const double *tout,
+int pendula_gsl_rk8pd(const void *model, double theta0, double v0, int n, const double *tout,
                       double rtol, double atol, double *theta, double *v, double *stats) {
-  struct pendula_sys s = {params, 0};
+  struct pendula_sys s = {model, 0};
   gsl_odeiv2_system sys = {pendula_gsl_rhs, NULL, 2, &s};
   gsl_odeiv2_driver *d = gsl_odeiv2_driver_alloc_standard_new(&sys, gsl_odeiv2_step_rk8pd,
                                                               1e-6, atol, rtol, 1.0, 0.0);
@@ -86,7 +88,7 @@ int pendula_gsl_rk8pd(const double *params, double theta0, double v0, int n, con
 #include <gsl/gsl_vector.h>
 #include <gsl/gsl_matrix.h>
 
-void pendula_accel_jac_c(const double *params, double th, double *dadth, double *dadv);
+void pendula_accel_jac_c(const void *model, double t, double th, double v, double *dadth, double *dadv);
 
 /* The orbit and its two tangent columns: y = (theta, v, w11, w21, w12, w22),
  * dw/dt = J w with J = [[0, 1], [da/dtheta, da/dv]]. */
@@ -94,8 +96,8 @@ static int pendula_variational_rhs(double t, const double y[], double f[], void 
   struct pendula_sys *s = (struct pendula_sys *)p;
   double dth, dv;
   f[0] = y[1];
-  f[1] = pendula_accel_c(s->params, t, y[0], y[1]);
-  pendula_accel_jac_c(s->params, y[0], &dth, &dv);
+  f[1] = pendula_accel_c(s->model, t, y[0], y[1]);
+  pendula_accel_jac_c(s->model, t, y[0], y[1], &dth, &dv);
   f[2] = y[3];
   f[3] = dth * y[2] + dv * y[3];
   f[4] = y[5];
@@ -106,9 +108,9 @@ static int pendula_variational_rhs(double t, const double y[], double f[], void 
 
 /* The flow over [0, T] from (theta0, v0) with its monodromy matrix
  * mono = [[dtheta/dtheta0, dtheta/dv0], [dv/dtheta0, dv/dv0]] (row major). */
-int pendula_gsl_flow_monodromy(const double *params, double theta0, double v0, double T,
+int pendula_gsl_flow_monodromy(const void *model, double theta0, double v0, double T,
                                double rtol, double atol, double *end, double *mono, double *nfev) {
-  struct pendula_sys s = {params, 0};
+  struct pendula_sys s = {model, 0};
   gsl_odeiv2_system sys = {pendula_variational_rhs, NULL, 6, &s};
   gsl_odeiv2_driver *d = gsl_odeiv2_driver_alloc_standard_new(&sys, gsl_odeiv2_step_rk8pd,
                                                               1e-3, atol, rtol, 1.0, 0.0);
@@ -127,13 +129,13 @@ int pendula_gsl_flow_monodromy(const double *params, double theta0, double v0, d
   return GSL_SUCCESS;
 }
 
-struct pendula_po { const double *params; double T, shift, rtol, atol, nfev; };
+struct pendula_po { const void *model; double T, shift, rtol, atol, nfev; };
 
 /* F(x) = P(x) - x - (2 pi winding, 0) and its Jacobian M - I. */
 static int pendula_po_fdf(const gsl_vector *x, void *p, gsl_vector *f, gsl_matrix *J) {
   struct pendula_po *po = (struct pendula_po *)p;
   double end[2], mono[4];
-  int st = pendula_gsl_flow_monodromy(po->params, gsl_vector_get(x, 0), gsl_vector_get(x, 1), po->T,
+  int st = pendula_gsl_flow_monodromy(po->model, gsl_vector_get(x, 0), gsl_vector_get(x, 1), po->T,
                                       po->rtol, po->atol, end, mono, &po->nfev);
   if (st != GSL_SUCCESS) return GSL_EBADFUNC;
   if (f != NULL) {
@@ -163,9 +165,9 @@ static int pendula_po_df(const gsl_vector *x, void *p, gsl_matrix *J) {
  * monodromy at the orbit; info = [iterations, rhs evaluations, residual].
  * Returns 0, 1 (no convergence in maxit), 2 (the flow failed: non-finite or
  * the integrator's error), 3 (the iteration stalled: GSL_ENOPROG). */
-int pendula_gsl_periodic_orbit(const double *params, double T, double winding, double rtol, double atol,
+int pendula_gsl_periodic_orbit(const void *model, double T, double winding, double rtol, double atol,
                                double tol, int maxit, double *x, double *mono, double *info) {
-  struct pendula_po po = {params, T, 6.283185307179586 * winding, rtol, atol, 0.0};
+  struct pendula_po po = {model, T, 6.283185307179586 * winding, rtol, atol, 0.0};
   gsl_multiroot_function_fdf fdf = {pendula_po_f, pendula_po_df, pendula_po_fdf, 2, &po};
   gsl_multiroot_fdfsolver *sv = gsl_multiroot_fdfsolver_alloc(gsl_multiroot_fdfsolver_hybridsj, 2);
   if (sv == NULL) return 2;
@@ -192,7 +194,7 @@ int pendula_gsl_periodic_orbit(const double *params, double T, double winding, d
     x[0] = gsl_vector_get(sv->x, 0);
     x[1] = gsl_vector_get(sv->x, 1);
     double end[2];
-    if (pendula_gsl_flow_monodromy(params, x[0], x[1], T, rtol, atol, end, mono, &po.nfev) != GSL_SUCCESS)
+    if (pendula_gsl_flow_monodromy(model, x[0], x[1], T, rtol, atol, end, mono, &po.nfev) != GSL_SUCCESS)
       result = 2;
     info[2] = fmax(fabs(end[0] - x[0] - po.shift), fabs(end[1] - x[1]));
   } else {

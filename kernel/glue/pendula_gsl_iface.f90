@@ -1,6 +1,6 @@
 !> Fortran interfaces to the C glue in pendula_gsl.c.
 module pendula_gsl_iface
-  use, intrinsic :: iso_c_binding, only: c_int, c_double
+  use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr
   implicit none
   private
   public :: pendula_gsl_init, pendula_gsl_elljac, pendula_gsl_kcomp, pendula_gsl_rk8pd, pendula_gsl_periodic_orbit
@@ -25,10 +25,11 @@ module pendula_gsl_iface
       integer(c_int) :: bad
     end function pendula_gsl_kcomp
 
-    function pendula_gsl_rk8pd(params, theta0, v0, n, tout, rtol, atol, theta, v, stats) &
+    !> model: c_loc of the pendulum_model to integrate (pendula_capi reads it back)
+    function pendula_gsl_rk8pd(model, theta0, v0, n, tout, rtol, atol, theta, v, stats) &
         bind(C, name="pendula_gsl_rk8pd") result(status)
-      import :: c_int, c_double
-      real(c_double), intent(in) :: params(6)
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value, intent(in) :: model
       real(c_double), value, intent(in) :: theta0, v0
       integer(c_int), value, intent(in) :: n
       real(c_double), intent(in) :: tout(*)
@@ -37,10 +38,10 @@ module pendula_gsl_iface
       integer(c_int) :: status
     end function pendula_gsl_rk8pd
 
-    function pendula_gsl_periodic_orbit(params, period, winding, rtol, atol, tol, maxit, x, mono, info) &
+    function pendula_gsl_periodic_orbit(model, period, winding, rtol, atol, tol, maxit, x, mono, info) &
         bind(C, name="pendula_gsl_periodic_orbit") result(status)
-      import :: c_int, c_double
-      real(c_double), intent(in) :: params(6)
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value, intent(in) :: model
       real(c_double), value, intent(in) :: period, winding, rtol, atol, tol
       integer(c_int), value, intent(in) :: maxit
       real(c_double), intent(inout) :: x(2)

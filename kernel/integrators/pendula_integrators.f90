@@ -34,10 +34,11 @@
 module pendula_integrators
   use pendula_kinds, only: dp, i8, nan_dp
   use pendula_gravity, only: gravity_accel
+  use pendula_equilibria, only: field_slope
   implicit none
   private
-  public :: pendulum_model, make_model, event_spec, run_stats, integrate, accel, dop853_error_norm, &
-    dop853_step_2, dop853_step_6, system_rhs
+  public :: pendulum_model, make_model, event_spec, run_stats, integrate, accel, accel_jacobian, &
+    dop853_error_norm, dop853_step_2, dop853_step_6, system_rhs
 
   include 'pendula_rk_tables.inc'
   !> DOP853's A transposed, so that each stage's weights are contiguous
@@ -102,8 +103,8 @@ contains
   !> The right-hand side of the systems the DOP853 stepper integrates, by the
   !> size of the state: n = 2, (theta, v) of the model; n = 6, (theta, v) with
   !> two tangent vectors w1 = y(3:4), w2 = y(5:6) of the variational equations
-  !> dw/dt = J w, J = [[0, 1], [-eps cos(theta), -beta]] (uniform gravity;
-  !> the Lyapunov exponents of pendula_lyapunov).
+  !> dw/dt = J w, J = [[0, 1], [da/dtheta, da/dv]] (accel_jacobian; the
+  !> Lyapunov exponents of pendula_lyapunov).
   pure function system_rhs(m, t, y) result(f)
     type(pendulum_model), intent(in) :: m
     real(dp), intent(in) :: t, y(:)
@@ -116,15 +117,15 @@ contains
     integer, intent(in) :: n
     real(dp), intent(in) :: t, y(n)
     real(dp), intent(out) :: f(n)
-    real(dp) :: c
+    real(dp) :: dadth, dadv
     f(1) = y(2)
     f(2) = accel(m, t, y(1), y(2))
     if (n == 6) then
-      c = -m%eps * cos(y(1))
+      call accel_jacobian(m, t, y(1), y(2), dadth, dadv)
       f(3) = y(4)
-      f(4) = c * y(3) - m%beta * y(4)
+      f(4) = dadth * y(3) + dadv * y(4)
       f(5) = y(6)
-      f(6) = c * y(5) - m%beta * y(6)
+      f(6) = dadth * y(5) + dadv * y(6)
     end if
   end subroutine system_rhs_n
 
@@ -168,6 +169,21 @@ contains
     if (m%torqued) a = a + m%tau
     if (m%driven) a = a + m%amp * cos(m%omega * t + m%phase)
   end function accel
+
+  !> The Jacobian of theta'' = accel(m, t, th, v) in the state: d theta''/d theta
+  !> (the field's exact slope) and d theta''/d v, for the effects the model
+  !> names (t and v enter through effects that depend on them).  The one
+  !> linearisation of the model: the variational equations of the Lyapunov
+  !> exponents and of the monodromy (periodic orbits, their continuation) all
+  !> take it from here.
+  pure subroutine accel_jacobian(m, t, th, v, dadth, dadv)
+    type(pendulum_model), intent(in) :: m
+    real(dp), intent(in) :: t, th, v
+    real(dp), intent(out) :: dadth, dadv
+    dadth = field_slope(m%gkind, m%gpar, m%eps, th)
+    dadv = 0.0_dp
+    if (m%damped) dadv = -m%beta
+  end subroutine accel_jacobian
 
   !> The position- and time-dependent force alone (the kick of the splitting).
   pure function force(m, t, th) result(a)

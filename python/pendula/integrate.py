@@ -24,7 +24,7 @@ from .scene import Scene
 from .systems import run
 from .systems.cord import simulate_cord
 from .systems.cycloid import cycloid_motion, cycloid_period
-from .systems.gravity import field_of, gravity_orbit
+from .systems.gravity import gravity_orbit
 from .systems.rigid import orbit
 
 if TYPE_CHECKING:   # xarray is optional: named in annotations only
@@ -44,7 +44,7 @@ _STATUS = {1: "the step dt must be positive", 2: "rtol must be > 0 and atol >= 0
            8: "interrupted",
            11: "gsl-rk8pd integrates forward only: give times >= 0",
            12: "the Runge-Kutta-Nystrom pair integrates theta'' = f(t, theta) only: no damping",
-           20: "bad gravity field parameters (gravity_distance > 1, gravity_gradient < 0.5)"}
+           100: "the scene's fields do not form a scene (the kernel refused them)"}
 _EVENT_KINDS = {"turning": 1, "theta": 2, "theta_mod_2pi": 3}
 #: the flexible cord's events: the cord slackens (the bob leaves the circle) or is taut again
 CORD_EVENT_KINDS = ("departure", "return")
@@ -70,11 +70,6 @@ def choose_method(scene: Scene) -> str:
     return "dop853"
 
 
-def _params(scene: Scene) -> np.ndarray:
-    return np.array([scene.eps, scene.damping, scene.torque, scene.drive_amplitude,
-                     scene.drive_frequency, scene.drive_phase], dtype=np.float64)
-
-
 def _run(scene, method, t_sorted, ev_kind=0, ev_level=0.0, ev_dir=0, terminal=False, max_events=1):
     if method not in CODES:
         raise ValueError(f"unknown method {method!r}; known: {', '.join(CODES)}, exact, auto")
@@ -91,10 +86,10 @@ def _run(scene, method, t_sorted, ev_kind=0, ev_level=0.0, ev_dir=0, terminal=Fa
         raise ValueError("gsl-rk8pd does not take a non-uniform gravity field; use dop853")
     cancel = _interrupt.cancel_flag()
     span = float(np.max(np.abs(t_sorted))) if t_sorted.size else 0.0
-    gkind, gpar = field_of(scene)
-    out = _interrupt.call(_kernel.integrate_v, CODES[method], _params(scene), gkind, gpar, scene.theta0, scene.v0,
-                          t_sorted, scene.rtol, scene.atol, scene.dt, ev_kind, ev_level, ev_dir, int(terminal),
-                          max_events, cancel, cancel=cancel, long=span * max(1.0, scene.eps ** 0.5) > 1e3)
+    x, words, wlen, nout, ngrid = scene._kernel_fields     # the scene as the kernel checked it
+    out = _interrupt.call(_kernel.integrate_v, x, words, wlen, nout, ngrid, CODES[method], t_sorted, ev_kind,
+                          ev_level, ev_dir, int(terminal), max_events, cancel, cancel=cancel,
+                          long=span * max(1.0, scene.eps ** 0.5) > 1e3)
     theta, v, stats, status, nev, tev, thev, vev = out
     if status not in (0, 10):
         if status > 100:

@@ -167,9 +167,9 @@ def periodic_orbit(scene: Scene, guess: tuple[float, float] | None = None, k: in
     if not np.all(np.isfinite(x0)):
         raise ValueError(f"guess must be finite, got {guess!r}")
     period = k * 2 * math.pi / abs(scene.drive_frequency)
-    params = np.array([scene.eps, scene.damping, scene.torque, scene.drive_amplitude, scene.drive_frequency,
-                       scene.drive_phase], dtype=np.float64)
-    x, mono, info, status = _kernel.periodic_orbit_v(params, period, float(winding), rtol, atol, tol, maxit, x0)
+    fx, words, wlen, nout, ngrid = scene._kernel_fields     # the scene as the kernel checked it
+    x, mono, info, status = _kernel.periodic_orbit_v(fx, words, wlen, nout, ngrid, period, float(winding), rtol,
+                                                     atol, tol, maxit, x0)
     if status:
         raise ValueError(f"periodic_orbit: {_PO_STATUS[status]}; residual {info[2]:.3g} after {int(info[0])} "
                          "iterations")

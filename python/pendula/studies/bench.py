@@ -377,11 +377,11 @@ def bench_simulate(n: int = 0, seed: int = 0) -> list[dict]:
     out = _report_calls("simulate against the exact path on the same times (target: within 2x)", rows,
                         "exact_motion on the same 11 times")
     damped = Scene(v0=1.0, damping=0.1, t_end=10.0, n_samples=11, rtol=1e-10, atol=1e-12)
-    params = np.array([1.0, 0.1, 0.0, 0.0, 0.0, 0.0])
+    fields = damped._kernel_fields      # the scene as the kernel checked it
     cancel = np.zeros(1, dtype=np.int32)
 
     def kernel_alone():
-        return _kernel.integrate_v(9, params, 0, 0.0, 0.0, 1.0, t, 1e-10, 1e-12, 0.0, 0, 0.0, 0, 0, 1, cancel)
+        return _kernel.integrate_v(*fields, 9, t, 0, 0.0, 0, 0, 1, cancel)
 
     if not np.array_equal(kernel_alone()[0], simulate(damped).theta):
         raise RuntimeError("bench simulate: the two runs compared differ; they must be the same work")
