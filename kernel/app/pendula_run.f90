@@ -60,7 +60,7 @@ program pendula_run
       i = i + 2
     else if (arg == '-h' .or. arg == '--help') then
       write(output_unit, '(a)') 'usage: pendula-run SCENE.nml [-o OUT.csv] [--check]'
-      stop
+      stop, quiet=.true.
     else if (arg == '--check') then
       check_only = .true.
       i = i + 1
@@ -75,7 +75,8 @@ program pendula_run
 
   call read_scene(trim(path), sc, status, msg)
   if (status /= 0) call fail(trim(msg))
-  if (check_only) stop   ! --check: read and check the scene, run nothing
+  ! quiet: no gfortran note on the IEEE flags a literal such as 1e-400 raised (it reads as 0, by the rule)
+  if (check_only) stop, quiet=.true.   ! --check: read and check the scene, run nothing
   call select_model(sc, i, status, msg)
   if (status /= sim_ok) call fail(trim(path) // ': ' // trim(msg), 3)
 
@@ -91,7 +92,7 @@ program pendula_run
     if (status /= 0) call fail(trim(path) // ': ' // trim(msg), status)
     call out_close(f_out, status)
     if (status /= 0) call fail_io('cannot write "' // trim(out) // '"', status)
-    stop
+    stop, quiet=.true.
   end if
   want_traj = .false.
   want_orbit = .false.
@@ -110,7 +111,9 @@ program pendula_run
   nmem = max(1, sc%n_sweep)
   allocate(values(nmem))
   if (swept) values = sc%sweep_values(1:nmem)
-  allocate(t(sc%n_samples), theta(sc%n_samples), v(sc%n_samples), e(sc%n_samples))
+  ! a scene at the limits (n_samples = 1e8) needs GBs: too little memory is exit 4, one line
+  allocate(t(sc%n_samples), theta(sc%n_samples), v(sc%n_samples), e(sc%n_samples), stat=status)
+  if (status /= 0) call fail_memory(sc%n_samples)
   ! the times as numpy.linspace forms them (the Python layer's), so that both
   ! programs write the same trajectory to the digit: start + j * step, the last one t_end
   do j = 1, sc%n_samples
@@ -125,7 +128,7 @@ program pendula_run
   ! the flexible cord writes its own table (with x, y, r) and a flip log
   if (sc%cord == 'flexible') then
     call run_cord()
-    stop
+    stop, quiet=.true.
   end if
   ! everything goes through the checked writer: OUT (or standard output, '-')
   if (len_trim(out) == 0) out = '-'
@@ -205,7 +208,8 @@ contains
     character(len=4096) :: flips_out
     character(len=64) :: pre
     character(len=10), parameter :: stops(0:2) = [character(len=10) :: 't_end', 'max_flips', 'min_flight']
-    allocate(x(size(t)), y(size(t)), r(size(t)))
+    allocate(x(size(t)), y(size(t)), r(size(t)), stat=st)
+    if (st /= 0) call fail_memory(size(t))
     if (len_trim(out) == 0) out = '-'
     call out_open(f_out, trim(out), st)
     if (st /= 0) call fail_io('cannot write "' // trim(out) // '"', st)
@@ -327,6 +331,14 @@ contains
       call out_line(f, '# effects = none (conservative rigid pendulum: exact solution)')
     end if
   end subroutine header
+
+  !> Too little memory for the arrays of n samples: the computation failed (exit 4).
+  subroutine fail_memory(n)
+    integer, intent(in) :: n
+    character(len=32) :: num
+    write(num, '(i0)') n
+    call fail(trim(path) // ': not enough memory for the arrays of ' // trim(num) // ' samples', 4)
+  end subroutine fail_memory
 
   subroutine fail_io(text, err)
     character(len=*), intent(in) :: text

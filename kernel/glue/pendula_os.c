@@ -106,6 +106,38 @@ int pendula_regular_or_absent(const char *path)
     return S_ISREG(st.st_mode) ? 1 : 0;
 }
 
+/* What a file to be read is, before anything reads it (the scene readers of both
+   programs, so that they give one verdict): 0 a regular file (its size in *size),
+   -ENOENT no such file, -EISDIR a folder, -PENDULA_ENOTREG a device, FIFO or
+   socket (never read: /dev/zero would never end, a FIFO would wait), or -errno
+   when it cannot be opened (EACCES ...).  Opened without blocking (O_NONBLOCK:
+   a FIFO's open never waits for a writer) and examined by fstat on that descriptor. */
+int pendula_read_kind(const char *path, long long *size)
+{
+    struct stat st;
+    int fd, e;
+    *size = 0;
+    if (path[0] == '\0')
+        return -ENOENT;
+    if (stat(path, &st) != 0)
+        return -errno;
+    if (S_ISDIR(st.st_mode))
+        return -EISDIR;
+    if (!S_ISREG(st.st_mode))
+        return -PENDULA_ENOTREG;
+    fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0)
+        return -errno;
+    e = fstat(fd, &st) != 0 ? errno : 0;
+    close(fd);
+    if (e)
+        return -e;
+    if (!S_ISREG(st.st_mode))
+        return -PENDULA_ENOTREG;
+    *size = (long long)st.st_size;
+    return 0;
+}
+
 /* Open path for writing: fd > 0 on success (1 for "-"), -errno on failure
    (-PENDULA_ENOTREG for a target that is not a regular file, -EISDIR for a
    folder).  tmp receives the temporary name used ("" for standard output). */

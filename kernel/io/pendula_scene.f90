@@ -15,7 +15,9 @@
 !> the Python layer ask it alike, so they accept and refuse the same scenes
 !> with the same message.
 module pendula_scene
+  use, intrinsic :: iso_c_binding, only: c_long_long, c_null_char
   use pendula_kinds, only: dp, nan_dp, half_pi, pi
+  use pendula_outfile, only: out_errtext
   use pendula_exact, only: pendulum_orbit, orbit_setup, regime_separatrix
   use pendula_cycloid, only: cycloid_omega2
   implicit none
@@ -25,6 +27,18 @@ module pendula_scene
             n_number_fields, n_word_fields, max_words
 
   integer, parameter :: max_sweep = 4096, max_outputs = 16
+  !> the largest scene file read (16 MiB: a scene with every list full is below 1 MiB)
+  integer, parameter :: max_scene_bytes = 16777216
+
+  interface
+    !> kernel/glue/pendula_os.c: 0 for a regular file (its size), else -errno (-10001: not a regular file)
+    function c_read_kind(path, size) bind(C, name='pendula_read_kind') result(k)
+      use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long_long
+      character(kind=c_char), intent(in) :: path(*)
+      integer(c_long_long), intent(out) :: size
+      integer(c_int) :: k
+    end function c_read_kind
+  end interface
   !> the numbers of a scene in the order scene_from_fields takes them (whole
   !> numbers too: n_samples, max_flips, sweep_samples)
   integer, parameter :: n_number_fields = 25
@@ -40,6 +54,9 @@ module pendula_scene
   integer, parameter :: max_words = n_word_fields + max_outputs + 3
   !> |theta0| beyond 2^52: a double has no fraction left, the angle cannot be reduced mod 2 pi
   real(dp), parameter :: theta0_limit = 4503599627370496.0_dp
+  !> |drive_phase| beyond 2^10 rad (163 turns): the phase's own rounding (half an ulp, up to 1.1e-13)
+  !> would enter the drive cos(Omega t + phase) unseen; a phase is given reduced, as an angle of one turn
+  real(dp), parameter :: drive_phase_limit = 1024.0_dp
   !> eps above 1e300 leaves no room for the exact path's double-double sqrt(eps)
   real(dp), parameter :: eps_limit = 1.0e300_dp
 
@@ -79,19 +96,36 @@ module pendula_scene
 contains
 
   !> Read and check a scene file.  status 0: ok; otherwise msg names the problem.
-  subroutine read_scene(path, sc, status, msg)
+  subroutine read_scene(path, sc, status, msg, g_out, length_out)
     character(len=*), intent(in) :: path
     type(scene_t), intent(out) :: sc
     integer, intent(out) :: status
     character(len=*), intent(out) :: msg
+    !> g and length as given (see parse_scene)
+    real(dp), intent(out), optional :: g_out, length_out
     character(len=:), allocatable :: text
-    integer :: unit, ios, k
-    logical :: inq
+    integer :: unit, ios, k, kind
+    integer(c_long_long) :: bytes
     status = 0
     msg = ''
-    inquire(file=path, exist=inq)
-    if (.not. inq) then
-      status = 1; msg = trim(path) // ': cannot read scene file (no such file)'; return
+    ! what the name is, before anything reads it: only a regular file of at most 16 MiB is read
+    kind = c_read_kind(path // c_null_char, bytes)
+    if (kind /= 0) then
+      status = 1
+      select case (-kind)
+      case (2)        ! ENOENT
+        msg = trim(path) // ': cannot read scene file (no such file)'
+      case (21)       ! EISDIR
+        msg = trim(path) // ': cannot read scene file (a folder, not a file)'
+      case (10001)    ! a device, FIFO or socket
+        msg = trim(path) // ': cannot read scene file (not a regular file: a device, FIFO or socket is never read)'
+      case default
+        msg = trim(path) // ': cannot read scene file (' // out_errtext(-kind) // ')'
+      end select
+      return
+    end if
+    if (bytes > max_scene_bytes) then
+      status = 1; msg = trim(path) // ': cannot read scene file (larger than 16 MiB: not a scene)'; return
     end if
     open(newunit=unit, file=path, status='old', action='read', access='stream', form='unformatted', &
          iostat=ios)
@@ -105,7 +139,7 @@ contains
     if (ios /= 0) then
       status = 1; msg = trim(path) // ': cannot read scene file (cannot open it)'; return
     end if
-    call parse_scene(text, path, sc, status, msg)
+    call parse_scene(text, path, sc, status, msg, g_out, length_out)
   end subroutine read_scene
 
   !> Parse and check the text of a scene (the group &scene); messages start
@@ -185,6 +219,10 @@ contains
       return
     end if
     text = text_in
+    ! a UTF-8 byte-order mark (Windows editors write one) is no text: read as blanks
+    if (len(text) >= 3) then
+      if (text(1:3) == achar(239) // achar(187) // achar(191)) text(1:3) = '   '
+    end if
     call strip_comments(text)
     ! the group: from '&scene' to the closing '/'
     i = index(lower(text), '&scene')
@@ -744,8 +782,20 @@ contains
     if (.not. (sc%drive_frequency >= 0)) then
       msg = 'field ''drive_frequency'' must be >= 0, got ' // trim(num_text(sc%drive_frequency)); return
     end if
+    if (.not. (abs(sc%drive_phase) <= drive_phase_limit)) then
+      msg = phase_text('field ''drive_phase''', sc%drive_phase); return
+    end if
     call model_rules(sc, msg)
   end subroutine value_rules
+
+  !> The message for a drive phase beyond drive_phase_limit.
+  function phase_text(what, x) result(t)
+    character(len=*), intent(in) :: what
+    real(dp), intent(in) :: x
+    character(len=:), allocatable :: t
+    t = what // ' must be at most 1024 in magnitude (a phase is an angle: give it reduced mod 2 pi; ' // &
+        'beyond, its own rounding enters the drive), got ' // trim(num_text(x))
+  end function phase_text
 
   !> The cycloidal guide, the gravity fields, the flexible cord, and the
   !> method 'exact' (msg = '' when fine).
@@ -917,6 +967,10 @@ contains
         if (.not. all(finite(sc%grid_values(1:nv, k)))) then
           msg = 'field ''grid' // kc // ''' must be finite numbers'; return
         end if
+        if (sc%grid(k) == 'drive_phase' .and. .not. all(abs(sc%grid_values(1:nv, k)) <= drive_phase_limit)) then
+          msg = phase_text('field ''grid' // kc // ''' (drive_phase)', &
+                           sc%grid_values(maxloc(abs(sc%grid_values(1:nv, k)), 1), k)); return
+        end if
         sc%grid_n(k) = nv
       else
         if (nr /= 3) then
@@ -928,6 +982,10 @@ contains
         if (sc%grid_range(3, k) /= aint(sc%grid_range(3, k)) .or. sc%grid_range(3, k) < 1.0_dp .or. &
             sc%grid_range(3, k) > 1.0e8_dp) then
           msg = 'field ''grid' // kc // '_range'' must be start, stop, count (count a whole number >= 1)'; return
+        end if
+        if (sc%grid(k) == 'drive_phase' .and. .not. all(abs(sc%grid_range(1:2, k)) <= drive_phase_limit)) then
+          msg = phase_text('field ''grid' // kc // '_range'' (drive_phase)', &
+                           sc%grid_range(maxloc(abs(sc%grid_range(1:2, k)), 1), k)); return
         end if
         sc%grid_n(k) = nint(sc%grid_range(3, k))
       end if

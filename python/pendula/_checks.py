@@ -13,7 +13,12 @@ checker                arguments
 :func:`real`           one real: a time (``t_max``, ``t_avg``, ``transient``)
 :func:`tolerances`     ``rtol``, ``atol``
 :func:`grid_values`    the values of a sweep axis (``over=``), ``torques``
-:func:`angle`          ``theta0`` (|theta0| <= 2^52)
+:func:`angle`          ``theta0``, an event's ``level`` (|x| <= 2^52)
+:func:`flag`           ``progress``, ``terminal``, ``measure``: True or False
+:func:`choice`         one word of a fixed list (``window``, ``kind``)
+:func:`counts`         a list of whole numbers (``sizes`` of the FFTW wisdom)
+:func:`path`           a file or folder name (``out``, ``path``): str or os.PathLike
+:func:`instance`       an object of one class (``scene``, ``client``)
 =====================  =========================================================
 
 :func:`as_float` accepts anything numeric (Python numbers, lists, numpy
@@ -28,6 +33,7 @@ mathematics is not an error: it gives NaN and one RuntimeWarning, as numpy does.
 from __future__ import annotations
 
 import math
+import os
 import warnings
 
 import numpy as np
@@ -225,3 +231,59 @@ def window(transient: float, t_avg: float, name: str = "t_avg") -> None:
     if not (transient < transient + 0.5 * t_avg < transient + t_avg):
         raise ValueError(f"{name} = {t_avg!r} is below the resolution of transient = {transient!r}: "
                          "the window cannot be told from the transient")
+
+
+def flag(x, name: str) -> bool:
+    """True or False (Python or numpy bool); anything else is a TypeError naming ``name``
+    (``progress='no'`` is not taken as True)."""
+    if not isinstance(x, (bool, np.bool_)):
+        raise TypeError(f"{name} must be True or False, not {_kind(x)} {x!r:.40}")
+    return bool(x)
+
+
+def choice(x, name: str, options, allow_none: bool = False):
+    """One word of ``options`` (or None when ``allow_none``): a non-word is a TypeError,
+    an unknown word a ValueError, both naming ``name`` and the options."""
+    if x is None and allow_none:
+        return None
+    known = ", ".join(repr(o) for o in options) + (" or None" if allow_none else "")
+    if not isinstance(x, str):
+        raise TypeError(f"{name} must be one of {known}, not {_kind(x)} {x!r:.40}")
+    if x not in options:
+        raise ValueError(f"{name} must be one of {known}, got {x!r:.40}")
+    return x
+
+
+def counts(xs, name: str, lo: int = 0, hi: int | None = None) -> list[int]:
+    """A list (tuple, range, 1-D array) of whole numbers, each as :func:`count` checks it."""
+    if isinstance(xs, np.ndarray):
+        if xs.ndim != 1:
+            raise TypeError(f"{name} must be a list of whole numbers, not a {xs.ndim}-D array")
+        xs = list(xs)
+    if not isinstance(xs, (list, tuple, range)):
+        raise TypeError(f"{name} must be a list of whole numbers, not {_kind(xs)} {xs!r:.40}")
+    return [count(x, name, lo, hi) for x in xs]
+
+
+def path(x, name: str) -> "os.PathLike":
+    """A file or folder name: a non-empty str or os.PathLike (not bytes, not a number) as a Path.
+
+    An empty name is a ValueError (pathlib would read it as the current folder)."""
+    import pathlib
+
+    if isinstance(x, (bytes, bytearray)) or not isinstance(x, (str, os.PathLike)):
+        raise TypeError(f"{name} must be a path (str or os.PathLike), not {_kind(x)} {x!r:.40}")
+    text = os.fspath(x)
+    if not isinstance(text, str):
+        raise TypeError(f"{name} must be a path (str or os.PathLike), not a bytes path {x!r:.40}")
+    if not text or "\0" in text:
+        raise ValueError(f"{name} must be a non-empty path without NUL characters, got {text!r:.40}")
+    return pathlib.Path(text)
+
+
+def instance(x, name: str, cls, what: str | None = None):
+    """``x`` if it is an instance of ``cls``, else a TypeError naming ``name`` (and ``what`` it should be)."""
+    if not isinstance(x, cls):
+        what = what or f"a {cls.__module__.split('.')[0]}.{cls.__name__}"
+        raise TypeError(f"{name} must be {what}, not {_kind(x)} {x!r:.40}")
+    return x

@@ -24,15 +24,33 @@ process holds a bounded number of chunks whatever the grid's size.  A worker
 that dies takes its running tasks with it; the scheduler gives them to
 another worker, so the sweep still completes, with the same numbers (every
 chunk depends on the plan alone).
+
+Ctrl-C (or any error) in the driving process stops the cluster's work too:
+the futures not yet finished are cancelled, and a Dask ``Event`` named for
+the sweep is set, which every running task polls twice a second; it then sets
+its kernel's cancel flag, so the workers are free again within about a second.
 """
 
 from __future__ import annotations
 
 import contextlib
 import os
+import uuid
 from urllib.parse import urlparse
 
+from . import _checks, _interrupt
 from ._optional import require
+
+
+def check_client(client) -> None:
+    """``client`` must be a running dask.distributed.Client: TypeError for another kind
+    (an address such as 'tcp://host:8786' is not a Client), ValueError for a closed one."""
+    distributed = require("distributed", "sweep", "a Dask cluster (client=)")
+    _checks.instance(client, "client", distributed.Client,
+                     "a dask.distributed.Client (make one with Client('tcp://host:8786'))")
+    status = getattr(client, "status", "running")
+    if status != "running":
+        raise ValueError(f"client: the Dask client is {status}, not running (give a running Client)")
 
 
 def usable_cores() -> int:
@@ -79,30 +97,50 @@ def task_threads(requested: int, slots: dict) -> int:
     return omp_threads(usable_cores(), here, requested)
 
 
-def _run_task(fn, plan, i, requested, slots):
-    return fn(plan, i, task_threads(requested, slots))
+def _run_task(fn, plan, i, requested, slots, stop_name):
+    """One chunk on a worker; its kernel stops when the sweep's stop Event is set (Ctrl-C in the driver)."""
+    event = require("distributed", "sweep", "a Dask cluster").Event(stop_name)
+    with _interrupt.watching(event.is_set):
+        return fn(plan, i, task_threads(requested, slots))
 
 
 def run_chunks(client, fn, plan, todo, threads, done, per_slot: int = 2) -> None:
     """Compute ``fn(plan, i, omp_threads)`` for every i in ``todo`` on the client's workers,
     calling ``done(*result)`` in the driving process as each finishes."""
-    as_completed = require("distributed", "sweep", "a Dask cluster").as_completed
+    distributed = require("distributed", "sweep", "a Dask cluster")
 
     slots = slots_by_host(client)
     width = max(2, per_slot * max(1, sum(slots.values())))
+    stop_name = f"pendula-sweep-stop-{uuid.uuid4().hex}"
+    stop = distributed.Event(stop_name, client=client)
     pending = iter(todo)
-    running = as_completed()
-    for i in pending:
-        running.add(client.submit(_run_task, fn, plan, i, threads, slots, pure=False))
-        if running.count() >= width:
-            break
-    for fut in running:
-        result = fut.result()
-        fut.release()
-        done(*result)
-        nxt = next(pending, None)
-        if nxt is not None:
-            running.add(client.submit(_run_task, fn, plan, nxt, threads, slots, pure=False))
+    running = distributed.as_completed()
+    submitted = []
+
+    def submit(i):
+        fut = client.submit(_run_task, fn, plan, i, threads, slots, stop_name, pure=False)
+        submitted.append(fut)
+        running.add(fut)
+
+    try:
+        for i in pending:
+            submit(i)
+            if running.count() >= width:
+                break
+        for fut in running:
+            result = fut.result()
+            fut.release()
+            done(*result)
+            nxt = next(pending, None)
+            if nxt is not None:
+                submit(nxt)
+    except BaseException:
+        # Ctrl-C, a failed chunk: the running tasks stop their kernels, the others never start
+        with contextlib.suppress(Exception):
+            stop.set()
+        with contextlib.suppress(Exception):
+            client.cancel([f for f in submitted if not f.done()], force=True)
+        raise
 
 
 @contextlib.contextmanager

@@ -7,7 +7,11 @@ it), one rule for all, the same as pendula-run's (kernel/glue/pendula_os.c):
 * only a regular file (or a name not yet taken) is written or replaced; a
   device, FIFO, socket or folder under the name is refused with an OSError
   and left as it was (``/dev/full`` is never replaced by a file);
-* a missing parent folder is an error (FileNotFoundError), never created;
+* a symbolic link under the name is replaced by the new file (as rename(2)
+  does); the file it pointed to is never opened nor changed;
+* the folder of a file must exist (FileNotFoundError otherwise); an output
+  *folder* (``pendula run -o``, ``sweep(out=)``) is created with its missing
+  parents, as ``mkdir -p`` does;
 * the content goes to a fresh temporary name beside the target
   (``.NAME.XXXX.part``), is fsynced, and is renamed onto the target only when
   complete; on any exception -- a full disk, Ctrl-C, SIGTERM in the
@@ -36,9 +40,10 @@ __all__ = ["scene_header", "atomic_path", "staging", "write_csv", "gallery_dir",
 def check_target(path) -> pathlib.Path:
     """``path`` as a Path after the writer's checks: OSError (naming the path)
     when it names something other than a regular file, FileNotFoundError when
-    its folder does not exist.  A symbolic link is followed (its target is
-    what gets replaced)."""
-    path = pathlib.Path(os.path.realpath(path)) if os.path.islink(path) else pathlib.Path(path)
+    its folder does not exist.  A symbolic link to a regular file (or a
+    dangling one) is what gets replaced, by the rename: the file it points to
+    is never written (pendula-run's rule, kernel/glue/pendula_os.c)."""
+    path = pathlib.Path(path)
     try:
         st = os.stat(path)
     except FileNotFoundError:

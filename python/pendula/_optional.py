@@ -1,7 +1,9 @@
 """Optional packages: one import helper that names the extra to install.
 
-pendula itself needs only numpy.  Figures need matplotlib, sweeps need xarray,
-dask and tqdm, the benchmarks and the accuracy reports compare with scipy.
+pendula itself needs only numpy (and tqdm for its progress bars, which are
+simply not drawn without it).  Figures need matplotlib, results as Datasets
+xarray, sweeps at scale dask and zarr, the benchmarks and the accuracy
+reports compare with scipy.
 Each of these is imported through :func:`require`, so that a missing package
 gives one line saying what to install (``pip install 'pendula[sweep]'``)
 instead of a bare ``ModuleNotFoundError``; the ``pendula`` command prints that
@@ -12,9 +14,14 @@ The extras (``[project.optional-dependencies]`` in pyproject.toml):
 =========  ==============================================  =========================
 extra      packages                                        needed by
 =========  ==============================================  =========================
-plot       matplotlib                                      figures (``pendula run``)
-sweep      xarray, dask[distributed], tqdm, scipy, zarr    ``pendula.sweep``,
-                                                           ``pendula sweep``
+plot       matplotlib                                      figures (``pendula run``; its
+                                                           CSV tables need only numpy)
+xarray     xarray                                          results as Datasets: ``sweep``
+                                                           in memory, ``iv_curve``, the
+                                                           ``to_xarray`` methods
+sweep      xarray, dask[distributed], tqdm, scipy, zarr    ``sweep(out=...)`` (the Zarr
+                                                           store), ``client=``, ``pendula
+                                                           sweep`` (``--netcdf``: scipy)
 bench      scipy; the work-precision study's peers         ``pendula bench``,
            (scikit-sundae, numbalsoda, numba)              ``pendula accuracy integrators``
 accuracy   scipy, matplotlib                               ``pendula accuracy``

@@ -3,7 +3,9 @@
 Library calls keep it off unless asked (``progress=True``); the command line
 turns it on.  Work shorter than two seconds draws nothing; tqdm redraws one
 line on a terminal and writes plain lines elsewhere; ``note`` shows what is
-being done.
+being done.  Every bar of pendula is this one (the sweeps' too).  Without tqdm
+(it comes with the ``sweep`` extra) a bar counts and draws nothing: progress
+is never a reason for a run to fail.
 """
 
 from __future__ import annotations
@@ -23,17 +25,25 @@ class Progress:
     stream : file, optional
         Where to draw (default standard error).
     enabled : bool, optional
-        False: a bar that counts but draws nothing.
+        False: a bar that counts but draws nothing (so is a bar without tqdm installed).
+    initial : int, optional
+        Steps already done (a resumed sweep).
+    unit : str, optional
+        What a step is (tqdm's unit: 'it', 'chunk').
     """
 
-    def __init__(self, total: int, label: str, stream=None, enabled: bool = True):
+    def __init__(self, total: int, label: str, stream=None, enabled: bool = True, initial: int = 0,
+                 unit: str = "it"):
         self.total = max(int(total), 1)
-        self.done = 0
+        self.done = min(self.total, max(int(initial), 0))
         self._bar = None
         if enabled:
-            from tqdm.auto import tqdm
-            self._bar = tqdm(total=self.total, desc=label, file=stream or sys.stderr, leave=True,
-                             mininterval=0.5, dynamic_ncols=True, delay=2.0)
+            try:
+                from tqdm.auto import tqdm
+            except ImportError:      # tqdm not installed: count, draw nothing
+                return
+            self._bar = tqdm(total=self.total, initial=self.done, desc=label, file=stream or sys.stderr,
+                             leave=True, mininterval=0.5, dynamic_ncols=True, delay=2.0, unit=unit)
 
     def update(self, n: int = 1, note: str = "") -> None:
         """Count n steps done; note says what the last one was."""

@@ -33,6 +33,17 @@ taken with ``flock`` (atomic; released by the kernel when its holder dies, so
 the lock of a dead process is taken over) and holds the holder's pid and host;
 a second sweep on the same folder fails at once with :class:`StoreBusyError`
 naming the store and the holder.  Temporary names carry the writer's pid.
+The lock file is pendula's own: a symbolic link under its name is replaced
+(the file it points to is never opened), a FIFO, device or folder under it is
+refused and left as it was.
+
+Only a pendula store is ever changed: ``out/sweep.zarr`` must be a folder
+whose ``zarr.json`` (read as JSON, before Zarr opens anything) is a Zarr v3
+group carrying this sweep's identity.  Anything else there (a user's folder,
+a file, a store of a newer Zarr format, a store of another sweep, a
+``zarr.json`` that cannot be read) is refused with a ValueError naming it and
+left exactly as it was; only a store that proves to be this sweep's and is
+damaged inside is built again.
 """
 
 from __future__ import annotations
@@ -195,8 +206,25 @@ class StoreLock:
     def acquire(self) -> None:
         import fcntl
 
+        import stat
+
         for _ in range(100):
-            fd = os.open(self.path, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC, 0o644)
+            try:
+                # never through a link (O_NOFOLLOW), never waiting on a FIFO (O_NONBLOCK)
+                fd = os.open(self.path, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC | os.O_NOFOLLOW | os.O_NONBLOCK,
+                             0o644)
+            except OSError as exc:
+                if exc.errno == errno.ELOOP and os.path.islink(self.path):
+                    os.unlink(self.path)    # a link under the lock's name is replaced; its target left alone
+                    continue
+                if exc.errno in (errno.EISDIR, errno.ENXIO):
+                    raise OSError(exc.errno, "the store's lock file name is taken by something other than a "
+                                  "regular file; it is left as it was", str(self.path)) from None
+                raise
+            if not stat.S_ISREG(os.fstat(fd).st_mode):
+                os.close(fd)
+                raise OSError(errno.EINVAL, "the store's lock file name is taken by a FIFO, device or socket "
+                              "(never written or replaced); it is left as it was", str(self.path))
             try:
                 fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
             except OSError as exc:
@@ -295,19 +323,18 @@ class SweepStore:
     def _open_or_create(self) -> None:
         zarr = require("zarr", "sweep", "a stored sweep (pendula.sweep(out=...))")
 
-        if not self.path.exists():
+        if not os.path.lexists(self.path):
             self._create()
             return
-        try:
-            g = zarr.open_group(self.path, mode="r+", use_consolidated=False)
-            identity = g.attrs.get("pendula_sweep")
-        except Exception as exc:   # noqa: BLE001 - any unreadable metadata means a damaged store
-            self._rebuild(f"its metadata cannot be read ({type(exc).__name__}: {exc})")
-            return
-        if identity is None:
-            raise ValueError(f"parameter 'out': {self.path} is not a pendula sweep store; use another folder")
+        # whose is it?  Read before Zarr opens anything: only this sweep's store is ever changed
+        identity = self._identity_on_disk()
         if identity != self.layout.identity:
             raise ValueError(f"parameter 'out': {self.out} holds a different sweep; use another folder")
+        try:
+            g = zarr.open_group(self.path, mode="r+", use_consolidated=False)
+        except Exception as exc:   # noqa: BLE001 - this sweep's store, damaged
+            self._rebuild(f"its metadata cannot be read ({type(exc).__name__}: {exc})")
+            return
         bad = self._check_arrays(g)
         if bad:
             self._rebuild(bad)
@@ -322,6 +349,31 @@ class SweepStore:
             if not ok:
                 self._warn(f"coordinate '{name}' is damaged; written again from the plan")
                 g[name][...] = vals
+
+    def _identity_on_disk(self) -> str:
+        """The identity recorded in ``sweep.zarr/zarr.json``; a ValueError naming the path (which is
+        left as it was) when the thing there is not a pendula sweep store a Zarr v3 reader can open."""
+        def refuse(why: str):
+            return ValueError(f"parameter 'out': {self.path} is not a pendula sweep store ({why}); it is left "
+                              "as it was: move it away or give another 'out'")
+        if os.path.islink(self.path) or not self.path.is_dir():
+            raise refuse("not a folder")
+        meta = self.path / "zarr.json"
+        if not meta.is_file():
+            raise refuse("no zarr.json")
+        try:
+            with open(meta, "rb") as fh:
+                doc = json.loads(fh.read(1 << 24))      # pendula's group metadata is a few kB
+        except (OSError, ValueError) as exc:
+            raise refuse(f"its zarr.json cannot be read: {type(exc).__name__}") from None
+        if not isinstance(doc, dict) or doc.get("zarr_format") != 3 or doc.get("node_type") != "group":
+            fmt = doc.get("zarr_format") if isinstance(doc, dict) else None
+            raise refuse(f"not a Zarr v3 group (zarr_format {fmt!r})")
+        identity = (doc.get("attributes") or {}).get("pendula_sweep") if isinstance(doc.get("attributes"), dict) \
+            else None
+        if not isinstance(identity, str):
+            raise refuse("no pendula sweep identity in its attributes")
+        return identity
 
     def _check_consolidated(self, g) -> None:
         """The consolidated metadata (what readers such as xarray use) must say what the arrays' own say."""

@@ -14,6 +14,13 @@ A feature whose optional package is missing prints one line naming the extra
 to install (``pip install 'pendula[sweep]'``) and exits with status 6
 (pendula._optional.EXIT_MISSING_EXTRA).  Output into a pipe that closes early
 (``pendula models | head -3``) ends quietly with status 0.
+
+Every failure of every subcommand is one line on standard error, never a
+traceback, with the exit status of docs/source/bad_input.rst: 2 bad scene or
+arguments, 3 not implemented, 4 the computation failed (out of memory too),
+5 the output cannot be written, 6 an optional package is missing, 130 Ctrl-C,
+128 + signal for SIGTERM/SIGHUP.  (``PENDULA_TRACEBACK=1`` shows the traceback
+of an unexpected error, for a bug report.)
 """
 
 from __future__ import annotations
@@ -36,11 +43,35 @@ def packaged_data(name: str):
     return files("pendula") / "data" / name
 
 
+#: exit status of Ctrl-C (128 + SIGINT, as shells report it)
+EXIT_INTERRUPTED = 130
+
+
+def exit_status(exc: BaseException) -> int:
+    """The documented exit status of an error that ends a subcommand (docs/source/bad_input.rst):
+    2 bad scene or argument, 3 not implemented, 4 the computation failed, 5 the output cannot
+    be written, 6 an optional package is missing, 130 Ctrl-C."""
+    from .scene import SceneError
+
+    if isinstance(exc, KeyboardInterrupt):
+        return EXIT_INTERRUPTED
+    if isinstance(exc, MissingExtraError):
+        return EXIT_MISSING_EXTRA
+    if isinstance(exc, (SceneError, TypeError)):
+        return 2
+    if isinstance(exc, NotImplementedError):
+        return 3
+    if isinstance(exc, OSError):
+        return 5
+    return 4      # ValueError, ArithmeticError, MemoryError, RuntimeError, a worker that died ...
+
+
 def _guarded(func, args) -> int:
-    """Run a subcommand: a missing optional package is one line and exit status 6;
-    a reader that closes the pipe early (``| head``) ends the output quietly."""
+    """Run a subcommand: every failure is one line on standard error with its exit status
+    (:func:`exit_status`); a reader that closes the pipe early (``| head``) ends the output quietly."""
     import os
 
+    command = f"pendula {getattr(args, 'command', None) or 'bench'}"
     try:
         status = func(args)
         sys.stdout.flush()  # a closed pipe shows here, not at interpreter exit
@@ -48,6 +79,9 @@ def _guarded(func, args) -> int:
     except MissingExtraError as exc:
         print(f"pendula: {exc}", file=sys.stderr)
         return EXIT_MISSING_EXTRA
+    except KeyboardInterrupt:
+        print(f"{command}: interrupted (Ctrl-C); nothing half-written is left", file=sys.stderr)
+        return EXIT_INTERRUPTED
     except BrokenPipeError:
         # the reader has gone: send what remains in the buffer nowhere (Python's
         # documented recipe), so that the flush at exit does not fail again
@@ -55,6 +89,16 @@ def _guarded(func, args) -> int:
         os.dup2(devnull, sys.stdout.fileno())
         os.close(devnull)
         return 0
+    except Exception as exc:       # noqa: BLE001 - the last resort: one line, never a traceback
+        if os.environ.get("PENDULA_TRACEBACK"):
+            raise
+        code = exit_status(exc)
+        if isinstance(exc, OSError) and exc.strerror:
+            text = f"cannot write the output: {exc.filename + ': ' if exc.filename else ''}{exc.strerror}"
+        else:
+            text = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        print(f"{command}: {text}", file=sys.stderr)
+        return code
 
 
 def elliptic_table() -> list[tuple[str, float, float]]:
@@ -120,19 +164,32 @@ def _run_file(args, command: str, outputs: tuple | None = None) -> int:
         return 2
     # the exit codes of pendula-run: 3 model not implemented, 4 the computation
     # failed, 5 a write error; a message, never a traceback, and no partial file
+    import warnings
+
+    from .run import FiguresNotDrawn
+
     try:
-        files = run_scene(scene, args.output, stem=pathlib.Path(args.scene).stem, progress=not args.quiet)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", FiguresNotDrawn)
+            files = run_scene(scene, args.output, stem=pathlib.Path(args.scene).stem, progress=not args.quiet)
     except NotImplementedError as exc:
         print(f"pendula {command}: {args.scene}: {exc}", file=sys.stderr)
         return 3
-    except (ValueError, ArithmeticError, RuntimeError) as exc:
-        print(f"pendula {command}: {args.scene}: {exc}", file=sys.stderr)
+    except MissingExtraError:
+        raise                          # one line naming the extra (exit 6), in _guarded
+    except (ValueError, ArithmeticError, RuntimeError, MemoryError) as exc:
+        text = str(exc) or "not enough memory"
+        print(f"pendula {command}: {args.scene}: {text}", file=sys.stderr)
         return 4
     except OSError as exc:
         print(f"pendula {command}: cannot write into {args.output!r}: {exc.strerror or exc}", file=sys.stderr)
         return 5
     for f in files:
         print(f)
+    skipped = [w for w in caught if issubclass(w.category, FiguresNotDrawn)]
+    if skipped:      # the tables are written; the figures need the plot extra: say so, exit 6
+        print(f"pendula {command}: {skipped[0].message}", file=sys.stderr)
+        return EXIT_MISSING_EXTRA
     return 0
 
 
@@ -185,7 +242,12 @@ def cmd_accuracy(args) -> int:
             print(f"pendula accuracy: reference file {str(reference)!r} not found: pass --reference "
                   "(data/gen_elliptic_reference.py in the repository writes it)", file=sys.stderr)
             return 2
-        print_report(elliptic_report(reference), markdown=args.markdown)
+        try:
+            report = elliptic_report(reference)
+        except (ValueError, OSError) as exc:     # a reference that is not one: a bad input file, exit 2
+            print(f"pendula accuracy: {exc}", file=sys.stderr)
+            return 2
+        print_report(report, markdown=args.markdown)
         return 0
     if args.what == "grids":
         import pathlib
@@ -212,8 +274,14 @@ def cmd_accuracy(args) -> int:
 def integrator_study(outdir, periods: float, progress: bool = True, quick: bool = False, record_to=None,
                      problems=None) -> int:
     """The work-precision study (pendula.studies.workprecision) and the long-run energy study; files into outdir."""
+    from . import _checks
     from .studies.accuracy import long_run_energy, work_precision, write_long_run
 
+    try:     # checked before the study runs: a bad value is one line, exit 2
+        periods = _checks.real(periods, "--periods", 2.0, 1e8)
+    except (TypeError, ValueError) as exc:
+        print(f"pendula accuracy: {exc}", file=sys.stderr)
+        return 2
     files = work_precision(outdir, quick=quick, progress=progress, record_to=record_to, problems=problems)
     res = long_run_energy(periods, progress=progress)
     files += write_long_run(res, outdir, periods)

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from . import _interrupt, _kernel
+from . import _checks, _interrupt, _kernel
 from ._checks import as_float
 from .scene import Scene
 from .systems import run
@@ -85,11 +85,10 @@ def _run(scene, method, t_sorted, ev_kind=0, ev_level=0.0, ev_dir=0, terminal=Fa
     if scene.gravity != "uniform" and method == "gsl-rk8pd":
         raise ValueError("gsl-rk8pd does not take a non-uniform gravity field; use dop853")
     cancel = _interrupt.cancel_flag()
-    span = float(np.max(np.abs(t_sorted))) if t_sorted.size else 0.0
     x, words, wlen, nout, ngrid = scene._kernel_fields     # the scene as the kernel checked it
+    # always interruptible: a short span can still take many steps (stiff damping, tight tolerances)
     out = _interrupt.call(_kernel.integrate_v, x, words, wlen, nout, ngrid, CODES[method], t_sorted, ev_kind,
-                          ev_level, ev_dir, int(terminal), max_events, cancel, cancel=cancel,
-                          long=span * max(1.0, scene.eps ** 0.5) > 1e3)
+                          ev_level, ev_dir, int(terminal), max_events, cancel, cancel=cancel)
     theta, v, stats, status, nev, tev, thev, vev = out
     if status not in (0, 10):
         if status > 100:
@@ -159,7 +158,7 @@ class Events:
         True
         """
         from ._optional import require
-        xr = require("xarray", "sweep", "Events.to_xarray")
+        xr = require("xarray", "xarray", "Events.to_xarray")
         return xr.Dataset({"t": ("event", self.t, {"long_name": "time of the event", "units": "s"}),
                            "theta": ("event", self.theta, {"long_name": "angle at the event", "units": "rad"}),
                            "v": ("event", self.v, {"long_name": "angular velocity at the event",
@@ -219,11 +218,13 @@ def find_events(scene: Scene, kind: str = "turning", level: float = 0.0, directi
     Raises
     ------
     TypeError
-        For a non-integer `max_events`, a non-bool `terminal` or a non-number `level`.
+        For a `scene` that is not a Scene, a non-integer `max_events`, a
+        non-bool `terminal` or a non-number `level`.
     ValueError
         For an unknown `kind`, a `direction` other than those above, a method
-        without dense output, `max_events` out of range, or `t_end` not
-        positive and finite.
+        without dense output, `max_events` out of range, a `level` that is not
+        finite or beyond 2^52 in magnitude (where level + 2 pi k has no
+        fraction left), or `t_end` not positive and finite.
 
     See Also
     --------
@@ -237,6 +238,7 @@ def find_events(scene: Scene, kind: str = "turning", level: float = 0.0, directi
     >>> ev.t.size, round(float(ev.t[0]), 9)       # one maximum per period 6.699975664
     (2, 6.699975664)
     """
+    _checks.instance(scene, "scene", Scene, "a pendula.Scene")
     if kind not in _EVENT_KINDS and kind not in CORD_EVENT_KINDS:
         raise ValueError(f"kind must be one of {', '.join(tuple(_EVENT_KINDS) + CORD_EVENT_KINDS)}, got {kind!r}")
     direction = _DIRECTIONS.get(direction, direction) if isinstance(direction, str) else direction
@@ -250,8 +252,8 @@ def find_events(scene: Scene, kind: str = "turning", level: float = 0.0, directi
         raise ValueError(f"max_events must be between 1 and {MAX_EVENTS}, got {max_events}")
     if not isinstance(terminal, (bool, np.bool_)):
         raise TypeError(f"terminal must be True or False, got {terminal!r}")
-    if not isinstance(level, (int, float, np.integer, np.floating)) or isinstance(level, bool):
-        raise TypeError(f"level must be a real number, got {level!r}")
+    # finite, and |level| <= 2^52 as every angle: beyond, level + 2 pi k has no fraction left
+    level = _checks.angle(level, "level")
     t_end = scene.t_end if t_end is None else as_float(t_end, "t_end")
     t_end = float(np.reshape(t_end, -1)[0]) if np.size(t_end) == 1 else math.nan
     if not t_end > 0 or not math.isfinite(t_end):
@@ -301,7 +303,7 @@ def numerical_period(scene: Scene, periods: int = 20, method: str = "dop853") ->
     Raises
     ------
     TypeError
-        If `periods` is not a number.
+        If `scene` is not a Scene or `periods` is not a number.
     ValueError
         If `periods` is out of range or the scene has effects.
     RuntimeError
@@ -319,6 +321,7 @@ def numerical_period(scene: Scene, periods: int = 20, method: str = "dop853") ->
     >>> abs(pendula.numerical_period(s) / pendula.period(s) - 1) < 1e-12
     True
     """
+    _checks.instance(scene, "scene", Scene, "a pendula.Scene")
     if isinstance(periods, bool) or not isinstance(periods, (int, float, np.integer, np.floating)):
         raise TypeError(f"periods must be a number, got {periods!r}")
     if not 2 <= periods <= 1e6:

@@ -9,14 +9,17 @@ reaches run_scene can have every output it names.
 
 from __future__ import annotations
 
+import errno
 import math
 import pathlib
 import re
+import warnings
 
 import numpy as np
 
 from . import plot
 from ._files import staging, write_csv
+from ._optional import MissingExtraError
 from ._progress import Progress
 from .motion import exact_motion, orbit, simulate
 from .scene import Scene
@@ -29,9 +32,19 @@ ORBIT_OUTPUTS = {"period", "omega", "theta_max"}
 
 
 
+class FiguresNotDrawn(UserWarning):
+    """The tables of a run are written but its figures are not: matplotlib (the plot extra) is missing."""
+
+
 def _png(path, draw, *args, **kw):
-    """Draw a figure with a pendula.plot function, save it to path, and answer with the path."""
-    draw(*args, path=path, **kw)
+    """Draw a figure with a pendula.plot function, save it to path, and answer with the path;
+    None (and a :class:`FiguresNotDrawn` warning) when matplotlib is not installed: the tables
+    need only numpy, so they are written all the same."""
+    try:
+        draw(*args, path=path, **kw)
+    except MissingExtraError as exc:
+        warnings.warn(f"figures not drawn, tables written: {exc}", FiguresNotDrawn, stacklevel=3)
+        return None
     return path
 
 def slug(text: str) -> str:
@@ -45,13 +58,17 @@ def run_scene(scene: Scene, outdir, stem: str | None = None, progress: bool = Tr
     All or nothing: the files are made in a staging folder inside ``outdir``
     and moved into place only when every output succeeded, so a failure
     leaves no partial file (and does not touch an earlier run's files).
+    Without matplotlib the tables are written and the figures are not (a
+    :class:`FiguresNotDrawn` warning names the extra to install).  ``outdir``
+    is created with its missing parent folders (``mkdir -p``), as every output
+    folder is; a file where the folder should be is a NotADirectoryError.
     """
     outdir = pathlib.Path(outdir)
     if outdir.exists() and not outdir.is_dir():
-        raise ValueError(f"output folder {str(outdir)!r} exists and is not a folder")
+        raise NotADirectoryError(errno.ENOTDIR, "is not a folder (the output folder of a run)", str(outdir))
     outdir.mkdir(parents=True, exist_ok=True)
     with staging(outdir) as stage:
-        made = _outputs(scene, stage, stem, progress)
+        made = [f for f in _outputs(scene, stage, stem, progress) if f is not None]
     return [outdir / f.name for f in made]
 
 
@@ -175,7 +192,7 @@ def _spectrum_outputs(scene, members, values, outdir, stem, progress=True):
               notes=("harmonics above 1e-6 of the fundamental's power: "
                      + "; ".join(f"{lab or 'run'}: {h}" for lab, h in zip(labels, notes)),))
     files = [outdir / f"{stem}_spectrum.csv",
-             _png(outdir / f"{stem}_spectrum.png", plot.spectra_figure, scene, specs, labels)]
+             _png(outdir / f"{stem}_spectrum.png", plot.spectra_figure, scene, specs, labels)]   # None: not drawn
     for lab, h in zip(labels, notes):
         print(f"    {stem}: {lab or 'run'}: odd harmonics above 1e-6 of the fundamental's power: "
               f"{', '.join(str(x) for x in h)}")

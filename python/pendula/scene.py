@@ -248,14 +248,11 @@ class Scene:
         source = os.fspath(path)
         if isinstance(source, bytes):
             source = os.fsdecode(source)
-        try:
-            with open(source, "rb") as fh:
-                data = fh.read()
-        except FileNotFoundError:
-            raise SceneError(f"{source}: cannot read scene file (no such file)") from None
-        except OSError as exc:
-            raise SceneError(f"{source}: cannot read scene file ({exc.strerror or exc})") from None
-        return cls._from_text(data, source)
+        if "\0" in source:
+            raise SceneError(f"{source!r}: cannot read scene file (a NUL character in its name)")
+        # the kernel reads the file, as pendula-run does: one verdict, one message for every file
+        # (a folder, a device such as /dev/zero, a FIFO, UTF-16 text, a NUL byte, more than 16 MiB)
+        return cls._from_kernel(_kernel.scene_read_file_v(os.fsencode(source)), source)
 
     @classmethod
     def from_namelist(cls, text: str, source: str = "<scene>") -> "Scene":
@@ -296,8 +293,14 @@ class Scene:
         nul = data.find(b"\0")
         if nul >= 0:
             raise SceneError(f"{source}: not a text file (byte {nul + 1} is NUL)")
+        return cls._from_kernel(_kernel.scene_read_v(data + b" ", source.encode("utf-8", errors="surrogateescape")),
+                                source)
+
+    @classmethod
+    def _from_kernel(cls, read: tuple, source: str) -> "Scene":
+        """The Scene of what the kernel's reader answered (scene_read_v, scene_read_file_v)."""
         (x, words, wlen, nout, ngrid, sweep_values, nsweep, grid_values, grid_nv, grid_range, grid_nr, status,
-         msg) = _kernel.scene_read_v(data + b" ", source.encode("utf-8", errors="surrogateescape"))
+         msg) = read
         if status:
             raise SceneError(_text(msg))
         values = _fields_from_kernel(x, words, wlen, nout, ngrid)
@@ -521,6 +524,10 @@ def _check(s: Scene) -> None:
         singles.append(v)
     outputs = _as_list("outputs", d["outputs"], str)
     grid = _as_list("grid", d["grid"], str)
+    # the words reach the kernel as one string, which f2py cuts at a NUL: refused here, naming the field
+    for name, ws in list(zip(_WORDS, ([w] for w in singles))) + [("outputs", outputs), ("grid", grid)]:
+        if any("\0" in w for w in ws):
+            raise SceneError(f"field '{name}' must not hold a NUL character, got {tuple(ws) if len(ws) > 1 else ws[0]!r}")
     lists = {name: (() if d[name] == () else _as_list(name, d[name], float)) for name in _NUMBER_LISTS}
     encoded = [w.encode("utf-8", errors="surrogateescape") for w in singles + list(outputs) + list(grid)]
     wlen = np.array([len(w) for w in encoded], dtype=np.int32)

@@ -136,7 +136,9 @@ def precompute_wisdom(sizes: Iterable[int] | None = None, path: str | os.PathLik
     Raises
     ------
     TypeError, ValueError
-        A size that is not a whole number between 4 and 2^27.
+        A size that is not a whole number between 4 and 2^27 (``sizes`` must
+        be a list), a ``path`` that is not a str or os.PathLike, a
+        ``progress`` that is not True or False.
     MemoryError
         If FFTW cannot plan a length.
     OSError
@@ -165,10 +167,11 @@ def precompute_wisdom(sizes: Iterable[int] | None = None, path: str | os.PathLik
     """
     if sizes is None:
         sizes = [1 << k for k in range(6, 21)] + [3 << k for k in range(5, 18)]
-    if isinstance(sizes, (str, bytes)):
-        raise TypeError("sizes must be a list of record lengths")
-    sizes = sorted({_checks.count(n, "sizes", 4, MAX_SAMPLES) for n in sizes})
-    if path is None:
+    sizes = sorted(set(_checks.counts(sizes, "sizes", 4, MAX_SAMPLES)))
+    progress = _checks.flag(progress, "progress")
+    if path is not None:
+        path = _checks.path(path, "path")
+    else:
         path = wisdom_path()
         path.parent.mkdir(parents=True, exist_ok=True)    # the cache folder only
     with atomic_path(path) as tmp:
@@ -302,7 +305,7 @@ class Spectrum:
         'one-sided power |A_k|^2'
         """
         from ._optional import require
-        xr = require("xarray", "sweep", "Spectrum.to_xarray")
+        xr = require("xarray", "xarray", "Spectrum.to_xarray")
         return xr.Dataset(
             {"power": ("omega", self.power, {"long_name": "one-sided power |A_k|^2", "units": "rad2"}),
              "amplitude": ("omega", self.amplitude, {"long_name": "amplitude |A_k|", "units": "rad"})},
@@ -369,11 +372,12 @@ class Spectrum:
 
         Raises
         ------
+        TypeError
+            If `n` is not a whole number (a bool or a float is refused).
         ValueError
-            If `n` is not a positive whole number.
+            If `n` is below 1.
         """
-        if not (isinstance(n, (int, np.integer)) and n >= 1):
-            raise ValueError(f"n must be a positive whole number, got {n!r}")
+        n = _checks.count(n, "n", 1)
         dw = self.omega[1] - self.omega[0]
         out = np.full(n, np.nan)
         if not math.isfinite(self.fundamental):
@@ -453,13 +457,11 @@ def spectra(t: ArrayLike, signals: ArrayLike, window: Literal["hann", "none"] | 
         x = x[None, :]
     if x.ndim != 2 or x.shape[1] != t.size:
         raise ValueError(f"signals must have shape (m, {t.size}) to match t, got {x.shape}")
-    if window not in _WINDOWS:
-        raise ValueError(f"window must be None or 'hann', got {window!r}")
+    window = _checks.choice(window, "window", ("hann", "none"), allow_none=True)
     n = t.size
     if n > MAX_SAMPLES:
         raise ValueError(f"t: at most 2^27 samples, got {n}")
-    if not isinstance(measure, (bool, np.bool_)):
-        raise TypeError(f"measure must be True or False, not {type(measure).__name__}")
+    measure = _checks.flag(measure, "measure")
     if x.shape[0] == 0:                         # no signals in, no spectra out
         return []
     cols = np.asfortranarray(x.T)
@@ -548,8 +550,10 @@ def fourier_series(theta0: float, v0: float, eps: float = 1.0, n: int = 10) -> t
 
     Raises
     ------
+    TypeError
+        If `n` is not a whole number (a bool or a float is refused).
     ValueError
-        If `n` is not a positive whole number, or the orbit is the separatrix
+        If `n` is below 1, or the orbit is the separatrix
         (infinite period).
 
     See Also
@@ -567,8 +571,7 @@ def fourier_series(theta0: float, v0: float, eps: float = 1.0, n: int = 10) -> t
     from .elliptic import nome
     from .systems.rigid import orbit
 
-    if not (isinstance(n, (int, np.integer)) and n >= 1):
-        raise ValueError(f"n must be a positive whole number, got {n!r}")
+    n = _checks.count(n, "n", 1)
     o = orbit(theta0, v0, eps)
     if o.regime not in ("libration", "rotation"):
         raise ValueError(f"the {o.regime} orbit has no Fourier series (infinite period)")
@@ -599,6 +602,12 @@ def odd_harmonics_above(spec: Spectrum, threshold: float = 1e-6, n_max: int = 50
     list of int
         The harmonic numbers, in increasing order.
 
+    Raises
+    ------
+    TypeError, ValueError
+        A `spec` that is not a Spectrum, a `threshold` that is not a real
+        >= 0, an `n_max` that is not a whole number >= 1.
+
     See Also
     --------
     Spectrum.harmonics : their amplitudes.
@@ -611,6 +620,9 @@ def odd_harmonics_above(spec: Spectrum, threshold: float = 1e-6, n_max: int = 50
     >>> pendula.odd_harmonics_above(pendula.spectrum(t, pendula.exact_motion(0.0, 1.9, 1.0, t)[0]))
     [1, 3, 5]
     """
+    _checks.instance(spec, "spec", Spectrum, "a pendula.Spectrum")
+    threshold = _checks.real(threshold, "threshold", 0.0)
+    n_max = _checks.count(n_max, "n_max", 1)
     a = spec.harmonics(n_max)
     p = a**2
     return [2 * j + 1 for j in range(n_max) if np.isfinite(p[j]) and p[j] > threshold * p[0]]

@@ -57,6 +57,7 @@ from ._optional import require
 from ._store import StoreBusyError, SweepStoreWarning  # noqa: F401 - raised and warned by sweep(out=...)
 from . import _checks, _interrupt
 from ._files import atomic_path, save_figure
+from ._progress import Progress
 from .scene import GRIDDABLE, MEASURES, Scene, SceneError
 from .dynamics.attractors import AttractorMap
 
@@ -153,7 +154,8 @@ class _Plan:
         self.t_max, self.transient, self.samples = t_max, transient, samples
         self.shape = tuple(len(v) for v in over.values())
         inner = int(np.prod(self.shape[1:], dtype=np.int64))
-        self.rows = max(1, chunk_points // max(inner, 1))
+        # never more rows than the axis has: the chunk is also the store's Zarr chunk shape
+        self.rows = max(1, min(chunk_points // max(inner, 1), self.shape[0]))
         self.nchunks = -(-self.shape[0] // self.rows)
         if measure == "poincare":
             # the kernel rounds the transient up to whole periods of each point's drive
@@ -168,8 +170,17 @@ class _Plan:
             self.t_tr = transient
 
     def key(self) -> dict:
+        """What names the sweep (a store's identity): of bounded size whatever the grid's, each axis
+        by its length, ends and the SHA-256 of its values (the values themselves are the store's
+        coordinate arrays)."""
+        import hashlib
+
+        def axis(v):
+            v = np.ascontiguousarray(v, dtype="<f8")
+            return {"n": int(v.size), "first": float(v[0]), "last": float(v[-1]),
+                    "sha256": hashlib.sha256(v.tobytes()).hexdigest()}
         return {"scene": self.scene.to_namelist(), "measure": self.measure,
-                "over": {k: v.tolist() for k, v in self.over.items()},
+                "over": {k: axis(v) for k, v in self.over.items()},
                 "rtol": self.rtol, "atol": self.atol, "t_max": self.t_max, "transient": self.transient,
                 "samples": self.samples, "rows": self.rows}
 
@@ -319,7 +330,7 @@ def _chunk_vars(plan: _Plan, out: np.ndarray, st: np.ndarray) -> dict:
 
 
 def _chunk_dataset(plan: _Plan, layout, i: int, out: np.ndarray, st: np.ndarray):
-    xr = require("xarray", "sweep", "pendula.sweep")
+    xr = require("xarray", "xarray", "pendula.sweep")
     lo, hi = layout.rows_of(i)
     vals = _chunk_vars(plan, out, st)
     coords = {n: xr.Variable((n,), v[lo:hi] if n == layout.first else v, dict(a))
@@ -426,10 +437,16 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
     >>> bool(abs(ly.lyapunov[0] + ly.lyapunov2[0] + 0.5) < 1e-8)     # lambda_1 + lambda_2 = -beta
     True
     """
-    xr = require("xarray", "sweep", "pendula.sweep")
+    xr = require("xarray", "xarray", "pendula.sweep")
 
     if not isinstance(scene, Scene):
         scene = Scene.from_file(scene)
+    if out is not None:
+        out = _checks.path(out, "out")
+    if client is not None:
+        from ._cluster import check_client
+        check_client(client)
+    progress = _checks.flag(progress, "progress")
     measure = measure or scene.measure
     if measure == "attractor":
         # the kernel's poincare samples, read for recurrence (pendula.attractor_map)
@@ -469,29 +486,23 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
         store.open()
     try:
         todo = [i for i in range(plan.nchunks) if store is None or i not in store.done]
-        bar = None
-        if progress:
-            tqdm = require("tqdm.auto", "sweep", "the progress bar of pendula.sweep").tqdm
-            bar = tqdm(total=plan.nchunks, initial=plan.nchunks - len(todo), unit="chunk", desc=f"sweep {measure}")
 
         def done(i, o, st):
             if store is not None:
                 store.write_chunk(i, _chunk_vars(plan, o, st))
             else:
                 chunks[i] = _chunk_dataset(plan, layout, i, o, st)
-            if bar is not None:
-                bar.update(1)
+            bar.update(1)
 
-        try:
+        # pendula's one progress rule (_progress.Progress): nothing drawn for work under two seconds
+        with Progress(plan.nchunks, f"sweep {measure}", enabled=progress, initial=plan.nchunks - len(todo),
+                      unit="chunk") as bar:
             if client is not None:
                 from ._cluster import run_chunks
                 run_chunks(client, _compute_chunk, plan, todo, threads, done)
             else:
                 for i in todo:
                     done(*_compute_chunk(plan, i, threads))
-        finally:
-            if bar is not None:
-                bar.close()
         if store is not None:
             # lazily (dask): the grid is never held in memory at once
             ds = store.dataset()
@@ -833,6 +844,8 @@ def cli_main(args) -> int:
 
     out = pathlib.Path(args.output)
     try:
+        if getattr(args, "netcdf", False):     # before the sweep runs: a missing package is one line, exit 6
+            require("scipy.io", "sweep", "pendula sweep --netcdf (NetCDF3 through SciPy)")
         workers = _checks.count(args.workers, "--workers", 0, 256)
         threads = _checks.threads(args.threads, "--threads")
         chunk_points = _checks.count(args.chunk_points, "--chunk-points", 1)
@@ -863,8 +876,13 @@ def cli_main(args) -> int:
     except OSError as exc:
         where = f"{exc.filename}: " if exc.filename else f"{out}: "
         return say(f"cannot write the output: {where}{exc.strerror or exc}", 5)
-    except (ArithmeticError, RuntimeError) as exc:
+    except (ArithmeticError, RuntimeError, MemoryError) as exc:
         return say(f"{args.scene}: {exc}", 4)
+    except Exception as exc:    # noqa: BLE001 - the Dask cluster failed (a worker died: KilledWorker ...)
+        if not type(exc).__module__.startswith(("distributed", "dask")):
+            raise
+        first = (str(exc).strip().splitlines() or [type(exc).__name__])[0]
+        return say(f"{args.scene}: the Dask cluster failed ({type(exc).__name__}: {first})", 4)
     st = ds.status.values
     print(f"pendula sweep: {st.size} points, {np.mean(st == 0) * 100:.1f} % decided -> "
           f"{', '.join(map(str, files))}")

@@ -22,15 +22,33 @@ from .._files import save_figure, open_text  # the one writer: regular files onl
 EPS = np.finfo(np.float64).eps
 
 
+#: the functions a reference file must hold (data/gen_elliptic_reference.py writes them all)
+REFERENCE_FUNCTIONS = ("K", "E", "q", "F", "Einc", "j")
+
+
 def _load(path):
+    """The reference rows by function; a ValueError naming the file (and the line) when it is not one."""
     rows = {}
-    with open(path) as fh:
-        rd = csv.reader(fh)
-        next(rd), next(rd)
-        for r in rd:
-            x = float(r[1]) if r[1] else np.nan
-            rows.setdefault(r[0], []).append([x, float(r[2])] + [float(v) for v in r[3:] if v])
-    return {k: np.array(v) for k, v in rows.items()}
+    line = 0
+    try:
+        with open(path, newline="") as fh:
+            rd = csv.reader(fh)
+            next(rd), next(rd)
+            for r in rd:
+                line = rd.line_num
+                x = float(r[1]) if r[1] else np.nan
+                rows.setdefault(r[0], []).append([x, float(r[2])] + [float(v) for v in r[3:] if v])
+        table = {k: np.array(v, dtype=float) for k, v in rows.items()}
+    except StopIteration:
+        raise ValueError(f"{path}: not a reference file (empty, or without its two header lines)") from None
+    except (ValueError, IndexError, csv.Error) as exc:    # UnicodeDecodeError is a ValueError
+        where = f"line {line}: " if line else ""
+        raise ValueError(f"{path}: {where}not a reference row ({type(exc).__name__}: {str(exc)[:80]})") from None
+    missing = [k for k in REFERENCE_FUNCTIONS if k not in table or table[k].ndim != 2 or table[k].shape[1] < 3]
+    if missing:
+        raise ValueError(f"{path}: no rows of {', '.join(missing)} (a truncated or foreign file; "
+                         "data/gen_elliptic_reference.py writes the reference)")
+    return table
 
 
 REGIONS = [

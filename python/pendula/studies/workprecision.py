@@ -34,6 +34,9 @@ import time
 
 import numpy as np
 
+from .._files import open_text, save_figure  # the one writer: regular files only, whole or absent
+from .._optional import require
+
 #: target errors of the answer table
 TARGETS = (1e-3, 1e-6, 1e-9, 1e-12)
 #: how long one timed batch should last (s of CPU time) and the spread the best time must reach
@@ -65,13 +68,17 @@ GSL = "gsl-rk8pd"
 
 def reference_path() -> pathlib.Path:
     """The stored reference (data/work_precision_reference.json, written by
-    data/gen_work_precision_reference.py), looked up from the working directory and the source tree."""
-    for base in (pathlib.Path.cwd(), pathlib.Path(__file__).resolve().parents[2]):
-        p = base / "data" / "work_precision_reference.json"
+    data/gen_work_precision_reference.py): the copy installed with the package (pendula/data), else
+    the repository's (the working directory, the source tree)."""
+    from importlib.resources import files
+
+    installed = pathlib.Path(str(files("pendula") / "data" / "work_precision_reference.json"))
+    for p in [installed] + [base / "data" / "work_precision_reference.json"
+                            for base in (pathlib.Path.cwd(), pathlib.Path(__file__).resolve().parents[2])]:
         if p.is_file():
             return p
-    raise FileNotFoundError("data/work_precision_reference.json not found: run from the repository root "
-                            "(data/gen_work_precision_reference.py writes it)")
+    raise FileNotFoundError("data/work_precision_reference.json not found: reinstall pendula "
+                            "(data/gen_work_precision_reference.py in the repository writes it)")
 
 
 def load_reference(path=None) -> dict:
@@ -262,7 +269,7 @@ def _rhs_numpy(p):
 
 def run_scipy(p, t, method, rtol, batch=BATCH_SECONDS, max_batches=MAX_BATCHES):
     """SciPy's solve_ivp at the output times t (its dense output), timed by process CPU time."""
-    from scipy.integrate import solve_ivp
+    solve_ivp = require("scipy.integrate", "bench", "pendula accuracy integrators (the SciPy peers)").solve_ivp
 
     f = _rhs_numpy(p)
     y0 = np.array([p["theta0"], p["v0"]])
@@ -701,8 +708,7 @@ def write_figures(record: dict, outdir) -> list[pathlib.Path]:
     >>> from pendula.studies.workprecision import record_path, write_figures
     >>> write_figures(json.loads(record_path().read_text()), "out")   # doctest: +SKIP
     """
-    import matplotlib
-
+    matplotlib = require("matplotlib", "accuracy", "pendula accuracy integrators (figures)")
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
@@ -742,8 +748,10 @@ def write_figures(record: dict, outdir) -> list[pathlib.Path]:
         ax.legend(fontsize=6.5, ncol=3, loc="upper right")
         fig.tight_layout()
         path = outdir / f"work_precision_{pname}.png"
-        fig.savefig(path, dpi=100)
-        plt.close(fig)
+        try:
+            save_figure(fig, path, dpi=100)
+        finally:
+            plt.close(fig)
         files.append(path)
     return files
 
@@ -787,11 +795,17 @@ def study_main(outdir, quick=False, progress=True, record_to=None, problems=None
     >>> from pendula.studies.workprecision import study_main
     >>> study_main("out", quick=True)      # doctest: +SKIP
     """
+    # the optional packages first: a missing one is one line before the study runs, never a traceback after
+    require("scipy.integrate", "bench", "pendula accuracy integrators (the SciPy peers)")
+    require("matplotlib", "accuracy", "pendula accuracy integrators (figures)")
     outdir = pathlib.Path(outdir)
+    if outdir.exists() and not outdir.is_dir():
+        raise NotADirectoryError(20, "is not a folder", str(outdir))
     outdir.mkdir(parents=True, exist_ok=True)
     record = run_study(problems=problems, quick=quick, progress=progress)
     path = pathlib.Path(record_to) if record_to else outdir / "work_precision.json"
-    path.write_text(json.dumps(record, indent=1) + "\n")
+    with open_text(path) as fh:
+        fh.write(json.dumps(record, indent=1) + "\n")
     files = [path] + write_figures(record, outdir)
     print(answer_rst(record))
     return files
