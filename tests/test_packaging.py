@@ -460,7 +460,6 @@ def run_hidden(hidden, args, cwd):
 @pytest.mark.parametrize("hidden, args, extra", [
     (["matplotlib"], ["run", ROOT / "data" / "scenes" / "fig4_phase_portrait.nml", "-o", "out"], "plot"),
     (["xarray"], ["sweep", "sweep.nml", "-o", "out"], "sweep"),
-    (["tqdm", "tqdm.auto"], ["sweep", "sweep.nml", "-o", "out"], "sweep"),
     (["distributed", "dask.distributed"], ["sweep", "sweep.nml", "-o", "out", "--workers", "1"], "sweep"),
     (["scipy", "scipy.special", "scipy.integrate"], ["bench", "elliptic", "--json", ""], "bench"),
     (["scipy", "scipy.special"], ["accuracy", "elliptic"], "accuracy"),

@@ -437,7 +437,8 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
     >>> bool(abs(ly.lyapunov[0] + ly.lyapunov2[0] + 0.5) < 1e-8)     # lambda_1 + lambda_2 = -beta
     True
     """
-    xr = require("xarray", "xarray", "pendula.sweep")
+    # in memory xarray alone does (pendula[xarray]); a store or a cluster needs the sweep extra
+    xr = require("xarray", "xarray" if out is None and client is None else "sweep", "pendula.sweep")
 
     if not isinstance(scene, Scene):
         scene = Scene.from_file(scene)
