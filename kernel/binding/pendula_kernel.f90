@@ -183,12 +183,17 @@ end subroutine scene_layout_v
 
 ! Read and check a scene's text (source: the file's name, for messages):
 ! status 0 and the scene's fields, or status 1 and msg naming the field
-! (and the line).
+! (and the line).  With from_file = 1, source is a file's path and text is not
+! used: the file is read as pendula-run reads it (read_scene), so that both
+! programs give every file one verdict with one message (a folder, a device,
+! UTF-16 text, a NUL byte, more than 16 MiB).
 subroutine scene_read_v(text, source, x, words, wlen, nout, ngrid, sweep_values, nsweep, grid_values, grid_nv, &
-                        grid_range, grid_nr, status, msg)
-  use pendula_scene, only: scene_t, parse_scene, scene_to_fields
+                        grid_range, grid_nr, status, msg, from_file)
+  use pendula_scene, only: scene_t, parse_scene, read_scene, scene_to_fields, scene_lists
   implicit none
   character(len=*), intent(in) :: text, source
+  integer, intent(in) :: from_file
+  !f2py integer optional, intent(in) :: from_file = 0
   double precision, intent(out) :: x(25), sweep_values(4096), grid_values(4096, 3), grid_range(3, 3)
   character(len=1024), intent(out) :: words
   integer, intent(out) :: wlen(26), nout, ngrid, nsweep, grid_nv(3), grid_nr(3), status
@@ -198,15 +203,14 @@ subroutine scene_read_v(text, source, x, words, wlen, nout, ngrid, sweep_values,
   allocate(sc)
   x = 0; words = ''; wlen = 0; nout = 0; ngrid = 0; nsweep = 0; grid_nv = 0; grid_nr = 0
   sweep_values = 0; grid_values = 0; grid_range = 0
-  call parse_scene(text, source, sc, status, msg, g, length)
+  if (from_file == 1) then
+    call read_scene(source, sc, status, msg, g, length)
+  else
+    call parse_scene(text, source, sc, status, msg, g, length)
+  end if
   if (status /= 0) return
   call scene_to_fields(sc, g, length, x, words, wlen, nout, ngrid)
-  nsweep = sc%n_sweep
-  sweep_values(1:nsweep) = sc%sweep_values(1:nsweep)
-  grid_nv = sc%grid_nv
-  grid_nr = sc%grid_nr
-  grid_values(1:size(sc%grid_values, 1), :) = sc%grid_values
-  grid_range = sc%grid_range
+  call scene_lists(sc, sweep_values, nsweep, grid_values, grid_nv, grid_range, grid_nr)
 end subroutine scene_read_v
 
 ! Check a scene given as fields with the kernel's rules: status 0 and the
@@ -734,31 +738,3 @@ subroutine periodic_orbit_v(x, words, nw, wlen, nout, ngrid, period, winding, rt
   m = scene_model(sc)
   status = pendula_gsl_periodic_orbit(c_loc(m), period, winding, rtol, atol, tol, maxit, xo, mono, info)
 end subroutine periodic_orbit_v
-
-! Read and check a scene file by its path, as pendula-run does (read_scene): the
-! same bytes, the same checks in the same order, the same message for a file
-! that is not a scene (a folder, a device, UTF-16 text, a NUL byte, 16 MiB).
-subroutine scene_read_file_v(path, x, words, wlen, nout, ngrid, sweep_values, nsweep, grid_values, grid_nv, &
-                             grid_range, grid_nr, status, msg)
-  use pendula_scene, only: scene_t, read_scene, scene_to_fields
-  implicit none
-  character(len=*), intent(in) :: path
-  double precision, intent(out) :: x(25), sweep_values(4096), grid_values(4096, 3), grid_range(3, 3)
-  character(len=1024), intent(out) :: words
-  integer, intent(out) :: wlen(26), nout, ngrid, nsweep, grid_nv(3), grid_nr(3), status
-  character(len=2048), intent(out) :: msg
-  type(scene_t), allocatable :: sc
-  double precision :: g, length
-  allocate(sc)
-  x = 0; words = ''; wlen = 0; nout = 0; ngrid = 0; nsweep = 0; grid_nv = 0; grid_nr = 0
-  sweep_values = 0; grid_values = 0; grid_range = 0
-  call read_scene(path, sc, status, msg, g, length)
-  if (status /= 0) return
-  call scene_to_fields(sc, g, length, x, words, wlen, nout, ngrid)
-  nsweep = sc%n_sweep
-  sweep_values(1:nsweep) = sc%sweep_values(1:nsweep)
-  grid_nv = sc%grid_nv
-  grid_nr = sc%grid_nr
-  grid_values(1:size(sc%grid_values, 1), :) = sc%grid_values
-  grid_range = sc%grid_range
-end subroutine scene_read_file_v

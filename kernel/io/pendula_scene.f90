@@ -22,7 +22,8 @@ module pendula_scene
   use pendula_cycloid, only: cycloid_omega2
   implicit none
   private
-  public :: scene_t, read_scene, parse_scene, scene_from_fields, scene_to_fields, check_scene, scene_member, &
+  public :: scene_t, read_scene, parse_scene, scene_from_fields, scene_to_fields, scene_lists, check_scene, &
+            scene_member, &
             scene_effects, scene_has_orbit_facts, scene_summary, max_sweep, max_outputs, number_fields, &
             n_number_fields, n_word_fields, max_words
 
@@ -510,6 +511,21 @@ contains
       iv = int(max(-2.0e9_dp, min(2.0e9_dp, v)))
     end function whole
   end subroutine scene_from_fields
+
+  !> The lists of a (checked) scene, as the readers hand them on: the sweep's values, and each grid
+  !> axis's values and range (NaN beyond what was given), with how many of each were given.
+  subroutine scene_lists(sc, sweep_values, nsweep, grid_values, grid_nv, grid_range, grid_nr)
+    type(scene_t), intent(in) :: sc
+    real(dp), intent(out) :: sweep_values(:), grid_values(:, :), grid_range(3, 3)
+    integer, intent(out) :: nsweep, grid_nv(3), grid_nr(3)
+    sweep_values = 0; grid_values = 0
+    nsweep = sc%n_sweep
+    sweep_values(1:nsweep) = sc%sweep_values(1:nsweep)
+    grid_nv = sc%grid_nv
+    grid_nr = sc%grid_nr
+    grid_values(1:size(sc%grid_values, 1), :) = sc%grid_values
+    grid_range = sc%grid_range
+  end subroutine scene_lists
 
   !> The numbers and words of a (checked) scene, as scene_from_fields takes
   !> them; wlen(max_words), words of length >= 7 * 32 + 256 + 16 * 16 + 3 * 32.

@@ -356,7 +356,7 @@ class SweepStore:
         def refuse(why: str):
             return ValueError(f"parameter 'out': {self.path} is not a pendula sweep store ({why}); it is left "
                               "as it was: move it away or give another 'out'")
-        if os.path.islink(self.path) or not self.path.is_dir():
+        if not self.path.is_dir():          # a link to a folder (a store on another disk) is followed
             raise refuse("not a folder")
         meta = self.path / "zarr.json"
         if not meta.is_file():

@@ -252,7 +252,7 @@ class Scene:
             raise SceneError(f"{source!r}: cannot read scene file (a NUL character in its name)")
         # the kernel reads the file, as pendula-run does: one verdict, one message for every file
         # (a folder, a device such as /dev/zero, a FIFO, UTF-16 text, a NUL byte, more than 16 MiB)
-        return cls._from_kernel(_kernel.scene_read_file_v(os.fsencode(source)), source)
+        return cls._from_kernel(_kernel.scene_read_v(b" ", os.fsencode(source), 1), source)
 
     @classmethod
     def from_namelist(cls, text: str, source: str = "<scene>") -> "Scene":
@@ -298,7 +298,7 @@ class Scene:
 
     @classmethod
     def _from_kernel(cls, read: tuple, source: str) -> "Scene":
-        """The Scene of what the kernel's reader answered (scene_read_v, scene_read_file_v)."""
+        """The Scene of what the kernel's reader (scene_read_v, of a text or a file) answered."""
         (x, words, wlen, nout, ngrid, sweep_values, nsweep, grid_values, grid_nv, grid_range, grid_nr, status,
          msg) = read
         if status:
