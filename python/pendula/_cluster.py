@@ -149,7 +149,18 @@ def local_client(n_workers: int):
     closed (cluster included) on leaving."""
     distributed = require("distributed", "sweep", "a Dask cluster")
     Client, LocalCluster = distributed.Client, distributed.LocalCluster
+    from distributed.deploy.spec import SpecCluster
 
-    with LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                      dashboard_address=None) as cluster, Client(cluster) as client:
+    before = set(SpecCluster._instances)
+    try:
+        cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True, host="127.0.0.1",
+                               dashboard_address=None)
+    except BaseException:
+        # interrupted while starting (Ctrl-C in its first second): the half-made cluster cannot be
+        # closed (Dask's own exit hook would fail on it with a traceback); its worker processes are
+        # children of this one and end with it
+        for c in set(SpecCluster._instances) - before:
+            SpecCluster._instances.discard(c)
+        raise
+    with cluster, Client(cluster) as client:
         yield client
