@@ -107,6 +107,17 @@ def test_long_work_stops_on_ctrl_c_and_has_a_bounded_identity(tmp_path):
     code = "import pendula\npendula.find_events(pendula.Scene(theta0=1.0, damping=1e5), 'turning', t_end=900.0)\n"
     assert _stops_within(code, 3.0, 5.0), "find_events ran on more than 5 s after SIGINT"
 
+    # Ctrl-C during the lazy import of an extra (xarray takes a second to import) leaves the process usable:
+    # the half-made modules are forgotten, and the next sweep imports them again, whole
+    code = ("import os, signal, threading, pendula\nfrom pendula._optional import require\n"
+            "threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT)).start()\n"
+            "try:\n    require('xarray', 'xarray', 'pendula.sweep')\n    print('imported first')\n"
+            "except KeyboardInterrupt:\n    print('interrupted')\n"
+            "ds = pendula.sweep(pendula.Scene(damping=0.04), over={'v0': [1.0, 2.3, 3.0]}, measure='final_well')\n"
+            "print(ds.well.values.tolist())\n")
+    r = _py(code)
+    assert r.returncode == 0 and r.stdout.split()[-3:] == ["[0.0,", "2.0,", "5.0]"], r.stderr[-1500:]
+
     # x02: a store's identity does not grow with its grid (10^6 points: a few hundred bytes, not 20 MB)
     from pendula.sweeps import _Plan, _layout
     scene = pendula.Scene(damping=0.5)

@@ -32,6 +32,7 @@ all        all of the above                                ``pendula demo``
 from __future__ import annotations
 
 import importlib
+import sys
 
 __all__ = ["MissingExtraError", "require", "EXIT_MISSING_EXTRA"]
 
@@ -101,8 +102,16 @@ def require(module: str, extra: str, feature: str):
     pendula._optional.MissingExtraError: pendula.sweep needs no_such_package_xyz, which is not installed: \
 pip install 'pendula[sweep]'
     """
+    before = set(sys.modules)
     try:
         return importlib.import_module(module)
+    except KeyboardInterrupt:
+        # Ctrl-C in the middle of a (slow, lazy) import: the modules it made are half made, and a later
+        # import would find them in sys.modules as they are (xarray without DataTree); forget them all so
+        # that the process stays usable and the next import starts clean
+        for name in set(sys.modules) - before:
+            sys.modules.pop(name, None)
+        raise
     except ModuleNotFoundError as exc:
         top = module.split(".")[0]
         missing = (exc.name or "").split(".")[0]
