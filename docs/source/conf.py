@@ -159,7 +159,7 @@ API_GROUPS = [
     ("The exact pendulum", ["orbit", "Orbit", "exact_motion", "period", "energy"]),
     ("Series", ["period_series", "period_from_series", "poincare_lindstedt"]),
     ("Events", ["find_events", "numerical_period", "Events"]),
-    ("Spectra", ["spectrum", "spectra", "Spectrum", "fourier_series", "odd_harmonics_above",
+    ("Spectra", ["spectrum", "spectra", "Spectrum", "fourier_series", "FourierSeries", "odd_harmonics_above",
                  "precompute_wisdom", "wisdom_path"]),
     ("The flexible cord", ["flip_map", "cord_state", "flip_sequence"]),
     ("Huygens' cycloid and non-uniform gravity", ["cycloid_geometry", "cycloid_period", "CycloidGeometry",

@@ -456,7 +456,7 @@ _FIELD_NAMES = tuple(f.name for f in fields(Scene))
 
 def _unknown_field(name: str) -> str:
     """The message for a field a Scene does not have, with the closest name when one is close."""
-    close = difflib.get_close_matches(str(name), _FIELD_NAMES, n=1, cutoff=0.6)
+    close = difflib.get_close_matches(str(name), _FIELD_NAMES, n=1, cutoff=0.75)
     hint = f" (did you mean '{close[0]}'?)" if close else ""
     return f"unknown field '{name}'{hint}"
 
