@@ -190,3 +190,13 @@ def test_the_figures_of_pendula_run_still_return_a_figure(libration):
         warnings.simplefilter("error")
         fig = pp.time_series(libration.scene, [(1.9, libration)])
     assert isinstance(fig, matplotlib.figure.Figure)
+
+
+def test_basins_of_a_final_well_map_one_colour_per_well():
+    ds = pendula.sweep(pendula.Scene(damping=0.1), {"v0": np.linspace(0, 4, 12), "damping": [0.05, 0.1, 0.2]},
+                       "final_well")
+    ax = pp.basins(ds)
+    wells = np.unique(ds.well.values[np.isfinite(ds.well.values)])
+    assert [t.get_text().split(" (")[0] for t in ax.get_legend().get_texts()][:wells.size] == \
+        [f"well {w:g}" for w in wells]
+    assert ax.collections[0].cmap.N == wells.size + 1

@@ -458,33 +458,46 @@ def bifurcation(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None, *,
     return ax
 
 
-def _attractor_list(am) -> tuple[Any, list[dict]]:
-    """(dataset, [{label, kind, period, theta, v, fraction}]) of an AttractorMap or its Dataset."""
+def _categories(am) -> tuple[Any, str, list[dict]]:
+    """(dataset, label variable, categories) of an AttractorMap, its Dataset or a final-well map.
+
+    Each category: value (the label in the map), name, fraction, and for attractors
+    kind, theta and v (the attractor on the stroboscopic section).
+    """
     if hasattr(am, "dataset") and hasattr(am, "attractors"):
-        atts = [{"label": a.label, "kind": a.kind, "period": a.period, "theta": np.asarray(a.theta),
-                 "v": np.asarray(a.v), "fraction": a.fraction} for a in am.attractors]
-        return am.dataset, atts
-    if "attractor" not in am:
-        raise ValueError("basins needs an AttractorMap, or a Dataset with the variable 'attractor'")
-    atts = json.loads(am.attrs.get("attractors", "[]"))
-    return am, [dict(a, theta=np.asarray(a["theta"]), v=np.asarray(a["v"])) for a in atts]
+        cats = [{"value": a.label, "name": _attractor_name(a.label, a.kind, a.period), "fraction": a.fraction,
+                 "kind": a.kind, "theta": np.asarray(a.theta), "v": np.asarray(a.v)} for a in am.attractors]
+        return am.dataset, "attractor", cats
+    if "attractor" in am:
+        cats = [{"value": a["label"], "name": _attractor_name(a["label"], a["kind"], a["period"]),
+                 "fraction": a["fraction"], "kind": a["kind"], "theta": np.asarray(a["theta"]),
+                 "v": np.asarray(a["v"])} for a in json.loads(am.attrs.get("attractors", "[]"))]
+        if not cats:   # a map without its attractors' record: one category per label found
+            vals = np.unique(am["attractor"].values)
+            cats = [{"value": int(k), "name": f"attractor {int(k)}",
+                     "fraction": float(np.mean(am["attractor"].values == k))} for k in vals[vals >= 0]]
+        return am, "attractor", cats
+    if "well" in am:
+        w = am["well"].values
+        vals = np.unique(w[np.isfinite(w)])
+        return am, "well", [{"value": k, "name": f"well {k:g}", "fraction": float(np.mean(w == k))} for k in vals]
+    raise ValueError("basins needs an AttractorMap, or a Dataset with the variable 'attractor' or 'well'")
 
 
-def _attractor_name(a: dict) -> str:
-    if a["kind"] == "periodic":
-        return f"{a['label']}: period {a['period']}"
-    return f"{a['label']}: chaotic"
+def _attractor_name(label: int, kind: str, period: int) -> str:
+    return f"{label}: period {period}" if kind == "periodic" else f"{label}: chaotic"
 
 
 def basins(am: AttractorMap | xarray.Dataset, ax: matplotlib.axes.Axes | None = None, *,
            draw_attractors: bool = True) -> matplotlib.axes.Axes:
-    """A basin map: one colour per attractor, undecided points grey, the attractors drawn on it.
+    """A basin map: one colour per attractor (or final well), undecided points grey, the attractors drawn on it.
 
     Parameters
     ----------
     am : AttractorMap or xarray.Dataset
         What :func:`pendula.attractor_map` returns (or its ``dataset``, or a
-        ``sweep(..., measure='attractor')``) over two axes.
+        ``sweep(..., measure='attractor')``), or a ``final_well`` sweep (one
+        colour per well), over two axes.
     ax : matplotlib.axes.Axes, optional
         Where to draw (default: a new figure).
     draw_attractors : bool
@@ -495,12 +508,12 @@ def basins(am: AttractorMap | xarray.Dataset, ax: matplotlib.axes.Axes | None = 
     Returns
     -------
     matplotlib.axes.Axes
-        With a legend naming each attractor and its share of the grid.
+        With a legend naming each attractor (or well) and its share of the grid.
 
     Raises
     ------
     ValueError
-        When the map does not have two axes.
+        When the map does not have two axes, or is not a map of attractors or wells.
 
     Examples
     --------
@@ -515,31 +528,35 @@ def basins(am: AttractorMap | xarray.Dataset, ax: matplotlib.axes.Axes | None = 
     from matplotlib.colors import BoundaryNorm, ListedColormap
     from matplotlib.patches import Patch
 
-    ds, atts = _attractor_list(am)
-    lab = ds["attractor"]
+    ds, var, cats = _categories(am)
+    lab = ds[var]
     if lab.ndim != 2:
         raise ValueError(f"basins needs a map over two axes, got {lab.dims}")
     xd, yd = lab.dims
     ax = _ax(ax, figsize=(6.5, 5))
-    n = max(len(atts), int(np.nanmax(lab.values)) + 1 if lab.size else 0)
+    n = len(cats)
     palette = _plt().get_cmap("tab10" if n <= 10 else "tab20").colors
     colours = [palette[i % len(palette)] for i in range(n)]
-    cmap = ListedColormap([(0.85, 0.85, 0.85)] + colours)
+    grey = (0.85, 0.85, 0.85)
+    # each point's category index, -1 where undecided (a label outside the categories, or NaN)
+    values = np.array([c["value"] for c in cats], dtype=float)
+    z = lab.transpose(yd, xd).values.astype(float)
+    idx = np.full(z.shape, -1)
+    for i, v in enumerate(values):
+        idx[z == v] = i
+    cmap = ListedColormap([grey] + colours)
     norm = BoundaryNorm(np.arange(-1.5, n + 0.5), cmap.N)
-    ax.pcolormesh(ds[xd].values, ds[yd].values, lab.transpose(yd, xd).values, cmap=cmap, norm=norm,
-                  shading="nearest", rasterized=True)
-    handles = []
-    for a in atts:
-        c = colours[a["label"]]
-        handles.append(Patch(color=c, label=f"{_attractor_name(a)} ({a['fraction']:.0%})"))
-        if draw_attractors and (xd, yd) == ("theta0", "v0"):
-            pts = slice(None) if a["kind"] == "periodic" else slice(None, 200)
-            ax.plot(a["theta"][pts], a["v"][pts], "o", ms=6 if a["kind"] == "periodic" else 2,
-                    mfc=c, mec="white", mew=1.2, ls="none")
-    if np.any(lab.values < 0):
-        handles.append(Patch(color=(0.85, 0.85, 0.85), label="undecided"))
-    ax.legend(handles=handles[:len(atts)] + handles[len(atts):], fontsize=8, loc="upper right",
-              framealpha=0.85)
+    ax.pcolormesh(ds[xd].values, ds[yd].values, idx, cmap=cmap, norm=norm, shading="nearest", rasterized=True)
+    handles = [Patch(color=colours[i], label=f"{c['name']} ({c['fraction']:.0%})") for i, c in enumerate(cats)]
+    if draw_attractors and (xd, yd) == ("theta0", "v0"):
+        for i, c in enumerate(cats):
+            if "theta" in c:
+                pts = slice(None) if c["kind"] == "periodic" else slice(None, 200)
+                ax.plot(c["theta"][pts], c["v"][pts], "o", ms=6 if c["kind"] == "periodic" else 2,
+                        mfc=colours[i], mec="white", mew=1.2, ls="none")
+    if np.any(idx < 0):
+        handles.append(Patch(color=grey, label="undecided"))
+    ax.legend(handles=handles, fontsize=8, loc="upper right", framealpha=0.85)
     ax.set_xlabel(xd)
     ax.set_ylabel(yd)
     return ax
