@@ -200,3 +200,14 @@ def test_basins_of_a_final_well_map_one_colour_per_well():
     assert [t.get_text().split(" (")[0] for t in ax.get_legend().get_texts()][:wells.size] == \
         [f"well {w:g}" for w in wells]
     assert ax.collections[0].cmap.N == wells.size + 1
+
+
+def test_basins_of_many_wells_gets_one_tick_per_well():
+    ds = pendula.sweep(pendula.Scene(damping=0.02), {"v0": np.linspace(0, 4, 40), "damping": [0.02, 0.03]},
+                       "final_well")
+    wells = np.unique(ds.well.values[np.isfinite(ds.well.values)])
+    assert wells.size > 8
+    ax = pp.basins(ds)
+    labels = [t.get_text() for t in ax.basins_colorbar.ax.get_yticklabels()]
+    assert labels == ["undecided"] + [f"well {w:g}" for w in wells]
+    assert list(ax.basins_colorbar.get_ticks()) == list(range(-1, wells.size))   # at the centres, integers

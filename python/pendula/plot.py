@@ -508,7 +508,9 @@ def basins(am: AttractorMap | xarray.Dataset, ax: matplotlib.axes.Axes | None = 
     Returns
     -------
     matplotlib.axes.Axes
-        With a legend naming each attractor (or well) and its share of the grid.
+        With a legend naming each attractor (or well) and its share of the grid;
+        beyond 8 of them, a colour bar with one tick and name per colour
+        (``ax.basins_colorbar``).
 
     Raises
     ------
@@ -556,7 +558,13 @@ def basins(am: AttractorMap | xarray.Dataset, ax: matplotlib.axes.Axes | None = 
                         mfc=colours[i], mec="white", mew=1.2, ls="none")
     if np.any(idx < 0):
         handles.append(Patch(color=grey, label="undecided"))
-    ax.legend(handles=handles, fontsize=8, loc="upper right", framealpha=0.85)
+    if n <= 8:
+        ax.legend(handles=handles, fontsize=8, loc="upper right", framealpha=0.85)
+    else:   # many wells: a colour bar of the categories, one tick (and name) per colour
+        from matplotlib.cm import ScalarMappable
+        bar = ax.figure.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=ax, ticks=np.arange(-1, n))
+        bar.ax.set_yticklabels(["undecided"] + [c["name"] for c in cats], fontsize=7)
+        ax.basins_colorbar = bar
     ax.set_xlabel(xd)
     ax.set_ylabel(yd)
     return ax
