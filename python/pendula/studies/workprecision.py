@@ -625,6 +625,64 @@ def answer_rst(record: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _why_not(record: dict, problem: str, target: float) -> str:
+    """Why no run reached a target, in a few words: below the double-precision floor, or
+    tighter than the tightest tolerance the run tried."""
+    floor = record["floors"][problem]["floor_error_max"]
+    if target < floor:
+        return f"not reached: below the floor {floor:.0e}"
+    rtols = [r["rtol"] for r in record["rows"] if r["problem"] == problem and r.get("rtol")]
+    return f"not reached: tightest rtol run {min(rtols):.0e}" if rtols else "not reached"
+
+
+def _short(r) -> str:
+    if r is None:
+        return "not reached"
+    name = r["method"] if r["package"] in ("pendula", "gsl") else f"{r['package']} {r['method']}"
+    return f"{name} {r['setting']}: {_ms(r['seconds'])}"
+
+
+def answer_text(record: dict) -> str:
+    """The answer table as plain text for a terminal (what ``pendula accuracy integrators`` and
+    ``pendula demo`` print): per problem and target, pendula's fastest, the fastest peer and
+    SciPy's fastest with the time ratios, and why a target was not reached.
+
+    Parameters
+    ----------
+    record : dict
+        A record of :func:`run_study`.
+
+    Returns
+    -------
+    str
+        One header line and one line per problem and target.
+
+    Examples
+    --------
+    >>> from pendula.studies.workprecision import answer_text
+    >>> rows = [{"problem": "damped", "package": "pendula", "method": "dop853", "setting": "rtol=1e-08",
+    ...          "rtol": 1e-8, "error_max": 1e-7, "seconds": 1e-4},
+    ...         {"problem": "damped", "package": "scipy", "method": "RK45", "setting": "rtol=1e-08",
+    ...          "rtol": 1e-8, "error_max": 1e-7, "seconds": 1e-2}]
+    >>> print(answer_text({"rows": rows, "floors": {"damped": {"floor_error_max": 1e-14}}}))
+    problem    target  pendula's fastest               fastest peer                    ratio  SciPy / pendula
+    damped     1e-03   dop853 rtol=1e-08: 100 us       scipy RK45 rtol=1e-08: 10 ms      100  100
+    damped     1e-06   dop853 rtol=1e-08: 100 us       scipy RK45 rtol=1e-08: 10 ms      100  100
+    damped     1e-09   not reached: tightest rtol run 1e-08
+    damped     1e-12   not reached: tightest rtol run 1e-08
+    """
+    lines = [f"{'problem':10s} {'target':7s} {'pendula' + chr(39) + 's fastest':31s} {'fastest peer':31s} "
+             f"{'ratio':>5s}  SciPy / pendula"]
+    for a in answer_table(record):
+        head = f"{a['problem']:10s} {a['target']:<7.0e}"
+        if a["pendula"] is None:
+            lines.append(f"{head} {_why_not(record, a['problem'], a['target'])}")
+            continue
+        lines.append(f"{head} {_short(a['pendula']):31s} {_short(a['peer']):31s} {_ratio(a['peer_ratio']):>5s}  "
+                     f"{_ratio(a['scipy_ratio'])}")
+    return "\n".join(lines)
+
+
 def _same_setting_ratios(record, package, method, ref_method="dop853"):
     """Time ratios package:method / pendula:ref_method at equal problem and rtol."""
     mine = {(r["problem"], r["setting"]): r["seconds"] for r in record["rows"]
@@ -793,7 +851,7 @@ def study_main(outdir, quick=False, progress=True, record_to=None, problems=None
     path = pathlib.Path(record_to) if record_to else outdir / "work_precision.json"
     path.write_text(json.dumps(record, indent=1) + "\n")
     files = [path] + write_figures(record, outdir)
-    print(answer_rst(record))
+    print(answer_text(record))
     return files
 
 
