@@ -16,6 +16,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import pendula
+import pendula.plot
 
 s = pendula.Scene(damping=0.1, rtol=1e-8, atol=1e-10)
 ds = pendula.sweep(s, over={"v0": np.linspace(0.0, 4.0, 60), "damping": np.linspace(0.02, 0.3, 36)},
@@ -23,9 +24,7 @@ ds = pendula.sweep(s, over={"v0": np.linspace(0.0, 4.0, 60), "damping": np.linsp
 print(ds)
 
 fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.3))
-wells = ds.well.values.T
-im = ax1.pcolormesh(ds.v0, ds.damping, wells, cmap="tab20", shading="nearest")
-fig.colorbar(im, ax=ax1, label="final well n (θ → 2πn)")
+pendula.plot.basins(ds, ax=ax1)        # one colour per well n (θ → 2πn), one tick each
 ax1.set(xlabel="v0", ylabel="damping β", title="basins of the damped pendulum")
 
 beta = 0.1

@@ -51,7 +51,7 @@ numpydoc_class_members_toctree = False
 numpydoc_xref_param_type = False
 # numpydoc links a class's properties from its Attributes section; the class pages
 # document the fields in that section and do not repeat them as members
-nitpick_ignore = [("py:obj", "amplitude")]
+nitpick_ignore = [("py:obj", "amplitude"), ("py:obj", "kind"), ("py:obj", "stable")]
 
 # ---- intersphinx: local inventories only (no network in the build) --------
 _INV = DOCS / "inventories"

@@ -243,6 +243,12 @@ def _ax(ax, figsize=(7, 4)):
     return _plt().subplots(figsize=figsize, layout="constrained")[1]
 
 
+def _categorical(n: int) -> list:
+    """n distinct colours for n categories (matplotlib's tab10, or tab20 beyond ten; repeated beyond twenty)."""
+    palette = _plt().get_cmap("tab10" if n <= 10 else "tab20").colors
+    return [palette[i % len(palette)] for i in range(n)]
+
+
 def _scene_label(scene) -> str:
     return scene.name or repr(scene)
 
@@ -260,7 +266,7 @@ def trajectory(tr: Trajectory, ax: matplotlib.axes.Axes | None = None, *, which:
     which : {'theta', 'v', 'energy'}
         The column drawn.
     **kwargs
-        Passed to :meth:`matplotlib.axes.Axes.plot` (``label``, ``color`` ...).
+        Passed to matplotlib's ``Axes.plot`` (``label``, ``color`` ...).
 
     Returns
     -------
@@ -309,7 +315,7 @@ def phase(tr: Trajectory, ax: matplotlib.axes.Axes | None = None, *, separatrix:
     separatrix : bool
         Draw the separatrix v = +-2 sqrt(eps) cos(theta/2) of the rigid pendulum.
     **kwargs
-        Passed to :meth:`matplotlib.axes.Axes.plot`.
+        Passed to matplotlib's ``Axes.plot``.
 
     Returns
     -------
@@ -353,7 +359,7 @@ def spectrum(sp: Spectrum, ax: matplotlib.axes.Axes | None = None, *, harmonics:
         The frequency axis runs to this many times the fundamental (all of it
         when the spectrum has no fundamental).
     **kwargs
-        Passed to :meth:`matplotlib.axes.Axes.semilogy`.
+        Passed to matplotlib's ``Axes.semilogy``.
 
     Returns
     -------
@@ -412,7 +418,7 @@ def bifurcation(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None, *,
         A ``lyapunov`` sweep over the same parameter: its largest exponent is
         drawn on a second y axis (right), with its zero line.
     **kwargs
-        Passed to :meth:`matplotlib.axes.Axes.plot` for the points.
+        Passed to matplotlib's ``Axes.plot`` for the points.
 
     Returns
     -------
@@ -537,8 +543,7 @@ def basins(am: AttractorMap | xarray.Dataset, ax: matplotlib.axes.Axes | None = 
     xd, yd = lab.dims
     ax = _ax(ax, figsize=(6.5, 5))
     n = len(cats)
-    palette = _plt().get_cmap("tab10" if n <= 10 else "tab20").colors
-    colours = [palette[i % len(palette)] for i in range(n)]
+    colours = _categorical(n)
     grey = (0.85, 0.85, 0.85)
     # each point's category index, -1 where undecided (a label outside the categories, or NaN)
     values = np.array([c["value"] for c in cats], dtype=float)
@@ -681,10 +686,7 @@ def fractions(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None) -> mat
             if name in ds.coords and ds.coords[name].dims == ("attractor",):
                 extra.append(f"{name} {ds.coords[name].values[i]}")
         labels.append(f"attractor {a}" + (f" ({', '.join(extra)})" if extra else ""))
-    n = f.shape[0]
-    palette = _plt().get_cmap("tab10" if n <= 10 else "tab20").colors
-    ax.stackplot(ds[p].values, f, labels=labels, colors=[palette[i % len(palette)] for i in range(n)],
-                 alpha=0.9)
+    ax.stackplot(ds[p].values, f, labels=labels, colors=_categorical(f.shape[0]), alpha=0.9)
     ax.set_xlim(float(ds[p].values.min()), float(ds[p].values.max()))
     ax.set_ylim(0.0, 1.0)
     ax.set_xlabel(p)

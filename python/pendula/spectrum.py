@@ -565,6 +565,19 @@ class FourierSeries(NamedTuple):
     amplitudes : numpy.ndarray
         The amplitudes of the odd harmonics (2j+1) omega of a libration, or of
         every harmonic j omega of a rotation.
+
+    See Also
+    --------
+    fourier_series : makes it.
+    Spectrum.harmonics : the measured amplitudes, to compare.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> fs = pendula.fourier_series(0.0, 1.0, 1.0, 3)
+    >>> omega, amplitudes = fs
+    >>> fs.omega == omega, len(fs.amplitudes)
+    (True, 3)
     """
 
     omega: float
