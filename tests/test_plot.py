@@ -211,3 +211,9 @@ def test_basins_of_many_wells_gets_one_tick_per_well():
     labels = [t.get_text() for t in ax.basins_colorbar.ax.get_yticklabels()]
     assert labels == ["undecided"] + [f"well {w:g}" for w in wells]
     assert list(ax.basins_colorbar.get_ticks()) == list(range(-1, wells.size))   # at the centres, integers
+
+
+def test_basins_draws_the_attractors_when_the_axes_are_swapped(attractor_map):
+    ax = pp.basins(attractor_map.dataset.transpose("v0", "theta0"))
+    for a, line in zip(attractor_map.attractors, ax.lines):
+        assert np.array_equal(line.get_xdata(), a.v) and np.array_equal(line.get_ydata(), a.theta)

@@ -509,7 +509,7 @@ def basins(am: AttractorMap | xarray.Dataset, ax: matplotlib.axes.Axes | None = 
     draw_attractors : bool
         Mark each attractor's points on the stroboscopic section (white-edged
         markers in its colour) when the axes are the initial state
-        (``theta0``, ``v0``).
+        (``theta0`` and ``v0``, in either order).
 
     Returns
     -------
@@ -555,11 +555,12 @@ def basins(am: AttractorMap | xarray.Dataset, ax: matplotlib.axes.Axes | None = 
     norm = BoundaryNorm(np.arange(-1.5, n + 0.5), cmap.N)
     ax.pcolormesh(ds[xd].values, ds[yd].values, idx, cmap=cmap, norm=norm, shading="nearest", rasterized=True)
     handles = [Patch(color=colours[i], label=f"{c['name']} ({c['fraction']:.0%})") for i, c in enumerate(cats)]
-    if draw_attractors and (xd, yd) == ("theta0", "v0"):
+    if draw_attractors and {xd, yd} == {"theta0", "v0"}:
         for i, c in enumerate(cats):
             if "theta" in c:
                 pts = slice(None) if c["kind"] == "periodic" else slice(None, 200)
-                ax.plot(c["theta"][pts], c["v"][pts], "o", ms=6 if c["kind"] == "periodic" else 2,
+                x, y = (c["theta"][pts], c["v"][pts]) if xd == "theta0" else (c["v"][pts], c["theta"][pts])
+                ax.plot(x, y, "o", ms=6 if c["kind"] == "periodic" else 2,
                         mfc=colours[i], mec="white", mew=1.2, ls="none")
     if np.any(idx < 0):
         handles.append(Patch(color=grey, label="undecided"))

@@ -149,7 +149,9 @@ class Scene:
     Raises
     ------
     SceneError
-        For a field of the wrong type or out of its range, naming the field.
+        For a field of the wrong type or out of its range, naming the field;
+        for an unknown field, naming the closest one (``Scene(dampin=0.1)``:
+        unknown field 'dampin' (did you mean 'damping'?)).
 
     See Also
     --------
@@ -167,6 +169,8 @@ class Scene:
     True
     >>> pendula.Scene.from_namelist("&scene\\n v0 = 1.5\\n/\\n").v0
     1.5
+    >>> s                                  # what differs from the defaults
+    Scene(v0=1.9, damping=0.1)
     """
 
     eps: float = math.nan  # not given: 1.0, or g / length when those are given
