@@ -5,8 +5,13 @@
 Serves the folder over HTTP on a free local port, then, through selenium and
 Debian's chromium + chromium-driver, checks on every page: it loads, the
 browser console holds no error, every image has loaded (a natural width > 0),
-and every animation of the gallery has its player and its first frame.  Then
-the search page must find ``ellipj``.  Exits 1 naming each failure; 0 when all
+every animation of the gallery has its player and its first frame, the page
+has a title (an ``h1`` with text in the main column), and no table or code
+block sticks out of the main column: a table may scroll inside its own
+container; code a reader copies must fit (no horizontal scroll bar), while
+printed output, plain listings and the API reference's doctest examples may
+scroll inside their block.  Then the search
+page must find ``ellipj``.  Exits 1 naming each failure; 0 when all
 pass.  (Not a pytest module: ``make docs-check`` runs it after ``make docs``.)
 """
 
@@ -68,6 +73,40 @@ return out;
 """
 
 
+LAYOUT_JS = """
+const main = document.querySelector('article.bd-article') || document.querySelector('main') || document.body;
+const box = main.getBoundingClientRect();
+const h1 = main.querySelector('h1');
+const out = {title: !!(h1 && h1.textContent.trim()), overflow: []};
+const scroller = el => {
+  for (let e = el.parentElement; e && e !== main; e = e.parentElement) {
+    const s = getComputedStyle(e).overflowX;
+    if ((s === 'auto' || s === 'scroll') && e.getBoundingClientRect().right <= box.right + 1) return e;
+  }
+  return null;
+};
+for (const t of main.querySelectorAll('table')) {
+  if (t.getBoundingClientRect().right > box.right + 1 && !scroller(t))
+    out.overflow.push('table "' + t.textContent.trim().replace(/\\s+/g, ' ').slice(0, 60) + '"');
+}
+// code a reader copies must fit the column; printed output, plain listings and the API
+// reference's doctest examples (written to the code's line length) may scroll inside their block
+const mayScroll = p => p.closest('.sphx-glr-script-out, .highlight-text, .highlight-none, .highlight-default')
+  || location.pathname.includes('/generated/');
+for (const p of main.querySelectorAll('div.highlight pre')) {
+  if (p.getBoundingClientRect().right > box.right + 1 || (p.scrollWidth > p.clientWidth + 1 && !mayScroll(p)))
+    out.overflow.push('code block "' + p.textContent.trim().split('\\n')[0].slice(0, 60) + '"');
+}
+return out;
+"""
+
+
+def layout_failures(page: str, layout: dict) -> list[str]:
+    """The failures of one page's layout: no title, or tables and code blocks wider than the column."""
+    out = [] if layout["title"] else [f"{page}: no title (no h1 in the main column)"]
+    return out + [f"{page}: wider than the main column: {what}" for what in layout["overflow"]]
+
+
 def wait_loaded(driver, timeout=20.0):
     t0 = time.time()
     while time.time() - t0 < timeout:
@@ -106,6 +145,7 @@ def main(argv=None) -> int:
             bad = driver.execute_script(IMAGES_JS)
             n_images += driver.execute_script("return document.images.length")
             failures += [f"{page}: image not loaded: {src}" for src in bad]
+            failures += layout_failures(page, driver.execute_script(LAYOUT_JS))
             anim = driver.execute_script(ANIMATIONS_JS)
             n_animations += len(anim)
             failures += [f"{page}: animation {i} has no frame" for i, ok in enumerate(anim) if not ok]

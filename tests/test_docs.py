@@ -8,6 +8,7 @@
 import contextlib
 import doctest
 import importlib
+import importlib.util
 import inspect
 import io
 import pathlib
@@ -72,10 +73,17 @@ def test_readme_links_resolve():
 
 
 def test_readme_names_only_code_that_exists():
-    """Every `pendula.NAME` README mentions is a public name."""
-    names = set(re.findall(r"pendula\.([A-Za-z_]\w*)", README.read_text()))
+    """Every `pendula.NAME` README mentions is a public name or a public module, and every
+    `pendula.MODULE.NAME` a name of that module."""
+    text = README.read_text()
+    names = set(re.findall(r"pendula\.([A-Za-z_]\w*)", text))
     assert names
-    assert names <= set(pendula.__all__) | {"__version__"}, names - set(pendula.__all__)
+    modules = {n for n in names - set(pendula.__all__) if not n.startswith("_")
+               and importlib.util.find_spec(f"pendula.{n}") is not None}
+    assert names <= set(pendula.__all__) | {"__version__"} | modules, names - set(pendula.__all__) - modules
+    for mod, name in re.findall(r"pendula\.([a-z]\w*)\.([A-Za-z_]\w*)", text):
+        if mod in modules:
+            assert hasattr(importlib.import_module(f"pendula.{mod}"), name), f"pendula.{mod}.{name}"
 
 
 def test_installed_package_is_marked_typed():

@@ -29,12 +29,15 @@ ax1.set(xlabel="v0", title="ω and θmax against v0 (ε = 1)")
 ax1.legend()
 
 t = np.logspace(-12, -1, 45)
-for side, sign, c, asym in (("below", -1, "tab:blue", np.pi / 2), ("above", 1, "tab:green", np.pi)):
+for side, sign, c, asym in (("below", -1, "tab:blue", np.pi / 2),
+                            ("above", 1, "tab:green", np.pi)):
     w = np.array([pendula.orbit(0.0, 2 + sign * x).omega for x in t])
-    ax2.semilogx(t, w, "o", ms=3, color=c, label=f"v0 = 2 {'−' if sign < 0 else '+'} t (exact)")
+    ax2.semilogx(t, w, "o", ms=3, color=c,
+                 label=f"v0 = 2 {'−' if sign < 0 else '+'} t (exact)")
     ax2.semilogx(t, asym / np.log(4 / np.sqrt(t)), color=c, lw=0.8,
                  label=f"{'(π/2)' if sign < 0 else 'π'} / ln(4/√t)")
-ax2.set(xlabel="t = abs(v0 − 2)", ylabel="ω", title="critical behaviour at the separatrix")
+ax2.set(xlabel="t = abs(v0 − 2)", ylabel="ω",
+        title="critical behaviour at the separatrix")
 ax2.legend(fontsize=8)
 fig.tight_layout()
 plt.show()

@@ -17,7 +17,9 @@ import numpy as np
 
 import pendula
 
-print("T/T0 =", " + ".join(f"({c}) θ0^{2 * j}" for j, c in enumerate(pendula.period_series(4))), "+ ...")
+print("T/T0 =",
+      " + ".join(f"({c}) θ0^{2 * j}" for j,
+                 c in enumerate(pendula.period_series(4))), "+ ...")
 
 theta0 = np.linspace(0.05, 3.0, 120)
 T0 = 2 * np.pi
@@ -25,8 +27,10 @@ exact = np.array([pendula.orbit(a, 0.0).period for a in theta0]) / T0
 fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
 ax1.plot(theta0, exact, "k", lw=2, label="exact (4K/√ε)")
 for n in (1, 2, 4, 8):
-    ax1.plot(theta0, pendula.period_from_series(theta0, n) / T0, label=f"series to θ0^{2 * n}")
-ax1.set(xlabel="θ0", ylabel="T / T0", ylim=(0.95, 2.2), title="period against amplitude")
+    ax1.plot(theta0, pendula.period_from_series(theta0, n) / T0,
+             label=f"series to θ0^{2 * n}")
+ax1.set(xlabel="θ0", ylabel="T / T0", ylim=(0.95, 2.2),
+        title="period against amplitude")
 ax1.legend(fontsize=8)
 
 amps = np.logspace(-2, 0, 12)

@@ -20,14 +20,16 @@ for v0 in [0.5, 1.9, 1.9962, 1.999995]:
     T = pendula.orbit(0.0, v0).period
     t = np.arange(4096) * (8 * T / 4096)
     spec = pendula.spectrum(t, pendula.exact_motion(0.0, v0, 1.0, t)[0])
-    line, = ax.semilogy(spec.omega / spec.fundamental, spec.power / spec.power.max(), lw=0.8,
+    line, = ax.semilogy(spec.omega / spec.fundamental,
+                        spec.power / spec.power.max(), lw=0.8,
                         label=f"v0 = {v0:g}: odd harmonics above 1e-6: "
                               f"{pendula.odd_harmonics_above(spec)[-1]}")
     omega, amps = pendula.fourier_series(0.0, v0, 1.0, 10)
     n = 2 * np.arange(amps.size) + 1
     ax.semilogy(n, (amps / amps[0]) ** 2, "o", ms=3, color=line.get_color())
 ax.set(xlim=(0, 20), ylim=(1e-30, 2), xlabel="ω / ω1 (harmonic number)",
-       ylabel="power / power of the fundamental", title="odd harmonics multiply as v0 → 2")
+       ylabel="power / power of the fundamental",
+       title="odd harmonics multiply as v0 → 2")
 ax.legend(fontsize=7, loc="upper right")
 fig.tight_layout()
 plt.show()

@@ -20,8 +20,10 @@ colors = ["tab:blue", "tab:cyan", "tab:purple", "k", "tab:green"]
 t = np.linspace(0, 24, 61)
 theta = np.array([pendula.exact_motion(0.0, v, 1.0, t)[0] for v in v0s])
 
-fig, (axp, axt) = plt.subplots(2, 1, figsize=(6.4, 4.4), gridspec_kw={"height_ratios": [1, 1.5]}, dpi=60)
-axp.set(xlim=(-1.5, 13.5), ylim=(-1.3, 1.3), aspect="equal", xticks=[], yticks=[],
+fig, (axp, axt) = plt.subplots(2, 1, figsize=(6.4, 4.4),
+                               gridspec_kw={"height_ratios": [1, 1.5]}, dpi=60)
+axp.set(xlim=(-1.5, 13.5), ylim=(-1.3, 1.3), aspect="equal", xticks=[],
+        yticks=[],
         title="v0 = " + ", ".join(f"{v:g}" for v in v0s))
 rods, bobs = [], []
 for i, c in enumerate(colors):

@@ -37,9 +37,11 @@ for method in ("rk4", "yoshida6", "gauss6"):
     pts = [run(method=method, dt=dt) for dt in 0.2 / 2.0 ** np.arange(6)]
     ax.loglog(*zip(*pts), "s--", ms=4, label=method)
 for method in ("dopri5", "dop853", "gsl-rk8pd"):
-    pts = [run(method=method, rtol=r, atol=r * 1e-2) for r in 10.0 ** -np.arange(4, 13, 2)]
+    pts = [run(method=method, rtol=r,
+               atol=r * 1e-2) for r in 10.0 ** -np.arange(4, 13, 2)]
     ax.loglog(*zip(*pts), "o-", ms=4, label=method)
-ax.set(xlabel="CPU time (s), best of 3", ylabel="max |θ − θ_exact| over the run",
+ax.set(xlabel="CPU time (s), best of 3",
+       ylabel="max |θ − θ_exact| over the run",
        title="work-precision, libration v0 = 1.999")
 ax.legend(fontsize=8)
 fig.tight_layout()

@@ -16,26 +16,34 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import pendula
+import pendula.plot
 
 s = pendula.Scene(damping=0.1, rtol=1e-8, atol=1e-10)
-ds = pendula.sweep(s, over={"v0": np.linspace(0.0, 4.0, 60), "damping": np.linspace(0.02, 0.3, 36)},
+ds = pendula.sweep(s,
+                   over={"v0": np.linspace(0.0, 4.0, 60),
+                         "damping": np.linspace(0.02, 0.3, 36)},
                    measure="final_well")
 print(ds)
 
 fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.3))
-wells = ds.well.values.T
-im = ax1.pcolormesh(ds.v0, ds.damping, wells, cmap="tab20", shading="nearest")
-fig.colorbar(im, ax=ax1, label="final well n (θ → 2πn)")
+# one colour per well n (θ → 2πn), one tick each
+pendula.plot.basins(ds, ax=ax1)
 ax1.set(xlabel="v0", ylabel="damping β", title="basins of the damped pendulum")
 
 beta = 0.1
-r = pendula.iv_curve(pendula.Scene(damping=beta), np.arange(0.0, 1.3001, 0.02), "both",
+r = pendula.iv_curve(pendula.Scene(damping=beta),
+                     np.arange(0.0, 1.3001, 0.02), "both",
                      transient=100.0, t_max=200.0)
-ax2.plot(r.torque, r.mean_velocity.sel(direction="up"), ".-", label="torque ramped up")
-ax2.plot(r.torque, r.mean_velocity.sel(direction="down"), ".-", label="torque ramped down")
-ax2.plot([0, 1.3], [0, 1.3 / beta], color="0.8", lw=0.8, label="ohmic line τ/β")
-ax2.axvline(4 * beta / np.pi, color="0.6", ls=":", label="4β/π (Stewart–McCumber)")
-ax2.set(xlabel="torque τ (bias current)", ylabel="⟨v⟩ (voltage)", ylim=(-0.5, 14),
+ax2.plot(r.torque, r.mean_velocity.sel(direction="up"), ".-",
+         label="torque ramped up")
+ax2.plot(r.torque, r.mean_velocity.sel(direction="down"), ".-",
+         label="torque ramped down")
+ax2.plot([0, 1.3], [0, 1.3 / beta], color="0.8", lw=0.8,
+         label="ohmic line τ/β")
+ax2.axvline(4 * beta / np.pi, color="0.6", ls=":",
+            label="4β/π (Stewart–McCumber)")
+ax2.set(xlabel="torque τ (bias current)", ylabel="⟨v⟩ (voltage)",
+        ylim=(-0.5, 14),
         title=f"I–V loop, β = {beta}, ε = 1")
 ax2.legend(fontsize=8)
 fig.tight_layout()

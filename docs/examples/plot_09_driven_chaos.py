@@ -17,20 +17,26 @@ from matplotlib.animation import FuncAnimation
 
 import pendula
 
-drive = pendula.Scene(damping=0.5, drive_frequency=2 / 3, rtol=1e-9, atol=1e-11)
+drive = pendula.Scene(damping=0.5, drive_frequency=2 / 3, rtol=1e-9,
+                      atol=1e-11)
 amps = np.linspace(0.9, 1.5, 61)
-bif = pendula.sweep(drive, over={"drive_amplitude": amps}, measure="poincare", transient=200 * 3 * np.pi,
+bif = pendula.sweep(drive, over={"drive_amplitude": amps}, measure="poincare",
+                    transient=200 * 3 * np.pi,
                     samples=32)
-lya = pendula.sweep(drive, over={"drive_amplitude": amps[::2]}, measure="lyapunov", transient=200.0,
+lya = pendula.sweep(drive, over={"drive_amplitude": amps[::2]},
+                    measure="lyapunov", transient=200.0,
                     t_max=800.0)
 
 fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
-ax1.plot(np.repeat(amps, bif.sizes["sample"]), bif.v.values.ravel(), ".k", ms=2)
-ax1.set(xlabel="drive amplitude A", ylabel="v at t = 2πk/Ω", title="bifurcation diagram")
+ax1.plot(np.repeat(amps, bif.sizes["sample"]), bif.v.values.ravel(), ".k",
+         ms=2)
+ax1.set(xlabel="drive amplitude A", ylabel="v at t = 2πk/Ω",
+        title="bifurcation diagram")
 ax2.plot(lya.drive_amplitude, lya.lyapunov, ".-")
 ax2.axhline(0, color="0.6", lw=0.8)
 ax2.axhline(-0.25, color="0.6", lw=0.8, ls=":", label="−β/2")
-ax2.set(xlabel="drive amplitude A", ylabel="λ1", title="largest Lyapunov exponent")
+ax2.set(xlabel="drive amplitude A", ylabel="λ1",
+        title="largest Lyapunov exponent")
 ax2.legend(fontsize=8)
 fig.tight_layout()
 plt.show()
@@ -49,7 +55,8 @@ strobe = pendula.simulate(sc, 100 * Tdrive + Tdrive * np.arange(600))
 wrap = (strobe.theta + np.pi) % (2 * np.pi) - np.pi
 
 fig2, (axp, axs) = plt.subplots(1, 2, figsize=(8, 3.8), dpi=60)
-axp.set(xlim=(-1.2, 1.2), ylim=(-1.2, 1.2), aspect="equal", xticks=[], yticks=[], title="A = 1.15")
+axp.set(xlim=(-1.2, 1.2), ylim=(-1.2, 1.2), aspect="equal", xticks=[],
+        yticks=[], title="A = 1.15")
 rod, = axp.plot([], [], lw=2)
 bob, = axp.plot([], [], "o", ms=10, color="tab:orange")
 axs.set(xlim=(-np.pi, np.pi), ylim=(-3, 3), xlabel="θ mod 2π", ylabel="v",

@@ -22,13 +22,16 @@ fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(13, 4.2))
 ax1.plot(*g.cheek_left, "k", lw=2.5)
 ax1.plot(*g.cheek_right, "k", lw=2.5, label="cheeks (cycloids)")
 ax1.plot(*g.path, color="tab:blue", label="bob's path (cycloid)")
-ax1.plot(*g.circle, "--", color="tab:red", lw=0.8, label="rigid pendulum's circle")
+ax1.plot(*g.circle, "--", color="tab:red", lw=0.8,
+         label="rigid pendulum's circle")
 for th in np.linspace(-1.2, 1.2, 7):
     wrapped, contact, bob = g.cord(th)
     ax1.plot(*wrapped, color="tab:orange", lw=1.5)
-    ax1.plot([contact[0], bob[0]], [contact[1], bob[1]], color="tab:orange", lw=1)
+    ax1.plot([contact[0], bob[0]], [contact[1], bob[1]], color="tab:orange",
+             lw=1)
     ax1.plot(*bob, "o", color="tab:green", ms=5)
-ax1.set(aspect="equal", title="Huygens' clock, R = l/4", xlabel="x / l", ylabel="y / l")
+ax1.set(aspect="equal", title="Huygens' clock, R = l/4", xlabel="x / l",
+        ylabel="y / l")
 ax1.legend(fontsize=7, loc="upper center")
 
 amps = np.linspace(0.05, 1.5, 30)
@@ -40,13 +43,21 @@ ax2.set(xlabel="θ0", ylabel="period (ε = 1)", title="isochronism")
 ax2.legend(fontsize=8)
 
 amps = np.linspace(0.05, 3.0, 40)
-fields = [("uniform", {}), ("inverse-square, D = 1.5 l", {"gravity": "inverse-square", "gravity_distance": 1.5}),
-          ("inverse-square, D = 3 l", {"gravity": "inverse-square", "gravity_distance": 3.0}),
-          ("linear, κ = 0.45", {"gravity": "linear", "gravity_gradient": 0.45}),
-          ("linear, κ = −0.5", {"gravity": "linear", "gravity_gradient": -0.5})]
+fields = [("uniform", {}),
+          ("inverse-square, D = 1.5 l",
+           {"gravity": "inverse-square", "gravity_distance": 1.5}),
+          ("inverse-square, D = 3 l",
+           {"gravity": "inverse-square", "gravity_distance": 3.0}),
+          ("linear, κ = 0.45",
+           {"gravity": "linear", "gravity_gradient": 0.45}),
+          ("linear, κ = −0.5",
+           {"gravity": "linear", "gravity_gradient": -0.5})]
 for label, kw in fields:
-    ax3.semilogy(amps, [pendula.period(pendula.Scene(theta0=a, **kw)) for a in amps], label=label)
-ax3.set(xlabel="θ0", ylabel="period", title="non-uniform gravity (exact quadrature)")
+    ax3.semilogy(amps,
+                 [pendula.period(pendula.Scene(theta0=a, **kw)) for a in amps],
+                 label=label)
+ax3.set(xlabel="θ0", ylabel="period",
+        title="non-uniform gravity (exact quadrature)")
 ax3.legend(fontsize=7)
 fig.tight_layout()
 plt.show()

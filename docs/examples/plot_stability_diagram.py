@@ -16,19 +16,24 @@ import pendula
 
 beta = 0.3
 taus = np.linspace(-1.2, 1.2, 481)
-colors = {"stable spiral": "tab:blue", "stable node": "tab:green", "saddle": "tab:red",
+colors = {"stable spiral": "tab:blue", "stable node": "tab:green",
+          "saddle": "tab:red",
           "saddle-node": "k"}
 fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
 seen = set()
 for tau in taus:
-    for e in pendula.equilibria(pendula.Scene(damping=beta, torque=float(tau))):
+    for e in pendula.equilibria(pendula.Scene(damping=beta,
+                                              torque=float(tau))):
         label = e.kind if e.kind not in seen else None
         seen.add(e.kind)
-        ax1.plot(tau, e.theta, ".", ms=3, color=colors.get(e.kind, "0.5"), label=label)
-        ax2.plot([tau, tau], e.eigenvalues.real, ".", ms=2, color=colors.get(e.kind, "0.5"))
+        ax1.plot(tau, e.theta, ".", ms=3, color=colors.get(e.kind, "0.5"),
+                 label=label)
+        ax2.plot([tau, tau], e.eigenvalues.real, ".", ms=2,
+                 color=colors.get(e.kind, "0.5"))
 ax1.set(xlabel="torque τ / ε", ylabel="θ*", title=f"rest points, β = {beta}")
 ax1.legend(fontsize=8, markerscale=3)
 ax2.axhline(0, color="0.6", lw=0.8)
-ax2.set(xlabel="torque τ / ε", ylabel="Re λ", title="eigenvalues of the linearisation")
+ax2.set(xlabel="torque τ / ε", ylabel="Re λ",
+        title="eigenvalues of the linearisation")
 fig.tight_layout()
 plt.show()

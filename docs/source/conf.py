@@ -33,6 +33,7 @@ extensions = [
     "numpydoc",
     "sphinx_gallery.gen_gallery",
     "myst_parser",
+    "matplotlib.sphinxext.plot_directive",
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
@@ -50,7 +51,7 @@ numpydoc_class_members_toctree = False
 numpydoc_xref_param_type = False
 # numpydoc links a class's properties from its Attributes section; the class pages
 # document the fields in that section and do not repeat them as members
-nitpick_ignore = [("py:obj", "amplitude")]
+nitpick_ignore = [("py:obj", "amplitude"), ("py:obj", "kind"), ("py:obj", "stable")]
 
 # ---- intersphinx: local inventories only (no network in the build) --------
 _INV = DOCS / "inventories"
@@ -82,6 +83,14 @@ sphinx_gallery_conf = {
     "abort_on_example_error": True,
     "write_computation_times": False,
 }
+
+# ---- figures drawn by the code shown beside them (the getting-started tutorial, the guide) ----
+plot_include_source = True
+plot_html_show_source_link = False
+plot_html_show_formats = False
+plot_formats = [("png", 96)]
+plot_pre_code = "import numpy as np\nimport matplotlib.pyplot as plt\n"
+plot_rcparams = {"font.size": 9}
 
 # No page may load anything from the network (the site must work offline, and
 # the browser check fails on any resource that does not load): no MathJax
@@ -159,7 +168,7 @@ API_GROUPS = [
     ("The exact pendulum", ["orbit", "Orbit", "exact_motion", "period", "energy"]),
     ("Series", ["period_series", "period_from_series", "poincare_lindstedt"]),
     ("Events", ["find_events", "numerical_period", "Events"]),
-    ("Spectra", ["spectrum", "spectra", "Spectrum", "fourier_series", "odd_harmonics_above",
+    ("Spectra", ["spectrum", "spectra", "Spectrum", "fourier_series", "FourierSeries", "odd_harmonics_above",
                  "precompute_wisdom", "wisdom_path"]),
     ("The flexible cord", ["flip_map", "cord_state", "flip_sequence"]),
     ("Huygens' cycloid and non-uniform gravity", ["cycloid_geometry", "cycloid_period", "CycloidGeometry",

@@ -20,6 +20,10 @@ simulate(scene, method=...), find_events, numerical_period
 Spectra
 -------
 spectrum, spectra, fourier_series, odd_harmonics_above
+
+Figures
+-------
+pendula.plot: trajectory, phase, spectrum, bifurcation, basins, iv, fractions
 """
 
 from . import _kernel as _k
@@ -34,7 +38,7 @@ from .motion import Orbit, Trajectory, energy, exact_motion, orbit, period, simu
 from .scene import Scene, SceneError  # noqa: E402
 from .series import period_from_series, period_series, poincare_lindstedt  # noqa: E402
 from .systems import ModelInfo, models  # noqa: E402
-from .spectrum import Spectrum, fourier_series, odd_harmonics_above, spectra, spectrum  # noqa: E402
+from .spectrum import FourierSeries, Spectrum, fourier_series, odd_harmonics_above, spectra, spectrum  # noqa: E402
 
 # Huygens' cycloidal pendulum, non-uniform gravity, the density of the angle
 from .systems.cycloid import CycloidGeometry, cycloid_geometry, cycloid_period  # noqa: E402
@@ -52,7 +56,7 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Scene", "SceneError", "simulate", "period", "orbit", "exact_motion", "energy",
            "Orbit", "Trajectory", "period_series", "period_from_series", "poincare_lindstedt",
            "find_events", "numerical_period", "Events",
-           "spectrum", "spectra", "Spectrum", "fourier_series", "odd_harmonics_above",
+           "spectrum", "spectra", "Spectrum", "fourier_series", "FourierSeries", "odd_harmonics_above",
            "models", "ModelInfo", "cycloid_geometry", "cycloid_period", "CycloidGeometry", "gravity_orbit",
            "angle_density", "angle_cdf", "arcsine_density", "flip_map", "cord_state", "flip_sequence",
            "sweep", "iv_curve",

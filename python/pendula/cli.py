@@ -201,7 +201,35 @@ def cmd_spectrum(args) -> int:
     return _run_file(args, "spectrum", outputs=("spectrum",))
 
 
+#: the source texts of the default gallery, by the start of a scene's file name
+GALLERY_SOURCES = (("cord_", "Garfinkel, \"On the motion of a simple pendulum\" (1957)"),
+                   (("huygens_", "gravity_", "angle_"), "Prusa & Tuma, \"Everything you wanted to know about the "
+                                                         "mathematical pendulum\" (2022)"),
+                   ("", "Suzuki & Suzuki, \"Physics of simple pendulum\" (2008)"))
+
+
+def _source_of(name: str) -> str:
+    return next(text for prefix, text in GALLERY_SOURCES if name.startswith(prefix))
+
+
+def _wrapped(words, width=100, indent="    ", sep=", ") -> list[str]:
+    """The words joined by sep into lines of at most width characters."""
+    lines, line = [], indent
+    for w in words:
+        if len(line) + len(w) + len(sep) > width and line.strip():
+            lines.append(line[:-len(sep)])
+            line = indent
+        line += w + sep
+    if line.strip():
+        lines.append(line[:-len(sep)])
+    return lines
+
+
 def cmd_demo(args) -> int:
+    """``pendula demo``: the default gallery; one screen of figures (``-v``: every table in full)."""
+    import contextlib
+    import io
+    import json
     import pathlib
 
     from .demos.cord import cord_demo
@@ -212,22 +240,55 @@ def cmd_demo(args) -> int:
 
     for module in ("matplotlib", "xarray", "tqdm", "scipy"):  # figures; sweeps (scipy: their NetCDF files)
         require(module, "all", "pendula demo")
-    print_elliptic_table()
+    verbose = args.verbose
     out = pathlib.Path(args.output)
+    if verbose:
+        print_elliptic_table()
+    else:
+        rows = elliptic_table()
+        eps = np.finfo(float).eps
+        worst = max(abs(got - exact) / (eps * max(1.0, abs(exact))) for _, got, exact in rows)
+        print(f"pendula demo -> {out.resolve()}   (pendula demo -v: every table in full)\n")
+        print(f"elliptic functions: {len(rows)} hard cases (K, E, sn, cn, dn up to m = 1 - 1e-300) against "
+              f"their closed forms: worst {worst:.1f} eps")
     scenes = sorted(p for p in gallery_dir().iterdir() if p.name.endswith(".nml"))
-    print(f"\nthe default gallery: {len(scenes)} scenes from the source notes -> {out.resolve()}")
-    written = []
+    sources = list(dict.fromkeys(_source_of(p.name) for p in scenes))
+    print(f"\nthe default gallery: {len(scenes)} scenes from" + (" " + "; ".join(sources) if verbose else ""))
+    written, harmonics = [], {}
     for p in scenes:
         scene = Scene.from_namelist(p.read_text(), source=p.name)
-        files = run_scene(scene, out, stem=p.name[:-4], progress=not args.quiet)
+        said = io.StringIO()
+        with contextlib.redirect_stdout(sys.stdout if verbose else said):
+            files = run_scene(scene, out, stem=p.name[:-4], progress=not args.quiet)
+        for line in said.getvalue().splitlines():   # "    stem: v0 = 1.9: odd harmonics above ...: 1, 3, 5"
+            stem, label, _, lines = (line.strip().split(": ") + ["", "", ""])[:4]
+            harmonics.setdefault(stem, []).append(f"{label}: {lines}")
         written += files
-        print(f"  {p.name:40s} {len(files)} file(s): " + ", ".join(f.name for f in files))
+        if verbose:
+            print(f"  {p.name:40s} {len(files)} file(s): " + ", ".join(f.name for f in files))
+    if not verbose:
+        for src in sources:
+            names = [p.name[:-4] for p in scenes if _source_of(p.name) == src]
+            print(f"  {src}:\n" + "\n".join(_wrapped(names)))
+        for stem, rows in harmonics.items():
+            print(f"  {stem}: the odd harmonics above 1e-6 of the fundamental's power\n"
+                  + "\n".join(_wrapped(rows, sep="; ")))
     written += huygens_gallery(out)  # Huygens' clock, non-uniform gravity, density of the angle
-    written += cord_demo(out, gallery_dir(), quiet=args.quiet)  # the flexible cord (Garfinkel)
-    print("\nwhat accuracy costs in time: the integrators against the exact solution")
-    integrator_study(out, 1e5, progress=not args.quiet, quick=True)
-    sweep_demos.run(out / "sweeps", small=True, quiet=args.quiet)  # sweeps: basins, Suzuki & Suzuki 8.2, I-V, chaos
-    print(f"\n{len(written)} gallery files and the integrator study written to {out.resolve()}")
+    print()
+    written += cord_demo(out, gallery_dir(), verbose=verbose)  # the flexible cord (Garfinkel)
+    print("\nwhat accuracy costs in time: a short run (the damped pendulum, three tolerances;\n"
+          "  the full study: pendula accuracy integrators)")
+    said = io.StringIO()
+    with contextlib.redirect_stdout(sys.stdout if verbose else said):
+        integrator_study(out, 1e5, progress=not args.quiet and verbose, quick=True)
+    if not verbose:
+        record = json.loads((out / "work_precision.json").read_text())
+        from .studies.workprecision import answer_text
+
+        print("\n".join("  " + line for line in answer_text(record).splitlines()))
+    print()
+    sweep_demos.run(out / "sweeps", small=True, verbose=verbose)
+    print(f"\n{len(written)} gallery files, the integrator study and the sweeps written to {out.resolve()}")
     return 0
 
 
@@ -331,6 +392,7 @@ def main(argv=None) -> int:
     p = sub.add_parser("demo", help="run the main job on its embedded default (the gallery of the source notes)")
     p.add_argument("-o", "--output", default="out", help="output folder (default: out)")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bars")
+    p.add_argument("-v", "--verbose", action="store_true", help="every table in full (default: one screen)")
     p.set_defaults(func=cmd_demo)
     p = sub.add_parser("run", help="run one scene file: CSV tables and PNG figures")
     p.add_argument("scene", help="scene file (namelist group &scene)")

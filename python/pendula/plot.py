@@ -1,20 +1,49 @@
 """Figures (matplotlib): what a person would rather look at than read.
 
-Each function takes computed data, draws into ``ax`` (a new figure when it is
-None; the multi-panel figures take a sequence of axes) and returns the
-:class:`matplotlib.figure.Figure`.  Given a ``path`` it also writes the figure
-there as a PNG (and closes it, so loops that save many figures hold none in
-memory); the command line saves this way.  matplotlib is needed only here
-(``pip install 'pendula[plot]'``).
+One function per result, each taking what the library returns and an optional
+``ax`` (a new figure when it is None), and returning the
+:class:`matplotlib.axes.Axes` it drew on:
+
+- :func:`trajectory` -- theta(t) (or v(t)) of a :class:`~pendula.Trajectory`;
+- :func:`phase` -- its phase portrait, with the separatrix;
+- :func:`spectrum` -- a :class:`~pendula.Spectrum`, the fundamental marked;
+- :func:`bifurcation` -- a ``poincare`` sweep over one parameter (optionally
+  with the Lyapunov exponent of a ``lyapunov`` sweep beside it);
+- :func:`basins` -- an attractor map, one colour per attractor, the attractors drawn;
+- :func:`iv` -- an I-V curve, both directions, the Shapiro steps labelled;
+- :func:`fractions` -- basin fractions over a parameter, as stacked areas.
+
+The figures of ``pendula run`` (:func:`time_series`, :func:`phase_portrait`,
+:func:`spectra_figure` ...) take a scene and its runs, return the
+:class:`matplotlib.figure.Figure` and, given a ``path``, write it as a PNG.
+matplotlib is needed only here (``pip install 'pendula[plot]'``).
+
+Examples
+--------
+>>> import pendula, pendula.plot
+>>> tr = pendula.simulate(pendula.Scene(v0=1.9, t_end=30.0))
+>>> ax = pendula.plot.trajectory(tr)
+>>> ax.get_xlabel()
+'t'
 """
 
 from __future__ import annotations
 
+import json
 import math
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from ._optional import require
 from ._files import save_figure  # the one writer: regular files only, whole or absent
+
+if TYPE_CHECKING:   # matplotlib and xarray are optional: named in annotations only
+    import matplotlib.axes
+    import xarray
+
+    from .dynamics.attractors import AttractorMap
+    from .spectrum import Spectrum
+    from .trajectory import Trajectory
 
 
 def _plt():
@@ -203,3 +232,465 @@ def spectra_figure(scene, specs, labels, path=None, *, ax=None):
     if made_here:
         fig.tight_layout()
     return _save(fig, path, made_here)
+
+
+# ------------------------------------------------------------- one result, one Axes
+
+def _ax(ax, figsize=(7, 4)):
+    """The caller's axes, or the axes of a new figure."""
+    if ax is not None:
+        return ax
+    return _plt().subplots(figsize=figsize, layout="constrained")[1]
+
+
+def _categorical(n: int) -> list:
+    """n distinct colours for n categories (matplotlib's tab10, or tab20 beyond ten; repeated beyond twenty)."""
+    palette = _plt().get_cmap("tab10" if n <= 10 else "tab20").colors
+    return [palette[i % len(palette)] for i in range(n)]
+
+
+def _scene_label(scene) -> str:
+    return scene.name or repr(scene)
+
+
+def trajectory(tr: Trajectory, ax: matplotlib.axes.Axes | None = None, *, which: str = "theta",
+               **kwargs: Any) -> matplotlib.axes.Axes:
+    """theta(t) (or v(t)) of one trajectory, with the upright angles (odd multiples of pi) dotted.
+
+    Parameters
+    ----------
+    tr : Trajectory
+        What :func:`pendula.simulate` returns.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw (default: a new figure).
+    which : {'theta', 'v', 'energy'}
+        The column drawn.
+    **kwargs
+        Passed to matplotlib's ``Axes.plot`` (``label``, ``color`` ...).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Raises
+    ------
+    ValueError
+        For an unknown `which`.
+
+    Examples
+    --------
+    >>> import pendula, pendula.plot
+    >>> tr = pendula.simulate(pendula.Scene(v0=1.9, damping=0.1, t_end=40.0))
+    >>> ax = pendula.plot.trajectory(tr, which="v")
+    >>> ax.get_ylabel()
+    'v (rad/s)'
+    """
+    if which not in ("theta", "v", "energy"):
+        raise ValueError(f"which must be 'theta', 'v' or 'energy', got {which!r}")
+    ax = _ax(ax)
+    kwargs.setdefault("lw", 1.0)
+    ax.plot(tr.t, getattr(tr, which), **kwargs)
+    ax.set_xlabel("t")
+    ax.set_ylabel({"theta": "theta (rad)", "v": "v (rad/s)", "energy": "energy"}[which])
+    if which == "theta":
+        lo, hi = ax.get_ylim()
+        for k in range(math.floor(lo / math.pi), math.ceil(hi / math.pi) + 1):
+            if k % 2:
+                ax.axhline(k * math.pi, color="k", lw=0.5, ls=":")
+    ax.set_title(f"{_scene_label(tr.scene)}  [{tr.method}]", fontsize=9)
+    ax.grid(True, alpha=0.3)
+    return ax
+
+
+def phase(tr: Trajectory, ax: matplotlib.axes.Axes | None = None, *, separatrix: bool = True,
+          **kwargs: Any) -> matplotlib.axes.Axes:
+    """The phase portrait v against theta (folded into [-pi, pi)) of one trajectory.
+
+    Parameters
+    ----------
+    tr : Trajectory
+        What :func:`pendula.simulate` returns.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw (default: a new figure).
+    separatrix : bool
+        Draw the separatrix v = +-2 sqrt(eps) cos(theta/2) of the rigid pendulum.
+    **kwargs
+        Passed to matplotlib's ``Axes.plot``.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Examples
+    --------
+    >>> import pendula, pendula.plot
+    >>> ax = pendula.plot.phase(pendula.simulate(pendula.Scene(v0=2.2, t_end=20.0)))
+    >>> [float(x) for x in ax.get_xlim()]
+    [-3.141592653589793, 3.141592653589793]
+    """
+    ax = _ax(ax, figsize=(6, 4.5))
+    w, v = _wrapped(tr.theta, tr.v)
+    kwargs.setdefault("lw", 1.0)
+    ax.plot(w, v, **kwargs)
+    if separatrix:
+        th = np.linspace(-math.pi, math.pi, 721)
+        sep = 2 * math.sqrt(tr.scene.eps) * np.abs(np.cos(th / 2))
+        ax.plot(th, sep, "k--", lw=0.7, label="separatrix")
+        ax.plot(th, -sep, "k--", lw=0.7)
+    ax.set_xlim(-math.pi, math.pi)
+    ax.set_xlabel("theta (rad, folded into [-pi, pi))")
+    ax.set_ylabel("v (rad/s)")
+    ax.set_title(_scene_label(tr.scene), fontsize=9)
+    ax.grid(True, alpha=0.3)
+    return ax
+
+
+def spectrum(sp: Spectrum, ax: matplotlib.axes.Axes | None = None, *, harmonics: int = 15,
+             **kwargs: Any) -> matplotlib.axes.Axes:
+    """A power spectrum on a log scale, up to a number of harmonics of its fundamental.
+
+    Parameters
+    ----------
+    sp : Spectrum
+        What :func:`pendula.spectrum` or :meth:`Trajectory.spectrum <pendula.Trajectory.spectrum>` returns.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw (default: a new figure).
+    harmonics : int
+        The frequency axis runs to this many times the fundamental (all of it
+        when the spectrum has no fundamental).
+    **kwargs
+        Passed to matplotlib's ``Axes.semilogy``.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Examples
+    --------
+    >>> import numpy as np, pendula, pendula.plot
+    >>> T = pendula.orbit(0.0, 1.9).period
+    >>> tr = pendula.simulate(pendula.Scene(v0=1.9), np.arange(4096) * (8 * T / 4096))
+    >>> ax = pendula.plot.spectrum(tr.spectrum())
+    >>> ax.get_yscale()
+    'log'
+    """
+    import warnings
+
+    ax = _ax(ax)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        w0 = sp.fundamental
+    sel = sp.omega <= harmonics * w0 if math.isfinite(w0) else np.ones(sp.omega.size, dtype=bool)
+    floor = np.finfo(float).tiny
+    kwargs.setdefault("lw", 0.9)
+    ax.semilogy(sp.omega[sel], np.maximum(sp.power[sel], floor), **kwargs)
+    top = float(np.max(sp.power)) if sp.power.size else 1.0
+    if math.isfinite(top) and top > 0:
+        ax.set_ylim(top * 1e-32, top * 10)
+    if math.isfinite(w0):
+        ax.axvline(w0, color="C3", lw=0.7, ls=":", label=f"fundamental {w0:.6g}")
+        ax.legend(fontsize=8, loc="upper right")
+    ax.set_xlabel("omega (rad/s)")
+    ax.set_ylabel("power |A|^2")
+    ax.grid(True, alpha=0.3)
+    return ax
+
+
+def _one_axis(ds, what: str) -> str:
+    dims = [d for d in ds.theta.dims if d != "sample"] if "theta" in ds else list(ds.dims)
+    if len(dims) != 1:
+        raise ValueError(f"{what} needs a sweep over one parameter, got the axes {dims}")
+    return dims[0]
+
+
+def bifurcation(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None, *,
+                lyapunov: xarray.Dataset | None = None, **kwargs: Any) -> matplotlib.axes.Axes:
+    """The bifurcation diagram: the stroboscopic angles of a ``poincare`` sweep over one parameter.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        What ``pendula.sweep(scene, {name: values}, measure='poincare')``
+        returns (``theta`` on the parameter and ``sample``).
+    ax : matplotlib.axes.Axes, optional
+        Where to draw (default: a new figure).
+    lyapunov : xarray.Dataset, optional
+        A ``lyapunov`` sweep over the same parameter: its largest exponent is
+        drawn on a second y axis (right), with its zero line.
+    **kwargs
+        Passed to matplotlib's ``Axes.plot`` for the points.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The diagram's axes (the exponent's twin axes are ``ax.lyapunov_axes``).
+
+    Raises
+    ------
+    ValueError
+        When `ds` is not a poincare sweep over one parameter.
+
+    Examples
+    --------
+    >>> import numpy as np, pendula, pendula.plot
+    >>> sc = pendula.Scene(damping=0.5, drive_frequency=2 / 3)
+    >>> ds = pendula.sweep(sc, {"drive_amplitude": np.linspace(1.0, 1.5, 6)}, "poincare",
+    ...                    transient=100.0, samples=10)
+    >>> pendula.plot.bifurcation(ds).get_xlabel()
+    'drive_amplitude'
+    """
+    if "theta" not in ds or "sample" not in ds.theta.dims:
+        raise ValueError("bifurcation needs a 'poincare' sweep (theta on the dimensions (parameter, sample))")
+    p = _one_axis(ds, "bifurcation")
+    ax = _ax(ax, figsize=(7, 4.5))
+    th = ds.theta.transpose(p, "sample").values
+    x = np.repeat(ds[p].values, th.shape[1])
+    kwargs.setdefault("ms", 1.0)
+    kwargs.setdefault("alpha", 0.6)
+    kwargs.setdefault("color", "k")
+    ax.plot(x, th.ravel(), ".", **kwargs)
+    ax.set_xlabel(p)
+    ax.set_ylabel("theta at t = 2 pi n / Omega (rad)")
+    ax.set_ylim(-math.pi, math.pi)
+    if lyapunov is not None:
+        q = _one_axis(lyapunov, "bifurcation(lyapunov=)")
+        tw = ax.twinx()
+        tw.plot(lyapunov[q].values, lyapunov["lyapunov"].values, color="C3", lw=1.0)
+        tw.axhline(0.0, color="C3", lw=0.6, ls=":")
+        tw.set_ylabel("largest Lyapunov exponent", color="C3")
+        tw.tick_params(axis="y", colors="C3")
+        ax.lyapunov_axes = tw
+    ax.grid(True, alpha=0.3)
+    return ax
+
+
+def _categories(am) -> tuple[Any, str, list[dict]]:
+    """(dataset, label variable, categories) of an AttractorMap, its Dataset or a final-well map.
+
+    Each category: value (the label in the map), name, fraction, and for attractors
+    kind, theta and v (the attractor on the stroboscopic section).
+    """
+    if hasattr(am, "dataset") and hasattr(am, "attractors"):
+        cats = [{"value": a.label, "name": _attractor_name(a.label, a.kind, a.period), "fraction": a.fraction,
+                 "kind": a.kind, "theta": np.asarray(a.theta), "v": np.asarray(a.v)} for a in am.attractors]
+        return am.dataset, "attractor", cats
+    if "attractor" in am:
+        cats = [{"value": a["label"], "name": _attractor_name(a["label"], a["kind"], a["period"]),
+                 "fraction": a["fraction"], "kind": a["kind"], "theta": np.asarray(a["theta"]),
+                 "v": np.asarray(a["v"])} for a in json.loads(am.attrs.get("attractors", "[]"))]
+        if not cats:   # a map without its attractors' record: one category per label found
+            vals = np.unique(am["attractor"].values)
+            cats = [{"value": int(k), "name": f"attractor {int(k)}",
+                     "fraction": float(np.mean(am["attractor"].values == k))} for k in vals[vals >= 0]]
+        return am, "attractor", cats
+    if "well" in am:
+        w = am["well"].values
+        vals = np.unique(w[np.isfinite(w)])
+        return am, "well", [{"value": k, "name": f"well {k:g}", "fraction": float(np.mean(w == k))} for k in vals]
+    raise ValueError("basins needs an AttractorMap, or a Dataset with the variable 'attractor' or 'well'")
+
+
+def _attractor_name(label: int, kind: str, period: int) -> str:
+    return f"{label}: period {period}" if kind == "periodic" else f"{label}: chaotic"
+
+
+def basins(am: AttractorMap | xarray.Dataset, ax: matplotlib.axes.Axes | None = None, *,
+           draw_attractors: bool = True) -> matplotlib.axes.Axes:
+    """A basin map: one colour per attractor (or final well), undecided points grey, the attractors drawn on it.
+
+    Parameters
+    ----------
+    am : AttractorMap or xarray.Dataset
+        What :func:`pendula.attractor_map` returns (or its ``dataset``, or a
+        ``sweep(..., measure='attractor')``), or a ``final_well`` sweep (one
+        colour per well), over two axes.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw (default: a new figure).
+    draw_attractors : bool
+        Mark each attractor's points on the stroboscopic section (white-edged
+        markers in its colour) when the axes are the initial state
+        (``theta0`` and ``v0``, in either order).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        With a legend naming each attractor (or well) and its share of the grid;
+        beyond 8 of them, a colour bar with one tick and name per colour
+        (``ax.basins_colorbar``).
+
+    Raises
+    ------
+    ValueError
+        When the map does not have two axes, or is not a map of attractors or wells.
+
+    Examples
+    --------
+    >>> import numpy as np, pendula, pendula.plot
+    >>> sc = pendula.Scene(damping=0.5, drive_amplitude=1.35, drive_frequency=2 / 3)
+    >>> am = pendula.attractor_map(sc, {"theta0": np.linspace(-3, 3, 7), "v0": np.linspace(-3, 3, 7)},
+    ...                            transient=300, samples=16)
+    >>> ax = pendula.plot.basins(am)
+    >>> len(ax.get_legend().get_texts()) == len(am.attractors)
+    True
+    """
+    from matplotlib.colors import BoundaryNorm, ListedColormap
+    from matplotlib.patches import Patch
+
+    ds, var, cats = _categories(am)
+    lab = ds[var]
+    if lab.ndim != 2:
+        raise ValueError(f"basins needs a map over two axes, got {lab.dims}")
+    xd, yd = lab.dims
+    ax = _ax(ax, figsize=(6.5, 5))
+    n = len(cats)
+    colours = _categorical(n)
+    grey = (0.85, 0.85, 0.85)
+    # each point's category index, -1 where undecided (a label outside the categories, or NaN)
+    values = np.array([c["value"] for c in cats], dtype=float)
+    z = lab.transpose(yd, xd).values.astype(float)
+    idx = np.full(z.shape, -1)
+    for i, v in enumerate(values):
+        idx[z == v] = i
+    cmap = ListedColormap([grey] + colours)
+    norm = BoundaryNorm(np.arange(-1.5, n + 0.5), cmap.N)
+    ax.pcolormesh(ds[xd].values, ds[yd].values, idx, cmap=cmap, norm=norm, shading="nearest", rasterized=True)
+    handles = [Patch(color=colours[i], label=f"{c['name']} ({c['fraction']:.0%})") for i, c in enumerate(cats)]
+    if draw_attractors and {xd, yd} == {"theta0", "v0"}:
+        for i, c in enumerate(cats):
+            if "theta" in c:
+                pts = slice(None) if c["kind"] == "periodic" else slice(None, 200)
+                x, y = (c["theta"][pts], c["v"][pts]) if xd == "theta0" else (c["v"][pts], c["theta"][pts])
+                ax.plot(x, y, "o", ms=6 if c["kind"] == "periodic" else 2,
+                        mfc=colours[i], mec="white", mew=1.2, ls="none")
+    if np.any(idx < 0):
+        handles.append(Patch(color=grey, label="undecided"))
+    if n <= 8:
+        ax.legend(handles=handles, fontsize=8, loc="upper right", framealpha=0.85)
+    else:   # many wells: a colour bar of the categories, one tick (and name) per colour
+        from matplotlib.cm import ScalarMappable
+        bar = ax.figure.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=ax, ticks=np.arange(-1, n))
+        bar.ax.set_yticklabels(["undecided"] + [c["name"] for c in cats], fontsize=7)
+        ax.basins_colorbar = bar
+    ax.set_xlabel(xd)
+    ax.set_ylabel(yd)
+    return ax
+
+
+def iv(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None) -> matplotlib.axes.Axes:
+    """An I-V curve: mean velocity against torque, up and down the ramp, the steps labelled.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        What :func:`pendula.iv_curve` returns: ``mean_velocity`` on
+        ``(direction, torque)``.  When it has a variable ``step`` (the Shapiro
+        step number where the junction is locked, NaN elsewhere), each step is
+        labelled n = ... at its plateau.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw (default: a new figure).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Raises
+    ------
+    ValueError
+        When `ds` has no ``mean_velocity`` over ``torque``.
+
+    Examples
+    --------
+    >>> import numpy as np, pendula, pendula.plot
+    >>> r = pendula.iv_curve(pendula.Scene(damping=0.3), np.linspace(0, 1.2, 7), transient=50, t_max=100)
+    >>> ax = pendula.plot.iv(r)
+    >>> [t.get_text() for t in ax.get_legend().get_texts()]
+    ['torque up', 'torque down']
+    """
+    if "mean_velocity" not in ds or "torque" not in ds.mean_velocity.dims:
+        raise ValueError("iv needs an I-V curve: 'mean_velocity' over 'torque' (pendula.iv_curve)")
+    ax = _ax(ax)
+    dirs = list(ds["direction"].values) if "direction" in ds.mean_velocity.dims else [None]
+    style = {"up": ("C0", "-", ">", "torque up"), "down": ("C1", "--", "<", "torque down")}
+    tau = ds["torque"].values
+    for d in dirs:
+        mv = ds.mean_velocity if d is None else ds.mean_velocity.sel(direction=d)
+        c, ls, mk, lab = style.get(str(d), ("C0", "-", ".", "mean velocity"))
+        ax.plot(tau, mv.values, color=c, ls=ls, marker=mk, ms=3, lw=1.0, label=lab)
+    if "step" in ds:
+        _label_steps(ax, ds, dirs)
+    ax.set_xlabel("torque tau (bias current)")
+    ax.set_ylabel("<v> (voltage)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8, loc="upper left")
+    return ax
+
+
+def _label_steps(ax, ds, dirs) -> None:
+    """n = k at the middle of each plateau of the variable 'step' (one label per step and height)."""
+    done = set()
+    tau = ds["torque"].values
+    for d in dirs:
+        st = ds.step if d is None or "direction" not in ds.step.dims else ds.step.sel(direction=d)
+        mv = ds.mean_velocity if d is None else ds.mean_velocity.sel(direction=d)
+        st, mv = st.values, mv.values
+        for k in np.unique(st[np.isfinite(st)]):
+            where = np.flatnonzero(st == k)
+            if k in done or where.size == 0:
+                continue
+            done.add(k)
+            mid = where[where.size // 2]
+            ax.annotate(f"n = {k:g}", (tau[mid], mv[mid]), xytext=(0, 6), textcoords="offset points",
+                        ha="center", fontsize=8)
+
+
+def fractions(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None) -> matplotlib.axes.Axes:
+    """Basin fractions over a parameter: stacked areas, one colour per attractor.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A variable ``fraction`` on the dimensions (parameter, ``attractor``):
+        the share of initial states ending on each attractor at each value of
+        the parameter.  The attractor's name comes from the coordinates on
+        ``attractor`` (``kind`` and ``period`` when present, else its label).
+    ax : matplotlib.axes.Axes, optional
+        Where to draw (default: a new figure).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Raises
+    ------
+    ValueError
+        When `ds` has no ``fraction`` over a parameter and ``attractor``.
+
+    Examples
+    --------
+    >>> import numpy as np, xarray as xr, pendula.plot
+    >>> f = np.array([[1.0, 0.0], [0.6, 0.4], [0.2, 0.8]])
+    >>> ds = xr.Dataset({"fraction": (("drive_amplitude", "attractor"), f)},
+    ...                 coords={"drive_amplitude": [1.0, 1.1, 1.2], "attractor": [0, 1]})
+    >>> ax = pendula.plot.fractions(ds)
+    >>> [t.get_text() for t in ax.get_legend().get_texts()]
+    ['attractor 0', 'attractor 1']
+    """
+    if "fraction" not in ds or "attractor" not in ds.fraction.dims or ds.fraction.ndim != 2:
+        raise ValueError("fractions needs a variable 'fraction' on the dimensions (parameter, 'attractor')")
+    p = next(d for d in ds.fraction.dims if d != "attractor")
+    f = np.nan_to_num(ds.fraction.transpose("attractor", p).values)
+    ax = _ax(ax)
+    labels = []
+    for i, a in enumerate(ds["attractor"].values):
+        extra = []
+        for name in ("kind", "period"):
+            if name in ds.coords and ds.coords[name].dims == ("attractor",):
+                extra.append(f"{name} {ds.coords[name].values[i]}")
+        labels.append(f"attractor {a}" + (f" ({', '.join(extra)})" if extra else ""))
+    ax.stackplot(ds[p].values, f, labels=labels, colors=_categorical(f.shape[0]), alpha=0.9)
+    ax.set_xlim(float(ds[p].values.min()), float(ds[p].values.max()))
+    ax.set_ylim(0.0, 1.0)
+    ax.set_xlabel(p)
+    ax.set_ylabel("fraction of initial states")
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    return ax

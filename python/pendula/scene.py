@@ -27,6 +27,8 @@ that names it.
 from __future__ import annotations
 
 import dataclasses
+import difflib
+import functools
 import math
 import os
 from dataclasses import dataclass, field, fields
@@ -147,7 +149,9 @@ class Scene:
     Raises
     ------
     SceneError
-        For a field of the wrong type or out of its range, naming the field.
+        For a field of the wrong type or out of its range, naming the field;
+        for an unknown field, naming the closest one (``Scene(dampin=0.1)``:
+        unknown field 'dampin' (did you mean 'damping'?)).
 
     See Also
     --------
@@ -165,6 +169,8 @@ class Scene:
     True
     >>> pendula.Scene.from_namelist("&scene\\n v0 = 1.5\\n/\\n").v0
     1.5
+    >>> s                                  # what differs from the defaults
+    Scene(v0=1.9, damping=0.1)
     """
 
     eps: float = math.nan  # not given: 1.0, or g / length when those are given
@@ -345,7 +351,26 @@ class Scene:
             changes.setdefault("length", math.nan)
         elif ("g" in changes or "length" in changes) and "eps" not in changes:
             changes["eps"] = math.nan
+        _refuse_unknown(changes)
         return dataclasses.replace(self, **changes)
+
+    def __repr__(self) -> str:
+        """``Scene(...)`` with the fields that differ from the defaults (what ``Scene(...)`` needs to remake it)."""
+        return "Scene(" + ", ".join(f"{k}={v!r}" for k, v in self._changed().items()) + ")"
+
+    def _changed(self) -> dict:
+        """The fields that differ from a default Scene's, in field order (g and length when given)."""
+        base = _default_scene()
+        out = {}
+        for f in fields(self):
+            v = getattr(self, f.name)
+            ref = getattr(base, f.name)
+            same = (v == ref) or (isinstance(v, float) and isinstance(ref, float) and v != v and ref != ref)
+            if f.name == "eps" and not math.isnan(self.g):
+                continue   # eps follows from g and length, which are shown
+            if not same:
+                out[f.name] = v
+        return out
 
     # -- what the scene asks for -------------------------------------------
     @property
@@ -430,6 +455,40 @@ class Scene:
                 lines.append(f"  {f.name} = {_fmt(v)}")
         lines.append("/")
         return "\n".join(lines) + "\n"
+
+
+#: every field a Scene takes, for the check of keyword names
+_FIELD_NAMES = tuple(f.name for f in fields(Scene))
+
+
+def _unknown_field(name: str) -> str:
+    """The message for a field a Scene does not have, with the closest name when one is close."""
+    close = difflib.get_close_matches(str(name), _FIELD_NAMES, n=1, cutoff=0.75)
+    hint = f" (did you mean '{close[0]}'?)" if close else ""
+    return f"unknown field '{name}'{hint}"
+
+
+def _refuse_unknown(names) -> None:
+    for name in names:
+        if name not in _FIELD_NAMES:
+            raise SceneError(_unknown_field(name))
+
+
+_dataclass_init = Scene.__init__
+
+
+@functools.wraps(_dataclass_init)
+def _init(self, *args, **kwargs):
+    _refuse_unknown(kwargs)   # before the dataclass's own TypeError: a SceneError naming the field
+    _dataclass_init(self, *args, **kwargs)
+
+
+Scene.__init__ = _init
+
+
+@functools.lru_cache(maxsize=1)
+def _default_scene() -> Scene:
+    return Scene()
 
 
 def _fmt(v) -> str:

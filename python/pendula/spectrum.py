@@ -19,7 +19,7 @@ import warnings
 from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Literal
+from typing import TYPE_CHECKING, Literal, NamedTuple, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -35,7 +35,7 @@ if TYPE_CHECKING:   # xarray is optional: named in annotations only
 #: per signal); longer is refused up front
 MAX_SAMPLES = 1 << 27
 
-__all__ = ["Spectrum", "spectrum", "spectra", "fourier_series", "odd_harmonics_above",
+__all__ = ["Spectrum", "spectrum", "spectra", "fourier_series", "FourierSeries", "odd_harmonics_above",
            "precompute_wisdom", "wisdom_path"]
 
 _WINDOWS = {None: 0, "none": 0, "hann": 1}
@@ -317,6 +317,14 @@ class Spectrum:
         """The amplitude of each line: the square root of `power`."""
         return np.sqrt(self.power)
 
+    def __repr__(self) -> str:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            w = self.fundamental if self.power.size >= 2 else math.nan
+        top = float(self.omega[-1]) if self.omega.size else math.nan
+        return (f"Spectrum({self.omega.size} lines up to omega={top:.4g}, fundamental={w:.6g}, "
+                f"window={self.window!r})")
+
     @functools.cached_property
     def fundamental(self) -> float:
         """Angular frequency of the strongest non-constant line, refined by
@@ -479,15 +487,24 @@ def spectra(t: ArrayLike, signals: ArrayLike, window: Literal["hann", "none"] | 
     return [Spectrum(omega, power[:, j], win) for j in range(x.shape[0])]
 
 
-def spectrum(t: ArrayLike, theta: ArrayLike, window: Literal["hann", "none"] | None = None) -> Spectrum:
+class _Sampled(Protocol):
+    """Anything with uniformly spaced times ``t`` and a signal ``theta``: a :class:`~pendula.Trajectory`."""
+
+    t: np.ndarray
+    theta: np.ndarray
+
+
+def spectrum(t: ArrayLike | _Sampled, theta: ArrayLike | None = None,
+             window: Literal["hann", "none"] | None = None) -> Spectrum:
     """Power spectrum of theta(t) against angular frequency (FFTW).
 
     Parameters
     ----------
-    t : array_like, shape (n,)
-        Uniformly spaced times (n >= 4).
-    theta : array_like, shape (n,)
-        The signal.
+    t : array_like, shape (n,), or Trajectory
+        Uniformly spaced times (n >= 4); or a :class:`~pendula.Trajectory`
+        (anything with ``t`` and ``theta``), whose theta(t) is then the signal.
+    theta : array_like, shape (n,), optional
+        The signal (not given when `t` is a Trajectory).
     window : {None, 'hann'}
         A window applied before the transform.
 
@@ -502,11 +519,13 @@ def spectrum(t: ArrayLike, theta: ArrayLike, window: Literal["hann", "none"] | N
         Fewer than 4 samples, non-uniform or non-finite t, mismatched shapes,
         an unknown window.
     TypeError
-        For a string, complex or object argument.
+        For a string, complex or object argument; `theta` missing with times,
+        or given with a Trajectory.
 
     See Also
     --------
     spectra : many signals with one plan.
+    Trajectory.spectrum : the same, as a method.
     fourier_series : the exact amplitudes of the pendulum's lines.
 
     Examples
@@ -518,12 +537,57 @@ def spectrum(t: ArrayLike, theta: ArrayLike, window: Literal["hann", "none"] | N
     >>> s = pendula.spectrum(t, theta)
     >>> round(s.fundamental * T / (2 * np.pi), 12)
     1.0
+
+    A trajectory is taken whole:
+
+    >>> tr = pendula.simulate(pendula.Scene(v0=1.9), t)
+    >>> round(pendula.spectrum(tr).fundamental * T / (2 * np.pi), 12)
+    1.0
     """
+    if hasattr(t, "t") and hasattr(t, "theta") and not isinstance(t, np.ndarray):
+        if theta is not None:
+            raise TypeError("spectrum: give a Trajectory alone, or the times and the signal "
+                            "(spectrum(tr) or spectrum(t, theta))")
+        t, theta = t.t, t.theta
+    elif theta is None:
+        raise TypeError("spectrum: parameter 'theta' is missing (spectrum(t, theta), or spectrum(tr) "
+                        "for a Trajectory)")
     return spectra(t, theta, window)[0]
 
 
-def fourier_series(theta0: float, v0: float, eps: float = 1.0, n: int = 10) -> tuple[float, np.ndarray]:
-    """The exact Fourier series of the orbit: (omega, amplitudes).
+class FourierSeries(NamedTuple):
+    """The exact Fourier series of an orbit: what :func:`fourier_series` returns.
+
+    A named tuple, so ``omega, amplitudes = fourier_series(...)`` unpacks as before.
+
+    Attributes
+    ----------
+    omega : float
+        The angular frequency 2 pi / T of the orbit.
+    amplitudes : numpy.ndarray
+        The amplitudes of the odd harmonics (2j+1) omega of a libration, or of
+        every harmonic j omega of a rotation.
+
+    See Also
+    --------
+    fourier_series : makes it.
+    Spectrum.harmonics : the measured amplitudes, to compare.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> fs = pendula.fourier_series(0.0, 1.0, 1.0, 3)
+    >>> omega, amplitudes = fs
+    >>> fs.omega == omega, len(fs.amplitudes)
+    (True, 3)
+    """
+
+    omega: float
+    amplitudes: np.ndarray
+
+
+def fourier_series(theta0: float, v0: float, eps: float = 1.0, n: int = 10) -> FourierSeries:
+    """The exact Fourier series of the orbit: a named pair (omega, amplitudes).
 
     Libration: amplitudes b_j = 8 q^(j+1/2) / ((2j+1)(1 + q^(2j+1))) of the odd
     harmonics (2j+1) omega, j = 0..n-1, omega = pi sqrt(eps) / (2K(k^2)).
@@ -543,10 +607,9 @@ def fourier_series(theta0: float, v0: float, eps: float = 1.0, n: int = 10) -> t
 
     Returns
     -------
-    omega : float
-        The angular frequency 2 pi / T.
-    amplitudes : ndarray
-        n amplitudes, as above.
+    FourierSeries
+        A named tuple: ``omega``, the angular frequency 2 pi / T, and
+        ``amplitudes``, n amplitudes as above.
 
     Raises
     ------
@@ -564,9 +627,10 @@ def fourier_series(theta0: float, v0: float, eps: float = 1.0, n: int = 10) -> t
     Examples
     --------
     >>> import pendula
-    >>> omega, b = pendula.fourier_series(0.0, 1.9, 1.0, 4)
-    >>> round(omega, 12), b.round(6).tolist()
+    >>> fs = pendula.fourier_series(0.0, 1.9, 1.0, 4)
+    >>> round(fs.omega, 12), fs.amplitudes.round(6).tolist()
     (0.606482438404, [2.637235, 0.141741, 0.012079, 0.001222])
+    >>> omega, b = fs                                  # unpacks as a pair
     """
     from .elliptic import nome
     from .systems.rigid import orbit
@@ -582,7 +646,7 @@ def fourier_series(theta0: float, v0: float, eps: float = 1.0, n: int = 10) -> t
     else:
         j = j + 1
         amps = 4 * q**j / (j * (1 + q ** (2 * j)))
-    return o.omega, amps
+    return FourierSeries(o.omega, amps)
 
 
 def odd_harmonics_above(spec: Spectrum, threshold: float = 1e-6, n_max: int = 50) -> list[int]:

@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
 from ._optional import require
 from .scene import Scene
+from .spectrum import Spectrum, spectrum
 
 if TYPE_CHECKING:   # xarray is optional: named in annotations only
     import xarray
@@ -55,6 +56,8 @@ class Trajectory:
     ('exact', [0.0, 1.0, 2.0], [0.0, 0.847799, 1.004615])
     >>> tr.as_array().shape          # columns t, theta, v, energy
     (3, 4)
+    >>> tr
+    Trajectory(method='exact', 3 samples, t from 0 to 2, scene=Scene(v0=1.0, t_end=2.0, n_samples=3))
     """
 
     t: np.ndarray
@@ -73,6 +76,46 @@ class Trajectory:
     def __post_init__(self):
         if self.flips is not None and not isinstance(self.flips, FlipLog):
             self.flips = FlipLog(self.flips)
+
+    def __repr__(self) -> str:
+        n = np.size(self.t)
+        span = f", t from {self.t[0]:.6g} to {self.t[-1]:.6g}" if n else ""
+        flips = f", {len(self.flips.get('t_leave', ()))} flips" if self.flips is not None else ""
+        return f"Trajectory(method={self.method!r}, {n} samples{span}{flips}, scene={self.scene!r})"
+
+    def spectrum(self, window: Literal["hann", "none"] | None = None) -> Spectrum:
+        """The power spectrum of theta(t): ``pendula.spectrum(self)``.
+
+        Parameters
+        ----------
+        window : {None, 'hann'}
+            A window applied before the transform.
+
+        Returns
+        -------
+        Spectrum
+
+        Raises
+        ------
+        ValueError
+            Fewer than 4 samples, or times that are not uniformly spaced.
+
+        See Also
+        --------
+        pendula.spectrum : the function.
+
+        Examples
+        --------
+        >>> import numpy as np, pendula
+        >>> T = pendula.orbit(0.0, 1.0).period
+        >>> tr = pendula.simulate(pendula.Scene(v0=1.0), np.arange(1024) * (8 * T / 1024))  # 8 periods
+        >>> sp = tr.spectrum()
+        >>> sp
+        Spectrum(513 lines up to omega=...)
+        >>> round(sp.fundamental * T / (2 * np.pi), 12)
+        1.0
+        """
+        return spectrum(self, window=window)
 
     def as_array(self) -> np.ndarray:
         """Columns t, theta, v, energy.

@@ -222,31 +222,62 @@ def _lyapunov(out, small, bif):
             "A_max": float(amps[np.nanargmax(lam)])}
 
 
-def run(out, small: bool = True, quiet: bool = False) -> dict:
-    """Run the sweep gallery into folder ``out``; returns the measured figures."""
+def _band(a: float, b: float) -> str:
+    return f"{a:.3f}" if a == b else f"{a:.3f}-{b:.3f}"
+
+
+def report(res: dict, verbose: bool = False) -> list[str]:
+    """The measured figures of the sweep gallery as lines of text: a few lines (every one
+    named for its source text), or with ``verbose`` each Suzuki & Suzuki row as well."""
+    b = res["basins"]
+    lines = [f"  basins of the damped pendulum: {b['points']} points, {100 * b['decided']:.1f} % decided, "
+             f"{b['uncertain']} uncertain;\n    a first-order energy balance misplaces "
+             f"{100 * b['energy_balance_disagreement']:.0f} % of them"]
+    rows = res["suzuki_8_2"]
+    same = [v for v, g, sd, _ in rows if set(g) == set(sd)]
+    differ = [v for v, g, sd, _ in rows if set(g) != set(sd)]
+    if verbose:
+        for v, g, sd, r in rows:
+            flag = "" if set(g) == set(sd) else "  <- differs from the text"
+            lines.append(f"  Suzuki & Suzuki 8.2, v0 = {v:4.2f}: wells {g} (the text {sd}); running from tau = {r:.2f}{flag}")
+    else:
+        lines.append(f"  Suzuki & Suzuki 8.2 (beta = 0.16): the wells agree with the text for v0 = "
+                     + ", ".join(f"{v:g}" for v in same)
+                     + (f";\n    for v0 = {', '.join(f'{v:g}' for v in differ)} the text also lists well 0, "
+                        "which no torque reaches (a slip)" if differ else ""))
+    r1 = res["suzuki_8_2_1"]
+    lines.append(f"  Suzuki & Suzuki 8.2.1 (v0 = 0.2): locked up to tau = {r1['last_locked']:.2f}, running from "
+                 f"{r1['first_running']:.2f} (the text: around 0.6-0.8);\n    rest angle = asin(tau) to "
+                 f"{r1['theta_s_vs_asin_tau']:.0e}")
+    lines.append(f"  I-V loop (beta = 0.1): runs from tau = {res['iv']['switch_up']:.2f}, the first torque above eps; "
+                 "retrapped at "
+                 + ", ".join(f"{v:.3f}" for v in res["iv"]["retrap"].values())
+                 + "\n    for beta = " + ", ".join(f"{k:g}" for k in res["iv"]["retrap"])
+                 + " (Stewart-McCumber's 4 beta/pi: " + ", ".join(f"{4 * k / math.pi:.3f}" for k in res["iv"]["retrap"])
+                 + ")")
+    d = res["bifurcation"]["doublings"]
+    lines.append("  driven pendulum (beta = 0.5, Omega = 2/3): period doublings at A = "
+                 + ", ".join(f"{a:.2f} ({p} -> {q})" for a, p, q in d))
+    ly = res["lyapunov"]
+    lines.append(f"  Lyapunov exponent over {ly['points']} amplitudes: chaotic (lambda_1 > 0) at A = "
+                 + ", ".join(_band(a, b) for a, b in ly["bands"])
+                 + f";\n    largest {ly['max_lambda']:.3f} at A = {ly['A_max']:.2f}")
+    if verbose:
+        lines.append(f"    agrees with the bifurcation diagram at {100 * ly['agree_with_bifurcation']:.0f} % of the "
+                     f"amplitudes (not at A = {', '.join(f'{a:.3f}' for a in ly['disagree_at'])}); "
+                     f"|lambda_1 + lambda_2 + beta| <= {ly['max_sum_rule_error']:.0e}; {ly['seconds']:.1f} s")
+    return lines
+
+
+def run(out, small: bool = True, quiet: bool = False, verbose: bool = True) -> dict:
+    """Run the sweep gallery into folder ``out``; print its figures (all of them with
+    ``verbose``, a few lines without; nothing when ``quiet``) and return them."""
     out = pathlib.Path(out)
     out.mkdir(parents=True, exist_ok=True)
     res = {"basins": _basins(out, small), "suzuki_8_2": _suzuki_8_2(out), "suzuki_8_2_1": _suzuki_8_2_1(), "iv": _iv(out),
            "bifurcation": _bifurcation(out, small)}
     res["lyapunov"] = _lyapunov(out, small, res["bifurcation"])
     if not quiet:
-        b = res["basins"]
-        print(f"sweeps: basin map {b['points']} points, {100 * b['decided']:.1f} % decided, "
-              f"{b['uncertain']} uncertain; energy balance disagrees at {100 * b['energy_balance_disagreement']:.1f} %")
-        for v, g, sd, r in res["suzuki_8_2"]:
-            flag = "" if set(g) == set(sd) else "  <- differs from Suzuki & Suzuki"
-            print(f"  Suzuki 8.2 v0 = {v:4.2f}: wells {g} (the text {sd}); running from tau = {r}{flag}")
-        r1 = res["suzuki_8_2_1"]
-        print(f"  Suzuki 8.2.1 (v0 = 0.2): locked up to tau = {r1['last_locked']}, running from {r1['first_running']}; "
-              f"resting angle - asin(tau) <= {r1['theta_s_vs_asin_tau']:.1e}")
-        print(f"  I-V: switches to running at tau = {res['iv']['switch_up']}; retrapping "
-              + ", ".join(f"beta {k}: {v:.3f} (4b/pi {4 * k / math.pi:.3f})" for k, v in res["iv"]["retrap"].items()))
-        print(f"  driven pendulum: period doublings (A, p -> 2p) {res['bifurcation']['doublings']}")
-        ly = res["lyapunov"]
-        print(f"  Lyapunov exponent: {ly['points']} amplitudes in {ly['seconds']:.1f} s; chaotic bands (lambda_1 > 0) "
-              + ", ".join(f"{a:.3f}-{b:.3f}" for a, b in ly["bands"])
-              + f"; agrees with the bifurcation diagram at {100 * ly['agree_with_bifurcation']:.0f} % of amplitudes "
-              f"(not at A = {', '.join(f'{a:.3f}' for a in ly['disagree_at'])}); "
-              f"max lambda_1 = {ly['max_lambda']:.3f} at A = {ly['A_max']:.3f}; "
-              f"|lambda_1 + lambda_2 + beta| <= {ly['max_sum_rule_error']:.1e}")
+        print("sweeps (Suzuki & Suzuki, sections 7-8; the driven pendulum, Baker & Gollub's parameters):")
+        print("\n".join(report(res, verbose)))
     return res

@@ -71,6 +71,10 @@ class Attractor:
     v: np.ndarray
     fraction: float
 
+    def __repr__(self) -> str:
+        what = f"period={self.period}" if self.kind == "periodic" else f"{np.size(self.theta)} samples"
+        return f"Attractor(label={self.label}, kind={self.kind!r}, {what}, fraction={self.fraction:.4g})"
+
 
 def _wrap(x):
     return (x + math.pi) % TWO_PI - math.pi
@@ -353,3 +357,15 @@ class AttractorMap:
     basin_entropy: float
     boundary_basin_entropy: float
     uncertainty_exponent: float
+
+    def __repr__(self) -> str:
+        ds = self.dataset
+        try:
+            grid = " x ".join(f"{d} {n}" for d, n in ds.sizes.items())
+        except AttributeError:
+            grid = "?"
+        atts = "; ".join(f"{a.label}: {a.kind}" + (f" period {a.period}" if a.kind == "periodic" else "")
+                         + f" ({a.fraction:.0%})" for a in self.attractors)
+        return (f"AttractorMap(grid {grid}, {len(self.attractors)} attractors [{atts}], "
+                f"boundary_fraction={self.boundary_fraction:.3g}, "
+                f"uncertainty_exponent={self.uncertainty_exponent:.3g})")

@@ -62,6 +62,10 @@ class Equilibrium:
         """True when every eigenvalue has a negative real part (asymptotically stable)."""
         return bool(np.all(self.eigenvalues.real < 0))
 
+    def __repr__(self) -> str:
+        ev = ", ".join(f"{complex(e):.4g}" for e in self.eigenvalues)
+        return f"Equilibrium(theta={self.theta:.6g}, kind={self.kind!r}, stable={self.stable}, eigenvalues=[{ev}])"
+
 
 def _model_code(scene: Scene) -> int:
     if scene.guide == "cycloid":

@@ -39,6 +39,10 @@ class PeriodicOrbit:
         The 2 x 2 monodromy matrix ``d(theta, v)(period) / d(theta, v)(0)``.
     winding : int
         Turns the orbit advances per period (0 for an oscillation).
+    kind : str
+        'oscillation' or 'rotation' (from the winding).
+    stable : bool
+        True when every multiplier lies inside the unit circle.
     residual : float
         ``max |P(x) - x - (2 pi winding, 0)|`` at the returned state.
 
@@ -53,6 +57,8 @@ class PeriodicOrbit:
     >>> po = pendula.periodic_orbit(sc, guess=(0.5, 0.5))
     >>> round(float(po.exponents.sum()), 9)          # Liouville: -damping
     -0.5
+    >>> po                       # a complex pair: |mu| = exp(-damping * period / 2)
+    PeriodicOrbit(theta=-0.560228, v=1.93359, period=9.42478, kind='oscillation', stable=True, |multipliers|=[0.09478, 0.09478])
     """
 
     theta: float
@@ -68,6 +74,17 @@ class PeriodicOrbit:
     def stable(self) -> bool:
         """True when every multiplier lies inside the unit circle."""
         return bool(np.all(np.abs(self.multipliers) < 1))
+
+    @property
+    def kind(self) -> str:
+        """'oscillation' (winding 0) or 'rotation' (the orbit advances ``winding`` turns per period)."""
+        return "oscillation" if self.winding == 0 else "rotation"
+
+    def __repr__(self) -> str:
+        mods = ", ".join(f"{abs(m):.4g}" for m in self.multipliers)
+        wind = f", winding={self.winding}" if self.winding else ""
+        return (f"PeriodicOrbit(theta={self.theta:.6g}, v={self.v:.6g}, period={self.period:.6g}, "
+                f"kind={self.kind!r}{wind}, stable={self.stable}, |multipliers|=[{mods}])")
 
 
 _PO_STATUS = {1: "Newton's iteration did not converge (try another guess, or a looser tol)",

@@ -617,19 +617,102 @@ def _ratio(x):
     return "-" if x is None else f"{x:.3g}"
 
 
+def _with_ratio(r, ratio) -> str:
+    """A table cell: the run and its time against pendula's fastest (no '-' alone: RST would make it a bullet)."""
+    if r is None:
+        return "not reached"
+    return _cell(r) + (f" ({ratio:.3g}x)" if ratio is not None else "")
+
+
+def _problem_text(pname: str) -> str:
+    p = PROBLEMS[pname]
+    desc = ", ".join(f"{k} = {p[k]:g}" for k in ("beta", "tau", "amp", "omega") if p.get(k))
+    return f"v0 = {p['v0']:g}{', ' + desc if desc else ''}, 0 <= t <= {p['t_end']:g}"
+
+
 def answer_rst(record: dict) -> str:
-    """The answer table of the report page (docs/source/work_precision.rst) as RST list-table text,
-    generated from the recorded run."""
-    lines = [".. list-table::", "   :header-rows: 1", "",
-             "   * - problem", "     - target error", "     - pendula's fastest", "     - fastest peer",
-             "     - peer / pendula", "     - SciPy's fastest", "     - SciPy / pendula"]
+    """The answer of the report page (docs/source/work_precision.rst), generated from the recorded
+    run: per problem its work-precision figure and a table of four columns (the target error,
+    pendula's fastest, the fastest peer and SciPy's fastest with their times against pendula's)."""
+    lines = []
+    problems = list(dict.fromkeys(r["problem"] for r in record["rows"]))
+    table = answer_table(record)
+    for pname in problems:
+        title = pname.capitalize()
+        lines += [title, "~" * len(title), "", f"{_problem_text(pname)}.", "",
+                  f".. image:: ../figures/work_precision_{pname}.png",
+                  f"   :alt: work-precision diagram of the {pname} problem", "",
+                  ".. list-table::", "   :header-rows: 1", "   :widths: 12 29 30 29", "",
+                  "   * - target error", "     - pendula's fastest", "     - fastest peer (time / pendula's)",
+                  "     - SciPy's fastest (time / pendula's)"]
+        for a in (x for x in table if x["problem"] == pname):
+            if a["pendula"] is None:
+                why = _why_not(record, pname, a["target"])
+                lines += [f"   * - {a['target']:.0e}", f"     - {why}", "     - not reached", "     - not reached"]
+                continue
+            lines += [f"   * - {a['target']:.0e}", f"     - {_cell(a['pendula'])}",
+                      f"     - {_with_ratio(a['peer'], a['peer_ratio'])}",
+                      f"     - {_with_ratio(a['scipy'], a['scipy_ratio'])}"]
+        lines.append("")
+    return "\n".join(lines).rstrip("\n") + "\n"
+
+
+def _why_not(record: dict, problem: str, target: float) -> str:
+    """Why no run reached a target, in a few words: below the double-precision floor, or
+    tighter than the tightest tolerance the run tried."""
+    floor = record["floors"][problem]["floor_error_max"]
+    if target < floor:
+        return f"not reached: below the floor {floor:.0e}"
+    rtols = [r["rtol"] for r in record["rows"] if r["problem"] == problem and r.get("rtol")]
+    return f"not reached: tightest rtol run {min(rtols):.0e}" if rtols else "not reached"
+
+
+def _short(r) -> str:
+    if r is None:
+        return "not reached"
+    name = r["method"] if r["package"] in ("pendula", "gsl") else f"{r['package']} {r['method']}"
+    return f"{name} {r['setting']}: {_ms(r['seconds'])}"
+
+
+def answer_text(record: dict) -> str:
+    """The answer table as plain text for a terminal (what ``pendula accuracy integrators`` and
+    ``pendula demo`` print): per problem and target, pendula's fastest, the fastest peer and
+    SciPy's fastest with the time ratios, and why a target was not reached.
+
+    Parameters
+    ----------
+    record : dict
+        A record of :func:`run_study`.
+
+    Returns
+    -------
+    str
+        One header line and one line per problem and target.
+
+    Examples
+    --------
+    >>> from pendula.studies.workprecision import answer_text
+    >>> rows = [{"problem": "damped", "package": "pendula", "method": "dop853", "setting": "rtol=1e-08",
+    ...          "rtol": 1e-8, "error_max": 1e-7, "seconds": 1e-4},
+    ...         {"problem": "damped", "package": "scipy", "method": "RK45", "setting": "rtol=1e-08",
+    ...          "rtol": 1e-8, "error_max": 1e-7, "seconds": 1e-2}]
+    >>> print(answer_text({"rows": rows, "floors": {"damped": {"floor_error_max": 1e-14}}}))
+    problem    target  pendula's fastest               fastest peer                    ratio  SciPy / pendula
+    damped     1e-03   dop853 rtol=1e-08: 100 us       scipy RK45 rtol=1e-08: 10 ms      100  100
+    damped     1e-06   dop853 rtol=1e-08: 100 us       scipy RK45 rtol=1e-08: 10 ms      100  100
+    damped     1e-09   not reached: tightest rtol run 1e-08
+    damped     1e-12   not reached: tightest rtol run 1e-08
+    """
+    lines = [f"{'problem':10s} {'target':7s} {'pendula' + chr(39) + 's fastest':31s} {'fastest peer':31s} "
+             f"{'ratio':>5s}  SciPy / pendula"]
     for a in answer_table(record):
-        floor = record["floors"][a["problem"]]["floor_error_max"]
-        below = f" (below this problem's double-precision floor, {floor:.1e})" if a["target"] < floor else ""
-        lines += [f"   * - {a['problem']}", f"     - {a['target']:.0e}", f"     - {_cell(a['pendula'])}{below}",
-                  f"     - {_cell(a['peer'])}", f"     - {_ratio(a['peer_ratio'])}", f"     - {_cell(a['scipy'])}",
-                  f"     - {_ratio(a['scipy_ratio'])}"]
-    return "\n".join(lines) + "\n"
+        head = f"{a['problem']:10s} {a['target']:<7.0e}"
+        if a["pendula"] is None:
+            lines.append(f"{head} {_why_not(record, a['problem'], a['target'])}")
+            continue
+        lines.append(f"{head} {_short(a['pendula']):31s} {_short(a['peer']):31s} {_ratio(a['peer_ratio']):>5s}  "
+                     f"{_ratio(a['scipy_ratio'])}")
+    return "\n".join(lines)
 
 
 def _same_setting_ratios(record, package, method, ref_method="dop853"):
@@ -683,12 +766,76 @@ def versions_rst(record: dict) -> str:
 
 PACKAGE_STYLE = {"pendula": "-", "gsl": "--", "scipy": ":", "sundials": "-.", "numbalsoda": "-."}
 
+#: the families of methods a figure shows one curve of (the best), in the legend's order
+FAMILIES = (("pendula, adaptive", lambda r: r["package"] == "pendula" and r["method"] not in PENDULA_FIXED
+             and r["method"] != "exact"),
+            ("pendula, fixed step", lambda r: r["package"] == "pendula" and r["method"] in PENDULA_FIXED),
+            ("GSL", lambda r: r["package"] == "gsl"),
+            ("SciPy", lambda r: r["package"] == "scipy"),
+            ("SUNDIALS", lambda r: r["package"] == "sundials"),
+            ("numbalsoda", lambda r: r["package"] == "numbalsoda"))
+#: the error levels at which methods are compared for "best of the family"
+_LEVELS = tuple(10.0 ** (-k / 2) for k in range(4, 27))
+
+
+def best_of_families(rows: list[dict]) -> list[tuple[str, str, str]]:
+    """The curves of a problem's figure: the best method of each family, and pendula's DOP853
+    (what ``method='auto'`` integrates with) when it is not already the best of its family.
+
+    The best method of a family is the one fastest at the most error levels (10^-2 ... 10^-13 in
+    half decades, each reached by at least one of the family); ties go to the smaller sum of log
+    times.
+
+    Parameters
+    ----------
+    rows : list of dict
+        The rows of one problem of a record of :func:`run_study`.
+
+    Returns
+    -------
+    list of (family, package, method)
+        At most one per family, plus pendula's DOP853: at most 7 curves.
+
+    Examples
+    --------
+    >>> from pendula.studies.workprecision import best_of_families
+    >>> rows = [dict(package="scipy", method=m, error_max=e, seconds=s)
+    ...         for m, e, s in (("RK45", 1e-6, 2.0), ("DOP853", 1e-6, 1.0), ("DOP853", 1e-9, 1.5))]
+    >>> best_of_families(rows)
+    [('SciPy', 'scipy', 'DOP853')]
+    """
+    out = []
+    for family, member in FAMILIES:
+        fam = [r for r in rows if member(r)]
+        methods = list(dict.fromkeys((r["package"], r["method"]) for r in fam))
+        if not methods:
+            continue
+        wins = {m: 0 for m in methods}
+        logt = {m: 0.0 for m in methods}
+        for level in _LEVELS:
+            best = {}
+            for r in fam:
+                if r["error_max"] <= level:
+                    key = (r["package"], r["method"])
+                    best[key] = min(best.get(key, math.inf), r["seconds"])
+            if not best:
+                continue
+            wins[min(best, key=best.get)] += 1
+            for m in methods:
+                logt[m] += math.log(best.get(m, 1e3))      # a level a method misses counts as very slow
+        pkg, method = max(methods, key=lambda m: (wins[m], -logt[m]))
+        out.append((family, pkg, method))
+        if family == "pendula, adaptive" and method != "dop853" and ("pendula", "dop853") in methods:
+            out.append(("pendula, method='auto'", "pendula", "dop853"))
+    return out
+
 
 def write_figures(record: dict, outdir) -> list[pathlib.Path]:
-    """One work-precision diagram per problem.
+    """One work-precision diagram per problem: the best method of each family.
 
-    Error against CPU time (log-log), every package on the same axes, with the
-    double-precision floor and (conservative problems) the exact path.
+    Error against CPU time (log-log), at most 8 curves (:func:`best_of_families`),
+    with the double-precision floor and (conservative problems) the exact path;
+    every method's numbers are in the record and the page's tables.
 
     Parameters
     ----------
@@ -717,18 +864,15 @@ def write_figures(record: dict, outdir) -> list[pathlib.Path]:
     files = []
     rows = record["rows"]
     for pname in dict.fromkeys(r["problem"] for r in rows):
-        p = PROBLEMS[pname]
         pr = [r for r in rows if r["problem"] == pname]
-        fig, ax = plt.subplots(figsize=(8.5, 6))
-        series = list(dict.fromkeys((r["package"], r["method"]) for r in pr if r["method"] != "exact"))
-        for pkg, method in series:
+        fig, ax = plt.subplots(figsize=(7.5, 5.8))
+        for family, pkg, method in best_of_families(pr):
             sel = sorted((r for r in pr if r["package"] == pkg and r["method"] == method),
                          key=lambda r: r["seconds"])
             err = np.maximum([r["error_max"] for r in sel], 1e-17)
             sec = [r["seconds"] for r in sel]
             ax.loglog(sec, err, PACKAGE_STYLE.get(pkg, "-"), marker="o" if pkg == "pendula" else ".",
-                      ms=4, lw=1.2 if pkg == "pendula" else 1.0, label=f"{pkg}: {method}" if pkg != "pendula"
-                      else method)
+                      ms=4, lw=1.4 if pkg == "pendula" else 1.1, label=f"{family}: {method}")
         ex = [r for r in pr if r["method"] == "exact"]
         if ex:
             ax.loglog([ex[0]["seconds"]], [max(ex[0]["error_max"], 1e-17)], "k*", ms=12, label="pendula: exact path")
@@ -737,15 +881,14 @@ def write_figures(record: dict, outdir) -> list[pathlib.Path]:
         ax.text(ax.get_xlim()[0], floor, " double-precision floor (1 ulp in v0)", va="bottom", fontsize=7)
         for target in TARGETS:
             ax.axhline(target, color="0.85", lw=0.5)
-        ax.set_xlabel("CPU time of one run (s), best of repeated batches")
-        ax.set_ylabel("largest state error over the outputs, max(|d theta|, |d v|)")
-        desc = ", ".join(f"{k} = {p[k]:g}" for k in ("beta", "tau", "amp", "omega") if p.get(k))
-        title = f"work-precision: {pname} (v0 = {p['v0']:g}{', ' + desc if desc else ''}), 0 <= t <= {p['t_end']:g}"
+        ax.set_xlabel("CPU time of one run (s)")
+        ax.set_ylabel("largest state error over the outputs")
+        title = f"{pname}: {_problem_text(pname)}"
         if pname == "driven":
             title += "\nchaotic: compared over ~5 Lyapunov times only (lambda ~ 0.1)"
         ax.set_title(title, fontsize=9)
         ax.grid(True, which="both", alpha=0.25)
-        ax.legend(fontsize=6.5, ncol=3, loc="upper right")
+        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=3, frameon=False)
         fig.tight_layout()
         path = outdir / f"work_precision_{pname}.png"
         try:
@@ -807,7 +950,7 @@ def study_main(outdir, quick=False, progress=True, record_to=None, problems=None
     with open_text(path) as fh:
         fh.write(json.dumps(record, indent=1) + "\n")
     files = [path] + write_figures(record, outdir)
-    print(answer_rst(record))
+    print(answer_text(record))
     return files
 
 

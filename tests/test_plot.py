@@ -1,0 +1,219 @@
+"""pendula.plot: one function per result, each drawing what the result holds and returning the Axes.
+
+Each test draws a result the library computed (or, for the basin fractions, a
+Dataset built here to the documented contract) and reads back what was drawn:
+the data on the lines, the colours per attractor, the labels.
+"""
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+import pendula
+
+matplotlib = pytest.importorskip("matplotlib")
+matplotlib.use("Agg")
+xr = pytest.importorskip("xarray")
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.axes import Axes  # noqa: E402
+
+import pendula.plot as pp  # noqa: E402
+
+
+@pytest.fixture(autouse=True)
+def _close_figures():
+    yield
+    plt.close("all")
+
+
+@pytest.fixture(scope="module")
+def libration():
+    return pendula.simulate(pendula.Scene(v0=1.9, t_end=30.0, n_samples=601))
+
+
+def test_trajectory_draws_theta_of_t_and_returns_the_axes(libration):
+    ax = pp.trajectory(libration)
+    assert isinstance(ax, Axes)
+    x, y = ax.lines[0].get_data()
+    assert np.array_equal(x, libration.t) and np.array_equal(y, libration.theta)
+
+
+def test_trajectory_draws_into_the_axes_given(libration):
+    fig, (a, b) = plt.subplots(1, 2)
+    assert pp.trajectory(libration, ax=b, which="v") is b
+    assert not a.lines and np.array_equal(b.lines[0].get_ydata(), libration.v)
+
+
+def test_trajectory_refuses_an_unknown_column(libration):
+    with pytest.raises(ValueError, match="which"):
+        pp.trajectory(libration, which="omega")
+
+
+def test_phase_folds_theta_and_draws_the_separatrix():
+    tr = pendula.simulate(pendula.Scene(v0=2.5, t_end=20.0, n_samples=801))   # a rotation: theta grows
+    ax = pp.phase(tr)
+    th = ax.lines[0].get_xdata()
+    assert np.nanmax(th) < math.pi and np.nanmin(th) >= -math.pi
+    sep = [ln for ln in ax.lines if ln.get_label() == "separatrix"][0]
+    xs, ys = sep.get_data()
+    assert np.allclose(ys, 2 * np.abs(np.cos(xs / 2)))        # eps = 1: v = 2 cos(theta/2)
+
+
+def test_spectrum_marks_the_fundamental_of_the_exact_orbit():
+    T = pendula.orbit(0.0, 1.9).period
+    tr = pendula.simulate(pendula.Scene(v0=1.9), np.arange(4096) * (8 * T / 4096))
+    ax = pp.spectrum(tr.spectrum(), harmonics=9)
+    marks = [ln for ln in ax.lines if ln.get_label().startswith("fundamental")]
+    assert marks and math.isclose(marks[0].get_xdata()[0], 2 * math.pi / T, rel_tol=1e-12)
+    assert ax.lines[0].get_xdata().max() <= 9 * 2 * math.pi / T
+
+
+@pytest.fixture(scope="module")
+def poincare():
+    sc = pendula.Scene(damping=0.5, drive_frequency=2 / 3)
+    return pendula.sweep(sc, {"drive_amplitude": np.linspace(1.0, 1.5, 6)}, "poincare", transient=100.0,
+                         samples=10)
+
+
+def test_bifurcation_draws_every_stroboscopic_sample(poincare):
+    ax = pp.bifurcation(poincare)
+    x, y = ax.lines[0].get_data()
+    assert x.size == 6 * 10
+    assert np.array_equal(np.sort(y), np.sort(poincare.theta.values.ravel()))
+
+
+def test_bifurcation_draws_the_lyapunov_exponent_on_a_twin_axis(poincare):
+    sc = pendula.Scene(damping=0.5, drive_frequency=2 / 3)
+    ly = pendula.sweep(sc, {"drive_amplitude": poincare.drive_amplitude.values}, "lyapunov", transient=100.0,
+                       t_max=200.0)
+    ax = pp.bifurcation(poincare, lyapunov=ly)
+    assert np.array_equal(ax.lyapunov_axes.lines[0].get_ydata(), ly.lyapunov.values)
+
+
+def test_bifurcation_refuses_a_sweep_without_samples():
+    ds = pendula.sweep(pendula.Scene(damping=0.04), {"v0": [1.0, 2.3]}, "final_well")
+    with pytest.raises(ValueError, match="poincare"):
+        pp.bifurcation(ds)
+
+
+@pytest.fixture(scope="module")
+def attractor_map():
+    sc = pendula.Scene(damping=0.5, drive_amplitude=1.35, drive_frequency=2 / 3)
+    return pendula.attractor_map(sc, {"theta0": np.linspace(-3, 3, 9), "v0": np.linspace(-3, 3, 9)},
+                                 transient=300, samples=16)
+
+
+def test_basins_one_categorical_colour_per_attractor(attractor_map):
+    ax = pp.basins(attractor_map)
+    mesh = ax.collections[0]
+    n = len(attractor_map.attractors)
+    assert mesh.cmap.N == n + 1                                   # undecided + one per attractor
+    assert len(ax.get_legend().get_texts()) == n
+    # the integer labels land in their own colour bins: no colour bar of a continuous scale
+    assert not ax.figure.axes[1:]
+    rgba = mesh.cmap(mesh.norm(np.arange(n)))
+    assert len({tuple(c) for c in rgba}) == n
+
+
+def test_basins_draws_the_attractors_on_the_map(attractor_map):
+    ax = pp.basins(attractor_map)
+    for a, line in zip(attractor_map.attractors, ax.lines):
+        assert np.array_equal(line.get_xdata(), a.theta) and np.array_equal(line.get_ydata(), a.v)
+
+
+def test_basins_takes_the_dataset_of_an_attractor_sweep(attractor_map):
+    ax = pp.basins(attractor_map.dataset)
+    assert len(ax.get_legend().get_texts()) == len(attractor_map.attractors)
+
+
+def test_basins_refuses_a_one_axis_map():
+    ds = xr.Dataset({"attractor": ("v0", np.zeros(3, dtype=int))}, coords={"v0": [0.0, 1.0, 2.0]})
+    with pytest.raises(ValueError, match="two axes"):
+        pp.basins(ds)
+
+
+@pytest.fixture(scope="module")
+def iv_loop():
+    return pendula.iv_curve(pendula.Scene(damping=0.3), np.linspace(0.0, 1.2, 13), transient=50, t_max=100)
+
+
+def test_iv_draws_both_directions(iv_loop):
+    ax = pp.iv(iv_loop)
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["torque up", "torque down"]
+    assert np.array_equal(ax.lines[1].get_ydata(), iv_loop.mean_velocity.sel(direction="down").values,
+                          equal_nan=True)
+
+
+def test_iv_labels_the_steps_when_the_dataset_has_them(iv_loop):
+    ds = iv_loop.copy()
+    step = np.full(ds.mean_velocity.shape, np.nan)
+    step[:, :3] = 0.0          # locked at the lowest torques (the zero-voltage step)
+    step[0, 5:8] = 1.0
+    ds["step"] = (("direction", "torque"), step)
+    ax = pp.iv(ds)
+    assert sorted(t.get_text() for t in ax.texts) == ["n = 0", "n = 1"]
+
+
+def test_iv_without_steps_labels_none(iv_loop):
+    assert len(pp.iv(iv_loop).texts) == 0
+
+
+def test_fractions_stacks_one_area_per_attractor():
+    f = np.array([[1.0, 0.0, 0.0], [0.5, 0.5, 0.0], [0.2, 0.3, 0.5], [0.0, 0.4, 0.6]])
+    ds = xr.Dataset({"fraction": (("drive_amplitude", "attractor"), f)},
+                    coords={"drive_amplitude": [1.0, 1.1, 1.2, 1.3], "attractor": [0, 1, 2],
+                            "period": ("attractor", [1, 2, 0])})
+    ax = pp.fractions(ds)
+    assert len(ax.collections) == 3
+    texts = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert texts == ["attractor 0 (period 1)", "attractor 1 (period 2)", "attractor 2 (period 0)"]
+    # the top of the stack is the whole
+    top = ax.collections[-1].get_paths()[0].vertices[:, 1].max()
+    assert math.isclose(top, 1.0)
+
+
+def test_fractions_takes_the_dimensions_in_either_order():
+    f = np.array([[1.0, 0.5], [0.0, 0.5]])
+    ds = xr.Dataset({"fraction": (("attractor", "damping"), f)}, coords={"damping": [0.1, 0.2], "attractor": [0, 1]})
+    assert pp.fractions(ds).get_xlabel() == "damping"
+
+
+def test_fractions_refuses_a_dataset_without_fraction():
+    with pytest.raises(ValueError, match="fraction"):
+        pp.fractions(xr.Dataset({"x": ("a", [1.0])}))
+
+
+def test_the_figures_of_pendula_run_still_return_a_figure(libration):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fig = pp.time_series(libration.scene, [(1.9, libration)])
+    assert isinstance(fig, matplotlib.figure.Figure)
+
+
+def test_basins_of_a_final_well_map_one_colour_per_well():
+    ds = pendula.sweep(pendula.Scene(damping=0.1), {"v0": np.linspace(0, 4, 12), "damping": [0.05, 0.1, 0.2]},
+                       "final_well")
+    ax = pp.basins(ds)
+    wells = np.unique(ds.well.values[np.isfinite(ds.well.values)])
+    assert [t.get_text().split(" (")[0] for t in ax.get_legend().get_texts()][:wells.size] == \
+        [f"well {w:g}" for w in wells]
+    assert ax.collections[0].cmap.N == wells.size + 1
+
+
+def test_basins_of_many_wells_gets_one_tick_per_well():
+    ds = pendula.sweep(pendula.Scene(damping=0.02), {"v0": np.linspace(0, 4, 40), "damping": [0.02, 0.03]},
+                       "final_well")
+    wells = np.unique(ds.well.values[np.isfinite(ds.well.values)])
+    assert wells.size > 8
+    ax = pp.basins(ds)
+    labels = [t.get_text() for t in ax.basins_colorbar.ax.get_yticklabels()]
+    assert labels == ["undecided"] + [f"well {w:g}" for w in wells]
+    assert list(ax.basins_colorbar.get_ticks()) == list(range(-1, wells.size))   # at the centres, integers
+
+
+def test_basins_draws_the_attractors_when_the_axes_are_swapped(attractor_map):
+    ax = pp.basins(attractor_map.dataset.transpose("v0", "theta0"))
+    for a, line in zip(attractor_map.attractors, ax.lines):
+        assert np.array_equal(line.get_xdata(), a.v) and np.array_equal(line.get_ydata(), a.theta)
