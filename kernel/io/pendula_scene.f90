@@ -27,12 +27,12 @@ module pendula_scene
   integer, parameter :: max_sweep = 4096, max_outputs = 16
   !> the numbers of a scene in the order scene_from_fields takes them (whole
   !> numbers too: n_samples, max_flips, sweep_samples)
-  integer, parameter :: n_number_fields = 25
+  integer, parameter :: n_number_fields = 29
   character(len=16), parameter :: number_fields(n_number_fields) = [character(len=16) :: 'eps', 'theta0', &
     'v0', 't_start', 't_end', 'n_samples', 'damping', 'torque', 'drive_amplitude', 'drive_frequency', &
     'drive_phase', 'rtol', 'atol', 'dt', 'g', 'length', 'cycloid_radius', 'gravity_distance', &
     'gravity_gradient', 'restitution', 'max_flips', 'min_flight', 'sweep_t_max', 'sweep_transient', &
-    'sweep_samples']
+    'sweep_samples', 'friction', 'drag', 'pivot_amplitude', 'pivot_frequency']
   !> the single words, in order; then the outputs, then the grid's axes
   integer, parameter :: n_word_fields = 7
   character(len=8), parameter :: word_fields(n_word_fields) = [character(len=8) :: 'cord', 'guide', 'gravity', &
@@ -74,6 +74,8 @@ module pendula_scene
     character(len=32) :: measure = ''
     real(dp) :: sweep_t_max = 2000.0_dp, sweep_transient = 200.0_dp
     integer :: sweep_samples = 100
+    ! effects: dry (Coulomb) friction mu, quadratic drag gamma, a vertically vibrating pivot a cos(Omega t)
+    real(dp) :: friction = 0.0_dp, drag = 0.0_dp, pivot_amplitude = 0.0_dp, pivot_frequency = 0.0_dp
   end type scene_t
 
 contains
@@ -120,7 +122,8 @@ contains
     ! the namelist variables (same names as the fields)
     real(dp) :: eps, theta0, v0, t_start, t_end, damping, torque, drive_amplitude, &
                 drive_frequency, drive_phase, rtol, atol, dt, g, length, cycloid_radius, gravity_distance, &
-                gravity_gradient, restitution, min_flight, sweep_t_max, sweep_transient
+                gravity_gradient, restitution, min_flight, sweep_t_max, sweep_transient, &
+                friction, drag, pivot_amplitude, pivot_frequency
     integer :: n_samples, max_flips, sweep_samples
     real(dp) :: grid1(max_sweep), grid2(max_sweep), grid3(max_sweep), grid1_range(3), grid2_range(3), &
                 grid3_range(3)
@@ -134,7 +137,7 @@ contains
       outputs, sweep, sweep_values, name, g, length, cycloid_radius, gravity_distance, gravity_gradient, &
       restitution, max_flips, min_flight, &
       grid, grid1, grid2, grid3, grid1_range, grid2_range, grid3_range, measure, sweep_t_max, &
-      sweep_transient, sweep_samples
+      sweep_transient, sweep_samples, friction, drag, pivot_amplitude, pivot_frequency
     character(len=:), allocatable :: text
     character(len=:), allocatable :: buf
     character(len=512) :: iom
@@ -144,14 +147,15 @@ contains
     character(len=32) :: words(max_words)
     integer :: wlen(max_words), nout, ngrid
     character(len=1024) :: longw(max_words)
-    integer, parameter :: n_known = 41
+    integer, parameter :: n_known = 45
     character(len=16), parameter :: known_fields(n_known) = [character(len=16) :: 'eps', 'theta0', 'v0', &
       't_start', 't_end', 'n_samples', 'damping', 'torque', 'drive_amplitude', 'drive_frequency', &
       'drive_phase', 'cord', 'guide', 'gravity', 'method', 'rtol', 'atol', 'dt', 'outputs', 'sweep', &
       'sweep_values', 'name', 'g', 'length', 'cycloid_radius', 'gravity_distance', 'gravity_gradient', &
       'restitution', 'max_flips', 'min_flight', &
       'grid', 'grid1', 'grid2', 'grid3', 'grid1_range', 'grid2_range', 'grid3_range', 'measure', &
-      'sweep_t_max', 'sweep_transient', 'sweep_samples']
+      'sweep_t_max', 'sweep_transient', 'sweep_samples', 'friction', 'drag', 'pivot_amplitude', &
+      'pivot_frequency']
     ! how many values each field was given, and the line where it was
     integer :: given(n_known), given_line(n_known)
 
@@ -167,6 +171,7 @@ contains
     grid = ''; grid1 = nan_dp; grid2 = nan_dp; grid3 = nan_dp; grid1_range = nan_dp; grid2_range = nan_dp
     grid3_range = nan_dp; measure = ''; sweep_t_max = 2000.0_dp; sweep_transient = 200.0_dp
     sweep_samples = 100
+    friction = 0; drag = 0; pivot_amplitude = 0; pivot_frequency = 0
     given = 0
     given_line = 0
     if (present(g_out)) g_out = nan_dp
@@ -337,6 +342,8 @@ contains
     sc%gravity_gradient = gravity_gradient
     sc%restitution = restitution; sc%max_flips = max_flips; sc%min_flight = min_flight
     sc%sweep_t_max = sweep_t_max; sc%sweep_transient = sweep_transient; sc%sweep_samples = sweep_samples
+    sc%friction = friction; sc%drag = drag; sc%pivot_amplitude = pivot_amplitude
+    sc%pivot_frequency = pivot_frequency
     call set_words(sc, words, nout, ngrid)
     sc%n_sweep = given(findloc(known_fields, 'sweep_values', dim=1))
     sc%sweep_values = sweep_values(1:sc%n_sweep)
@@ -440,6 +447,7 @@ contains
     sc%drive_phase = x(11); sc%rtol = x(12); sc%atol = x(13); sc%dt = x(14)
     sc%cycloid_radius = x(17); sc%gravity_distance = x(18); sc%gravity_gradient = x(19)
     sc%restitution = x(20); sc%min_flight = x(22); sc%sweep_t_max = x(23); sc%sweep_transient = x(24)
+    sc%friction = x(26); sc%drag = x(27); sc%pivot_amplitude = x(28); sc%pivot_frequency = x(29)
     if (.not. whole(x(6), sc%n_samples, msg, 'n_samples')) return
     if (.not. whole(x(21), sc%max_flips, msg, 'max_flips')) return
     if (.not. whole(x(25), sc%sweep_samples, msg, 'sweep_samples')) return
@@ -486,7 +494,8 @@ contains
     x = [sc%eps, sc%theta0, sc%v0, sc%t_start, sc%t_end, real(sc%n_samples, dp), sc%damping, sc%torque, &
          sc%drive_amplitude, sc%drive_frequency, sc%drive_phase, sc%rtol, sc%atol, sc%dt, g, length, &
          sc%cycloid_radius, sc%gravity_distance, sc%gravity_gradient, sc%restitution, real(sc%max_flips, dp), &
-         sc%min_flight, sc%sweep_t_max, sc%sweep_transient, real(sc%sweep_samples, dp)]
+         sc%min_flight, sc%sweep_t_max, sc%sweep_transient, real(sc%sweep_samples, dp), &
+         sc%friction, sc%drag, sc%pivot_amplitude, sc%pivot_frequency]
     nout = sc%n_outputs
     ngrid = sc%n_grid
     words = ''
@@ -631,9 +640,10 @@ contains
     character(len=16), parameter :: cords(2) = [character(len=16) :: 'rigid', 'flexible'], &
       guides(2) = [character(len=16) :: 'none', 'cycloid'], &
       gravities(3) = [character(len=16) :: 'uniform', 'inverse-square', 'linear']
-    real(dp) :: vals(22)
+    real(dp) :: vals(26)
     integer :: i
-    character(len=16), parameter :: finite_names(22) = [character(len=16) :: 'theta0', 'v0', 't_start', 't_end', &
+    character(len=16), parameter :: finite_names(26) = [character(len=16) :: 'friction', 'drag', &
+      'pivot_amplitude', 'pivot_frequency', 'theta0', 'v0', 't_start', 't_end', &
       'damping', 'torque', 'drive_amplitude', 'drive_frequency', 'drive_phase', 'rtol', 'atol', 'dt', &
       'cycloid_radius', 'gravity_distance', 'gravity_gradient', 'restitution', 'min_flight', 'sweep_t_max', &
       'sweep_transient', 'eps', 'g', 'length']
@@ -641,12 +651,13 @@ contains
     if ((g /= g) .neqv. (length /= length)) then
       msg = 'fields ''g'' and ''length'' go together (eps = g / length): give both or neither'; return
     end if
-    vals = [sc%theta0, sc%v0, sc%t_start, sc%t_end, sc%damping, sc%torque, sc%drive_amplitude, &
+    vals = [sc%friction, sc%drag, sc%pivot_amplitude, sc%pivot_frequency, &
+            sc%theta0, sc%v0, sc%t_start, sc%t_end, sc%damping, sc%torque, sc%drive_amplitude, &
             sc%drive_frequency, sc%drive_phase, sc%rtol, sc%atol, sc%dt, sc%cycloid_radius, sc%gravity_distance, &
             sc%gravity_gradient, sc%restitution, sc%min_flight, sc%sweep_t_max, sc%sweep_transient, sc%eps, g, &
             length]
     do i = 1, size(vals)
-      if (i >= 20 .and. vals(i) /= vals(i)) cycle   ! eps, g, length: NaN is 'not given'
+      if (i >= 24 .and. vals(i) /= vals(i)) cycle   ! eps, g, length: NaN is 'not given'
       if (.not. finite(vals(i))) then
         msg = 'field ''' // trim(finite_names(i)) // ''' must be finite, got ' // trim(num_text(vals(i))); return
       end if
@@ -744,8 +755,54 @@ contains
     if (.not. (sc%drive_frequency >= 0)) then
       msg = 'field ''drive_frequency'' must be >= 0, got ' // trim(num_text(sc%drive_frequency)); return
     end if
-    call model_rules(sc, msg)
+    if (len_trim(msg) == 0) call effect_rules(sc, msg)
+    if (len_trim(msg) == 0) call model_rules(sc, msg)
   end subroutine value_rules
+
+  !> The effects friction, drag and the vibrating pivot: their ranges and the
+  !> models and methods they combine with (msg = '' when fine).  Friction and
+  !> drag switch at v = 0: an event on the dense output of dopri5 or dop853.
+  subroutine effect_rules(sc, msg)
+    type(scene_t), intent(in) :: sc
+    character(len=*), intent(out) :: msg
+    character(len=16) :: what
+    msg = ''
+    if (.not. (sc%friction >= 0)) then
+      msg = 'field ''friction'' must be >= 0 (the Coulomb coefficient mu, an acceleration), got ' // &
+            trim(num_text(sc%friction)); return
+    end if
+    if (.not. (sc%drag >= 0)) then
+      msg = 'field ''drag'' must be >= 0 (gamma of -gamma v |v|), got ' // trim(num_text(sc%drag)); return
+    end if
+    if (.not. (sc%pivot_frequency >= 0)) then
+      msg = 'field ''pivot_frequency'' must be >= 0, got ' // trim(num_text(sc%pivot_frequency)); return
+    end if
+    if (sc%pivot_amplitude /= 0 .and. .not. (sc%pivot_frequency > 0)) then
+      msg = 'field ''pivot_frequency'' must be > 0 when ''pivot_amplitude'' is set (a vibrating pivot ' // &
+            'needs its frequency Omega)'; return
+    end if
+    what = ''
+    if (sc%pivot_amplitude /= 0) what = 'pivot_amplitude'
+    if (sc%drag /= 0) what = 'drag'
+    if (sc%friction /= 0) what = 'friction'
+    if (len_trim(what) == 0) return
+    if (sc%cord /= 'rigid') then
+      msg = 'fields ''' // trim(what) // ''' and ''cord'': the flexible cord does not take ' // trim(what) // &
+            ' (only damping, torque, drive)'; return
+    end if
+    if (sc%guide /= 'none') then
+      msg = 'fields ''' // trim(what) // ''' and ''guide'': the cycloidal guide is solved in closed form ' // &
+            'and does not take ' // trim(what); return
+    end if
+    if (sc%friction /= 0 .or. sc%drag /= 0) then
+      what = merge('friction', 'drag    ', sc%friction /= 0)
+      if (sc%method /= 'auto' .and. sc%method /= 'dopri5' .and. sc%method /= 'dop853') then
+        msg = 'fields ''' // trim(what) // ''' and ''method'': ' // trim(what) // ' switches where v = 0, ' // &
+              'an event located on the dense output of dopri5 or dop853 (auto: dop853); got ''' // &
+              trim(sc%method) // ''''; return
+      end if
+    end if
+  end subroutine effect_rules
 
   !> The cycloidal guide, the gravity fields, the flexible cord, and the
   !> method 'exact' (msg = '' when fine).
@@ -826,7 +883,7 @@ contains
     end select
     if (sc%method == 'exact') then
       if (sc%gravity /= 'uniform' .or. (sc%guide /= 'cycloid' .and. (sc%damping /= 0 .or. sc%torque /= 0 .or. &
-          sc%drive_amplitude /= 0))) then
+          sc%drive_amplitude /= 0 .or. sc%pivot_amplitude /= 0))) then
         msg = 'field ''method'': ''exact'' answers only the conservative rigid pendulum, the flexible cord ' // &
               'and the cycloidal guide, but the scene names ' // trim(scene_effects(sc)); return
       end if
@@ -972,6 +1029,9 @@ contains
     if (sc%cord /= 'rigid') call add('cord')
     if (sc%guide /= 'none') call add('guide')
     if (sc%gravity /= 'uniform') call add('gravity')
+    if (sc%friction /= 0) call add('friction')
+    if (sc%drag /= 0) call add('drag')
+    if (sc%pivot_amplitude /= 0) call add('pivot')
   contains
     pure subroutine add(w)
       character(len=*), intent(in) :: w
@@ -1005,6 +1065,11 @@ contains
     s = trim(s) // new_line('a') // '# outputs =' // trim(tmp)
     if (sc%n_sweep > 0) then
       write(tmp, '(a, i0, a)') 'sweep = ' // trim(sc%sweep) // ' over ', sc%n_sweep, ' values'
+      s = trim(s) // new_line('a') // '# ' // trim(tmp)
+    end if
+    if (sc%friction /= 0 .or. sc%drag /= 0 .or. sc%pivot_amplitude /= 0) then
+      write(tmp, '(a, es24.16e3, a, es24.16e3, a, es24.16e3, a, es24.16e3)') 'friction = ', sc%friction, &
+        ', drag = ', sc%drag, ', pivot_amplitude = ', sc%pivot_amplitude, ', pivot_frequency = ', sc%pivot_frequency
       s = trim(s) // new_line('a') // '# ' // trim(tmp)
     end if
     if (len_trim(sc%name) > 0) s = trim(s) // new_line('a') // '# name = ' // trim(sc%name)

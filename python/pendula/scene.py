@@ -143,6 +143,17 @@ class Scene:
     sweep_t_max, sweep_transient, sweep_samples : float, float, int
         The sweep's time limit (or averaging time), transient and number of
         Poincare samples.
+    friction : float
+        Dry (Coulomb) friction mu >= 0 at the pivot: -mu sgn(theta') while
+        moving; at rest the bob sticks while |eps sin(theta) - forces| <= mu
+        (static and kinetic coefficients equal).  Stops and restarts are
+        events (dopri5 or dop853).
+    drag : float
+        Quadratic air drag gamma >= 0: -gamma theta' |theta'|.
+    pivot_amplitude, pivot_frequency : float
+        A vertically vibrating pivot y = a cos(Omega t) (in units of the
+        length): the effective gravity eps - a Omega^2 cos(Omega t).  A pivot
+        amplitude needs a frequency > 0.
 
     Raises
     ------
@@ -211,6 +222,11 @@ class Scene:
     sweep_t_max: float = 2000.0
     sweep_transient: float = 200.0
     sweep_samples: int = 100
+    # effects: dry friction, quadratic drag, a vibrating pivot (guide/effects.md)
+    friction: float = 0.0
+    drag: float = 0.0
+    pivot_amplitude: float = 0.0
+    pivot_frequency: float = 0.0
 
     def __post_init__(self):
         _check(self)
@@ -364,6 +380,8 @@ class Scene:
             out.append("guide")
         if self.gravity != "uniform":
             out.append("gravity")
+        out += [name for name, on in (("friction", self.friction), ("drag", self.drag),
+                                      ("pivot", self.pivot_amplitude)) if on != 0.0]
         object.__setattr__(self, "_effects", tuple(out))
         return self._effects
 
