@@ -37,7 +37,7 @@
 !> sweep_max_angle (sweep_limits gives them to the Python layer).
 module pendula_sweep
   use pendula_kinds, only: dp, pi, two_pi, nan_dp
-  use pendula_scene, only: scene_t
+  use pendula_scene, only: scene_t, scene_effects
   use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate, &
     m_dop853, st_ok, st_cancelled
   use pendula_lyapunov, only: lyapunov_point, ly_cancelled
@@ -129,6 +129,10 @@ contains
       msg = trim(what) // ' runs the rigid pendulum only; the model ''' // trim(registry(id)%name) // &
         ''' (cord = ''' // trim(sc%cord) // ''', guide = ''' // trim(sc%guide) // ''', gravity = ''' // &
         trim(sc%gravity) // ''') is not implemented for sweeps: use pendula.simulate per point'
+    else if (sc%friction /= 0 .or. sc%drag /= 0 .or. sc%pivot_amplitude /= 0) then
+      status = 3
+      msg = trim(what) // ': the effects friction, drag and pivot are not implemented for sweeps yet ' // &
+        '(the scene names ' // trim(scene_effects(sc)) // '): use pendula.simulate or periodic_orbit per point'
     end if
   end subroutine sweep_model_rule
 

@@ -333,7 +333,7 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
           | None = None, *, rtol: float | None = None, atol: float | None = None, t_max: float | None = None,
           transient: float | None = None, samples: int | None = None, out: str | os.PathLike[str] | None = None,
           chunk_points: int = 20000, client: distributed.Client | None = None, threads: int = 0,
-          progress: bool = False) -> xarray.Dataset:
+          progress: bool = False, force: object = None, force_params: ArrayLike | None = None) -> xarray.Dataset:
     """Evaluate a measure over a grid of one scene's fields.
 
     Parameters
@@ -377,6 +377,9 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
         ``client``: the rule above, which a positive ``threads`` can lower).
     progress : bool
         Show a tqdm bar of chunks done and the time left.
+    force, force_params : optional
+        A user's force, as in :func:`pendula.simulate`: not implemented for
+        sweeps yet (NotImplementedError); so are friction, drag and the pivot.
 
     Returns
     -------
@@ -396,6 +399,9 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
         that are empty, not finite or out of the field's range, bad tolerances
         or times, 'poincare' without a drive, or an `out` that holds a
         different sweep.
+    NotImplementedError
+        For a model or effect the sweeps do not run (flexible cord, cycloid,
+        non-uniform gravity, friction, drag, pivot, a user's force).
     pendula._store.StoreBusyError
         (an OSError) another sweep is writing the same ``out``; the message
         names the store and that sweep's pid.
@@ -427,7 +433,10 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
     True
     """
     xr = require("xarray", "sweep", "pendula.sweep")
-
+    # (effects) a user's force reaches the kernel's simulate and periodic_orbit, not its sweeps yet
+    if force is not None or force_params is not None:
+        raise NotImplementedError("sweep(force=...): a user's force is not implemented for sweeps yet; "
+                                  "use pendula.simulate(scene, t, force=...) per point")
     if not isinstance(scene, Scene):
         scene = Scene.from_file(scene)
     measure = measure or scene.measure
