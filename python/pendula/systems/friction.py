@@ -40,6 +40,17 @@ class FrictionTurningPoints:
         Whether the bob sticks at the last one (for good: no drive).
     stick_angle, stick_time : float
         Where and when it sticks (NaN when it does not within the points returned).
+
+    See Also
+    --------
+    friction_turning_points : makes it.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> tp = pendula.friction_turning_points(pendula.Scene(theta0=0.5, friction=0.1))
+    >>> tp.angles.round(6).tolist(), tp.stuck       # 2 mu / eps lost per half swing, nearly
+    ([0.5, -0.294282, 0.092687], True)
     """
 
     times: np.ndarray
