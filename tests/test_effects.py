@@ -297,3 +297,37 @@ def test_sweep_with_friction_not_implemented():
 def test_backward_times_refused_with_friction():
     with pytest.raises(ValueError, match="forward"):
         pendula.simulate(pendula.Scene(theta0=1.0, friction=0.1), [-1.0, 0.0])
+
+
+def test_events_refused_with_friction():
+    with pytest.raises(NotImplementedError, match="'friction'"):
+        pendula.find_events(pendula.Scene(v0=1.5, friction=0.05, t_end=50), "turning")
+
+
+def test_drag_turning_events_match_the_simulated_zeros_of_v():
+    # find_events integrates drag's -gamma v|v| directly (a C1 force, error-controlled): the turning
+    # times agree with simulate's located switches (its path has v = 0 there)
+    sc = pendula.Scene(v0=1.5, drag=0.05, t_end=30, **TIGHT)
+    ev = pendula.find_events(sc, "turning")
+    tr = pendula.simulate(sc, ev.t)
+    assert np.max(np.abs(tr.v)) < 1e-9
+
+
+@pytest.mark.parametrize("effect", [dict(friction=0.1), dict(pivot_amplitude=0.1, pivot_frequency=20.0)])
+def test_equilibria_refused_with_friction_or_pivot(effect):
+    with pytest.raises(ValueError, match="friction|pivot"):
+        pendula.equilibria(pendula.Scene(**effect))
+
+
+@pytest.mark.parametrize("effect", [dict(friction=0.1), dict(drag=0.1), dict(pivot_amplitude=0.1, pivot_frequency=20.0)])
+def test_numerical_period_refused_with_effects(effect):
+    with pytest.raises(ValueError, match="conservative"):
+        pendula.numerical_period(pendula.Scene(theta0=1.0, **effect))
+
+
+def test_attractor_map_refuses_pivot():
+    sc = pendula.Scene(damping=0.5, drive_amplitude=1.35, drive_frequency=2 / 3, pivot_amplitude=0.1,
+                       pivot_frequency=2 / 3)
+    with pytest.raises(NotImplementedError, match="pivot"):
+        pendula.attractor_map(sc, {"theta0": np.linspace(-1, 1, 3), "v0": np.linspace(-1, 1, 3)}, transient=10.0,
+                              samples=4)

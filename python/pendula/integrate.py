@@ -84,6 +84,10 @@ def _run(scene, method, t_sorted, ev_kind=0, ev_level=0.0, ev_dir=0, terminal=Fa
         raise ValueError("the cycloidal pendulum is solved in closed form, never integrated")
     if scene.gravity != "uniform" and method == "gsl-rk8pd":
         raise ValueError("gsl-rk8pd does not take a non-uniform gravity field; use dop853")
+    if scene.friction != 0.0:
+        # (effects) the stick needs the dispatcher's stretches between v = 0 events (simulate)
+        raise NotImplementedError("field 'friction': events on a scene with dry friction are not implemented; "
+                                  "simulate(scene) gives the path, friction_turning_points(scene) its stops")
     cancel = _interrupt.cancel_flag()
     span = float(np.max(np.abs(t_sorted))) if t_sorted.size else 0.0
     x, words, wlen, nout, ngrid = scene._kernel_fields     # the scene as the kernel checked it
@@ -224,6 +228,9 @@ def find_events(scene: Scene, kind: str = "turning", level: float = 0.0, directi
         For an unknown `kind`, a `direction` other than those above, a method
         without dense output, `max_events` out of range, or `t_end` not
         positive and finite.
+    NotImplementedError
+        For other crossings of the flexible cord, and for a scene with dry
+        ``friction`` (its stops: :func:`friction_turning_points`).
 
     See Also
     --------
@@ -344,9 +351,9 @@ def numerical_period(scene: Scene, periods: int = 20, method: str = "dop853") ->
             raise ValueError(f"the flexible cord slackens (first at t = {fl.t[0]!r}, theta = {fl.theta[0]!r}): its "
                              "motion is not periodic; its flips are find_events(scene, 'departure')")
         return numerical_period(rigid, periods, method)
-    elif scene.damping != 0.0 or scene.torque != 0.0 or scene.drive_amplitude != 0.0:
+    elif set(scene.effects) - {"gravity"}:
         raise ValueError("numerical_period measures the period of a conservative orbit: the scene has "
-                         + ", ".join(e for e in scene.effects if e in ("damping", "torque", "drive")))
+                         + ", ".join(e for e in scene.effects if e != "gravity"))
     else:
         o = gravity_orbit(scene) if scene.gravity != "uniform" else orbit(scene.theta0, scene.v0, scene.eps)
         if not math.isfinite(o.period):
