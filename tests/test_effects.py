@@ -325,9 +325,33 @@ def test_numerical_period_refused_with_effects(effect):
         pendula.numerical_period(pendula.Scene(theta0=1.0, **effect))
 
 
-def test_attractor_map_refuses_pivot():
-    sc = pendula.Scene(damping=0.5, drive_amplitude=1.35, drive_frequency=2 / 3, pivot_amplitude=0.1,
-                       pivot_frequency=2 / 3)
-    with pytest.raises(NotImplementedError, match="pivot"):
-        pendula.attractor_map(sc, {"theta0": np.linspace(-1, 1, 3), "v0": np.linspace(-1, 1, 3)}, transient=10.0,
-                              samples=4)
+def test_pivot_lyapunov_sweep_against_scipy_monodromy():
+    # the damped inverted state is an attractor above Kapitza's threshold: the exponents a lyapunov
+    # sweep measures from near the top are log|mu| / T of scipy's monodromy of the linearisation
+    sc = pendula.Scene(damping=0.5, pivot_amplitude=0.15, pivot_frequency=20.0, theta0=math.pi - 0.05)
+    ly = pendula.sweep(sc, over={"pivot_amplitude": [0.15, 0.3]}, measure="lyapunov", transient=40.0,
+                       t_max=200.0, rtol=1e-12, atol=1e-14)
+    for k, a in enumerate((0.15, 0.3)):
+        mu = np.sort(np.abs(np.linalg.eigvals(_scipy_inverted_monodromy(1.0, a, 20.0, 0.5))))[::-1]
+        ref = np.log(mu) / (2 * math.pi / 20.0)
+        assert ly.status.values[k] == 0
+        # the sweep's own convergence estimate bounds its error (block averages over the window)
+        assert abs(ly.lyapunov.values[k] - ref[0]) < 3 * ly.lyapunov_err.values[k] + 1e-6
+        assert abs(ly.lyapunov.values[k] + ly.lyapunov2.values[k] + 0.5) < 1e-8      # Liouville: -beta
+
+
+def test_pivot_attractor_map_finds_the_top_and_the_bottom():
+    sc = pendula.Scene(damping=0.5, pivot_amplitude=0.15, pivot_frequency=20.0)
+    am = pendula.attractor_map(sc, {"theta0": np.linspace(-np.pi, np.pi, 8), "v0": np.linspace(-2, 2, 8)},
+                               transient=100.0, samples=8)
+    assert sorted(a.kind for a in am.attractors) == ["periodic", "periodic"]
+    tops = sorted(abs(float(a.theta[0])) for a in am.attractors)
+    assert tops[0] < 1e-8 and abs(tops[1] - math.pi) < 1e-8
+
+
+def test_pivot_poincare_without_drive_samples_the_pivot_period():
+    sc = pendula.Scene(damping=0.5, pivot_amplitude=0.15, pivot_frequency=20.0, theta0=0.3)
+    pc = pendula.sweep(sc, over={"v0": [0.0]}, measure="poincare", transient=0.0, samples=3, rtol=1e-12,
+                       atol=1e-14)
+    ref = pendula.simulate(sc.replace(rtol=1e-12, atol=1e-14), [2 * math.pi / 20.0 * k for k in (1, 2, 3)])
+    assert np.max(np.abs(pc.theta.values[0] - ref.theta)) < 1e-9

@@ -31,7 +31,7 @@
 !> Thread safety: no module variables; pure helpers; status codes only.
 module pendula_lyapunov
   use pendula_kinds, only: dp, i8, two_pi, nan_dp
-  use pendula_integrators, only: pendulum_model, make_model, dop853_step_6, dop853_error_norm, system_rhs, max_steps, &
+  use pendula_integrators, only: pendulum_model, make_model, add_effects, dop853_step_6, dop853_error_norm, system_rhs, max_steps, &
     st_ok, st_step_underflow, st_nonfinite, st_too_many_steps
   implicit none
   private
@@ -47,7 +47,7 @@ contains
   !> The base period, the intervals per base period m, the transient and
   !> window lengths in intervals (see the module text).
   pure subroutine lyapunov_intervals(p, t_tr, t_avg, tb, m, ntr, navg, ok)
-    real(dp), intent(in) :: p(8), t_tr, t_avg
+    real(dp), intent(in) :: p(10), t_tr, t_avg
     real(dp), intent(out) :: tb
     integer, intent(out) :: m, ntr, navg
     logical, intent(out) :: ok
@@ -58,7 +58,15 @@ contains
     else
       tb = two_pi / sqrt(p(1))
     end if
+    ! a vibrating pivot (p(9), p(10)): its period, when the drive's is the same or there is none
+    if (p(9) /= 0.0_dp) then
+      if (p(4) /= 0.0_dp .and. p(5) /= 0.0_dp .and. p(5) /= p(10)) then
+        ok = .false.; return
+      end if
+      tb = two_pi / p(10)
+    end if
     g = abs(p(2)) + 2.0_dp * sqrt(p(1))
+    if (p(9) /= 0.0_dp) g = g + 2.0_dp * sqrt(abs(p(9))) * p(10)
     ! counted in reals first: a window too long to count is refused, not wrapped around
     rm = max(1.0_dp, real(ceiling(min(g * tb / 4.0_dp, 1.0e9_dp)), dp))
     rtr = max(0.0_dp, t_tr / tb - 1.0e-12_dp)
@@ -80,11 +88,11 @@ contains
   !> cancel (optional): read once per renormalisation interval; non-zero
   !> stops the point with status ly_cancelled.
   subroutine lyapunov_point(p, rtol, atol, t_tr, t_avg, lam1, lam2, err, status, cancel)
-    real(dp), intent(in) :: p(8), rtol, atol, t_tr, t_avg
+    real(dp), intent(in) :: p(10), rtol, atol, t_tr, t_avg
     real(dp), intent(out) :: lam1, lam2, err
     integer, intent(out) :: status
     integer, intent(inout), volatile, optional :: cancel
-    real(dp) :: tb, hr, y(6), h, s1, s2, n1, n2, d, blk(ly_nblock), bsum, phase, tblk
+    real(dp) :: tb, hr, y(6), h, s1, s2, n1, n2, d, blk(ly_nblock), bsum, phase, tblk, pphase
     integer :: m, ntr, navg, j, jb, jstart, jend, s
     integer(i8) :: nsteps
     logical :: ok
@@ -117,7 +125,10 @@ contains
       phase = p(6)
       if (p(4) /= 0.0_dp .and. p(5) /= 0.0_dp) &
         phase = p(6) + sign(1.0_dp, p(5)) * two_pi * real(mod(j, m), dp) / real(m, dp)
-      call interval(p, phase, hr, rtol, atol, y, h, nsteps, s)
+      ! the pivot's phase likewise (its period is the base period)
+      pphase = 0.0_dp
+      if (p(9) /= 0.0_dp) pphase = two_pi * real(mod(j, m), dp) / real(m, dp)
+      call interval(p, phase, pphase, hr, rtol, atol, y, h, nsteps, s)
       if (s /= st_ok) then
         status = 100 + s; return
       end if
@@ -154,8 +165,8 @@ contains
   !> Advance the 6-D state over [0, hr] with the model's clock at 0 and
   !> drive phase `phase`.  h: the step to try (0: choose one); on return the
   !> step the controller proposes next (not the one cut to reach hr).
-  pure subroutine interval(p, phase, hr, rtol, atol, y, h, nsteps, status)
-    real(dp), intent(in) :: p(8), phase, hr, rtol, atol
+  pure subroutine interval(p, phase, pphase, hr, rtol, atol, y, h, nsteps, status)
+    real(dp), intent(in) :: p(10), phase, pphase, hr, rtol, atol
     real(dp), intent(inout) :: y(6), h
     integer(i8), intent(inout) :: nsteps
     integer, intent(out) :: status
@@ -165,6 +176,10 @@ contains
     real(dp), parameter :: safe = 0.9_dp, facc1 = 1.0_dp / 0.333_dp, facc2 = 1.0_dp / 6.0_dp, &
       expo1 = 1.0_dp / 8.0_dp
     md = make_model(p(1), p(2), p(3), p(4), p(5), phase)
+    if (p(9) /= 0.0_dp) then
+      md = add_effects(md, 0.0_dp, 0.0_dp, p(9), p(10))
+      md%pphase = pphase
+    end if
     t = 0.0_dp
     f0 = rhs(md, p, t, y)
     if (.not. (h > 0.0_dp)) h = initial_step(md, p, y, f0, hr, rtol, atol)
@@ -217,7 +232,7 @@ contains
   !> The 6-D right-hand side (orbit and two tangent vectors): the integrators' system_rhs.
   pure function rhs(md, p, t, y) result(f)
     type(pendulum_model), intent(in) :: md
-    real(dp), intent(in) :: p(8), t, y(6)
+    real(dp), intent(in) :: p(10), t, y(6)
     real(dp) :: f(6)
     f = system_rhs(md, t, y)
   end function rhs
@@ -226,7 +241,7 @@ contains
   !> stepper on the 6-D system): ynew, fnew = f(t + h, ynew) and Hairer's error norm.
   pure subroutine step853(md, p, t, y, f0, h, rtol, atol, k, ynew, fnew, errn)
     type(pendulum_model), intent(in) :: md
-    real(dp), intent(in) :: p(8), t, y(6), f0(6), h, rtol, atol
+    real(dp), intent(in) :: p(10), t, y(6), f0(6), h, rtol, atol
     real(dp), intent(out) :: k(0:12, 6), ynew(6), fnew(6), errn
     real(dp) :: sk(6), e3(6), e5(6)
     call dop853_step_6(md, t, y, f0, h, k, ynew, fnew, e3, e5)
@@ -238,7 +253,7 @@ contains
   !> Hairer's starting step (order 8), at most hr.
   pure function initial_step(md, p, y, f0, hr, rtol, atol) result(h0)
     type(pendulum_model), intent(in) :: md
-    real(dp), intent(in) :: p(8), y(6), f0(6), hr, rtol, atol
+    real(dp), intent(in) :: p(10), y(6), f0(6), hr, rtol, atol
     real(dp) :: h0, sk(6), dnf, dny, h1, der2, der12, f1(6)
     sk = max(atol + rtol * abs(y), tiny(1.0_dp))
     dnf = sum((f0 / sk)**2) / 6.0_dp

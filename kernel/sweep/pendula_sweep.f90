@@ -38,7 +38,7 @@
 module pendula_sweep
   use pendula_kinds, only: dp, pi, two_pi, nan_dp
   use pendula_scene, only: scene_t, scene_effects
-  use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate, &
+  use pendula_integrators, only: pendulum_model, make_model, add_effects, event_spec, run_stats, integrate, &
     m_dop853, st_ok, st_cancelled
   use pendula_lyapunov, only: lyapunov_point, ly_cancelled
   use pendula_outfile, only: outfile_t, out_line, out_reals
@@ -49,7 +49,8 @@ module pendula_sweep
   public :: sweep_points, iv_branch, np_params, sweep_scene_csv, sweep_model_rule, sweep_limits
   public :: ms_final_well, ms_mean_velocity, ms_locked, ms_poincare, ms_lyapunov
 
-  integer, parameter :: np_params = 8   ! eps, beta, tau, amp, omega, phase, theta0, v0
+  !> eps, beta, tau, amp, omega, phase, theta0, v0, then the vibrating pivot's amplitude and frequency
+  integer, parameter :: np_params = 10
   integer, parameter :: ms_final_well = 1, ms_mean_velocity = 2, ms_locked = 3, ms_poincare = 4, &
     ms_lyapunov = 5
   integer, parameter :: ps_decided = 0, ps_unsettled = 1, ps_not_applicable = 2, ps_bad_measure = 3, &
@@ -129,9 +130,9 @@ contains
       msg = trim(what) // ' runs the rigid pendulum only; the model ''' // trim(registry(id)%name) // &
         ''' (cord = ''' // trim(sc%cord) // ''', guide = ''' // trim(sc%guide) // ''', gravity = ''' // &
         trim(sc%gravity) // ''') is not implemented for sweeps: use pendula.simulate per point'
-    else if (sc%friction /= 0 .or. sc%drag /= 0 .or. sc%pivot_amplitude /= 0) then
+    else if (sc%friction /= 0 .or. sc%drag /= 0) then
       status = 3
-      msg = trim(what) // ': the effects friction, drag and pivot are not implemented for sweeps yet ' // &
+      msg = trim(what) // ': the effects friction and drag are not implemented for sweeps yet ' // &
         '(the scene names ' // trim(scene_effects(sc)) // '): use pendula.simulate or periodic_orbit per point'
     end if
   end subroutine sweep_model_rule
@@ -153,7 +154,7 @@ contains
     end if
     select case (measure)
     case (ms_final_well)
-      if (.not. (p(2) > 0.0_dp) .or. p(4) /= 0.0_dp .or. abs(p(3)) >= p(1)) then
+      if (.not. (p(2) > 0.0_dp) .or. p(4) /= 0.0_dp .or. p(9) /= 0.0_dp .or. abs(p(3)) >= p(1)) then
         st = ps_not_applicable; return
       end if
       call settle(p, rtol, atol, t_max, p(7), p(8), th, v, settled, nw, tdec, st, cancel)
@@ -164,7 +165,7 @@ contains
         st = ps_unsettled; o(2) = t_max
       end if
     case (ms_locked)
-      if (.not. (p(2) > 0.0_dp) .or. p(4) /= 0.0_dp) then
+      if (.not. (p(2) > 0.0_dp) .or. p(4) /= 0.0_dp .or. p(9) /= 0.0_dp) then
         st = ps_not_applicable; return
       end if
       if (abs(p(3)) >= p(1)) then
@@ -186,8 +187,8 @@ contains
     case (ms_poincare)
       ! the transient is a time: each point skips whole periods of its own drive
       n = 0
-      if (p(5) > 0.0_dp) then
-        vm = real(ceiling(min(t_tr * p(5) / two_pi, 1.0e9_dp) - 1.0e-12_dp), dp)
+      if (forcing_omega(p) > 0.0_dp) then
+        vm = real(ceiling(min(t_tr * forcing_omega(p) / two_pi, 1.0e9_dp) - 1.0e-12_dp), dp)
         if (vm > 1.0e8_dp) then
           st = ps_unsettled; return   ! beyond any work a sweep point may take
         end if
@@ -224,6 +225,10 @@ contains
     integer :: nev, s
     real(dp) :: tev(1), thev(1), vev(1)
     m = make_model(p(1), p(2), p(3), p(4), p(5), p(6) + p(5) * t0)
+    if (p(9) /= 0.0_dp) then
+      m = add_effects(m, 0.0_dp, 0.0_dp, p(9), p(10))
+      m%pphase = p(10) * t0
+    end if
     call integrate(m, m_dop853, th, v, ts, rtol, atol, 0.0_dp, ths, vs, stats, s, ev, nev, tev, thev, vev, cancel)
     if (s == st_cancelled) then
       st = ps_cancelled; return
@@ -324,7 +329,7 @@ contains
     logical :: can_trap, tr
     th = th0; v = v0; t = 0.0_dp; st = ps_decided
     vm = nan_dp; err = nan_dp
-    can_trap = p(2) > 0.0_dp .and. p(4) == 0.0_dp .and. abs(p(3)) < p(1)
+    can_trap = p(2) > 0.0_dp .and. p(4) == 0.0_dp .and. p(9) == 0.0_dp .and. abs(p(3)) < p(1)
     tw = two_pi / sqrt(p(1))
     seg_end = [t_tr, t_tr + 0.5_dp * t_avg, t_tr + t_avg]
     ! a window below the resolution of the transient (t_tr + t_avg / 2 == t_tr) would give
@@ -361,6 +366,20 @@ contains
     err = abs(vm - (th - thh) / (0.5_dp * t_avg))
   end subroutine mean_velocity
 
+  !> The angular frequency of the periodic forcing (the stroboscopic map's): the drive's, or
+  !> the vibrating pivot's when there is no drive; 0 when the two differ (no common period here).
+  pure real(dp) function forcing_omega(p)
+    real(dp), intent(in) :: p(np_params)
+    forcing_omega = p(5)
+    if (p(9) /= 0.0_dp) then
+      if (p(4) == 0.0_dp .or. p(5) == p(10)) then
+        forcing_omega = p(10)
+      else
+        forcing_omega = 0.0_dp
+      end if
+    end if
+  end function forcing_omega
+
   !> Stroboscopic samples once per drive period after n_tr periods.
   subroutine poincare(p, rtol, atol, n_tr, ns, o, st, cancel)
     real(dp), intent(in) :: p(np_params), rtol, atol
@@ -371,10 +390,10 @@ contains
     real(dp) :: tp, t, th, v, ts(1), ths(1), vs(1)
     integer :: k
     o = nan_dp
-    if (.not. (p(5) > 0.0_dp)) then
+    if (.not. (forcing_omega(p) > 0.0_dp)) then
       st = ps_not_applicable; return
     end if
-    tp = two_pi / p(5)
+    tp = two_pi / forcing_omega(p)
     th = p(7); v = p(8); t = 0.0_dp; st = ps_decided
     ts(1) = tp
     do k = 1, n_tr + ns
@@ -486,7 +505,7 @@ contains
       end if
     end do
     base = [sc%eps, sc%damping, sc%torque, sc%drive_amplitude, sc%drive_frequency, sc%drive_phase, &
-            sc%theta0, sc%v0]
+            sc%theta0, sc%v0, sc%pivot_amplitude, sc%pivot_frequency]
     do k = 0, sc%n_grid
       if (k > 0) then
         if (trim(sc%grid(k)) /= 'theta0') cycle
@@ -501,7 +520,8 @@ contains
     nout = 2
     t_tr = sc%sweep_transient
     if (measure == ms_poincare) then
-      if (.not. (sc%drive_frequency > 0.0_dp) .and. .not. any(sc%grid(1:sc%n_grid) == 'drive_frequency')) then
+      if (.not. (sc%drive_frequency > 0.0_dp) .and. .not. any(sc%grid(1:sc%n_grid) == 'drive_frequency') .and. &
+          sc%pivot_amplitude == 0.0_dp) then
         status = 2; msg = 'measure ''poincare'' needs a drive (drive_frequency > 0)'; return
       end if
       nout = 2 * sc%sweep_samples
@@ -618,6 +638,8 @@ contains
       case ('drive_frequency'); slot = 5
       case ('drive_phase'); slot = 6
       case ('theta0'); slot = 7
+      case ('pivot_amplitude'); slot = 9
+      case ('pivot_frequency'); slot = 10
       case default; slot = 8
       end select
     end function slot

@@ -49,7 +49,8 @@ SWEEPABLE = ("v0", "theta0", "eps", "damping", "torque", "drive_amplitude", "dri
 #: what a sweep point can answer (see pendula.sweeps)
 MEASURES = ("final_well", "mean_velocity", "locked", "poincare", "lyapunov")
 #: fields a grid may run over
-GRIDDABLE = ("v0", "theta0", "eps", "damping", "torque", "drive_amplitude", "drive_frequency", "drive_phase")
+GRIDDABLE = ("v0", "theta0", "eps", "damping", "torque", "drive_amplitude", "drive_frequency", "drive_phase",
+             "pivot_amplitude", "pivot_frequency")
 #: The kernel's limits: longer lists and strings are refused with a message, never truncated.
 MAX_SWEEP = 4096
 MAX_OUTPUTS = 16

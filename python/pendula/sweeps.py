@@ -77,7 +77,8 @@ STATUS = {0: "decided", 1: "not settled / undecided by the limit", 2: "measure d
               (1, "bad step"), (2, "bad tolerances"), (3, "bad method"), (5, "step size underflow"),
               (6, "non-finite state"), (7, "too many steps"), (8, "cancelled"), (9, "no dense output"),
               (10, "stopped by an event"))}}
-_PARAM_ORDER = ("eps", "damping", "torque", "drive_amplitude", "drive_frequency", "drive_phase", "theta0", "v0")
+_PARAM_ORDER = ("eps", "damping", "torque", "drive_amplitude", "drive_frequency", "drive_phase", "theta0", "v0",
+                "pivot_amplitude", "pivot_frequency")
 
 
 def grid_of(scene: Scene) -> dict:
@@ -174,16 +175,16 @@ class _Plan:
                 "samples": self.samples, "rows": self.rows}
 
     def params(self, i: int) -> np.ndarray:
-        """The kernel's (8, npts) parameter block of chunk i."""
+        """The kernel's (10, npts) parameter block of chunk i."""
         return self.params_rows(i * self.rows, min((i + 1) * self.rows, self.shape[0]))
 
     def params_rows(self, lo: int, hi: int) -> np.ndarray:
-        """The kernel's (8, npts) parameter block of rows lo .. hi - 1 of the first axis."""
+        """The kernel's (10, npts) parameter block of rows lo .. hi - 1 of the first axis."""
         names = list(self.over)
         axes = [self.over[names[0]][lo:hi]] + [self.over[n] for n in names[1:]]
         mesh = np.meshgrid(*axes, indexing="ij")
         npts = mesh[0].size
-        p = np.empty((8, npts), order="F")
+        p = np.empty((len(_PARAM_ORDER), npts), order="F")
         for j, f in enumerate(_PARAM_ORDER):
             p[j] = getattr(self.scene, f)
         for n, m in zip(names, mesh):
@@ -267,6 +268,8 @@ _AXIS_META = {
     "damping": ("linear damping beta", "s-1"), "torque": ("constant torque tau", "rad s-2"),
     "drive_amplitude": ("drive amplitude A", "rad s-2"), "drive_frequency": ("drive angular frequency Omega", "rad s-1"),
     "drive_phase": ("drive phase", "rad"), "sample": ("stroboscopic sample number", "1"),
+    "pivot_amplitude": ("vibrating pivot's amplitude a (units of the length)", "1"),
+    "pivot_frequency": ("vibrating pivot's angular frequency Omega", "rad s-1"),
 }
 #: the variables of each measure, in the kernel's output order
 _MEASURE_VARS = {"final_well": ("well", "t_decided"), "locked": ("locked", "t_decided"),
@@ -379,7 +382,9 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
         Show a tqdm bar of chunks done and the time left.
     force, force_params : optional
         A user's force, as in :func:`pendula.simulate`: not implemented for
-        sweeps yet (NotImplementedError); so are friction, drag and the pivot.
+        sweeps yet (NotImplementedError); nor are friction and drag.  A
+        vibrating pivot is (its period is the stroboscopic map's when there
+        is no drive).
 
     Returns
     -------
@@ -401,7 +406,7 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
         different sweep.
     NotImplementedError
         For a model or effect the sweeps do not run (flexible cord, cycloid,
-        non-uniform gravity, friction, drag, pivot, a user's force).
+        non-uniform gravity, friction, drag, a user's force).
     pendula._store.StoreBusyError
         (an OSError) another sweep is writing the same ``out``; the message
         names the store and that sweep's pid.
@@ -465,7 +470,8 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
     if measure == "poincare" and math.prod(len(v) for v in over.values()) * samples > _checks.MAX_GRID_POINTS:
         raise ValueError(f"parameter 'samples': {samples} samples at each grid point is more than "
                          f"{_checks.MAX_GRID_POINTS:.0e} values")
-    if measure == "poincare" and not scene.drive_frequency > 0 and "drive_frequency" not in over:
+    if measure == "poincare" and not scene.drive_frequency > 0 and "drive_frequency" not in over and \
+            scene.pivot_amplitude == 0:
         raise ValueError("measure 'poincare' needs a drive (drive_frequency > 0)")
     plan = _Plan(scene, over, measure, rtol, atol, t_max, transient, samples, int(chunk_points))
 
@@ -527,7 +533,7 @@ def attractor_map(scene: Scene, over: dict, *, transient: float = 600.0, samples
     Parameters
     ----------
     scene : Scene
-        A periodically driven scene (``drive_frequency > 0``).
+        A periodically driven scene (``drive_frequency > 0``, or a vibrating pivot).
     over : dict
         The grid, as for :func:`pendula.sweep` (e.g. ``{'theta0': ..., 'v0': ...}`` for a basin map).
     transient : float, optional
@@ -572,9 +578,11 @@ def attractor_map(scene: Scene, over: dict, *, transient: float = 600.0, samples
     for name, val in (("tol", tol), ("merge_tol", merge_tol), ("cell", cell)):
         if not (isinstance(val, (int, float, np.floating)) and math.isfinite(val) and val > 0):
             raise ValueError(f"{name} must be a positive finite number, got {val!r}")
-    if not (scene.drive_frequency > 0 and scene.drive_amplitude != 0) and "drive_frequency" not in over:
+    if not (scene.drive_frequency > 0 and scene.drive_amplitude != 0) and "drive_frequency" not in over and \
+            scene.pivot_amplitude == 0:      # (effects) a vibrating pivot drives the scene too
         raise ValueError("drive_amplitude, drive_frequency: attractor maps read the stroboscopic map of a "
-                         "periodically driven scene (drive_frequency > 0, drive_amplitude != 0)")
+                         "periodically driven scene (drive_frequency > 0, drive_amplitude != 0, or a "
+                         "vibrating pivot)")
     pc = sweep(scene, over=over, measure="poincare", transient=transient, samples=int(samples), rtol=rtol,
                atol=atol, threads=threads, out=out, client=client, progress=progress, chunk_points=chunk_points)
     from .dynamics.attractors import AttractorMap, basin_entropy, boundary_fraction, label_attractors, \
