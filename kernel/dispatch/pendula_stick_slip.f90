@@ -20,7 +20,7 @@ module pendula_stick_slip
   use, intrinsic :: iso_c_binding, only: c_double, c_ptr, c_funloc, c_loc, c_f_pointer
   use pendula_kinds, only: dp, i8, nan_dp, two_pi
   use pendula_integrators, only: pendulum_model, free_accel, event_spec, run_stats, integrate, st_ok, &
-    st_stopped, st_too_many_steps, max_steps
+    st_stopped, st_too_many_steps, st_cancelled, max_steps
   use pendula_friction, only: gsl_root
   implicit none
   private
@@ -30,6 +30,7 @@ module pendula_stick_slip
   integer, parameter, public :: ss_backward = 101, ss_release_failed = 102
   !> samples of the force per period of its fastest time dependence, looking for a release
   integer, parameter :: release_samples = 64
+  integer(i8), parameter :: release_poll = 65536_i8
 
   !> the stuck bob's context for the release root (|F(t, theta)| - mu)
   type :: stuck_t
@@ -79,7 +80,11 @@ contains
         f = free_accel(m, tc, th, 0.0_dp)
         if (m%rubbed .and. abs(f) <= m%mu) then
           ! stuck: at rest until the force overcomes the friction
-          call release_time(m, th, tc, t(n), tr, status)
+          if (present(cancel)) then
+            call release_time(m, th, tc, t(n), tr, status, cancel)
+          else
+            call release_time(m, th, tc, t(n), tr, status, no_cancel)
+          end if
           if (status /= st_ok) return
           do while (k <= n)
             if (t(k) > tr) exit
@@ -124,11 +129,13 @@ contains
   !> The time after tc when the stuck bob at th breaks loose: the first |F(t, th)| > mu, sampled
   !> release_samples times per period of the fastest time-dependent force and refined by GSL's
   !> Brent method; huge() when it sticks for good (no time-dependent force, or none before tend).
-  subroutine release_time(m, th, tc, tend, tr, status)
+  subroutine release_time(m, th, tc, tend, tr, status, cancel)
     type(pendulum_model), intent(in) :: m
     real(dp), intent(in) :: th, tc, tend
     real(dp), intent(out) :: tr
     integer, intent(out) :: status
+    !> read every release_poll samples: non-zero stops with st_cancelled
+    integer, intent(inout), volatile :: cancel
     type(stuck_t), target :: ctx
     real(dp) :: hs, ta, tb, wmax
     integer(i8) :: j
@@ -143,6 +150,11 @@ contains
     ctx%m = m; ctx%th = th
     ta = tc
     do j = 1_i8, max_steps
+      if (mod(j, release_poll) == 0) then
+        if (cancel /= 0) then
+          status = st_cancelled; return
+        end if
+      end if
       tb = tc + real(j, dp) * hs
       if (gap(ctx, tb) > 0.0_dp) then
         if (gsl_root(c_funloc(gap_c), c_loc(ctx), ta, tb, 0.0_dp, 200, tr) /= 0) then
