@@ -128,13 +128,9 @@ contains
       ! the time: QAWS with (x)^(-1/2) at a turning start, (L - x)^(-1/2) at the end; the
       ! integrand split at the middle so that each half divides K by the factor vanishing there
       half = 0.5_dp * abs(root - st%tha)
-      if (st%va == 0.0_dp) then
-        s2 = gsl_qaws(c_funloc(speed_factor_a), c_loc(st), 0.0_dp, half, -0.5_dp, 0.0_dp, 1.0e-13_dp, res, err)
-        t = t + res
-      else
-        s2 = gsl_qaws(c_funloc(speed_factor_a), c_loc(st), 0.0_dp, half, 0.0_dp, 0.0_dp, 1.0e-13_dp, res, err)
-        t = t + res
-      end if
+      s2 = gsl_qaws(c_funloc(speed_factor_a), c_loc(st), 0.0_dp, half, merge(-0.5_dp, 0.0_dp, st%va == 0.0_dp), &
+                    0.0_dp, 1.0e-13_dp, res, err)
+      t = t + res
       s3 = gsl_qaws(c_funloc(speed_factor_b), c_loc(st), half, 2.0_dp * half, 0.0_dp, -0.5_dp, 1.0e-13_dp, &
                     res, err)
       t = t + res
@@ -187,31 +183,25 @@ contains
     g = k_over(st, th)
   end function k_over_c
 
-  !> The smooth factor of 1/v on the first half, x = |theta - theta_a|: sqrt(x / (2K)) from rest
-  !> (K = (theta - theta_a) G_a), 1/sqrt(2K) with a starting speed.
+  !> The smooth factor of 1/v on the first half, x = |theta - theta_a|: 1/sqrt(2 k_over), which is
+  !> sqrt(x / (2K)) from rest (K = (theta - theta_a) G_a) and 1/sqrt(2K) with a starting speed.
   function speed_factor_a(x, ctx) bind(C) result(f)
     real(c_double), value, intent(in) :: x
     type(c_ptr), value, intent(in) :: ctx
-    real(c_double) :: f, th
+    real(c_double) :: f
     type(stretch_t), pointer :: st
     call c_f_pointer(ctx, st)
-    th = st%tha + st%s * x
-    if (st%va == 0.0_dp) then
-      f = 1.0_dp / sqrt(2.0_dp * st%s * divided(st, th, st%tha))
-    else
-      f = 1.0_dp / sqrt(2.0_dp * (0.5_dp * st%va**2 + (th - st%tha) * divided(st, th, st%tha)))
-    end if
+    f = 1.0_dp / sqrt(2.0_dp * k_over(st, st%tha + st%s * x))
   end function speed_factor_a
 
   !> The smooth factor of 1/v on the second half: sqrt((L - x) / (2K)), K = (theta - theta_b) G_b.
   function speed_factor_b(x, ctx) bind(C) result(f)
     real(c_double), value, intent(in) :: x
     type(c_ptr), value, intent(in) :: ctx
-    real(c_double) :: f, th
+    real(c_double) :: f
     type(stretch_t), pointer :: st
     call c_f_pointer(ctx, st)
-    th = st%tha + st%s * x
-    f = 1.0_dp / sqrt(-2.0_dp * st%s * divided(st, th, st%thb))
+    f = 1.0_dp / sqrt(-2.0_dp * st%s * divided(st, st%tha + st%s * x, st%thb))
   end function speed_factor_b
 
 end module pendula_friction
