@@ -161,3 +161,12 @@ def test_sweep_force_not_implemented(clib):
     with pytest.raises(NotImplementedError, match="force"):
         pendula.sweep(pendula.Scene(damping=0.1), over={"v0": [1.0]}, measure="final_well",
                       force=clib.linear_damping)
+
+
+def test_force_params_of_the_wrong_length_for_nparams():
+    def lin(t, th, v, p):
+        return -p[0] * v
+    lin.nparams = 1
+    with pytest.raises(ValueError, match="force_params: the force reads 1"):
+        pendula.simulate(pendula.Scene(theta0=1.0), T, force=lin, force_params=[0.1, 0.2])
+    assert np.isfinite(pendula.simulate(pendula.Scene(theta0=1.0), T, force=lin, force_params=[0.1]).theta).all()

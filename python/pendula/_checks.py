@@ -264,6 +264,10 @@ def force(f, params, name: str = "force") -> Force:
         arr = np.ascontiguousarray(arr.reshape(-1), dtype=np.float64)
         if not np.all(np.isfinite(arr)):
             raise ValueError(f"{name}_params must be finite numbers, got {params!r}")
+    nparams = getattr(f, "nparams", None)     # how many params the force says it reads
+    if nparams is not None and (isinstance(nparams, bool) or not isinstance(nparams, (int, np.integer))
+                                or int(nparams) != arr.size):
+        raise ValueError(f"{name}_params: the force reads {nparams!r} numbers (its nparams), got {arr.size}")
     errors: list = []
     proto = ctypes.CFUNCTYPE(ctypes.c_double, ctypes.c_double, ctypes.c_double, ctypes.c_double,
                              ctypes.POINTER(ctypes.c_double))

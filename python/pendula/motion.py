@@ -59,7 +59,8 @@ def simulate(scene: Scene, t: ArrayLike | None = None, method: str | None = None
         integrated (never the exact path); see the guide page "Effects".
     force_params : sequence of float, optional
         The params the force reads, passed as given (the force must read no
-        more than ``len(force_params)`` values).
+        more than ``len(force_params)`` values; a force with an attribute
+        ``nparams`` gets exactly that many, or ValueError).
 
     Returns
     -------
