@@ -157,10 +157,31 @@ def test_force_refused_on_cord_and_cycloid(clib):
             pendula.simulate(sc, T, force=clib.linear_damping, force_params=[0.1])
 
 
-def test_sweep_force_not_implemented(clib):
-    with pytest.raises(NotImplementedError, match="force"):
-        pendula.sweep(pendula.Scene(damping=0.1), over={"v0": [1.0]}, measure="final_well",
-                      force=clib.linear_damping)
+def test_sweep_with_force_reproduces_damping(clib):
+    # the force from every OpenMP thread: a mean-velocity and a lyapunov sweep with the damping given as
+    # a C force agree with the built-in damping's sweep (the same sums in another order: to rounding)
+    grid = {"drive_amplitude": [0.5, 0.9]}      # periodic attractors: rounding does not grow
+    base = pendula.Scene(drive_frequency=2 / 3, theta0=0.2)
+    for measure, kw in (("mean_velocity", dict(t_max=100.0, transient=50.0)),
+                        ("lyapunov", dict(t_max=200.0, transient=50.0))):
+        a = pendula.sweep(base, over=grid, measure=measure, force=clib.linear_damping, force_params=[0.5],
+                          threads=2, **kw)
+        b = pendula.sweep(base.replace(damping=0.5), over=grid, measure=measure, threads=2, **kw)
+        var = "mean_velocity" if measure == "mean_velocity" else "lyapunov"
+        assert np.all(a.status.values == 0)
+        assert np.allclose(a[var].values, b[var].values, rtol=0, atol=1e-6)
+
+
+def test_sweep_force_final_well_does_not_apply(clib):
+    ds = pendula.sweep(pendula.Scene(damping=0.1), over={"v0": [1.0, 2.0]}, measure="final_well",
+                       force=clib.linear_damping, force_params=[0.0])
+    assert np.all(ds.status.values == 2)
+
+
+def test_sweep_force_refused_with_a_store(clib, tmp_path):
+    with pytest.raises(ValueError, match="'force' and 'out'"):
+        pendula.sweep(pendula.Scene(damping=0.1), over={"v0": [1.0]}, measure="mean_velocity",
+                      force=clib.linear_damping, force_params=[0.1], out=tmp_path / "s.zarr")
 
 
 def test_force_params_of_the_wrong_length_for_nparams():

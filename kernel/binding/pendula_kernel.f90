@@ -838,3 +838,26 @@ subroutine friction_turning_v(eps, tau, mu, theta0, v0, nmax, times, angles, cou
   call friction_turning(eps, tau, mu, theta0, v0, times, angles, count, st, status)
   stuck = merge(1, 0, st)
 end subroutine friction_turning_v
+
+! sweep_block with a user's force (its address faddr and fparams(np), as simulate_force_v) added to
+! every point's force law; the kernel calls it from every OpenMP thread.
+subroutine sweep_block_force(measure, npts, params, rtol, atol, t_tr, t_max, nout, nthreads, faddr, np, fparams, &
+                             cancel, out, pstat)
+  use, intrinsic :: iso_c_binding, only: c_funptr, c_intptr_t
+  use pendula_sweep, only: sweep_points
+  implicit none
+  integer, intent(in) :: measure, npts, nout, nthreads, np
+  double precision, intent(in) :: params(10, npts), rtol, atol, t_tr, t_max
+  integer(8), intent(in) :: faddr
+  double precision, intent(in), target :: fparams(np)
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: out(nout, npts)
+  integer, intent(out) :: pstat(npts)
+  !f2py threadsafe
+  !f2py intent(hide), depend(params) :: npts = shape(params, 1)
+  !f2py intent(hide), depend(fparams) :: np = len(fparams)
+  type(c_funptr) :: f
+  f = transfer(int(faddr, c_intptr_t), f)
+  call sweep_points(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, nthreads, cancel(1), &
+                    f, fparams)
+end subroutine sweep_block_force

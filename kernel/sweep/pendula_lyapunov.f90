@@ -87,11 +87,13 @@ contains
   !> window too long to count in intervals).
   !> cancel (optional): read once per renormalisation interval; non-zero
   !> stops the point with status ly_cancelled.
-  subroutine lyapunov_point(p, rtol, atol, t_tr, t_avg, lam1, lam2, err, status, cancel)
+  subroutine lyapunov_point(p, rtol, atol, t_tr, t_avg, lam1, lam2, err, status, cancel, uf)
     real(dp), intent(in) :: p(10), rtol, atol, t_tr, t_avg
     real(dp), intent(out) :: lam1, lam2, err
     integer, intent(out) :: status
     integer, intent(inout), volatile, optional :: cancel
+    !> a user's force (uf%forced), its clock from the point's t = 0
+    type(pendulum_model), intent(in), optional :: uf
     real(dp) :: tb, hr, y(6), h, s1, s2, n1, n2, d, blk(ly_nblock), bsum, phase, tblk, pphase
     integer :: m, ntr, navg, j, jb, jstart, jend, s
     integer(i8) :: nsteps
@@ -128,7 +130,11 @@ contains
       ! the pivot's phase likewise (its period is the base period)
       pphase = 0.0_dp
       if (p(9) /= 0.0_dp) pphase = two_pi * real(mod(j, m), dp) / real(m, dp)
-      call interval(p, phase, pphase, hr, rtol, atol, y, h, nsteps, s)
+      if (present(uf)) then
+        call interval(p, phase, pphase, hr, rtol, atol, y, h, nsteps, s, uf, real(j, dp) * hr)
+      else
+        call interval(p, phase, pphase, hr, rtol, atol, y, h, nsteps, s)
+      end if
       if (s /= st_ok) then
         status = 100 + s; return
       end if
@@ -165,11 +171,13 @@ contains
   !> Advance the 6-D state over [0, hr] with the model's clock at 0 and
   !> drive phase `phase`.  h: the step to try (0: choose one); on return the
   !> step the controller proposes next (not the one cut to reach hr).
-  pure subroutine interval(p, phase, pphase, hr, rtol, atol, y, h, nsteps, status)
+  pure subroutine interval(p, phase, pphase, hr, rtol, atol, y, h, nsteps, status, uf, ut0)
     real(dp), intent(in) :: p(10), phase, pphase, hr, rtol, atol
     real(dp), intent(inout) :: y(6), h
     integer(i8), intent(inout) :: nsteps
     integer, intent(out) :: status
+    type(pendulum_model), intent(in), optional :: uf
+    real(dp), intent(in), optional :: ut0
     type(pendulum_model) :: md
     real(dp) :: t, f0(6), ynew(6), fnew(6), k(0:12, 6), err, fac, fac11, hnew, hprop
     logical :: last, reject
@@ -179,6 +187,11 @@ contains
     if (p(9) /= 0.0_dp) then
       md = add_effects(md, 0.0_dp, 0.0_dp, p(9), p(10))
       md%pphase = pphase
+    end if
+    if (present(uf)) then
+      if (uf%forced) then
+        md%forced = .true.; md%uforce => uf%uforce; md%uparams = uf%uparams; md%ut0 = ut0
+      end if
     end if
     t = 0.0_dp
     f0 = rhs(md, p, t, y)

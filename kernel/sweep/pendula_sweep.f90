@@ -42,7 +42,8 @@ module pendula_sweep
     m_dop853, st_ok, st_cancelled
   use pendula_lyapunov, only: lyapunov_point, ly_cancelled
   use pendula_outfile, only: outfile_t, out_line, out_reals
-  use pendula_simulate, only: select_model, registry, mid_rigid, sim_ok
+  use pendula_simulate, only: select_model, registry, mid_rigid, sim_ok, attach_force
+  use, intrinsic :: iso_c_binding, only: c_funptr
   use, intrinsic :: iso_fortran_env, only: int64
   implicit none
   private
@@ -76,14 +77,21 @@ contains
   !> cancel: set non-zero by another thread (Ctrl-C in Python) to stop the
   !> block: every point not finished gets status 5 (ps_cancelled).  It is read
   !> before each point and once per integration window inside a point.
-  subroutine sweep_points(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, nthreads, cancel)
+  !> force, fparams (optional): a user's force (pendula_integrators%user_force_fn) added to every
+  !> point's force law, called from every thread; final_well and locked do not apply with it.
+  subroutine sweep_points(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, nthreads, cancel, &
+                          force, fparams)
     !$ use omp_lib, only: omp_get_max_threads
     integer, intent(in) :: measure, npts, nout, nthreads
     real(dp), intent(in) :: params(np_params, npts), rtol, atol, t_tr, t_max
     real(dp), intent(out) :: out(nout, npts)
     integer, intent(out) :: pstat(npts)
     integer, intent(inout), volatile :: cancel
+    type(c_funptr), intent(in), optional :: force
+    real(dp), intent(in), target, contiguous, optional :: fparams(:)
+    type(pendulum_model) :: uf
     integer :: i, nt
+    if (present(force)) call attach_force(uf, force, fparams)
     ! nthreads > 0: that many threads (at most sweep_max_threads); otherwise
     ! OpenMP's default (OMP_NUM_THREADS, or all cores)
     nt = 1
@@ -91,12 +99,12 @@ contains
     if (nthreads > 0) nt = min(nthreads, sweep_max_threads)
     nt = max(1, min(nt, sweep_max_threads))
     !$omp parallel do schedule(dynamic, 16) default(none) num_threads(nt) &
-    !$omp   shared(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, cancel)
+    !$omp   shared(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, cancel, uf)
     do i = 1, npts
       if (cancel /= 0) then
         out(:, i) = nan_dp; pstat(i) = ps_cancelled
       else
-        call one_point(measure, params(:, i), rtol, atol, t_tr, t_max, out(:, i), pstat(i), cancel)
+        call one_point(measure, params(:, i), rtol, atol, t_tr, t_max, out(:, i), pstat(i), cancel, uf)
       end if
     end do
     !$omp end parallel do
@@ -137,12 +145,14 @@ contains
     end if
   end subroutine sweep_model_rule
 
-  subroutine one_point(measure, p, rtol, atol, t_tr, t_max, o, st, cancel)
+  subroutine one_point(measure, p, rtol, atol, t_tr, t_max, o, st, cancel, uf)
     integer, intent(in) :: measure
     real(dp), intent(in) :: p(np_params), rtol, atol, t_tr, t_max
     real(dp), intent(out) :: o(:)
     integer, intent(out) :: st
     integer, intent(inout), volatile :: cancel
+    !> the user's force (uf%forced), if any
+    type(pendulum_model), intent(in) :: uf
     real(dp) :: th, v, tdec, vm, err, lam2
     integer :: n
     integer(int64) :: nw
@@ -154,7 +164,8 @@ contains
     end if
     select case (measure)
     case (ms_final_well)
-      if (.not. (p(2) > 0.0_dp) .or. p(4) /= 0.0_dp .or. p(9) /= 0.0_dp .or. abs(p(3)) >= p(1)) then
+      if (.not. (p(2) > 0.0_dp) .or. p(4) /= 0.0_dp .or. p(9) /= 0.0_dp .or. uf%forced .or. &
+          abs(p(3)) >= p(1)) then
         st = ps_not_applicable; return
       end if
       call settle(p, rtol, atol, t_max, p(7), p(8), th, v, settled, nw, tdec, st, cancel)
@@ -165,7 +176,7 @@ contains
         st = ps_unsettled; o(2) = t_max
       end if
     case (ms_locked)
-      if (.not. (p(2) > 0.0_dp) .or. p(4) /= 0.0_dp .or. p(9) /= 0.0_dp) then
+      if (.not. (p(2) > 0.0_dp) .or. p(4) /= 0.0_dp .or. p(9) /= 0.0_dp .or. uf%forced) then
         st = ps_not_applicable; return
       end if
       if (abs(p(3)) >= p(1)) then
@@ -182,7 +193,7 @@ contains
         st = ps_unsettled
       end if
     case (ms_mean_velocity)
-      call mean_velocity(p, rtol, atol, t_tr, t_max, p(7), p(8), vm, err, th, v, st, cancel)
+      call mean_velocity(p, rtol, atol, t_tr, t_max, p(7), p(8), vm, err, th, v, st, cancel, uf)
       o(1) = vm; o(2) = err
     case (ms_poincare)
       ! the transient is a time: each point skips whole periods of its own drive
@@ -194,12 +205,12 @@ contains
         end if
         n = int(vm)
       end if
-      call poincare(p, rtol, atol, n, size(o) / 2, o, st, cancel)
+      call poincare(p, rtol, atol, n, size(o) / 2, o, st, cancel, uf)
     case (ms_lyapunov)
       if (size(o) < 2) then
         st = ps_bad_measure; return
       end if
-      call lyapunov_point(p, rtol, atol, t_tr, t_max, vm, lam2, err, st, cancel)
+      call lyapunov_point(p, rtol, atol, t_tr, t_max, vm, lam2, err, st, cancel, uf)
       if (st == 2) st = ps_not_applicable
       if (st == ly_cancelled) st = ps_cancelled
       if (st /= ps_decided) return
@@ -213,12 +224,14 @@ contains
   !> Advance (th, v) from time t0 by dt (model time origin shifted by t0).
   !> cancel: read by the integrator every few thousand steps (a window of a
   !> fast orbit may take up to its work limit of 10^8 steps): status ps_cancelled.
-  subroutine advance(p, t0, rtol, atol, ts, th, v, ths, vs, st, cancel)
+  subroutine advance(p, t0, rtol, atol, ts, th, v, ths, vs, st, cancel, uf)
     real(dp), intent(in) :: p(np_params), t0, rtol, atol, ts(:)
     real(dp), intent(inout) :: th, v
     real(dp), intent(out) :: ths(:), vs(:)
     integer, intent(out) :: st
     integer, intent(inout), volatile :: cancel
+    !> the user's force (optional): its clock runs from the point's t = 0
+    type(pendulum_model), intent(in), optional :: uf
     type(pendulum_model) :: m
     type(event_spec) :: ev
     type(run_stats) :: stats
@@ -228,6 +241,11 @@ contains
     if (p(9) /= 0.0_dp) then
       m = add_effects(m, 0.0_dp, 0.0_dp, p(9), p(10))
       m%pphase = p(10) * t0
+    end if
+    if (present(uf)) then
+      if (uf%forced) then
+        m%forced = .true.; m%uforce => uf%uforce; m%uparams = uf%uparams; m%ut0 = t0
+      end if
     end if
     call integrate(m, m_dop853, th, v, ts, rtol, atol, 0.0_dp, ths, vs, stats, s, ev, nev, tev, thev, vev, cancel)
     if (s == st_cancelled) then
@@ -318,11 +336,12 @@ contains
   !> <v> over t_avg after a transient t_tr, from (th0, v0); the convergence
   !> estimate is |<v>_whole - <v>_second half|.  An undriven damped orbit
   !> trapped in a well has <v> = 0 exactly: decided as soon as it is trapped.
-  subroutine mean_velocity(p, rtol, atol, t_tr, t_avg, th0, v0, vm, err, th, v, st, cancel)
+  subroutine mean_velocity(p, rtol, atol, t_tr, t_avg, th0, v0, vm, err, th, v, st, cancel, uf)
     real(dp), intent(in) :: p(np_params), rtol, atol, t_tr, t_avg, th0, v0
     real(dp), intent(out) :: vm, err, th, v
     integer, intent(out) :: st
     integer, intent(inout), volatile :: cancel
+    type(pendulum_model), intent(in), optional :: uf
     real(dp) :: t, tw, ts(1), ths(1), vs(1), tha, thh, seg_end(3)
     integer(int64) :: n
     integer :: seg
@@ -330,6 +349,7 @@ contains
     th = th0; v = v0; t = 0.0_dp; st = ps_decided
     vm = nan_dp; err = nan_dp
     can_trap = p(2) > 0.0_dp .and. p(4) == 0.0_dp .and. p(9) == 0.0_dp .and. abs(p(3)) < p(1)
+    if (present(uf)) can_trap = can_trap .and. .not. uf%forced
     tw = two_pi / sqrt(p(1))
     seg_end = [t_tr, t_tr + 0.5_dp * t_avg, t_tr + t_avg]
     ! a window below the resolution of the transient (t_tr + t_avg / 2 == t_tr) would give
@@ -350,7 +370,7 @@ contains
           end if
         end if
         ts(1) = min(tw, seg_end(seg) - t)
-        call advance(p, t, rtol, atol, ts, th, v, ths, vs, st, cancel)
+        call advance(p, t, rtol, atol, ts, th, v, ths, vs, st, cancel, uf)
         if (st /= ps_decided) return
         ! the segment ends exactly at seg_end, whatever the rounding of the sum
         if (ts(1) == seg_end(seg) - t) then
@@ -381,12 +401,13 @@ contains
   end function forcing_omega
 
   !> Stroboscopic samples once per drive period after n_tr periods.
-  subroutine poincare(p, rtol, atol, n_tr, ns, o, st, cancel)
+  subroutine poincare(p, rtol, atol, n_tr, ns, o, st, cancel, uf)
     real(dp), intent(in) :: p(np_params), rtol, atol
     integer, intent(in) :: n_tr, ns
     real(dp), intent(out) :: o(:)
     integer, intent(out) :: st
     integer, intent(inout), volatile :: cancel
+    type(pendulum_model), intent(in), optional :: uf
     real(dp) :: tp, t, th, v, ts(1), ths(1), vs(1)
     integer :: k
     o = nan_dp
@@ -401,7 +422,7 @@ contains
         o = nan_dp; st = ps_cancelled; return
       end if
       ! time origin at k tp exactly: the drive phase is p(6) + Omega * (k-1) tp
-      call advance(p, tp * (k - 1), rtol, atol, ts, th, v, ths, vs, st, cancel)
+      call advance(p, tp * (k - 1), rtol, atol, ts, th, v, ths, vs, st, cancel, uf)
       if (st /= ps_decided) return
       th = th - two_pi * anint(th / two_pi)   ! keep theta small; the force is 2 pi periodic
       if (k > n_tr) then

@@ -131,13 +131,18 @@ def _model_rule(scene: Scene, what: str) -> None:
         raise ValueError(f"parameter 'scene': {msg}")
 
 
-def _block(code, p, rtol, atol, t_tr, t_max, nout, threads):
+def _block(code, p, rtol, atol, t_tr, t_max, nout, threads, force=None):
     """One kernel sweep block that Ctrl-C stops (KeyboardInterrupt within a
-    few integration windows; the process stays usable)."""
+    few integration windows; the process stays usable); ``force``: a checked user's force."""
     from . import _kernel
     cancel = _interrupt.cancel_flag()
-    out, st = _interrupt.call(_kernel.sweep_block, code, p, rtol, atol, t_tr, t_max, nout, int(threads), cancel,
-                              cancel=cancel)
+    if force is None:
+        out, st = _interrupt.call(_kernel.sweep_block, code, p, rtol, atol, t_tr, t_max, nout, int(threads), cancel,
+                                  cancel=cancel)
+    else:   # (effects) the user's force, called by the kernel from every thread
+        out, st = _interrupt.call(_kernel.sweep_block_force, code, p, rtol, atol, t_tr, t_max, nout, int(threads),
+                                  force.address, force.params, cancel, cancel=cancel)
+        force.reraise()
     if cancel[0]:
         raise KeyboardInterrupt
     return out, st
@@ -152,6 +157,7 @@ class _Plan:
         self.measure = measure
         self.rtol, self.atol = rtol, atol
         self.t_max, self.transient, self.samples = t_max, transient, samples
+        self.force = None   # (effects) a user's force: in-process sweeps only, never stored
         self.shape = tuple(len(v) for v in over.values())
         inner = int(np.prod(self.shape[1:], dtype=np.int64))
         self.rows = max(1, chunk_points // max(inner, 1))
@@ -201,7 +207,7 @@ def _answers(out, st):
 def _compute_chunk(plan: _Plan, i: int, threads: int):
     p, shape = plan.params(i)
     code = MEASURE_CODES[plan.measure]
-    out, st = _block(code, p, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout, threads)
+    out, st = _block(code, p, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout, threads, plan.force)
     out = out.T.reshape(shape + (plan.nout,))
     st = st.reshape(shape)
     if plan.measure in ("final_well", "locked"):
@@ -381,10 +387,12 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
     progress : bool
         Show a tqdm bar of chunks done and the time left.
     force, force_params : optional
-        A user's force, as in :func:`pendula.simulate`: not implemented for
-        sweeps yet (NotImplementedError); nor are friction and drag.  A
-        vibrating pivot is (its period is the stroboscopic map's when there
-        is no drive).
+        A user's force, as in :func:`pendula.simulate`, added at every point
+        (the kernel calls it from every thread); not with ``out`` or
+        ``client``, and final_well and locked do not apply with it (status
+        2).  Friction and drag are not implemented for sweeps yet
+        (NotImplementedError); a vibrating pivot is (its period is the
+        stroboscopic map's when there is no drive).
 
     Returns
     -------
@@ -406,7 +414,7 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
         different sweep.
     NotImplementedError
         For a model or effect the sweeps do not run (flexible cord, cycloid,
-        non-uniform gravity, friction, drag, a user's force).
+        non-uniform gravity, friction, drag).
     pendula._store.StoreBusyError
         (an OSError) another sweep is writing the same ``out``; the message
         names the store and that sweep's pid.
@@ -438,10 +446,14 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
     True
     """
     xr = require("xarray", "sweep", "pendula.sweep")
-    # (effects) a user's force reaches the kernel's simulate and periodic_orbit, not its sweeps yet
+    # (effects) a user's force: its code is no part of a store's key and its address means nothing in
+    # another process, so it runs in this process without a store
+    uf = None
     if force is not None or force_params is not None:
-        raise NotImplementedError("sweep(force=...): a user's force is not implemented for sweeps yet; "
-                                  "use pendula.simulate(scene, t, force=...) per point")
+        if out is not None or client is not None:
+            raise ValueError("parameters 'force' and 'out'/'client': a sweep with a user's force runs in this "
+                             "process and is not stored (its code is not part of the store's key)")
+        uf = _checks.force(force, force_params)
     if not isinstance(scene, Scene):
         scene = Scene.from_file(scene)
     measure = measure or scene.measure
@@ -474,6 +486,7 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
             scene.pivot_amplitude == 0:
         raise ValueError("measure 'poincare' needs a drive (drive_frequency > 0)")
     plan = _Plan(scene, over, measure, rtol, atol, t_max, transient, samples, int(chunk_points))
+    plan.force = uf
 
     layout = _layout(plan)
     chunks: dict[int, object] = {}
