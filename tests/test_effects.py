@@ -355,3 +355,18 @@ def test_pivot_poincare_without_drive_samples_the_pivot_period():
                        atol=1e-14)
     ref = pendula.simulate(sc.replace(rtol=1e-12, atol=1e-14), [2 * math.pi / 20.0 * k for k in (1, 2, 3)])
     assert np.max(np.abs(pc.theta.values[0] - ref.theta)) < 1e-9
+
+
+@pytest.mark.parametrize("method, knobs", [("dop853", TIGHT), ("dopri5", dict(rtol=1e-13, atol=1e-15)),
+                                           ("dprkn6", dict(rtol=1e-12, atol=1e-14)), ("vern9", TIGHT),
+                                           ("gsl-rk8pd", TIGHT), ("yoshida8", dict(dt=0.002)),
+                                           ("gauss6", dict(dt=0.002)), ("verlet", dict(dt=1e-4))])
+def test_pivot_path_with_every_integrator_against_scipy(method, knobs):
+    # the pivot's force aW^2 cos(W t) sin(theta) reaches every integrator (the splittings' kick too)
+    a, W = 0.1, 20.0
+    t = np.linspace(0.0, 10.0, 11)
+    ref = solve_ivp(lambda tt, y: [y[1], -(1.0 - a * W * W * math.cos(W * tt)) * math.sin(y[0])], (0, 10.0),
+                    [3.0, 0.0], method="DOP853", rtol=1e-13, atol=1e-15, t_eval=t)
+    tr = pendula.simulate(pendula.Scene(theta0=3.0, pivot_amplitude=a, pivot_frequency=W, method=method, **knobs), t)
+    tol = 1e-5 if method == "verlet" else 1e-9     # verlet: second order, dt = 1e-4
+    assert np.max(np.abs(tr.theta - ref.y[0])) < tol
