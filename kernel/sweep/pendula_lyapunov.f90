@@ -35,7 +35,7 @@ module pendula_lyapunov
     st_ok, st_step_underflow, st_nonfinite, st_too_many_steps
   implicit none
   private
-  public :: lyapunov_point, lyapunov_intervals, ly_nblock
+  public :: lyapunov_point, lyapunov_intervals, ly_nblock, point_model
 
   !> blocks of the averaging window for the convergence estimate
   integer, parameter :: ly_nblock = 8
@@ -183,16 +183,7 @@ contains
     logical :: last, reject
     real(dp), parameter :: safe = 0.9_dp, facc1 = 1.0_dp / 0.333_dp, facc2 = 1.0_dp / 6.0_dp, &
       expo1 = 1.0_dp / 8.0_dp
-    md = make_model(p(1), p(2), p(3), p(4), p(5), phase)
-    if (p(9) /= 0.0_dp) then
-      md = add_effects(md, 0.0_dp, 0.0_dp, p(9), p(10))
-      md%pphase = pphase
-    end if
-    if (present(uf)) then
-      if (uf%forced) then
-        md%forced = .true.; md%uforce => uf%uforce; md%uparams = uf%uparams; md%ut0 = ut0
-      end if
-    end if
+    md = point_model(p, phase, pphase, uf, ut0)
     t = 0.0_dp
     f0 = rhs(md, p, t, y)
     if (.not. (h > 0.0_dp)) h = initial_step(md, p, y, f0, hr, rtol, atol)
@@ -241,6 +232,27 @@ contains
       end if
     end do
   end subroutine interval
+
+  !> The model of a sweep point p (eps, beta, tau, amp, omega, phase, theta0, v0, pivot amplitude and
+  !> frequency) on a stretch whose clock starts where the drive's phase is phase and the pivot's pphase,
+  !> with the user's force uf (if forced) on its clock from ut0.  The one map from a sweep point to its
+  !> force law (the sweeps' windows and the Lyapunov intervals).
+  pure function point_model(p, phase, pphase, uf, ut0) result(md)
+    real(dp), intent(in) :: p(10), phase, pphase
+    type(pendulum_model), intent(in), optional :: uf
+    real(dp), intent(in), optional :: ut0
+    type(pendulum_model) :: md
+    md = make_model(p(1), p(2), p(3), p(4), p(5), phase)
+    if (p(9) /= 0.0_dp) then
+      md = add_effects(md, 0.0_dp, 0.0_dp, p(9), p(10))
+      md%pphase = pphase
+    end if
+    if (present(uf)) then
+      if (uf%forced) then
+        md%forced = .true.; md%uforce => uf%uforce; md%uparams = uf%uparams; md%ut0 = ut0
+      end if
+    end if
+  end function point_model
 
   !> The 6-D right-hand side (orbit and two tangent vectors): the integrators' system_rhs.
   pure function rhs(md, p, t, y) result(f)

@@ -38,9 +38,9 @@
 module pendula_sweep
   use pendula_kinds, only: dp, pi, two_pi, nan_dp
   use pendula_scene, only: scene_t, scene_effects
-  use pendula_integrators, only: pendulum_model, make_model, add_effects, event_spec, run_stats, integrate, &
+  use pendula_integrators, only: pendulum_model, event_spec, run_stats, integrate, &
     m_dop853, st_ok, st_cancelled
-  use pendula_lyapunov, only: lyapunov_point, ly_cancelled
+  use pendula_lyapunov, only: lyapunov_point, ly_cancelled, point_model
   use pendula_outfile, only: outfile_t, out_line, out_reals
   use pendula_simulate, only: select_model, registry, mid_rigid, sim_ok, attach_force
   use, intrinsic :: iso_c_binding, only: c_funptr
@@ -237,16 +237,7 @@ contains
     type(run_stats) :: stats
     integer :: nev, s
     real(dp) :: tev(1), thev(1), vev(1)
-    m = make_model(p(1), p(2), p(3), p(4), p(5), p(6) + p(5) * t0)
-    if (p(9) /= 0.0_dp) then
-      m = add_effects(m, 0.0_dp, 0.0_dp, p(9), p(10))
-      m%pphase = p(10) * t0
-    end if
-    if (present(uf)) then
-      if (uf%forced) then
-        m%forced = .true.; m%uforce => uf%uforce; m%uparams = uf%uparams; m%ut0 = t0
-      end if
-    end if
+    m = point_model(p, p(6) + p(5) * t0, p(10) * t0, uf, t0)
     call integrate(m, m_dop853, th, v, ts, rtol, atol, 0.0_dp, ths, vs, stats, s, ev, nev, tev, thev, vev, cancel)
     if (s == st_cancelled) then
       st = ps_cancelled; return
