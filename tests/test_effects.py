@@ -289,11 +289,6 @@ def test_friction_turning_points_refuses_other_effects():
         pendula.friction_turning_points(pendula.Scene(theta0=1.0, friction=0.1, damping=0.1))
 
 
-def test_sweep_with_friction_not_implemented():
-    with pytest.raises(NotImplementedError, match="friction"):
-        pendula.sweep(pendula.Scene(friction=0.1, damping=0.1), over={"v0": [1.0]}, measure="final_well")
-
-
 def test_backward_times_refused_with_friction():
     with pytest.raises(ValueError, match="forward"):
         pendula.simulate(pendula.Scene(theta0=1.0, friction=0.1), [-1.0, 0.0])
@@ -370,3 +365,40 @@ def test_pivot_path_with_every_integrator_against_scipy(method, knobs):
     tr = pendula.simulate(pendula.Scene(theta0=3.0, pivot_amplitude=a, pivot_frequency=W, method=method, **knobs), t)
     tol = 1e-5 if method == "verlet" else 1e-9     # verlet: second order, dt = 1e-4
     assert np.max(np.abs(tr.theta - ref.y[0])) < tol
+
+
+# ---------------------------------------------------------------- the effects in sweeps
+
+def _wrap(th):
+    return (np.asarray(th) + math.pi) % (2 * math.pi) - math.pi
+
+
+def test_friction_final_well_sweep_matches_simulate():
+    # an undriven pendulum with dry friction stops in a well; the sweep's energy test decides which,
+    # and the simulated path (stretches between v = 0 events) sticks in the same one
+    sc = pendula.Scene(friction=0.05)
+    v0s = [1.0, 2.3, 3.0, 4.5]
+    fw = pendula.sweep(sc, over={"v0": v0s}, measure="final_well", t_max=2000.0)
+    assert np.all(fw.status.values == 0)
+    for v0, well in zip(v0s, fw.well.values):
+        tr = pendula.simulate(sc.replace(v0=v0), [0.0, 500.0])
+        assert tr.v[-1] == 0.0 and round(tr.theta[-1] / (2 * math.pi)) == well
+
+
+@pytest.mark.parametrize("effect", [dict(drag=0.3), dict(friction=0.05), dict(pivot_amplitude=0.05, pivot_frequency=0.7)])
+def test_poincare_sweep_with_effect_matches_simulate(effect):
+    W = 0.7
+    # damped: a periodic attractor, where the two runs' rounding does not grow
+    sc = pendula.Scene(damping=0.5, drive_amplitude=1.2, drive_frequency=W, rtol=1e-12, atol=1e-14, **effect)
+    pc = pendula.sweep(sc, over={"v0": [0.0]}, measure="poincare", transient=10.0, samples=3)
+    n_tr = math.ceil(10.0 * W / (2 * math.pi))
+    ref = pendula.simulate(sc, [2 * math.pi / W * k for k in range(n_tr + 1, n_tr + 4)])
+    assert pc.status.values[0] == 0
+    assert np.max(np.abs(pc.theta.values[0] - _wrap(ref.theta))) < 1e-8
+    assert np.max(np.abs(pc.v.values[0] - ref.v)) < 1e-8
+
+
+def test_lyapunov_sweep_with_friction_does_not_apply():
+    ly = pendula.sweep(pendula.Scene(friction=0.05, drive_amplitude=1.2, drive_frequency=0.7), over={"v0": [0.0]},
+                       measure="lyapunov", transient=10.0, t_max=50.0)
+    assert ly.status.values[0] == 2

@@ -525,14 +525,15 @@ end subroutine cord_scene_v
 ! Sweeps: one call per block of grid points, OpenMP inside.
 ! ====================================================================
 
-! params(10, npts): eps, beta, tau, amp, omega, phase, theta0, v0, pivot amplitude, pivot frequency per point.
+! params(12, npts): eps, beta, tau, amp, omega, phase, theta0, v0, pivot amplitude and frequency, friction,
+! drag per point.
 ! nthreads <= 0: OpenMP's default (OMP_NUM_THREADS, else all cores).
 ! cancel(1) non-zero (set by another thread) stops the block: status 5.
 subroutine sweep_block(measure, npts, params, rtol, atol, t_tr, t_max, nout, nthreads, cancel, out, pstat)
   use pendula_sweep, only: sweep_points
   implicit none
   integer, intent(in) :: measure, npts, nout, nthreads
-  double precision, intent(in) :: params(10, npts), rtol, atol, t_tr, t_max
+  double precision, intent(in) :: params(12, npts), rtol, atol, t_tr, t_max
   integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: out(nout, npts)
   integer, intent(out) :: pstat(npts)
@@ -546,7 +547,7 @@ subroutine sweep_iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, cancel, 
   use pendula_sweep, only: iv_branch
   implicit none
   integer, intent(in) :: ntau
-  double precision, intent(in) :: params(10), taus(ntau), rtol, atol, t_tr, t_avg
+  double precision, intent(in) :: params(12), taus(ntau), rtol, atol, t_tr, t_avg
   integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: vm(ntau), err(ntau), th, v
   integer, intent(out) :: pstat(ntau)
@@ -847,7 +848,7 @@ subroutine sweep_block_force(measure, npts, params, rtol, atol, t_tr, t_max, nou
   use pendula_sweep, only: sweep_points
   implicit none
   integer, intent(in) :: measure, npts, nout, nthreads, np
-  double precision, intent(in) :: params(10, npts), rtol, atol, t_tr, t_max
+  double precision, intent(in) :: params(12, npts), rtol, atol, t_tr, t_max
   integer(8), intent(in) :: faddr
   double precision, intent(in), target :: fparams(np)
   integer, intent(inout), volatile :: cancel(1)

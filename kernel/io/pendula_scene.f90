@@ -939,9 +939,9 @@ contains
   subroutine check_grid(sc, msg)
     type(scene_t), intent(inout) :: sc
     character(len=*), intent(out) :: msg
-    character(len=16), parameter :: griddable(10) = [character(len=16) :: 'v0', 'theta0', 'eps', &
+    character(len=16), parameter :: griddable(12) = [character(len=16) :: 'v0', 'theta0', 'eps', &
       'damping', 'torque', 'drive_amplitude', 'drive_frequency', 'drive_phase', 'pivot_amplitude', &
-      'pivot_frequency']
+      'pivot_frequency', 'friction', 'drag']
     character(len=16), parameter :: measures(5) = [character(len=16) :: 'final_well', 'mean_velocity', &
       'locked', 'poincare', 'lyapunov']
     character(len=1) :: kc
@@ -950,7 +950,8 @@ contains
     do k = 1, sc%n_grid
       if (.not. any(griddable == sc%grid(k))) then
         msg = 'field ''grid'': cannot sweep ''' // trim(sc%grid(k)) // '''; one of v0, theta0, eps, damping, ' // &
-              'torque, drive_amplitude, drive_frequency, drive_phase, pivot_amplitude, pivot_frequency' // &
+              'torque, drive_amplitude, drive_frequency, drive_phase, pivot_amplitude, pivot_frequency, ' // &
+              'friction, drag' // &
               suggest(sc%grid(k), griddable); return
       end if
       if (any(sc%grid(1:k - 1) == sc%grid(k))) then

@@ -47,7 +47,7 @@ contains
   !> The base period, the intervals per base period m, the transient and
   !> window lengths in intervals (see the module text).
   pure subroutine lyapunov_intervals(p, t_tr, t_avg, tb, m, ntr, navg, ok)
-    real(dp), intent(in) :: p(10), t_tr, t_avg
+    real(dp), intent(in) :: p(12), t_tr, t_avg
     real(dp), intent(out) :: tb
     integer, intent(out) :: m, ntr, navg
     logical, intent(out) :: ok
@@ -67,6 +67,10 @@ contains
     end if
     g = abs(p(2)) + 2.0_dp * sqrt(p(1))
     if (p(9) /= 0.0_dp) g = g + 2.0_dp * sqrt(abs(p(9))) * p(10)
+    ! dry friction sticks: the tangent flow has no derivative there (no exponents in this sense)
+    if (p(11) /= 0.0_dp) then
+      ok = .false.; return
+    end if
     ! counted in reals first: a window too long to count is refused, not wrapped around
     rm = max(1.0_dp, real(ceiling(min(g * tb / 4.0_dp, 1.0e9_dp)), dp))
     rtr = max(0.0_dp, t_tr / tb - 1.0e-12_dp)
@@ -88,7 +92,7 @@ contains
   !> cancel (optional): read once per renormalisation interval; non-zero
   !> stops the point with status ly_cancelled.
   subroutine lyapunov_point(p, rtol, atol, t_tr, t_avg, lam1, lam2, err, status, cancel, uf)
-    real(dp), intent(in) :: p(10), rtol, atol, t_tr, t_avg
+    real(dp), intent(in) :: p(12), rtol, atol, t_tr, t_avg
     real(dp), intent(out) :: lam1, lam2, err
     integer, intent(out) :: status
     integer, intent(inout), volatile, optional :: cancel
@@ -172,7 +176,7 @@ contains
   !> drive phase `phase`.  h: the step to try (0: choose one); on return the
   !> step the controller proposes next (not the one cut to reach hr).
   pure subroutine interval(p, phase, pphase, hr, rtol, atol, y, h, nsteps, status, uf, ut0)
-    real(dp), intent(in) :: p(10), phase, pphase, hr, rtol, atol
+    real(dp), intent(in) :: p(12), phase, pphase, hr, rtol, atol
     real(dp), intent(inout) :: y(6), h
     integer(i8), intent(inout) :: nsteps
     integer, intent(out) :: status
@@ -234,17 +238,17 @@ contains
   end subroutine interval
 
   !> The model of a sweep point p (eps, beta, tau, amp, omega, phase, theta0, v0, pivot amplitude and
-  !> frequency) on a stretch whose clock starts where the drive's phase is phase and the pivot's pphase,
+  !> frequency, friction, drag) on a stretch whose clock starts where the drive's phase is phase and the pivot's pphase,
   !> with the user's force uf (if forced) on its clock from ut0.  The one map from a sweep point to its
   !> force law (the sweeps' windows and the Lyapunov intervals).
   pure function point_model(p, phase, pphase, uf, ut0) result(md)
-    real(dp), intent(in) :: p(10), phase, pphase
+    real(dp), intent(in) :: p(12), phase, pphase
     type(pendulum_model), intent(in), optional :: uf
     real(dp), intent(in), optional :: ut0
     type(pendulum_model) :: md
     md = make_model(p(1), p(2), p(3), p(4), p(5), phase)
-    if (p(9) /= 0.0_dp) then
-      md = add_effects(md, 0.0_dp, 0.0_dp, p(9), p(10))
+    if (p(9) /= 0.0_dp .or. p(11) /= 0.0_dp .or. p(12) /= 0.0_dp) then
+      md = add_effects(md, p(11), p(12), p(9), p(10))
       md%pphase = pphase
     end if
     if (present(uf)) then
@@ -257,7 +261,7 @@ contains
   !> The 6-D right-hand side (orbit and two tangent vectors): the integrators' system_rhs.
   pure function rhs(md, p, t, y) result(f)
     type(pendulum_model), intent(in) :: md
-    real(dp), intent(in) :: p(10), t, y(6)
+    real(dp), intent(in) :: p(12), t, y(6)
     real(dp) :: f(6)
     f = system_rhs(md, t, y)
   end function rhs
@@ -266,7 +270,7 @@ contains
   !> stepper on the 6-D system): ynew, fnew = f(t + h, ynew) and Hairer's error norm.
   pure subroutine step853(md, p, t, y, f0, h, rtol, atol, k, ynew, fnew, errn)
     type(pendulum_model), intent(in) :: md
-    real(dp), intent(in) :: p(10), t, y(6), f0(6), h, rtol, atol
+    real(dp), intent(in) :: p(12), t, y(6), f0(6), h, rtol, atol
     real(dp), intent(out) :: k(0:12, 6), ynew(6), fnew(6), errn
     real(dp) :: sk(6), e3(6), e5(6)
     call dop853_step_6(md, t, y, f0, h, k, ynew, fnew, e3, e5)
@@ -278,7 +282,7 @@ contains
   !> Hairer's starting step (order 8), at most hr.
   pure function initial_step(md, p, y, f0, hr, rtol, atol) result(h0)
     type(pendulum_model), intent(in) :: md
-    real(dp), intent(in) :: p(10), y(6), f0(6), hr, rtol, atol
+    real(dp), intent(in) :: p(12), y(6), f0(6), hr, rtol, atol
     real(dp) :: h0, sk(6), dnf, dny, h1, der2, der12, f1(6)
     sk = max(atol + rtol * abs(y), tiny(1.0_dp))
     dnf = sum((f0 / sk)**2) / 6.0_dp

@@ -41,6 +41,7 @@ module pendula_sweep
   use pendula_integrators, only: pendulum_model, event_spec, run_stats, integrate, &
     m_dop853, st_ok, st_cancelled
   use pendula_lyapunov, only: lyapunov_point, ly_cancelled, point_model
+  use pendula_stick_slip, only: stick_slip_run, switched
   use pendula_outfile, only: outfile_t, out_line, out_reals
   use pendula_simulate, only: select_model, registry, mid_rigid, sim_ok, attach_force
   use, intrinsic :: iso_c_binding, only: c_funptr
@@ -50,8 +51,9 @@ module pendula_sweep
   public :: sweep_points, iv_branch, np_params, sweep_scene_csv, sweep_model_rule, sweep_limits
   public :: ms_final_well, ms_mean_velocity, ms_locked, ms_poincare, ms_lyapunov
 
-  !> eps, beta, tau, amp, omega, phase, theta0, v0, then the vibrating pivot's amplitude and frequency
-  integer, parameter :: np_params = 10
+  !> eps, beta, tau, amp, omega, phase, theta0, v0, then the vibrating pivot's amplitude and frequency,
+  !> dry friction mu and quadratic drag gamma
+  integer, parameter :: np_params = 12
   integer, parameter :: ms_final_well = 1, ms_mean_velocity = 2, ms_locked = 3, ms_poincare = 4, &
     ms_lyapunov = 5
   integer, parameter :: ps_decided = 0, ps_unsettled = 1, ps_not_applicable = 2, ps_bad_measure = 3, &
@@ -118,7 +120,7 @@ contains
   end subroutine sweep_limits
 
   !> The model rule of every sweep and I-V curve: the kernel's sweep runs the
-  !> rigid pendulum (with damping, torque and drive) only; a scene naming
+  !> rigid pendulum (with damping, torque, drive, pivot, friction, drag) only; a scene naming
   !> another model (a flexible cord, a cycloidal guide, non-uniform gravity)
   !> gets status 3 and msg names the model (NotImplementedError in Python,
   !> exit 3 from pendula-run).  what: the caller's name for the run.
@@ -138,10 +140,6 @@ contains
       msg = trim(what) // ' runs the rigid pendulum only; the model ''' // trim(registry(id)%name) // &
         ''' (cord = ''' // trim(sc%cord) // ''', guide = ''' // trim(sc%guide) // ''', gravity = ''' // &
         trim(sc%gravity) // ''') is not implemented for sweeps: use pendula.simulate per point'
-    else if (sc%friction /= 0 .or. sc%drag /= 0) then
-      status = 3
-      msg = trim(what) // ': the effects friction and drag are not implemented for sweeps yet ' // &
-        '(the scene names ' // trim(scene_effects(sc)) // '): use pendula.simulate or periodic_orbit per point'
     end if
   end subroutine sweep_model_rule
 
@@ -164,7 +162,7 @@ contains
     end if
     select case (measure)
     case (ms_final_well)
-      if (.not. (p(2) > 0.0_dp) .or. p(4) /= 0.0_dp .or. p(9) /= 0.0_dp .or. uf%forced .or. &
+      if (.not. dissipative(p) .or. p(4) /= 0.0_dp .or. p(9) /= 0.0_dp .or. uf%forced .or. &
           abs(p(3)) >= p(1)) then
         st = ps_not_applicable; return
       end if
@@ -176,7 +174,7 @@ contains
         st = ps_unsettled; o(2) = t_max
       end if
     case (ms_locked)
-      if (.not. (p(2) > 0.0_dp) .or. p(4) /= 0.0_dp .or. p(9) /= 0.0_dp .or. uf%forced) then
+      if (.not. dissipative(p) .or. p(4) /= 0.0_dp .or. p(9) /= 0.0_dp .or. uf%forced) then
         st = ps_not_applicable; return
       end if
       if (abs(p(3)) >= p(1)) then
@@ -236,9 +234,16 @@ contains
     type(event_spec) :: ev
     type(run_stats) :: stats
     integer :: nev, s
-    real(dp) :: tev(1), thev(1), vev(1)
+    real(dp) :: tev(1), thev(1), vev(1), work(4)
+    integer(int64) :: nsw
     m = point_model(p, p(6) + p(5) * t0, p(10) * t0, uf, t0)
-    call integrate(m, m_dop853, th, v, ts, rtol, atol, 0.0_dp, ths, vs, stats, s, ev, nev, tev, thev, vev, cancel)
+    if (switched(m)) then
+      ! friction, drag: the stretches between the v = 0 events (as simulate)
+      call stick_slip_run(m, m_dop853, th, v, ts, rtol, atol, ths, vs, work, nsw, s, cancel)
+    else
+      call integrate(m, m_dop853, th, v, ts, rtol, atol, 0.0_dp, ths, vs, stats, s, ev, nev, tev, thev, vev, &
+                     cancel)
+    end if
     if (s == st_cancelled) then
       st = ps_cancelled; return
     end if
@@ -339,7 +344,7 @@ contains
     logical :: can_trap, tr
     th = th0; v = v0; t = 0.0_dp; st = ps_decided
     vm = nan_dp; err = nan_dp
-    can_trap = p(2) > 0.0_dp .and. p(4) == 0.0_dp .and. p(9) == 0.0_dp .and. abs(p(3)) < p(1)
+    can_trap = dissipative(p) .and. p(4) == 0.0_dp .and. p(9) == 0.0_dp .and. abs(p(3)) < p(1)
     if (present(uf)) can_trap = can_trap .and. .not. uf%forced
     tw = two_pi / sqrt(p(1))
     seg_end = [t_tr, t_tr + 0.5_dp * t_avg, t_tr + t_avg]
@@ -376,6 +381,13 @@ contains
     vm = (th - tha) / t_avg
     err = abs(vm - (th - thh) / (0.5_dp * t_avg))
   end subroutine mean_velocity
+
+  !> Does the point lose energy whenever it moves (damping, friction or drag)?  Then an undriven
+  !> orbit whose energy is below the barriers of its well stays in it (trapped).
+  pure logical function dissipative(p)
+    real(dp), intent(in) :: p(np_params)
+    dissipative = p(2) > 0.0_dp .or. p(11) > 0.0_dp .or. p(12) > 0.0_dp
+  end function dissipative
 
   !> The angular frequency of the periodic forcing (the stroboscopic map's): the drive's, or
   !> the vibrating pivot's when there is no drive; 0 when the two differ (no common period here).
@@ -517,7 +529,7 @@ contains
       end if
     end do
     base = [sc%eps, sc%damping, sc%torque, sc%drive_amplitude, sc%drive_frequency, sc%drive_phase, &
-            sc%theta0, sc%v0, sc%pivot_amplitude, sc%pivot_frequency]
+            sc%theta0, sc%v0, sc%pivot_amplitude, sc%pivot_frequency, sc%friction, sc%drag]
     do k = 0, sc%n_grid
       if (k > 0) then
         if (trim(sc%grid(k)) /= 'theta0') cycle
@@ -652,6 +664,8 @@ contains
       case ('theta0'); slot = 7
       case ('pivot_amplitude'); slot = 9
       case ('pivot_frequency'); slot = 10
+      case ('friction'); slot = 11
+      case ('drag'); slot = 12
       case default; slot = 8
       end select
     end function slot

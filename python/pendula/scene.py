@@ -50,7 +50,7 @@ SWEEPABLE = ("v0", "theta0", "eps", "damping", "torque", "drive_amplitude", "dri
 MEASURES = ("final_well", "mean_velocity", "locked", "poincare", "lyapunov")
 #: fields a grid may run over
 GRIDDABLE = ("v0", "theta0", "eps", "damping", "torque", "drive_amplitude", "drive_frequency", "drive_phase",
-             "pivot_amplitude", "pivot_frequency")
+             "pivot_amplitude", "pivot_frequency", "friction", "drag")
 #: The kernel's limits: longer lists and strings are refused with a message, never truncated.
 MAX_SWEEP = 4096
 MAX_OUTPUTS = 16

@@ -78,7 +78,7 @@ STATUS = {0: "decided", 1: "not settled / undecided by the limit", 2: "measure d
               (6, "non-finite state"), (7, "too many steps"), (8, "cancelled"), (9, "no dense output"),
               (10, "stopped by an event"))}}
 _PARAM_ORDER = ("eps", "damping", "torque", "drive_amplitude", "drive_frequency", "drive_phase", "theta0", "v0",
-                "pivot_amplitude", "pivot_frequency")
+                "pivot_amplitude", "pivot_frequency", "friction", "drag")
 
 
 def grid_of(scene: Scene) -> dict:
@@ -181,11 +181,11 @@ class _Plan:
                 "samples": self.samples, "rows": self.rows}
 
     def params(self, i: int) -> np.ndarray:
-        """The kernel's (10, npts) parameter block of chunk i."""
+        """The kernel's (12, npts) parameter block of chunk i."""
         return self.params_rows(i * self.rows, min((i + 1) * self.rows, self.shape[0]))
 
     def params_rows(self, lo: int, hi: int) -> np.ndarray:
-        """The kernel's (10, npts) parameter block of rows lo .. hi - 1 of the first axis."""
+        """The kernel's (12, npts) parameter block of rows lo .. hi - 1 of the first axis."""
         names = list(self.over)
         axes = [self.over[names[0]][lo:hi]] + [self.over[n] for n in names[1:]]
         mesh = np.meshgrid(*axes, indexing="ij")
@@ -276,6 +276,7 @@ _AXIS_META = {
     "drive_phase": ("drive phase", "rad"), "sample": ("stroboscopic sample number", "1"),
     "pivot_amplitude": ("vibrating pivot's amplitude a (units of the length)", "1"),
     "pivot_frequency": ("vibrating pivot's angular frequency Omega", "rad s-1"),
+    "friction": ("dry (Coulomb) friction mu", "rad s-2"), "drag": ("quadratic drag gamma", "1"),
 }
 #: the variables of each measure, in the kernel's output order
 _MEASURE_VARS = {"final_well": ("well", "t_decided"), "locked": ("locked", "t_decided"),
@@ -390,9 +391,9 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
         A user's force, as in :func:`pendula.simulate`, added at every point
         (the kernel calls it from every thread); not with ``out`` or
         ``client``, and final_well and locked do not apply with it (status
-        2).  Friction and drag are not implemented for sweeps yet
-        (NotImplementedError); a vibrating pivot is (its period is the
-        stroboscopic map's when there is no drive).
+        2).  Friction, drag and a vibrating pivot are in the sweeps too (the
+        pivot's period is the stroboscopic map's when there is no drive; no
+        Lyapunov exponents with friction, which sticks).
 
     Returns
     -------
@@ -413,8 +414,8 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
         or times, 'poincare' without a drive, or an `out` that holds a
         different sweep.
     NotImplementedError
-        For a model or effect the sweeps do not run (flexible cord, cycloid,
-        non-uniform gravity, friction, drag).
+        For a model the sweeps do not run (flexible cord, cycloid,
+        non-uniform gravity).
     pendula._store.StoreBusyError
         (an OSError) another sweep is writing the same ``out``; the message
         names the store and that sweep's pid.
