@@ -37,7 +37,7 @@
 !> sweep_max_angle (sweep_limits gives them to the Python layer).
 module pendula_sweep
   use pendula_kinds, only: dp, pi, two_pi, nan_dp
-  use pendula_scene, only: scene_t, scene_effects
+  use pendula_scene, only: scene_t
   use pendula_integrators, only: pendulum_model, event_spec, run_stats, integrate, &
     m_dop853, st_ok, st_cancelled
   use pendula_lyapunov, only: lyapunov_point, ly_cancelled, point_model
