@@ -13,7 +13,7 @@ from pendula import Scene
 def test_models_lists_the_registry():
     ms = {m.name: m for m in pendula.models()}
     assert list(ms)[0] == "rigid" and ms["rigid"].implemented and ms["rigid"].path == "exact"
-    assert set(ms["rigid"].effects) == {"damping", "torque", "drive"}
+    assert set(ms["rigid"].effects) == {"damping", "torque", "drive", "friction", "drag", "pivot", "force"}
     assert ms["rigid"].exact_with == ()  # exact only without effects
     assert {"cord", "cycloid", "gravity"} <= set(ms)
 

@@ -118,7 +118,7 @@ html_last_updated_fmt = None
 #: takes every top-level page whose name starts with it.
 SECTIONS = {
     "getting_started": ["install*"],
-    "guide": ["guide/exact", "guide/integrators", "guide/spectra", "guide/damping", "guide/driven",
+    "guide": ["guide/exact", "guide/integrators", "guide/effects", "guide/spectra", "guide/damping", "guide/driven",
               "guide/cord", "guide/cycloid", "guide/gravity", "guide/density", "guide/dynamics", "guide/sweeps",
               "sweeps_at_scale*", "guide/scenes", "scenes*", "vocabulary", "guide/architecture"],
     "reports": ["reports/accuracy", "accuracy*", "elliptic_edges*", "model_accuracy*", "reports/cost", "work_precision*", "reports/benchmarks",

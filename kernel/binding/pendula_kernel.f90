@@ -163,7 +163,7 @@ subroutine exact_info_v(theta0, v0, eps, info, status)
 end subroutine exact_info_v
 
 ! ---------------------------------------------------------------- scenes and the dispatcher
-! A scene crosses the binding as fields: x(25) the numbers in the order of
+! A scene crosses the binding as fields: x(29) the numbers in the order of
 ! pendula_scene's number_fields (scene_layout_v), the words one after another
 ! in `words` with their lengths wlen: cord, guide, gravity, method, sweep,
 ! measure, name, then nout outputs, then ngrid grid axes.
@@ -194,7 +194,7 @@ subroutine scene_read_v(text, source, x, words, wlen, nout, ngrid, sweep_values,
   character(len=*), intent(in) :: text, source
   integer, intent(in) :: from_file
   !f2py integer optional, intent(in) :: from_file = 0
-  double precision, intent(out) :: x(25), sweep_values(4096), grid_values(4096, 3), grid_range(3, 3)
+  double precision, intent(out) :: x(29), sweep_values(4096), grid_values(4096, 3), grid_range(3, 3)
   character(len=1024), intent(out) :: words
   integer, intent(out) :: wlen(26), nout, ngrid, nsweep, grid_nv(3), grid_nr(3), status
   character(len=2048), intent(out) :: msg
@@ -221,7 +221,7 @@ subroutine scene_check_v(x, words, nw, wlen, nout, ngrid, ns, sweep_values, n1, 
                          nout_out, ngrid_out, status, msg)
   use pendula_scene, only: scene_t, scene_from_fields, scene_to_fields
   implicit none
-  double precision, intent(in) :: x(25)
+  double precision, intent(in) :: x(29)
   character(len=*), intent(in) :: words
   integer, intent(in) :: nw, nout, ngrid, ns, n1, n2, n3, nr1, nr2, nr3
   integer, intent(in) :: wlen(nw)
@@ -235,7 +235,7 @@ subroutine scene_check_v(x, words, nw, wlen, nout, ngrid, ns, sweep_values, n1, 
   !f2py intent(hide), depend(grid1_range) :: nr1 = len(grid1_range)
   !f2py intent(hide), depend(grid2_range) :: nr2 = len(grid2_range)
   !f2py intent(hide), depend(grid3_range) :: nr3 = len(grid3_range)
-  double precision, intent(out) :: x_out(25)
+  double precision, intent(out) :: x_out(29)
   character(len=1024), intent(out) :: words_out
   integer, intent(out) :: wlen_out(26), nout_out, ngrid_out, status
   character(len=2048), intent(out) :: msg
@@ -258,7 +258,7 @@ subroutine simulate_v(x, words, nw, wlen, nout, ngrid, n, t, cancel, theta, v, e
   use pendula_simulate, only: simulate_scene
   implicit none
   !f2py threadsafe
-  double precision, intent(in) :: x(25)
+  double precision, intent(in) :: x(29)
   character(len=*), intent(in) :: words
   integer, intent(in) :: nw, nout, ngrid, n
   integer, intent(in) :: wlen(nw)
@@ -312,7 +312,7 @@ subroutine integrate_v(x, words, nw, wlen, nout, ngrid, n, method, t, ev_kind, e
   use pendula_gsl_iface, only: pendula_gsl_rk8pd
   implicit none
   !f2py threadsafe
-  double precision, intent(in) :: x(25)
+  double precision, intent(in) :: x(29)
   character(len=*), intent(in) :: words
   integer, intent(in) :: nw, nout, ngrid, n, method, ev_kind, ev_dir, ev_terminal, max_ev
   integer, intent(in) :: wlen(nw)
@@ -494,7 +494,7 @@ subroutine cord_scene_v(fields, words, nw, wlen, nout, ngrid, n, maxf, t, cancel
   use pendula_simulate, only: cord_scene_run, simulate_status_text
   implicit none
   !f2py threadsafe
-  double precision, intent(in) :: fields(25)
+  double precision, intent(in) :: fields(29)
   character(len=*), intent(in) :: words
   integer, intent(in) :: nw, nout, ngrid, n, maxf
   integer, intent(in) :: wlen(nw)
@@ -529,14 +529,15 @@ end subroutine cord_scene_v
 ! Sweeps: one call per block of grid points, OpenMP inside.
 ! ====================================================================
 
-! params(8, npts): eps, beta, tau, amp, omega, phase, theta0, v0 per point.
+! params(12, npts): eps, beta, tau, amp, omega, phase, theta0, v0, pivot amplitude and frequency, friction,
+! drag per point.
 ! nthreads <= 0: OpenMP's default (OMP_NUM_THREADS, else all cores).
 ! cancel(1) non-zero (set by another thread) stops the block: status 5.
 subroutine sweep_block(measure, npts, params, rtol, atol, t_tr, t_max, nout, nthreads, cancel, out, pstat)
   use pendula_sweep, only: sweep_points
   implicit none
   integer, intent(in) :: measure, npts, nout, nthreads
-  double precision, intent(in) :: params(8, npts), rtol, atol, t_tr, t_max
+  double precision, intent(in) :: params(12, npts), rtol, atol, t_tr, t_max
   integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: out(nout, npts)
   integer, intent(out) :: pstat(npts)
@@ -550,7 +551,7 @@ subroutine sweep_iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, cancel, 
   use pendula_sweep, only: iv_branch
   implicit none
   integer, intent(in) :: ntau
-  double precision, intent(in) :: params(8), taus(ntau), rtol, atol, t_tr, t_avg
+  double precision, intent(in) :: params(12), taus(ntau), rtol, atol, t_tr, t_avg
   integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: vm(ntau), err(ntau), th, v
   integer, intent(out) :: pstat(ntau)
@@ -565,7 +566,7 @@ subroutine sweep_model_check_v(x, words, nw, wlen, nout, ngrid, what, status, ms
   use pendula_scene, only: scene_t, scene_from_fields
   use pendula_sweep, only: sweep_model_rule
   implicit none
-  double precision, intent(in) :: x(25)
+  double precision, intent(in) :: x(29)
   character(len=*), intent(in) :: words, what
   integer, intent(in) :: nw, nout, ngrid
   integer, intent(in) :: wlen(nw)
@@ -713,7 +714,7 @@ subroutine periodic_orbit_v(x, words, nw, wlen, nout, ngrid, period, winding, rt
   use pendula_gsl_iface, only: pendula_gsl_periodic_orbit
   implicit none
   !f2py threadsafe
-  double precision, intent(in) :: x(25)
+  double precision, intent(in) :: x(29)
   character(len=*), intent(in) :: words
   integer, intent(in) :: nw, nout, ngrid
   integer, intent(in) :: wlen(nw)
@@ -738,3 +739,130 @@ subroutine periodic_orbit_v(x, words, nw, wlen, nout, ngrid, period, winding, rt
   m = scene_model(sc)
   status = pendula_gsl_periodic_orbit(c_loc(m), period, winding, rtol, atol, tol, maxit, xo, mono, info)
 end subroutine periodic_orbit_v
+
+! ==================== effects: a user's force, dry friction's energy balance ====================
+! A user's force crosses the binding as an address (f2py cannot wrap procedure pointers): faddr is
+! the address of a C function double f(double t, double theta, double v, const double *params)
+! (a ctypes function, a numba cfunc), converted by c_f_procpointer in the kernel; fparams(np) is
+! passed to it as given.
+
+! simulate_v with the user's force added to the scene's force law (the scene is integrated).
+subroutine simulate_force_v(x, words, nw, wlen, nout, ngrid, n, t, faddr, np, fparams, cancel, theta, v, energy, &
+                            stats, method, status, msg)
+  use, intrinsic :: iso_c_binding, only: c_funptr, c_intptr_t
+  use pendula_kinds, only: dp
+  use pendula_scene, only: scene_t, scene_from_fields
+  use pendula_simulate, only: simulate_scene
+  implicit none
+  !f2py threadsafe
+  double precision, intent(in) :: x(29)
+  character(len=*), intent(in) :: words
+  integer, intent(in) :: nw, nout, ngrid, n, np
+  integer, intent(in) :: wlen(nw)
+  double precision, intent(in) :: t(n)
+  integer(8), intent(in) :: faddr
+  double precision, intent(in), target :: fparams(np)
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: theta(n), v(n), energy(n), stats(4)
+  integer, intent(out) :: method, status
+  character(len=512), intent(out) :: msg
+  !f2py intent(hide), depend(wlen) :: nw = len(wlen)
+  !f2py intent(hide), depend(t) :: n = len(t)
+  !f2py intent(hide), depend(fparams) :: np = len(fparams)
+  type(scene_t) :: sc
+  type(c_funptr) :: f
+  double precision :: g, length, none(0)
+  theta = 0; v = 0; energy = 0; stats = 0; method = -1
+  call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
+                         g, length, status, msg)
+  if (status /= 0) then
+    status = 100
+    return
+  end if
+  if (faddr == 0) then
+    status = 101; msg = 'force: a null function pointer'
+    return
+  end if
+  f = transfer(int(faddr, c_intptr_t), f)
+  call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel(1), f, fparams)
+end subroutine simulate_force_v
+
+! periodic_orbit_v with the user's force added to the scene's force law.
+subroutine periodic_orbit_force_v(x, words, nw, wlen, nout, ngrid, period, winding, rtol, atol, tol, maxit, x0, &
+                                  faddr, np, fparams, xo, mono, info, status)
+  use, intrinsic :: iso_c_binding, only: c_loc, c_funptr, c_intptr_t
+  use pendula_scene, only: scene_t, scene_from_fields
+  use pendula_simulate, only: scene_model, attach_force
+  use pendula_integrators, only: pendulum_model
+  use pendula_gsl_iface, only: pendula_gsl_periodic_orbit
+  implicit none
+  !f2py threadsafe
+  double precision, intent(in) :: x(29)
+  character(len=*), intent(in) :: words
+  integer, intent(in) :: nw, nout, ngrid, np
+  integer, intent(in) :: wlen(nw)
+  double precision, intent(in) :: period, winding, rtol, atol, tol, x0(2)
+  integer, intent(in) :: maxit
+  integer(8), intent(in) :: faddr
+  double precision, intent(in), target :: fparams(np)
+  double precision, intent(out) :: xo(2)
+  double precision, intent(out) :: mono(4), info(3)
+  integer, intent(out) :: status
+  !f2py intent(hide), depend(wlen) :: nw = len(wlen)
+  !f2py intent(hide), depend(fparams) :: np = len(fparams)
+  type(scene_t) :: sc
+  type(pendulum_model), target :: m
+  type(c_funptr) :: f
+  double precision :: g, length, none(0)
+  character(len=512) :: msg
+  xo = x0
+  mono = 0; info = 0
+  call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
+                         g, length, status, msg)
+  if (status /= 0 .or. faddr == 0) then
+    status = 100
+    return
+  end if
+  m = scene_model(sc)
+  f = transfer(int(faddr, c_intptr_t), f)
+  call attach_force(m, f, fparams)
+  status = pendula_gsl_periodic_orbit(c_loc(m), period, winding, rtol, atol, tol, maxit, xo, mono, info)
+end subroutine periodic_orbit_force_v
+
+! The turning points of the rigid pendulum with dry friction mu (and a torque tau) from (theta0, v0):
+! times(1:count), angles(1:count) where v = 0; stuck = 1 when it sticks at the last one.  status as
+! pendula_friction%friction_turning (0 ok, 1 bad input, 2 runs away, 3 more than nmax, 4 GSL failed).
+subroutine friction_turning_v(eps, tau, mu, theta0, v0, nmax, times, angles, count, stuck, status)
+  use pendula_friction, only: friction_turning
+  implicit none
+  double precision, intent(in) :: eps, tau, mu, theta0, v0
+  integer, intent(in) :: nmax
+  double precision, intent(out) :: times(nmax), angles(nmax)
+  integer, intent(out) :: count, stuck, status
+  logical :: st
+  call friction_turning(eps, tau, mu, theta0, v0, times, angles, count, st, status)
+  stuck = merge(1, 0, st)
+end subroutine friction_turning_v
+
+! sweep_block with a user's force (its address faddr and fparams(np), as simulate_force_v) added to
+! every point's force law; the kernel calls it from every OpenMP thread.
+subroutine sweep_block_force(measure, npts, params, rtol, atol, t_tr, t_max, nout, nthreads, faddr, np, fparams, &
+                             cancel, out, pstat)
+  use, intrinsic :: iso_c_binding, only: c_funptr, c_intptr_t
+  use pendula_sweep, only: sweep_points
+  implicit none
+  integer, intent(in) :: measure, npts, nout, nthreads, np
+  double precision, intent(in) :: params(12, npts), rtol, atol, t_tr, t_max
+  integer(8), intent(in) :: faddr
+  double precision, intent(in), target :: fparams(np)
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: out(nout, npts)
+  integer, intent(out) :: pstat(npts)
+  !f2py threadsafe
+  !f2py intent(hide), depend(params) :: npts = shape(params, 1)
+  !f2py intent(hide), depend(fparams) :: np = len(fparams)
+  type(c_funptr) :: f
+  f = transfer(int(faddr, c_intptr_t), f)
+  call sweep_points(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, nthreads, cancel(1), &
+                    f, fparams)
+end subroutine sweep_block_force

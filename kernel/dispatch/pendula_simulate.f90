@@ -11,27 +11,30 @@
 !> Adding a model: one module in kernel/models, one entry in `registry`, one
 !> case in simulate_scene (and one line in python/pendula/models/__init__.py).
 module pendula_simulate
-  use, intrinsic :: iso_c_binding, only: c_loc
-  use pendula_kinds, only: dp, nan_dp, two_pi
+  use, intrinsic :: iso_c_binding, only: c_loc, c_funptr, c_f_procpointer, c_null_ptr, c_associated, &
+    c_funloc
+  use pendula_kinds, only: dp, i8, nan_dp, two_pi
   use pendula_scene, only: scene_t, scene_effects, scene_has_orbit_facts
   use pendula_rigid, only: rigid_has_exact, rigid_exact, rigid_energy
   use pendula_cycloid, only: cycloid_run, cycloid_omega2, cy_ok, cy_reaches_cusp
   use pendula_gravity, only: gk_uniform, gk_inverse_square, gk_linear, gravity_energy, gravity_orbit, &
     gr_libration, gr_rotation
-  use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate, m_rk4, m_verlet, &
+  use pendula_integrators, only: pendulum_model, make_model, add_effects, event_spec, run_stats, integrate, m_rk4, m_verlet, &
     m_yoshida4, m_yoshida6, m_yoshida8, m_gauss4, m_gauss6, m_dopri5, m_dop853, st_too_many_steps, &
     st_cancelled, st_velocity_force, m_dprkn6, m_vern9, max_steps, max_fixed_steps
   use pendula_gsl_iface, only: pendula_gsl_rk8pd
+  use pendula_stick_slip, only: stick_slip_run, switched, ss_backward, ss_release_failed
   implicit none
   private
   public :: model_info_t, registry, select_model, method_code, simulate_scene, simulate_status_text, &
-            scene_energy, model_orbit_facts, cord_integrated, cord_scene_run, scene_model
+            scene_energy, model_orbit_facts, cord_integrated, cord_scene_run, scene_model, attach_force
 
   integer, parameter, public :: sim_ok = 0, sim_bad_state = 1, sim_unsupported = 10, &
     sim_needs_dt = 11, sim_unsorted = 12, sim_integrator_failed = 13, sim_not_implemented = 14, &
     sim_model_clash = 15, sim_exact_refused = 16, sim_backward = 17, sim_gsl_failed = 18, &
     sim_too_many_steps = 19, sim_cancelled = 20, sim_closed_form_only = 21, sim_beyond_cusp = 22, &
-    sim_nonfinite_t = 23, sim_cord_effects = 24, sim_velocity_force = 25
+    sim_nonfinite_t = 23, sim_cord_effects = 24, sim_velocity_force = 25, &
+    sim_switch_backward = 26, sim_force_method = 27, sim_force_model = 28, sim_release_failed = 29
   !> method codes: the integrators' 1..9, 11 (dprkn6) and 12 (vern9), then GSL's rk8pd and the exact path
   integer, parameter, public :: m_gsl_rk8pd = 10, m_exact = 0
 
@@ -41,7 +44,7 @@ module pendula_simulate
     !> the scene fields that select it
     character(len=48) :: selector = ''
     !> the effects it accepts, and those under which its exact path still answers
-    character(len=48) :: effects = '', exact_with = ''
+    character(len=64) :: effects = '', exact_with = ''
     !> 'exact', 'integrated' or 'hybrid' (exact pieces joined at events)
     character(len=12) :: path = ''
     logical :: implemented = .false.
@@ -50,13 +53,15 @@ module pendula_simulate
 
   integer, parameter, public :: mid_rigid = 1, mid_cord = 2, mid_cycloid = 3, mid_gravity = 4
   type(model_info_t), parameter :: registry(4) = [ &
-    model_info_t('rigid', "cord='rigid' guide='none' gravity='uniform'", 'damping torque drive', &
+    model_info_t('rigid', "cord='rigid' guide='none' gravity='uniform'", &
+                 'damping torque drive friction drag pivot force', &
                  '(none)', 'exact', .true., 'rigid pendulum, Jacobi elliptic solution in every regime'), &
     model_info_t('cord', "cord='flexible'", 'damping torque drive', '(none)', 'hybrid', .true., &
                  'bob on a flexible cord (Garfinkel): circle, free flight, jerk'), &
     model_info_t('cycloid', "guide='cycloid'", 'damping torque drive', 'damping torque drive', 'exact', &
                  .true., 'cycloidal guide (Huygens): isochronous, closed form'), &
-    model_info_t('gravity', "gravity='inverse-square' or 'linear'", 'damping torque drive', '(none)', &
+    model_info_t('gravity', "gravity='inverse-square' or 'linear'", &
+                 'damping torque drive friction drag pivot force', '(none)', &
                  'integrated', .true., 'non-uniform gravity: energy, quadrature period, integrators')]
 
 contains
@@ -118,10 +123,14 @@ contains
   !> energy: the model's invariant along the path; stats = [steps, accepted,
   !> rejected, rhs evaluations]; method: the code of what answered (m_exact
   !> for the exact path).  msg explains a non-zero status.
-  subroutine simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel)
+  subroutine simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel, force, fparams)
     type(scene_t), intent(in) :: sc
     !> non-zero (set by another thread) stops an integration: status sim_cancelled
     integer, intent(inout), volatile, optional :: cancel
+    !> a user's force f(t, theta, v, params) (bind(C), pendula_integrators%user_force_fn) and the
+    !> params it reads: the scene is then integrated with it added to the force law
+    type(c_funptr), intent(in), optional :: force
+    real(dp), intent(in), target, contiguous, optional :: fparams(:)
     real(dp), intent(in) :: t(:)
     real(dp), intent(out) :: theta(:), v(:), energy(:), stats(4)
     integer, intent(out) :: method, status
@@ -134,9 +143,13 @@ contains
     method = -1
     call select_model(sc, id, status, msg)
     if (status /= sim_ok) return
+    if (present(force) .and. (id == mid_cord .or. id == mid_cycloid)) then
+      status = sim_force_model; msg = simulate_status_text(status); return
+    end if
     select case (id)
     case (mid_rigid)
-      if (rigid_has_exact(sc%damping, sc%torque, sc%drive_amplitude) .and. &
+      if (rigid_has_exact(sc%damping, sc%torque, sc%drive_amplitude) .and. .not. present(force) .and. &
+          sc%friction == 0 .and. sc%drag == 0 .and. sc%pivot_amplitude == 0 .and. &
           (sc%method == 'auto' .or. sc%method == 'exact')) then
         method = m_exact
         call rigid_exact(sc%theta0, sc%v0, sc%eps, t, theta, v, status)
@@ -144,7 +157,7 @@ contains
       else if (sc%method == 'exact') then
         status = sim_exact_refused
       else
-        call integrate_model(sc, t, theta, v, stats, method, status, cancel)
+        call integrate_model(sc, t, theta, v, stats, method, status, cancel, force, fparams)
       end if
       if (status == sim_ok) energy = rigid_energy(sc%eps, theta, v)
     case (mid_cord)
@@ -168,7 +181,7 @@ contains
       if (sc%method == 'exact') then
         status = sim_exact_refused
       else
-        call integrate_model(sc, t, theta, v, stats, method, status, cancel)
+        call integrate_model(sc, t, theta, v, stats, method, status, cancel, force, fparams)
         if (status == sim_ok) energy = scene_energy(sc, theta, v)
       end if
     end select
@@ -185,6 +198,7 @@ contains
     type(scene_t), intent(in) :: sc
     type(pendulum_model) :: model
     model = make_model(sc%eps, sc%damping, sc%torque, sc%drive_amplitude, sc%drive_frequency, sc%drive_phase)
+    model = add_effects(model, sc%friction, sc%drag, sc%pivot_amplitude, sc%pivot_frequency)
     select case (trim(sc%gravity))
     case ('inverse-square'); model%gkind = gk_inverse_square; model%gpar = sc%gravity_distance
     case ('linear');         model%gkind = gk_linear;         model%gpar = sc%gravity_gradient
@@ -192,10 +206,24 @@ contains
     end select
   end function scene_model
 
+  !> The user's force f (a C function pointer, pendula_integrators%user_force_fn) added to the
+  !> model's force law, reading params (which must outlive every use of m).
+  subroutine attach_force(m, f, params)
+    type(pendulum_model), intent(inout) :: m
+    type(c_funptr), intent(in) :: f
+    real(dp), intent(in), target, contiguous :: params(:)
+    call c_f_procpointer(f, m%uforce)
+    m%uparams = c_null_ptr
+    if (size(params) > 0) m%uparams = c_loc(params)
+    m%forced = .true.
+  end subroutine attach_force
+
   !> The scene's integrator on the rigid pendulum's force law with its effects.
-  subroutine integrate_model(sc, t, theta, v, stats, method, status, cancel)
+  subroutine integrate_model(sc, t, theta, v, stats, method, status, cancel, force, fparams)
     type(scene_t), intent(in) :: sc
     integer, intent(inout), volatile, optional :: cancel
+    type(c_funptr), intent(in), optional :: force
+    real(dp), intent(in), target, contiguous, optional :: fparams(:)
     real(dp), intent(in) :: t(:)
     real(dp), intent(out) :: theta(:), v(:), stats(4)
     integer, intent(out) :: method, status
@@ -221,6 +249,17 @@ contains
       end if
     end if
     model = scene_model(sc)
+    if (present(force)) then
+      ! a force of (t, theta, v): not for the splittings' position-only kicks
+      if (method == m_dprkn6 .or. (method >= m_verlet .and. method <= m_yoshida8)) then
+        status = sim_force_method; return
+      end if
+      call attach_force(model, force, fparams)
+    end if
+    if (switched(model)) then
+      call switched_run()
+      return
+    end if
     if (method == m_gsl_rk8pd .and. trim(sc%gravity) /= 'uniform') then
       status = sim_unsupported; return
     end if
@@ -245,6 +284,21 @@ contains
     case (st_velocity_force); status = sim_velocity_force
     case default;             status = sim_integrator_failed
     end select
+  contains
+    !> friction or drag: the stretches between the switches at v = 0 (pendula_stick_slip)
+    subroutine switched_run()
+      integer(i8) :: nswitch
+      call stick_slip_run(model, method, sc%theta0, sc%v0, t, sc%rtol, sc%atol, theta, v, stats, nswitch, &
+                          status, cancel)
+      select case (status)
+      case (0)
+      case (ss_backward);       status = sim_switch_backward
+      case (ss_release_failed); status = sim_release_failed
+      case (st_too_many_steps); status = sim_too_many_steps
+      case (st_cancelled);      status = sim_cancelled
+      case default;             status = sim_integrator_failed
+      end select
+    end subroutine switched_run
   end subroutine integrate_model
 
   !> The flexible cord through simulate_scene: theta and v (the bob's x, y, r and the
@@ -434,6 +488,14 @@ contains
                                      '|theta| = pi/2): start lower, slower, or drive less'
     case (sim_velocity_force);   s = 'field ''method'': dprkn6 (a Runge-Kutta-Nystrom pair) integrates ' // &
                                      'theta'''' = f(t, theta) only; a damped scene needs another method (dop853)'
+    case (sim_switch_backward);  s = 'fields ''friction''/''drag'': a scene with friction or drag runs ' // &
+                                     'forward in time only: give times >= 0'
+    case (sim_force_method);     s = 'field ''method'': a force of (t, theta, v) needs a method that ' // &
+                                     'evaluates the whole right-hand side (not verlet, yoshida*, dprkn6)'
+    case (sim_force_model);      s = 'a user force is added to the rigid pendulum or non-uniform gravity ' // &
+                                     'only (not the flexible cord or the cycloidal guide)'
+    case (sim_release_failed);   s = 'field ''friction'': the time the stuck bob breaks loose was not ' // &
+                                     'located (GSL root finder failed)'
     case default;                s = 'unknown failure'
     end select
   end function simulate_status_text

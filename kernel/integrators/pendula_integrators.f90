@@ -32,12 +32,14 @@
 !> by the embedded 8th-order weights; no dense output (steps land on the output
 !> times, no events).
 module pendula_integrators
+  use, intrinsic :: iso_c_binding, only: c_double, c_ptr, c_null_ptr
   use pendula_kinds, only: dp, i8, nan_dp
   use pendula_gravity, only: gravity_accel
   use pendula_equilibria, only: field_slope
   implicit none
   private
-  public :: pendulum_model, make_model, event_spec, run_stats, integrate, accel, accel_jacobian, &
+  public :: pendulum_model, make_model, add_effects, user_force_fn, free_accel, &
+    event_spec, run_stats, integrate, accel, accel_jacobian, &
     dop853_error_norm, dop853_step_2, dop853_step_6, system_rhs
 
   include 'pendula_rk_tables.inc'
@@ -67,7 +69,26 @@ module pendula_integrators
     !> non-uniform gravity: field kind and parameter of pendula_gravity; 0 = uniform
     integer :: gkind = 0
     real(dp) :: gpar = 0.0_dp
+    !> friction mu, drag gamma, vibrating pivot (pamp cos(pomega t + pphase)); vsign: the sign of v on
+    !> a stretch between the v = 0 events of friction and drag (0: the sign of v itself, no events);
+    !> the user's force uforce(t + ut0, th, v, uparams) (ut0: the time origin of a restarted stretch)
+    real(dp) :: mu = 0.0_dp, gamma = 0.0_dp, pamp = 0.0_dp, pomega = 0.0_dp, pphase = 0.0_dp, vsign = 0.0_dp
+    real(dp) :: ut0 = 0.0_dp
+    logical :: rubbed = .false., dragged = .false., vibrated = .false., forced = .false.
+    procedure(user_force_fn), pointer, nopass :: uforce => null()
+    type(c_ptr) :: uparams = c_null_ptr
   end type pendulum_model
+
+  !> A user's force: double f(double t, double theta, double v, const double *params), called on
+  !> every right-hand side from every thread (declared pure: it must not keep state of its own).
+  abstract interface
+    pure function user_force_fn(t, th, v, params) bind(C) result(a)
+      import :: c_double, c_ptr
+      real(c_double), value, intent(in) :: t, th, v
+      type(c_ptr), value, intent(in) :: params
+      real(c_double) :: a
+    end function user_force_fn
+  end interface
 
   !> kind 0: none; 1: g = v (turning points); 2: g = theta - level;
   !> 3: g = sin((theta - level)/2) (theta passing level + 2 pi k, for rotations);
@@ -155,6 +176,30 @@ contains
     m%driven = amp /= 0.0_dp
   end function make_model
 
+  !> The model m with dry friction mu, quadratic drag gamma and a vibrating pivot (amplitude pamp,
+  !> frequency pomega) added; each effect is in the force law only when its coefficient is nonzero.
+  pure function add_effects(m, mu, gamma, pamp, pomega) result(me)
+    type(pendulum_model), intent(in) :: m
+    real(dp), intent(in) :: mu, gamma, pamp, pomega
+    type(pendulum_model) :: me
+    me = m
+    me%mu = mu; me%gamma = gamma; me%pamp = pamp; me%pomega = pomega
+    me%rubbed = mu /= 0.0_dp
+    me%dragged = gamma /= 0.0_dp
+    me%vibrated = pamp /= 0.0_dp
+  end function add_effects
+
+  !> theta'' without the friction term (the force friction must hold at rest).
+  pure function free_accel(m, t, th, v) result(a)
+    type(pendulum_model), intent(in) :: m
+    real(dp), intent(in) :: t, th, v
+    real(dp) :: a
+    type(pendulum_model) :: mf
+    mf = m
+    mf%rubbed = .false.
+    a = accel(mf, t, th, v)
+  end function free_accel
+
   !> theta'' for the effects the model names.
   pure function accel(m, t, th, v) result(a)
     type(pendulum_model), intent(in) :: m
@@ -168,7 +213,34 @@ contains
     if (m%damped) a = a - m%beta * v
     if (m%torqued) a = a + m%tau
     if (m%driven) a = a + m%amp * cos(m%omega * t + m%phase)
+    if (m%rubbed .or. m%dragged .or. m%vibrated .or. m%forced) a = a + effects_accel(m, t, th, v)
   end function accel
+
+  !> The terms of friction, drag, the vibrating pivot and the user's force.  On a stretch of
+  !> known sign s = vsign, friction is -mu s and drag -gamma s v^2 (smooth through v = 0, so that
+  !> the event is located on a smooth path); without it, -mu sgn(v) and -gamma v |v|.
+  pure function effects_accel(m, t, th, v) result(a)
+    type(pendulum_model), intent(in) :: m
+    real(dp), intent(in) :: t, th, v
+    real(dp) :: a
+    a = 0.0_dp
+    if (m%vibrated) a = a + m%pamp * m%pomega**2 * cos(m%pomega * t + m%pphase) * sin(th)
+    if (m%rubbed) then
+      if (m%vsign /= 0.0_dp) then
+        a = a - m%mu * m%vsign
+      else if (v /= 0.0_dp) then
+        a = a - sign(m%mu, v)
+      end if
+    end if
+    if (m%dragged) then
+      if (m%vsign /= 0.0_dp) then
+        a = a - m%gamma * m%vsign * v * v
+      else
+        a = a - m%gamma * v * abs(v)
+      end if
+    end if
+    if (m%forced) a = a + m%uforce(t + m%ut0, th, v, m%uparams)
+  end function effects_accel
 
   !> The Jacobian of theta'' = accel(m, t, th, v) in the state: d theta''/d theta
   !> (the field's exact slope) and d theta''/d v, for the effects the model
@@ -180,9 +252,20 @@ contains
     type(pendulum_model), intent(in) :: m
     real(dp), intent(in) :: t, th, v
     real(dp), intent(out) :: dadth, dadv
+    real(dp) :: hth, hv, tt
     dadth = field_slope(m%gkind, m%gpar, m%eps, th)
     dadv = 0.0_dp
     if (m%damped) dadv = -m%beta
+    if (m%vibrated) dadth = dadth + m%pamp * m%pomega**2 * cos(m%pomega * t + m%pphase) * cos(th)
+    if (m%dragged) dadv = dadv - 2.0_dp * m%gamma * merge(m%vsign * v, abs(v), m%vsign /= 0.0_dp)
+    if (m%forced) then
+      ! the user's force has no derivative of its own: central differences, steps of
+      ! eps^(1/3) relative (errors near eps^(2/3) of the force's scale)
+      tt = t + m%ut0
+      hth = 6.0e-6_dp * max(1.0_dp, abs(th)); hv = 6.0e-6_dp * max(1.0_dp, abs(v))
+      dadth = dadth + (m%uforce(tt, th + hth, v, m%uparams) - m%uforce(tt, th - hth, v, m%uparams)) / (2 * hth)
+      dadv = dadv + (m%uforce(tt, th, v + hv, m%uparams) - m%uforce(tt, th, v - hv, m%uparams)) / (2 * hv)
+    end if
   end subroutine accel_jacobian
 
   !> The position- and time-dependent force alone (the kick of the splitting).
@@ -197,6 +280,7 @@ contains
     end if
     if (m%torqued) a = a + m%tau
     if (m%driven) a = a + m%amp * cos(m%omega * t + m%phase)
+    if (m%vibrated) a = a + m%pamp * m%pomega**2 * cos(m%pomega * t + m%pphase) * sin(th)
   end function force
 
   !> y + e += d with compensation (Kahan): e carries what y could not hold.
@@ -247,7 +331,7 @@ contains
       status = st_no_dense; return
     end if
     if (method == m_dprkn6) then
-      if (m%damped) then
+      if (m%damped .or. m%rubbed .or. m%dragged .or. m%forced) then
         status = st_velocity_force; return
       end if
       if (ev%kind /= 0) then
@@ -271,7 +355,7 @@ contains
     ! the small oscillation, the drive and the damping (t = 1e15, a drive at
     ! 1e300 rad/s); a rotation turns at about |v0|
     if (n > 0 .and. adaptive) then
-      if (.not. (max(abs(tout(1)), abs(tout(n))) * max(sqrt(m%eps), m%omega, m%beta, abs(v0)) &
+      if (.not. (max(abs(tout(1)), abs(tout(n))) * max(sqrt(m%eps), m%omega, m%pomega, m%beta, abs(v0)) &
                  * (4.0_dp / 6.283185307179586_dp) < real(max_steps, dp))) then
         status = st_too_many_steps; return
       end if

@@ -42,12 +42,12 @@ module pendula_scene
   end interface
   !> the numbers of a scene in the order scene_from_fields takes them (whole
   !> numbers too: n_samples, max_flips, sweep_samples)
-  integer, parameter :: n_number_fields = 25
+  integer, parameter :: n_number_fields = 29
   character(len=16), parameter :: number_fields(n_number_fields) = [character(len=16) :: 'eps', 'theta0', &
     'v0', 't_start', 't_end', 'n_samples', 'damping', 'torque', 'drive_amplitude', 'drive_frequency', &
     'drive_phase', 'rtol', 'atol', 'dt', 'g', 'length', 'cycloid_radius', 'gravity_distance', &
     'gravity_gradient', 'restitution', 'max_flips', 'min_flight', 'sweep_t_max', 'sweep_transient', &
-    'sweep_samples']
+    'sweep_samples', 'friction', 'drag', 'pivot_amplitude', 'pivot_frequency']
   !> the single words, in order; then the outputs, then the grid's axes
   integer, parameter :: n_word_fields = 7
   character(len=8), parameter :: word_fields(n_word_fields) = [character(len=8) :: 'cord', 'guide', 'gravity', &
@@ -92,6 +92,8 @@ module pendula_scene
     character(len=32) :: measure = ''
     real(dp) :: sweep_t_max = 2000.0_dp, sweep_transient = 200.0_dp
     integer :: sweep_samples = 100
+    ! effects: dry (Coulomb) friction mu, quadratic drag gamma, a vertically vibrating pivot a cos(Omega t)
+    real(dp) :: friction = 0.0_dp, drag = 0.0_dp, pivot_amplitude = 0.0_dp, pivot_frequency = 0.0_dp
   end type scene_t
 
 contains
@@ -155,7 +157,8 @@ contains
     ! the namelist variables (same names as the fields)
     real(dp) :: eps, theta0, v0, t_start, t_end, damping, torque, drive_amplitude, &
                 drive_frequency, drive_phase, rtol, atol, dt, g, length, cycloid_radius, gravity_distance, &
-                gravity_gradient, restitution, min_flight, sweep_t_max, sweep_transient
+                gravity_gradient, restitution, min_flight, sweep_t_max, sweep_transient, &
+                friction, drag, pivot_amplitude, pivot_frequency
     integer :: n_samples, max_flips, sweep_samples
     real(dp) :: grid1(max_sweep), grid2(max_sweep), grid3(max_sweep), grid1_range(3), grid2_range(3), &
                 grid3_range(3)
@@ -169,7 +172,7 @@ contains
       outputs, sweep, sweep_values, name, g, length, cycloid_radius, gravity_distance, gravity_gradient, &
       restitution, max_flips, min_flight, &
       grid, grid1, grid2, grid3, grid1_range, grid2_range, grid3_range, measure, sweep_t_max, &
-      sweep_transient, sweep_samples
+      sweep_transient, sweep_samples, friction, drag, pivot_amplitude, pivot_frequency
     character(len=:), allocatable :: text
     character(len=:), allocatable :: buf
     character(len=512) :: iom
@@ -179,14 +182,15 @@ contains
     character(len=32) :: words(max_words)
     integer :: wlen(max_words), nout, ngrid
     character(len=1024) :: longw(max_words)
-    integer, parameter :: n_known = 41
+    integer, parameter :: n_known = 45
     character(len=16), parameter :: known_fields(n_known) = [character(len=16) :: 'eps', 'theta0', 'v0', &
       't_start', 't_end', 'n_samples', 'damping', 'torque', 'drive_amplitude', 'drive_frequency', &
       'drive_phase', 'cord', 'guide', 'gravity', 'method', 'rtol', 'atol', 'dt', 'outputs', 'sweep', &
       'sweep_values', 'name', 'g', 'length', 'cycloid_radius', 'gravity_distance', 'gravity_gradient', &
       'restitution', 'max_flips', 'min_flight', &
       'grid', 'grid1', 'grid2', 'grid3', 'grid1_range', 'grid2_range', 'grid3_range', 'measure', &
-      'sweep_t_max', 'sweep_transient', 'sweep_samples']
+      'sweep_t_max', 'sweep_transient', 'sweep_samples', 'friction', 'drag', 'pivot_amplitude', &
+      'pivot_frequency']
     ! how many values each field was given, and the line where it was
     integer :: given(n_known), given_line(n_known)
 
@@ -202,6 +206,7 @@ contains
     grid = ''; grid1 = nan_dp; grid2 = nan_dp; grid3 = nan_dp; grid1_range = nan_dp; grid2_range = nan_dp
     grid3_range = nan_dp; measure = ''; sweep_t_max = 2000.0_dp; sweep_transient = 200.0_dp
     sweep_samples = 100
+    friction = 0; drag = 0; pivot_amplitude = 0; pivot_frequency = 0
     given = 0
     given_line = 0
     if (present(g_out)) g_out = nan_dp
@@ -376,6 +381,8 @@ contains
     sc%gravity_gradient = gravity_gradient
     sc%restitution = restitution; sc%max_flips = max_flips; sc%min_flight = min_flight
     sc%sweep_t_max = sweep_t_max; sc%sweep_transient = sweep_transient; sc%sweep_samples = sweep_samples
+    sc%friction = friction; sc%drag = drag; sc%pivot_amplitude = pivot_amplitude
+    sc%pivot_frequency = pivot_frequency
     call set_words(sc, words, nout, ngrid)
     sc%n_sweep = given(findloc(known_fields, 'sweep_values', dim=1))
     sc%sweep_values = sweep_values(1:sc%n_sweep)
@@ -479,6 +486,7 @@ contains
     sc%drive_phase = x(11); sc%rtol = x(12); sc%atol = x(13); sc%dt = x(14)
     sc%cycloid_radius = x(17); sc%gravity_distance = x(18); sc%gravity_gradient = x(19)
     sc%restitution = x(20); sc%min_flight = x(22); sc%sweep_t_max = x(23); sc%sweep_transient = x(24)
+    sc%friction = x(26); sc%drag = x(27); sc%pivot_amplitude = x(28); sc%pivot_frequency = x(29)
     if (.not. whole(x(6), sc%n_samples, msg, 'n_samples')) return
     if (.not. whole(x(21), sc%max_flips, msg, 'max_flips')) return
     if (.not. whole(x(25), sc%sweep_samples, msg, 'sweep_samples')) return
@@ -540,7 +548,8 @@ contains
     x = [sc%eps, sc%theta0, sc%v0, sc%t_start, sc%t_end, real(sc%n_samples, dp), sc%damping, sc%torque, &
          sc%drive_amplitude, sc%drive_frequency, sc%drive_phase, sc%rtol, sc%atol, sc%dt, g, length, &
          sc%cycloid_radius, sc%gravity_distance, sc%gravity_gradient, sc%restitution, real(sc%max_flips, dp), &
-         sc%min_flight, sc%sweep_t_max, sc%sweep_transient, real(sc%sweep_samples, dp)]
+         sc%min_flight, sc%sweep_t_max, sc%sweep_transient, real(sc%sweep_samples, dp), &
+         sc%friction, sc%drag, sc%pivot_amplitude, sc%pivot_frequency]
     nout = sc%n_outputs
     ngrid = sc%n_grid
     words = ''
@@ -685,9 +694,10 @@ contains
     character(len=16), parameter :: cords(2) = [character(len=16) :: 'rigid', 'flexible'], &
       guides(2) = [character(len=16) :: 'none', 'cycloid'], &
       gravities(3) = [character(len=16) :: 'uniform', 'inverse-square', 'linear']
-    real(dp) :: vals(22)
+    real(dp) :: vals(26)
     integer :: i
-    character(len=16), parameter :: finite_names(22) = [character(len=16) :: 'theta0', 'v0', 't_start', 't_end', &
+    character(len=16), parameter :: finite_names(26) = [character(len=16) :: 'friction', 'drag', &
+      'pivot_amplitude', 'pivot_frequency', 'theta0', 'v0', 't_start', 't_end', &
       'damping', 'torque', 'drive_amplitude', 'drive_frequency', 'drive_phase', 'rtol', 'atol', 'dt', &
       'cycloid_radius', 'gravity_distance', 'gravity_gradient', 'restitution', 'min_flight', 'sweep_t_max', &
       'sweep_transient', 'eps', 'g', 'length']
@@ -695,12 +705,13 @@ contains
     if ((g /= g) .neqv. (length /= length)) then
       msg = 'fields ''g'' and ''length'' go together (eps = g / length): give both or neither'; return
     end if
-    vals = [sc%theta0, sc%v0, sc%t_start, sc%t_end, sc%damping, sc%torque, sc%drive_amplitude, &
+    vals = [sc%friction, sc%drag, sc%pivot_amplitude, sc%pivot_frequency, &
+            sc%theta0, sc%v0, sc%t_start, sc%t_end, sc%damping, sc%torque, sc%drive_amplitude, &
             sc%drive_frequency, sc%drive_phase, sc%rtol, sc%atol, sc%dt, sc%cycloid_radius, sc%gravity_distance, &
             sc%gravity_gradient, sc%restitution, sc%min_flight, sc%sweep_t_max, sc%sweep_transient, sc%eps, g, &
             length]
     do i = 1, size(vals)
-      if (i >= 20 .and. vals(i) /= vals(i)) cycle   ! eps, g, length: NaN is 'not given'
+      if (i >= 24 .and. vals(i) /= vals(i)) cycle   ! eps, g, length: NaN is 'not given'
       if (.not. finite(vals(i))) then
         msg = 'field ''' // trim(finite_names(i)) // ''' must be finite, got ' // trim(num_text(vals(i))); return
       end if
@@ -801,7 +812,8 @@ contains
     if (.not. (abs(sc%drive_phase) <= drive_phase_limit)) then
       msg = phase_text('field ''drive_phase''', sc%drive_phase); return
     end if
-    call model_rules(sc, msg)
+    if (len_trim(msg) == 0) call effect_rules(sc, msg)
+    if (len_trim(msg) == 0) call model_rules(sc, msg)
   end subroutine value_rules
 
   !> The message for a drive phase beyond drive_phase_limit.
@@ -812,6 +824,51 @@ contains
     t = what // ' must be at most 1024 in magnitude (a phase is an angle: give it reduced mod 2 pi; ' // &
         'beyond, its own rounding enters the drive), got ' // trim(num_text(x))
   end function phase_text
+
+  !> The effects friction, drag and the vibrating pivot: their ranges and the
+  !> models and methods they combine with (msg = '' when fine).  Friction and
+  !> drag switch at v = 0: an event on the dense output of dopri5 or dop853.
+  subroutine effect_rules(sc, msg)
+    type(scene_t), intent(in) :: sc
+    character(len=*), intent(out) :: msg
+    character(len=16) :: what
+    msg = ''
+    if (.not. (sc%friction >= 0)) then
+      msg = 'field ''friction'' must be >= 0 (the Coulomb coefficient mu, an acceleration), got ' // &
+            trim(num_text(sc%friction)); return
+    end if
+    if (.not. (sc%drag >= 0)) then
+      msg = 'field ''drag'' must be >= 0 (gamma of -gamma v |v|), got ' // trim(num_text(sc%drag)); return
+    end if
+    if (.not. (sc%pivot_frequency >= 0)) then
+      msg = 'field ''pivot_frequency'' must be >= 0, got ' // trim(num_text(sc%pivot_frequency)); return
+    end if
+    if (sc%pivot_amplitude /= 0 .and. .not. (sc%pivot_frequency > 0)) then
+      msg = 'field ''pivot_frequency'' must be > 0 when ''pivot_amplitude'' is set (a vibrating pivot ' // &
+            'needs its frequency Omega)'; return
+    end if
+    what = ''
+    if (sc%pivot_amplitude /= 0) what = 'pivot_amplitude'
+    if (sc%drag /= 0) what = 'drag'
+    if (sc%friction /= 0) what = 'friction'
+    if (len_trim(what) == 0) return
+    if (sc%cord /= 'rigid') then
+      msg = 'fields ''' // trim(what) // ''' and ''cord'': the flexible cord does not take ' // trim(what) // &
+            ' (only damping, torque, drive)'; return
+    end if
+    if (sc%guide /= 'none') then
+      msg = 'fields ''' // trim(what) // ''' and ''guide'': the cycloidal guide is solved in closed form ' // &
+            'and does not take ' // trim(what); return
+    end if
+    if (sc%friction /= 0 .or. sc%drag /= 0) then
+      what = merge('friction', 'drag    ', sc%friction /= 0)
+      if (sc%method /= 'auto' .and. sc%method /= 'dopri5' .and. sc%method /= 'dop853') then
+        msg = 'fields ''' // trim(what) // ''' and ''method'': ' // trim(what) // ' switches where v = 0, ' // &
+              'an event located on the dense output of dopri5 or dop853 (auto: dop853); got ''' // &
+              trim(sc%method) // ''''; return
+      end if
+    end if
+  end subroutine effect_rules
 
   !> The cycloidal guide, the gravity fields, the flexible cord, and the
   !> method 'exact' (msg = '' when fine).
@@ -892,7 +949,7 @@ contains
     end select
     if (sc%method == 'exact') then
       if (sc%gravity /= 'uniform' .or. (sc%guide /= 'cycloid' .and. (sc%damping /= 0 .or. sc%torque /= 0 .or. &
-          sc%drive_amplitude /= 0))) then
+          sc%drive_amplitude /= 0 .or. sc%pivot_amplitude /= 0))) then
         msg = 'field ''method'': ''exact'' answers only the conservative rigid pendulum, the flexible cord ' // &
               'and the cycloidal guide, but the scene names ' // trim(scene_effects(sc)); return
       end if
@@ -948,8 +1005,9 @@ contains
   subroutine check_grid(sc, msg)
     type(scene_t), intent(inout) :: sc
     character(len=*), intent(out) :: msg
-    character(len=16), parameter :: griddable(8) = [character(len=16) :: 'v0', 'theta0', 'eps', &
-      'damping', 'torque', 'drive_amplitude', 'drive_frequency', 'drive_phase']
+    character(len=16), parameter :: griddable(12) = [character(len=16) :: 'v0', 'theta0', 'eps', &
+      'damping', 'torque', 'drive_amplitude', 'drive_frequency', 'drive_phase', 'pivot_amplitude', &
+      'pivot_frequency', 'friction', 'drag']
     character(len=16), parameter :: measures(5) = [character(len=16) :: 'final_well', 'mean_velocity', &
       'locked', 'poincare', 'lyapunov']
     character(len=1) :: kc
@@ -958,7 +1016,9 @@ contains
     do k = 1, sc%n_grid
       if (.not. any(griddable == sc%grid(k))) then
         msg = 'field ''grid'': cannot sweep ''' // trim(sc%grid(k)) // '''; one of v0, theta0, eps, damping, ' // &
-              'torque, drive_amplitude, drive_frequency, drive_phase' // suggest(sc%grid(k), griddable); return
+              'torque, drive_amplitude, drive_frequency, drive_phase, pivot_amplitude, pivot_frequency, ' // &
+              'friction, drag' // &
+              suggest(sc%grid(k), griddable); return
       end if
       if (any(sc%grid(1:k - 1) == sc%grid(k))) then
         msg = 'field ''grid'' names an axis twice'; return
@@ -1046,6 +1106,9 @@ contains
     if (sc%cord /= 'rigid') call add('cord')
     if (sc%guide /= 'none') call add('guide')
     if (sc%gravity /= 'uniform') call add('gravity')
+    if (sc%friction /= 0) call add('friction')
+    if (sc%drag /= 0) call add('drag')
+    if (sc%pivot_amplitude /= 0) call add('pivot')
   contains
     pure subroutine add(w)
       character(len=*), intent(in) :: w
@@ -1079,6 +1142,11 @@ contains
     s = trim(s) // new_line('a') // '# outputs =' // trim(tmp)
     if (sc%n_sweep > 0) then
       write(tmp, '(a, i0, a)') 'sweep = ' // trim(sc%sweep) // ' over ', sc%n_sweep, ' values'
+      s = trim(s) // new_line('a') // '# ' // trim(tmp)
+    end if
+    if (sc%friction /= 0 .or. sc%drag /= 0 .or. sc%pivot_amplitude /= 0) then
+      write(tmp, '(a, es24.16e3, a, es24.16e3, a, es24.16e3, a, es24.16e3)') 'friction = ', sc%friction, &
+        ', drag = ', sc%drag, ', pivot_amplitude = ', sc%pivot_amplitude, ', pivot_frequency = ', sc%pivot_frequency
       s = trim(s) // new_line('a') // '# ' // trim(tmp)
     end if
     if (len_trim(sc%name) > 0) s = trim(s) // new_line('a') // '# name = ' // trim(sc%name)

@@ -31,11 +31,11 @@
 !> Thread safety: no module variables; pure helpers; status codes only.
 module pendula_lyapunov
   use pendula_kinds, only: dp, i8, two_pi, nan_dp
-  use pendula_integrators, only: pendulum_model, make_model, dop853_step_6, dop853_error_norm, system_rhs, max_steps, &
+  use pendula_integrators, only: pendulum_model, make_model, add_effects, dop853_step_6, dop853_error_norm, system_rhs, max_steps, &
     st_ok, st_step_underflow, st_nonfinite, st_too_many_steps
   implicit none
   private
-  public :: lyapunov_point, lyapunov_intervals, ly_nblock
+  public :: lyapunov_point, lyapunov_intervals, ly_nblock, point_model
 
   !> blocks of the averaging window for the convergence estimate
   integer, parameter :: ly_nblock = 8
@@ -47,7 +47,7 @@ contains
   !> The base period, the intervals per base period m, the transient and
   !> window lengths in intervals (see the module text).
   pure subroutine lyapunov_intervals(p, t_tr, t_avg, tb, m, ntr, navg, ok)
-    real(dp), intent(in) :: p(8), t_tr, t_avg
+    real(dp), intent(in) :: p(12), t_tr, t_avg
     real(dp), intent(out) :: tb
     integer, intent(out) :: m, ntr, navg
     logical, intent(out) :: ok
@@ -58,7 +58,19 @@ contains
     else
       tb = two_pi / sqrt(p(1))
     end if
+    ! a vibrating pivot (p(9), p(10)): its period, when the drive's is the same or there is none
+    if (p(9) /= 0.0_dp) then
+      if (p(4) /= 0.0_dp .and. p(5) /= 0.0_dp .and. p(5) /= p(10)) then
+        ok = .false.; return
+      end if
+      tb = two_pi / p(10)
+    end if
     g = abs(p(2)) + 2.0_dp * sqrt(p(1))
+    if (p(9) /= 0.0_dp) g = g + 2.0_dp * sqrt(abs(p(9))) * p(10)
+    ! dry friction sticks: the tangent flow has no derivative there (no exponents in this sense)
+    if (p(11) /= 0.0_dp) then
+      ok = .false.; return
+    end if
     ! counted in reals first: a window too long to count is refused, not wrapped around
     rm = max(1.0_dp, real(ceiling(min(g * tb / 4.0_dp, 1.0e9_dp)), dp))
     rtr = max(0.0_dp, t_tr / tb - 1.0e-12_dp)
@@ -79,12 +91,14 @@ contains
   !> window too long to count in intervals).
   !> cancel (optional): read once per renormalisation interval; non-zero
   !> stops the point with status ly_cancelled.
-  subroutine lyapunov_point(p, rtol, atol, t_tr, t_avg, lam1, lam2, err, status, cancel)
-    real(dp), intent(in) :: p(8), rtol, atol, t_tr, t_avg
+  subroutine lyapunov_point(p, rtol, atol, t_tr, t_avg, lam1, lam2, err, status, cancel, uf)
+    real(dp), intent(in) :: p(12), rtol, atol, t_tr, t_avg
     real(dp), intent(out) :: lam1, lam2, err
     integer, intent(out) :: status
     integer, intent(inout), volatile, optional :: cancel
-    real(dp) :: tb, hr, y(6), h, s1, s2, n1, n2, d, blk(ly_nblock), bsum, phase, tblk
+    !> a user's force (uf%forced), its clock from the point's t = 0
+    type(pendulum_model), intent(in), optional :: uf
+    real(dp) :: tb, hr, y(6), h, s1, s2, n1, n2, d, blk(ly_nblock), bsum, phase, tblk, pphase
     integer :: m, ntr, navg, j, jb, jstart, jend, s
     integer(i8) :: nsteps
     logical :: ok
@@ -117,7 +131,14 @@ contains
       phase = p(6)
       if (p(4) /= 0.0_dp .and. p(5) /= 0.0_dp) &
         phase = p(6) + sign(1.0_dp, p(5)) * two_pi * real(mod(j, m), dp) / real(m, dp)
-      call interval(p, phase, hr, rtol, atol, y, h, nsteps, s)
+      ! the pivot's phase likewise (its period is the base period)
+      pphase = 0.0_dp
+      if (p(9) /= 0.0_dp) pphase = two_pi * real(mod(j, m), dp) / real(m, dp)
+      if (present(uf)) then
+        call interval(p, phase, pphase, hr, rtol, atol, y, h, nsteps, s, uf, real(j, dp) * hr)
+      else
+        call interval(p, phase, pphase, hr, rtol, atol, y, h, nsteps, s)
+      end if
       if (s /= st_ok) then
         status = 100 + s; return
       end if
@@ -154,17 +175,19 @@ contains
   !> Advance the 6-D state over [0, hr] with the model's clock at 0 and
   !> drive phase `phase`.  h: the step to try (0: choose one); on return the
   !> step the controller proposes next (not the one cut to reach hr).
-  pure subroutine interval(p, phase, hr, rtol, atol, y, h, nsteps, status)
-    real(dp), intent(in) :: p(8), phase, hr, rtol, atol
+  pure subroutine interval(p, phase, pphase, hr, rtol, atol, y, h, nsteps, status, uf, ut0)
+    real(dp), intent(in) :: p(12), phase, pphase, hr, rtol, atol
     real(dp), intent(inout) :: y(6), h
     integer(i8), intent(inout) :: nsteps
     integer, intent(out) :: status
+    type(pendulum_model), intent(in), optional :: uf
+    real(dp), intent(in), optional :: ut0
     type(pendulum_model) :: md
     real(dp) :: t, f0(6), ynew(6), fnew(6), k(0:12, 6), err, fac, fac11, hnew, hprop
     logical :: last, reject
     real(dp), parameter :: safe = 0.9_dp, facc1 = 1.0_dp / 0.333_dp, facc2 = 1.0_dp / 6.0_dp, &
       expo1 = 1.0_dp / 8.0_dp
-    md = make_model(p(1), p(2), p(3), p(4), p(5), phase)
+    md = point_model(p, phase, pphase, uf, ut0)
     t = 0.0_dp
     f0 = rhs(md, p, t, y)
     if (.not. (h > 0.0_dp)) h = initial_step(md, p, y, f0, hr, rtol, atol)
@@ -214,10 +237,31 @@ contains
     end do
   end subroutine interval
 
+  !> The model of a sweep point p (eps, beta, tau, amp, omega, phase, theta0, v0, pivot amplitude and
+  !> frequency, friction, drag) on a stretch whose clock starts where the drive's phase is phase and the pivot's pphase,
+  !> with the user's force uf (if forced) on its clock from ut0.  The one map from a sweep point to its
+  !> force law (the sweeps' windows and the Lyapunov intervals).
+  pure function point_model(p, phase, pphase, uf, ut0) result(md)
+    real(dp), intent(in) :: p(12), phase, pphase
+    type(pendulum_model), intent(in), optional :: uf
+    real(dp), intent(in), optional :: ut0
+    type(pendulum_model) :: md
+    md = make_model(p(1), p(2), p(3), p(4), p(5), phase)
+    if (p(9) /= 0.0_dp .or. p(11) /= 0.0_dp .or. p(12) /= 0.0_dp) then
+      md = add_effects(md, p(11), p(12), p(9), p(10))
+      md%pphase = pphase
+    end if
+    if (present(uf)) then
+      if (uf%forced) then
+        md%forced = .true.; md%uforce => uf%uforce; md%uparams = uf%uparams; md%ut0 = ut0
+      end if
+    end if
+  end function point_model
+
   !> The 6-D right-hand side (orbit and two tangent vectors): the integrators' system_rhs.
   pure function rhs(md, p, t, y) result(f)
     type(pendulum_model), intent(in) :: md
-    real(dp), intent(in) :: p(8), t, y(6)
+    real(dp), intent(in) :: p(12), t, y(6)
     real(dp) :: f(6)
     f = system_rhs(md, t, y)
   end function rhs
@@ -226,7 +270,7 @@ contains
   !> stepper on the 6-D system): ynew, fnew = f(t + h, ynew) and Hairer's error norm.
   pure subroutine step853(md, p, t, y, f0, h, rtol, atol, k, ynew, fnew, errn)
     type(pendulum_model), intent(in) :: md
-    real(dp), intent(in) :: p(8), t, y(6), f0(6), h, rtol, atol
+    real(dp), intent(in) :: p(12), t, y(6), f0(6), h, rtol, atol
     real(dp), intent(out) :: k(0:12, 6), ynew(6), fnew(6), errn
     real(dp) :: sk(6), e3(6), e5(6)
     call dop853_step_6(md, t, y, f0, h, k, ynew, fnew, e3, e5)
@@ -238,7 +282,7 @@ contains
   !> Hairer's starting step (order 8), at most hr.
   pure function initial_step(md, p, y, f0, hr, rtol, atol) result(h0)
     type(pendulum_model), intent(in) :: md
-    real(dp), intent(in) :: p(8), y(6), f0(6), hr, rtol, atol
+    real(dp), intent(in) :: p(12), y(6), f0(6), hr, rtol, atol
     real(dp) :: h0, sk(6), dnf, dny, h1, der2, der12, f1(6)
     sk = max(atol + rtol * abs(y), tiny(1.0_dp))
     dnf = sum((f0 / sk)**2) / 6.0_dp

@@ -38,18 +38,22 @@
 module pendula_sweep
   use pendula_kinds, only: dp, pi, two_pi, nan_dp
   use pendula_scene, only: scene_t
-  use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate, &
+  use pendula_integrators, only: pendulum_model, event_spec, run_stats, integrate, &
     m_dop853, st_ok, st_cancelled
-  use pendula_lyapunov, only: lyapunov_point, ly_cancelled
+  use pendula_lyapunov, only: lyapunov_point, ly_cancelled, point_model
+  use pendula_stick_slip, only: stick_slip_run, switched
   use pendula_outfile, only: outfile_t, out_line, out_reals
-  use pendula_simulate, only: select_model, registry, mid_rigid, sim_ok
+  use pendula_simulate, only: select_model, registry, mid_rigid, sim_ok, attach_force
+  use, intrinsic :: iso_c_binding, only: c_funptr
   use, intrinsic :: iso_fortran_env, only: int64
   implicit none
   private
   public :: sweep_points, iv_branch, np_params, sweep_scene_csv, sweep_model_rule, sweep_limits
   public :: ms_final_well, ms_mean_velocity, ms_locked, ms_poincare, ms_lyapunov
 
-  integer, parameter :: np_params = 8   ! eps, beta, tau, amp, omega, phase, theta0, v0
+  !> eps, beta, tau, amp, omega, phase, theta0, v0, then the vibrating pivot's amplitude and frequency,
+  !> dry friction mu and quadratic drag gamma
+  integer, parameter :: np_params = 12
   integer, parameter :: ms_final_well = 1, ms_mean_velocity = 2, ms_locked = 3, ms_poincare = 4, &
     ms_lyapunov = 5
   integer, parameter :: ps_decided = 0, ps_unsettled = 1, ps_not_applicable = 2, ps_bad_measure = 3, &
@@ -75,14 +79,21 @@ contains
   !> cancel: set non-zero by another thread (Ctrl-C in Python) to stop the
   !> block: every point not finished gets status 5 (ps_cancelled).  It is read
   !> before each point and once per integration window inside a point.
-  subroutine sweep_points(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, nthreads, cancel)
+  !> force, fparams (optional): a user's force (pendula_integrators%user_force_fn) added to every
+  !> point's force law, called from every thread; final_well and locked do not apply with it.
+  subroutine sweep_points(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, nthreads, cancel, &
+                          force, fparams)
     !$ use omp_lib, only: omp_get_max_threads
     integer, intent(in) :: measure, npts, nout, nthreads
     real(dp), intent(in) :: params(np_params, npts), rtol, atol, t_tr, t_max
     real(dp), intent(out) :: out(nout, npts)
     integer, intent(out) :: pstat(npts)
     integer, intent(inout), volatile :: cancel
+    type(c_funptr), intent(in), optional :: force
+    real(dp), intent(in), target, contiguous, optional :: fparams(:)
+    type(pendulum_model) :: uf
     integer :: i, nt
+    if (present(force)) call attach_force(uf, force, fparams)
     ! nthreads > 0: that many threads (at most sweep_max_threads); otherwise
     ! OpenMP's default (OMP_NUM_THREADS, or all cores)
     nt = 1
@@ -90,12 +101,12 @@ contains
     if (nthreads > 0) nt = min(nthreads, sweep_max_threads)
     nt = max(1, min(nt, sweep_max_threads))
     !$omp parallel do schedule(dynamic, 16) default(none) num_threads(nt) &
-    !$omp   shared(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, cancel)
+    !$omp   shared(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, cancel, uf)
     do i = 1, npts
       if (cancel /= 0) then
         out(:, i) = nan_dp; pstat(i) = ps_cancelled
       else
-        call one_point(measure, params(:, i), rtol, atol, t_tr, t_max, out(:, i), pstat(i), cancel)
+        call one_point(measure, params(:, i), rtol, atol, t_tr, t_max, out(:, i), pstat(i), cancel, uf)
       end if
     end do
     !$omp end parallel do
@@ -109,7 +120,7 @@ contains
   end subroutine sweep_limits
 
   !> The model rule of every sweep and I-V curve: the kernel's sweep runs the
-  !> rigid pendulum (with damping, torque and drive) only; a scene naming
+  !> rigid pendulum (with damping, torque, drive, pivot, friction, drag) only; a scene naming
   !> another model (a flexible cord, a cycloidal guide, non-uniform gravity)
   !> gets status 3 and msg names the model (NotImplementedError in Python,
   !> exit 3 from pendula-run).  what: the caller's name for the run.
@@ -132,12 +143,14 @@ contains
     end if
   end subroutine sweep_model_rule
 
-  subroutine one_point(measure, p, rtol, atol, t_tr, t_max, o, st, cancel)
+  subroutine one_point(measure, p, rtol, atol, t_tr, t_max, o, st, cancel, uf)
     integer, intent(in) :: measure
     real(dp), intent(in) :: p(np_params), rtol, atol, t_tr, t_max
     real(dp), intent(out) :: o(:)
     integer, intent(out) :: st
     integer, intent(inout), volatile :: cancel
+    !> the user's force (uf%forced), if any
+    type(pendulum_model), intent(in) :: uf
     real(dp) :: th, v, tdec, vm, err, lam2
     integer :: n
     integer(int64) :: nw
@@ -149,7 +162,8 @@ contains
     end if
     select case (measure)
     case (ms_final_well)
-      if (.not. (p(2) > 0.0_dp) .or. p(4) /= 0.0_dp .or. abs(p(3)) >= p(1)) then
+      if (.not. dissipative(p) .or. p(4) /= 0.0_dp .or. p(9) /= 0.0_dp .or. uf%forced .or. &
+          abs(p(3)) >= p(1)) then
         st = ps_not_applicable; return
       end if
       call settle(p, rtol, atol, t_max, p(7), p(8), th, v, settled, nw, tdec, st, cancel)
@@ -160,7 +174,7 @@ contains
         st = ps_unsettled; o(2) = t_max
       end if
     case (ms_locked)
-      if (.not. (p(2) > 0.0_dp) .or. p(4) /= 0.0_dp) then
+      if (.not. dissipative(p) .or. p(4) /= 0.0_dp .or. p(9) /= 0.0_dp .or. uf%forced) then
         st = ps_not_applicable; return
       end if
       if (abs(p(3)) >= p(1)) then
@@ -177,24 +191,24 @@ contains
         st = ps_unsettled
       end if
     case (ms_mean_velocity)
-      call mean_velocity(p, rtol, atol, t_tr, t_max, p(7), p(8), vm, err, th, v, st, cancel)
+      call mean_velocity(p, rtol, atol, t_tr, t_max, p(7), p(8), vm, err, th, v, st, cancel, uf)
       o(1) = vm; o(2) = err
     case (ms_poincare)
       ! the transient is a time: each point skips whole periods of its own drive
       n = 0
-      if (p(5) > 0.0_dp) then
-        vm = real(ceiling(min(t_tr * p(5) / two_pi, 1.0e9_dp) - 1.0e-12_dp), dp)
+      if (forcing_omega(p) > 0.0_dp) then
+        vm = real(ceiling(min(t_tr * forcing_omega(p) / two_pi, 1.0e9_dp) - 1.0e-12_dp), dp)
         if (vm > 1.0e8_dp) then
           st = ps_unsettled; return   ! beyond any work a sweep point may take
         end if
         n = int(vm)
       end if
-      call poincare(p, rtol, atol, n, size(o) / 2, o, st, cancel)
+      call poincare(p, rtol, atol, n, size(o) / 2, o, st, cancel, uf)
     case (ms_lyapunov)
       if (size(o) < 2) then
         st = ps_bad_measure; return
       end if
-      call lyapunov_point(p, rtol, atol, t_tr, t_max, vm, lam2, err, st, cancel)
+      call lyapunov_point(p, rtol, atol, t_tr, t_max, vm, lam2, err, st, cancel, uf)
       if (st == 2) st = ps_not_applicable
       if (st == ly_cancelled) st = ps_cancelled
       if (st /= ps_decided) return
@@ -208,19 +222,28 @@ contains
   !> Advance (th, v) from time t0 by dt (model time origin shifted by t0).
   !> cancel: read by the integrator every few thousand steps (a window of a
   !> fast orbit may take up to its work limit of 10^8 steps): status ps_cancelled.
-  subroutine advance(p, t0, rtol, atol, ts, th, v, ths, vs, st, cancel)
+  subroutine advance(p, t0, rtol, atol, ts, th, v, ths, vs, st, cancel, uf)
     real(dp), intent(in) :: p(np_params), t0, rtol, atol, ts(:)
     real(dp), intent(inout) :: th, v
     real(dp), intent(out) :: ths(:), vs(:)
     integer, intent(out) :: st
     integer, intent(inout), volatile :: cancel
+    !> the user's force (optional): its clock runs from the point's t = 0
+    type(pendulum_model), intent(in), optional :: uf
     type(pendulum_model) :: m
     type(event_spec) :: ev
     type(run_stats) :: stats
     integer :: nev, s
-    real(dp) :: tev(1), thev(1), vev(1)
-    m = make_model(p(1), p(2), p(3), p(4), p(5), p(6) + p(5) * t0)
-    call integrate(m, m_dop853, th, v, ts, rtol, atol, 0.0_dp, ths, vs, stats, s, ev, nev, tev, thev, vev, cancel)
+    real(dp) :: tev(1), thev(1), vev(1), work(4)
+    integer(int64) :: nsw
+    m = point_model(p, p(6) + p(5) * t0, p(10) * t0, uf, t0)
+    if (switched(m)) then
+      ! friction, drag: the stretches between the v = 0 events (as simulate)
+      call stick_slip_run(m, m_dop853, th, v, ts, rtol, atol, ths, vs, work, nsw, s, cancel)
+    else
+      call integrate(m, m_dop853, th, v, ts, rtol, atol, 0.0_dp, ths, vs, stats, s, ev, nev, tev, thev, vev, &
+                     cancel)
+    end if
     if (s == st_cancelled) then
       st = ps_cancelled; return
     end if
@@ -309,18 +332,20 @@ contains
   !> <v> over t_avg after a transient t_tr, from (th0, v0); the convergence
   !> estimate is |<v>_whole - <v>_second half|.  An undriven damped orbit
   !> trapped in a well has <v> = 0 exactly: decided as soon as it is trapped.
-  subroutine mean_velocity(p, rtol, atol, t_tr, t_avg, th0, v0, vm, err, th, v, st, cancel)
+  subroutine mean_velocity(p, rtol, atol, t_tr, t_avg, th0, v0, vm, err, th, v, st, cancel, uf)
     real(dp), intent(in) :: p(np_params), rtol, atol, t_tr, t_avg, th0, v0
     real(dp), intent(out) :: vm, err, th, v
     integer, intent(out) :: st
     integer, intent(inout), volatile :: cancel
+    type(pendulum_model), intent(in), optional :: uf
     real(dp) :: t, tw, ts(1), ths(1), vs(1), tha, thh, seg_end(3)
     integer(int64) :: n
     integer :: seg
     logical :: can_trap, tr
     th = th0; v = v0; t = 0.0_dp; st = ps_decided
     vm = nan_dp; err = nan_dp
-    can_trap = p(2) > 0.0_dp .and. p(4) == 0.0_dp .and. abs(p(3)) < p(1)
+    can_trap = dissipative(p) .and. p(4) == 0.0_dp .and. p(9) == 0.0_dp .and. abs(p(3)) < p(1)
+    if (present(uf)) can_trap = can_trap .and. .not. uf%forced
     tw = two_pi / sqrt(p(1))
     seg_end = [t_tr, t_tr + 0.5_dp * t_avg, t_tr + t_avg]
     ! a window below the resolution of the transient (t_tr + t_avg / 2 == t_tr) would give
@@ -341,7 +366,7 @@ contains
           end if
         end if
         ts(1) = min(tw, seg_end(seg) - t)
-        call advance(p, t, rtol, atol, ts, th, v, ths, vs, st, cancel)
+        call advance(p, t, rtol, atol, ts, th, v, ths, vs, st, cancel, uf)
         if (st /= ps_decided) return
         ! the segment ends exactly at seg_end, whatever the rounding of the sum
         if (ts(1) == seg_end(seg) - t) then
@@ -357,20 +382,42 @@ contains
     err = abs(vm - (th - thh) / (0.5_dp * t_avg))
   end subroutine mean_velocity
 
+  !> Does the point lose energy whenever it moves (damping, friction or drag)?  Then an undriven
+  !> orbit whose energy is below the barriers of its well stays in it (trapped).
+  pure logical function dissipative(p)
+    real(dp), intent(in) :: p(np_params)
+    dissipative = p(2) > 0.0_dp .or. p(11) > 0.0_dp .or. p(12) > 0.0_dp
+  end function dissipative
+
+  !> The angular frequency of the periodic forcing (the stroboscopic map's): the drive's, or
+  !> the vibrating pivot's when there is no drive; 0 when the two differ (no common period here).
+  pure real(dp) function forcing_omega(p)
+    real(dp), intent(in) :: p(np_params)
+    forcing_omega = p(5)
+    if (p(9) /= 0.0_dp) then
+      if (p(4) == 0.0_dp .or. p(5) == p(10)) then
+        forcing_omega = p(10)
+      else
+        forcing_omega = 0.0_dp
+      end if
+    end if
+  end function forcing_omega
+
   !> Stroboscopic samples once per drive period after n_tr periods.
-  subroutine poincare(p, rtol, atol, n_tr, ns, o, st, cancel)
+  subroutine poincare(p, rtol, atol, n_tr, ns, o, st, cancel, uf)
     real(dp), intent(in) :: p(np_params), rtol, atol
     integer, intent(in) :: n_tr, ns
     real(dp), intent(out) :: o(:)
     integer, intent(out) :: st
     integer, intent(inout), volatile :: cancel
+    type(pendulum_model), intent(in), optional :: uf
     real(dp) :: tp, t, th, v, ts(1), ths(1), vs(1)
     integer :: k
     o = nan_dp
-    if (.not. (p(5) > 0.0_dp)) then
+    if (.not. (forcing_omega(p) > 0.0_dp)) then
       st = ps_not_applicable; return
     end if
-    tp = two_pi / p(5)
+    tp = two_pi / forcing_omega(p)
     th = p(7); v = p(8); t = 0.0_dp; st = ps_decided
     ts(1) = tp
     do k = 1, n_tr + ns
@@ -378,7 +425,7 @@ contains
         o = nan_dp; st = ps_cancelled; return
       end if
       ! time origin at k tp exactly: the drive phase is p(6) + Omega * (k-1) tp
-      call advance(p, tp * (k - 1), rtol, atol, ts, th, v, ths, vs, st, cancel)
+      call advance(p, tp * (k - 1), rtol, atol, ts, th, v, ths, vs, st, cancel, uf)
       if (st /= ps_decided) return
       th = th - two_pi * anint(th / two_pi)   ! keep theta small; the force is 2 pi periodic
       if (k > n_tr) then
@@ -482,7 +529,7 @@ contains
       end if
     end do
     base = [sc%eps, sc%damping, sc%torque, sc%drive_amplitude, sc%drive_frequency, sc%drive_phase, &
-            sc%theta0, sc%v0]
+            sc%theta0, sc%v0, sc%pivot_amplitude, sc%pivot_frequency, sc%friction, sc%drag]
     do k = 0, sc%n_grid
       if (k > 0) then
         if (trim(sc%grid(k)) /= 'theta0') cycle
@@ -497,7 +544,8 @@ contains
     nout = 2
     t_tr = sc%sweep_transient
     if (measure == ms_poincare) then
-      if (.not. (sc%drive_frequency > 0.0_dp) .and. .not. any(sc%grid(1:sc%n_grid) == 'drive_frequency')) then
+      if (.not. (sc%drive_frequency > 0.0_dp) .and. .not. any(sc%grid(1:sc%n_grid) == 'drive_frequency') .and. &
+          sc%pivot_amplitude == 0.0_dp) then
         status = 2; msg = 'measure ''poincare'' needs a drive (drive_frequency > 0)'; return
       end if
       nout = 2 * sc%sweep_samples
@@ -614,6 +662,10 @@ contains
       case ('drive_frequency'); slot = 5
       case ('drive_phase'); slot = 6
       case ('theta0'); slot = 7
+      case ('pivot_amplitude'); slot = 9
+      case ('pivot_frequency'); slot = 10
+      case ('friction'); slot = 11
+      case ('drag'); slot = 12
       case default; slot = 8
       end select
     end function slot

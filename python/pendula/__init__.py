@@ -44,6 +44,7 @@ from .spectrum import FourierSeries, Spectrum, fourier_series, odd_harmonics_abo
 from .systems.cycloid import CycloidGeometry, cycloid_geometry, cycloid_period  # noqa: E402
 from .systems.gravity import gravity_orbit  # noqa: E402
 from .systems.cord import cord_state, flip_map, flip_sequence  # noqa: E402
+from .systems.friction import FrictionTurningPoints, friction_turning_points  # noqa: E402
 # sweeps over parameter grids; xarray is imported only when a sweep runs
 from .sweeps import attractor_map, iv_curve, sweep  # noqa: E402
 from .dynamics import Equilibrium, PeriodicOrbit, equilibria, periodic_orbit  # noqa: E402
@@ -61,4 +62,5 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "angle_density", "angle_cdf", "arcsine_density", "flip_map", "cord_state", "flip_sequence",
            "sweep", "iv_curve",
            "precompute_wisdom", "wisdom_path",
-           "equilibria", "Equilibrium", "periodic_orbit", "PeriodicOrbit", "attractor_map"]
+           "equilibria", "Equilibrium", "periodic_orbit", "PeriodicOrbit", "attractor_map",
+           "friction_turning_points", "FrictionTurningPoints"]

@@ -287,3 +287,79 @@ def instance(x, name: str, cls, what: str | None = None):
         what = what or f"a {cls.__module__.split('.')[0]}.{cls.__name__}"
         raise TypeError(f"{name} must be {what}, not {_kind(x)} {x!r:.40}")
     return x
+
+
+# ---------------------------------------------------------------- a user's force (simulate(force=...))
+
+class Force:
+    """A user's force as the kernel takes it: the C address of
+    ``double f(double t, double theta, double v, const double *params)``, the
+    params as a float64 array, the objects that must outlive the call, and the
+    first exception a Python callable raised (the slow path)."""
+
+    def __init__(self, address: int, params: np.ndarray, keep: tuple, errors: list):
+        self.address, self.params, self.keep, self.errors = address, params, keep, errors
+
+    def reraise(self) -> None:
+        """Raise the first exception the Python callable raised, if any."""
+        if self.errors:
+            raise self.errors[0]
+
+
+def force(f, params, name: str = "force") -> Force:
+    """Check a user's force and its params (see :func:`pendula.simulate`): a ctypes function
+    with argtypes (double, double, double, POINTER(double) or c_void_p) and restype double, a
+    numba cfunc (the object or its ``.address``), an integer address, or a plain Python callable
+    ``f(t, theta, v, params)`` (the slow path: the kernel calls back into Python)."""
+    import ctypes
+    if f is None:
+        raise TypeError(f"{name} must be a C function pointer (ctypes, numba cfunc, address) or a callable, "
+                        "got None")
+    if params is None:
+        arr = np.zeros(0)
+    else:
+        if isinstance(params, (str, bytes)):
+            raise TypeError(f"{name}_params must be a sequence of real numbers, got {type(params).__name__}")
+        arr = as_float(params, f"{name}_params")
+        if arr.ndim > 1:
+            raise ValueError(f"{name}_params must be a flat sequence of numbers, got shape {arr.shape}")
+        arr = np.ascontiguousarray(arr.reshape(-1), dtype=np.float64)
+        if not np.all(np.isfinite(arr)):
+            raise ValueError(f"{name}_params must be finite numbers, got {params!r}")
+    nparams = getattr(f, "nparams", None)     # how many params the force says it reads
+    if nparams is not None and (isinstance(nparams, bool) or not isinstance(nparams, (int, np.integer))
+                                or int(nparams) != arr.size):
+        raise ValueError(f"{name}_params: the force reads {nparams!r} numbers (its nparams), got {arr.size}")
+    errors: list = []
+    proto = ctypes.CFUNCTYPE(ctypes.c_double, ctypes.c_double, ctypes.c_double, ctypes.c_double,
+                             ctypes.POINTER(ctypes.c_double))
+    if isinstance(f, ctypes._CFuncPtr):
+        if f.restype is not ctypes.c_double or f.argtypes is None or len(f.argtypes) != 4 or \
+                any(a is not ctypes.c_double for a in f.argtypes[:3]) or \
+                f.argtypes[3] not in (ctypes.POINTER(ctypes.c_double), ctypes.c_void_p):
+            raise TypeError(f"{name}: a ctypes function must have restype c_double and argtypes (c_double, "
+                            "c_double, c_double, POINTER(c_double)): double f(double t, double theta, "
+                            "double v, const double *params)")
+        return Force(ctypes.cast(f, ctypes.c_void_p).value, arr, (f,), errors)
+    address = getattr(f, "address", None)
+    if isinstance(address, (int, np.integer)) and not isinstance(address, bool) and hasattr(f, "ctypes"):
+        return force(f.ctypes, params, name)       # a numba cfunc: its ctypes wrapper carries the signature
+    if isinstance(f, (int, np.integer)) and not isinstance(f, bool):
+        if not 0 < int(f) < 2**64:
+            raise ValueError(f"{name}: an address must be a positive integer, got {f}")
+        return Force(int(f), arr, (), errors)
+    if not callable(f):
+        raise TypeError(f"{name} must be a C function pointer (ctypes, numba cfunc, address) or a callable, "
+                        f"got {type(f).__name__}")
+    view = arr.copy()
+    view.flags.writeable = False
+
+    def slow(t, theta, v, _p):
+        try:
+            return float(f(t, theta, v, view))
+        except BaseException as exc:  # noqa: BLE001 - re-raised by the caller after the run
+            if not errors:
+                errors.append(exc)
+            return math.nan
+    cb = proto(slow)
+    return Force(ctypes.cast(cb, ctypes.c_void_p).value, arr, (cb, slow, view), errors)

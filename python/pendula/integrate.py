@@ -84,6 +84,10 @@ def _run(scene, method, t_sorted, ev_kind=0, ev_level=0.0, ev_dir=0, terminal=Fa
         raise ValueError("the cycloidal pendulum is solved in closed form, never integrated")
     if scene.gravity != "uniform" and method == "gsl-rk8pd":
         raise ValueError("gsl-rk8pd does not take a non-uniform gravity field; use dop853")
+    if scene.friction != 0.0:
+        # the stick needs the dispatcher's stretches between v = 0 events (simulate)
+        raise NotImplementedError("field 'friction': events on a scene with dry friction are not implemented; "
+                                  "simulate(scene) gives the path, friction_turning_points(scene) its stops")
     cancel = _interrupt.cancel_flag()
     x, words, wlen, nout, ngrid = scene._kernel_fields     # the scene as the kernel checked it
     # always interruptible: a short span can still take many steps (stiff damping, tight tolerances)
@@ -225,6 +229,9 @@ def find_events(scene: Scene, kind: str = "turning", level: float = 0.0, directi
         without dense output, `max_events` out of range, a `level` that is not
         finite or beyond 2^52 in magnitude (where level + 2 pi k has no
         fraction left), or `t_end` not positive and finite.
+    NotImplementedError
+        For other crossings of the flexible cord, and for a scene with dry
+        ``friction`` (its stops: :func:`friction_turning_points`).
 
     See Also
     --------
@@ -347,9 +354,9 @@ def numerical_period(scene: Scene, periods: int = 20, method: str = "dop853") ->
             raise ValueError(f"the flexible cord slackens (first at t = {fl.t[0]!r}, theta = {fl.theta[0]!r}): its "
                              "motion is not periodic; its flips are find_events(scene, 'departure')")
         return numerical_period(rigid, periods, method)
-    elif scene.damping != 0.0 or scene.torque != 0.0 or scene.drive_amplitude != 0.0:
+    elif set(scene.effects) - {"gravity"}:
         raise ValueError("numerical_period measures the period of a conservative orbit: the scene has "
-                         + ", ".join(e for e in scene.effects if e in ("damping", "torque", "drive")))
+                         + ", ".join(e for e in scene.effects if e != "gravity"))
     else:
         o = gravity_orbit(scene) if scene.gravity != "uniform" else orbit(scene.theta0, scene.v0, scene.eps)
         if not math.isfinite(o.period):

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from numpy.typing import ArrayLike
 
+from . import _checks
 from ._checks import as_float
 from .systems.rigid import Orbit, energy, exact_motion, orbit
 from .scene import Scene
@@ -22,7 +23,8 @@ __all__ = ["Orbit", "Trajectory", "orbit", "exact_motion", "energy", "simulate",
 
 
 def simulate(scene: Scene, t: ArrayLike | None = None, method: str | None = None, rtol: float | None = None,
-             atol: float | None = None, dt: float | None = None) -> Trajectory:
+             atol: float | None = None, dt: float | None = None, force: object = None,
+             force_params: ArrayLike | None = None) -> Trajectory:
     """Run one scene at the times ``t`` (default: the scene's own output times).
 
     The scene selects its model (see :func:`pendula.models`); the kernel's
@@ -46,6 +48,19 @@ def simulate(scene: Scene, t: ArrayLike | None = None, method: str | None = None
         Tolerances of the adaptive methods (scipy ``solve_ivp``'s names).
     dt : float, optional
         Step of the fixed-step methods.
+    force : C function pointer or callable, optional
+        A force of one's own added to theta'': ``double f(double t, double
+        theta, double v, const double *params)`` as a ctypes function
+        (argtypes and restype set), a numba ``cfunc`` (the object or its
+        ``.address``) or an integer address; the kernel calls it on every
+        right-hand-side evaluation, from every thread (it must keep no state).
+        A plain Python callable ``f(t, theta, v, params)`` is accepted too:
+        the slow path (the kernel calls back into Python).  The scene is then
+        integrated (never the exact path); see the guide page "Effects".
+    force_params : sequence of float, optional
+        The params the force reads, passed as given (the force must read no
+        more than ``len(force_params)`` values; a force with an attribute
+        ``nparams`` gets exactly that many, or ValueError).
 
     Returns
     -------
@@ -56,13 +71,15 @@ def simulate(scene: Scene, t: ArrayLike | None = None, method: str | None = None
     Raises
     ------
     TypeError
-        If `scene` is not a :class:`Scene`, or a time or knob has the wrong type.
+        If `scene` is not a :class:`Scene`, a time or knob has the wrong type, or
+        `force` is None, not callable or a ctypes function of another signature.
     SceneError
         If a knob is invalid (an unknown method, a negative tolerance; a
         subclass of ValueError naming the field).
     ValueError
         If the computation cannot be done as asked (e.g. a fixed-step method
-        for the flexible cord, more steps than the limit).
+        for the flexible cord, more steps than the limit), or the force
+        returned NaN (the message gives the time and state).
     NotImplementedError
         For a combination of model and effects not implemented.
 
@@ -87,6 +104,8 @@ def simulate(scene: Scene, t: ArrayLike | None = None, method: str | None = None
         knobs = {k: v for k, v in (("method", method), ("rtol", rtol), ("atol", atol), ("dt", dt)) if v is not None}
         scene = scene.replace(**knobs)
     t = scene.times() if t is None else as_float(t, "t")
+    if force is not None or force_params is not None:
+        return run(scene, t, _checks.force(force, force_params))
     if scene.cord == "flexible":
         # the flexible cord's own driver: the kernel's exact circle-flight-jerk path, or (with
         # damping, torque or drive) the integrator with the tension event between exact flights

@@ -51,7 +51,8 @@ SWEEPABLE = ("v0", "theta0", "eps", "damping", "torque", "drive_amplitude", "dri
 #: what a sweep point can answer (see pendula.sweeps)
 MEASURES = ("final_well", "mean_velocity", "locked", "poincare", "lyapunov")
 #: fields a grid may run over
-GRIDDABLE = ("v0", "theta0", "eps", "damping", "torque", "drive_amplitude", "drive_frequency", "drive_phase")
+GRIDDABLE = ("v0", "theta0", "eps", "damping", "torque", "drive_amplitude", "drive_frequency", "drive_phase",
+             "pivot_amplitude", "pivot_frequency", "friction", "drag")
 #: The kernel's limits: longer lists and strings are refused with a message, never truncated.
 MAX_SWEEP = 4096
 MAX_OUTPUTS = 16
@@ -145,6 +146,17 @@ class Scene:
     sweep_t_max, sweep_transient, sweep_samples : float, float, int
         The sweep's time limit (or averaging time), transient and number of
         Poincare samples.
+    friction : float
+        Dry (Coulomb) friction mu >= 0 at the pivot: -mu sgn(theta') while
+        moving; at rest the bob sticks while |eps sin(theta) - forces| <= mu
+        (static and kinetic coefficients equal).  Stops and restarts are
+        events (dopri5 or dop853).
+    drag : float
+        Quadratic air drag gamma >= 0: -gamma theta' |theta'|.
+    pivot_amplitude, pivot_frequency : float
+        A vertically vibrating pivot y = a cos(Omega t) (in units of the
+        length): the effective gravity eps - a Omega^2 cos(Omega t).  A pivot
+        amplitude needs a frequency > 0.
 
     Raises
     ------
@@ -217,6 +229,11 @@ class Scene:
     sweep_t_max: float = 2000.0
     sweep_transient: float = 200.0
     sweep_samples: int = 100
+    # effects: dry friction, quadratic drag, a vibrating pivot (guide/effects.md)
+    friction: float = 0.0
+    drag: float = 0.0
+    pivot_amplitude: float = 0.0
+    pivot_frequency: float = 0.0
 
     def __post_init__(self):
         _check(self)
@@ -392,6 +409,8 @@ class Scene:
             out.append("guide")
         if self.gravity != "uniform":
             out.append("gravity")
+        out += [name for name, on in (("friction", self.friction), ("drag", self.drag),
+                                      ("pivot", self.pivot_amplitude)) if on != 0.0]
         object.__setattr__(self, "_effects", tuple(out))
         return self._effects
 

@@ -78,7 +78,8 @@ STATUS = {0: "decided", 1: "not settled / undecided by the limit", 2: "measure d
               (1, "bad step"), (2, "bad tolerances"), (3, "bad method"), (5, "step size underflow"),
               (6, "non-finite state"), (7, "too many steps"), (8, "cancelled"), (9, "no dense output"),
               (10, "stopped by an event"))}}
-_PARAM_ORDER = ("eps", "damping", "torque", "drive_amplitude", "drive_frequency", "drive_phase", "theta0", "v0")
+_PARAM_ORDER = ("eps", "damping", "torque", "drive_amplitude", "drive_frequency", "drive_phase", "theta0", "v0",
+                "pivot_amplitude", "pivot_frequency", "friction", "drag")
 
 
 def grid_of(scene: Scene) -> dict:
@@ -131,13 +132,18 @@ def _model_rule(scene: Scene, what: str) -> None:
         raise ValueError(f"parameter 'scene': {msg}")
 
 
-def _block(code, p, rtol, atol, t_tr, t_max, nout, threads):
+def _block(code, p, rtol, atol, t_tr, t_max, nout, threads, force=None):
     """One kernel sweep block that Ctrl-C stops (KeyboardInterrupt within a
-    few integration windows; the process stays usable)."""
+    few integration windows; the process stays usable); ``force``: a checked user's force."""
     from . import _kernel
     cancel = _interrupt.cancel_flag()
-    out, st = _interrupt.call(_kernel.sweep_block, code, p, rtol, atol, t_tr, t_max, nout, int(threads), cancel,
-                              cancel=cancel)
+    if force is None:
+        out, st = _interrupt.call(_kernel.sweep_block, code, p, rtol, atol, t_tr, t_max, nout, int(threads), cancel,
+                                  cancel=cancel)
+    else:   # the user's force, called by the kernel from every thread
+        out, st = _interrupt.call(_kernel.sweep_block_force, code, p, rtol, atol, t_tr, t_max, nout, int(threads),
+                                  force.address, force.params, cancel, cancel=cancel)
+        force.reraise()
     if cancel[0]:
         raise KeyboardInterrupt
     return out, st
@@ -152,6 +158,7 @@ class _Plan:
         self.measure = measure
         self.rtol, self.atol = rtol, atol
         self.t_max, self.transient, self.samples = t_max, transient, samples
+        self.force = None   # a user's force: in-process sweeps only, never stored
         self.shape = tuple(len(v) for v in over.values())
         inner = int(np.prod(self.shape[1:], dtype=np.int64))
         # never more rows than the axis has: the chunk is also the store's Zarr chunk shape
@@ -185,16 +192,16 @@ class _Plan:
                 "samples": self.samples, "rows": self.rows}
 
     def params(self, i: int) -> np.ndarray:
-        """The kernel's (8, npts) parameter block of chunk i."""
+        """The kernel's (12, npts) parameter block of chunk i."""
         return self.params_rows(i * self.rows, min((i + 1) * self.rows, self.shape[0]))
 
     def params_rows(self, lo: int, hi: int) -> np.ndarray:
-        """The kernel's (8, npts) parameter block of rows lo .. hi - 1 of the first axis."""
+        """The kernel's (12, npts) parameter block of rows lo .. hi - 1 of the first axis."""
         names = list(self.over)
         axes = [self.over[names[0]][lo:hi]] + [self.over[n] for n in names[1:]]
         mesh = np.meshgrid(*axes, indexing="ij")
         npts = mesh[0].size
-        p = np.empty((8, npts), order="F")
+        p = np.empty((len(_PARAM_ORDER), npts), order="F")
         for j, f in enumerate(_PARAM_ORDER):
             p[j] = getattr(self.scene, f)
         for n, m in zip(names, mesh):
@@ -211,7 +218,7 @@ def _answers(out, st):
 def _compute_chunk(plan: _Plan, i: int, threads: int):
     p, shape = plan.params(i)
     code = MEASURE_CODES[plan.measure]
-    out, st = _block(code, p, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout, threads)
+    out, st = _block(code, p, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout, threads, plan.force)
     out = out.T.reshape(shape + (plan.nout,))
     st = st.reshape(shape)
     if plan.measure in ("final_well", "locked"):
@@ -278,6 +285,9 @@ _AXIS_META = {
     "damping": ("linear damping beta", "s-1"), "torque": ("constant torque tau", "rad s-2"),
     "drive_amplitude": ("drive amplitude A", "rad s-2"), "drive_frequency": ("drive angular frequency Omega", "rad s-1"),
     "drive_phase": ("drive phase", "rad"), "sample": ("stroboscopic sample number", "1"),
+    "pivot_amplitude": ("vibrating pivot's amplitude a (units of the length)", "1"),
+    "pivot_frequency": ("vibrating pivot's angular frequency Omega", "rad s-1"),
+    "friction": ("dry (Coulomb) friction mu", "rad s-2"), "drag": ("quadratic drag gamma", "1"),
 }
 #: the variables of each measure, in the kernel's output order
 _MEASURE_VARS = {"final_well": ("well", "t_decided"), "locked": ("locked", "t_decided"),
@@ -344,7 +354,7 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
           | None = None, *, rtol: float | None = None, atol: float | None = None, t_max: float | None = None,
           transient: float | None = None, samples: int | None = None, out: str | os.PathLike[str] | None = None,
           chunk_points: int = 20000, client: distributed.Client | None = None, threads: int = 0,
-          progress: bool = False) -> xarray.Dataset:
+          progress: bool = False, force: object = None, force_params: ArrayLike | None = None) -> xarray.Dataset:
     """Evaluate a measure over a grid of one scene's fields.
 
     Parameters
@@ -388,6 +398,13 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
         ``client``: the rule above, which a positive ``threads`` can lower).
     progress : bool
         Show a tqdm bar of chunks done and the time left.
+    force, force_params : optional
+        A user's force, as in :func:`pendula.simulate`, added at every point
+        (the kernel calls it from every thread); not with ``out`` or
+        ``client``, and final_well and locked do not apply with it (status
+        2).  Friction, drag and a vibrating pivot are in the sweeps too (the
+        pivot's period is the stroboscopic map's when there is no drive; no
+        Lyapunov exponents with friction, which sticks).
 
     Returns
     -------
@@ -407,6 +424,9 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
         that are empty, not finite or out of the field's range, bad tolerances
         or times, 'poincare' without a drive, or an `out` that holds a
         different sweep.
+    NotImplementedError
+        For a model the sweeps do not run (flexible cord, cycloid,
+        non-uniform gravity).
     pendula._store.StoreBusyError
         (an OSError) another sweep is writing the same ``out``; the message
         names the store and that sweep's pid.
@@ -440,6 +460,14 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
     # in memory xarray alone does (pendula[xarray]); a store or a cluster needs the sweep extra
     xr = require("xarray", "xarray" if out is None and client is None else "sweep", "pendula.sweep")
 
+    # a user's force: its code is no part of a store's key and its address means nothing in
+    # another process, so it runs in this process without a store
+    uf = None
+    if force is not None or force_params is not None:
+        if out is not None or client is not None:
+            raise ValueError("parameters 'force' and 'out'/'client': a sweep with a user's force runs in this "
+                             "process and is not stored (its code is not part of the store's key)")
+        uf = _checks.force(force, force_params)
     if not isinstance(scene, Scene):
         scene = Scene.from_file(scene)
     if out is not None:
@@ -474,9 +502,11 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
     if measure == "poincare" and math.prod(len(v) for v in over.values()) * samples > _checks.MAX_GRID_POINTS:
         raise ValueError(f"parameter 'samples': {samples} samples at each grid point is more than "
                          f"{_checks.MAX_GRID_POINTS:.0e} values")
-    if measure == "poincare" and not scene.drive_frequency > 0 and "drive_frequency" not in over:
+    if measure == "poincare" and not scene.drive_frequency > 0 and "drive_frequency" not in over and \
+            scene.pivot_amplitude == 0:
         raise ValueError("measure 'poincare' needs a drive (drive_frequency > 0)")
     plan = _Plan(scene, over, measure, rtol, atol, t_max, transient, samples, int(chunk_points))
+    plan.force = uf
 
     layout = _layout(plan)
     chunks: dict[int, object] = {}
@@ -530,7 +560,7 @@ def attractor_map(scene: Scene, over: dict, *, transient: float = 600.0, samples
     Parameters
     ----------
     scene : Scene
-        A periodically driven scene (``drive_frequency > 0``).
+        A periodically driven scene (``drive_frequency > 0``, or a vibrating pivot).
     over : dict
         The grid, as for :func:`pendula.sweep` (e.g. ``{'theta0': ..., 'v0': ...}`` for a basin map).
     transient : float, optional
@@ -575,9 +605,11 @@ def attractor_map(scene: Scene, over: dict, *, transient: float = 600.0, samples
     for name, val in (("tol", tol), ("merge_tol", merge_tol), ("cell", cell)):
         if not (isinstance(val, (int, float, np.floating)) and math.isfinite(val) and val > 0):
             raise ValueError(f"{name} must be a positive finite number, got {val!r}")
-    if not (scene.drive_frequency > 0 and scene.drive_amplitude != 0) and "drive_frequency" not in over:
+    if not (scene.drive_frequency > 0 and scene.drive_amplitude != 0) and "drive_frequency" not in over and \
+            scene.pivot_amplitude == 0:      # a vibrating pivot drives the scene too
         raise ValueError("drive_amplitude, drive_frequency: attractor maps read the stroboscopic map of a "
-                         "periodically driven scene (drive_frequency > 0, drive_amplitude != 0)")
+                         "periodically driven scene (drive_frequency > 0, drive_amplitude != 0, or a "
+                         "vibrating pivot)")
     pc = sweep(scene, over=over, measure="poincare", transient=transient, samples=int(samples), rtol=rtol,
                atol=atol, threads=threads, out=out, client=client, progress=progress, chunk_points=chunk_points)
     from .dynamics.attractors import AttractorMap, basin_entropy, boundary_fraction, label_attractors, \

@@ -124,6 +124,12 @@ def equilibria(scene: Scene, window: tuple[float, float] = (-math.pi, math.pi)) 
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a pendula.Scene, got {type(scene).__name__}")
+    if scene.friction != 0.0 or scene.pivot_amplitude != 0.0:
+        # dry friction makes every angle with |eps sin theta - tau| <= mu a rest state, and a
+        # vibrating pivot drives the scene (its theta = 0, pi are periodic orbits: periodic_orbit)
+        raise ValueError("fields 'friction'/'pivot_amplitude': equilibria are those of the scene without dry "
+                         "friction or a vibrating pivot; a vibrating pivot's rest states are periodic orbits "
+                         "(periodic_orbit(scene, guess=(pi, 0)))")
     if scene.drive_amplitude != 0.0:
         raise ValueError("drive_amplitude: a periodically driven scene has no equilibria "
                          "(it is not autonomous); its periodic orbits come from pendula.periodic_orbit")

@@ -13,8 +13,9 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from .. import _kernel
+from .. import _checks, _kernel
 from ..scene import Scene
 
 __all__ = ["PeriodicOrbit", "periodic_orbit"]
@@ -93,7 +94,8 @@ _PO_STATUS = {1: "Newton's iteration did not converge (try another guess, or a l
 
 
 def periodic_orbit(scene: Scene, guess: tuple[float, float] | None = None, k: int = 1, winding: int = 0,
-                   tol: float = 1e-11, rtol: float = 1e-12, atol: float = 1e-12, maxit: int = 100) -> PeriodicOrbit:
+                   tol: float = 1e-11, rtol: float = 1e-12, atol: float = 1e-12, maxit: int = 100,
+                   force: object = None, force_params: ArrayLike | None = None) -> PeriodicOrbit:
     """A period-k orbit of a driven scene's stroboscopic map, by Newton on the monodromy.
 
     The map ``P`` takes the state at ``t = 0`` to the state ``k`` drive periods
@@ -123,6 +125,14 @@ def periodic_orbit(scene: Scene, guess: tuple[float, float] | None = None, k: in
         The integrator's tolerances (default 1e-12).
     maxit : int, optional
         The most Newton iterations (default 100).
+    force, force_params : optional
+        A user's force added to the force law, as in :func:`pendula.simulate`
+        (its derivatives for the monodromy by central differences).
+
+    A vibrating pivot (``pivot_amplitude``, ``pivot_frequency``) drives the
+    scene too: its period is the pivot's when there is no drive, and a drive
+    with a pivot must share its frequency.  Drag is accepted (its force is
+    once differentiable at v = 0); friction is not (the flow sticks).
 
     Returns
     -------
@@ -158,7 +168,16 @@ def periodic_orbit(scene: Scene, guess: tuple[float, float] | None = None, k: in
                                                            f"gravity = {scene.gravity!r}")
         raise NotImplementedError(f"periodic_orbit: the {model} model is not supported yet "
                                   "(only the rigid pendulum in the uniform field)")
-    if scene.drive_amplitude == 0.0 or scene.drive_frequency == 0.0:
+    # the forcing's period: the drive's or the vibrating pivot's
+    freqs = {f for a, f in ((scene.drive_amplitude, scene.drive_frequency),
+                            (scene.pivot_amplitude, scene.pivot_frequency)) if a != 0.0 and f != 0.0}
+    if scene.friction != 0.0:
+        raise ValueError("field 'friction': periodic_orbit needs a smooth flow (its monodromy); dry friction "
+                         "sticks: simulate the scene instead")
+    if len(freqs) > 1:
+        raise ValueError("fields 'drive_frequency' and 'pivot_frequency': periodic_orbit needs one forcing "
+                         "period; give the drive and the pivot the same frequency")
+    if not freqs:
         raise ValueError("drive_amplitude, drive_frequency: periodic_orbit needs a periodically driven scene; "
                          "an undriven scene's rest points come from pendula.equilibria")
     for name, val in (("k", k), ("winding", winding), ("maxit", maxit)):
@@ -183,10 +202,17 @@ def periodic_orbit(scene: Scene, guess: tuple[float, float] | None = None, k: in
         raise ValueError(f"guess must be a state (theta, v), got {guess!r}") from None
     if not np.all(np.isfinite(x0)):
         raise ValueError(f"guess must be finite, got {guess!r}")
-    period = k * 2 * math.pi / abs(scene.drive_frequency)
+    period = k * 2 * math.pi / abs(freqs.pop())
     fx, words, wlen, nout, ngrid = scene._kernel_fields     # the scene as the kernel checked it
-    x, mono, info, status = _kernel.periodic_orbit_v(fx, words, wlen, nout, ngrid, period, float(winding), rtol,
-                                                     atol, tol, maxit, x0)
+    if force is None and force_params is None:
+        x, mono, info, status = _kernel.periodic_orbit_v(fx, words, wlen, nout, ngrid, period, float(winding),
+                                                         rtol, atol, tol, maxit, x0)
+    else:
+        uf = _checks.force(force, force_params)
+        x, mono, info, status = _kernel.periodic_orbit_force_v(fx, words, wlen, nout, ngrid, period,
+                                                               float(winding), rtol, atol, tol, maxit, x0,
+                                                               uf.address, uf.params)
+        uf.reraise()
     if status:
         raise ValueError(f"periodic_orbit: {_PO_STATUS[status]}; residual {info[2]:.3g} after {int(info[0])} "
                          "iterations")

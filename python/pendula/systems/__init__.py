@@ -33,6 +33,7 @@ METHOD_NAMES = {0: "exact", 1: "rk4", 2: "verlet", 3: "yoshida4", 4: "yoshida6",
 # kernel status -> exception type (the kernel's message is the text)
 _NOT_IMPLEMENTED = 14
 _UNSORTED = 12
+_INTEGRATOR_FAILED = 13   # (the kernel's sim_integrator_failed)
 
 
 @dataclass(frozen=True)
@@ -114,8 +115,19 @@ def models() -> list[ModelInfo]:
     return out
 
 
-def run(scene: Scene, t) -> Trajectory:
-    """Run a scene through the kernel's dispatcher at the times t (any order).
+def _force_failure(t, theta, v) -> str:
+    """Where a run with a user's force stopped on a non-finite value: the last output before it."""
+    ok = np.isfinite(theta) & np.isfinite(v)
+    k = int(np.argmin(ok)) if not ok.all() else len(t)
+    if k == 0:
+        return "force: the force (or the state) was not finite at the start: t = 0"
+    return (f"force: the force (or the state) became non-finite after t = {t[k - 1]!r} (theta = {theta[k - 1]!r}, "
+            f"v = {v[k - 1]!r}, the last finite output) and before t = {t[min(k, len(t) - 1)]!r}")
+
+
+def run(scene: Scene, t, force: _checks.Force | None = None) -> Trajectory:
+    """Run a scene through the kernel's dispatcher at the times t (any order);
+    ``force``: a user's force (checked by ``_checks.force``) added to its force law.
 
     Raises
     ------
@@ -136,8 +148,14 @@ def run(scene: Scene, t) -> Trajectory:
     while True:
         cancel = _interrupt.cancel_flag()
         long = bool(scene.effects) and _long_run(scene, sorted_t)
-        theta_s, v_s, e_s, stats, method, status, msg = _interrupt.call(
-            _kernel.simulate_v, x, words, wlen, nout, ngrid, sorted_t, cancel, cancel=cancel, long=long)
+        if force is None:
+            theta_s, v_s, e_s, stats, method, status, msg = _interrupt.call(
+                _kernel.simulate_v, x, words, wlen, nout, ngrid, sorted_t, cancel, cancel=cancel, long=long)
+        else:
+            theta_s, v_s, e_s, stats, method, status, msg = _interrupt.call(
+                _kernel.simulate_force_v, x, words, wlen, nout, ngrid, sorted_t, force.address, force.params,
+                cancel, cancel=cancel, long=True)
+            force.reraise()
         if status != _UNSORTED or order is not None:
             break
         order = np.argsort(flat, kind="stable")
@@ -148,6 +166,8 @@ def run(scene: Scene, t) -> Trajectory:
             raise NotImplementedError(msg)
         if status == 100:
             raise SceneError(f"the kernel refused the scene: {msg}")
+        if force is not None and status == _INTEGRATOR_FAILED:
+            raise ValueError(_force_failure(sorted_t, theta_s, v_s))
         raise ValueError(msg)
     if order is None:
         theta, v, e = theta_s, v_s, e_s
