@@ -542,17 +542,17 @@ subroutine sweep_block(measure, npts, params, rtol, atol, t_tr, t_max, nout, nth
 end subroutine sweep_block
 
 ! One adiabatic I-V branch (torques in the order given, state carried over).
-subroutine sweep_iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, cancel, vm, err, pstat, th, v)
+subroutine sweep_iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, cancel, vm, err, step, pstat, th, v)
   use pendula_sweep, only: iv_branch
   implicit none
   integer, intent(in) :: ntau
   double precision, intent(in) :: params(8), taus(ntau), rtol, atol, t_tr, t_avg
   integer, intent(inout), volatile :: cancel(1)
-  double precision, intent(out) :: vm(ntau), err(ntau), th, v
+  double precision, intent(out) :: vm(ntau), err(ntau), step(ntau), th, v
   integer, intent(out) :: pstat(ntau)
   !f2py threadsafe
   !f2py intent(hide), depend(taus) :: ntau = len(taus)
-  call iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, vm, err, pstat, th, v, cancel(1))
+  call iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, vm, err, step, pstat, th, v, cancel(1))
 end subroutine sweep_iv_branch
 
 ! The sweep's model rule on a scene's text (status 0 ok; 3 the model is not

@@ -13,8 +13,14 @@ Measures
     not trapped by ``t_max`` are NaN with status 1 ("not settled").
 ``mean_velocity``
     <v> over ``t_max`` after a transient ``transient`` (the junction's voltage),
-    and ``mean_velocity_err`` = |<v> - <v> over the second half|.  An undriven
-    damped orbit that gets trapped has <v> = 0 exactly, decided at once.
+    ``mean_velocity_err`` its error bar (the larger of |<v> - <v> over the
+    second half| and a bound on the error of a finite window), and ``step``.
+    An undriven damped orbit that gets trapped has <v> = 0 exactly, decided at
+    once.  A driven orbit is averaged over whole drive periods (transient and
+    window rounded up to whole periods, the window to an even number); when its
+    stroboscopic map repeats after q periods with theta advanced by 2 pi p, it
+    is phase-locked: <v> = p Omega / q exactly, ``step`` = p / q (the Shapiro
+    step) and status 6 'locked'; ``step`` is NaN elsewhere.
 ``locked``
     1 when the orbit spirals into an equilibrium, 0 when it runs (an open
     orbit over a further window, after ``t_max``), status 1 when undecided.
@@ -72,6 +78,7 @@ MEASURE_CODES = {"final_well": 1, "mean_velocity": 2, "locked": 3, "poincare": 4
 STATUS = {0: "decided", 1: "not settled / undecided by the limit", 2: "measure does not apply",
           3: "bad measure", 4: "uncertain: the answer changes with the tolerance",
           5: "stopped (cancelled)",
+          6: "locked: phase-locked to the drive, mean velocity = step * drive_frequency exactly",
           # 100 + s: the integrator's status s (pendula_integrators st_*)
           **{100 + s: f"the integrator failed: {w}" for s, w in (
               (1, "bad step"), (2, "bad tolerances"), (3, "bad method"), (5, "step size underflow"),
@@ -158,6 +165,10 @@ class _Plan:
         if measure == "poincare":
             # the kernel rounds the transient up to whole periods of each point's drive
             self.nout = 2 * samples
+            self.t_tr = transient
+        elif measure == "mean_velocity":
+            # <v>, its error bar and the Shapiro step of a phase-locked point
+            self.nout = 3
             self.t_tr = transient
         elif measure == "lyapunov":
             # the kernel rounds transient and window up to whole periods, point by point
@@ -253,7 +264,9 @@ _VAR_META = {
     "t_decided": ("time at which the answer was decided", "s"),
     "locked": ("1 when the orbit spirals into an equilibrium, 0 when it runs", "1"),
     "mean_velocity": ("mean angular velocity over t_max after the transient", "rad s-1"),
-    "mean_velocity_err": ("|mean angular velocity - its mean over the second half of the window|", "rad s-1"),
+    "mean_velocity_err": ("error bar of the mean angular velocity: the larger of |<v> - <v> over the second "
+                          "half of the window| and the windowing bound; 0 where locked", "rad s-1"),
+    "step": ("Shapiro step p / q of a phase-locked driven orbit (<v> = p Omega / q exactly); NaN elsewhere", "1"),
     "theta": ("stroboscopic angle once per drive period, in [-pi, pi)", "rad"),
     "v": ("stroboscopic angular velocity once per drive period", "rad s-1"),
     "lyapunov": ("largest Lyapunov exponent", "s-1"),
@@ -270,7 +283,7 @@ _AXIS_META = {
 }
 #: the variables of each measure, in the kernel's output order
 _MEASURE_VARS = {"final_well": ("well", "t_decided"), "locked": ("locked", "t_decided"),
-                 "mean_velocity": ("mean_velocity", "mean_velocity_err"), "poincare": ("theta", "v"),
+                 "mean_velocity": ("mean_velocity", "mean_velocity_err", "step"), "poincare": ("theta", "v"),
                  "lyapunov": ("lyapunov", "lyapunov_err", "lyapunov2")}
 
 
@@ -648,9 +661,14 @@ def iv_curve(scene: Scene | str | os.PathLike[str], torques: ArrayLike,
         Dimensions ``direction`` (the branches asked, 'up' and/or 'down') and
         ``torque`` (the torques as given; the down branch runs them in
         reverse, and its values are stored against their torque):
-        ``mean_velocity`` <v>, ``mean_velocity_err`` (abs(<v> - <v> over the
-        second half of the window)) and ``status`` (0 decided; CF flags), with
-        CF units and the options as attributes.
+        ``mean_velocity`` <v>, ``mean_velocity_err`` (its error bar: the
+        larger of abs(<v> - <v> over the second half of the window) and a bound
+        on the error of a finite window), ``step`` (the Shapiro step p / q of a
+        phase-locked driven point, NaN elsewhere) and ``status`` (0 decided,
+        6 locked: <v> = step * drive_frequency exactly; CF flags), with CF
+        units and the options as attributes.  In a driven scene every torque
+        is averaged over whole drive periods (see :func:`sweep`'s
+        ``mean_velocity``).
 
     Raises
     ------
@@ -673,6 +691,14 @@ def iv_curve(scene: Scene | str | os.PathLike[str], torques: ArrayLike,
     0.0
     >>> bool(abs(up.sel(torque=1.1) - 1.1 / 0.2) < 0.01)   # running: close to the ohmic line tau / beta
     True
+
+    With an ac drive the I-V curve has Shapiro steps, where the phase locks to
+    the drive and <v> is a whole multiple of its frequency, exactly:
+
+    >>> ac = pendula.Scene(damping=1.0, drive_amplitude=1.0, drive_frequency=1.0)
+    >>> r = pendula.iv_curve(ac, [0.3, 1.1], "up", transient=100, t_max=200)
+    >>> r.mean_velocity.values.tolist(), r.step.values.tolist()
+    ([[0.0, 1.0]], [[0.0, 1.0]])
     """
     import warnings
 
@@ -734,20 +760,20 @@ def iv_curve(scene: Scene | str | os.PathLike[str], torques: ArrayLike,
             steps = min(1000, max(1, math.ceil(abs(first) / spacing)))
             lead = np.linspace(0.0, first, steps + 1)[:-1]
         if lead.size:
-            _, _, _, th_end, v_end = branch(p, np.ascontiguousarray(lead, dtype=float))
+            *_, th_end, v_end = branch(p, np.ascontiguousarray(lead, dtype=float))
             p[6], p[7] = th_end, v_end
     rows = {}
     if direction in ("up", "both"):
-        vm, err, st, th_end, v_end = branch(p, tau)
-        rows["up"] = (vm, err, st)
+        vm, err, step, st, th_end, v_end = branch(p, tau)
+        rows["up"] = (vm, err, step, st)
     if direction in ("down", "both"):
         td = tau[::-1].copy()
         if direction == "both":
             # the down branch starts where the up branch ended
             p = p.copy()
             p[6], p[7] = th_end, v_end
-        vm, err, st, _, _ = branch(p, td)
-        rows["down"] = (vm[::-1], err[::-1], st[::-1])     # stored against their torques
+        vm, err, step, st, _, _ = branch(p, td)
+        rows["down"] = (vm[::-1], err[::-1], step[::-1], st[::-1])     # stored against their torques
     dims = ("direction", "torque")
     dirs = list(rows)
     return xr.Dataset(
@@ -755,8 +781,10 @@ def iv_curve(scene: Scene | str | os.PathLike[str], torques: ArrayLike,
                            {"long_name": "mean angular velocity <v> after the transient (the junction's voltage)",
                             "units": "rad s-1"}),
          "mean_velocity_err": (dims, np.stack([rows[d][1] for d in dirs]),
-                               {"long_name": "|<v> - <v> over the second half of the window|", "units": "rad s-1"}),
-         "status": (dims, np.stack([rows[d][2] for d in dirs]).astype(np.int32), _status_attrs())},
+                               {"long_name": _VAR_META["mean_velocity_err"][0], "units": "rad s-1"}),
+         "step": (dims, np.stack([rows[d][2] for d in dirs]),
+                  {"long_name": _VAR_META["step"][0], "units": "1"}),
+         "status": (dims, np.stack([rows[d][3] for d in dirs]).astype(np.int32), _status_attrs())},
         coords={"direction": ("direction", dirs, {"long_name": "branch of the adiabatic torque ramp"}),
                 "torque": ("torque", tau, {"long_name": "constant torque tau", "units": "rad s-2"})},
         attrs={"scene": scene.to_namelist(), "measure": "iv_curve", "transient": transient, "t_max": t_avg,
