@@ -13,6 +13,7 @@
 module pendula_simulate
   use, intrinsic :: iso_c_binding, only: c_loc
   use pendula_kinds, only: dp, nan_dp, two_pi
+  use, intrinsic :: iso_fortran_env, only: int64
   use pendula_scene, only: scene_t, scene_effects, scene_has_orbit_facts
   use pendula_rigid, only: rigid_has_exact, rigid_exact, rigid_energy
   use pendula_cycloid, only: cycloid_run, cycloid_omega2, cy_ok, cy_reaches_cusp
@@ -31,9 +32,9 @@ module pendula_simulate
     sim_needs_dt = 11, sim_unsorted = 12, sim_integrator_failed = 13, sim_not_implemented = 14, &
     sim_model_clash = 15, sim_exact_refused = 16, sim_backward = 17, sim_gsl_failed = 18, &
     sim_too_many_steps = 19, sim_cancelled = 20, sim_closed_form_only = 21, sim_beyond_cusp = 22, &
-    sim_nonfinite_t = 23, sim_cord_effects = 24, sim_velocity_force = 25
+    sim_nonfinite_t = 23, sim_cord_effects = 24, sim_velocity_force = 25, sim_noise_backward = 26
   !> method codes: the integrators' 1..9, 11 (dprkn6) and 12 (vern9), then GSL's rk8pd and the exact path
-  integer, parameter, public :: m_gsl_rk8pd = 10, m_exact = 0
+  integer, parameter, public :: m_gsl_rk8pd = 10, m_exact = 0, m_langevin = 13
 
   !> What a model is, for users (`pendula models`) and for the dispatcher.
   type :: model_info_t
@@ -136,7 +137,10 @@ contains
     if (status /= sim_ok) return
     select case (id)
     case (mid_rigid)
-      if (rigid_has_exact(sc%damping, sc%torque, sc%drive_amplitude) .and. &
+      if (sc%noise > 0.0_dp) then
+        ! thermal noise: the Langevin integrator (the scene check allows it on the rigid pendulum only)
+        call langevin_scene(sc, t, theta, v, stats, method, status, cancel)
+      else if (rigid_has_exact(sc%damping, sc%torque, sc%drive_amplitude) .and. &
           (sc%method == 'auto' .or. sc%method == 'exact')) then
         method = m_exact
         call rigid_exact(sc%theta0, sc%v0, sc%eps, t, theta, v, status)
@@ -246,6 +250,42 @@ contains
     case default;             status = sim_integrator_failed
     end select
   end subroutine integrate_model
+
+  !> A scene with thermal noise: the Langevin path (pendula_langevin, BAOAB)
+  !> at the times t (>= 0, ascending) from (theta0, v0) at t = 0, step the
+  !> scene's dt or its default (langevin_default_dt), noise from the seed.
+  subroutine langevin_scene(sc, t, theta, v, stats, method, status, cancel)
+    use pendula_langevin, only: langevin_path, langevin_default_dt, lv_ok, lv_backward, lv_too_many_steps, &
+      lv_cancelled, lv_bad_argument
+    type(scene_t), intent(in) :: sc
+    real(dp), intent(in) :: t(:)
+    real(dp), intent(out) :: theta(:), v(:), stats(4)
+    integer, intent(out) :: method, status
+    integer, intent(inout), volatile, optional :: cancel
+    integer, volatile :: no_cancel
+    integer(int64) :: nsteps
+    real(dp) :: h
+    method = m_langevin
+    h = sc%dt
+    if (.not. (h > 0.0_dp)) h = langevin_default_dt(sc%eps, sc%drive_frequency)
+    no_cancel = 0
+    if (present(cancel)) then
+      call langevin_path(scene_model(sc), sc%noise, sc%seed, h, sc%theta0, sc%v0, t, theta, v, nsteps, status, &
+                         cancel)
+    else
+      call langevin_path(scene_model(sc), sc%noise, sc%seed, h, sc%theta0, sc%v0, t, theta, v, nsteps, status, &
+                         no_cancel)
+    end if
+    stats = [real(nsteps, dp), real(nsteps, dp), 0.0_dp, real(2 * nsteps, dp)]
+    select case (status)
+    case (lv_ok); status = sim_ok
+    case (lv_backward); status = sim_noise_backward
+    case (lv_too_many_steps); status = sim_too_many_steps
+    case (lv_cancelled); status = sim_cancelled
+    case (lv_bad_argument); status = sim_unsorted
+    case default; status = sim_integrator_failed
+    end select
+  end subroutine langevin_scene
 
   !> The flexible cord through simulate_scene: theta and v (the bob's x, y, r and the
   !> flip log: cord_scene_run).
@@ -434,6 +474,8 @@ contains
                                      '|theta| = pi/2): start lower, slower, or drive less'
     case (sim_velocity_force);   s = 'field ''method'': dprkn6 (a Runge-Kutta-Nystrom pair) integrates ' // &
                                      'theta'''' = f(t, theta) only; a damped scene needs another method (dop853)'
+    case (sim_noise_backward);   s = 'a scene with noise runs forward from t = 0 only (a Langevin path has ' // &
+                                     'no past): give times >= 0 (t_start >= 0)'
     case default;                s = 'unknown failure'
     end select
   end function simulate_status_text

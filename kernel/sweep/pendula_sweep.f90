@@ -47,10 +47,12 @@ module pendula_sweep
   use pendula_lyapunov, only: lyapunov_point, ly_cancelled
   use pendula_outfile, only: outfile_t, out_line, out_reals
   use pendula_simulate, only: select_model, registry, mid_rigid, sim_ok
+  use pendula_langevin, only: langevin_stream, langevin_open, langevin_steps, langevin_default_dt, lv_ok, &
+    lv_cancelled
   use, intrinsic :: iso_fortran_env, only: int64
   implicit none
   private
-  public :: sweep_points, iv_branch, np_params, sweep_scene_csv, sweep_model_rule, sweep_limits
+  public :: sweep_points, sweep_points_noisy, iv_branch, np_params, sweep_scene_csv, sweep_model_rule, sweep_limits
   public :: ms_final_well, ms_mean_velocity, ms_locked, ms_poincare, ms_lyapunov
 
   integer, parameter :: np_params = 8   ! eps, beta, tau, amp, omega, phase, theta0, v0
@@ -481,6 +483,133 @@ contains
     err = max(err, (hi - lo) / (real(n_avg, dp) * tp))
   end subroutine mean_velocity_driven
 
+  !> <v> of an orbit with thermal noise at temperature temp (stream s): BAOAB
+  !> steps of h <= dt (dt <= 0: langevin_default_dt).  A driven orbit: h
+  !> divides the drive period, transient and window are whole periods (at
+  !> least ceil(t_tr / T) and ceil(t_avg / T)).  Otherwise ceil(t_tr / h) and
+  !> ceil(t_avg / h) steps of h = dt.  err: the standard error of <v> from
+  !> the spread of up to 16 batch means of the window (batches of whole
+  !> periods when driven).
+  subroutine mean_velocity_noisy(p, temp, s, dt, t_tr, t_avg, th0, v0, vm, err, th, v, st, cancel)
+    real(dp), intent(in) :: p(np_params), temp, dt, t_tr, t_avg, th0, v0
+    type(langevin_stream), intent(inout) :: s
+    real(dp), intent(out) :: vm, err, th, v
+    integer, intent(out) :: st
+    integer, intent(inout), volatile :: cancel
+    integer, parameter :: nbatch_max = 16
+    type(pendulum_model) :: m
+    real(dp) :: h, tp, thb, bv(nbatch_max), tha
+    integer(int64) :: per, ntr, navg, k, nb, b, kb_end, nchunk
+    logical :: driven
+    vm = nan_dp; err = nan_dp; th = th0; v = v0; st = ps_decided
+    m = make_model(p(1), p(2), p(3), p(4), p(5), p(6))
+    driven = p(4) /= 0.0_dp .and. p(5) > 0.0_dp
+    h = dt
+    if (.not. (h > 0.0_dp)) h = langevin_default_dt(p(1), p(5))
+    if (driven) then
+      tp = two_pi / p(5)
+      per = max(1_int64, ceiling(tp / h - 1.0e-12_dp, int64))
+      h = tp / real(per, dp)
+    else
+      per = 4096
+    end if
+    ! chunks of per steps: the transient's and the window's
+    if (.not. ((t_tr + t_avg) / h <= 2.0e9_dp)) then
+      st = ps_unsettled; return   ! beyond the work a point may take
+    end if
+    ntr = ceiling(t_tr / (h * real(per, dp)) - 1.0e-12_dp, int64)
+    navg = max(1_int64, ceiling(t_avg / (h * real(per, dp)) - 1.0e-12_dp, int64))
+    if (.not. driven) navg = max(1_int64, ceiling(t_avg / h - 1.0e-12_dp, int64))
+    do k = 1, ntr
+      call chunk(per)
+      if (st /= ps_decided) return
+    end do
+    tha = th
+    if (driven) then
+      nb = min(int(nbatch_max, int64), navg)
+      do b = 1, nb
+        thb = th
+        do k = (b - 1) * navg / nb + 1, b * navg / nb
+          call chunk(per)
+          if (st /= ps_decided) return
+        end do
+        bv(b) = (th - thb) / (real(b * navg / nb - (b - 1) * navg / nb, dp) * real(per, dp) * h)
+      end do
+      vm = (th - tha) / (real(navg, dp) * real(per, dp) * h)
+    else
+      ! navg steps in nb batches, each in chunks of at most per steps
+      nb = min(int(nbatch_max, int64), navg)
+      do b = 1, nb
+        thb = th
+        kb_end = b * navg / nb - (b - 1) * navg / nb
+        do while (kb_end > 0)
+          nchunk = min(per, kb_end)
+          call chunk(nchunk)
+          if (st /= ps_decided) return
+          kb_end = kb_end - nchunk
+        end do
+        bv(b) = (th - thb) / (real(b * navg / nb - (b - 1) * navg / nb, dp) * h)
+      end do
+      vm = (th - tha) / (real(navg, dp) * h)
+    end if
+    err = 0.0_dp
+    if (nb > 1) err = sqrt(sum((bv(1:nb) - sum(bv(1:nb)) / real(nb, dp)) ** 2) / real(nb - 1, dp) / real(nb, dp))
+  contains
+    subroutine chunk(n)
+      integer(int64), intent(in) :: n
+      integer :: ls
+      if (cancel /= 0) then
+        st = ps_cancelled; return
+      end if
+      ! a driven chunk is one period from the drive's phase p(6): time origin 0
+      call langevin_steps(m, temp, s, 0.0_dp, h, n, th, v, ls, cancel)
+      if (ls == lv_cancelled) then
+        st = ps_cancelled
+      else if (ls /= lv_ok) then
+        st = 106   ! the integrator's non-finite state
+      end if
+    end subroutine chunk
+  end subroutine mean_velocity_noisy
+
+  !> sweep_points for the measure mean_velocity with thermal noise (temp > 0,
+  !> the damping of every point > 0): point i runs the stream (seed,
+  !> first + i - 1), its global index in the grid, so the result of a point
+  !> does not depend on the block or the thread that computes it.  dt: the
+  !> Langevin step (<= 0: langevin_default_dt).  out(:, i) = <v>, its
+  !> standard error, NaN (no Shapiro step under noise).
+  subroutine sweep_points_noisy(npts, params, temp, seed, first, dt, t_tr, t_max, out, pstat, nthreads, cancel)
+    !$ use omp_lib, only: omp_get_max_threads
+    integer, intent(in) :: npts, nthreads
+    real(dp), intent(in) :: params(np_params, npts), temp, dt, t_tr, t_max
+    integer(int64), intent(in) :: seed, first
+    real(dp), intent(out) :: out(3, npts)
+    integer, intent(out) :: pstat(npts)
+    integer, intent(inout), volatile :: cancel
+    integer :: i, nt
+    type(langevin_stream) :: s
+    real(dp) :: th, v
+    nt = 1
+    !$ nt = omp_get_max_threads()
+    if (nthreads > 0) nt = min(nthreads, sweep_max_threads)
+    nt = max(1, min(nt, sweep_max_threads))
+    !$omp parallel do schedule(dynamic, 4) default(none) num_threads(nt) &
+    !$omp   shared(npts, params, temp, seed, first, dt, t_tr, t_max, out, pstat, cancel) private(i, s, th, v)
+    do i = 1, npts
+      out(:, i) = nan_dp
+      if (cancel /= 0) then
+        pstat(i) = ps_cancelled
+      else if (.not. (params(2, i) > 0.0_dp) .or. .not. (t_max <= sweep_max_time) .or. &
+               .not. (t_tr <= sweep_max_time) .or. .not. (abs(params(7, i)) <= sweep_max_angle)) then
+        pstat(i) = ps_not_applicable
+      else
+        s = langevin_open(seed, first + i - 1)
+        call mean_velocity_noisy(params(:, i), temp, s, dt, t_tr, t_max, params(7, i), params(8, i), out(1, i), &
+                                 out(2, i), th, v, pstat(i), cancel)
+      end if
+    end do
+    !$omp end parallel do
+  end subroutine sweep_points_noisy
+
   !> Stroboscopic samples once per drive period after n_tr periods.
   subroutine poincare(p, rtol, atol, n_tr, ns, o, st, cancel)
     real(dp), intent(in) :: p(np_params), rtol, atol
@@ -517,14 +646,19 @@ contains
   !> after t_tr over t_avg, starting from the end state of the previous torque
   !> (the first from theta0, v0 in params).  params(3) (tau) is overridden.
   !> th, v: the end state (theta reduced to [-pi, pi]), to start another branch.
-  subroutine iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, vm, err, step, pstat, th, v, cancel)
+  !> temp > 0: thermal noise (mean_velocity_noisy), torque k on the stream
+  !> (seed, first + k - 1), Langevin step dt (<= 0: the default).
+  subroutine iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, temp, seed, first, dt, vm, err, step, pstat, &
+                       th, v, cancel)
     integer, intent(in) :: ntau
-    real(dp), intent(in) :: params(np_params), taus(ntau), rtol, atol, t_tr, t_avg
+    real(dp), intent(in) :: params(np_params), taus(ntau), rtol, atol, t_tr, t_avg, temp, dt
+    integer(int64), intent(in) :: seed, first
     real(dp), intent(out) :: vm(ntau), err(ntau), step(ntau), th, v
     integer, intent(out) :: pstat(ntau)
     integer, intent(inout), volatile :: cancel
     real(dp) :: p(np_params)
     integer :: k
+    type(langevin_stream) :: s
     p = params
     th = p(7); v = p(8)
     vm = nan_dp; err = nan_dp; step = nan_dp; pstat = ps_unsettled
@@ -539,7 +673,12 @@ contains
       end if
       p(3) = taus(k)
       p(7) = th - two_pi * anint(th / two_pi); p(8) = v
-      call mean_velocity(p, rtol, atol, t_tr, t_avg, p(7), p(8), vm(k), err(k), step(k), th, v, pstat(k), cancel)
+      if (temp > 0.0_dp) then
+        s = langevin_open(seed, first + k - 1)
+        call mean_velocity_noisy(p, temp, s, dt, t_tr, t_avg, p(7), p(8), vm(k), err(k), th, v, pstat(k), cancel)
+      else
+        call mean_velocity(p, rtol, atol, t_tr, t_avg, p(7), p(8), vm(k), err(k), step(k), th, v, pstat(k), cancel)
+      end if
       if (pstat(k) /= ps_decided .and. pstat(k) /= ps_locked) exit
     end do
     th = th - two_pi * anint(th / two_pi)

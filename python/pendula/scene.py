@@ -143,6 +143,13 @@ class Scene:
     sweep_t_max, sweep_transient, sweep_samples : float, float, int
         The sweep's time limit (or averaging time), transient and number of
         Poincare samples.
+    noise, seed : float, int
+        Thermal noise: the temperature T in units of eps (>= 0; needs
+        damping > 0, as the force sqrt(2 damping T) xi(t) comes with the
+        friction), run by the Langevin integrator (BAOAB, the fixed step
+        ``dt``, or when ``dt`` is 0 the shorter of 2 pi / sqrt(eps) and the
+        drive period, divided by 100), and the seed of its random numbers
+        (0 .. 2^53): the same seed gives the same path, bit for bit.
 
     Raises
     ------
@@ -211,6 +218,9 @@ class Scene:
     sweep_t_max: float = 2000.0
     sweep_transient: float = 200.0
     sweep_samples: int = 100
+    # thermal noise: the temperature in units of eps, and the seed of its random numbers
+    noise: float = 0.0
+    seed: int = 0
 
     def __post_init__(self):
         _check(self)
@@ -453,7 +463,7 @@ def _layout():
 
 #: the scene's numbers and single words in the kernel's order (kernel/io/pendula_scene.f90)
 _NUMBERS, _WORDS = _layout()
-_WHOLE = ("n_samples", "max_flips", "sweep_samples")
+_WHOLE = ("n_samples", "max_flips", "sweep_samples", "seed")
 _STRING_LISTS = ("outputs", "grid")
 _EMPTY = np.zeros(0)
 _NUMBER_LISTS = ("sweep_values", "grid1", "grid2", "grid3", "grid1_range", "grid2_range", "grid3_range")

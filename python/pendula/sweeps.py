@@ -20,7 +20,13 @@ Measures
     window rounded up to whole periods, the window to an even number); when its
     stroboscopic map repeats after q periods with theta advanced by 2 pi p, it
     is phase-locked: <v> = p Omega / q exactly, ``step`` = p / q (the Shapiro
-    step) and status 6 'locked'; ``step`` is NaN elsewhere.
+    step) and status 6 'locked'; ``step`` is NaN elsewhere.  A scene with
+    thermal ``noise`` runs the Langevin integrator (BAOAB, step ``dt`` or its
+    default; a driven point over whole drive periods): grid point k (flat
+    index, first axis slowest) draws its noise from the stream (``seed``, k),
+    so chunks, threads and resumes give the same numbers bit for bit;
+    ``mean_velocity_err`` is then the standard error from up to 16 batch
+    means, and ``mean_velocity`` is the only measure.
 ``locked``
     1 when the orbit spirals into an equilibrium, 0 when it runs (an open
     orbit over a further window, after ``t_max``), status 1 when undecided.
@@ -84,6 +90,8 @@ STATUS = {0: "decided", 1: "not settled / undecided by the limit", 2: "measure d
               (1, "bad step"), (2, "bad tolerances"), (3, "bad method"), (5, "step size underflow"),
               (6, "non-finite state"), (7, "too many steps"), (8, "cancelled"), (9, "no dense output"),
               (10, "stopped by an event"))}}
+#: noise streams per I-V branch (at most 1e6 torques, and a lead-in ramp of as many)
+_IV_STREAMS = 2 * 10 ** 6
 _PARAM_ORDER = ("eps", "damping", "torque", "drive_amplitude", "drive_frequency", "drive_phase", "theta0", "v0")
 
 
@@ -210,6 +218,16 @@ def _answers(out, st):
 
 def _compute_chunk(plan: _Plan, i: int, threads: int):
     p, shape = plan.params(i)
+    if plan.scene.noise > 0:
+        # thermal noise: point k of the grid (flat, first axis slowest) on the stream (seed, k)
+        from . import _kernel
+        first = i * plan.rows * (p.shape[1] // shape[0])
+        cancel = _interrupt.cancel_flag()
+        out, st = _interrupt.call(_kernel.sweep_block_noisy, p, plan.scene.noise, plan.scene.seed, first,
+                                  plan.scene.dt, plan.t_tr, plan.t_max, int(threads), cancel, cancel=cancel)
+        if cancel[0]:
+            raise KeyboardInterrupt
+        return i, out.T.reshape(shape + (plan.nout,)), st.reshape(shape)
     code = MEASURE_CODES[plan.measure]
     out, st = _block(code, p, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout, threads)
     out = out.T.reshape(shape + (plan.nout,))
@@ -454,6 +472,11 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
         raise ValueError(f"parameter 'measure' must be one of {', '.join(MEASURES + ('attractor',))}; "
                          f"got {measure!r}")
     _model_rule(scene, f"measure '{measure}'")
+    if scene.noise > 0 and measure != "mean_velocity":
+        raise ValueError(f"field 'noise': a sweep with thermal noise measures 'mean_velocity' only (the "
+                         f"measure '{measure}' asks a deterministic question); got noise = {scene.noise}")
+    if scene.noise > 0 and (over or {}).keys() & {"damping"} and not np.all(np.asarray(over["damping"]) > 0):
+        raise ValueError("field 'noise': every grid point needs damping > 0 (the thermal force comes with it)")
     _checks.angle(scene.theta0, "field 'theta0'")
     over = grid_of(scene) if over is None else over
     over = _check_over(scene, over)
@@ -731,9 +754,12 @@ def iv_curve(scene: Scene | str | os.PathLike[str], torques: ArrayLike,
     rtol, atol = _checks.tolerances(scene.rtol if rtol is None else rtol, scene.atol if atol is None else atol)
     p = np.array([getattr(scene, f) for f in _PARAM_ORDER], dtype=float)
 
-    def branch(p, taus):
+    def branch(p, taus, first):
+        # first: the noise stream of the branch's first torque (a scene with noise; the lead-in ramp,
+        # the up and the down branch each have their own streams, so no two torques share noise)
         cancel = _interrupt.cancel_flag()
-        r = _interrupt.call(_kernel.sweep_iv_branch, p, taus, rtol, atol, transient, t_avg, cancel, cancel=cancel)
+        r = _interrupt.call(_kernel.sweep_iv_branch, p, taus, rtol, atol, transient, t_avg, scene.noise,
+                            scene.seed, first, scene.dt, cancel, cancel=cancel)
         if cancel[0]:
             raise KeyboardInterrupt
         return r
@@ -760,11 +786,11 @@ def iv_curve(scene: Scene | str | os.PathLike[str], torques: ArrayLike,
             steps = min(1000, max(1, math.ceil(abs(first) / spacing)))
             lead = np.linspace(0.0, first, steps + 1)[:-1]
         if lead.size:
-            *_, th_end, v_end = branch(p, np.ascontiguousarray(lead, dtype=float))
+            *_, th_end, v_end = branch(p, np.ascontiguousarray(lead, dtype=float), 0)
             p[6], p[7] = th_end, v_end
     rows = {}
     if direction in ("up", "both"):
-        vm, err, step, st, th_end, v_end = branch(p, tau)
+        vm, err, step, st, th_end, v_end = branch(p, tau, _IV_STREAMS)
         rows["up"] = (vm, err, step, st)
     if direction in ("down", "both"):
         td = tau[::-1].copy()
@@ -772,7 +798,7 @@ def iv_curve(scene: Scene | str | os.PathLike[str], torques: ArrayLike,
             # the down branch starts where the up branch ended
             p = p.copy()
             p[6], p[7] = th_end, v_end
-        vm, err, step, st, _, _ = branch(p, td)
+        vm, err, step, st, _, _ = branch(p, td, 2 * _IV_STREAMS)
         rows["down"] = (vm[::-1], err[::-1], step[::-1], st[::-1])     # stored against their torques
     dims = ("direction", "torque")
     dirs = list(rows)
