@@ -102,8 +102,9 @@ contains
   !> n BAOAB steps of size h from time t0 (the drive's time), state (th, v).
   !> The model's damping m%beta is the friction; temp the temperature.
   !> status lv_cancelled when cancel is set (read every `poll` steps),
-  !> lv_nonfinite when the state leaves the doubles.
-  subroutine langevin_steps(m, temp, s, t0, h, n, th, v, status, cancel)
+  !> lv_nonfinite when the state leaves the doubles.  sums (optional): v^2
+  !> and cos(theta) after each step are added to sums(1), sums(2).
+  subroutine langevin_steps(m, temp, s, t0, h, n, th, v, status, cancel, sums)
     type(pendulum_model), intent(in) :: m
     real(dp), intent(in) :: temp, t0, h
     type(langevin_stream), intent(inout) :: s
@@ -111,6 +112,7 @@ contains
     real(dp), intent(inout) :: th, v
     integer, intent(out) :: status
     integer, intent(inout), volatile :: cancel
+    real(dp), intent(inout), optional :: sums(2)
     real(dp) :: c1, c2, hh, t
     integer(int64) :: j
     status = lv_ok
@@ -130,6 +132,9 @@ contains
       v = c1 * v + c2 * next_normal(s)
       th = th + hh * v
       v = v + hh * force_at(t + h, th)
+      if (present(sums)) then
+        sums(1) = sums(1) + v * v; sums(2) = sums(2) + cos(th)
+      end if
     end do
     if (.not. (abs(th) <= huge(1.0_dp) .and. abs(v) <= huge(1.0_dp))) status = lv_nonfinite
   contains
@@ -215,8 +220,8 @@ contains
     integer, intent(out) :: status
     integer, intent(inout), volatile :: cancel
     type(langevin_stream) :: s
-    real(dp) :: th, v, a, b
-    integer(int64) :: j, step
+    real(dp) :: th, v, acc(2)
+    integer(int64) :: step
     integer :: k
     v2 = nan_dp; cth = nan_dp
     s = langevin_open(seed, index)
@@ -225,16 +230,11 @@ contains
     if (status /= lv_ok) return
     step = nburn
     do k = 1, nbatch
-      a = 0.0_dp; b = 0.0_dp
-      do j = 1, nper
-        call langevin_steps(m, temp, s, real(step, dp) * h, h, 1_int64, th, v, status, cancel)
-        step = step + 1
-        a = a + v * v; b = b + cos(th)
-      end do
-      if (cancel /= 0) then
-        status = lv_cancelled; return
-      end if
-      v2(k) = a / real(nper, dp); cth(k) = b / real(nper, dp)
+      acc = 0.0_dp
+      call langevin_steps(m, temp, s, real(step, dp) * h, h, nper, th, v, status, cancel, acc)
+      if (status /= lv_ok) return
+      step = step + nper
+      v2(k) = acc(1) / real(nper, dp); cth(k) = acc(2) / real(nper, dp)
     end do
   end subroutine langevin_moments
 
