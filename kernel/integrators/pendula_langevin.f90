@@ -301,7 +301,7 @@ contains
   !> ramped as i(t) = rate t.  A path has switched when theta passes the
   !> second barrier (3 pi - asin(i), two wells on: a retrapped phase slip
   !> does not count); its switching bias is i at the last upward crossing
-  !> of the first barrier's top (pi - asin(i)) before that.  isw(i) = NaN
+  !> of the first barrier's top (pi - asin(i), at each step's bias) before that.  isw(i) = NaN
   !> when a path has not switched by i = i_max.  OpenMP over the paths.
   subroutine langevin_switching(beta, temp, rate, seed, h, i_max, n, isw, status, nthreads, cancel)
     !$ use omp_lib, only: omp_get_max_threads
@@ -313,7 +313,8 @@ contains
     integer, intent(inout), volatile :: cancel
     integer :: i, nt, st
     integer(int64) :: j, jmax
-    real(dp) :: th, v, t, bias, top, cross, thp
+    real(dp) :: th, v, t, bias, top, cross
+    logical :: below
     type(langevin_stream) :: s
     type(pendulum_model) :: m
     status = lv_ok
@@ -326,25 +327,26 @@ contains
     jmax = int(min(i_max / rate / h, real(langevin_max_steps, dp)), int64)
     !$omp parallel do schedule(dynamic, 1) default(none) num_threads(nt) &
     !$omp   shared(beta, temp, rate, seed, h, n, isw, cancel, jmax) &
-    !$omp   private(i, th, v, s, j, st, t, bias, top, cross, m, thp)
+    !$omp   private(i, th, v, s, j, st, t, bias, top, cross, m, below)
     do i = 1, n
       isw(i) = nan_dp
       if (cancel /= 0) cycle
       s = langevin_open(seed, int(i - 1, int64))
       th = sqrt(temp) * next_normal(s); v = sqrt(temp) * next_normal(s)
-      cross = nan_dp
+      cross = nan_dp; below = .true.
       j = 0
       do while (j < jmax)
         t = real(j, dp) * h
         ! the bias of this step: the ramp at its midpoint (a constant torque per step)
         bias = rate * (t + 0.5_dp * h)
         m = make_model(1.0_dp, beta, bias, 0.0_dp, 0.0_dp, 0.0_dp)
-        thp = th
         call langevin_steps(m, temp, s, t, h, 1_int64, th, v, st, cancel)
         j = j + 1
         if (st /= lv_ok) exit
+        ! below the top at this step's bias (the top moves down with the ramp: a crossing may be its move)
         top = pi - asin(min(bias, 1.0_dp))
-        if (thp < top .and. th >= top) cross = bias
+        if (below .and. th >= top) cross = bias
+        below = th < top
         if (th >= 3.0_dp * pi - asin(min(bias, 1.0_dp))) then
           isw(i) = cross; exit
         end if

@@ -374,6 +374,8 @@ class Scene:
             out.append("guide")
         if self.gravity != "uniform":
             out.append("gravity")
+        if self.noise != 0.0:
+            out.append("noise")
         object.__setattr__(self, "_effects", tuple(out))
         return self._effects
 
