@@ -395,10 +395,13 @@ contains
   !> with theta advanced by 2 pi p, the orbit is on a periodic orbit of the
   !> map and <v> = p Omega / q exactly (the rotation number of a periodic
   !> orbit); detected when the distance d = max(|d theta|, |d v|) between the
-  !> two states is at the rounding level (1e-12 (1 + |v|)), or below 1e-9 and
-  !> shrinking geometrically (ratio r < 1 with d r / (1 - r) <= 1e-9: the rest
-  !> of the convergence).  A slow passage near a lost locking (a saddle-node
-  !> ghost) shrinks with a ratio near 1 and is not taken for locking.
+  !> two states is at the rounding level (1e-12 (1 + |v|)), or below 1e-7 and
+  !> shrinking geometrically (the ratio r of successive distances below 1
+  !> twice running, with d r / (1 - r) <= 1e-7: the rest of the convergence).
+  !> A slow passage near a lost locking (a saddle-node ghost of width mu)
+  !> shrinks with a ratio near 1: d r / (1 - r) >= sqrt(mu) there, so only a
+  !> ghost with mu <= 1e-14 (one phase slip per more than 1e7 periods) could
+  !> pass for locking.
   !> Otherwise err = max(|<v> - <v>_second half|, the spread of theta_k - <v> t_k
   !> over the stroboscopic samples of the window / the window): a quasi-periodic
   !> orbit's discrepancy is bounded, and the window's mean is within that
@@ -409,8 +412,8 @@ contains
     integer, intent(out) :: st
     integer, intent(inout), volatile :: cancel
     integer, parameter :: qmax = 8, nkeep = 8192
-    real(dp), parameter :: lock_tol = 1.0e-9_dp, max_periods = 1.0e9_dp
-    real(dp) :: tp, ts(1), ths(1), vs(1), sth(0:qmax), sv(0:qmax), dprev(qmax), d, dth, r, x, &
+    real(dp), parameter :: lock_tol = 1.0e-7_dp, max_periods = 1.0e9_dp
+    real(dp) :: tp, ts(1), ths(1), vs(1), sth(0:qmax), sv(0:qmax), dprev(qmax), rprev(qmax), d, dth, r, x, &
                 tha, thh, rs(0:nkeep), lo, hi
     integer(int64) :: sw(0:qmax), w, wa, wh, k, n_tr, n_avg, stride, turns
     integer :: q, j, nr
@@ -425,7 +428,7 @@ contains
     n_tr = max(0_int64, int(x, int64)); n_avg = max(2_int64, int(r, int64))
     stride = max(1_int64, (n_avg + nkeep - 1) / nkeep)
     w = nint(th / two_pi, int64); th = th - two_pi * real(w, dp)
-    sth = 0.0_dp; sv = 0.0_dp; sw = 0; dprev = huge(1.0_dp)
+    sth = 0.0_dp; sv = 0.0_dp; sw = 0; dprev = huge(1.0_dp); rprev = huge(1.0_dp)
     sth(0) = th; sv(0) = v; sw(0) = w
     wa = w; tha = th; wh = w; thh = th; nr = 0
     if (n_tr == 0) then
@@ -450,7 +453,7 @@ contains
         d = max(abs(dth), abs(v - sv(j)))
         r = d / dprev(q)
         if (d <= 1.0e-12_dp * (1.0_dp + abs(v)) .or. &
-            (d <= lock_tol .and. dprev(q) < huge(1.0_dp) .and. r < 1.0_dp .and. &
+            (d <= lock_tol .and. r < 1.0_dp .and. rprev(q) < 1.0_dp .and. &
              d * r <= lock_tol * (1.0_dp - r))) then
           turns = w - sw(j) + turns
           vm = real(turns, dp) * p(5) / real(q, dp)
@@ -458,7 +461,7 @@ contains
           err = 0.0_dp; st = ps_locked
           return
         end if
-        dprev(q) = d
+        dprev(q) = d; rprev(q) = r
       end do
       j = int(mod(k, int(qmax + 1, int64)))
       sth(j) = th; sv(j) = v; sw(j) = w
