@@ -100,3 +100,35 @@ def test_driven_window_is_whole_periods():
     sol = solve_ivp(rhs, (0.0, ts[-1]), [0.0, 0.0], method="DOP853", rtol=1e-12, atol=1e-13, t_eval=ts)
     ref = (sol.y[0][1] - sol.y[0][0]) / (ts[1] - ts[0])
     assert abs(ds.mean_velocity.item() - ref) < 1e-7 * abs(ref)     # same definition, both at tight tolerance
+
+
+def test_step_width_follows_the_bessel_law_in_the_overdamped_limit():
+    # beta = 10 (beta_c = 0.01), Omega_c = Omega beta = 10, a / Omega_c = 1.2: the n = 1 step spans
+    # 2 |J_1(1.2)| = 0.996 I_c in the limit (Barone and Paterno, section 11.2).  Its edges by bisection to
+    # 0.005 I_c; on the step: locked with step 1, or (too slow near an edge to lock within 240 periods) a
+    # mean velocity within 1e-3 Omega of Omega.  Allowed: 5 % for the finite Omega_c and beta_c, plus the
+    # bisection's resolution.
+    from scipy.special import jv
+    beta, omega, x = 10.0, 1.0, 1.2
+    period = 2 * math.pi / omega
+    s = Scene(damping=beta, drive_amplitude=x * omega * beta, drive_frequency=omega, rtol=1e-9, atol=1e-11)
+
+    def on_step(bias):
+        ds = pendula.sweep(s, over={"torque": [bias]}, measure="mean_velocity", transient=200 * period,
+                           t_max=40 * period)
+        if int(ds.status.item()) == 6:
+            return ds.step.item() == 1
+        return abs(ds.mean_velocity.item() / omega - 1) < 1e-3
+
+    centre = math.hypot(beta * omega, 1.0)   # the ohmic bias of <v> = Omega, near the step's middle
+    assert on_step(centre)
+    edges = []
+    for far in (centre - 1.5, centre + 1.5):
+        assert not on_step(far)
+        inside, outside = centre, far
+        while abs(outside - inside) > 0.005:
+            mid = 0.5 * (inside + outside)
+            inside, outside = (mid, outside) if on_step(mid) else (inside, mid)
+        edges.append(inside)
+    width = edges[1] - edges[0]
+    assert abs(width - 2 * abs(jv(1, x))) < 0.05 * 2 * abs(jv(1, x)) + 0.01, width

@@ -62,6 +62,19 @@ class SwitchingCurrents:
         dI/dt of the ramps, A / s.
     temperature : float
         The junction's temperature, K.
+
+    See Also
+    --------
+    Junction.switching_currents : what makes them.
+    Junction.switching_density : their theory (Fulton and Dunkleberger).
+
+    Examples
+    --------
+    >>> import pendula
+    >>> j = pendula.Junction(1e-7, 100.0, 1e-12, temperature=0.05)
+    >>> s = j.switching_currents(ramp_rate=1e-3 * 1e-7 * j.plasma_frequency, n=10, seed=1)
+    >>> int(s.counts.sum()), s.samples.shape
+    (10, (10,))
     """
 
     samples: np.ndarray
@@ -108,6 +121,7 @@ class Junction:
     See Also
     --------
     iv_curve : the pendulum's I-V curve in reduced units.
+    SwitchingCurrents : the samples of :meth:`switching_currents`.
 
     Examples
     --------
