@@ -730,6 +730,12 @@ contains
     case default
       status = 2; msg = 'field ''measure'' must name a measure for a sweep'; return
     end select
+    if (sc%noise > 0.0_dp .and. measure /= ms_mean_velocity) then
+      status = 2
+      msg = 'field ''noise'': a sweep with thermal noise measures ''mean_velocity'' only (the measure ''' // &
+            trim(sc%measure) // ''' asks a deterministic question)'
+      return
+    end if
     n = 1
     n(1:sc%n_grid) = sc%grid_n(1:sc%n_grid)
     allocate(ax(maxval(n), 3))
@@ -809,7 +815,12 @@ contains
       ! the first row was computed ahead by the previous block: moved, not recomputed
       c0 = 1
       if (have_next) c0 = inner + 1
-      if (c0 <= nrow * inner) then
+      if (c0 <= nrow * inner .and. sc%noise > 0.0_dp) then
+        ! thermal noise: grid point k (flat, from 0) on the stream (seed, k), as pendula.sweep
+        call sweep_points_noisy(nrow * inner - c0 + 1, params(:, c0:nrow * inner), sc%noise, sc%seed, &
+                                int((r0 - 1) * inner + c0 - 1, int64), sc%dt, t_tr, sc%sweep_t_max, &
+                                o(:, c0:nrow * inner), pst(c0:nrow * inner), 0, no_cancel)
+      else if (c0 <= nrow * inner) then
         call sweep_points(measure, nrow * inner - c0 + 1, params(:, c0:nrow * inner), sc%rtol, sc%atol, &
                           t_tr, sc%sweep_t_max, nout, o(:, c0:nrow * inner), pst(c0:nrow * inner), 0, no_cancel)
       end if

@@ -462,6 +462,9 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
     if not isinstance(scene, Scene):
         scene = Scene.from_file(scene)
     measure = measure or scene.measure
+    if scene.noise > 0 and measure != "mean_velocity":
+        raise ValueError(f"field 'noise': a sweep with thermal noise measures 'mean_velocity' only (the "
+                         f"measure '{measure}' asks a deterministic question); got noise = {scene.noise}")
     if measure == "attractor":
         # the kernel's poincare samples, read for recurrence (pendula.attractor_map)
         kw = {k: v for k, v in (("transient", transient), ("samples", samples), ("rtol", rtol),
@@ -472,9 +475,6 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
         raise ValueError(f"parameter 'measure' must be one of {', '.join(MEASURES + ('attractor',))}; "
                          f"got {measure!r}")
     _model_rule(scene, f"measure '{measure}'")
-    if scene.noise > 0 and measure != "mean_velocity":
-        raise ValueError(f"field 'noise': a sweep with thermal noise measures 'mean_velocity' only (the "
-                         f"measure '{measure}' asks a deterministic question); got noise = {scene.noise}")
     if scene.noise > 0 and (over or {}).keys() & {"damping"} and not np.all(np.asarray(over["damping"]) > 0):
         raise ValueError("field 'noise': every grid point needs damping > 0 (the thermal force comes with it)")
     _checks.angle(scene.theta0, "field 'theta0'")
