@@ -272,6 +272,7 @@ contains
         ! 64 steps at a time: the exit is read after each step of the block
         call block_until(th, v, j, st)
         if (st /= lv_ok) exit
+        if (mod(j, poll) < 64 .and. cancel /= 0) exit   ! the cancel flag, once per `poll` steps
         if (th >= theta_exit) then
           times(i) = real(j, dp) * h; exit
         end if

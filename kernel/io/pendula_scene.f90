@@ -1054,6 +1054,10 @@ contains
       write(tmp, '(a, i0, a)') 'sweep = ' // trim(sc%sweep) // ' over ', sc%n_sweep, ' values'
       s = trim(s) // new_line('a') // '# ' // trim(tmp)
     end if
+    if (sc%noise /= 0) then
+      write(tmp, '(a, es24.16e3, a, i0, a, es24.16e3)') 'noise = ', sc%noise, ', seed = ', sc%seed, ', dt = ', sc%dt
+      s = trim(s) // new_line('a') // '# ' // trim(tmp)
+    end if
     if (len_trim(sc%name) > 0) s = trim(s) // new_line('a') // '# name = ' // trim(sc%name)
   end function scene_summary
 
