@@ -192,3 +192,32 @@ def test_pendula_run_noisy_sweep_equals_pendula_sweep_bit_for_bit(tmp_path):
     bad.write_text(scene.read_text().replace("'mean_velocity'", "'final_well'"))
     r = subprocess.run([str(exe), str(bad), "-o", str(tmp_path / "b.csv")], capture_output=True, text=True)
     assert r.returncode != 0 and "'noise'" in r.stderr
+
+
+def test_underdamped_escape_rate_matches_buttiker_harris_landauer_not_kramers():
+    # beta = 0.05 (Q = omega_a / beta = 18.6), tilt 0.5, dU / T = 5: beta S_b / T ~ 2, the turnover to
+    # energy diffusion, where Kramers' moderate-damping factor (0.97) overestimates the rate and the
+    # Buttiker-Harris-Landauer interpolation a = 4 / (sqrt(1 + Q T / 1.8 dU) + 1)^2 (Phys. Rev. B 28 (1983)
+    # 1268) holds to about 20 % (its accuracy as an interpolation), on top of 4 standard errors of 300 escapes
+    tau, beta = 0.5, 0.05
+    s = math.sqrt(1 - tau * tau)
+    wa = math.sqrt(s)
+    du = 2 * (s - tau * math.acos(tau))
+    temp = du / 5.0
+    tst = wa / (2 * math.pi) * math.exp(-du / temp)
+    q = wa / beta
+    bhl = 4 / (math.sqrt(1 + q * temp / (1.8 * du)) + 1) ** 2 * tst
+    kramers, _ = _kramers(tau, beta, temp)
+    n = 300
+    times, st = _kernel.langevin_escape_v(1.0, beta, tau, temp, 11, 0.1, math.pi - math.asin(tau) + 1.0, 1e7, n,
+                                          0, np.zeros(1, np.int32))
+    assert st == 0 and np.all(np.isfinite(times))
+    measured = 1.0 / times.mean()
+    assert abs(measured / bhl - 1) < 4 / math.sqrt(n) + 0.20, measured / bhl
+    assert measured / kramers < 1 - 4 / math.sqrt(n), measured / kramers
+    # the library's rate is the same law
+    j = pendula.Junction(1e-6, 1.0, 1e-12, temperature=1.0)
+    jj = pendula.Junction(1e-6, 1 / (j.plasma_frequency * 1e-12 * beta), 1e-12,
+                          temperature=temp * j.josephson_energy / 1.380649e-23)
+    assert jj.escape_rate(tau * 1e-6, "underdamped") / jj.plasma_frequency == pytest.approx(bhl, rel=1e-9)
+    assert jj.escape_rate(tau * 1e-6) / jj.plasma_frequency == pytest.approx(kramers, rel=1e-9)

@@ -346,24 +346,36 @@ class Junction:
                                      "k_B = 1.380649e-23 J/K"})
         return r
 
-    def escape_rate(self, bias: ArrayLike) -> np.ndarray:
-        """The thermal escape rate out of the tilted well (Kramers), 1 / s.
+    def escape_rate(self, bias: ArrayLike, regime: Literal["moderate", "underdamped"] = "moderate") -> np.ndarray:
+        """The thermal escape rate out of the tilted well, 1 / s.
 
-        Kramers' rate for moderate to strong damping,
-        Gamma = (omega_a / 2 pi) (sqrt(1 + alpha^2) - alpha) exp(-dU / k_B T),
-        with omega_a = omega_p (1 - i^2)^(1/4) the attempt frequency (the
-        barrier's curvature frequency is the same for the washboard),
-        alpha = 1 / (2 omega_a R C) and dU = 2 E_J (sqrt(1 - i^2) - i arccos(i)),
-        i = I / I_c (Kramers 1940; Hanggi, Talkner and Borkovec, Rev. Mod.
-        Phys. 62 (1990) section IV).  Valid for dU >> k_B T and outside the
-        energy-diffusion regime (beta S_b / T >> 1, S_b the action of the
-        barrier orbit); 0 below the barrier's reach (i <= 0 gives the rate of
-        the untilted well), inf at i >= 1.
+        Gamma = a (omega_a / 2 pi) exp(-dU / k_B T), with omega_a =
+        omega_p (1 - i^2)^(1/4) the attempt frequency (the barrier's curvature
+        frequency is the same for the washboard), dU = 2 E_J (sqrt(1 - i^2) -
+        i arccos(i)), i = I / I_c, and the prefactor a of the damping regime:
+
+        * ``'moderate'``: Kramers' moderate-to-strong damping factor
+          a = sqrt(1 + alpha^2) - alpha, alpha = 1 / (2 omega_a R C)
+          (Kramers 1940; Hanggi, Talkner and Borkovec, Rev. Mod. Phys. 62
+          (1990) section IV).  Valid outside the energy-diffusion regime
+          (beta S_b / T >> 1, S_b = 36 dU / 5 omega_a the action of the barrier
+          orbit).
+        * ``'underdamped'``: the Buttiker-Harris-Landauer interpolation
+          a = 4 / (sqrt(1 + Q k_B T / (1.8 dU)) + 1)^2, Q = omega_a R C
+          (Buttiker, Harris and Landauer, Phys. Rev. B 28 (1983) 1268, as
+          used for switching junctions by Martinis, Devoret and Clarke, Phys.
+          Rev. B 35 (1987) 4682): for Q >> 1, across the turnover to energy
+          diffusion; an interpolation, good to about 20 %.
+
+        Both need dU >> k_B T.  The rate is that of the untilted well below
+        zero bias and inf at i >= 1.
 
         Parameters
         ----------
         bias : array_like
             Bias currents, A.
+        regime : {'moderate', 'underdamped'}
+            The prefactor (above).
 
         Returns
         -------
@@ -373,7 +385,7 @@ class Junction:
         Raises
         ------
         ValueError
-            At zero temperature (no thermal escape).
+            At zero temperature (no thermal escape), or an unknown `regime`.
 
         Examples
         --------
@@ -384,14 +396,17 @@ class Junction:
         """
         if not self.temperature > 0:
             raise ValueError("parameter 'temperature' must be > 0 for a thermal escape rate")
+        if regime not in ("moderate", "underdamped"):
+            raise ValueError(f"parameter 'regime' must be 'moderate' or 'underdamped', got {regime!r}")
         i = np.clip(_checks.as_float(bias, "bias") / self.critical_current, 0.0, 1.0)
-        return self.plasma_frequency * _kramers_rate(i, self.damping, self.noise)
+        return self.plasma_frequency * _escape_rate(i, self.damping, self.noise, regime)
 
-    def switching_density(self, currents: ArrayLike, ramp_rate: float) -> np.ndarray:
+    def switching_density(self, currents: ArrayLike, ramp_rate: float,
+                          regime: Literal["moderate", "underdamped"] = "moderate") -> np.ndarray:
         """The switching-current density of a ramp (Fulton and Dunkleberger), per ampere.
 
         P(I) = (Gamma(I) / (dI/dt)) exp(-int_0^I Gamma(I') dI' / (dI/dt)),
-        Gamma Kramers' rate (:meth:`escape_rate`) (Fulton and Dunkleberger,
+        Gamma the escape rate of `regime` (:meth:`escape_rate`) (Fulton and Dunkleberger,
         Phys. Rev. B 9 (1974) 4760); the integral by the trapezoidal rule on
         20001 points from 0 to the largest current.
 
@@ -401,6 +416,8 @@ class Junction:
             Currents, A (at most 1.2 I_c).
         ramp_rate : float
             dI/dt, A / s (> 0).
+        regime : {'moderate', 'underdamped'}
+            The escape rate's prefactor (:meth:`escape_rate`).
 
         Returns
         -------
@@ -425,11 +442,11 @@ class Junction:
         cur = _checks.as_float(currents, "currents")
         top = float(np.max(cur)) if cur.size else 0.0
         grid = np.linspace(0.0, max(top, 1e-300), 20001)
-        g = self.escape_rate(grid)
+        g = self.escape_rate(grid, regime)
         g_in = np.concatenate([[0.0], np.cumsum(0.5 * (g[1:] + g[:-1]) * np.diff(grid))]) / rate
         inside = np.interp(cur, grid, g_in)
         with np.errstate(over="ignore", invalid="ignore"):
-            p = self.escape_rate(cur) / rate * np.exp(-inside)
+            p = self.escape_rate(cur, regime) / rate * np.exp(-inside)
         # beyond the critical current every ramp has switched: no density left
         return np.where((cur >= 0) & np.isfinite(inside), p, 0.0)
 
@@ -508,15 +525,20 @@ class Junction:
         return SwitchingCurrents(samples, counts, edges, rate, self.temperature)
 
 
-def _kramers_rate(i, beta, temp):
-    """Kramers' moderate-to-strong damping rate of the tilted washboard
-    (eps = 1, reduced units) at bias i in [0, 1]."""
+def _escape_rate(i, beta, temp, regime):
+    """The thermal escape rate of the tilted washboard (eps = 1, reduced
+    units) at bias i in [0, 1]: Kramers' moderate-damping prefactor, or
+    Buttiker-Harris-Landauer's underdamped one (Junction.escape_rate)."""
     i = np.asarray(i, dtype=float)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         s = np.sqrt(1.0 - i * i)
         wa = np.sqrt(s)
         du = 2.0 * (s - i * np.arccos(i))
-        alpha = beta / (2.0 * wa)
-        pref = np.sqrt(1.0 + alpha * alpha) - alpha
+        if regime == "moderate":
+            alpha = beta / (2.0 * wa)
+            pref = np.sqrt(1.0 + alpha * alpha) - alpha
+        else:
+            q = wa / beta
+            pref = 4.0 / (np.sqrt(1.0 + q * temp / (1.8 * du)) + 1.0) ** 2
         g = wa / (2.0 * math.pi) * pref * np.exp(-du / temp)
     return np.where(i >= 1.0, np.inf, g)
