@@ -691,7 +691,10 @@ def iv_curve(scene: Scene | str | os.PathLike[str], torques: ArrayLike,
         6 locked: <v> = step * drive_frequency exactly; CF flags), with CF
         units and the options as attributes.  In a driven scene every torque
         is averaged over whole drive periods (see :func:`sweep`'s
-        ``mean_velocity``).
+        ``mean_velocity``).  A scene with thermal ``noise`` runs the Langevin
+        integrator: each torque of each branch draws its noise from its own
+        stream of the scene's ``seed``, ``mean_velocity_err`` is the standard
+        error from batch means, and no step locks (``step`` is NaN).
 
     Raises
     ------
