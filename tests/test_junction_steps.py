@@ -134,19 +134,12 @@ def test_step_width_follows_the_bessel_law_in_the_overdamped_limit():
 
 
 def test_pendula_run_sweep_csv_has_the_step_and_locked_status(tmp_path):
-    import pathlib
-    import subprocess
-    import sys
-    scene = tmp_path / "ac.nml"
-    scene.write_text("&scene\n damping = 1.0\n drive_amplitude = 1.0\n drive_frequency = 1.0\n grid = 'torque'\n"
-                     " grid1 = 0.3, 1.1, 1.6\n measure = 'mean_velocity'\n sweep_transient = 100\n"
-                     " sweep_t_max = 200\n/\n")
-    exe = pathlib.Path(sys.executable).parent / "pendula-run"
-    r = subprocess.run([str(exe), str(scene), "-o", str(tmp_path / "ac.csv")], capture_output=True, text=True)
-    assert r.returncode == 0, r.stderr
-    lines = (tmp_path / "ac.csv").read_text().splitlines()
+    from conftest import pendula_run_table
+    tab, scene = pendula_run_table(tmp_path, " damping = 1.0\n drive_amplitude = 1.0\n drive_frequency = 1.0\n"
+                                   " grid = 'torque'\n grid1 = 0.3, 1.1, 1.6\n measure = 'mean_velocity'\n"
+                                   " sweep_transient = 100\n sweep_t_max = 200")
+    lines = (tmp_path / "o.csv").read_text().splitlines()
     assert lines[1] == "torque,mean_velocity,mean_velocity_err,step,status" and "6 locked" in lines[0]
-    tab = np.loadtxt(tmp_path / "ac.csv", delimiter=",", comments="#", skiprows=2)
     ds = pendula.sweep(Scene.from_file(scene))
     np.testing.assert_array_equal(tab[:, 1], ds.mean_velocity.values)
     np.testing.assert_array_equal(tab[:, 3], ds.step.values)

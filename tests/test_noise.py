@@ -176,21 +176,17 @@ def test_noisy_sweep_of_a_deterministic_measure_is_refused():
 
 
 def test_pendula_run_noisy_sweep_equals_pendula_sweep_bit_for_bit(tmp_path):
-    import pathlib
-    scene = tmp_path / "warm.nml"
-    scene.write_text("&scene\n damping = 0.5\n noise = 0.3\n seed = 17\n grid = 'torque', 'v0'\n"
-                     " grid1_range = 0.0, 1.2, 5\n grid2 = 0.0, 1.0\n measure = 'mean_velocity'\n"
-                     " sweep_transient = 10\n sweep_t_max = 40\n/\n")
-    exe = pathlib.Path(sys.executable).parent / "pendula-run"
-    r = subprocess.run([str(exe), str(scene), "-o", str(tmp_path / "w.csv")], capture_output=True, text=True)
-    assert r.returncode == 0, r.stderr
-    tab = np.loadtxt(tmp_path / "w.csv", delimiter=",", comments="#", skiprows=2)
+    from conftest import pendula_run_table, venv_bin
+    body = (" damping = 0.5\n noise = 0.3\n seed = 17\n grid = 'torque', 'v0'\n grid1_range = 0.0, 1.2, 5\n"
+            " grid2 = 0.0, 1.0\n measure = 'mean_velocity'\n sweep_transient = 10\n sweep_t_max = 40")
+    tab, scene = pendula_run_table(tmp_path, body)
     ds = pendula.sweep(Scene.from_file(scene), chunk_points=3)
     np.testing.assert_array_equal(tab[:, 2], ds.mean_velocity.values.ravel())
     np.testing.assert_array_equal(tab[:, 3], ds.mean_velocity_err.values.ravel())
     bad = tmp_path / "bad.nml"
     bad.write_text(scene.read_text().replace("'mean_velocity'", "'final_well'"))
-    r = subprocess.run([str(exe), str(bad), "-o", str(tmp_path / "b.csv")], capture_output=True, text=True)
+    r = subprocess.run([venv_bin("pendula-run"), str(bad), "-o", str(tmp_path / "b.csv")], capture_output=True,
+                       text=True)
     assert r.returncode != 0 and "'noise'" in r.stderr
 
 

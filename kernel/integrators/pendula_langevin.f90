@@ -238,12 +238,23 @@ contains
     end do
   end subroutine langevin_moments
 
+  !> The OpenMP threads of a set of paths: nthreads when positive (at most
+  !> 256, the sweeps' limit), else OpenMP's default.
+  function path_threads(nthreads) result(nt)
+    !$ use omp_lib, only: omp_get_max_threads
+    integer, intent(in) :: nthreads
+    integer :: nt
+    nt = 1
+    !$ nt = omp_get_max_threads()
+    if (nthreads > 0) nt = nthreads
+    nt = max(1, min(nt, 256))
+  end function path_threads
+
   !> First-passage times out of a tilted well: n paths (path i has stream
   !> (seed, i - 1)), each from the well's bottom asin(tau / eps) with v drawn
   !> from the Maxwell distribution at temp, run until theta >= theta_exit
   !> (times(i)) or t_max (times(i) = NaN).  OpenMP over the paths.
   subroutine langevin_escape_times(m, temp, seed, h, theta_exit, t_max, n, times, status, nthreads, cancel)
-    !$ use omp_lib, only: omp_get_max_threads
     type(pendulum_model), intent(in) :: m
     real(dp), intent(in) :: temp, h, theta_exit, t_max
     integer(int64), intent(in) :: seed
@@ -256,9 +267,7 @@ contains
     real(dp) :: th, v
     type(langevin_stream) :: s
     status = lv_ok
-    nt = 1
-    !$ nt = omp_get_max_threads()
-    if (nthreads > 0) nt = nthreads
+    nt = path_threads(nthreads)
     jmax = int(min(t_max / h, real(langevin_max_steps, dp)), int64)
     !$omp parallel do schedule(dynamic, 1) default(none) num_threads(nt) &
     !$omp   shared(m, temp, seed, h, theta_exit, n, times, cancel, jmax, status) private(i, th, v, s, j, st)
@@ -269,30 +278,19 @@ contains
       th = asin(m%tau / m%eps); v = sqrt(temp) * next_normal(s)
       j = 0
       do while (j < jmax)
-        ! 64 steps at a time: the exit is read after each step of the block
-        call block_until(th, v, j, st)
+        ! one step at a time (the exit is read after each); the stream s is this thread's
+        ! private copy, so it is passed, never reached by host association
+        call langevin_steps(m, temp, s, real(j, dp) * h, h, 1_int64, th, v, st, cancel)
+        j = j + 1
         if (st /= lv_ok) exit
-        if (mod(j, poll) < 64 .and. cancel /= 0) exit   ! the cancel flag, once per `poll` steps
         if (th >= theta_exit) then
           times(i) = real(j, dp) * h; exit
         end if
+        if (mod(j, poll) == 0 .and. cancel /= 0) exit   ! the cancel flag, once per `poll` steps
       end do
     end do
     !$omp end parallel do
     if (cancel /= 0) status = lv_cancelled
-  contains
-    subroutine block_until(x, y, jj, stt)
-      real(dp), intent(inout) :: x, y
-      integer(int64), intent(inout) :: jj
-      integer, intent(out) :: stt
-      integer :: q
-      stt = lv_ok
-      do q = 1, 64
-        call langevin_steps(m, temp, s, real(jj, dp) * h, h, 1_int64, x, y, stt, cancel)
-        jj = jj + 1
-        if (stt /= lv_ok .or. x >= theta_exit .or. jj >= jmax) return
-      end do
-    end subroutine block_until
   end subroutine langevin_escape_times
 
   !> Switching currents of a current-biased junction (eps = 1, reduced
@@ -305,7 +303,6 @@ contains
   !> of the first barrier's top (pi - asin(i), at each step's bias) before that.  isw(i) = NaN
   !> when a path has not switched by i = i_max.  OpenMP over the paths.
   subroutine langevin_switching(beta, temp, rate, seed, h, i_max, n, isw, status, nthreads, cancel)
-    !$ use omp_lib, only: omp_get_max_threads
     real(dp), intent(in) :: beta, temp, rate, h, i_max
     integer(int64), intent(in) :: seed
     integer, intent(in) :: n, nthreads
@@ -322,9 +319,7 @@ contains
     if (.not. (rate > 0.0_dp .and. h > 0.0_dp .and. temp >= 0.0_dp .and. beta > 0.0_dp)) then
       status = lv_bad_argument; isw = nan_dp; return
     end if
-    nt = 1
-    !$ nt = omp_get_max_threads()
-    if (nthreads > 0) nt = nthreads
+    nt = path_threads(nthreads)
     jmax = int(min(i_max / rate / h, real(langevin_max_steps, dp)), int64)
     !$omp parallel do schedule(dynamic, 1) default(none) num_threads(nt) &
     !$omp   shared(beta, temp, rate, seed, h, n, isw, cancel, jmax) &
