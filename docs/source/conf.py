@@ -118,7 +118,8 @@ html_last_updated_fmt = None
 #: takes every top-level page whose name starts with it.
 SECTIONS = {
     "getting_started": ["install*"],
-    "guide": ["guide/exact", "guide/integrators", "guide/effects", "guide/spectra", "guide/damping", "guide/driven",
+    "guide": ["guide/exact", "guide/integrators", "guide/effects", "guide/spectra", "guide/damping",
+              "guide/josephson", "guide/driven",
               "guide/cord", "guide/cycloid", "guide/gravity", "guide/density", "guide/dynamics", "guide/sweeps",
               "sweeps_at_scale*", "guide/scenes", "scenes*", "vocabulary", "guide/architecture"],
     "reports": ["reports/accuracy", "accuracy*", "elliptic_edges*", "model_accuracy*", "reports/cost", "work_precision*", "reports/benchmarks",
@@ -177,6 +178,7 @@ API_GROUPS = [
     ("Sweeps", ["sweep", "iv_curve"]),
     ("Equilibria, periodic orbits and attractors", ["equilibria", "Equilibrium", "periodic_orbit",
                                                     "PeriodicOrbit", "attractor_map"]),
+    ("The Josephson junction", ["Junction", "SwitchingCurrents"]),
 ]
 
 

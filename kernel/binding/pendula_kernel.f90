@@ -163,7 +163,7 @@ subroutine exact_info_v(theta0, v0, eps, info, status)
 end subroutine exact_info_v
 
 ! ---------------------------------------------------------------- scenes and the dispatcher
-! A scene crosses the binding as fields: x(29) the numbers in the order of
+! A scene crosses the binding as fields: x(31) the numbers in the order of
 ! pendula_scene's number_fields (scene_layout_v), the words one after another
 ! in `words` with their lengths wlen: cord, guide, gravity, method, sweep,
 ! measure, name, then nout outputs, then ngrid grid axes.
@@ -194,7 +194,7 @@ subroutine scene_read_v(text, source, x, words, wlen, nout, ngrid, sweep_values,
   character(len=*), intent(in) :: text, source
   integer, intent(in) :: from_file
   !f2py integer optional, intent(in) :: from_file = 0
-  double precision, intent(out) :: x(29), sweep_values(4096), grid_values(4096, 3), grid_range(3, 3)
+  double precision, intent(out) :: x(31), sweep_values(4096), grid_values(4096, 3), grid_range(3, 3)
   character(len=1024), intent(out) :: words
   integer, intent(out) :: wlen(26), nout, ngrid, nsweep, grid_nv(3), grid_nr(3), status
   character(len=2048), intent(out) :: msg
@@ -221,7 +221,7 @@ subroutine scene_check_v(x, words, nw, wlen, nout, ngrid, ns, sweep_values, n1, 
                          nout_out, ngrid_out, status, msg)
   use pendula_scene, only: scene_t, scene_from_fields, scene_to_fields
   implicit none
-  double precision, intent(in) :: x(29)
+  double precision, intent(in) :: x(31)
   character(len=*), intent(in) :: words
   integer, intent(in) :: nw, nout, ngrid, ns, n1, n2, n3, nr1, nr2, nr3
   integer, intent(in) :: wlen(nw)
@@ -235,7 +235,7 @@ subroutine scene_check_v(x, words, nw, wlen, nout, ngrid, ns, sweep_values, n1, 
   !f2py intent(hide), depend(grid1_range) :: nr1 = len(grid1_range)
   !f2py intent(hide), depend(grid2_range) :: nr2 = len(grid2_range)
   !f2py intent(hide), depend(grid3_range) :: nr3 = len(grid3_range)
-  double precision, intent(out) :: x_out(29)
+  double precision, intent(out) :: x_out(31)
   character(len=1024), intent(out) :: words_out
   integer, intent(out) :: wlen_out(26), nout_out, ngrid_out, status
   character(len=2048), intent(out) :: msg
@@ -258,7 +258,7 @@ subroutine simulate_v(x, words, nw, wlen, nout, ngrid, n, t, cancel, theta, v, e
   use pendula_simulate, only: simulate_scene
   implicit none
   !f2py threadsafe
-  double precision, intent(in) :: x(29)
+  double precision, intent(in) :: x(31)
   character(len=*), intent(in) :: words
   integer, intent(in) :: nw, nout, ngrid, n
   integer, intent(in) :: wlen(nw)
@@ -312,7 +312,7 @@ subroutine integrate_v(x, words, nw, wlen, nout, ngrid, n, method, t, ev_kind, e
   use pendula_gsl_iface, only: pendula_gsl_rk8pd
   implicit none
   !f2py threadsafe
-  double precision, intent(in) :: x(29)
+  double precision, intent(in) :: x(31)
   character(len=*), intent(in) :: words
   integer, intent(in) :: nw, nout, ngrid, n, method, ev_kind, ev_dir, ev_terminal, max_ev
   integer, intent(in) :: wlen(nw)
@@ -494,7 +494,7 @@ subroutine cord_scene_v(fields, words, nw, wlen, nout, ngrid, n, maxf, t, cancel
   use pendula_simulate, only: cord_scene_run, simulate_status_text
   implicit none
   !f2py threadsafe
-  double precision, intent(in) :: fields(29)
+  double precision, intent(in) :: fields(31)
   character(len=*), intent(in) :: words
   integer, intent(in) :: nw, nout, ngrid, n, maxf
   integer, intent(in) :: wlen(nw)
@@ -547,17 +547,20 @@ subroutine sweep_block(measure, npts, params, rtol, atol, t_tr, t_max, nout, nth
 end subroutine sweep_block
 
 ! One adiabatic I-V branch (torques in the order given, state carried over).
-subroutine sweep_iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, cancel, vm, err, pstat, th, v)
+subroutine sweep_iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, temp, seed, first, dt, cancel, vm, err, &
+                           step, pstat, th, v)
   use pendula_sweep, only: iv_branch
   implicit none
   integer, intent(in) :: ntau
-  double precision, intent(in) :: params(12), taus(ntau), rtol, atol, t_tr, t_avg
+  double precision, intent(in) :: params(12), taus(ntau), rtol, atol, t_tr, t_avg, temp, dt
+  integer(8), intent(in) :: seed, first
   integer, intent(inout), volatile :: cancel(1)
-  double precision, intent(out) :: vm(ntau), err(ntau), th, v
+  double precision, intent(out) :: vm(ntau), err(ntau), step(ntau), th, v
   integer, intent(out) :: pstat(ntau)
   !f2py threadsafe
   !f2py intent(hide), depend(taus) :: ntau = len(taus)
-  call iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, vm, err, pstat, th, v, cancel(1))
+  call iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, temp, seed, first, dt, vm, err, step, pstat, th, v, &
+                 cancel(1))
 end subroutine sweep_iv_branch
 
 ! The sweep's model rule on a scene's text (status 0 ok; 3 the model is not
@@ -566,7 +569,7 @@ subroutine sweep_model_check_v(x, words, nw, wlen, nout, ngrid, what, status, ms
   use pendula_scene, only: scene_t, scene_from_fields
   use pendula_sweep, only: sweep_model_rule
   implicit none
-  double precision, intent(in) :: x(29)
+  double precision, intent(in) :: x(31)
   character(len=*), intent(in) :: words, what
   integer, intent(in) :: nw, nout, ngrid
   integer, intent(in) :: wlen(nw)
@@ -714,7 +717,7 @@ subroutine periodic_orbit_v(x, words, nw, wlen, nout, ngrid, period, winding, rt
   use pendula_gsl_iface, only: pendula_gsl_periodic_orbit
   implicit none
   !f2py threadsafe
-  double precision, intent(in) :: x(29)
+  double precision, intent(in) :: x(31)
   character(len=*), intent(in) :: words
   integer, intent(in) :: nw, nout, ngrid
   integer, intent(in) :: wlen(nw)
@@ -755,7 +758,7 @@ subroutine simulate_force_v(x, words, nw, wlen, nout, ngrid, n, t, faddr, np, fp
   use pendula_simulate, only: simulate_scene
   implicit none
   !f2py threadsafe
-  double precision, intent(in) :: x(29)
+  double precision, intent(in) :: x(31)
   character(len=*), intent(in) :: words
   integer, intent(in) :: nw, nout, ngrid, n, np
   integer, intent(in) :: wlen(nw)
@@ -797,7 +800,7 @@ subroutine periodic_orbit_force_v(x, words, nw, wlen, nout, ngrid, period, windi
   use pendula_gsl_iface, only: pendula_gsl_periodic_orbit
   implicit none
   !f2py threadsafe
-  double precision, intent(in) :: x(29)
+  double precision, intent(in) :: x(31)
   character(len=*), intent(in) :: words
   integer, intent(in) :: nw, nout, ngrid, np
   integer, intent(in) :: wlen(nw)
@@ -866,3 +869,73 @@ subroutine sweep_block_force(measure, npts, params, rtol, atol, t_tr, t_max, nou
   call sweep_points(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, nthreads, cancel(1), &
                     f, fparams)
 end subroutine sweep_block_force
+! ---------------------------------------------------------------- thermal noise (pendula_langevin)
+
+! The sweep's mean_velocity with thermal noise at temperature temp: point i
+! on the noise stream (seed, first + i - 1) (first: the block's index in the
+! whole grid, so chunks do not change a point), Langevin step dt (<= 0: the
+! default).  out(:, i) = <v>, its standard error, NaN; pstat as sweep_block.
+subroutine sweep_block_noisy(npts, params, temp, seed, first, dt, t_tr, t_max, nthreads, cancel, out, pstat)
+  use pendula_sweep, only: sweep_points_noisy
+  implicit none
+  integer, intent(in) :: npts, nthreads
+  double precision, intent(in) :: params(12, npts), temp, dt, t_tr, t_max
+  integer(8), intent(in) :: seed, first
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: out(3, npts)
+  integer, intent(out) :: pstat(npts)
+  !f2py threadsafe
+  !f2py intent(hide), depend(params) :: npts = shape(params, 1)
+  call sweep_points_noisy(npts, params, temp, seed, first, dt, t_tr, t_max, out, pstat, nthreads, cancel(1))
+end subroutine sweep_block_noisy
+
+! Batch means of v^2 and cos(theta) of one equilibrium Langevin path (the
+! checks of the thermal distribution): model (eps, beta, tau), temperature
+! temp, stream (seed, index), step h, nburn steps, nbatch batches of nper.
+subroutine langevin_moments_v(eps, beta, tau, temp, seed, index, h, nburn, nbatch, nper, cancel, v2, cth, status)
+  use pendula_langevin, only: langevin_moments
+  use pendula_integrators, only: make_model
+  implicit none
+  double precision, intent(in) :: eps, beta, tau, temp, h
+  integer(8), intent(in) :: seed, index, nburn, nper
+  integer, intent(in) :: nbatch
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: v2(nbatch), cth(nbatch)
+  integer, intent(out) :: status
+  !f2py threadsafe
+  call langevin_moments(make_model(eps, beta, tau, 0.0d0, 0.0d0, 0.0d0), temp, seed, index, h, nburn, nbatch, &
+                        nper, v2, cth, status, cancel(1))
+end subroutine langevin_moments_v
+
+! First-passage times out of the tilted well (eps, beta, tau) at temp: n
+! paths from the well's bottom until theta >= theta_exit (NaN after t_max).
+subroutine langevin_escape_v(eps, beta, tau, temp, seed, h, theta_exit, t_max, n, nthreads, cancel, times, status)
+  use pendula_langevin, only: langevin_escape_times
+  use pendula_integrators, only: make_model
+  implicit none
+  double precision, intent(in) :: eps, beta, tau, temp, h, theta_exit, t_max
+  integer(8), intent(in) :: seed
+  integer, intent(in) :: n, nthreads
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: times(n)
+  integer, intent(out) :: status
+  !f2py threadsafe
+  call langevin_escape_times(make_model(eps, beta, tau, 0.0d0, 0.0d0, 0.0d0), temp, seed, h, theta_exit, t_max, &
+                             n, times, status, nthreads, cancel(1))
+end subroutine langevin_escape_v
+
+! Switching currents (reduced: bias / critical current) of n ramps i = rate t
+! with damping beta at temp; path k on the stream (seed, k - 1); NaN when a
+! path has not switched by i_max.
+subroutine junction_switching_v(beta, temp, rate, seed, h, i_max, n, nthreads, cancel, isw, status)
+  use pendula_langevin, only: langevin_switching
+  implicit none
+  double precision, intent(in) :: beta, temp, rate, h, i_max
+  integer(8), intent(in) :: seed
+  integer, intent(in) :: n, nthreads
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: isw(n)
+  integer, intent(out) :: status
+  !f2py threadsafe
+  call langevin_switching(beta, temp, rate, seed, h, i_max, n, isw, status, nthreads, cancel(1))
+end subroutine junction_switching_v

@@ -14,6 +14,7 @@ module pendula_simulate
   use, intrinsic :: iso_c_binding, only: c_loc, c_funptr, c_f_procpointer, c_null_ptr, c_associated, &
     c_funloc
   use pendula_kinds, only: dp, i8, nan_dp, two_pi
+  use, intrinsic :: iso_fortran_env, only: int64
   use pendula_scene, only: scene_t, scene_effects, scene_has_orbit_facts
   use pendula_rigid, only: rigid_has_exact, rigid_exact, rigid_energy
   use pendula_cycloid, only: cycloid_run, cycloid_omega2, cy_ok, cy_reaches_cusp
@@ -34,9 +35,10 @@ module pendula_simulate
     sim_model_clash = 15, sim_exact_refused = 16, sim_backward = 17, sim_gsl_failed = 18, &
     sim_too_many_steps = 19, sim_cancelled = 20, sim_closed_form_only = 21, sim_beyond_cusp = 22, &
     sim_nonfinite_t = 23, sim_cord_effects = 24, sim_velocity_force = 25, &
-    sim_switch_backward = 26, sim_force_method = 27, sim_force_model = 28, sim_release_failed = 29
+    sim_switch_backward = 26, sim_force_method = 27, sim_force_model = 28, sim_release_failed = 29, &
+    sim_noise_backward = 30, sim_force_noise = 31
   !> method codes: the integrators' 1..9, 11 (dprkn6) and 12 (vern9), then GSL's rk8pd and the exact path
-  integer, parameter, public :: m_gsl_rk8pd = 10, m_exact = 0
+  integer, parameter, public :: m_gsl_rk8pd = 10, m_exact = 0, m_langevin = 13
 
   !> What a model is, for users (`pendula models`) and for the dispatcher.
   type :: model_info_t
@@ -148,7 +150,13 @@ contains
     end if
     select case (id)
     case (mid_rigid)
-      if (rigid_has_exact(sc%damping, sc%torque, sc%drive_amplitude) .and. .not. present(force) .and. &
+      if (sc%noise > 0.0_dp) then
+        ! thermal noise: the Langevin integrator (the scene check allows it on the rigid pendulum only)
+        if (present(force)) then
+          status = sim_force_noise; msg = simulate_status_text(status); return
+        end if
+        call langevin_scene(sc, t, theta, v, stats, method, status, cancel)
+      else if (rigid_has_exact(sc%damping, sc%torque, sc%drive_amplitude) .and. .not. present(force) .and. &
           sc%friction == 0 .and. sc%drag == 0 .and. sc%pivot_amplitude == 0 .and. &
           (sc%method == 'auto' .or. sc%method == 'exact')) then
         method = m_exact
@@ -300,6 +308,42 @@ contains
       end select
     end subroutine switched_run
   end subroutine integrate_model
+
+  !> A scene with thermal noise: the Langevin path (pendula_langevin, BAOAB)
+  !> at the times t (>= 0, ascending) from (theta0, v0) at t = 0, step the
+  !> scene's dt or its default (langevin_default_dt), noise from the seed.
+  subroutine langevin_scene(sc, t, theta, v, stats, method, status, cancel)
+    use pendula_langevin, only: langevin_path, langevin_default_dt, lv_ok, lv_backward, lv_too_many_steps, &
+      lv_cancelled, lv_bad_argument
+    type(scene_t), intent(in) :: sc
+    real(dp), intent(in) :: t(:)
+    real(dp), intent(out) :: theta(:), v(:), stats(4)
+    integer, intent(out) :: method, status
+    integer, intent(inout), volatile, optional :: cancel
+    integer, volatile :: no_cancel
+    integer(int64) :: nsteps
+    real(dp) :: h
+    method = m_langevin
+    h = sc%dt
+    if (.not. (h > 0.0_dp)) h = langevin_default_dt(sc%eps, sc%drive_frequency)
+    no_cancel = 0
+    if (present(cancel)) then
+      call langevin_path(scene_model(sc), sc%noise, sc%seed, h, sc%theta0, sc%v0, t, theta, v, nsteps, status, &
+                         cancel)
+    else
+      call langevin_path(scene_model(sc), sc%noise, sc%seed, h, sc%theta0, sc%v0, t, theta, v, nsteps, status, &
+                         no_cancel)
+    end if
+    stats = [real(nsteps, dp), real(nsteps, dp), 0.0_dp, real(2 * nsteps, dp)]
+    select case (status)
+    case (lv_ok); status = sim_ok
+    case (lv_backward); status = sim_noise_backward
+    case (lv_too_many_steps); status = sim_too_many_steps
+    case (lv_cancelled); status = sim_cancelled
+    case (lv_bad_argument); status = sim_unsorted
+    case default; status = sim_integrator_failed
+    end select
+  end subroutine langevin_scene
 
   !> The flexible cord through simulate_scene: theta and v (the bob's x, y, r and the
   !> flip log: cord_scene_run).
@@ -496,6 +540,10 @@ contains
                                      'only (not the flexible cord or the cycloidal guide)'
     case (sim_release_failed);   s = 'field ''friction'': the time the stuck bob breaks loose was not ' // &
                                      'located (GSL root finder failed)'
+    case (sim_noise_backward);   s = 'a scene with noise runs forward from t = 0 only (a Langevin path has ' // &
+                                     'no past): give times >= 0 (t_start >= 0)'
+    case (sim_force_noise);      s = 'field ''noise'': a user force with thermal noise is not implemented ' // &
+                                     '(the Langevin integrator takes the scene''s own force law only)'
     case default;                s = 'unknown failure'
     end select
   end function simulate_status_text

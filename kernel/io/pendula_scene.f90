@@ -20,6 +20,7 @@ module pendula_scene
   use pendula_outfile, only: out_errtext
   use pendula_exact, only: pendulum_orbit, orbit_setup, regime_separatrix
   use pendula_cycloid, only: cycloid_omega2
+  use, intrinsic :: iso_fortran_env, only: int64
   implicit none
   private
   public :: scene_t, read_scene, parse_scene, scene_from_fields, scene_to_fields, scene_lists, check_scene, &
@@ -42,12 +43,12 @@ module pendula_scene
   end interface
   !> the numbers of a scene in the order scene_from_fields takes them (whole
   !> numbers too: n_samples, max_flips, sweep_samples)
-  integer, parameter :: n_number_fields = 29
+  integer, parameter :: n_number_fields = 31
   character(len=16), parameter :: number_fields(n_number_fields) = [character(len=16) :: 'eps', 'theta0', &
     'v0', 't_start', 't_end', 'n_samples', 'damping', 'torque', 'drive_amplitude', 'drive_frequency', &
     'drive_phase', 'rtol', 'atol', 'dt', 'g', 'length', 'cycloid_radius', 'gravity_distance', &
     'gravity_gradient', 'restitution', 'max_flips', 'min_flight', 'sweep_t_max', 'sweep_transient', &
-    'sweep_samples', 'friction', 'drag', 'pivot_amplitude', 'pivot_frequency']
+    'sweep_samples', 'friction', 'drag', 'pivot_amplitude', 'pivot_frequency', 'noise', 'seed']
   !> the single words, in order; then the outputs, then the grid's axes
   integer, parameter :: n_word_fields = 7
   character(len=8), parameter :: word_fields(n_word_fields) = [character(len=8) :: 'cord', 'guide', 'gravity', &
@@ -60,6 +61,8 @@ module pendula_scene
   real(dp), parameter :: drive_phase_limit = 1024.0_dp
   !> eps above 1e300 leaves no room for the exact path's double-double sqrt(eps)
   real(dp), parameter :: eps_limit = 1.0e300_dp
+  !> the largest seed: 2^53, every whole number up to it is a double
+  real(dp), parameter :: seed_limit = 9007199254740992.0_dp
 
   type :: scene_t
     real(dp) :: eps = 1.0_dp, theta0 = 0.0_dp, v0 = 0.0_dp
@@ -94,6 +97,10 @@ module pendula_scene
     integer :: sweep_samples = 100
     ! effects: dry (Coulomb) friction mu, quadratic drag gamma, a vertically vibrating pivot a cos(Omega t)
     real(dp) :: friction = 0.0_dp, drag = 0.0_dp, pivot_amplitude = 0.0_dp, pivot_frequency = 0.0_dp
+    ! thermal noise (kernel/integrators/pendula_langevin.f90): the temperature T in units
+    ! of eps, and the seed of its counter-based random numbers (0 .. 2^53)
+    real(dp) :: noise = 0.0_dp
+    integer(int64) :: seed = 0
   end type scene_t
 
 contains
@@ -158,8 +165,9 @@ contains
     real(dp) :: eps, theta0, v0, t_start, t_end, damping, torque, drive_amplitude, &
                 drive_frequency, drive_phase, rtol, atol, dt, g, length, cycloid_radius, gravity_distance, &
                 gravity_gradient, restitution, min_flight, sweep_t_max, sweep_transient, &
-                friction, drag, pivot_amplitude, pivot_frequency
+                friction, drag, pivot_amplitude, pivot_frequency, noise
     integer :: n_samples, max_flips, sweep_samples
+    integer(int64) :: seed
     real(dp) :: grid1(max_sweep), grid2(max_sweep), grid3(max_sweep), grid1_range(3), grid2_range(3), &
                 grid3_range(3)
     ! far more characters than the scene holds: a longer string is refused
@@ -172,7 +180,7 @@ contains
       outputs, sweep, sweep_values, name, g, length, cycloid_radius, gravity_distance, gravity_gradient, &
       restitution, max_flips, min_flight, &
       grid, grid1, grid2, grid3, grid1_range, grid2_range, grid3_range, measure, sweep_t_max, &
-      sweep_transient, sweep_samples, friction, drag, pivot_amplitude, pivot_frequency
+      sweep_transient, sweep_samples, friction, drag, pivot_amplitude, pivot_frequency, noise, seed
     character(len=:), allocatable :: text
     character(len=:), allocatable :: buf
     character(len=512) :: iom
@@ -182,7 +190,7 @@ contains
     character(len=32) :: words(max_words)
     integer :: wlen(max_words), nout, ngrid
     character(len=1024) :: longw(max_words)
-    integer, parameter :: n_known = 45
+    integer, parameter :: n_known = 47
     character(len=16), parameter :: known_fields(n_known) = [character(len=16) :: 'eps', 'theta0', 'v0', &
       't_start', 't_end', 'n_samples', 'damping', 'torque', 'drive_amplitude', 'drive_frequency', &
       'drive_phase', 'cord', 'guide', 'gravity', 'method', 'rtol', 'atol', 'dt', 'outputs', 'sweep', &
@@ -190,7 +198,7 @@ contains
       'restitution', 'max_flips', 'min_flight', &
       'grid', 'grid1', 'grid2', 'grid3', 'grid1_range', 'grid2_range', 'grid3_range', 'measure', &
       'sweep_t_max', 'sweep_transient', 'sweep_samples', 'friction', 'drag', 'pivot_amplitude', &
-      'pivot_frequency']
+      'pivot_frequency', 'noise', 'seed']
     ! how many values each field was given, and the line where it was
     integer :: given(n_known), given_line(n_known)
 
@@ -207,6 +215,7 @@ contains
     grid3_range = nan_dp; measure = ''; sweep_t_max = 2000.0_dp; sweep_transient = 200.0_dp
     sweep_samples = 100
     friction = 0; drag = 0; pivot_amplitude = 0; pivot_frequency = 0
+    noise = 0.0_dp; seed = 0
     given = 0
     given_line = 0
     if (present(g_out)) g_out = nan_dp
@@ -325,7 +334,7 @@ contains
         return
       end if
       select case (trim(fname))
-      case ('n_samples', 'max_flips', 'sweep_samples')
+      case ('n_samples', 'max_flips', 'sweep_samples', 'seed')
         kk = first_token_not(text(eq:k - 1), 'i')
         iom = 'a whole number'
       case ('cord', 'guide', 'gravity', 'method', 'sweep', 'measure', 'name', 'outputs', 'grid')
@@ -383,6 +392,7 @@ contains
     sc%sweep_t_max = sweep_t_max; sc%sweep_transient = sweep_transient; sc%sweep_samples = sweep_samples
     sc%friction = friction; sc%drag = drag; sc%pivot_amplitude = pivot_amplitude
     sc%pivot_frequency = pivot_frequency
+    sc%noise = noise; sc%seed = seed
     call set_words(sc, words, nout, ngrid)
     sc%n_sweep = given(findloc(known_fields, 'sweep_values', dim=1))
     sc%sweep_values = sweep_values(1:sc%n_sweep)
@@ -490,6 +500,11 @@ contains
     if (.not. whole(x(6), sc%n_samples, msg, 'n_samples')) return
     if (.not. whole(x(21), sc%max_flips, msg, 'max_flips')) return
     if (.not. whole(x(25), sc%sweep_samples, msg, 'sweep_samples')) return
+    sc%noise = x(30)
+    if (.not. (x(31) == aint(x(31)) .and. x(31) >= 0.0_dp .and. x(31) <= seed_limit)) then
+      msg = 'field ''seed'' must be a whole number from 0 to 2^53, got ' // trim(num_text(x(31))); return
+    end if
+    sc%seed = int(x(31), int64)
     call set_words(sc, w, nout, ngrid)
     sc%n_sweep = size(sweep_values)
     sc%sweep_values = sweep_values
@@ -549,7 +564,8 @@ contains
          sc%drive_amplitude, sc%drive_frequency, sc%drive_phase, sc%rtol, sc%atol, sc%dt, g, length, &
          sc%cycloid_radius, sc%gravity_distance, sc%gravity_gradient, sc%restitution, real(sc%max_flips, dp), &
          sc%min_flight, sc%sweep_t_max, sc%sweep_transient, real(sc%sweep_samples, dp), &
-         sc%friction, sc%drag, sc%pivot_amplitude, sc%pivot_frequency]
+         sc%friction, sc%drag, sc%pivot_amplitude, sc%pivot_frequency, sc%noise, &
+         real(sc%seed, dp)]
     nout = sc%n_outputs
     ngrid = sc%n_grid
     words = ''
@@ -813,6 +829,7 @@ contains
       msg = phase_text('field ''drive_phase''', sc%drive_phase); return
     end if
     if (len_trim(msg) == 0) call effect_rules(sc, msg)
+    if (len_trim(msg) == 0) call noise_rules(sc, msg)
     if (len_trim(msg) == 0) call model_rules(sc, msg)
   end subroutine value_rules
 
@@ -869,6 +886,40 @@ contains
       end if
     end if
   end subroutine effect_rules
+
+  !> Thermal noise: a temperature, which needs its damping (the force
+  !> sqrt(2 beta T) xi of the fluctuation-dissipation theorem), on the rigid
+  !> pendulum, run by the Langevin integrator (msg = '' when fine).
+  subroutine noise_rules(sc, msg)
+    type(scene_t), intent(in) :: sc
+    character(len=*), intent(out) :: msg
+    msg = ''
+    if (.not. (sc%noise >= 0 .and. sc%noise <= huge(1.0_dp))) then
+      msg = 'field ''noise'' must be a finite temperature >= 0 (in units of eps), got ' // &
+            trim(num_text(sc%noise)); return
+    end if
+    if (sc%seed < 0 .or. real(sc%seed, dp) > seed_limit) then
+      msg = 'field ''seed'' must be a whole number from 0 to 2^53'; return
+    end if
+    if (sc%noise == 0) return
+    if (.not. (sc%damping > 0)) then
+      msg = 'field ''noise'' needs damping > 0: the thermal force sqrt(2 damping noise) xi(t) comes with ' // &
+            'the friction (fluctuation-dissipation); without damping there is no temperature'; return
+    end if
+    if (sc%cord /= 'rigid' .or. sc%guide /= 'none' .or. sc%gravity /= 'uniform') then
+      msg = 'field ''noise'': thermal noise is implemented for the rigid pendulum only (cord = ''rigid'', ' // &
+            'guide = ''none'', gravity = ''uniform'')'; return
+    end if
+    if (sc%friction /= 0 .or. sc%drag /= 0) then
+      msg = 'fields ''noise'' and ''' // trim(merge('friction', 'drag    ', sc%friction /= 0)) // ''': the ' // &
+            'Langevin integrator splits off the linear damping only; a velocity-dependent friction or drag ' // &
+            'with thermal noise is not implemented'; return
+    end if
+    if (sc%method /= 'auto') then
+      msg = 'field ''method'': a scene with noise runs the Langevin integrator (BAOAB, fixed step dt); ' // &
+            'method must be ''auto'', got ''' // trim(sc%method) // ''''; return
+    end if
+  end subroutine noise_rules
 
   !> The cycloidal guide, the gravity fields, the flexible cord, and the
   !> method 'exact' (msg = '' when fine).
@@ -1109,6 +1160,7 @@ contains
     if (sc%friction /= 0) call add('friction')
     if (sc%drag /= 0) call add('drag')
     if (sc%pivot_amplitude /= 0) call add('pivot')
+    if (sc%noise /= 0) call add('noise')
   contains
     pure subroutine add(w)
       character(len=*), intent(in) :: w
@@ -1147,6 +1199,10 @@ contains
     if (sc%friction /= 0 .or. sc%drag /= 0 .or. sc%pivot_amplitude /= 0) then
       write(tmp, '(a, es24.16e3, a, es24.16e3, a, es24.16e3, a, es24.16e3)') 'friction = ', sc%friction, &
         ', drag = ', sc%drag, ', pivot_amplitude = ', sc%pivot_amplitude, ', pivot_frequency = ', sc%pivot_frequency
+      s = trim(s) // new_line('a') // '# ' // trim(tmp)
+    end if
+    if (sc%noise /= 0) then
+      write(tmp, '(a, es24.16e3, a, i0, a, es24.16e3)') 'noise = ', sc%noise, ', seed = ', sc%seed, ', dt = ', sc%dt
       s = trim(s) // new_line('a') // '# ' // trim(tmp)
     end if
     if (len_trim(sc%name) > 0) s = trim(s) // new_line('a') // '# name = ' // trim(sc%name)

@@ -16,7 +16,10 @@
 !>
 !> Measures (codes), outputs per point:
 !>   1 final_well:    out(1) = n (well at asin(tau/eps) + 2 pi n), out(2) = time decided
-!>   2 mean_velocity: out(1) = <v> after the transient, out(2) = convergence estimate
+!>   2 mean_velocity: out(1) = <v> after the transient, out(2) = its error bar, out(3) (when
+!>                    nout >= 3) = the Shapiro step p / q of a phase-locked driven orbit (NaN
+!>                    otherwise); a driven point averages over whole drive periods and a
+!>                    locked one reports <v> = p Omega / q exactly (status 6)
 !>   3 locked:        out(1) = 1 locked / 0 running, out(2) = time decided
 !>   4 poincare:      out(2k-1), out(2k) = theta mod 2 pi in [-pi, pi), v at t = (n_tr + k) T,
 !>                    n_tr = ceil(t_tr / T) with each point's own drive period T
@@ -27,7 +30,8 @@
 !> Point status: 0 decided; 1 not settled / not decided by t_max; 2 the
 !> measure does not apply to this point (e.g. final_well without damping,
 !> no well when |tau| >= eps, poincare without a drive, |theta0| > 2^52);
-!> 3 bad measure code; 5 stopped by the cancel flag;
+!> 3 bad measure code; 5 stopped by the cancel flag; 6 phase-locked to the drive (mean_velocity:
+!> decided, exact);
 !> 100 + s: the integrator failed with status s.
 !>
 !> The rules every caller applies before a sweep (pendula.sweep, pendula.iv_curve,
@@ -45,10 +49,12 @@ module pendula_sweep
   use pendula_outfile, only: outfile_t, out_line, out_reals
   use pendula_simulate, only: select_model, registry, mid_rigid, sim_ok, attach_force
   use, intrinsic :: iso_c_binding, only: c_funptr
+  use pendula_langevin, only: langevin_stream, langevin_open, langevin_steps, langevin_default_dt, lv_ok, &
+    lv_cancelled
   use, intrinsic :: iso_fortran_env, only: int64
   implicit none
   private
-  public :: sweep_points, iv_branch, np_params, sweep_scene_csv, sweep_model_rule, sweep_limits
+  public :: sweep_points, sweep_points_noisy, iv_branch, np_params, sweep_scene_csv, sweep_model_rule, sweep_limits
   public :: ms_final_well, ms_mean_velocity, ms_locked, ms_poincare, ms_lyapunov
 
   !> eps, beta, tau, amp, omega, phase, theta0, v0, then the vibrating pivot's amplitude and frequency,
@@ -57,7 +63,7 @@ module pendula_sweep
   integer, parameter :: ms_final_well = 1, ms_mean_velocity = 2, ms_locked = 3, ms_poincare = 4, &
     ms_lyapunov = 5
   integer, parameter :: ps_decided = 0, ps_unsettled = 1, ps_not_applicable = 2, ps_bad_measure = 3, &
-    ps_uncertain = 4, ps_cancelled = 5
+    ps_uncertain = 4, ps_cancelled = 5, ps_locked = 6
   !> OpenMP threads of one sweep call: 0 (OpenMP's default) or 1 .. sweep_max_threads;
   !> the kernel clamps anything else into that range (the callers refuse it first)
   integer, parameter, public :: sweep_max_threads = 256
@@ -191,8 +197,9 @@ contains
         st = ps_unsettled
       end if
     case (ms_mean_velocity)
-      call mean_velocity(p, rtol, atol, t_tr, t_max, p(7), p(8), vm, err, th, v, st, cancel, uf)
+      call mean_velocity(p, rtol, atol, t_tr, t_max, p(7), p(8), vm, err, lam2, th, v, st, cancel, uf)
       o(1) = vm; o(2) = err
+      if (size(o) >= 3) o(3) = lam2
     case (ms_poincare)
       ! the transient is a time: each point skips whole periods of its own drive
       n = 0
@@ -329,19 +336,34 @@ contains
     yes = (all(vs > 0.0_dp) .or. all(vs < 0.0_dp)) .and. abs(ths(size(ts)) - th1) > two_pi
   end function running
 
-  !> <v> over t_avg after a transient t_tr, from (th0, v0); the convergence
-  !> estimate is |<v>_whole - <v>_second half|.  An undriven damped orbit
-  !> trapped in a well has <v> = 0 exactly: decided as soon as it is trapped.
-  subroutine mean_velocity(p, rtol, atol, t_tr, t_avg, th0, v0, vm, err, th, v, st, cancel, uf)
+  !> <v> over t_avg after a transient t_tr, from (th0, v0).  A driven orbit
+  !> (A /= 0, Omega > 0): mean_velocity_driven (whole drive periods, phase
+  !> locking detected).  Otherwise the window is t_avg after t_tr and the error
+  !> bar err = max(|<v> - <v>_second half|, the windowing bound w) with
+  !> w = min(2 pi (v_max - v_min) / (|<v>| t_avg), (theta_max - theta_min) / t_avg):
+  !> for a running periodic orbit theta - <v> t has period 2 pi / |<v>| and
+  !> oscillates by at most (v_max - v_min) pi / |<v>| (half of it, doubled for
+  !> extrema between the 8 samples per window); a bounded one cannot move the
+  !> mean by more than its range.  An undriven damped orbit trapped in a well
+  !> has <v> = 0 exactly: decided as soon as it is trapped.
+  !> step: the Shapiro step p / q of a phase-locked driven orbit, NaN otherwise;
+  !> st = ps_locked then (<v> = p Omega / q exactly, err = 0).
+  subroutine mean_velocity(p, rtol, atol, t_tr, t_avg, th0, v0, vm, err, step, th, v, st, cancel, uf)
     real(dp), intent(in) :: p(np_params), rtol, atol, t_tr, t_avg, th0, v0
-    real(dp), intent(out) :: vm, err, th, v
+    real(dp), intent(out) :: vm, err, step, th, v
     integer, intent(out) :: st
     integer, intent(inout), volatile :: cancel
     type(pendulum_model), intent(in), optional :: uf
-    real(dp) :: t, tw, ts(1), ths(1), vs(1), tha, thh, seg_end(3)
+    real(dp) :: t, tw, ts(nsub), ths(nsub), vs(nsub), tha, thh, seg_end(3), h, vlo, vhi, tlo, thi
     integer(int64) :: n
-    integer :: seg
+    integer :: seg, k
     logical :: can_trap, tr
+    step = nan_dp
+    ! whole drive periods where the drive sets the period (a pivot, if any, at the same frequency)
+    if (p(4) /= 0.0_dp .and. p(5) > 0.0_dp .and. forcing_omega(p) == p(5)) then
+      call mean_velocity_driven(p, rtol, atol, t_tr, t_avg, th0, v0, vm, err, step, th, v, st, cancel, uf)
+      return
+    end if
     th = th0; v = v0; t = 0.0_dp; st = ps_decided
     vm = nan_dp; err = nan_dp
     can_trap = dissipative(p) .and. p(4) == 0.0_dp .and. p(9) == 0.0_dp .and. abs(p(3)) < p(1)
@@ -354,6 +376,7 @@ contains
       st = ps_not_applicable; return
     end if
     tha = th; thh = th
+    vlo = huge(1.0_dp); vhi = -huge(1.0_dp); tlo = huge(1.0_dp); thi = -huge(1.0_dp)
     do seg = 1, 3
       do while (t < seg_end(seg))
         if (cancel /= 0) then
@@ -365,21 +388,29 @@ contains
             vm = 0.0_dp; err = 0.0_dp; return
           end if
         end if
-        ts(1) = min(tw, seg_end(seg) - t)
+        h = min(tw, seg_end(seg) - t)
+        ts = [(h * k / real(nsub, dp), k = 1, nsub)]
+        ts(nsub) = h
         call advance(p, t, rtol, atol, ts, th, v, ths, vs, st, cancel, uf)
         if (st /= ps_decided) return
+        if (seg > 1) then
+          vlo = min(vlo, minval(vs)); vhi = max(vhi, maxval(vs))
+          tlo = min(tlo, minval(ths)); thi = max(thi, maxval(ths))
+        end if
         ! the segment ends exactly at seg_end, whatever the rounding of the sum
-        if (ts(1) == seg_end(seg) - t) then
+        if (h == seg_end(seg) - t) then
           t = seg_end(seg)
         else
-          t = t + ts(1)
+          t = t + h
         end if
       end do
       if (seg == 1) tha = th
       if (seg == 2) thh = th
     end do
     vm = (th - tha) / t_avg
-    err = abs(vm - (th - thh) / (0.5_dp * t_avg))
+    h = (thi - tlo) / t_avg
+    if (vm /= 0.0_dp) h = min(h, two_pi * (vhi - vlo) / (abs(vm) * t_avg))
+    err = max(abs(vm - (th - thh) / (0.5_dp * t_avg)), h)
   end subroutine mean_velocity
 
   !> Does the point lose energy whenever it moves (damping, friction or drag)?  Then an undriven
@@ -402,6 +433,237 @@ contains
       end if
     end if
   end function forcing_omega
+  !> <v> of a driven orbit over whole drive periods T = 2 pi / Omega: the
+  !> stroboscopic map (one period from drive phase p(6), theta reduced to
+  !> [-pi, pi] and its turns counted) is iterated ceil(t_tr / T) periods of
+  !> transient, then an even number of periods covering t_avg (at least 2).
+  !> Phase locking: when the map returns to a state q periods back (q <= 8)
+  !> with theta advanced by 2 pi p, the orbit is on a periodic orbit of the
+  !> map and <v> = p Omega / q exactly (the rotation number of a periodic
+  !> orbit); detected when the distance d = max(|d theta|, |d v|) between the
+  !> two states is at the rounding level (1e-12 (1 + |v|)), or below 1e-7 and
+  !> shrinking geometrically (the ratio r of successive distances below 1
+  !> twice running, with d r / (1 - r) <= 1e-7: the rest of the convergence).
+  !> A slow passage near a lost locking (a saddle-node ghost of width mu)
+  !> shrinks with a ratio near 1: d r / (1 - r) >= sqrt(mu) there, so only a
+  !> ghost with mu <= 1e-14 (one phase slip per more than 1e7 periods) could
+  !> pass for locking.
+  !> Otherwise err = max(|<v> - <v>_second half|, the spread of theta_k - <v> t_k
+  !> over the stroboscopic samples of the window / the window): a quasi-periodic
+  !> orbit's discrepancy is bounded, and the window's mean is within that
+  !> spread / window of its rotation number.
+  subroutine mean_velocity_driven(p, rtol, atol, t_tr, t_avg, th0, v0, vm, err, step, th, v, st, cancel, uf)
+    real(dp), intent(in) :: p(np_params), rtol, atol, t_tr, t_avg, th0, v0
+    real(dp), intent(out) :: vm, err, step, th, v
+    integer, intent(out) :: st
+    integer, intent(inout), volatile :: cancel
+    !> a user's force (optional): its clock is the point's time, period k starting at (k - 1) T
+    type(pendulum_model), intent(in), optional :: uf
+    integer, parameter :: qmax = 8, nkeep = 8192
+    real(dp), parameter :: lock_tol = 1.0e-7_dp, max_periods = 1.0e9_dp
+    real(dp) :: tp, ts(1), ths(1), vs(1), sth(0:qmax), sv(0:qmax), dprev(qmax), rprev(qmax), d, dth, r, x, &
+                tha, thh, rs(0:nkeep), lo, hi
+    integer(int64) :: sw(0:qmax), w, wa, wh, k, n_tr, n_avg, stride, turns
+    integer :: q, j, nr
+    vm = nan_dp; err = nan_dp; step = nan_dp
+    th = th0; v = v0; st = ps_decided
+    tp = two_pi / p(5)
+    x = real(ceiling(min(t_tr / tp, max_periods) - 1.0e-12_dp), dp)
+    r = 2.0_dp * real(ceiling(min(t_avg / tp, max_periods) * 0.5_dp - 1.0e-12_dp), dp)
+    if (.not. (x + max(r, 2.0_dp) <= max_periods)) then
+      st = ps_unsettled; return   ! beyond any work a sweep point may take
+    end if
+    n_tr = max(0_int64, int(x, int64)); n_avg = max(2_int64, int(r, int64))
+    stride = max(1_int64, (n_avg + nkeep - 1) / nkeep)
+    w = nint(th / two_pi, int64); th = th - two_pi * real(w, dp)
+    sth = 0.0_dp; sv = 0.0_dp; sw = 0; dprev = huge(1.0_dp); rprev = huge(1.0_dp)
+    sth(0) = th; sv(0) = v; sw(0) = w
+    wa = w; tha = th; wh = w; thh = th; nr = 0
+    if (n_tr == 0) then
+      rs(0) = 0.0_dp
+    end if
+    ts(1) = tp
+    do k = 1, n_tr + n_avg
+      if (cancel /= 0) then
+        st = ps_cancelled; return
+      end if
+      ! the same map every period: time origin at the drive phase p(6)
+      if (present(uf)) then
+        call advance(p, real(k - 1, dp) * tp, rtol, atol, ts, th, v, ths, vs, st, cancel, uf)
+      else
+        call advance(p, 0.0_dp, rtol, atol, ts, th, v, ths, vs, st, cancel)
+      end if
+      if (st /= ps_decided) return
+      turns = nint(th / two_pi, int64)
+      w = w + turns; th = th - two_pi * real(turns, dp)
+      ! locking: the state q periods back (the smallest q that repeats)
+      do q = 1, int(min(int(qmax, int64), k))
+        j = int(mod(k - q, int(qmax + 1, int64)))
+        dth = th - sth(j)
+        turns = nint(dth / two_pi, int64)
+        dth = dth - two_pi * real(turns, dp)
+        d = max(abs(dth), abs(v - sv(j)))
+        r = d / dprev(q)
+        if (d <= 1.0e-12_dp * (1.0_dp + abs(v)) .or. &
+            (d <= lock_tol .and. r < 1.0_dp .and. rprev(q) < 1.0_dp .and. &
+             d * r <= lock_tol * (1.0_dp - r))) then
+          turns = w - sw(j) + turns
+          vm = real(turns, dp) * p(5) / real(q, dp)
+          step = real(turns, dp) / real(q, dp)
+          err = 0.0_dp; st = ps_locked
+          return
+        end if
+        dprev(q) = d; rprev(q) = r
+      end do
+      j = int(mod(k, int(qmax + 1, int64)))
+      sth(j) = th; sv(j) = v; sw(j) = w
+      if (k == n_tr) then
+        wa = w; tha = th; rs(0) = 0.0_dp
+      end if
+      if (k == n_tr + n_avg / 2) then
+        wh = w; thh = th
+      end if
+      if (k > n_tr .and. mod(k - n_tr, stride) == 0) then
+        nr = int((k - n_tr) / stride)
+        rs(nr) = two_pi * real(w - wa, dp) + (th - tha)
+      end if
+    end do
+    vm = (two_pi * real(w - wa, dp) + (th - tha)) / (real(n_avg, dp) * tp)
+    err = abs(vm - (two_pi * real(w - wh, dp) + (th - thh)) / (real(n_avg / 2, dp) * tp))
+    lo = 0.0_dp; hi = 0.0_dp
+    do j = 1, nr
+      x = rs(j) - vm * real(j, dp) * real(stride, dp) * tp
+      lo = min(lo, x); hi = max(hi, x)
+    end do
+    err = max(err, (hi - lo) / (real(n_avg, dp) * tp))
+  end subroutine mean_velocity_driven
+
+  !> <v> of an orbit with thermal noise at temperature temp (stream s): BAOAB
+  !> steps of h <= dt (dt <= 0: langevin_default_dt).  A driven orbit: h
+  !> divides the drive period, transient and window are whole periods (at
+  !> least ceil(t_tr / T) and ceil(t_avg / T)).  Otherwise ceil(t_tr / h) and
+  !> ceil(t_avg / h) steps of h = dt.  err: the standard error of <v> from
+  !> the spread of up to 16 batch means of the window (batches of whole
+  !> periods when driven).
+  subroutine mean_velocity_noisy(p, temp, s, dt, t_tr, t_avg, th0, v0, vm, err, th, v, st, cancel)
+    real(dp), intent(in) :: p(np_params), temp, dt, t_tr, t_avg, th0, v0
+    type(langevin_stream), intent(inout) :: s
+    real(dp), intent(out) :: vm, err, th, v
+    integer, intent(out) :: st
+    integer, intent(inout), volatile :: cancel
+    integer, parameter :: nbatch_max = 16
+    type(pendulum_model) :: m
+    real(dp) :: h, tp, thb, bv(nbatch_max), tha
+    integer(int64) :: per, ntr, navg, k, nb, b, kb_end, nchunk
+    logical :: driven
+    vm = nan_dp; err = nan_dp; th = th0; v = v0; st = ps_decided
+    m = point_model(p, p(6), 0.0_dp)
+    driven = p(4) /= 0.0_dp .and. p(5) > 0.0_dp
+    h = dt
+    if (.not. (h > 0.0_dp)) h = langevin_default_dt(p(1), p(5))
+    if (driven) then
+      tp = two_pi / p(5)
+      per = max(1_int64, ceiling(tp / h - 1.0e-12_dp, int64))
+      h = tp / real(per, dp)
+    else
+      per = 4096
+    end if
+    ! chunks of per steps: the transient's and the window's
+    if (.not. ((t_tr + t_avg) / h <= 2.0e9_dp)) then
+      st = ps_unsettled; return   ! beyond the work a point may take
+    end if
+    ntr = ceiling(t_tr / (h * real(per, dp)) - 1.0e-12_dp, int64)
+    navg = max(1_int64, ceiling(t_avg / (h * real(per, dp)) - 1.0e-12_dp, int64))
+    if (.not. driven) navg = max(1_int64, ceiling(t_avg / h - 1.0e-12_dp, int64))
+    do k = 1, ntr
+      call chunk(per)
+      if (st /= ps_decided) return
+    end do
+    tha = th
+    if (driven) then
+      nb = min(int(nbatch_max, int64), navg)
+      do b = 1, nb
+        thb = th
+        do k = (b - 1) * navg / nb + 1, b * navg / nb
+          call chunk(per)
+          if (st /= ps_decided) return
+        end do
+        bv(b) = (th - thb) / (real(b * navg / nb - (b - 1) * navg / nb, dp) * real(per, dp) * h)
+      end do
+      vm = (th - tha) / (real(navg, dp) * real(per, dp) * h)
+    else
+      ! navg steps in nb batches, each in chunks of at most per steps
+      nb = min(int(nbatch_max, int64), navg)
+      do b = 1, nb
+        thb = th
+        kb_end = b * navg / nb - (b - 1) * navg / nb
+        do while (kb_end > 0)
+          nchunk = min(per, kb_end)
+          call chunk(nchunk)
+          if (st /= ps_decided) return
+          kb_end = kb_end - nchunk
+        end do
+        bv(b) = (th - thb) / (real(b * navg / nb - (b - 1) * navg / nb, dp) * h)
+      end do
+      vm = (th - tha) / (real(navg, dp) * h)
+    end if
+    err = 0.0_dp
+    if (nb > 1) err = sqrt(sum((bv(1:nb) - sum(bv(1:nb)) / real(nb, dp)) ** 2) / real(nb - 1, dp) / real(nb, dp))
+  contains
+    subroutine chunk(n)
+      integer(int64), intent(in) :: n
+      integer :: ls
+      if (cancel /= 0) then
+        st = ps_cancelled; return
+      end if
+      ! a driven chunk is one period from the drive's phase p(6): time origin 0
+      call langevin_steps(m, temp, s, 0.0_dp, h, n, th, v, ls, cancel)
+      if (ls == lv_cancelled) then
+        st = ps_cancelled
+      else if (ls /= lv_ok) then
+        st = 106   ! the integrator's non-finite state
+      end if
+    end subroutine chunk
+  end subroutine mean_velocity_noisy
+
+  !> sweep_points for the measure mean_velocity with thermal noise (temp > 0,
+  !> the damping of every point > 0): point i runs the stream (seed,
+  !> first + i - 1), its global index in the grid, so the result of a point
+  !> does not depend on the block or the thread that computes it.  dt: the
+  !> Langevin step (<= 0: langevin_default_dt).  out(:, i) = <v>, its
+  !> standard error, NaN (no Shapiro step under noise).
+  subroutine sweep_points_noisy(npts, params, temp, seed, first, dt, t_tr, t_max, out, pstat, nthreads, cancel)
+    !$ use omp_lib, only: omp_get_max_threads
+    integer, intent(in) :: npts, nthreads
+    real(dp), intent(in) :: params(np_params, npts), temp, dt, t_tr, t_max
+    integer(int64), intent(in) :: seed, first
+    real(dp), intent(out) :: out(3, npts)
+    integer, intent(out) :: pstat(npts)
+    integer, intent(inout), volatile :: cancel
+    integer :: i, nt
+    type(langevin_stream) :: s
+    real(dp) :: th, v
+    nt = 1
+    !$ nt = omp_get_max_threads()
+    if (nthreads > 0) nt = min(nthreads, sweep_max_threads)
+    nt = max(1, min(nt, sweep_max_threads))
+    !$omp parallel do schedule(dynamic, 4) default(none) num_threads(nt) &
+    !$omp   shared(npts, params, temp, seed, first, dt, t_tr, t_max, out, pstat, cancel) private(i, s, th, v)
+    do i = 1, npts
+      out(:, i) = nan_dp
+      if (cancel /= 0) then
+        pstat(i) = ps_cancelled
+      else if (.not. (params(2, i) > 0.0_dp) .or. .not. (t_max <= sweep_max_time) .or. &
+               .not. (t_tr <= sweep_max_time) .or. .not. (abs(params(7, i)) <= sweep_max_angle)) then
+        pstat(i) = ps_not_applicable
+      else
+        s = langevin_open(seed, first + i - 1)
+        call mean_velocity_noisy(params(:, i), temp, s, dt, t_tr, t_max, params(7, i), params(8, i), out(1, i), &
+                                 out(2, i), th, v, pstat(i), cancel)
+      end if
+    end do
+    !$omp end parallel do
+  end subroutine sweep_points_noisy
 
   !> Stroboscopic samples once per drive period after n_tr periods.
   subroutine poincare(p, rtol, atol, n_tr, ns, o, st, cancel, uf)
@@ -440,29 +702,40 @@ contains
   !> after t_tr over t_avg, starting from the end state of the previous torque
   !> (the first from theta0, v0 in params).  params(3) (tau) is overridden.
   !> th, v: the end state (theta reduced to [-pi, pi]), to start another branch.
-  subroutine iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, vm, err, pstat, th, v, cancel)
+  !> temp > 0: thermal noise (mean_velocity_noisy), torque k on the stream
+  !> (seed, first + k - 1), Langevin step dt (<= 0: the default).
+  subroutine iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, temp, seed, first, dt, vm, err, step, pstat, &
+                       th, v, cancel)
     integer, intent(in) :: ntau
-    real(dp), intent(in) :: params(np_params), taus(ntau), rtol, atol, t_tr, t_avg
-    real(dp), intent(out) :: vm(ntau), err(ntau), th, v
+    real(dp), intent(in) :: params(np_params), taus(ntau), rtol, atol, t_tr, t_avg, temp, dt
+    integer(int64), intent(in) :: seed, first
+    real(dp), intent(out) :: vm(ntau), err(ntau), step(ntau), th, v
     integer, intent(out) :: pstat(ntau)
     integer, intent(inout), volatile :: cancel
     real(dp) :: p(np_params)
     integer :: k
+    type(langevin_stream) :: s
     p = params
     th = p(7); v = p(8)
-    vm = nan_dp; err = nan_dp; pstat = ps_unsettled
+    vm = nan_dp; err = nan_dp; step = nan_dp; pstat = ps_unsettled
     do k = 1, ntau
-      ! a locked state follows its equilibrium (the limit of a slow ramp:
-      ! a sudden torque step would kick it over a shallow barrier)
-      if (k > 1 .and. abs(taus(k)) <= p(1)) then
+      ! a locked undriven state follows its equilibrium (the limit of a slow
+      ! ramp: a sudden torque step would kick it over a shallow barrier); a
+      ! driven one carries its state on, at a whole drive period
+      if (k > 1 .and. abs(taus(k)) <= p(1) .and. .not. (p(4) /= 0.0_dp .and. p(5) > 0.0_dp)) then
         if (vm(k - 1) == 0.0_dp .and. abs(p(3)) <= p(1)) then
           th = asin(taus(k) / p(1)) + two_pi * anint((th - asin(p(3) / p(1))) / two_pi); v = 0.0_dp
         end if
       end if
       p(3) = taus(k)
       p(7) = th - two_pi * anint(th / two_pi); p(8) = v
-      call mean_velocity(p, rtol, atol, t_tr, t_avg, p(7), p(8), vm(k), err(k), th, v, pstat(k), cancel)
-      if (pstat(k) /= ps_decided) exit
+      if (temp > 0.0_dp) then
+        s = langevin_open(seed, first + k - 1)
+        call mean_velocity_noisy(p, temp, s, dt, t_tr, t_avg, p(7), p(8), vm(k), err(k), th, v, pstat(k), cancel)
+      else
+        call mean_velocity(p, rtol, atol, t_tr, t_avg, p(7), p(8), vm(k), err(k), step(k), th, v, pstat(k), cancel)
+      end if
+      if (pstat(k) /= ps_decided .and. pstat(k) /= ps_locked) exit
     end do
     th = th - two_pi * anint(th / two_pi)
   end subroutine iv_branch
@@ -510,6 +783,12 @@ contains
     case default
       status = 2; msg = 'field ''measure'' must name a measure for a sweep'; return
     end select
+    if (sc%noise > 0.0_dp .and. measure /= ms_mean_velocity) then
+      status = 2
+      msg = 'field ''noise'': a sweep with thermal noise measures ''mean_velocity'' only (the measure ''' // &
+            trim(sc%measure) // ''' asks a deterministic question)'
+      return
+    end if
     n = 1
     n(1:sc%n_grid) = sc%grid_n(1:sc%n_grid)
     allocate(ax(maxval(n), 3))
@@ -550,7 +829,7 @@ contains
       end if
       nout = 2 * sc%sweep_samples
     end if
-    if (measure == ms_lyapunov) nout = 3
+    if (measure == ms_lyapunov .or. measure == ms_mean_velocity) nout = 3
     recheck = measure == ms_final_well .or. measure == ms_locked
     head = ''
     do k = 1, sc%n_grid
@@ -559,13 +838,14 @@ contains
     select case (measure)
     case (ms_final_well); head = trim(head) // 'well,t_decided,status'
     case (ms_locked); head = trim(head) // 'locked,t_decided,status'
-    case (ms_mean_velocity); head = trim(head) // 'mean_velocity,mean_velocity_err,status'
+    case (ms_mean_velocity); head = trim(head) // 'mean_velocity,mean_velocity_err,step,status'
     case (ms_poincare); head = trim(head) // 'sample,theta,v,status'
     case (ms_lyapunov); head = trim(head) // 'lyapunov,lyapunov_err,lyapunov2,status'
     end select
     call out_line(f, '# pendula-run sweep: measure = ' // trim(sc%measure) // &
       '; status 0 decided, 1 not settled by sweep_t_max, 2 measure does not apply, ' // &
-      '4 uncertain (a basin-boundary answer that changes at 1000 times tighter tolerances)')
+      '4 uncertain (a basin-boundary answer that changes at 1000 times tighter tolerances), ' // &
+      '6 locked (phase-locked to the drive: mean_velocity = step * drive_frequency exactly)')
     call out_line(f, trim(head))
     inner = n(2) * n(3)
     rb = max(1, block / inner)
@@ -589,7 +869,12 @@ contains
       ! the first row was computed ahead by the previous block: moved, not recomputed
       c0 = 1
       if (have_next) c0 = inner + 1
-      if (c0 <= nrow * inner) then
+      if (c0 <= nrow * inner .and. sc%noise > 0.0_dp) then
+        ! thermal noise: grid point k (flat, from 0) on the stream (seed, k), as pendula.sweep
+        call sweep_points_noisy(nrow * inner - c0 + 1, params(:, c0:nrow * inner), sc%noise, sc%seed, &
+                                int((r0 - 1) * inner + c0 - 1, int64), sc%dt, t_tr, sc%sweep_t_max, &
+                                o(:, c0:nrow * inner), pst(c0:nrow * inner), 0, no_cancel)
+      else if (c0 <= nrow * inner) then
         call sweep_points(measure, nrow * inner - c0 + 1, params(:, c0:nrow * inner), sc%rtol, sc%atol, &
                           t_tr, sc%sweep_t_max, nout, o(:, c0:nrow * inner), pst(c0:nrow * inner), 0, no_cancel)
       end if

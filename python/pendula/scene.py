@@ -157,6 +157,13 @@ class Scene:
         A vertically vibrating pivot y = a cos(Omega t) (in units of the
         length): the effective gravity eps - a Omega^2 cos(Omega t).  A pivot
         amplitude needs a frequency > 0.
+    noise, seed : float, int
+        Thermal noise: the temperature T in units of eps (>= 0; needs
+        damping > 0, as the force sqrt(2 damping T) xi(t) comes with the
+        friction), run by the Langevin integrator (BAOAB, the fixed step
+        ``dt``, or when ``dt`` is 0 the shorter of 2 pi / sqrt(eps) and the
+        drive period, divided by 100), and the seed of its random numbers
+        (0 .. 2^53): the same seed gives the same path, bit for bit.
 
     Raises
     ------
@@ -234,6 +241,9 @@ class Scene:
     drag: float = 0.0
     pivot_amplitude: float = 0.0
     pivot_frequency: float = 0.0
+    # thermal noise: the temperature in units of eps, and the seed of its random numbers
+    noise: float = 0.0
+    seed: int = 0
 
     def __post_init__(self):
         _check(self)
@@ -411,6 +421,8 @@ class Scene:
             out.append("gravity")
         out += [name for name, on in (("friction", self.friction), ("drag", self.drag),
                                       ("pivot", self.pivot_amplitude)) if on != 0.0]
+        if self.noise != 0.0:
+            out.append("noise")
         object.__setattr__(self, "_effects", tuple(out))
         return self._effects
 
@@ -534,7 +546,7 @@ def _layout():
 
 #: the scene's numbers and single words in the kernel's order (kernel/io/pendula_scene.f90)
 _NUMBERS, _WORDS = _layout()
-_WHOLE = ("n_samples", "max_flips", "sweep_samples")
+_WHOLE = ("n_samples", "max_flips", "sweep_samples", "seed")
 _STRING_LISTS = ("outputs", "grid")
 _EMPTY = np.zeros(0)
 _NUMBER_LISTS = ("sweep_values", "grid1", "grid2", "grid3", "grid1_range", "grid2_range", "grid3_range")

@@ -13,8 +13,20 @@ Measures
     not trapped by ``t_max`` are NaN with status 1 ("not settled").
 ``mean_velocity``
     <v> over ``t_max`` after a transient ``transient`` (the junction's voltage),
-    and ``mean_velocity_err`` = |<v> - <v> over the second half|.  An undriven
-    damped orbit that gets trapped has <v> = 0 exactly, decided at once.
+    ``mean_velocity_err`` its error bar (the larger of |<v> - <v> over the
+    second half| and a bound on the error of a finite window), and ``step``.
+    An undriven damped orbit that gets trapped has <v> = 0 exactly, decided at
+    once.  A driven orbit is averaged over whole drive periods (transient and
+    window rounded up to whole periods, the window to an even number); when its
+    stroboscopic map repeats after q periods with theta advanced by 2 pi p, it
+    is phase-locked: <v> = p Omega / q exactly, ``step`` = p / q (the Shapiro
+    step) and status 6 'locked'; ``step`` is NaN elsewhere.  A scene with
+    thermal ``noise`` runs the Langevin integrator (BAOAB, step ``dt`` or its
+    default; a driven point over whole drive periods): grid point k (flat
+    index, first axis slowest) draws its noise from the stream (``seed``, k),
+    so chunks, threads and resumes give the same numbers bit for bit;
+    ``mean_velocity_err`` is then the standard error from up to 16 batch
+    means, and ``mean_velocity`` is the only measure.
 ``locked``
     1 when the orbit spirals into an equilibrium, 0 when it runs (an open
     orbit over a further window, after ``t_max``), status 1 when undecided.
@@ -73,11 +85,14 @@ MEASURE_CODES = {"final_well": 1, "mean_velocity": 2, "locked": 3, "poincare": 4
 STATUS = {0: "decided", 1: "not settled / undecided by the limit", 2: "measure does not apply",
           3: "bad measure", 4: "uncertain: the answer changes with the tolerance",
           5: "stopped (cancelled)",
+          6: "locked: phase-locked to the drive, mean velocity = step * drive_frequency exactly",
           # 100 + s: the integrator's status s (pendula_integrators st_*)
           **{100 + s: f"the integrator failed: {w}" for s, w in (
               (1, "bad step"), (2, "bad tolerances"), (3, "bad method"), (5, "step size underflow"),
               (6, "non-finite state"), (7, "too many steps"), (8, "cancelled"), (9, "no dense output"),
               (10, "stopped by an event"))}}
+#: noise streams per I-V branch (at most 1e6 torques, and a lead-in ramp of as many)
+_IV_STREAMS = 2 * 10 ** 6
 _PARAM_ORDER = ("eps", "damping", "torque", "drive_amplitude", "drive_frequency", "drive_phase", "theta0", "v0",
                 "pivot_amplitude", "pivot_frequency", "friction", "drag")
 
@@ -168,6 +183,10 @@ class _Plan:
             # the kernel rounds the transient up to whole periods of each point's drive
             self.nout = 2 * samples
             self.t_tr = transient
+        elif measure == "mean_velocity":
+            # <v>, its error bar and the Shapiro step of a phase-locked point
+            self.nout = 3
+            self.t_tr = transient
         elif measure == "lyapunov":
             # the kernel rounds transient and window up to whole periods, point by point
             self.nout = 3
@@ -217,6 +236,16 @@ def _answers(out, st):
 
 def _compute_chunk(plan: _Plan, i: int, threads: int):
     p, shape = plan.params(i)
+    if plan.scene.noise > 0:
+        # thermal noise: point k of the grid (flat, first axis slowest) on the stream (seed, k)
+        from . import _kernel
+        first = i * plan.rows * (p.shape[1] // shape[0])
+        cancel = _interrupt.cancel_flag()
+        out, st = _interrupt.call(_kernel.sweep_block_noisy, p, plan.scene.noise, plan.scene.seed, first,
+                                  plan.scene.dt, plan.t_tr, plan.t_max, int(threads), cancel, cancel=cancel)
+        if cancel[0]:
+            raise KeyboardInterrupt
+        return i, out.T.reshape(shape + (plan.nout,)), st.reshape(shape)
     code = MEASURE_CODES[plan.measure]
     out, st = _block(code, p, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout, threads, plan.force)
     out = out.T.reshape(shape + (plan.nout,))
@@ -271,7 +300,9 @@ _VAR_META = {
     "t_decided": ("time at which the answer was decided", "s"),
     "locked": ("1 when the orbit spirals into an equilibrium, 0 when it runs", "1"),
     "mean_velocity": ("mean angular velocity over t_max after the transient", "rad s-1"),
-    "mean_velocity_err": ("|mean angular velocity - its mean over the second half of the window|", "rad s-1"),
+    "mean_velocity_err": ("error bar of the mean angular velocity: the larger of |<v> - <v> over the second "
+                          "half of the window| and the windowing bound; 0 where locked", "rad s-1"),
+    "step": ("Shapiro step p / q of a phase-locked driven orbit (<v> = p Omega / q exactly); NaN elsewhere", "1"),
     "theta": ("stroboscopic angle once per drive period, in [-pi, pi)", "rad"),
     "v": ("stroboscopic angular velocity once per drive period", "rad s-1"),
     "lyapunov": ("largest Lyapunov exponent", "s-1"),
@@ -291,7 +322,7 @@ _AXIS_META = {
 }
 #: the variables of each measure, in the kernel's output order
 _MEASURE_VARS = {"final_well": ("well", "t_decided"), "locked": ("locked", "t_decided"),
-                 "mean_velocity": ("mean_velocity", "mean_velocity_err"), "poincare": ("theta", "v"),
+                 "mean_velocity": ("mean_velocity", "mean_velocity_err", "step"), "poincare": ("theta", "v"),
                  "lyapunov": ("lyapunov", "lyapunov_err", "lyapunov2")}
 
 
@@ -477,6 +508,12 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
         check_client(client)
     progress = _checks.flag(progress, "progress")
     measure = measure or scene.measure
+    if scene.noise > 0 and uf is not None:
+        raise ValueError("fields 'noise' and 'force': a user's force with thermal noise is not implemented "
+                         "(the Langevin integrator takes the scene's own force law only)")
+    if scene.noise > 0 and measure != "mean_velocity":
+        raise ValueError(f"field 'noise': a sweep with thermal noise measures 'mean_velocity' only (the "
+                         f"measure '{measure}' asks a deterministic question); got noise = {scene.noise}")
     if measure == "attractor":
         # the kernel's poincare samples, read for recurrence (pendula.attractor_map)
         kw = {k: v for k, v in (("transient", transient), ("samples", samples), ("rtol", rtol),
@@ -487,6 +524,8 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
         raise ValueError(f"parameter 'measure' must be one of {', '.join(MEASURES + ('attractor',))}; "
                          f"got {measure!r}")
     _model_rule(scene, f"measure '{measure}'")
+    if scene.noise > 0 and (over or {}).keys() & {"damping"} and not np.all(np.asarray(over["damping"]) > 0):
+        raise ValueError("field 'noise': every grid point needs damping > 0 (the thermal force comes with it)")
     _checks.angle(scene.theta0, "field 'theta0'")
     over = grid_of(scene) if over is None else over
     over = _check_over(scene, over)
@@ -692,9 +731,17 @@ def iv_curve(scene: Scene | str | os.PathLike[str], torques: ArrayLike,
         Dimensions ``direction`` (the branches asked, 'up' and/or 'down') and
         ``torque`` (the torques as given; the down branch runs them in
         reverse, and its values are stored against their torque):
-        ``mean_velocity`` <v>, ``mean_velocity_err`` (abs(<v> - <v> over the
-        second half of the window)) and ``status`` (0 decided; CF flags), with
-        CF units and the options as attributes.
+        ``mean_velocity`` <v>, ``mean_velocity_err`` (its error bar: the
+        larger of abs(<v> - <v> over the second half of the window) and a bound
+        on the error of a finite window), ``step`` (the Shapiro step p / q of a
+        phase-locked driven point, NaN elsewhere) and ``status`` (0 decided,
+        6 locked: <v> = step * drive_frequency exactly; CF flags), with CF
+        units and the options as attributes.  In a driven scene every torque
+        is averaged over whole drive periods (see :func:`sweep`'s
+        ``mean_velocity``).  A scene with thermal ``noise`` runs the Langevin
+        integrator: each torque of each branch draws its noise from its own
+        stream of the scene's ``seed``, ``mean_velocity_err`` is the standard
+        error from batch means, and no step locks (``step`` is NaN).
 
     Raises
     ------
@@ -717,6 +764,14 @@ def iv_curve(scene: Scene | str | os.PathLike[str], torques: ArrayLike,
     0.0
     >>> bool(abs(up.sel(torque=1.1) - 1.1 / 0.2) < 0.01)   # running: close to the ohmic line tau / beta
     True
+
+    With an ac drive the I-V curve has Shapiro steps, where the phase locks to
+    the drive and <v> is a whole multiple of its frequency, exactly:
+
+    >>> ac = pendula.Scene(damping=1.0, drive_amplitude=1.0, drive_frequency=1.0)
+    >>> r = pendula.iv_curve(ac, [0.3, 1.1], "up", transient=100, t_max=200)
+    >>> r.mean_velocity.values.tolist(), r.step.values.tolist()
+    ([[0.0, 1.0]], [[0.0, 1.0]])
     """
     import warnings
 
@@ -749,9 +804,12 @@ def iv_curve(scene: Scene | str | os.PathLike[str], torques: ArrayLike,
     rtol, atol = _checks.tolerances(scene.rtol if rtol is None else rtol, scene.atol if atol is None else atol)
     p = np.array([getattr(scene, f) for f in _PARAM_ORDER], dtype=float)
 
-    def branch(p, taus):
+    def branch(p, taus, first):
+        # first: the noise stream of the branch's first torque (a scene with noise; the lead-in ramp,
+        # the up and the down branch each have their own streams, so no two torques share noise)
         cancel = _interrupt.cancel_flag()
-        r = _interrupt.call(_kernel.sweep_iv_branch, p, taus, rtol, atol, transient, t_avg, cancel, cancel=cancel)
+        r = _interrupt.call(_kernel.sweep_iv_branch, p, taus, rtol, atol, transient, t_avg, scene.noise,
+                            scene.seed, first, scene.dt, cancel, cancel=cancel)
         if cancel[0]:
             raise KeyboardInterrupt
         return r
@@ -778,20 +836,20 @@ def iv_curve(scene: Scene | str | os.PathLike[str], torques: ArrayLike,
             steps = min(1000, max(1, math.ceil(abs(first) / spacing)))
             lead = np.linspace(0.0, first, steps + 1)[:-1]
         if lead.size:
-            _, _, _, th_end, v_end = branch(p, np.ascontiguousarray(lead, dtype=float))
+            *_, th_end, v_end = branch(p, np.ascontiguousarray(lead, dtype=float), 0)
             p[6], p[7] = th_end, v_end
     rows = {}
     if direction in ("up", "both"):
-        vm, err, st, th_end, v_end = branch(p, tau)
-        rows["up"] = (vm, err, st)
+        vm, err, step, st, th_end, v_end = branch(p, tau, _IV_STREAMS)
+        rows["up"] = (vm, err, step, st)
     if direction in ("down", "both"):
         td = tau[::-1].copy()
         if direction == "both":
             # the down branch starts where the up branch ended
             p = p.copy()
             p[6], p[7] = th_end, v_end
-        vm, err, st, _, _ = branch(p, td)
-        rows["down"] = (vm[::-1], err[::-1], st[::-1])     # stored against their torques
+        vm, err, step, st, _, _ = branch(p, td, 2 * _IV_STREAMS)
+        rows["down"] = (vm[::-1], err[::-1], step[::-1], st[::-1])     # stored against their torques
     dims = ("direction", "torque")
     dirs = list(rows)
     return xr.Dataset(
@@ -799,8 +857,10 @@ def iv_curve(scene: Scene | str | os.PathLike[str], torques: ArrayLike,
                            {"long_name": "mean angular velocity <v> after the transient (the junction's voltage)",
                             "units": "rad s-1"}),
          "mean_velocity_err": (dims, np.stack([rows[d][1] for d in dirs]),
-                               {"long_name": "|<v> - <v> over the second half of the window|", "units": "rad s-1"}),
-         "status": (dims, np.stack([rows[d][2] for d in dirs]).astype(np.int32), _status_attrs())},
+                               {"long_name": _VAR_META["mean_velocity_err"][0], "units": "rad s-1"}),
+         "step": (dims, np.stack([rows[d][2] for d in dirs]),
+                  {"long_name": _VAR_META["step"][0], "units": "1"}),
+         "status": (dims, np.stack([rows[d][3] for d in dirs]).astype(np.int32), _status_attrs())},
         coords={"direction": ("direction", dirs, {"long_name": "branch of the adiabatic torque ramp"}),
                 "torque": ("torque", tau, {"long_name": "constant torque tau", "units": "rad s-2"})},
         attrs={"scene": scene.to_namelist(), "measure": "iv_curve", "transient": transient, "t_max": t_avg,

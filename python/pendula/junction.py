@@ -1,0 +1,544 @@
+"""A Josephson junction in laboratory units: the RCSJ model on the pendulum.
+
+The resistively and capacitively shunted junction (Stewart, McCumber; Suzuki
+and Suzuki section 8.3) is the damped, torqued pendulum: with the phase
+difference theta, the time in units of the inverse plasma frequency and the
+currents in units of the critical current,
+
+    theta'' + beta theta' + sin(theta) = I / I_c + (I_rf / I_c) cos(Omega t) + sqrt(2 beta T) xi(t),
+
+beta = 1 / sqrt(beta_c) (beta_c the Stewart-McCumber parameter), Omega the rf
+frequency over the plasma frequency, T the temperature in units of the
+Josephson energy.  The mean angular velocity is the dc voltage:
+V = (hbar / 2e) omega_p <theta'>.  :class:`Junction` does the conversions with
+the CODATA 2018 values of h, e and k_B (exact since the 2019 SI) and runs the
+pendulum's kernel: I-V curves with Shapiro steps (:func:`pendula.iv_curve`)
+and switching-current distributions (the Langevin integrator of
+kernel/integrators/pendula_langevin.f90).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Literal
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from . import _checks, _interrupt
+from .scene import Scene
+
+if TYPE_CHECKING:   # xarray is optional: named in annotations only
+    import xarray
+
+__all__ = ["Junction", "SwitchingCurrents", "PLANCK", "ELEMENTARY_CHARGE", "BOLTZMANN", "FLUX_QUANTUM"]
+
+#: the Planck constant h, J s (exact: CODATA 2018, the 2019 SI)
+PLANCK = 6.62607015e-34
+#: the elementary charge e, C (exact)
+ELEMENTARY_CHARGE = 1.602176634e-19
+#: the Boltzmann constant k_B, J / K (exact)
+BOLTZMANN = 1.380649e-23
+#: the magnetic flux quantum h / 2e, Wb
+FLUX_QUANTUM = PLANCK / (2.0 * ELEMENTARY_CHARGE)
+
+#: the largest number of Langevin steps one call of switching_currents may take (all ramps)
+_MAX_SWITCHING_STEPS = 2.0e10
+
+
+@dataclass(frozen=True)
+class SwitchingCurrents:
+    """Switching currents of a junction under a current ramp.
+
+    Attributes
+    ----------
+    samples : numpy.ndarray
+        The switching current of each ramp, in amperes (NaN for a ramp that
+        had not switched at 1.2 times the critical current: none in practice).
+    counts, edges : numpy.ndarray
+        Their histogram (numpy.histogram of the finite samples; edges in A).
+    ramp_rate : float
+        dI/dt of the ramps, A / s.
+    temperature : float
+        The junction's temperature, K.
+
+    See Also
+    --------
+    Junction.switching_currents : what makes them.
+    Junction.switching_density : their theory (Fulton and Dunkleberger).
+
+    Examples
+    --------
+    >>> import pendula
+    >>> j = pendula.Junction(1e-7, 100.0, 1e-12, temperature=0.05)
+    >>> s = j.switching_currents(ramp_rate=1e-3 * 1e-7 * j.plasma_frequency, n=10, seed=1)
+    >>> int(s.counts.sum()), s.samples.shape
+    (10, (10,))
+    """
+
+    samples: np.ndarray
+    counts: np.ndarray
+    edges: np.ndarray
+    ramp_rate: float
+    temperature: float
+
+    @property
+    def mean(self) -> float:
+        """The mean switching current of the finite samples, A."""
+        return float(np.nanmean(self.samples))
+
+    @property
+    def width(self) -> float:
+        """The standard deviation (ddof = 1) of the finite samples, A."""
+        return float(np.nanstd(self.samples, ddof=1))
+
+
+class Junction:
+    """A current-biased Josephson junction (RCSJ model) in SI units.
+
+    Parameters
+    ----------
+    critical_current : float
+        I_c, amperes (> 0).
+    resistance : float
+        The shunt resistance R, ohms (> 0).
+    capacitance : float
+        The capacitance C, farads (> 0; C = 0 is the overdamped RSJ model, a
+        first-order equation that is not a pendulum: not run by pendula).
+    temperature : float
+        T, kelvin (>= 0): thermal noise of the resistor (Johnson-Nyquist),
+        the pendulum's Langevin force.
+
+    Raises
+    ------
+    TypeError
+        A parameter that is not a real number.
+    ValueError
+        A parameter out of range, naming it (zero capacitance says that the
+        overdamped limit is another model).
+
+    See Also
+    --------
+    iv_curve : the pendulum's I-V curve in reduced units.
+    SwitchingCurrents : the samples of :meth:`switching_currents`.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> j = pendula.Junction(critical_current=1e-6, resistance=10.0, capacitance=1e-12)
+    >>> round(j.stewart_mccumber, 3)            # 2 pi I_c R^2 C / Phi_0
+    0.304
+    >>> round(j.plasma_frequency / 2 / 3.141592653589793 / 1e9, 3)   # GHz
+    8.773
+    """
+
+    def __init__(self, critical_current: float, resistance: float, capacitance: float,
+                 temperature: float = 0.0) -> None:
+        self.critical_current = _checks.real(critical_current, "parameter 'critical_current'", 0.0, lo_open=True)
+        self.resistance = _checks.real(resistance, "parameter 'resistance'", 0.0, lo_open=True)
+        c = _checks.real(capacitance, "parameter 'capacitance'")
+        if not c > 0:
+            raise ValueError(f"parameter 'capacitance' must be > 0 farads, got {c!r}: at C = 0 the junction is "
+                             "overdamped (the RSJ model, theta' + sin(theta) = I / I_c: a first-order equation, "
+                             "another model than the pendulum, which pendula does not run); a small capacitance "
+                             "(Stewart-McCumber parameter << 1) approaches that limit")
+        self.capacitance = c
+        self.temperature = _checks.real(temperature, "parameter 'temperature'", 0.0)
+
+    def __repr__(self) -> str:
+        return (f"Junction(critical_current={self.critical_current!r}, resistance={self.resistance!r}, "
+                f"capacitance={self.capacitance!r}, temperature={self.temperature!r})")
+
+    # ------------------------------------------------------------- derived quantities
+    @property
+    def josephson_energy(self) -> float:
+        """E_J = Phi_0 I_c / 2 pi, joules (the pendulum's energy unit)."""
+        return FLUX_QUANTUM * self.critical_current / (2.0 * math.pi)
+
+    @property
+    def plasma_frequency(self) -> float:
+        """omega_p = sqrt(2 pi I_c / (Phi_0 C)), rad / s (the pendulum's time unit is 1 / omega_p)."""
+        return math.sqrt(2.0 * math.pi * self.critical_current / (FLUX_QUANTUM * self.capacitance))
+
+    @property
+    def stewart_mccumber(self) -> float:
+        """beta_c = 2 pi I_c R^2 C / Phi_0 (hysteretic above about 1)."""
+        return 2.0 * math.pi * self.critical_current * self.resistance ** 2 * self.capacitance / FLUX_QUANTUM
+
+    @property
+    def damping(self) -> float:
+        """The pendulum's damping beta = 1 / (omega_p R C) = 1 / sqrt(beta_c)."""
+        return 1.0 / (self.plasma_frequency * self.resistance * self.capacitance)
+
+    @property
+    def noise(self) -> float:
+        """The pendulum's temperature k_B T / E_J (the scene field ``noise``)."""
+        return BOLTZMANN * self.temperature / self.josephson_energy
+
+    def reduced_frequency(self, frequency: float) -> float:
+        """An rf frequency f (Hz) as the pendulum's drive frequency 2 pi f / omega_p.
+
+        Parameters
+        ----------
+        frequency : float
+            Hz, >= 0.
+
+        Returns
+        -------
+        float
+
+        Examples
+        --------
+        >>> import pendula
+        >>> j = pendula.Junction(1e-6, 10.0, 1e-12)
+        >>> round(j.reduced_frequency(j.plasma_frequency / (2 * 3.141592653589793)), 12)
+        1.0
+        """
+        f = _checks.real(frequency, "parameter 'frequency'", 0.0)
+        return 2.0 * math.pi * f / self.plasma_frequency
+
+    def voltage(self, mean_velocity: ArrayLike) -> np.ndarray:
+        """The dc voltage V = (Phi_0 / 2 pi) omega_p <theta'> of a mean angular velocity (reduced).
+
+        Parameters
+        ----------
+        mean_velocity : array_like
+            <theta'> in units of omega_p.
+
+        Returns
+        -------
+        numpy.ndarray
+            Volts.
+
+        Examples
+        --------
+        >>> import pendula
+        >>> j = pendula.Junction(1e-6, 10.0, 1e-12)
+        >>> v = float(j.voltage(j.reduced_frequency(10e9)))       # V = f Phi_0 = f h / 2e
+        >>> round(v / (10e9 * pendula.junction.FLUX_QUANTUM), 12)
+        1.0
+        """
+        v = _checks.as_float(mean_velocity, "mean_velocity")
+        return v * (FLUX_QUANTUM / (2.0 * math.pi) * self.plasma_frequency)
+
+    # ------------------------------------------------------------- runs
+    def _rf(self, rf_current, rf_frequency) -> tuple[float, float]:
+        a = _checks.real(rf_current, "parameter 'rf_current'")
+        f = _checks.real(rf_frequency, "parameter 'rf_frequency'", 0.0)
+        if f > 0 and a == 0:
+            raise ValueError(f"parameter 'rf_current' is 0 but rf_frequency = {f!r} Hz: an rf drive needs a "
+                             "current (give rf_current, or no rf_frequency)")
+        if a != 0 and not f > 0:
+            raise ValueError(f"parameter 'rf_frequency' must be > 0 Hz with rf_current = {a!r} A (a current "
+                             "without a frequency is a dc bias: add it to the bias)")
+        return a / self.critical_current, self.reduced_frequency(f)
+
+    def scene(self, bias: float, rf_current: float = 0.0, rf_frequency: float = 0.0, *, seed: int = 0) -> Scene:
+        """The pendulum scene of the junction at a dc bias (and an rf drive).
+
+        Parameters
+        ----------
+        bias : float
+            The dc bias current, A.
+        rf_current, rf_frequency : float
+            The rf drive I_rf cos(2 pi f t): amplitude (A) and frequency (Hz),
+            both or neither.
+        seed : int
+            The seed of the thermal noise (at a temperature > 0).
+
+        Returns
+        -------
+        Scene
+            eps = 1, damping = 1 / sqrt(beta_c), torque = I / I_c,
+            drive_amplitude = I_rf / I_c, drive_frequency = 2 pi f / omega_p,
+            noise = k_B T / E_J.
+
+        Raises
+        ------
+        ValueError
+            An rf frequency without a current (or a current without a
+            frequency), naming the parameter.
+
+        Examples
+        --------
+        >>> import pendula
+        >>> j = pendula.Junction(1e-6, 10.0, 1e-12)
+        >>> s = j.scene(0.5e-6)
+        >>> s.torque, round(s.damping, 4)
+        (0.5, 1.8141)
+        """
+        tau = _checks.real(bias, "parameter 'bias'") / self.critical_current
+        amp, omega = self._rf(rf_current, rf_frequency)
+        return Scene(eps=1.0, damping=self.damping, torque=tau, drive_amplitude=amp, drive_frequency=omega,
+                     noise=self.noise, seed=_checks.count(seed, "parameter 'seed'", 0, 2 ** 53))
+
+    def iv_curve(self, currents: ArrayLike, rf_current: float = 0.0, rf_frequency: float = 0.0,
+                 direction: Literal["up", "down", "both"] = "up", *, transient: float | None = None,
+                 t_max: float | None = None, seed: int = 0) -> xarray.Dataset:
+        """The junction's I-V curve: the dc voltage at each bias current.
+
+        The adiabatic ramp of :func:`pendula.iv_curve` in laboratory units.
+        With an rf drive the curve has Shapiro steps at V = n h f / 2e: a
+        phase-locked bias reports its step voltage exactly (status 'locked').
+
+        Parameters
+        ----------
+        currents : array_like
+            Bias currents, A, ascending.
+        rf_current, rf_frequency : float
+            The rf drive (A, Hz), both or neither.
+        direction : {'up', 'down', 'both'}
+            The branches of the ramp (hysteresis when beta_c > 1).
+        transient, t_max : float, optional
+            Seconds skipped and averaged at each current (default 200 and
+            400 inverse plasma frequencies; with an rf drive both are rounded
+            up to whole rf periods).
+        seed : int
+            The seed of the thermal noise (at a temperature > 0).
+
+        Returns
+        -------
+        xarray.Dataset
+            Coordinates ``current`` (A) and ``direction``; ``voltage`` (V) and
+            ``voltage_err`` (V), ``step`` (the Shapiro step n where locked),
+            ``status``, and the reduced ``mean_velocity``, ``torque`` beside
+            them; CF ``units`` attributes.
+
+        Raises
+        ------
+        ValueError
+            Bad currents, an rf frequency without a current, bad times.
+
+        Examples
+        --------
+        >>> import pendula
+        >>> j = pendula.Junction(critical_current=1e-6, resistance=18.0, capacitance=1e-12)
+        >>> f = j.plasma_frequency / (2 * 3.141592653589793)       # rf at the plasma frequency
+        >>> r = j.iv_curve([0.3e-6, 1.1e-6], rf_current=1e-6, rf_frequency=f)
+        >>> r.step.values.tolist(), (r.voltage / (f * pendula.junction.FLUX_QUANTUM)).values.tolist()
+        ([[0.0, 1.0]], [[0.0, 1.0]])
+        """
+        from .sweeps import iv_curve
+        currents = _checks.grid_values(currents, "parameter 'currents'")
+        wp = self.plasma_frequency
+        tr = 200.0 if transient is None else _checks.real(transient, "parameter 'transient'", 0.0) * wp
+        tm = 400.0 if t_max is None else _checks.real(t_max, "parameter 't_max'", 0.0, lo_open=True) * wp
+        sc = self.scene(0.0, rf_current, rf_frequency, seed=seed)
+        r = iv_curve(sc, currents / self.critical_current, direction, transient=tr, t_max=tm, start="ramp")
+        volt = FLUX_QUANTUM / (2.0 * math.pi) * wp
+        r = r.rename({"torque": "current"})
+        r = r.assign_coords(current=("current", currents, {"long_name": "bias current", "units": "A"}),
+                            torque=("current", currents / self.critical_current,
+                                    {"long_name": "bias current / critical current", "units": "1"}))
+        r["voltage"] = r.mean_velocity * volt
+        r["voltage"].attrs = {"long_name": "dc voltage (hbar / 2e) omega_p <theta'>", "units": "V"}
+        r["voltage_err"] = r.mean_velocity_err * volt
+        r["voltage_err"].attrs = {"long_name": "error bar of the dc voltage", "units": "V"}
+        r["mean_velocity"].attrs["units"] = "1"
+        r["mean_velocity"].attrs["long_name"] = "mean phase velocity <theta'> / omega_p (reduced voltage)"
+        r["mean_velocity_err"].attrs["units"] = "1"
+        r.attrs.update({"critical_current": self.critical_current, "resistance": self.resistance,
+                        "capacitance": self.capacitance, "temperature": self.temperature,
+                        "rf_current": float(rf_current), "rf_frequency": float(rf_frequency),
+                        "plasma_frequency": wp, "stewart_mccumber": self.stewart_mccumber,
+                        "constants": "CODATA 2018 (exact): h = 6.62607015e-34 J s, e = 1.602176634e-19 C, "
+                                     "k_B = 1.380649e-23 J/K"})
+        return r
+
+    def escape_rate(self, bias: ArrayLike, regime: Literal["moderate", "underdamped"] = "moderate") -> np.ndarray:
+        """The thermal escape rate out of the tilted well, 1 / s.
+
+        Gamma = a (omega_a / 2 pi) exp(-dU / k_B T), with omega_a =
+        omega_p (1 - i^2)^(1/4) the attempt frequency (the barrier's curvature
+        frequency is the same for the washboard), dU = 2 E_J (sqrt(1 - i^2) -
+        i arccos(i)), i = I / I_c, and the prefactor a of the damping regime:
+
+        * ``'moderate'``: Kramers' moderate-to-strong damping factor
+          a = sqrt(1 + alpha^2) - alpha, alpha = 1 / (2 omega_a R C)
+          (Kramers 1940; Hanggi, Talkner and Borkovec, Rev. Mod. Phys. 62
+          (1990) section IV).  Valid outside the energy-diffusion regime
+          (beta S_b / T >> 1, S_b = 36 dU / 5 omega_a the action of the barrier
+          orbit).
+        * ``'underdamped'``: the Buttiker-Harris-Landauer interpolation
+          a = 4 / (sqrt(1 + Q k_B T / (1.8 dU)) + 1)^2, Q = omega_a R C
+          (Buttiker, Harris and Landauer, Phys. Rev. B 28 (1983) 1268, as
+          used for switching junctions by Martinis, Devoret and Clarke, Phys.
+          Rev. B 35 (1987) 4682): for Q >> 1, across the turnover to energy
+          diffusion; an interpolation, good to about 20 %.
+
+        Both need dU >> k_B T.  The rate is that of the untilted well below
+        zero bias and inf at i >= 1.
+
+        Parameters
+        ----------
+        bias : array_like
+            Bias currents, A.
+        regime : {'moderate', 'underdamped'}
+            The prefactor (above).
+
+        Returns
+        -------
+        numpy.ndarray
+            Escape rates, 1 / s.
+
+        Raises
+        ------
+        ValueError
+            At zero temperature (no thermal escape), or an unknown `regime`.
+
+        Examples
+        --------
+        >>> import pendula
+        >>> j = pendula.Junction(1e-7, 100.0, 1e-12, temperature=0.05)
+        >>> bool(j.escape_rate(0.9e-7) > j.escape_rate(0.8e-7))
+        True
+        """
+        if not self.temperature > 0:
+            raise ValueError("parameter 'temperature' must be > 0 for a thermal escape rate")
+        if regime not in ("moderate", "underdamped"):
+            raise ValueError(f"parameter 'regime' must be 'moderate' or 'underdamped', got {regime!r}")
+        i = np.clip(_checks.as_float(bias, "bias") / self.critical_current, 0.0, 1.0)
+        return self.plasma_frequency * _escape_rate(i, self.damping, self.noise, regime)
+
+    def switching_density(self, currents: ArrayLike, ramp_rate: float,
+                          regime: Literal["moderate", "underdamped"] = "moderate") -> np.ndarray:
+        """The switching-current density of a ramp (Fulton and Dunkleberger), per ampere.
+
+        P(I) = (Gamma(I) / (dI/dt)) exp(-int_0^I Gamma(I') dI' / (dI/dt)),
+        Gamma the escape rate of `regime` (:meth:`escape_rate`) (Fulton and Dunkleberger,
+        Phys. Rev. B 9 (1974) 4760); the integral by the trapezoidal rule on
+        20001 points from 0 to the largest current.
+
+        Parameters
+        ----------
+        currents : array_like
+            Currents, A (at most 1.2 I_c).
+        ramp_rate : float
+            dI/dt, A / s (> 0).
+        regime : {'moderate', 'underdamped'}
+            The escape rate's prefactor (:meth:`escape_rate`).
+
+        Returns
+        -------
+        numpy.ndarray
+            The density, 1 / A.
+
+        Raises
+        ------
+        ValueError
+            At zero temperature, or a ramp rate <= 0.
+
+        Examples
+        --------
+        >>> import numpy as np, pendula
+        >>> j = pendula.Junction(1e-7, 100.0, 1e-12, temperature=0.05)
+        >>> I = np.linspace(0.5e-7, 1e-7, 2001)
+        >>> p = j.switching_density(I, ramp_rate=1e-4 * 1e-7 * j.plasma_frequency)
+        >>> round(float(np.sum(p) * (I[1] - I[0])), 3)        # a probability density
+        1.0
+        """
+        rate = _checks.real(ramp_rate, "parameter 'ramp_rate'", 0.0, lo_open=True)
+        cur = _checks.as_float(currents, "currents")
+        top = float(np.max(cur)) if cur.size else 0.0
+        grid = np.linspace(0.0, max(top, 1e-300), 20001)
+        g = self.escape_rate(grid, regime)
+        g_in = np.concatenate([[0.0], np.cumsum(0.5 * (g[1:] + g[:-1]) * np.diff(grid))]) / rate
+        inside = np.interp(cur, grid, g_in)
+        with np.errstate(over="ignore", invalid="ignore"):
+            p = self.escape_rate(cur, regime) / rate * np.exp(-inside)
+        # beyond the critical current every ramp has switched: no density left
+        return np.where((cur >= 0) & np.isfinite(inside), p, 0.0)
+
+    def switching_currents(self, ramp_rate: float, n: int, seed: int = 0, *, dt: float | None = None,
+                           bins: int | str = "auto", threads: int = 0) -> SwitchingCurrents:
+        """Switching currents of n current ramps from zero with thermal noise.
+
+        Each ramp starts in thermal equilibrium at zero bias and raises the
+        current as I = (dI/dt) t; it has switched when the phase has passed
+        the second barrier (a running state, not a retrapped slip); its
+        switching current is the bias when it last crossed the first
+        barrier's top.  Ramp k draws its noise from the stream (seed, k):
+        the samples are the same bit for bit on any thread count.
+
+        Parameters
+        ----------
+        ramp_rate : float
+            dI/dt, A / s (> 0).  The kernel steps the pendulum about 100 times
+            per plasma period: a ramp of r = (dI/dt) / (I_c omega_p) costs
+            about 1 / (r dt) steps, so laboratory rates (r ~ 1e-9) are out
+            of reach; r >= 1e-5 runs in seconds (the distribution's theory
+            scales with the rate: see :meth:`switching_density`).
+        n : int
+            Number of ramps (1 .. 10^6).
+        seed : int
+            The seed of the noise (0 .. 2^53).
+        dt : float, optional
+            The Langevin step in units of 1 / omega_p (default 2 pi / 100).
+        bins : int or str
+            The histogram's bins (numpy.histogram's ``bins``).
+        threads : int
+            OpenMP threads (0: all cores).
+
+        Returns
+        -------
+        SwitchingCurrents
+            Samples (A), histogram, rate and temperature.
+
+        Raises
+        ------
+        ValueError
+            At zero temperature (a noiseless ramp switches at I_c exactly:
+            nothing to sample), a ramp rate <= 0, or a ramp that would take
+            more than 2e10 steps in all.
+
+        Examples
+        --------
+        >>> import pendula
+        >>> j = pendula.Junction(1e-7, 100.0, 1e-12, temperature=0.05)
+        >>> s = j.switching_currents(ramp_rate=1e-3 * 1e-7 * j.plasma_frequency, n=20, seed=1)
+        >>> bool(0.5e-7 < s.mean < 1e-7)
+        True
+        """
+        from . import _kernel
+        rate = _checks.real(ramp_rate, "parameter 'ramp_rate'", 0.0, lo_open=True)
+        n = _checks.count(n, "parameter 'n'", 1, 10 ** 6)
+        seed = _checks.count(seed, "parameter 'seed'", 0, 2 ** 53)
+        threads = _checks.threads(threads)
+        if not self.temperature > 0:
+            raise ValueError("parameter 'temperature' must be > 0 for switching-current samples (without noise "
+                             "a ramp switches at the critical current exactly)")
+        h = 2.0 * math.pi / 100.0 if dt is None else _checks.real(dt, "parameter 'dt'", 0.0, lo_open=True)
+        r = rate / (self.critical_current * self.plasma_frequency)
+        i_max = 1.2
+        if n * i_max / (r * h) > _MAX_SWITCHING_STEPS:
+            raise ValueError(f"parameter 'ramp_rate': {n} ramps at {r:.3g} I_c per plasma period take "
+                             f"{n * i_max / (r * h):.2g} steps, more than the limit {_MAX_SWITCHING_STEPS:.0e}: "
+                             "a faster ramp, fewer ramps or a larger dt")
+        cancel = _interrupt.cancel_flag()
+        isw, status = _interrupt.call(_kernel.junction_switching_v, self.damping, self.noise, r, seed, h, i_max, n,
+                                      threads, cancel, cancel=cancel)
+        if cancel[0]:
+            raise KeyboardInterrupt
+        samples = np.asarray(isw) * self.critical_current
+        counts, edges = np.histogram(samples[np.isfinite(samples)], bins=bins)
+        return SwitchingCurrents(samples, counts, edges, rate, self.temperature)
+
+
+def _escape_rate(i, beta, temp, regime):
+    """The thermal escape rate of the tilted washboard (eps = 1, reduced
+    units) at bias i in [0, 1]: Kramers' moderate-damping prefactor, or
+    Buttiker-Harris-Landauer's underdamped one (Junction.escape_rate)."""
+    i = np.asarray(i, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        s = np.sqrt(1.0 - i * i)
+        wa = np.sqrt(s)
+        du = 2.0 * (s - i * np.arccos(i))
+        if regime == "moderate":
+            alpha = beta / (2.0 * wa)
+            pref = np.sqrt(1.0 + alpha * alpha) - alpha
+        else:
+            q = wa / beta
+            pref = 4.0 / (np.sqrt(1.0 + q * temp / (1.8 * du)) + 1.0) ** 2
+        g = wa / (2.0 * math.pi) * pref * np.exp(-du / temp)
+    return np.where(i >= 1.0, np.inf, g)
