@@ -1,4 +1,5 @@
 import pathlib
+import signal
 import sys
 
 import numpy as np
@@ -6,6 +7,18 @@ import pytest
 
 DATA = pathlib.Path(__file__).resolve().parents[1] / "data"
 EPS = np.finfo(np.float64).eps
+
+
+def pytest_configure(config):
+    """Children start with SIGINT at its default, however the runner was started.
+
+    A shell without job control (``make test &``, nohup, cron) starts its children with SIGINT
+    ignored, and an ignored disposition is inherited across exec: the Ctrl-C tests' children then
+    never saw the signal they were sent (11 failures in the background).  A handled signal is reset
+    to its default in an exec'd child, so restoring Python's handler here restores SIGINT for every
+    child the tests start, and for the tests that interrupt this process itself."""
+    if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 @pytest.fixture(scope="session")

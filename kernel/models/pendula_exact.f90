@@ -22,7 +22,7 @@ module pendula_exact
   use pendula_jacobi_theta, only: theta_plan, theta_prepare, theta_jacobi, theta_mc_max
   implicit none
   private
-  public :: pendulum_orbit, orbit_setup, orbit_eval, orbit_period, orbit_theta_max
+  public :: pendulum_orbit, orbit_setup, orbit_eval, orbit_period, orbit_theta_max, half_angle
 
   integer, parameter, public :: regime_libration = 0, regime_separatrix = 1, &
                                 regime_rotation = 2
@@ -35,6 +35,11 @@ module pendula_exact
     integer :: regime = regime_libration
     real(dp) :: eps = 1.0_dp, sqh = 1.0_dp, sql = 0.0_dp  !< eps and sqrt(eps) (double-double)
     real(dp) :: k = 0.0_dp                  !< modulus sqrt(E / (2 eps))
+    !> k = ks 2^-kshift: below ~2^-450 (k^2 would underflow) k is carried scaled
+    !> by 2^600 (kshift = 600), and the libration is then theta = 2 k sn / dn
+    !> (atan2 is linear there) rounded once at the end; else ks = k, kshift = 0
+    real(dp) :: ks = 0.0_dp
+    integer :: kshift = 0
     real(dp) :: m = 0.0_dp, mch = 1.0_dp, mcl = 0.0_dp  !< parameter of sn/am and its complement
     real(dp) :: rateh = 1.0_dp, ratel = 0.0_dp  !< du/dt (double-double)
     real(dp) :: vsh = 0.0_dp, vsl = 0.0_dp  !< velocity scale 2 k sqrt(eps) (double-double)
@@ -57,7 +62,10 @@ contains
     type(pendulum_orbit), intent(out) :: o
     integer, intent(out) :: status
     real(dp) :: n, p, e, th, tl, c0, s0, wh, wl, r, awh, awl, dh, dl, sh, sl, qh, ql
-    real(dp) :: k2h, k2l, a, b, kh, kl, s0l, c0l, nh, nl
+    real(dp) :: k2h, k2l, a, b, kh, kl, s0l, c0l, nh, nl, es, vs
+    integer :: ie, bsh
+    !> below this, sin(theta0/2) and v0 / (2 sqrt(eps)) are carried scaled by 2^600
+    real(dp), parameter :: tiny_k = 2.0_dp**(-450)
 
     status = orbit_ok
     ! (eps above 1e300 leaves no room for the double-double splits of sqrt(eps))
@@ -69,45 +77,39 @@ contains
       status = orbit_bad_v0; return
     end if
     o%eps = eps
-    call dd_sqrt(eps, 0.0_dp, o%sqh, o%sql)
+    ! eps scaled by an even power of two into [1/4, 2), v0 with it: w = v0 / (2 sqrt(eps)) and
+    ! the distance (4 eps c0^2 - v0^2) / (4 eps) are unchanged to the bit, and sqrt(eps) and
+    ! that distance keep every digit for eps down to the smallest subnormal (the low part of
+    ! sqrt(eps) and the product 4 eps c0^2 underflowed there)
+    ie = exponent(eps) / 2
+    es = scale(eps, -2 * ie)
+    vs = scale(v0, -ie)
+    call dd_sqrt(es, 0.0_dp, a, b)
+    o%sqh = scale(a, ie); o%sql = scale(b, ie)
     ! theta0 = 2 pi n + (th + tl), |th| <= pi.  Beyond 2^52 the quotient n is
     ! no longer an exact double and the angle cannot be reduced: status 4
     if (abs(theta0) > 2.0_dp**52) then
       status = orbit_theta0_too_large; return
     end if
-    n = anint(theta0 / two_pi)
-    call reduce_2pi(theta0, n, th, tl)
-    ! 2 n pi_lo can be many radians for a large theta0 (39 at 1e18): reduce what is left
-    if (abs(th) > pi) then
-      n = n + anint(th / two_pi)
-      call reduce_2pi(theta0, n, th, tl)
-    end if
-    ! the quotient may round across +-pi: keep the reduced angle inside [-pi, pi] exactly
-    if (th > pi .or. (th == pi .and. tl > pi_lo)) then
-      n = n + 1.0_dp
-    else if (th < -pi .or. (th == -pi .and. tl < -pi_lo)) then
-      n = n - 1.0_dp
-    end if
-    call reduce_2pi(theta0, n, th, tl)
+    call reduce_angle(theta0, n, th, tl)
+    ! where both sin(theta0/2) and w = v0 / (2 sqrt(eps)) are below 2^-450, k^2 = s0^2 + w^2
+    ! would underflow (k came out 0 for v0 = 1e-208): both are carried scaled by 2^600
+    ! (exact), and so are k and the velocity scale until they are rounded once
+    bsh = 0
+    if (max(abs(th), abs(vs) / (2.0_dp * a)) < tiny_k) bsh = 600
     ! sin and cos of theta0/2 in double-double (cos >= 0 on the reduced angle)
-    if (abs(th) <= half_pi) then
-      call dd_sincos(0.5_dp * th, 0.5_dp * tl, s0, s0l, c0, c0l)
+    if (abs(th) < tiny_k) then
+      ! (n = 0, tl = 0) sin(th/2) = th/2 and cos = 1 within 2^-900 relative: th/2 exact, scaled
+      ! (the half of a subnormal th would round)
+      s0 = 0.5_dp * scale(th, bsh); s0l = 0.0_dp; c0 = 1.0_dp; c0l = 0.0_dp
     else
-      ! next to the top cos(theta0/2) = sin((pi - |th|)/2) is tiny: form the
-      ! distance pi - |th| with pi in three parts (pi_hi - |th| is exact), so
-      ! that cos(theta0/2) keeps its relative accuracy (through pi in two
-      ! parts, 1e-33 / 1.5e-15 of it was lost: 450 eps after 7700 periods)
-      call two_sum(pi - abs(th), pi_lo, p, e)
-      e = e + (pi_lo2 - sign(1.0_dp, th) * tl)
-      call fast_two_sum(p, e, qh, ql)
-      call dd_sincos(0.5_dp * qh, 0.5_dp * ql, c0, c0l, s0, s0l)
-      s0 = sign(1.0_dp, th) * s0; s0l = sign(1.0_dp, th) * s0l
+      call half_sincos(th, tl, s0, s0l, c0, c0l)
     end if
-    ! w = v0 / (2 sqrt(eps)) in double-double
-    wh = v0 / (2.0_dp * o%sqh)
-    call two_prod(2.0_dp * o%sqh, wh, p, e)
-    r = ((v0 - p) - e) - 2.0_dp * o%sql * wh
-    wl = r / (2.0_dp * o%sqh)
+    ! w = v0 / (2 sqrt(eps)) in double-double (from the scaled v0 and eps, times 2^bsh)
+    wh = scale(vs, bsh) / (2.0_dp * a)
+    call two_prod(2.0_dp * a, wh, p, e)
+    r = ((scale(vs, bsh) - p) - e) - 2.0_dp * b * wh
+    wl = r / (2.0_dp * a)
     awh = abs(wh); awl = sign(1.0_dp, wh) * wl
     ! k^2 = w^2 + ... must stay a double (with room for the double-double splits)
     if (awh > 1.0e154_dp) then
@@ -115,18 +117,21 @@ contains
     end if
     ! the distance from the separatrix: N = 4 eps c0^2 - v0^2 (d = N / (4 eps));
     ! where 4 eps or v0^2 would overflow, as 4 eps (c0 - |w|)(c0 + |w|)
-    if (eps < 1.0e300_dp .and. abs(v0) < 1.0e150_dp) then
+    if (abs(vs) < 1.0e150_dp .and. bsh == 0) then
       call dd_mul(c0, c0l, c0, c0l, qh, ql)
-      call dd_mul(qh, ql, 4.0_dp * eps, 0.0_dp, a, e)
-      call two_prod(v0, v0, b, r)
+      call dd_mul(qh, ql, 4.0_dp * es, 0.0_dp, a, e)
+      call two_prod(vs, vs, b, r)
       call dd_add(a, e, -b, -r, qh, ql)
-      call dd_div_d(qh, ql, 4.0_dp * eps, nh, nl)
+      call dd_div_d(qh, ql, 4.0_dp * es, nh, nl)
     else
       call dd_add(c0, c0l, -awh, -awl, dh, dl)
       call dd_add(c0, c0l, awh, awl, sh, sl)
       call dd_mul(dh, dl, sh, sl, nh, nl)
     end if
-    ! now nh + nl = c0^2 - w^2 = 1 - k^2, signed
+    ! now nh + nl = c0^2 - w^2 = 1 - k^2, signed (for bsh > 0: w scaled, 1 - k^2 = 1 to the bit)
+    if (bsh > 0) then
+      nh = 1.0_dp; nl = 0.0_dp
+    end if
     ! k^2 = s0^2 + w^2 in double-double
     call dd_mul(s0, s0l, s0, s0l, a, e)
     call dd_mul(wh, wl, wh, wl, b, r)
@@ -136,12 +141,14 @@ contains
       ! libration: mc = 1 - k^2, m = k^2
       o%regime = regime_libration
       o%mch = nh; o%mcl = nl
-      o%m = k2h
-      o%k = sqrt(k2h)
+      o%m = scale(k2h, -2 * bsh)
+      o%ks = sqrt(k2h); o%kshift = bsh
+      o%k = scale(o%ks, -bsh)
       ! v = 2 k sqrt(eps) cn with the scale in double-double (its rounding
       ! would add 1.5 eps to v next to the turning points, where v is small)
       call dd_sqrt(k2h, k2l, kh, kl)
       call dd_mul(kh, kl, 2.0_dp * o%sqh, 2.0_dp * o%sql, o%vsh, o%vsl)
+      o%vsh = scale(o%vsh, -bsh); o%vsl = scale(o%vsl, -bsh)
       call two_prod(2.0_dp * n, pi, o%offset, o%offl)
       o%offl = o%offl + 2.0_dp * n * pi_lo
       o%rateh = o%sqh; o%ratel = o%sql
@@ -151,7 +158,7 @@ contains
                                      ellip_nome(o%mch, 1.0_dp - o%mch))
       ! sn(u0) = s0/k, cn(u0) = w/k, dn(u0) = cos(theta0/2): F from sine and
       ! cosine, never from an angle, next to the nearest multiple of K
-      if (o%k > 0.0_dp) then
+      if (kh > 0.0_dp) then
         call dd_div(s0, s0l, kh, kl, a, e)
         call dd_div(wh, wl, kh, kl, b, r)
         call phase_dd([a, e], [b, r], [c0, c0l], o%plan%kh, o%plan%kl, o%m, [o%mch, o%mcl], &
@@ -162,7 +169,7 @@ contains
       ! double), so |w| = cos(theta0/2) > 0 here: the inverted equilibrium at
       ! rest cannot be given, and the flight always has a direction.
       o%regime = regime_separatrix
-      o%k = 1.0_dp; o%m = 1.0_dp; o%mch = 0.0_dp; o%mcl = 0.0_dp
+      o%k = 1.0_dp; o%ks = 1.0_dp; o%m = 1.0_dp; o%mch = 0.0_dp; o%mcl = 0.0_dp
       call two_prod(2.0_dp * n, pi, o%offset, o%offl)
       o%offl = o%offl + 2.0_dp * n * pi_lo
       o%rateh = o%sqh; o%ratel = o%sql
@@ -186,7 +193,7 @@ contains
       end if
       o%m = 1.0_dp / k2h
       call dd_sqrt(k2h, k2l, kh, kl)
-      o%k = kh
+      o%k = kh; o%ks = kh
       call dd_mul(kh, kl, 2.0_dp * o%sqh, 2.0_dp * o%sql, o%vsh, o%vsl)
       ! rate = k sqrt(eps) (double-double)
       call two_prod(kh, o%sqh, p, e)
@@ -261,11 +268,20 @@ contains
       case (regime_libration)
         ! theta/2 = atan2(k sn, dn) with dn >= sqrt(mc) > 0: an atan2 that vectorizes
         ! (one division and one square root)
-        do i = 1, nb
-          x = atan2_pos(o%k * abs(sn(i)), dn(i))
-          theta(i0 + i - 1) = o%offset + (o%offl + 2.0_dp * sign(x, sn(i)))
-          v(i0 + i - 1) = o%vsh * cn(i) + o%vsl * cn(i)
-        end do
+        if (o%kshift == 0) then
+          do i = 1, nb
+            x = atan2_pos(o%k * abs(sn(i)), dn(i))
+            theta(i0 + i - 1) = o%offset + (o%offl + 2.0_dp * sign(x, sn(i)))
+            v(i0 + i - 1) = o%vsh * cn(i) + o%vsl * cn(i)
+          end do
+        else
+          ! k below 2^-450: atan2(k sn, dn) = k sn / dn within 2^-900, from the scaled k
+          ! and rounded once (offset = 0: the well of a tiny theta0 is the first)
+          do i = 1, nb
+            theta(i0 + i - 1) = scale(2.0_dp * o%ks * sn(i) / dn(i), -o%kshift)
+            v(i0 + i - 1) = o%vsh * cn(i) + o%vsl * cn(i)
+          end do
+        end if
       case (regime_separatrix)
         theta(i0:i0+nb-1) = o%offset + (o%offl + o%dir * 2.0_dp * am(1:nb))
         v(i0:i0+nb-1) = o%dir * (2.0_dp * o%sqh) * cn(1:nb)
@@ -305,13 +321,75 @@ contains
     real(dp) :: tm
     select case (o%regime)
     case (regime_libration)
-      tm = 2.0_dp * atan2(o%k, sqrt(o%mch))
+      if (o%kshift == 0) then
+        tm = 2.0_dp * atan2(o%k, sqrt(o%mch))
+      else
+        tm = scale(2.0_dp * o%ks / sqrt(o%mch), -o%kshift)   ! (k below 2^-450: atan is linear)
+      end if
     case (regime_separatrix)
       tm = pi
     case default
       tm = inf_dp
     end select
   end function orbit_theta_max
+
+  !> theta0 = 2 pi n + (th + tl) with the remainder in [-pi, pi] exactly
+  !> (|theta0| <= 2^52, where n is an exact double).
+  pure subroutine reduce_angle(theta0, n, th, tl)
+    real(dp), intent(in) :: theta0
+    real(dp), intent(out) :: n, th, tl
+    n = anint(theta0 / two_pi)
+    call reduce_2pi(theta0, n, th, tl)
+    ! 2 n pi_lo can be many radians for a large theta0 (39 at 1e18): reduce what is left
+    if (abs(th) > pi) then
+      n = n + anint(th / two_pi)
+      call reduce_2pi(theta0, n, th, tl)
+    end if
+    ! the quotient may round across +-pi: keep the reduced angle inside [-pi, pi] exactly
+    if (th > pi .or. (th == pi .and. tl > pi_lo)) then
+      n = n + 1.0_dp
+    else if (th < -pi .or. (th == -pi .and. tl < -pi_lo)) then
+      n = n - 1.0_dp
+    end if
+    call reduce_2pi(theta0, n, th, tl)
+  end subroutine reduce_angle
+
+  !> sin and cos of (th + tl)/2, |th| <= pi, in double-double, each to its
+  !> relative accuracy (cos >= 0).
+  pure subroutine half_sincos(th, tl, s0, s0l, c0, c0l)
+    real(dp), intent(in) :: th, tl
+    real(dp), intent(out) :: s0, s0l, c0, c0l
+    real(dp) :: p, e, qh, ql
+    if (abs(th) <= half_pi) then
+      call dd_sincos(0.5_dp * th, 0.5_dp * tl, s0, s0l, c0, c0l)
+    else
+      ! next to the top cos(theta0/2) = sin((pi - |th|)/2) is tiny: form the
+      ! distance pi - |th| with pi in three parts (pi_hi - |th| is exact), so
+      ! that cos(theta0/2) keeps its relative accuracy (through pi in two
+      ! parts, 1e-33 / 1.5e-15 of it was lost: 450 eps after 7700 periods)
+      call two_sum(pi - abs(th), pi_lo, p, e)
+      e = e + (pi_lo2 - sign(1.0_dp, th) * tl)
+      call fast_two_sum(p, e, qh, ql)
+      call dd_sincos(0.5_dp * qh, 0.5_dp * ql, c0, c0l, s0, s0l)
+      s0 = sign(1.0_dp, th) * s0; s0l = sign(1.0_dp, th) * s0l
+    end if
+  end subroutine half_sincos
+
+  !> An angle reduced exactly (pi in three parts, as theta0 is): theta =
+  !> 2 pi turns + w, w in [-pi, pi]; s = sin(w/2), c = cos(w/2) >= 0, each
+  !> rounded once from double-double (c to its relative accuracy next to
+  !> w = +-pi).  NaN beyond |theta| = 2^52, where turns is no longer exact.
+  elemental subroutine half_angle(theta, turns, s, c)
+    real(dp), intent(in) :: theta
+    real(dp), intent(out) :: turns, s, c
+    real(dp) :: th, tl, s0, s0l, c0, c0l
+    if (.not. (abs(theta) <= 2.0_dp**52)) then
+      turns = nan_dp; s = nan_dp; c = nan_dp; return
+    end if
+    call reduce_angle(theta, turns, th, tl)
+    call half_sincos(th, tl, s0, s0l, c0, c0l)
+    s = s0 + s0l; c = c0 + c0l
+  end subroutine half_angle
 
   !> th + tl = theta0 - 2 pi n with pi in three parts (2n and each part's
   !> products exact through two-products), summed in double-double: the

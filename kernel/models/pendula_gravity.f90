@@ -185,6 +185,8 @@ contains
     real(dp) :: w0, f1, c, omc, s_old, s_new, sfac, g, qh, ql, dh, dl, ph, pl, ah, al, eu, xh, xl
     integer :: n, st, ie, je
     type(pendulum_orbit) :: o
+    !> below this sin(theta0/2) and the amplitude are tiny: their squares underflow
+    real(dp), parameter :: tiny_s = 2.0_dp**(-450)
     e = nan_dp; m = nan_dp; mc = nan_dp; kk = nan_dp; theta_max = nan_dp; period = nan_dp; regime = -1
     status = gravity_check(kind, par, eps)
     if (status /= gs_ok) return
@@ -200,6 +202,8 @@ contains
       status = status_of(st)
       if (status /= gs_ok) return
       e = 0.5_dp * v0 * v0 + gravity_f(gk_uniform, par, eps, sin(0.5_dp * theta0)**2)
+      if (abs(sin(0.5_dp * theta0)) < tiny_s) e = 0.5_dp * v0 * v0 + 2.0_dp * (eps * sin(0.5_dp * theta0)) &
+                                                     * sin(0.5_dp * theta0)
       regime = o%regime
       m = o%m; mc = o%mch
       theta_max = orbit_theta_max(o)
@@ -226,6 +230,10 @@ contains
     ah = scale(ah, ie - je); al = scale(al, ie - je)
     eu = ah + gravity_f(kind, par, 1.0_dp, w0)
     e = eps * eu
+    ! where sin^2(theta0/2) underflows, V = f'(0) eps sin^2(theta0/2) with the product taken first
+    ! (E came out 0 for theta0 = 1e-160, eps = 1e100)
+    if (abs(sin(0.5_dp * theta0)) < tiny_s) e = 0.5_dp * v0 * v0 + fp0() * (eps * sin(0.5_dp * theta0)) &
+                                                   * sin(0.5_dp * theta0)
     f1 = gravity_f(kind, par, 1.0_dp, 1.0_dp)
     ! the distance from the separatrix (f(1) - E) / eps = Q(w0, 1) c^2 / eps - v0^2 / (2 eps)
     call gravity_q1_dd(kind, par, 1.0_dp, o%mch, o%mcl, qh, ql)
@@ -266,6 +274,9 @@ contains
       end if
       if (mc < 0.5_dp) m = 1.0_dp - mc         ! next to the top, m from its complement
       theta_max = 2.0_dp * atan2(sqrt(m), sqrt(mc))
+      ! an amplitude below 2^-450: the field is harmonic to 2^-900, theta_max^2 = th0^2 + 2 v0^2 / (eps
+      ! f'(0)), by hypot (m = theta_max^2 / 4 underflowed, and theta_max came out 0)
+      if (m < tiny_s**2) theta_max = hypot((theta0 - o%offset) - o%offl, v0 * sqrt(2.0_dp / fp0()) / sqrt(eps))
       if (v0 == 0.0_dp) theta_max = abs((theta0 - o%offset) - o%offl)
       sfac = 4.0_dp
     else if (dh == 0.0_dp) then
@@ -316,6 +327,11 @@ contains
       status = gs_out_of_range; period = nan_dp
     end if
   contains
+    !> f'(0) in units of eps: 2 d / (d - 1) (inverse-square), 2 (linear, uniform)
+    pure real(dp) function fp0()
+      fp0 = 2.0_dp
+      if (kind == gk_inverse_square) fp0 = 2.0_dp * par / (par - 1.0_dp)
+    end function fp0
     !> trapezoid sum on [0, K] with n panels
     pure function trap(np) result(s)
       integer, intent(in) :: np
