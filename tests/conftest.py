@@ -77,3 +77,24 @@ def run_threads(targets, switch_interval: float = 1e-6) -> list:
     finally:
         sys.setswitchinterval(old)
     return errors
+
+
+def hard_case_errors(cls: str, set_: str) -> list[dict]:
+    """The rows of data/hard_cases.csv.gz (data/gen_hard_cases.py: mpmath at the exact double inputs)
+    of one class and set ('reproducer' or 'hunt'), each with pendula's value and its error in eps
+    (pendula.studies.accuracy.hard_case_errors)."""
+    from pendula.studies.accuracy import hard_case_errors as errors, load_hard_cases
+
+    rows = [r for r in load_hard_cases(DATA / "hard_cases.csv.gz") if r["cls"] == cls and r["set"] == set_]
+    assert rows, f"no {set_} rows of class {cls} in data/hard_cases.csv.gz"
+    return errors(rows)
+
+
+def worst_hard_case(errs: list[dict], bound) -> str:
+    """'' when every row is within its bound (a number, or a function of the row), else the worst row."""
+    over = [e for e in errs if not e["err_eps"] <= (bound(e) if callable(bound) else bound)]
+    if not over:
+        return ""
+    w = max(over, key=lambda e: e["err_eps"])
+    return (f"{len(over)} of {len(errs)} rows over the bound; worst {w['func']}{tuple(w['args'])} "
+            f"{w['quantity']}: {w['got']!r} against {w['ref']} ({w['err_eps']:.3g} eps)")

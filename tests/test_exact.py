@@ -273,3 +273,52 @@ def test_v_next_to_the_separatrix_keeps_its_relative_accuracy(side):
         _, v = pendula.exact_motion(0.0, v0, eps, [t])
         worst = max(worst, abs(float(v[0] - ref)) / max(1.0, abs(float(ref))) / EPS)
     assert worst <= 4.0, f"{worst:.3g} eps"
+
+
+# ---------------------------------------------------------------- hard cases (data/hard_cases.csv.gz)
+
+def test_tiny_velocity_does_not_underflow_k_squared():
+    """v0 = 1e-208: k^2 = v0^2 / (4 eps) underflowed (k = 0, theta = v = 0): k, theta_max, the
+    period and theta(t), v(t) within 4 eps of mpmath, relative to max(|ref|, 2^-1022)."""
+    from conftest import hard_case_errors, worst_hard_case
+
+    errs = hard_case_errors("tiny", "reproducer")
+    assert not worst_hard_case(errs, 4.0), worst_hard_case(errs, 4.0)
+
+
+def test_tiny_inputs_of_every_orbit_function_hunted():
+    """Fresh random |v0|, theta0, eps down to the smallest normal and subnormal (orbit, exact_motion,
+    energy, gravity_orbit in the three fields, angle_density, angle_cdf): within 4 eps of mpmath
+    (relative to max(|ref|, 2^-1022): a subnormal result is held to its spacing)."""
+    from conftest import hard_case_errors, worst_hard_case
+
+    errs = hard_case_errors("tiny", "hunt")
+    assert len(errs) > 100
+    assert not worst_hard_case(errs, 4.0), worst_hard_case(errs, 4.0)
+
+
+def _separatrix_dd_limit(e):
+    """4 eps plus the double-double limit of the distance from the separatrix: mc = 1 - 1/k^2 is
+    formed from cos^2(theta0/2) in double-double (2^-106 relative), and K(mc)'s error dK = dmc / (2 mc)
+    moves the phase by dK per half period: u / K half periods after 2 |t| / T_turn of them."""
+    theta0, v0, eps, t = e["args"]
+    o = pendula.orbit(theta0, v0, eps)
+    return 4.0 + (2 * abs(t) / o.period) * 2.0 ** -106 / (2 * o.mc) / EPS
+
+
+def test_velocity_just_above_the_separatrix_at_long_times():
+    """exact_motion 3.6e-15 above the separatrix after 1571 turns: v within the double-double limit
+    of the distance from the separatrix (5.06 eps measured, units of 2 k sqrt(eps)); theta within 4."""
+    from conftest import hard_case_errors, worst_hard_case
+
+    errs = hard_case_errors("separatrix_long_time", "reproducer")
+    assert not worst_hard_case(errs, _separatrix_dd_limit), worst_hard_case(errs, _separatrix_dd_limit)
+
+
+def test_just_above_the_separatrix_at_long_times_hunted():
+    """Fresh random theta0, eps, k^2 - 1 from 1e-15 to 1e-3, t up to 1e3 turns."""
+    from conftest import hard_case_errors, worst_hard_case
+
+    errs = hard_case_errors("separatrix_long_time", "hunt")
+    assert len(errs) > 100
+    assert not worst_hard_case(errs, _separatrix_dd_limit), worst_hard_case(errs, _separatrix_dd_limit)

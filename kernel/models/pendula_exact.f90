@@ -128,6 +128,12 @@ contains
       call dd_add(c0, c0l, awh, awl, sh, sl)
       call dd_mul(dh, dl, sh, sl, nh, nl)
     end if
+    ! next to the separatrix the distance is the difference of two numbers of order one, and the
+    ! 2^-106 of c0^2 in double-double is an error of 2^-106 / |N| in mc, of K(mc) and so of the phase
+    ! after each half period (5 eps of v 3.6e-15 above the separatrix after 1571 turns): there
+    ! 4 eps c0^2 - v0^2 again, c0^2 in triple-double (distance_td)
+    if (abs(nh) < 2.0_dp**(-10) .and. abs(vs) < 1.0e150_dp .and. bsh == 0) &
+      call distance_td(theta0, n, es, vs, nh, nl)
     ! now nh + nl = c0^2 - w^2 = 1 - k^2, signed (for bsh > 0: w scaled, 1 - k^2 = 1 to the bit)
     if (bsh > 0) then
       nh = 1.0_dp; nl = 0.0_dp
@@ -390,6 +396,102 @@ contains
     call half_sincos(th, tl, s0, s0l, c0, c0l)
     s = s0 + s0l; c = c0 + c0l
   end subroutine half_angle
+
+  !> The distance from the separatrix N = (4 es c0^2 - vs^2) / (4 es) (double-double) with
+  !> c0^2 = cos^2(theta0/2) in triple-double: the angle reduced by 2 pi n (pi in three parts) to a
+  !> triple-double r, then c0^2 = 1 - H(r)/2 for |r| <= pi/2, H(pi - |r|)/2 beyond (no
+  !> cancellation either way), H(z) = 1 - cos z (td_one_minus_cos).  About 2^-150 relative.
+  pure subroutine distance_td(theta0, n, es, vs, nh, nl)
+    real(dp), intent(in) :: theta0, n, es, vs
+    real(dp), intent(out) :: nh, nl
+    real(dp) :: r(3), c2(3), x(3), p, e, q, f, g, sg
+    ! r = theta0 - 2 n (pi + pi_lo + pi_lo2): every product exact but the last (below 2^-150 n)
+    call two_prod(2.0_dp * n, pi, p, e)
+    call two_prod(2.0_dp * n, pi_lo, q, f)
+    g = 2.0_dp * n * pi_lo2
+    r = td_add([theta0 - p, 0.0_dp, 0.0_dp], [-e, -q, -f - g])
+    if (abs(r(1)) <= half_pi) then
+      c2 = td_add([1.0_dp, 0.0_dp, 0.0_dp], -0.5_dp * td_one_minus_cos(r))
+    else
+      sg = sign(1.0_dp, r(1))
+      x = td_add([pi, pi_lo, pi_lo2], -sg * r)
+      c2 = 0.5_dp * td_one_minus_cos(x)
+    end if
+    call two_prod(vs, vs, p, e)
+    x = td_add(td_mul(c2, [4.0_dp * es, 0.0_dp, 0.0_dp]), [-p, -e, 0.0_dp])
+    call fast_two_sum(x(1), x(2) + x(3), p, e)
+    call dd_div_d(p, e, 4.0_dp * es, nh, nl)
+  end subroutine distance_td
+
+  !> 1 - cos z for |z| <= pi/2 in triple-double: Maclaurin at z / 2^8 (nine terms, below 2^-160),
+  !> then eight doublings 1 - cos 2a = 2 H (2 - H), every factor positive.
+  pure function td_one_minus_cos(z) result(h)
+    real(dp), intent(in) :: z(3)
+    real(dp) :: h(3), a(3), a2(3), pp(3)
+    integer :: k
+    a = scale(z, -8)
+    a2 = td_mul(a, a)
+    ! 1 - cos a = (a^2 / 2) (1 - a^2 / (3 4) (1 - a^2 / (5 6) (...)))
+    pp = [1.0_dp, 0.0_dp, 0.0_dp]
+    do k = 9, 1, -1
+      pp = td_add([1.0_dp, 0.0_dp, 0.0_dp], -td_div_int(td_mul(a2, pp), (2 * k + 1) * (2 * k + 2)))
+    end do
+    h = td_mul(0.5_dp * a2, pp)
+    do k = 1, 8
+      h = 2.0_dp * td_mul(h, td_add([2.0_dp, 0.0_dp, 0.0_dp], -h))
+    end do
+  end function td_one_minus_cos
+
+  !> a + b in triple-double (components decreasing, each below half an ulp of the one before or
+  !> nearly so), to about 2^-150 relative.
+  pure function td_add(a, b) result(r)
+    real(dp), intent(in) :: a(3), b(3)
+    real(dp) :: r(3), s0, e0, s1, e1, t, u
+    call two_sum(a(1), b(1), s0, e0)
+    call two_sum(a(2), b(2), s1, e1)
+    call two_sum(s1, e0, t, u)
+    r = td_renorm(s0, t, (a(3) + b(3)) + (e1 + u))
+  end function td_add
+
+  !> a b in triple-double (the products of order three and beyond in double).
+  pure function td_mul(a, b) result(r)
+    real(dp), intent(in) :: a(3), b(3)
+    real(dp) :: r(3), p0, q0, p1, q1, p2, q2, s, e, t, f
+    call two_prod(a(1), b(1), p0, q0)
+    call two_prod(a(1), b(2), p1, q1)
+    call two_prod(a(2), b(1), p2, q2)
+    call two_sum(p1, p2, s, e)
+    call two_sum(s, q0, t, f)
+    r = td_renorm(p0, t, (a(1) * b(3) + a(2) * b(2) + a(3) * b(1)) + ((q1 + q2) + (e + f)))
+  end function td_mul
+
+  !> a / d for a small integer d in triple-double (each remainder exact by two-products).
+  pure function td_div_int(a, d) result(r)
+    real(dp), intent(in) :: a(3)
+    integer, intent(in) :: d
+    real(dp) :: r(3), dd, q1, q2, q3, p, e, s, t, u, v, lo
+    dd = real(d, dp)
+    q1 = a(1) / dd
+    call two_prod(q1, dd, p, e)
+    call two_sum(a(1) - p, -e, s, t)
+    call two_sum(s, a(2), u, v)
+    lo = (t + v) + a(3)
+    q2 = u / dd
+    call two_prod(q2, dd, p, e)
+    q3 = (((u - p) - e) + lo) / dd
+    r = td_renorm(q1, q2, q3)
+  end function td_div_int
+
+  !> (a, b, c) with |a| >= |b| >= |c| roughly, as a normalized triple-double.
+  pure function td_renorm(a, b, c) result(r)
+    real(dp), intent(in) :: a, b, c
+    real(dp) :: r(3), s, t, u, v, w, x
+    call two_sum(b, c, t, u)
+    call two_sum(a, t, s, v)
+    call two_sum(v, u, w, x)
+    call fast_two_sum(s, w, r(1), t)        ! (no output aliases an input)
+    call fast_two_sum(t, x, r(2), r(3))
+  end function td_renorm
 
   !> th + tl = theta0 - 2 pi n with pi in three parts (2n and each part's
   !> products exact through two-products), summed in double-double: the
