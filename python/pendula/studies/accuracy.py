@@ -392,14 +392,23 @@ HARD_CASES = {
 
 def hard_case_values(func: str, args: list) -> dict:
     """pendula's outputs for one row of data/hard_cases.csv.gz (func and its arguments)."""
+    import types
     import warnings
 
-    import pendula
+    from ..density import angle_cdf, angle_density
+    from ..elliptic import ellipeinc, ellipf
+    from ..scene import Scene
+    from ..systems.gravity import gravity_orbit
+    from ..systems.rigid import energy, exact_motion, orbit
+
+    pendula = types.SimpleNamespace(orbit=orbit, exact_motion=exact_motion, energy=energy,
+                                    gravity_orbit=gravity_orbit, angle_density=angle_density,
+                                    angle_cdf=angle_cdf, ellipeinc=ellipeinc, ellipf=ellipf)
 
     def scene(kind, par, eps, theta0, v0):
         kw = {"gravity_distance": par} if kind == "inverse-square" else \
             {"gravity_gradient": par} if kind == "linear" else {}
-        return pendula.Scene(gravity=kind, eps=eps, theta0=theta0, v0=v0, **kw)
+        return Scene(gravity=kind, eps=eps, theta0=theta0, v0=v0, **kw)
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
