@@ -12,6 +12,12 @@
 !> sqrt(eps): for theta0 = 0 the numerator is exact, so v0 = 2 -+ 1e-15 keeps
 !> every digit of its period over 1e4 periods (through w = v0/(2 sqrt(eps)) in
 !> double-double, the 1e-32 of the square root alone cost 250 eps there).
+!> Within 2^-10 of the separatrix c^2 is taken in triple-double (distance_td):
+!> its 2^-106 in double-double was 2^-106 / |1 - k^2| of mc, and of K and so
+!> of the phase after every half period (5 eps of v after 1571 turns 3.6e-15
+!> above it).  Below 2^-450, sin(theta0/2) and v0 / (2 sqrt(eps)) are carried
+!> scaled by 2^600 (k^2 underflowed), and eps is scaled into [1/4, 2) by an
+!> even power of two for sqrt(eps) (subnormal eps).
 !> The phase u = u0 + rate t is carried in double-double too, so t of 1000
 !> periods loses nothing to the product.
 module pendula_exact

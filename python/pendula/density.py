@@ -139,6 +139,8 @@ class _Model:
         # an amplitude below 2^-400: every field is harmonic there to 2^-800, the density is the
         # arcsine law exactly (theta and theta_max scaled by 2^600: their squares would underflow)
         self.tiny = o.regime == "libration" and self.thm < 2.0 ** -400
+        if self.tiny:
+            return                         # (no series: the arcsine law needs none)
         K = o.K
         # cosine coefficients of h on its period 2K: doubling until the last ones are below rounding
         n = 16

@@ -382,7 +382,7 @@ HARD_CASES = {
     "tiny": ("|v0|, theta0, eps down to the smallest normal and subnormal (every public function of "
              "an orbit); relative to max(|ref|, 2^-1022)", 4.0),
     "einc_above_one": ("E(phi|m), F(phi|m) next to odd multiples of pi/2, m - 1 from 1e-16 to 1e-300", 4.0),
-    "inverse_square_near_one": ("gravity_orbit, inverse-square field, d - 1 from 0.3 to 3e-5", 4.0),
+    "inverse_square_near_one": ("gravity_orbit, inverse-square field, d - 1 from 0.3 to 1e-4", 4.0),
     "separatrix_long_time": ("exact_motion 1e-15 to 1e-3 above the separatrix, up to 1e3 turns "
                              "(v relative to 2 k sqrt(eps))", 4.0),
     "periodic_exact": ("periodic inputs up to 2^52: angle density and CDF of a rotation, energy, "
@@ -466,12 +466,20 @@ def hard_case_errors(rows: list[dict]) -> list[dict]:
         got = cache[key].get(r["quantity"], float("nan"))
         ref = Decimal(r["ref"])
         floor = Decimal(r["floor"])
-        if not np.isfinite(got):
+        if abs(ref) > Decimal(np.finfo(np.float64).max) and np.isinf(got) and (got > 0) == (ref > 0):
+            err = 0.0                                       # beyond double: inf is the right answer
+        elif not np.isfinite(got):
             err = float("inf")
         else:
             err = float(abs(Decimal(got) - ref) / max(abs(ref), floor) / Decimal(EPS))
-        out.append({**r, "got": got, "err_eps": err})
+        out.append({**r, "got": got, "err_eps": err, "cond": float(r.get("cond") or 0.0)})
     return out
+
+
+def hard_case_tolerance(e: dict) -> float:
+    """The bound a hard case is held to, in eps: its class's (4) plus twice the condition number stored
+    with the row (nonzero for the rotation's density and CDF: the conditioning in the reduced angle)."""
+    return HARD_CASES[e["cls"]][1] + 2.0 * e["cond"]
 
 
 def hard_cases_report(path) -> list[dict]:
@@ -480,17 +488,20 @@ def hard_cases_report(path) -> list[dict]:
     for e in hard_case_errors(load_hard_cases(path)):
         k = (e["set"], e["cls"], e["func"], e["quantity"])
         w = worst.setdefault(k, {"set": k[0], "class": k[1], "function": k[2], "quantity": k[3],
-                                 "points": 0, "worst_eps": 0.0, "bound_eps": HARD_CASES[k[1]][1]})
+                                 "points": 0, "worst_eps": 0.0, "bound_eps": 0.0, "worst_ratio": 0.0})
         w["points"] += 1
-        w["worst_eps"] = max(w["worst_eps"], e["err_eps"])
+        if e["err_eps"] >= w["worst_eps"]:
+            w["worst_eps"], w["bound_eps"] = e["err_eps"], hard_case_tolerance(e)
+        w["worst_ratio"] = max(w["worst_ratio"], e["err_eps"] / hard_case_tolerance(e))
     return sorted(worst.values(), key=lambda w: (w["set"] != "reproducer", w["class"], w["function"],
                                                   w["quantity"]))
 
 
 def hard_cases_markdown(path) -> str:
     """The accuracy report's table of the hard cases: the reproducers and the hunt around each."""
-    lines = ["| set | class | function | quantity | points | worst (eps) | bound (eps) |",
-             "|---|---|---|---|---:|---:|---:|"]
+    lines = ["| set | class | function | quantity | points | worst (eps) | bound there (eps) | worst error / bound |",
+             "|---|---|---|---|---:|---:|---:|---:|"]
     lines += [f"| {w['set']} | {w['class']} | {w['function']} | {w['quantity']} | {w['points']} | "
-              f"{w['worst_eps']:.3g} | {w['bound_eps']:.3g} |" for w in hard_cases_report(path)]
+              f"{w['worst_eps']:.3g} | {w['bound_eps']:.3g} | {w['worst_ratio']:.2g} |"
+              for w in hard_cases_report(path)]
     return "\n".join(lines)
