@@ -99,3 +99,11 @@ def worst_hard_case(errs: list[dict], bound) -> str:
     w = max(over, key=lambda e: e["err_eps"])
     return (f"{len(over)} of {len(errs)} rows over the bound; worst {w['func']}{tuple(w['args'])} "
             f"{w['quantity']}: {w['got']!r} against {w['ref']} ({w['err_eps']:.3g} eps)")
+
+
+def assert_hard_cases(cls: str, set_: str, bound: float = 4.0) -> None:
+    """Every row of a class and set of data/hard_cases.csv.gz within bound eps (plus twice its stored
+    condition number); a hunt has more than 100 rows."""
+    errs = hard_case_errors(cls, set_)
+    assert set_ != "hunt" or len(errs) > 100, f"only {len(errs)} hunt rows of class {cls}"
+    assert not worst_hard_case(errs, bound), worst_hard_case(errs, bound)
