@@ -1,4 +1,5 @@
 import pathlib
+import signal
 import sys
 
 import numpy as np
@@ -6,6 +7,18 @@ import pytest
 
 DATA = pathlib.Path(__file__).resolve().parents[1] / "data"
 EPS = np.finfo(np.float64).eps
+
+
+def pytest_configure(config):
+    """Children start with SIGINT at its default, however the runner was started.
+
+    A shell without job control (``make test &``, nohup, cron) starts its children with SIGINT
+    ignored, and an ignored disposition is inherited across exec: the Ctrl-C tests' children then
+    never saw the signal they were sent (11 failures in the background).  A handled signal is reset
+    to its default in an exec'd child, so restoring Python's handler here restores SIGINT for every
+    child the tests start, and for the tests that interrupt this process itself."""
+    if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 @pytest.fixture(scope="session")
@@ -64,3 +77,33 @@ def run_threads(targets, switch_interval: float = 1e-6) -> list:
     finally:
         sys.setswitchinterval(old)
     return errors
+
+
+def hard_case_errors(cls: str, set_: str) -> list[dict]:
+    """The rows of data/hard_cases.csv.gz (data/gen_hard_cases.py: mpmath at the exact double inputs)
+    of one class and set ('reproducer' or 'hunt'), each with pendula's value and its error in eps
+    (pendula.studies.accuracy.hard_case_errors)."""
+    from pendula.studies.accuracy import hard_case_errors as errors, load_hard_cases
+
+    rows = [r for r in load_hard_cases(DATA / "hard_cases.csv.gz") if r["cls"] == cls and r["set"] == set_]
+    assert rows, f"no {set_} rows of class {cls} in data/hard_cases.csv.gz"
+    return errors(rows)
+
+
+def worst_hard_case(errs: list[dict], bound) -> str:
+    """'' when every row is within its bound (a number plus twice the condition number stored with the
+    row: nonzero only for the rotation's density and CDF), else the worst row."""
+    over = [e for e in errs if not e["err_eps"] <= bound + 2.0 * e["cond"]]
+    if not over:
+        return ""
+    w = max(over, key=lambda e: e["err_eps"])
+    return (f"{len(over)} of {len(errs)} rows over the bound; worst {w['func']}{tuple(w['args'])} "
+            f"{w['quantity']}: {w['got']!r} against {w['ref']} ({w['err_eps']:.3g} eps)")
+
+
+def assert_hard_cases(cls: str, set_: str, bound: float = 4.0) -> None:
+    """Every row of a class and set of data/hard_cases.csv.gz within bound eps (plus twice its stored
+    condition number); a hunt has more than 100 rows."""
+    errs = hard_case_errors(cls, set_)
+    assert set_ != "hunt" or len(errs) > 100, f"only {len(errs)} hunt rows of class {cls}"
+    assert not worst_hard_case(errs, bound), worst_hard_case(errs, bound)

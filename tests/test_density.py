@@ -273,3 +273,32 @@ def test_rotation_angle_beyond_2_52_is_nan_with_a_warning():
 def test_empty_angles_give_empty_answers():
     for sc in (Scene(theta0=1.0), Scene(theta0=0.2, v0=5.0)):
         assert angle_cdf(sc, []).shape == (0,) and angle_density(sc, []).shape == (0,)
+
+
+def test_rotation_density_at_large_angles_reduced_exactly():
+    """theta = -908.13 on a rotation: theta was reduced modulo 2 pi in plain double (1.19e3 eps); now
+    exactly, as numpy's sin reduces: density and CDF within 4 eps of mpmath."""
+    from conftest import assert_hard_cases
+
+    assert_hard_cases("periodic_exact", "reproducer")
+
+
+def test_every_periodic_input_reduced_exactly_hunted():
+    """Fresh random angles up to 2^52: the rotation's density and CDF (three fields), energy,
+    gravity_orbit's theta0, F and E(phi)'s phi: within 4 eps of mpmath, plus twice the condition
+    number in the reduced angle for the density and the CDF (stored with each row; theta itself is
+    exact, the computation at the reduced angle is what rounds)."""
+    from conftest import assert_hard_cases
+
+    assert_hard_cases("periodic_exact", "hunt")
+
+
+def test_angle_cdf_counts_turns_where_angle_density_wraps():
+    """A rotation: cdf(theta + 2 pi) = cdf(theta) + 1 while the density repeats, as both docstrings say."""
+    sc = Scene(theta0=0.3, v0=2.5)
+    th = np.array([-3.0, -1.0, 0.5, 2.9])
+    two_pi = 2 * math.pi
+    assert np.allclose(angle_cdf(sc, th + two_pi) - angle_cdf(sc, th), 1.0, rtol=0, atol=8 * EPS)
+    assert np.allclose(angle_density(sc, th + two_pi), angle_density(sc, th), rtol=8 * EPS, atol=0)
+    assert "angle_cdf(theta) + 1" in angle_cdf.__doc__ and "wraps" in angle_cdf.__doc__
+    assert "2 pi periodic" in angle_density.__doc__

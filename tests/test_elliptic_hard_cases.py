@@ -249,3 +249,20 @@ def test_ellipeinc_just_past_an_odd_multiple_of_half_pi(phi, m):
         mm = mp.mpf(m) if mc is None else 1 - mp.mpf(mc)
         ref = mp.ellipe(mp.mpf(phi), mm)
     assert worst([pendula.ellipeinc(phi, m, mc=mc)], [ref]) <= 4
+
+
+def test_einc_next_to_minus_half_pi_just_above_m_one():
+    """E(phi|m) at phi = -1.5707963257, mc = -1.55e-180 (m rounds to 1): the form for m <= 1 was
+    taken and subtracted two terms of ~ln(4/cos phi): -1.0000000000000036, 16 eps, a value |E|
+    cannot take there.  Within 4 eps of mpmath (E and F)."""
+    from conftest import assert_hard_cases
+
+    assert_hard_cases("einc_above_one", "reproducer")
+    assert abs(pendula.ellipeinc(-1.5707963257148592, None, mc=-1.550741002689761e-180)) <= 1.0
+
+
+def test_einc_next_to_odd_half_pi_just_above_m_one_hunted():
+    """Fresh random phi next to odd multiples of pi/2, m - 1 from 1e-16 to 1e-300: E and F within 4 eps."""
+    from conftest import assert_hard_cases
+
+    assert_hard_cases("einc_above_one", "hunt")

@@ -273,3 +273,38 @@ def test_v_next_to_the_separatrix_keeps_its_relative_accuracy(side):
         _, v = pendula.exact_motion(0.0, v0, eps, [t])
         worst = max(worst, abs(float(v[0] - ref)) / max(1.0, abs(float(ref))) / EPS)
     assert worst <= 4.0, f"{worst:.3g} eps"
+
+
+# ---------------------------------------------------------------- hard cases (data/hard_cases.csv.gz)
+
+def test_tiny_velocity_does_not_underflow_k_squared():
+    """v0 = 1e-208: k^2 = v0^2 / (4 eps) underflowed (k = 0, theta = v = 0): k, theta_max, the
+    period and theta(t), v(t) within 4 eps of mpmath, relative to max(|ref|, 2^-1022)."""
+    from conftest import assert_hard_cases
+
+    assert_hard_cases("tiny", "reproducer")
+
+
+def test_tiny_inputs_of_every_orbit_function_hunted():
+    """Fresh random |v0|, theta0, eps down to the smallest normal and subnormal (orbit, exact_motion,
+    energy, gravity_orbit in the three fields, angle_density, angle_cdf): within 4 eps of mpmath
+    (relative to max(|ref|, 2^-1022): a subnormal result is held to its spacing)."""
+    from conftest import assert_hard_cases
+
+    assert_hard_cases("tiny", "hunt")
+
+
+def test_velocity_just_above_the_separatrix_at_long_times():
+    """exact_motion 3.6e-15 above the separatrix after 1571 turns: cos^2(theta0/2) in double-double
+    (2^-106) left 2^-106 / |1 - k^2| in K and so in the phase per half period (v 5.06 eps, units of
+    2 k sqrt(eps)); with it in triple-double v and theta within 4 eps of mpmath."""
+    from conftest import assert_hard_cases
+
+    assert_hard_cases("separatrix_long_time", "reproducer")
+
+
+def test_just_above_the_separatrix_at_long_times_hunted():
+    """Fresh random theta0, eps, k^2 - 1 from 1e-15 to 1e-3, t up to 1e3 turns."""
+    from conftest import assert_hard_cases
+
+    assert_hard_cases("separatrix_long_time", "hunt")

@@ -363,3 +363,18 @@ def test_tiny_swing_at_the_bottom_is_a_libration(field, v0):
     small = 2 * math.pi / small_oscillation_omega(Scene(theta0=0.0, v0=v0, **field))
     assert o.regime == "libration" and 0.0 <= o.m < 1e-15 and o.mc == 1.0
     assert abs(o.period / small - 1) <= 1e-15
+
+
+def test_inverse_square_theta_max_and_period_as_the_distance_tends_to_one():
+    """d = 1.004 and 1.064: 1 - E / (eps (d - 1)) cancelled (theta_max 50 eps, period 12.1 eps); now
+    each of theta_max, the period and the energy within 4 eps of mpmath."""
+    from conftest import assert_hard_cases
+
+    assert_hard_cases("inverse_square_near_one", "reproducer")
+
+
+def test_inverse_square_distance_near_one_hunted():
+    """Fresh random d - 1 from 0.3 to 1e-4 (below, the period is refused: NaN and a warning), eps, theta0, v0: within 4 eps."""
+    from conftest import assert_hard_cases
+
+    assert_hard_cases("inverse_square_near_one", "hunt")

@@ -171,3 +171,12 @@ def test_events_and_density_refuse_the_flexible_cord_instead_of_answering_for_a_
     assert pendula.numerical_period(s) == pendula.numerical_period(s.replace(cord="rigid"))
     with pytest.raises(NotImplementedError, match="cord"):
         pendula.angle_density(s, 0.0)
+
+
+def test_children_start_with_sigint_at_its_default():
+    """However the runner was started (make test &, nohup, cron: SIGINT ignored and inherited), the
+    children the tests start see SIGINT at its default (tests/conftest.py), so the Ctrl-C tests'
+    signal reaches them."""
+    code = "import signal; print(signal.getsignal(signal.SIGINT) is signal.default_int_handler)"
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert r.stdout.strip() == "True", r.stdout + r.stderr

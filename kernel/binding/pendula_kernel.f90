@@ -459,6 +459,19 @@ subroutine gravity_f_sc_v(n, s, c, m, mc, f)
   f = ellip_f_sc(s, c, m, mc)
 end subroutine gravity_f_sc_v
 
+! theta = 2 pi turns + w, w in [-pi, pi] reduced exactly; s = sin(w/2), c = cos(w/2)
+! (NaN beyond 2^52); the angle density of a rotation uses it.
+subroutine half_angle_v(n, theta, turns, s, c)
+  use pendula_exact, only: half_angle
+  implicit none
+  !f2py threadsafe
+  integer, intent(in) :: n
+  double precision, intent(in) :: theta(n)
+  double precision, intent(out) :: turns(n), s(n), c(n)
+  !f2py intent(hide), depend(theta) :: n = len(theta)
+  call half_angle(theta, turns, s, c)
+end subroutine half_angle_v
+
 ! The integrand h(u) of t = int h du at the nodes u (regime 0 libration, 2 rotation).
 subroutine gravity_h_v(n, kind, par, eps, regime, m, mc, e, u, h)
   use pendula_gravity, only: gravity_h

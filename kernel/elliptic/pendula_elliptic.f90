@@ -600,11 +600,14 @@ contains
       ! E = mc F + (m mc / 3) s^3 R_D(c^2, 1, D^2) + m s c / D: positive terms
       ev = mc * as * carlson_rf(c2, d2, 1.0_dp) &
            + (m * mc / 3.0_dp) * s3 * carlson_rd(c2, 1.0_dp, d2) + m * as * c / sqrt(d2)
-    else if (m > 1.0_dp) then
+    else if (mc < 0.0_dp) then
       ! DLMF 19.25.11 scaled by s^2: E = ((m - 1)/3) s^3 R_D(D^2, 1, c^2) + s D / c,
       ! both terms positive for m > 1 (where c > 0 on the whole domain); the
       ! form of 19.25.9 below subtracts two large terms next to the edge
-      ! |s| = 1/sqrt(m) (12 eps at phi = 1.566, m = 1.00001)
+      ! |s| = 1/sqrt(m) (12 eps at phi = 1.566, m = 1.00001).  Chosen by the
+      ! sign of mc, not by m: for 0 < -mc < 1.1e-16 m rounds to 1 and the
+      ! form below subtracted two terms of ~ln(4/c) next to pi/2 (16 eps at
+      ! phi = -1.5707963257, mc = -1.6e-180)
       ev = (-mc / 3.0_dp) * s3 * carlson_rd(d2, 1.0_dp, c2) + as * sqrt(d2) / c
     else
       ev = as * carlson_rf(c2, d2, 1.0_dp) - (m / 3.0_dp) * s3 * carlson_rd(c2, d2, 1.0_dp)

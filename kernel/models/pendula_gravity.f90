@@ -182,9 +182,11 @@ contains
     real(dp), intent(in) :: par, eps, theta0, v0
     real(dp), intent(out) :: e, m, mc, kk, theta_max, period
     integer, intent(out) :: regime, status
-    real(dp) :: w0, f1, c, s_old, s_new, sfac, g, qh, ql, dh, dl, ph, pl, ah, al, eu, xh, xl
+    real(dp) :: w0, f1, c, omc, s_old, s_new, sfac, g, qh, ql, dh, dl, ph, pl, ah, al, eu, xh, xl
     integer :: n, st, ie, je
     type(pendulum_orbit) :: o
+    !> below this sin(theta0/2) and the amplitude are tiny: their squares underflow
+    real(dp), parameter :: tiny_s = 2.0_dp**(-450)
     e = nan_dp; m = nan_dp; mc = nan_dp; kk = nan_dp; theta_max = nan_dp; period = nan_dp; regime = -1
     status = gravity_check(kind, par, eps)
     if (status /= gs_ok) return
@@ -200,6 +202,7 @@ contains
       status = status_of(st)
       if (status /= gs_ok) return
       e = 0.5_dp * v0 * v0 + gravity_f(gk_uniform, par, eps, sin(0.5_dp * theta0)**2)
+      if (abs(theta0) < tiny_s) e = 0.5_dp * v0 * v0 + (0.5_dp * eps * theta0) * theta0
       regime = o%regime
       m = o%m; mc = o%mch
       theta_max = orbit_theta_max(o)
@@ -226,6 +229,9 @@ contains
     ah = scale(ah, ie - je); al = scale(al, ie - je)
     eu = ah + gravity_f(kind, par, 1.0_dp, w0)
     e = eps * eu
+    ! where sin^2(theta0/2) underflows (|theta0| < 2^-450), V = f'(0) eps theta0^2 / 4 to 2^-900,
+    ! the products taken from eps down (E came out 0 for theta0 = 1e-160, eps = 1e100)
+    if (abs(theta0) < tiny_s) e = 0.5_dp * v0 * v0 + ((0.25_dp * fp0() * eps) * theta0) * theta0
     f1 = gravity_f(kind, par, 1.0_dp, 1.0_dp)
     ! the distance from the separatrix (f(1) - E) / eps = Q(w0, 1) c^2 / eps - v0^2 / (2 eps)
     call gravity_q1_dd(kind, par, 1.0_dp, o%mch, o%mcl, qh, ql)
@@ -238,9 +244,15 @@ contains
       else
         select case (kind)           ! invert f(m) = E without cancellation (or overflow)
         case (gk_inverse_square)
+          ! m = E (2 - c) / (4 g (1 - c)^2), c = E / (eps a); with a = d - 1 and f(w0) = a - a / r0
+          ! (units of eps) 1 - c = 1 / r0 - v0^2 / (2 eps a): for c > 1/2 its two terms are formed
+          ! apart in double-double, so that nothing cancels as d -> 1, where c -> 1 (a - E, formed
+          ! as it stands, cost theta_max 50 eps at d = 1.004); below, 1 - c itself (one rounding)
           c = eu / (par - 1.0_dp)
           g = par / (par - 1.0_dp)
-          m = eu * (2.0_dp - c) / (4.0_dp * g * (1.0_dp - c)**2)
+          omc = 1.0_dp - c
+          if (c > 0.5_dp) omc = one_minus_c_dd()
+          m = eu * (2.0_dp - c) / (4.0_dp * g * omc**2)
         case default
           if (abs(par) <= 1.0_dp) then
             m = eu / (1.0_dp + sqrt(1.0_dp - 2.0_dp * par * eu))
@@ -261,6 +273,9 @@ contains
       end if
       if (mc < 0.5_dp) m = 1.0_dp - mc         ! next to the top, m from its complement
       theta_max = 2.0_dp * atan2(sqrt(m), sqrt(mc))
+      ! an amplitude below 2^-450: the field is harmonic to 2^-900, theta_max^2 = th0^2 + 2 v0^2 / (eps
+      ! f'(0)), by hypot (m = theta_max^2 / 4 underflowed, and theta_max came out 0)
+      if (m < tiny_s**2) theta_max = hypot((theta0 - o%offset) - o%offl, v0 * (sqrt(2.0_dp / fp0()) / sqrt(eps)))
       if (v0 == 0.0_dp) theta_max = abs((theta0 - o%offset) - o%offl)
       sfac = 4.0_dp
     else if (dh == 0.0_dp) then
@@ -311,6 +326,28 @@ contains
       status = gs_out_of_range; period = nan_dp
     end if
   contains
+    !> 1 - E / (eps a) = 1 / r0 - (v0^2 / (2 eps)) / a (inverse-square, a = d - 1) in double-double,
+    !> rounded once: r0 = sqrt(1 + 4 g w0 / a), w0 = 1 - cos^2(theta0/2) from the set-up's mc
+    pure real(dp) function one_minus_c_dd() result(x)
+      real(dp) :: a1, a2, g1, g2, w1, w2, t1, t2, u1, u2, r1, r2, y1, y2
+      call two_sum(par, -1.0_dp, a1, a2)                  ! a = d - 1
+      call dd_div(par, 0.0_dp, a1, a2, g1, g2)            ! g = d / a
+      call two_sum(1.0_dp, -o%mch, w1, w2)                ! w0 = 1 - c^2
+      w2 = w2 - o%mcl
+      call dd_mul(4.0_dp * g1, 4.0_dp * g2, w1, w2, t1, t2)
+      call dd_div(t1, t2, a1, a2, u1, u2)                 ! 4 g w0 / a
+      call dd_add(1.0_dp, 0.0_dp, u1, u2, t1, t2)
+      call dd_sqrt(t1, t2, r1, r2)                        ! r0
+      call dd_div(1.0_dp, 0.0_dp, r1, r2, t1, t2)         ! 1 / r0
+      call dd_div(ah, al, a1, a2, u1, u2)                 ! (v0^2 / (2 eps)) / a
+      call dd_add(t1, t2, -u1, -u2, y1, y2)
+      x = y1 + y2
+    end function one_minus_c_dd
+    !> f'(0) in units of eps: 2 d / (d - 1) (inverse-square), 2 (linear, uniform)
+    pure real(dp) function fp0()
+      fp0 = 2.0_dp
+      if (kind == gk_inverse_square) fp0 = 2.0_dp * par / (par - 1.0_dp)
+    end function fp0
     !> trapezoid sum on [0, K] with n panels
     pure function trap(np) result(s)
       integer, intent(in) :: np

@@ -127,7 +127,7 @@ class _Model:
         o = gravity_orbit(sc)
         if o.regime == "separatrix":
             raise ValueError("on the separatrix the period is infinite: the density is a delta at the top")
-        if not o.m > 0:
+        if not o.theta_max > 0:
             raise ValueError("the orbit is a point at rest: its density is a delta, not a function")
         self.orbit = o
         self.kind = o.regime
@@ -136,6 +136,11 @@ class _Model:
         # (|theta0| <= pi: no reduction needed, exact; otherwise the kernel's reduced amplitude)
         self.at_rest = sc.v0 == 0.0 and o.regime == "libration" and abs(sc.theta0) <= math.pi
         self.thm = abs(sc.theta0) if self.at_rest else o.theta_max
+        # an amplitude below 2^-400: every field is harmonic there to 2^-800, the density is the
+        # arcsine law exactly (theta and theta_max scaled by 2^600: their squares would underflow)
+        self.tiny = o.regime == "libration" and self.thm < 2.0 ** -400
+        if self.tiny:
+            return                         # (no series: the arcsine law needs none)
         K = o.K
         # cosine coefficients of h on its period 2K: doubling until the last ones are below rounding
         n = 16
@@ -211,18 +216,20 @@ class _Model:
         return _kernel.gravity_f_sc_v(s, c, self.orbit.m, self.mc).reshape(shape)
 
     def _turn(self, theta):
-        """(whole turns, theta - 2 pi turns in [-pi, pi)): theta itself when it is in [-pi, pi).
-        Beyond 2^52 (and at +-inf) theta cannot be reduced modulo 2 pi: w is NaN there, with a
+        """(whole turns, sin(w/2), cos(w/2)) with theta = 2 pi turns + w, w in [-pi, pi]: reduced
+        exactly, as numpy's sin reduces its argument (the kernel's reduction of theta0, pi in
+        three parts; in plain double w lost |theta| eps: 1.2e3 eps of the density at theta = -908).
+        Beyond 2^52 (and at +-inf) theta cannot be reduced modulo 2 pi: NaN there, with a
         RuntimeWarning naming theta."""
         far = ~(np.abs(theta) <= 2.0 ** 52) & ~np.isnan(theta)
         if np.any(far):
             warnings.warn("angle density of a rotation: theta beyond 2**52 (4.5e15) or infinite cannot be "
                           "reduced modulo 2 pi: NaN there (the CDF, continued by whole turns, is +-inf at "
                           "+-inf)", RuntimeWarning, stacklevel=4)
-        t = np.where(far, np.nan, theta)
-        turns = np.floor((t + math.pi) / (2 * math.pi))
-        w = t - 2 * math.pi * turns
-        return turns, w
+        flat = np.ascontiguousarray(theta, dtype=np.float64).reshape(-1)
+        turns, s, c = _kernel.half_angle_v(flat)
+        shape = np.shape(theta)
+        return turns.reshape(shape), s.reshape(shape), c.reshape(shape)
 
     def density(self, theta):
         out = np.zeros_like(theta)
@@ -234,6 +241,12 @@ class _Model:
             out[inside] = 4 * r * np.cos(theta[inside]) / (math.pi * np.sqrt((self.amp - xi) * (self.amp + xi)))
             out[np.isnan(theta)] = np.nan
             return out
+        if self.kind == "libration" and self.tiny:
+            inside = np.abs(theta) < self.thm
+            a, x = self.thm * 2.0 ** 600, np.abs(theta[inside]) * 2.0 ** 600
+            out[inside] = 2.0 ** 600 / (math.pi * np.sqrt((a - x) * (a + x)))
+            out[np.isnan(theta)] = np.nan
+            return out
         if self.kind == "libration":
             inside = np.abs(theta) < self.thm
             if np.any(inside):
@@ -243,16 +256,19 @@ class _Model:
             out[np.isnan(theta)] = np.nan
             return out
         # rotation: one turn on [-pi, pi)
-        _, w = self._turn(theta)
-        U = self._f(np.sin(0.5 * w), np.cos(0.5 * w))
+        _, s, c = self._turn(theta)
+        U = self._f(s, c)
         # 1 - m sin^2(w/2) = mc + m cos^2(w/2): no cancellation next to the separatrix
-        return self._h(U) / (2 * self.T * np.sqrt(self.mc + self.orbit.m * np.cos(0.5 * w) ** 2))
+        return self._h(U) / (2 * self.T * np.sqrt(self.mc + self.orbit.m * c ** 2))
 
     def cdf(self, theta):
         if self.kind == "cycloid":
             x = 4 * self.r * np.sin(np.clip(theta, -math.pi / 2, math.pi / 2)) - self.centre
             out = 0.5 + np.arcsin(np.clip(x / self.amp, -1.0, 1.0)) / math.pi
             out = np.where(theta > math.pi / 2, 1.0, np.where(theta < -math.pi / 2, 0.0, out))
+            return np.where(np.isnan(theta), np.nan, out)
+        if self.kind == "libration" and self.tiny:
+            out = 0.5 + np.arcsin(np.clip(theta / self.thm, -1.0, 1.0)) / math.pi
             return np.where(np.isnan(theta), np.nan, out)
         if self.kind == "libration":
             sn, cs, _ = self._phi(np.clip(theta, -self.thm, self.thm))
@@ -261,8 +277,8 @@ class _Model:
             out = np.where(theta >= self.thm, 1.0, np.where(theta <= -self.thm, 0.0, out))
             return np.where(np.isnan(theta), np.nan, np.clip(out, 0.0, 1.0))
         # rotation: the CDF over [-pi, pi), continued by whole turns
-        turns, w = self._turn(theta)
-        U = self._f(np.sin(0.5 * w), np.cos(0.5 * w))
+        turns, s, c = self._turn(theta)
+        U = self._f(s, c)
         out = turns + 0.5 + self._time(U) / self.T
         return np.where(np.isinf(theta), theta, out)     # continued by whole turns: +-inf at +-inf
 
@@ -277,8 +293,10 @@ def angle_density(scene: Scene, theta: ArrayLike) -> NDArray[np.float64] | np.fl
         gravity, or the cycloidal pendulum (torque allowed there).
     theta : array_like
         Angles.  Libration: the density lives on (-theta_max, theta_max) and
-        is 0 outside; rotation: over one turn, theta taken modulo 2 pi into
-        [-pi, pi); cycloid: theta is the angle of the free cord.
+        is 0 outside; rotation: over one turn, theta reduced modulo 2 pi into
+        [-pi, pi] exactly (as numpy's sin reduces its argument), so the
+        density is 2 pi periodic (unlike :func:`angle_cdf`, which counts the
+        turns); cycloid: theta is the angle of the free cord.
 
     Returns
     -------
@@ -323,14 +341,20 @@ def angle_cdf(scene: Scene, theta: ArrayLike) -> NDArray[np.float64] | np.float6
     scene : Scene
         A conservative scene, as for :func:`angle_density`.
     theta : array_like
-        Angles.
+        Angles.  Rotation: any angle (up to 2^52 in magnitude), reduced
+        exactly; the whole turns are counted, not wrapped.
 
     Returns
     -------
     ndarray
         The fraction of the period spent below theta.  Libration: 0 below
         -theta_max, 1 above theta_max.  Rotation: the fraction of a turn from
-        -pi, continued by whole turns (so it increases by 1 per 2 pi).
+        -pi, continued by whole turns: ``angle_cdf(theta + 2 pi) =
+        angle_cdf(theta) + 1``, whereas :func:`angle_density` wraps
+        (``angle_density(theta + 2 pi) = angle_density(theta)``).  The CDF of
+        the angle taken modulo 2 pi is ``angle_cdf(theta) % 1`` on [-pi, pi);
+        beyond |theta| = 2^52 it is NaN with a RuntimeWarning (the turns are
+        no longer exact), and +-inf at +-inf.
 
     Raises
     ------
@@ -352,6 +376,12 @@ def angle_cdf(scene: Scene, theta: ArrayLike) -> NDArray[np.float64] | np.float6
     >>> sc = pendula.Scene(theta0=2.0)
     >>> [round(float(x), 15) for x in pendula.angle_cdf(sc, [-2.0, 0.0, 2.0])]
     [0.0, 0.5, 1.0]
+
+    A rotation counts its turns (the density, by contrast, repeats every 2 pi):
+
+    >>> rot = pendula.Scene(v0=3.0)
+    >>> [round(float(x), 12) for x in pendula.angle_cdf(rot, [0.0, 2 * 3.141592653589793])]
+    [0.5, 1.5]
     """
     theta = as_float(theta, "theta")
     return _Model(scene).cdf(theta)

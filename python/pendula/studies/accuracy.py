@@ -391,3 +391,135 @@ def model_grids_markdown(path) -> str:
     from .model_grids import markdown
 
     return markdown(path)
+
+
+# ------------------------------------------------------------ the hard cases (data/hard_cases.csv.gz)
+
+#: class -> (what it is, the bound the tests hold its worst error to, in eps)
+HARD_CASES = {
+    "tiny": ("|v0|, theta0, eps down to the smallest normal and subnormal (every public function of "
+             "an orbit); relative to max(|ref|, 2^-1022)", 4.0),
+    "einc_above_one": ("E(phi|m), F(phi|m) next to odd multiples of pi/2, m - 1 from 1e-16 to 1e-300", 4.0),
+    "inverse_square_near_one": ("gravity_orbit, inverse-square field, d - 1 from 0.3 to 1e-4", 4.0),
+    "separatrix_long_time": ("exact_motion 1e-15 to 1e-3 above the separatrix, up to 1e3 turns "
+                             "(v relative to 2 k sqrt(eps))", 4.0),
+    "periodic_exact": ("periodic inputs up to 2^52: angle density and CDF of a rotation, energy, "
+                       "gravity_orbit's theta0, F and E(phi)'s phi", 4.0),
+}
+
+
+def hard_case_values(func: str, args: list) -> dict:
+    """pendula's outputs for one row of data/hard_cases.csv.gz (func and its arguments)."""
+    import types
+    import warnings
+
+    from ..density import angle_cdf, angle_density
+    from ..elliptic import ellipeinc, ellipf
+    from ..scene import Scene
+    from ..systems.gravity import gravity_orbit
+    from ..systems.rigid import energy, exact_motion, orbit
+
+    pendula = types.SimpleNamespace(orbit=orbit, exact_motion=exact_motion, energy=energy,
+                                    gravity_orbit=gravity_orbit, angle_density=angle_density,
+                                    angle_cdf=angle_cdf, ellipeinc=ellipeinc, ellipf=ellipf)
+
+    def scene(kind, par, eps, theta0, v0):
+        kw = {"gravity_distance": par} if kind == "inverse-square" else \
+            {"gravity_gradient": par} if kind == "linear" else {}
+        return Scene(gravity=kind, eps=eps, theta0=theta0, v0=v0, **kw)
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        if func == "orbit":
+            o = pendula.orbit(*args)
+            return {"k": o.k, "theta_max": o.theta_max, "period": o.period}
+        if func == "exact_motion":
+            th, v = pendula.exact_motion(args[0], args[1], args[2], [args[3]])
+            return {"theta": th[0], "v": v[0]}
+        if func == "energy":
+            return {"energy": float(pendula.energy(*args))}
+        if func == "gravity_orbit":
+            o = pendula.gravity_orbit(scene(*args))
+            return {"energy": o.energy, "theta_max": o.theta_max, "period": o.period}
+        if func == "angle_density":
+            return {"density": float(pendula.angle_density(scene(*args[:5]), args[5]))}
+        if func == "angle_cdf":
+            return {"cdf": float(pendula.angle_cdf(scene(*args[:5]), args[5]))}
+        if func == "ellip":
+            phi, mc = args
+            return {"ellipeinc": float(pendula.ellipeinc(phi, None, mc=mc)),
+                    "ellipf": float(pendula.ellipf(phi, None, mc=mc))}
+    raise ValueError(f"hard case: unknown function {func!r}")
+
+
+def load_hard_cases(path) -> list[dict]:
+    """The rows of data/hard_cases.csv.gz: set, cls, func, args (decoded), quantity, ref, floor."""
+    import gzip
+    import json
+
+    with gzip.open(path, "rt") as fh:
+        rd = csv.DictReader(fh)
+        rows = []
+        for r in rd:
+            r["args"] = [float(a) if isinstance(a, str) and a not in ("uniform", "inverse-square", "linear")
+                         else a for a in json.loads(r["args"])]
+            rows.append(r)
+    return rows
+
+
+def hard_case_errors(rows: list[dict]) -> list[dict]:
+    """Each row with pendula's value and its error in eps: |got - ref| / max(|ref|, floor) / eps
+    (a NaN or a missing value where the reference is finite counts as inf)."""
+    from decimal import Decimal
+
+    cache = {}
+    out = []
+    for r in rows:
+        key = (r["func"], tuple(r["args"]))
+        if key not in cache:
+            try:
+                cache[key] = hard_case_values(r["func"], list(r["args"]))
+            except (ValueError, ArithmeticError) as e:      # refused: no value to compare
+                cache[key] = {"error": str(e)}
+        got = cache[key].get(r["quantity"], float("nan"))
+        ref = Decimal(r["ref"])
+        floor = Decimal(r["floor"])
+        if abs(ref) > Decimal(np.finfo(np.float64).max) and np.isinf(got) and (got > 0) == (ref > 0):
+            err = 0.0                                       # beyond double: inf is the right answer
+        elif not np.isfinite(got):
+            err = float("inf")
+        else:
+            err = float(abs(Decimal(got) - ref) / max(abs(ref), floor) / Decimal(EPS))
+        out.append({**r, "got": got, "err_eps": err, "cond": float(r.get("cond") or 0.0)})
+    return out
+
+
+def hard_case_tolerance(e: dict) -> float:
+    """The bound a hard case is held to, in eps: its class's (4) plus twice the condition number stored
+    with the row (nonzero for the rotation's density and CDF: the conditioning in the reduced angle)."""
+    return HARD_CASES[e["cls"]][1] + 2.0 * e["cond"]
+
+
+def hard_cases_report(path) -> list[dict]:
+    """Worst error per (set, class, function, quantity) of the stored hard cases."""
+    worst: dict = {}
+    for e in hard_case_errors(load_hard_cases(path)):
+        k = (e["set"], e["cls"], e["func"], e["quantity"])
+        w = worst.setdefault(k, {"set": k[0], "class": k[1], "function": k[2], "quantity": k[3],
+                                 "points": 0, "worst_eps": 0.0, "bound_eps": 0.0, "worst_ratio": 0.0})
+        w["points"] += 1
+        if e["err_eps"] >= w["worst_eps"]:
+            w["worst_eps"], w["bound_eps"] = e["err_eps"], hard_case_tolerance(e)
+        w["worst_ratio"] = max(w["worst_ratio"], e["err_eps"] / hard_case_tolerance(e))
+    return sorted(worst.values(), key=lambda w: (w["set"] != "reproducer", w["class"], w["function"],
+                                                  w["quantity"]))
+
+
+def hard_cases_markdown(path) -> str:
+    """The accuracy report's table of the hard cases: the reproducers and the hunt around each."""
+    lines = ["| set | class | function | quantity | points | worst (eps) | bound there (eps) | worst error / bound |",
+             "|---|---|---|---|---:|---:|---:|---:|"]
+    lines += [f"| {w['set']} | {w['class']} | {w['function']} | {w['quantity']} | {w['points']} | "
+              f"{w['worst_eps']:.3g} | {w['bound_eps']:.3g} | {w['worst_ratio']:.2g} |"
+              for w in hard_cases_report(path)]
+    return "\n".join(lines)

@@ -233,4 +233,8 @@ def energy(theta: ArrayLike, v: ArrayLike, eps: ArrayLike = 1.0) -> NDArray[np.f
     theta = as_float(theta, "theta")
     v = as_float(v, "v")
     eps = as_float(eps, "eps")
-    return 0.5 * v * v + 2.0 * eps * np.sin(0.5 * theta) ** 2
+    s = np.sin(0.5 * theta)
+    # (eps s) s: where sin^2 alone would underflow (theta ~ 1e-160) eps s^2 may not; below 2^-450
+    # eps theta^2 / 2 to 2^-900, the half of a subnormal theta never formed
+    pot = np.where(np.abs(theta) < 2.0 ** -450, (0.5 * eps * theta) * theta, 2.0 * (eps * s) * s)
+    return 0.5 * v * v + pot
