@@ -193,6 +193,22 @@ contains
               o(4) = real(turns - hturn(mod(n - k, h)), dp); o(5) = real(n, dp)
               o(6:9) = mono; o(10) = info(3); o(11) = mu
               call cycle_points(p, tp, k, cfg(8), x, o, st, cancel)
+              if (st /= ps_decided) then
+                o = nan_dp; return
+              end if
+              ! the smallest period: a recurrence after k periods may be a cycle of a divisor of k
+              q = smallest_period(o, k, cfg(3) * 1.0e-3_dp)
+              if (q < k) then
+                w = (turns - hturn(mod(n - k, h))) / (k / q)
+                s = pendula_gsl_periodic_orbit(c_loc(m), real(q, dp) * tp, real(w, dp), cfg(8), cfg(8), cfg(9), &
+                                               50, x, mono, info)
+                if (s /= 0) then     ! cannot happen for a converged cycle; keep the k-period answer
+                  q = k
+                else
+                  o(3) = real(q, dp); o(4) = real(w, dp); o(6:9) = mono; o(10) = info(3)
+                  o(11) = max_multiplier(mono); o(12) = real(q, dp)
+                end if
+              end if
               return
             end if
           end if
@@ -293,6 +309,27 @@ contains
       if (th >= pi) th = th - two_pi
     end do
   end subroutine cycle_points
+
+  !> The smallest d dividing k such that the k cycle points in o(at_nfixed+1:) repeat after d (to within tol).
+  pure integer function smallest_period(o, k, tol) result(d)
+    real(dp), intent(in) :: o(:), tol
+    integer, intent(in) :: k
+    integer :: j, nfit
+    logical :: same
+    nfit = min(k, (size(o) - at_nfixed) / 2)
+    do d = 1, k - 1
+      if (mod(k, d) /= 0 .or. nfit < k) cycle
+      same = .true.
+      do j = 1, k - d
+        if (.not. (sdist(o(at_nfixed + 2 * j - 1), o(at_nfixed + 2 * j), o(at_nfixed + 2 * (j + d) - 1), &
+                         o(at_nfixed + 2 * (j + d))) < tol)) then
+          same = .false.; exit
+        end if
+      end do
+      if (same) return
+    end do
+    d = k
+  end function smallest_period
 
   !> The section's distance: max(|theta1 - theta2| mod 2 pi, |v1 - v2|).
   pure real(dp) function sdist(th1, v1, th2, v2) result(d)
