@@ -41,7 +41,7 @@ from .systems.cycloid import CycloidGeometry, cycloid_geometry, cycloid_period  
 from .systems.gravity import gravity_orbit  # noqa: E402
 from .systems.cord import cord_state, flip_map, flip_sequence  # noqa: E402
 # sweeps over parameter grids; xarray is imported only when a sweep runs
-from .sweeps import attractor_map, iv_curve, sweep  # noqa: E402
+from .sweeps import attractor_continuation, attractor_map, iv_curve, sweep  # noqa: E402
 from .dynamics import Equilibrium, PeriodicOrbit, equilibria, periodic_orbit  # noqa: E402
 from .spectrum import precompute_wisdom, wisdom_path  # noqa: E402
 
@@ -57,4 +57,5 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "angle_density", "angle_cdf", "arcsine_density", "flip_map", "cord_state", "flip_sequence",
            "sweep", "iv_curve",
            "precompute_wisdom", "wisdom_path",
-           "equilibria", "Equilibrium", "periodic_orbit", "PeriodicOrbit", "attractor_map"]
+           "equilibria", "Equilibrium", "periodic_orbit", "PeriodicOrbit", "attractor_map",
+           "attractor_continuation"]
