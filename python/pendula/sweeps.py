@@ -1004,7 +1004,7 @@ def _attractor_distance(a, b) -> float:
 def attractor_continuation(scene: Scene, over: dict[str, ArrayLike], param: str, values: ArrayLike, *,
                            match_tol: float = 0.5, out: str | os.PathLike[str] | None = None, threads: int = 0,
                            client: distributed.Client | None = None, progress: bool = False,
-                           **options) -> xarray.Dataset:
+                           **options: float | int) -> xarray.Dataset:
     """The attractors of a driven scene and their basin fractions as one scene field moves.
 
     At each value of ``param`` the attractor map over the grid ``over`` is
