@@ -401,11 +401,12 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
         scene's own grid (``grid``, ``grid1`` ... fields).
     measure : str, optional
         'final_well', 'mean_velocity', 'locked', 'poincare', 'lyapunov', or
-        'attractor' (the attractor each point's orbit ends on, found by
-        recurrence: :func:`attractor_map`, whose options it takes from
-        ``transient``, ``samples``, ``rtol`` and ``atol``; its measures and
-        attractors are in the Dataset's attributes).  Default: the scene's
-        ``measure`` (a scene file names one of the kernel's measures).
+        'attractor' (the attractor each point's orbit ends on, read from
+        ``samples`` stroboscopic samples after ``transient``: method
+        'samples' of :func:`attractor_map`, whose measures and attractors are
+        in the Dataset's attributes; :func:`attractor_map` itself defaults to
+        the faster recurrence method with early stopping).  Default: the
+        scene's ``measure`` (a scene file names one of the kernel's measures).
     rtol, atol : float, optional
         DOP853 tolerances (default: the scene's).
     t_max : float, optional
@@ -704,6 +705,16 @@ def _recurrence_options(kw: dict) -> dict:
     return o
 
 
+def _check_work(scene: Scene, over: dict, max_periods: int) -> None:
+    """max_periods drive periods of the slowest drive must stay within a sweep point's time limit."""
+    om = float(np.min(over.get("drive_frequency", np.array([scene.drive_frequency]))))
+    t = max_periods * 2 * math.pi / om
+    limit = _checks._sweep_limits()[1]
+    if not t <= limit:
+        raise ValueError(f"max_periods: {max_periods} drive periods of drive_frequency {om:g} are {t:.3g} time "
+                         f"units, beyond a sweep point's limit {limit:g} (lower max_periods)")
+
+
 def _check_driven(scene: Scene, over: dict, what: str) -> None:
     amp = over.get("drive_amplitude", np.array([scene.drive_amplitude]))
     om = over.get("drive_frequency", np.array([scene.drive_frequency]))
@@ -877,6 +888,7 @@ def attractor_map(scene: Scene, over: dict, *, method: Literal["recurrence", "sa
                                     collect=collect, max_periods=max_periods, max_period=max_period,
                                     merge_tol=merge_tol, pilot=pilot, rtol=rtol, atol=atol,
                                     recheck_rtol=recheck_rtol, recheck_atol=recheck_atol))
+    _check_work(scene, over, opts["max_periods"])
     return _attractor_map_recurrence(scene, over, opts, threads, out, client, progress, chunk_points)
 
 
@@ -1095,6 +1107,10 @@ def attractor_continuation(scene: Scene, over: dict[str, ArrayLike], param: str,
     over_c = _check_over(scene, over)
     _check_driven(scene.replace(**{param: float(vals[0])}), over_c, "attractor_continuation")
     opts = _recurrence_options(options)     # checked once, before any work
+    for val in vals:
+        sv = scene.replace(**{param: float(val)})
+        _check_driven(sv, over_c, "attractor_continuation")
+        _check_work(sv, over_c, opts["max_periods"])
     root = None
     if out is not None:
         from ._store import _write_json_atomic

@@ -58,8 +58,9 @@ class Attractor:
     period : int
         Drive periods of the cycle (0 for a chaotic attractor).
     theta, v : numpy.ndarray
-        The cycle's points on the section (theta in [-pi, pi)), or, for a chaotic
-        attractor, the samples of one of its points.
+        The cycle's points on the section (theta in [-pi, pi)), from its point of
+        smallest angle; for a chaotic attractor, the centres of the cells it
+        visits (recurrence method) or the samples of one of its points ('samples').
     fraction : float
         The fraction of the grid in its basin.
     multipliers : numpy.ndarray

@@ -1,0 +1,79 @@
+"""The figures of docs/source/guide/attractors.md, written to docs/figures/.
+
+* attractor_map_1p07.png: the default attractor map at A = 1.07 (beta = 0.5, Omega = 2/3) on a 150 x 150
+  grid over theta0 in [-pi, pi], v0 in [-3, 3], with the attractors' cycle points and the drive periods
+  each point took before it was decided.
+* attractor_continuation.png: basin fractions over drive_amplitude 1.0 .. 1.5 (51 values, a 60 x 60 grid),
+  stacked, from pendula.attractor_continuation (kept in data/attractors/continuation_1p0_1p5/ for a resume).
+* The figures' numbers go to data/attractors/guide_figures.json (quoted by the page).
+
+    python data/attractors/gen_guide_figures.py      (a few minutes on 2 cores)
+"""
+
+import json
+import pathlib
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+import pendula  # noqa: E402
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+FIG = ROOT / "docs" / "figures"
+
+
+def main():
+    rec = {}
+    n = 150
+    grid = {"theta0": np.linspace(-np.pi, np.pi, n), "v0": np.linspace(-3.0, 3.0, n)}
+    sc = pendula.Scene(damping=0.5, drive_amplitude=1.07, drive_frequency=2 / 3)
+    am = pendula.attractor_map(sc, grid, threads=2)
+    lab = am.dataset.attractor.values
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.6))
+    k = max(len(am.attractors), 1)
+    axes[0].imshow(lab.T, origin="lower", extent=[-np.pi, np.pi, -3, 3], aspect="auto",
+                   cmap=plt.get_cmap("Pastel1", k), vmin=-0.5, vmax=k - 0.5, interpolation="nearest")
+    for a in am.attractors:
+        axes[0].plot(a.theta, a.v, "o", ms=7, mec="k", label=f"{a.kind}, period {a.period}: {a.fraction:.1%}")
+    axes[0].set(xlabel="θ0", ylabel="v0", title=f"A = 1.07: {len(am.attractors)} attractors "
+                f"({am.undecided} undecided of {lab.size})")
+    axes[0].legend(fontsize=8, loc="upper right")
+    im = axes[1].imshow(am.dataset.periods.values.T, origin="lower", extent=[-np.pi, np.pi, -3, 3], aspect="auto",
+                        cmap="viridis", interpolation="nearest")
+    fig.colorbar(im, ax=axes[1], label="drive periods integrated")
+    axes[1].set(xlabel="θ0", ylabel="v0", title="the work: drive periods until decided (rechecks included)")
+    fig.tight_layout()
+    fig.savefig(FIG / "attractor_map_1p07.png", dpi=110)
+    plt.close(fig)
+    rec["map_1p07"] = {"n": n, "attractors": [[a.kind, a.period, a.fraction, np.abs(a.multipliers).tolist()]
+                                              for a in am.attractors],
+                       "undecided": am.undecided, "rechecked": am.rechecked, "recheck_changed": am.recheck_changed,
+                       "mean_periods": float(am.dataset.periods.mean()),
+                       "boundary_fraction": am.boundary_fraction}
+
+    small = {"theta0": np.linspace(-np.pi, np.pi, 60), "v0": np.linspace(-3.0, 3.0, 60)}
+    vals = np.round(np.linspace(1.0, 1.5, 51), 6)
+    ds = pendula.attractor_continuation(pendula.Scene(damping=0.5, drive_frequency=2 / 3), small, "drive_amplitude",
+                                        vals, threads=2, out=ROOT / "data" / "attractors" / "continuation_1p0_1p5")
+    f = np.nan_to_num(ds.fraction.values)
+    labels = [f"{kd}, period {p}" if kd == "periodic" else kd for kd, p in zip(ds.kind.values, ds.period.values)]
+    fig, ax = plt.subplots(figsize=(8, 4.6))
+    ax.stackplot(vals, np.vstack([f.T, ds.undecided.values]), labels=labels + ["undecided"], alpha=0.9)
+    ax.set(xlabel="drive amplitude A", ylabel="fraction of the (θ0, v0) grid", xlim=(vals[0], vals[-1]), ylim=(0, 1),
+           title="basin fractions of the attractors, continued over A (β = 0.5, Ω = 2/3)")
+    ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.0, 0.5))
+    fig.tight_layout()
+    fig.savefig(FIG / "attractor_continuation.png", dpi=110)
+    plt.close(fig)
+    rec["continuation"] = {"values": vals.tolist(), "kinds": ds.kind.values.tolist(),
+                           "periods": ds.period.values.tolist(),
+                           "max_undecided": float(ds.undecided.max())}
+    (ROOT / "data" / "attractors" / "guide_figures.json").write_text(json.dumps(rec, indent=1) + "\n")
+    print(json.dumps(rec["map_1p07"]), rec["continuation"]["kinds"], rec["continuation"]["periods"])
+
+
+if __name__ == "__main__":
+    main()
