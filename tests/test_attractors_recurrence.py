@@ -262,3 +262,24 @@ def test_labels_on_a_dask_cluster_equal_the_local_run():
                                   silence_logs=logging.CRITICAL) as cluster, distributed.Client(cluster) as client:
         other = attractor_map(sc, g, pilot=1, client=client, chunk_points=20)
     np.testing.assert_array_equal(other.dataset.attractor.values, ref.dataset.attractor.values)
+
+
+def test_sweep_measure_attractor_goes_through_the_sweep_checks_and_scene_defaults():
+    sc = scene(1.35).replace(sweep_transient=50.0, sweep_samples=8)
+    with pytest.raises(ValueError, match="t_max"):
+        pendula.sweep(sc, {"theta0": [0.0]}, "attractor", t_max=1e15)
+    with pytest.raises(TypeError, match="samples"):
+        pendula.sweep(sc, {"theta0": [0.0]}, "attractor", samples=8.0)
+    ds = pendula.sweep(sc, {"theta0": [0.0]}, "attractor")
+    assert (ds.attrs["transient"], ds.attrs["samples"], ds.attrs["method"]) == (50.0, 8, "samples")
+
+
+@pytest.mark.parametrize("kw", [{"max_period": 2.5}, {"tol": True}, {"samples": 8.0}, {"merge_tol": "1e-3"}])
+def test_samples_method_arguments_of_the_wrong_kind_are_type_errors(kw):
+    with pytest.raises(TypeError, match=next(iter(kw))):
+        attractor_map(scene(1.35), {"theta0": [0.0, 1.0]}, transient=20.0, **({"samples": 8} | kw))
+
+
+def test_max_periods_beyond_the_time_limit_is_refused_before_work():
+    with pytest.raises(ValueError, match="max_periods"):
+        attractor_map(scene(1.35).replace(drive_frequency=1e-4), grid(3), max_periods=10**6)

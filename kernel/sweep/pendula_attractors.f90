@@ -42,6 +42,8 @@ module pendula_attractors
   integer, parameter :: at_ncfg = 10
   !> fixed outputs per point before the cycle points (see attractor_points)
   integer, parameter :: at_nfixed = 12
+  !> Newton's iterations on a recurrence (it starts within `near` of a stable cycle: a few suffice)
+  integer, parameter :: newton_maxit = 10
   integer, parameter :: ps_decided = 0, ps_unsettled = 1, ps_not_applicable = 2, ps_cancelled = 5
   !> outcomes
   real(dp), parameter :: oc_known = 0.0_dp, oc_periodic = 1.0_dp, oc_chaotic = 2.0_dp
@@ -113,8 +115,8 @@ contains
     integer(int64), intent(out) :: cl(:)
     integer, intent(out) :: ncl, st
     integer, intent(inout), volatile :: cancel
-    real(dp) :: cell, rcell, near, tp, th, v, x(2), mono(4), info(3), mu, d
-    integer :: nseen, natt_fill, kmax, nrec, ncollect, nconf, maxp, n, k, j, prev, cnt, revisits, ndist, retry, h, q, lab, s
+    real(dp) :: cell, rcell, near, tp, th, v, x(2), mono(4), info(3), mu, d, dlast
+    integer :: nfail, nseen, natt_fill, kmax, nrec, ncollect, nconf, maxp, n, k, j, prev, cnt, revisits, ndist, retry, h, q, lab, s
     integer(int64) :: c, turns, w
     real(dp), allocatable :: hth(:), hv(:)
     integer(int64), allocatable :: hturn(:), seen(:), dist(:), att(:)
@@ -133,7 +135,7 @@ contains
     allocate(hth(0:h - 1), hv(0:h - 1), hturn(0:h - 1), seen(0:8191), dist(0:2 * kmax), att(0:2 * size(cl) - 1))
     seen = empty; nseen = 0
     th = p(7) - two_pi * anint(p(7) / two_pi); v = p(8); turns = 0
-    prev = -1; cnt = 0; revisits = 0; ndist = 0; retry = 0
+    prev = -1; cnt = 0; revisits = 0; ndist = 0; retry = 0; nfail = 0
     do n = 1, maxp
       if (cancel /= 0) then
         o = nan_dp; st = ps_cancelled; return
@@ -170,20 +172,25 @@ contains
       ! 2. a periodic recurrence, confirmed by Newton
       q = mod(n, h)
       hth(q) = th; hv(q) = v; hturn(q) = turns
-      if (n > retry) then
+      ! (not while the orbit sits in a known attractor's cells: it is about to be labelled)
+      if (n > retry .and. prev < 0) then
         do k = 1, min(kmax, n - nconf)
           ok = .true.
-          do j = 0, nconf - 1
+          dlast = huge(1.0_dp)
+          do j = nconf - 1, 0, -1
             d = sdist(hth(mod(n - j, h)), hv(mod(n - j, h)), hth(mod(n - j - k, h)), hv(mod(n - j - k, h)))
-            if (.not. (d < near)) then
+            ! below near, and not growing: an orbit closing in on a cycle (a chaotic orbit's close
+            ! returns rarely are both)
+            if (.not. (d < near) .or. (d > dlast .and. d > 1.0e-9_dp)) then
               ok = .false.; exit
             end if
+            dlast = d
           end do
           if (.not. ok) cycle
           x = [th, v]
           m = make_model(p(1), p(2), p(3), p(4), p(5), p(6))
           s = pendula_gsl_periodic_orbit(c_loc(m), real(k, dp) * tp, real(turns - hturn(mod(n - k, h)), dp), &
-                                         cfg(8), cfg(8), cfg(9), 50, x, mono, info)
+                                         cfg(8), cfg(8), cfg(9), newton_maxit, x, mono, info)
           if (s == 0) then
             x(1) = x(1) - two_pi * anint(x(1) / two_pi)
             if (x(1) >= pi) x(1) = x(1) - two_pi
@@ -201,7 +208,7 @@ contains
               if (q < k) then
                 w = (turns - hturn(mod(n - k, h))) / (k / q)
                 s = pendula_gsl_periodic_orbit(c_loc(m), real(q, dp) * tp, real(w, dp), cfg(8), cfg(8), cfg(9), &
-                                               50, x, mono, info)
+                                               newton_maxit, x, mono, info)
                 if (s /= 0) then     ! cannot happen for a converged cycle; keep the k-period answer
                   q = k
                 else
@@ -212,7 +219,9 @@ contains
               return
             end if
           end if
-          retry = n + kmax     ! no new attempt before the orbit has moved on
+          ! no new attempt before the orbit has moved on; longer after each failure
+          nfail = nfail + 1
+          retry = n + kmax * 2 ** min(nfail, 10)
           exit
         end do
       end if

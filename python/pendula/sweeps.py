@@ -525,7 +525,7 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
 
 
 #: the recurrence finder's keywords and their defaults (pendula.attractor_map documents them)
-RECURRENCE_DEFAULTS = {"cell": 0.05, "recurrence_cell": 0.25, "near": 0.01, "consecutive": 3,
+RECURRENCE_DEFAULTS = {"cell": 0.1, "recurrence_cell": 0.25, "near": 0.01, "consecutive": 2,
                        "consecutive_chaotic": 10, "recurrences": 100, "collect": 1000, "max_periods": 3000,
                        "max_period": 12, "merge_tol": 1e-3, "pilot": 64, "rtol": 1e-7, "atol": 1e-9,
                        "recheck_rtol": 1e-10, "recheck_atol": 1e-12}
@@ -644,9 +644,10 @@ def _attractor_layout(plan: _AttractorPlan):
                   identity=json.dumps(plan.key(), sort_keys=True), attrs=attrs)
 
 
-def _discover(plan: _AttractorPlan, p: np.ndarray, found, threads: int):
+def _discover(plan: _AttractorPlan, p: np.ndarray, found, threads: int, rtol: float | None = None,
+              atol: float | None = None):
     """Run points (columns of p, in this order) in batches of _DISCOVERY_BATCH, each batch against the
-    attractors found before it; new attractors join ``found``.  Returns (index in found or -1, status,
+    attractors found before it (at rtol, atol: default the plan's); new attractors join ``found``.  Returns (index in found or -1, status,
     drive periods) per point: the same for any thread count, chunking or cluster."""
     n = p.shape[1]
     labels = np.full(n, -1, dtype=np.int64)
@@ -654,8 +655,9 @@ def _discover(plan: _AttractorPlan, p: np.ndarray, found, threads: int):
     periods = np.zeros(n)
     for b0 in range(0, n, _DISCOVERY_BATCH):
         b = slice(b0, min(n, b0 + _DISCOVERY_BATCH))
-        out, cells, ncell, st = _attractor_block(plan, p[:, b], found.table(), plan.rtol, plan.atol,
-                                                 plan.opts["collect"] * 4, threads)
+        out, cells, ncell, st = _attractor_block(plan, p[:, b], found.table(), rtol or plan.rtol,
+                                                 atol if atol is not None else plan.atol, plan.opts["collect"] * 4,
+                                                 threads)
         for j in range(out.shape[1]):
             g = b0 + j
             status[g], periods[g] = st[j], out[4, j]
@@ -787,13 +789,13 @@ def attractor_map(scene: Scene, over: dict, *, method: Literal["recurrence", "sa
     method : {'recurrence', 'samples'}, optional
         Default 'recurrence', or 'samples' when ``transient`` or ``samples`` is given.
     cell : float, optional
-        Width of the labelling cells on the section (default 0.05).
+        Width of the labelling cells on the section (default 0.1).
     recurrence_cell : float, optional
         Width of the cells in which an orbit's own recurrence is counted (default 0.25).
     near : float, optional
         Recurrence distance (max-norm, angle modulo 2 pi) at which Newton is tried (default 0.01).
     consecutive, consecutive_chaotic : int, optional
-        Samples in a row in a known attractor's cells that label a point (default 3, and 10 for a
+        Samples in a row in a known attractor's cells that label a point (default 2, and 10 for a
         chaotic attractor).
     recurrences : int, optional
         Samples in a row in already-visited cells that make a chaotic attractor (default 100).
@@ -915,11 +917,16 @@ def _attractor_map_recurrence(scene, over, opts, threads, out, client, progress,
     recheck = np.asarray(ds.recheck.values).ravel()
     # 3. points that found a new attractor: again, in grid order, against the pilot's and the new ones
     labels = np.where(raw >= 0, raw, -1)
-    new = np.flatnonzero((raw == _RAW_NEW_PERIODIC) | (raw == _RAW_NEW_CHAOTIC))
-    if new.size:
-        lab_new, st_new, per_new = _discover(plan, pall[:, new], found, threads)
-        labels[new], status[new] = lab_new, st_new
-        periods[new] += per_new
+    new_all = (raw == _RAW_NEW_PERIODIC) | (raw == _RAW_NEW_CHAOTIC)
+    new = np.flatnonzero(new_all)
+    # at the tolerances that gave the answer: the loose ones, then the boundary points' tight ones
+    for sel, tols in ((new_all & (recheck == 0), (plan.rtol, plan.atol)),
+                      (new_all & (recheck > 0), (opts["recheck_rtol"], opts["recheck_atol"]))):
+        idx = np.flatnonzero(sel)
+        if idx.size:
+            lab_new, st_new, per_new = _discover(plan, pall[:, idx], found, threads, *tols)
+            labels[idx], status[idx] = lab_new, st_new
+            periods[idx] += per_new
     counts = np.bincount(labels[labels >= 0], minlength=len(found.items))
     atts, remap = found.attractors(counts, npts)
     labels = remap[labels].reshape(plan.shape)     # remap[-1] = -1: undecided stays -1
