@@ -13,8 +13,7 @@ titles give the basin entropy and the uncertainty exponent α (α < 1: a
 fractal boundary, as Grebogi, Ott and Yorke found on this system).  Right:
 the fraction of the plane in each attractor's basin as the amplitude moves
 (:func:`pendula.attractor_continuation`, attractors matched from one
-amplitude to the next), stacked; white is where no periodic attractor
-exists and the orbit is chaotic, or points are undecided.
+amplitude to the next), stacked; what is left white is undecided.
 """
 
 import matplotlib.pyplot as plt

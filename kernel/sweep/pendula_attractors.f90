@@ -28,8 +28,8 @@
 !> thread from its inputs and the table only.
 module pendula_attractors
   use pendula_kinds, only: dp, pi, two_pi, nan_dp
-  use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate, &
-    m_dop853, st_ok, st_cancelled
+  use pendula_integrators, only: pendulum_model, make_model
+  use pendula_sweep, only: advance
   use pendula_gsl_iface, only: pendula_gsl_periodic_orbit
   use, intrinsic :: iso_c_binding, only: c_loc
   use, intrinsic :: iso_fortran_env, only: int64
@@ -271,29 +271,15 @@ contains
   end subroutine one_point
 
   !> One drive period from the section at n periods (time origin n tp: the drive
-  !> phase is p(6) + Omega n tp).
+  !> phase is p(6) + Omega n tp), by the sweeps' window step.
   subroutine period_step(p, tp, n, rtol, atol, th, v, st, cancel)
     real(dp), intent(in) :: p(8), tp, rtol, atol
     integer, intent(in) :: n
     real(dp), intent(inout) :: th, v
     integer, intent(out) :: st
     integer, intent(inout), volatile :: cancel
-    type(pendulum_model) :: m
-    type(event_spec) :: ev
-    type(run_stats) :: stats
-    integer :: nev, s
-    real(dp) :: ts(1), ths(1), vs(1), tev(1), thev(1), vev(1)
-    m = make_model(p(1), p(2), p(3), p(4), p(5), p(6) + p(5) * (tp * real(n, dp)))
-    ts(1) = tp
-    call integrate(m, m_dop853, th, v, ts, rtol, atol, 0.0_dp, ths, vs, stats, s, ev, nev, tev, thev, vev, cancel)
-    if (s == st_cancelled) then
-      st = ps_cancelled; return
-    end if
-    if (s /= st_ok) then
-      st = 100 + s; return
-    end if
-    st = ps_decided
-    th = ths(1); v = vs(1)
+    real(dp) :: ths(1), vs(1)
+    call advance(p, tp * real(n, dp), rtol, atol, [tp], th, v, ths, vs, st, cancel)
   end subroutine period_step
 
   !> The k points of a confirmed cycle from its point x (tight tolerance),

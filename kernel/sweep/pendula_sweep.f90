@@ -47,6 +47,7 @@ module pendula_sweep
   implicit none
   private
   public :: sweep_points, iv_branch, np_params, sweep_scene_csv, sweep_model_rule, sweep_limits
+  public :: advance   ! one window of a point's orbit (also the attractor finder's drive period)
   public :: ms_final_well, ms_mean_velocity, ms_locked, ms_poincare, ms_lyapunov
 
   integer, parameter :: np_params = 8   ! eps, beta, tau, amp, omega, phase, theta0, v0

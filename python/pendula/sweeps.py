@@ -58,7 +58,7 @@ from ._store import StoreBusyError, SweepStoreWarning  # noqa: F401 - raised and
 from . import _checks, _interrupt
 from ._files import atomic_path, save_figure
 from .scene import GRIDDABLE, MEASURES, Scene, SceneError
-from .dynamics.attractors import AttractorMap
+from .dynamics.attractors import AttractorMap, edge_mask as _edge_mask
 
 if TYPE_CHECKING:   # xarray and distributed are optional: named in annotations only
     import distributed
@@ -195,20 +195,6 @@ def _answers(out, st):
     """The answer of each point for the boundary test: out[..., 0] when decided,
     else a value no answer takes (decided and undecided neighbours differ too)."""
     return np.where(st == 0, out[..., 0], -1e300)
-
-
-def _edge_mask(ans: np.ndarray) -> np.ndarray:
-    """The points of a grid of answers with a grid neighbour (along any axis) that answers differently."""
-    edge = np.zeros(ans.shape, dtype=bool)
-    for ax in range(ans.ndim):
-        d = np.diff(ans, axis=ax) != 0
-        lo_s = [slice(None)] * ans.ndim
-        hi_s = [slice(None)] * ans.ndim
-        lo_s[ax] = slice(0, -1)
-        hi_s[ax] = slice(1, None)
-        edge[tuple(lo_s)] |= d
-        edge[tuple(hi_s)] |= d
-    return edge
 
 
 def _compute_chunk(plan: _Plan, i: int, threads: int):

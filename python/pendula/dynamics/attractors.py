@@ -40,7 +40,7 @@ import numpy as np
 from ..scene import Scene
 
 __all__ = ["Attractor", "AttractorMap", "AttractorSet", "label_attractors", "basin_entropy",
-           "uncertainty_exponent", "boundary_fraction", "cell_ids"]
+           "uncertainty_exponent", "boundary_fraction", "cell_ids", "edge_mask"]
 
 TWO_PI = 2 * math.pi
 
@@ -230,17 +230,28 @@ def boundary_fraction(labels) -> float:
     >>> boundary_fraction([[0, 0, 1, 1]])
     0.5
     """
-    lab = np.asarray(labels)
-    edge = np.zeros(lab.shape, dtype=bool)
-    for ax in range(lab.ndim):
-        d = np.diff(lab, axis=ax) != 0
-        lo = [slice(None)] * lab.ndim
-        hi = [slice(None)] * lab.ndim
+    return float(edge_mask(np.asarray(labels)).mean())
+
+
+def edge_mask(ans: np.ndarray) -> np.ndarray:
+    """The points of a grid of answers with a grid neighbour (along any axis) that answers differently.
+
+    Examples
+    --------
+    >>> from pendula.dynamics.attractors import edge_mask
+    >>> edge_mask(np.array([0, 0, 1, 1])).tolist()
+    [False, True, True, False]
+    """
+    edge = np.zeros(ans.shape, dtype=bool)
+    for ax in range(ans.ndim):
+        d = np.diff(ans, axis=ax) != 0
+        lo = [slice(None)] * ans.ndim
+        hi = [slice(None)] * ans.ndim
         lo[ax] = slice(0, -1)
         hi[ax] = slice(1, None)
         edge[tuple(lo)] |= d
         edge[tuple(hi)] |= d
-    return float(edge.mean())
+    return edge
 
 
 def basin_entropy(labels, box: int = 5) -> tuple[float, float]:
