@@ -3,8 +3,8 @@
 * attractor_map_1p07.png: the default attractor map at A = 1.07 (beta = 0.5, Omega = 2/3) on a 150 x 150
   grid over theta0 in [-pi, pi], v0 in [-3, 3], with the attractors' cycle points and the drive periods
   each point took before it was decided.
-* attractor_continuation.png: basin fractions over drive_amplitude 1.0 .. 1.5 (51 values, a 60 x 60 grid),
-  stacked, from pendula.attractor_continuation (kept in data/attractors/continuation_1p0_1p5/ for a resume).
+* attractor_continuation.png: basin fractions over drive_amplitude 1.0 .. 1.5 (21 values, a 40 x 40 grid),
+  stacked, from pendula.attractor_continuation (its resumable folder in the system's temporary folder).
 * The figures' numbers go to data/attractors/guide_figures.json (quoted by the page).
 
     python data/attractors/gen_guide_figures.py      (a few minutes on 2 cores)
@@ -12,6 +12,7 @@
 
 import json
 import pathlib
+import tempfile
 
 import matplotlib
 
@@ -54,10 +55,11 @@ def main():
                        "mean_periods": float(am.dataset.periods.mean()),
                        "boundary_fraction": am.boundary_fraction}
 
-    small = {"theta0": np.linspace(-np.pi, np.pi, 60), "v0": np.linspace(-3.0, 3.0, 60)}
-    vals = np.round(np.linspace(1.0, 1.5, 51), 6)
+    small = {"theta0": np.linspace(-np.pi, np.pi, 40), "v0": np.linspace(-3.0, 3.0, 40)}
+    vals = np.round(np.linspace(1.0, 1.5, 21), 6)
     ds = pendula.attractor_continuation(pendula.Scene(damping=0.5, drive_frequency=2 / 3), small, "drive_amplitude",
-                                        vals, threads=2, out=ROOT / "data" / "attractors" / "continuation_1p0_1p5")
+                                        vals, threads=2,
+                                        out=pathlib.Path(tempfile.gettempdir()) / "pendula_attractor_continuation")
     f = np.nan_to_num(ds.fraction.values)
     labels = [f"{kd}, period {p}" if kd == "periodic" else kd for kd, p in zip(ds.kind.values, ds.period.values)]
     fig, ax = plt.subplots(figsize=(8, 4.6))
@@ -69,8 +71,8 @@ def main():
     fig.savefig(FIG / "attractor_continuation.png", dpi=110)
     plt.close(fig)
     rec["continuation"] = {"values": vals.tolist(), "kinds": ds.kind.values.tolist(),
-                           "periods": ds.period.values.tolist(),
-                           "max_undecided": float(ds.undecided.max())}
+                           "periods": ds.period.values.tolist(), "fraction": ds.fraction.values.tolist(),
+                           "undecided": ds.undecided.values.tolist()}
     (ROOT / "data" / "attractors" / "guide_figures.json").write_text(json.dumps(rec, indent=1) + "\n")
     print(json.dumps(rec["map_1p07"]), rec["continuation"]["kinds"], rec["continuation"]["periods"])
 

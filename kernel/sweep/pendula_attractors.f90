@@ -18,9 +18,11 @@
 !>     circle (a confirmed stable orbit); its k points are returned;
 !>  3. a new chaotic attractor: `recurrences` consecutive samples fall in
 !>     recurrence cells (`rcell` wide) the orbit has visited before, and they
-!>     visit more than 2 kmax distinct cells (fewer is a slowly converging or
-!>     long periodic orbit, left to rule 2); the cells of the attractor are then
-!>     collected over `collect` more samples;
+!>     visit more than 2 kmax distinct cells; or they visit fewer (a slowly
+!>     converging cycle, or a thin chaotic set in bands) and over the next such
+!>     streak the smallest recurrence distance min_k |x_n - x_{n-k}| neither
+!>     halves nor falls below `near` (a converging cycle is left to rule 2);
+!>     the cells of the attractor are then collected over `collect` more samples;
 !>  4. undecided: none of these by max_periods drive periods (status 1).
 !>
 !> Thread safety: no module variables; each point works on its own locals.
@@ -115,7 +117,7 @@ contains
     integer(int64), intent(out) :: cl(:)
     integer, intent(out) :: ncl, st
     integer, intent(inout), volatile :: cancel
-    real(dp) :: cell, rcell, near, tp, th, v, x(2), mono(4), info(3), mu, d, dlast
+    real(dp) :: cell, rcell, near, tp, th, v, x(2), mono(4), info(3), mu, d, dlast, dnow, dstart
     integer :: nfail, nseen, natt_fill, kmax, nrec, ncollect, nconf, maxp, n, k, j, prev, cnt, revisits, ndist, retry, h, q, lab, s
     integer(int64) :: c, turns, w
     real(dp), allocatable :: hth(:), hv(:)
@@ -135,7 +137,7 @@ contains
     allocate(hth(0:h - 1), hv(0:h - 1), hturn(0:h - 1), seen(0:8191), dist(0:2 * kmax), att(0:2 * size(cl) - 1))
     seen = empty; nseen = 0
     th = p(7) - two_pi * anint(p(7) / two_pi); v = p(8); turns = 0
-    prev = -1; cnt = 0; revisits = 0; ndist = 0; retry = 0; nfail = 0
+    prev = -1; cnt = 0; revisits = 0; ndist = 0; retry = 0; nfail = 0; dstart = -1.0_dp
     do n = 1, maxp
       if (cancel /= 0) then
         o = nan_dp; st = ps_cancelled; return
@@ -238,6 +240,15 @@ contains
         end if
       end if
       if (revisits >= nrec) then
+        ! few cells: a slowly converging cycle, or a thin chaotic set (bands): a second streak tells
+        ! them apart, the cycle's recurrence distance having halved at least (or fallen below near)
+        dnow = huge(1.0_dp)
+        do k = 1, min(kmax, n - 1, h - 1)
+          dnow = min(dnow, sdist(th, v, hth(mod(n - k, h)), hv(mod(n - k, h))))
+        end do
+        if (ndist <= 2 * kmax .and. dstart >= 0.0_dp) then
+          if (dnow >= 0.5_dp * dstart .and. dnow >= near) ndist = 2 * kmax + 1
+        end if
         if (ndist > 2 * kmax) then
           ! the attractor's cells over `collect` more samples
           att = empty; natt_fill = 0
@@ -263,7 +274,7 @@ contains
           o(12) = 1.0_dp; o(13) = th; o(14) = v
           return
         end if
-        revisits = 0; ndist = 0
+        revisits = 0; ndist = 0; dstart = dnow
       end if
     end do
     st = ps_unsettled
