@@ -35,12 +35,12 @@ def grid(n, m=None):
     return {"theta0": np.linspace(-math.pi, math.pi, n), "v0": np.linspace(-3.0, 3.0, m or n)}
 
 
-def scipy_strobe(A, theta, v, periods):
-    """The state after each of `periods` drive periods, by SciPy from the equation alone (rtol 1e-12)."""
+def scipy_strobe(A, theta, v, periods, rtol=1e-12):
+    """The state after each of `periods` drive periods, by SciPy from the equation alone."""
     def rhs(t, y):
         return [y[1], -math.sin(y[0]) - BETA * y[1] + A * math.cos(OMEGA * t)]
     T = 2 * math.pi / OMEGA
-    sol = solve_ivp(rhs, (0.0, periods * T), [theta, v], method="DOP853", rtol=1e-12, atol=1e-12,
+    sol = solve_ivp(rhs, (0.0, periods * T), [theta, v], method="DOP853", rtol=rtol, atol=rtol,
                     t_eval=T * np.arange(1, periods + 1))
     th = (sol.y[0] + math.pi) % (2 * math.pi) - math.pi
     return th, sol.y[1]
@@ -92,7 +92,7 @@ def test_chaotic_attractor_at_1_2_is_one_and_holds_an_independent_orbit():
     assert [a.kind for a in am.attractors] == ["chaotic"]
     assert am.attractors[0].fraction == 1.0 and am.undecided == 0
     # an orbit computed by SciPy alone, after a transient, lies in the attractor's cells (or next to them)
-    th, v = scipy_strobe(1.2, 0.3, 0.0, 400)
+    th, v = scipy_strobe(1.2, 0.3, 0.0, 400, rtol=1e-9)     # a chaotic orbit: any accurate one will do
     cell = am.dataset.attrs["cell"]
     mine = set(cell_ids(am.attractors[0].theta, am.attractors[0].v, cell).tolist())
     ni = math.ceil(2 * math.pi / cell)
@@ -283,3 +283,19 @@ def test_samples_method_arguments_of_the_wrong_kind_are_type_errors(kw):
 def test_max_periods_beyond_the_time_limit_is_refused_before_work():
     with pytest.raises(ValueError, match="max_periods"):
         attractor_map(scene(1.35).replace(drive_frequency=1e-4), grid(3), max_periods=10**6)
+
+
+def test_thin_chaotic_set_after_the_cascade_is_found_not_left_undecided():
+    # A = 1.10: a period-3 cycle and a chaotic set in a few thin bands (few recurrence cells)
+    am = attractor_map(scene(1.10), grid(8))
+    assert am.undecided == 0
+    kinds = sorted((a.kind, a.period) for a in am.attractors)
+    assert ("chaotic", 0) in kinds and ("periodic", 3) in kinds
+    # a point labelled chaotic has an orbit (SciPy, from the equation alone) that recurs with no period <= 12
+    chaotic = next(a.label for a in am.attractors if a.kind == "chaotic")
+    i, j = np.argwhere(am.dataset.attractor.values == chaotic)[0]
+    th, v = scipy_strobe(1.10, float(am.dataset.theta0[i]), float(am.dataset.v0[j]), 260, rtol=1e-9)
+    th, v = th[200:], v[200:]
+    for k in range(1, 13):
+        d = max(section_dist(th[n], v[n], th[n - k], v[n - k]) for n in range(k, len(th)))
+        assert d > 1e-3, f"period {k}"
