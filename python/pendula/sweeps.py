@@ -739,8 +739,9 @@ def attractor_map(scene: Scene, over: dict, *, method: Literal["recurrence", "sa
       its period and multipliers exact to Newton's tolerance);
     * an orbit that falls ``recurrences`` samples in a row in cells
       (``recurrence_cell`` wide) it has visited before, over more than
-      2 ``max_period`` distinct cells, is a new chaotic attractor, whose cells
-      are collected over ``collect`` more samples;
+      2 ``max_period`` distinct cells (or over fewer, when a second such streak
+      shows no cycle closing in: a thin chaotic set), is a new chaotic
+      attractor, whose cells are collected over ``collect`` more samples;
     * an orbit decided by none of these within ``max_periods`` drive periods
       is **undecided** (label -1, status 1): counted and reported, never called
       chaotic.
