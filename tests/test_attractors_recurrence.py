@@ -299,3 +299,11 @@ def test_thin_chaotic_set_after_the_cascade_is_found_not_left_undecided():
     for k in range(1, 13):
         d = max(section_dist(th[n], v[n], th[n - k], v[n - k]) for n in range(k, len(th)))
         assert d > 1e-3, f"period {k}"
+
+
+def test_sweep_figure_of_an_attractor_map_is_drawn(tmp_path):
+    pytest.importorskip("matplotlib")
+    from pendula.sweeps import plot_sweep
+    ds = pendula.sweep(scene(1.35), {"theta0": np.linspace(-3, 3, 5), "v0": np.linspace(-3, 3, 4)}, "attractor",
+                       transient=100.0, samples=8)
+    assert plot_sweep(ds, tmp_path / "map.png").stat().st_size > 0

@@ -1377,7 +1377,7 @@ def plot_sweep(ds, path) -> pathlib.Path:
     measure = ds.attrs["measure"]
     dims = [d for d in ds.dims if d != "sample"]
     var = {"final_well": "well", "locked": "locked", "mean_velocity": "mean_velocity", "poincare": "theta",
-           "lyapunov": "lyapunov"}[measure]
+           "lyapunov": "lyapunov", "attractor": "attractor"}[measure]
     fig, ax = plt.subplots(figsize=(6.4, 4.8))
     if measure == "poincare":
         x = np.repeat(ds[dims[0]].values, ds.sizes["sample"])
@@ -1393,7 +1393,7 @@ def plot_sweep(ds, path) -> pathlib.Path:
             z = z.isel({d: 0 for d in dims[2:]})
         z = z.transpose(dims[0], dims[1]).values
         x, y = ds[dims[0]].values, ds[dims[1]].values
-        if measure in ("final_well", "locked"):
+        if measure in ("final_well", "locked", "attractor"):
             lo, hi = np.nanmin(z), np.nanmax(z)
             lo, hi = (0, 1) if not np.isfinite(lo) else (int(lo), int(hi))
             cmap = plt.get_cmap("tab20", hi - lo + 1)
