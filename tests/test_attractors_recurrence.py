@@ -307,3 +307,28 @@ def test_sweep_figure_of_an_attractor_map_is_drawn(tmp_path):
     ds = pendula.sweep(scene(1.35), {"theta0": np.linspace(-3, 3, 5), "v0": np.linspace(-3, 3, 4)}, "attractor",
                        transient=100.0, samples=8)
     assert plot_sweep(ds, tmp_path / "map.png").stat().st_size > 0
+
+
+def test_ctrl_c_stops_a_long_attractor_map_within_seconds():
+    import signal
+    import subprocess
+    import sys
+    import time
+    code = ("import pendula, numpy as np\nprint('start', flush=True)\n"
+            "sc = pendula.Scene(damping=0.5, drive_amplitude=1.2, drive_frequency=2/3)\n"
+            "pendula.attractor_map(sc, {'theta0': np.linspace(-3, 3, 4)}, recurrences=10**6, max_periods=10**6, "
+            "threads=1)\nprint('finished', flush=True)")
+    p = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    try:
+        assert p.stdout.readline().strip() == "start"
+        time.sleep(1.5)
+        t0 = time.monotonic()
+        p.send_signal(signal.SIGINT)
+        out, err = p.communicate(timeout=30)
+    finally:
+        if p.poll() is None:
+            p.kill()
+            p.wait()
+    assert "finished" not in out and "KeyboardInterrupt" in err, err[-300:]
+    assert time.monotonic() - t0 < 10
