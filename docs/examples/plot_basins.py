@@ -1,44 +1,44 @@
 """
-Attractors and their basins
-===========================
+Attractors, their basins, and basin fractions over the drive
+=============================================================
 
-The driven damped pendulum (β = 0.5, Ω = 2/3) at two drive amplitudes: each
-initial state (θ0, v0) is coloured by the attractor of the stroboscopic map
-its orbit ends on, found by recurrence without being told the attractors
-(:func:`pendula.attractor_map`); the attractors' points are drawn
-on the map.  At A = 1.35 two period-1 rotations, one each way, share the
-plane; at A = 1.45 two period-2 rotations (a longer transient: their basins
-are reached more slowly).  The title gives the basin entropy
-and the uncertainty exponent α (α < 1: a fractal boundary, as Grebogi, Ott
-and Yorke found on this system).
+The driven damped pendulum (β = 0.5, Ω = 2/3).  Left and middle: each
+initial state (θ0, v0) coloured by the attractor of the stroboscopic map its
+orbit ends on (:func:`pendula.attractor_map`: orbits followed by recurrence
+and stopped as soon as they are decided; periodic attractors confirmed by
+Newton); the attractors' points are drawn on the map.  At A = 1.07 two
+period-2 oscillations, mirror images of each other, share the plane with
+intertwined basins; at A = 1.35 two period-1 rotations, one each way.  The
+titles give the basin entropy and the uncertainty exponent α (α < 1: a
+fractal boundary, as Grebogi, Ott and Yorke found on this system).  Right:
+the fraction of the plane in each attractor's basin as the amplitude moves
+(:func:`pendula.attractor_continuation`, attractors matched from one
+amplitude to the next), stacked; what is left white is undecided.
 """
 
 import matplotlib.pyplot as plt
 import numpy as np
 
 import pendula
-from pendula import attractor_map
 
-n = 56
+n = 60
 grid = {"theta0": np.linspace(-np.pi, np.pi, n),
         "v0": np.linspace(-3.0, 3.0, n)}
-fig, axes = plt.subplots(1, 2, figsize=(11, 4.8))
-for ax, amp, transient in zip(axes, (1.35, 1.45), (300.0, 900.0)):
+fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
+for ax, amp in zip(axes, (1.07, 1.35)):
     sc = pendula.Scene(damping=0.5, drive_amplitude=amp,
-                       drive_frequency=2 / 3, rtol=1e-9, atol=1e-11)
-    am = attractor_map(sc, grid, transient=transient, samples=24)
-    lab = am.dataset.attractor.values
-    k = max(len(am.attractors), 1)
-    ax.imshow(lab.T, origin="lower", extent=[-np.pi, np.pi, -3, 3],
-              aspect="auto",
-              cmap=plt.get_cmap("Pastel1", k), vmin=-0.5, vmax=k - 0.5,
-              interpolation="nearest")
-    for a in am.attractors:
-        ax.plot(a.theta, a.v, "o", ms=6, mec="k",
-                label=f"{a.kind}, period {a.period}: {a.fraction:.0%}")
-    ax.set(xlabel="θ0", ylabel="v0",
-           title=f"A = {amp}: S_b = {am.basin_entropy:.2f}, "
+                       drive_frequency=2 / 3)
+    am = pendula.attractor_map(sc, grid)
+    pendula.plot.basins(am, ax=ax)
+    ax.set_title(f"A = {amp}: S_b = {am.basin_entropy:.2f}, "
                  f"α = {am.uncertainty_exponent:.2f}")
-    ax.legend(fontsize=7, loc="upper right")
+
+small = {"theta0": np.linspace(-np.pi, np.pi, 24),
+         "v0": np.linspace(-3.0, 3.0, 24)}
+ds = pendula.attractor_continuation(
+    pendula.Scene(damping=0.5, drive_frequency=2 / 3), small,
+    "drive_amplitude", np.linspace(1.0, 1.5, 21))
+pendula.plot.fractions(ds, ax=axes[2])
+axes[2].set_title("basin fractions, attractors continued")
 fig.tight_layout()
 plt.show()

@@ -120,7 +120,8 @@ SECTIONS = {
     "getting_started": ["install*"],
     "guide": ["guide/exact", "guide/integrators", "guide/effects", "guide/spectra", "guide/damping",
               "guide/josephson", "guide/driven",
-              "guide/cord", "guide/cycloid", "guide/gravity", "guide/density", "guide/dynamics", "guide/sweeps",
+              "guide/cord", "guide/cycloid", "guide/gravity", "guide/density", "guide/dynamics", "guide/attractors",
+              "guide/sweeps",
               "sweeps_at_scale*", "guide/scenes", "scenes*", "vocabulary", "guide/architecture"],
     "reports": ["reports/accuracy", "accuracy*", "elliptic_edges*", "model_accuracy*", "reports/cost", "work_precision*", "reports/benchmarks",
                 "reports/limits"],
@@ -177,7 +178,8 @@ API_GROUPS = [
     ("The density of the angle", ["angle_density", "angle_cdf", "arcsine_density"]),
     ("Sweeps", ["sweep", "iv_curve"]),
     ("Equilibria, periodic orbits and attractors", ["equilibria", "Equilibrium", "periodic_orbit",
-                                                    "PeriodicOrbit", "attractor_map"]),
+                                                    "PeriodicOrbit", "attractor_map",
+                                                    "attractor_continuation"]),
     ("The Josephson junction", ["Junction", "SwitchingCurrents"]),
 ]
 

@@ -952,3 +952,26 @@ subroutine junction_switching_v(beta, temp, rate, seed, h, i_max, n, nthreads, c
   !f2py threadsafe
   call langevin_switching(beta, temp, rate, seed, h, i_max, n, isw, status, nthreads, cancel(1))
 end subroutine junction_switching_v
+
+! Attractors of the stroboscopic map by recurrence (pendula_attractors%attractor_points): label npts points
+! against a table of known attractors' cells (kcell sorted, klab their attractor, need the consecutive samples
+! per attractor) or find a new attractor; cfg as pendula_attractors documents (at_ncfg entries).
+subroutine attractor_block(npts, params, rtol, atol, cfg, nk, kcell, klab, natt, need, nout, maxc, nthreads, &
+                           cancel, out, cells, ncell, pstat)
+  use pendula_attractors, only: attractor_points
+  implicit none
+  integer, intent(in) :: npts, nk, natt, nout, maxc, nthreads
+  double precision, intent(in) :: params(12, npts), rtol, atol, cfg(10)
+  integer(kind=8), intent(in) :: kcell(nk)
+  integer, intent(in) :: klab(nk), need(natt)
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: out(nout, npts)
+  integer(kind=8), intent(out) :: cells(maxc, npts)
+  integer, intent(out) :: ncell(npts), pstat(npts)
+  !f2py threadsafe
+  !f2py intent(hide), depend(params) :: npts = shape(params, 1)
+  !f2py intent(hide), depend(kcell) :: nk = len(kcell)
+  !f2py intent(hide), depend(need) :: natt = len(need)
+  call attractor_points(npts, params, rtol, atol, cfg, nk, kcell, klab, natt, need, nout, out, maxc, cells, &
+                        ncell, pstat, nthreads, cancel(1))
+end subroutine attractor_block

@@ -55,6 +55,7 @@ module pendula_sweep
   implicit none
   private
   public :: sweep_points, sweep_points_noisy, iv_branch, np_params, sweep_scene_csv, sweep_model_rule, sweep_limits
+  public :: advance, forcing_omega   ! one window of a point's orbit; the period of its forcing (the attractor finder)
   public :: ms_final_well, ms_mean_velocity, ms_locked, ms_poincare, ms_lyapunov
 
   !> eps, beta, tau, amp, omega, phase, theta0, v0, then the vibrating pivot's amplitude and frequency,

@@ -46,7 +46,7 @@ from .systems.gravity import gravity_orbit  # noqa: E402
 from .systems.cord import cord_state, flip_map, flip_sequence  # noqa: E402
 from .systems.friction import FrictionTurningPoints, friction_turning_points  # noqa: E402
 # sweeps over parameter grids; xarray is imported only when a sweep runs
-from .sweeps import attractor_map, iv_curve, sweep  # noqa: E402
+from .sweeps import attractor_continuation, attractor_map, iv_curve, sweep  # noqa: E402
 # the Josephson junction in laboratory units (RCSJ on the pendulum)
 from .junction import Junction, SwitchingCurrents  # noqa: E402
 from .dynamics import Equilibrium, PeriodicOrbit, equilibria, periodic_orbit  # noqa: E402
@@ -66,4 +66,4 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "precompute_wisdom", "wisdom_path",
            "equilibria", "Equilibrium", "periodic_orbit", "PeriodicOrbit", "attractor_map",
            "friction_turning_points", "FrictionTurningPoints",
-           "Junction", "SwitchingCurrents"]
+           "Junction", "SwitchingCurrents", "attractor_continuation"]

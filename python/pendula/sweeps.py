@@ -71,13 +71,13 @@ from . import _checks, _interrupt
 from ._files import atomic_path, save_figure
 from ._progress import Progress
 from .scene import GRIDDABLE, MEASURES, Scene, SceneError
-from .dynamics.attractors import AttractorMap
+from .dynamics.attractors import AttractorMap, edge_mask as _edge_mask
 
 if TYPE_CHECKING:   # xarray and distributed are optional: named in annotations only
     import distributed
     import xarray
 
-__all__ = ["sweep", "iv_curve", "grid_of", "MEASURE_CODES", "attractor_map"]
+__all__ = ["sweep", "iv_curve", "grid_of", "MEASURE_CODES", "attractor_map", "attractor_continuation"]
 
 #: kernel codes of the measures (kernel/sweep/pendula_sweep.f90)
 MEASURE_CODES = {"final_well": 1, "mean_velocity": 2, "locked": 3, "poincare": 4, "lyapunov": 5}
@@ -269,14 +269,7 @@ def _compute_chunk(plan: _Plan, i: int, threads: int):
             pa, sa = plan.params_rows(hi, hi + 1)
             oa, ta = _block(code, pa, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout, threads)
             parts.append(_answers(oa.T.reshape(sa + (plan.nout,)), ta.reshape(sa)))
-        ans = np.concatenate(parts, axis=0)
-        edge = np.zeros(ans.shape, dtype=bool)
-        for ax in range(len(shape)):
-            d = np.diff(ans, axis=ax) != 0
-            lo_s = [slice(None)] * len(shape); hi_s = [slice(None)] * len(shape)
-            lo_s[ax] = slice(0, -1); hi_s[ax] = slice(1, None)
-            edge[tuple(lo_s)] |= d
-            edge[tuple(hi_s)] |= d
+        edge = _edge_mask(np.concatenate(parts, axis=0))
         first = 1 if lo > 0 else 0
         edge = edge[first:first + shape[0]]
         idx = np.flatnonzero(edge.ravel())
@@ -370,14 +363,57 @@ def _chunk_vars(plan: _Plan, out: np.ndarray, st: np.ndarray) -> dict:
     return vals
 
 
-def _chunk_dataset(plan: _Plan, layout, i: int, out: np.ndarray, st: np.ndarray):
+def _chunk_dataset(layout, i: int, vals: dict):
     xr = require("xarray", "xarray", "pendula.sweep")
     lo, hi = layout.rows_of(i)
-    vals = _chunk_vars(plan, out, st)
     coords = {n: xr.Variable((n,), v[lo:hi] if n == layout.first else v, dict(a))
               for n, (v, a) in layout.coords.items()}
     data = {n: (var.dims, vals[n], dict(var.attrs)) for n, var in layout.variables.items()}
     return xr.Dataset(data, coords=coords)
+
+
+def _run(plan, layout, compute, to_vars, out, client, threads: int, progress: bool, desc: str):
+    """Compute every chunk of a plan (``compute(plan, i, threads) -> (i, out, status)``; ``to_vars`` turns
+    that into {variable: values}) in memory, into the resumable store under ``out``, or on a Dask client;
+    the dataset (lazy when stored)."""
+    # in memory xarray alone does (pendula[xarray]); a store or a cluster needs the sweep extra
+    xr = require("xarray", "xarray" if out is None and client is None else "sweep", "pendula.sweep")
+    chunks: dict[int, object] = {}
+    store = None
+    if out is not None:
+        from ._store import SweepStore
+        store = SweepStore(out, layout)   # takes the store's lock; finds the chunks done and sound
+        store.open()
+    try:
+        todo = [i for i in range(plan.nchunks) if store is None or i not in store.done]
+
+        def done(i, o, st):
+            vals = to_vars(plan, o, st)
+            if store is not None:
+                store.write_chunk(i, vals)
+            else:
+                chunks[i] = _chunk_dataset(layout, i, vals)
+            bar.update(1)
+
+        # pendula's one progress rule (_progress.Progress): nothing drawn for work under two seconds
+        with Progress(plan.nchunks, desc, enabled=progress, initial=plan.nchunks - len(todo),
+                      unit="chunk") as bar:
+            if client is not None:
+                from ._cluster import run_chunks
+                run_chunks(client, compute, plan, todo, threads, done)
+            else:
+                for i in todo:
+                    done(*compute(plan, i, threads))
+        if store is not None:
+            # lazily (dask): the grid is never held in memory at once
+            ds = store.dataset()
+        else:
+            parts = [chunks[i] for i in range(plan.nchunks)]
+            ds = xr.concat(parts, dim=layout.first) if len(parts) > 1 else parts[0]
+    finally:
+        if store is not None:
+            store.close()
+    return ds
 
 
 def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | None = None,
@@ -398,11 +434,12 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
         scene's own grid (``grid``, ``grid1`` ... fields).
     measure : str, optional
         'final_well', 'mean_velocity', 'locked', 'poincare', 'lyapunov', or
-        'attractor' (the attractor each point's orbit ends on, found by
-        recurrence: :func:`attractor_map`, whose options it takes from
-        ``transient``, ``samples``, ``rtol`` and ``atol``; its measures and
-        attractors are in the Dataset's attributes).  Default: the scene's
-        ``measure`` (a scene file names one of the kernel's measures).
+        'attractor' (the attractor each point's orbit ends on, read from
+        ``samples`` stroboscopic samples after ``transient``: method
+        'samples' of :func:`attractor_map`, whose measures and attractors are
+        in the Dataset's attributes; :func:`attractor_map` itself defaults to
+        the faster recurrence method with early stopping).  Default: the
+        scene's ``measure`` (a scene file names one of the kernel's measures).
     rtol, atol : float, optional
         DOP853 tolerances (default: the scene's).
     t_max : float, optional
@@ -514,13 +551,7 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
     if scene.noise > 0 and measure != "mean_velocity":
         raise ValueError(f"field 'noise': a sweep with thermal noise measures 'mean_velocity' only (the "
                          f"measure '{measure}' asks a deterministic question); got noise = {scene.noise}")
-    if measure == "attractor":
-        # the kernel's poincare samples, read for recurrence (pendula.attractor_map)
-        kw = {k: v for k, v in (("transient", transient), ("samples", samples), ("rtol", rtol),
-                                ("atol", atol)) if v is not None}
-        return attractor_map(scene, grid_of(scene) if over is None else over, threads=threads, out=out,
-                             client=client, progress=progress, chunk_points=chunk_points, **kw).dataset
-    if not isinstance(measure, str) or measure not in MEASURES:
+    if not isinstance(measure, str) or measure not in MEASURES + ("attractor",):
         raise ValueError(f"parameter 'measure' must be one of {', '.join(MEASURES + ('attractor',))}; "
                          f"got {measure!r}")
     _model_rule(scene, f"measure '{measure}'")
@@ -536,6 +567,11 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
     samples = _checks.count(scene.sweep_samples if samples is None else samples, "samples", 1, 100000)
     chunk_points = _checks.count(chunk_points, "chunk_points", 1)
     threads = _checks.threads(threads)
+    if measure == "attractor":
+        # the attractor map read from the kernel's poincare samples (method 'samples' of pendula.attractor_map)
+        return attractor_map(scene, over, method="samples", transient=transient, samples=samples, rtol=rtol,
+                             atol=atol, threads=threads, out=out, client=client, progress=progress,
+                             chunk_points=chunk_points).dataset
     if measure == "mean_velocity":
         _checks.window(transient, t_max, "t_max")
     if measure == "poincare" and math.prod(len(v) for v in over.values()) * samples > _checks.MAX_GRID_POINTS:
@@ -548,40 +584,7 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
     plan.force = uf
 
     layout = _layout(plan)
-    chunks: dict[int, object] = {}
-    store = None
-    if out is not None:
-        from ._store import SweepStore
-        store = SweepStore(out, layout)   # takes the store's lock; finds the chunks done and sound
-        store.open()
-    try:
-        todo = [i for i in range(plan.nchunks) if store is None or i not in store.done]
-
-        def done(i, o, st):
-            if store is not None:
-                store.write_chunk(i, _chunk_vars(plan, o, st))
-            else:
-                chunks[i] = _chunk_dataset(plan, layout, i, o, st)
-            bar.update(1)
-
-        # pendula's one progress rule (_progress.Progress): nothing drawn for work under two seconds
-        with Progress(plan.nchunks, f"sweep {measure}", enabled=progress, initial=plan.nchunks - len(todo),
-                      unit="chunk") as bar:
-            if client is not None:
-                from ._cluster import run_chunks
-                run_chunks(client, _compute_chunk, plan, todo, threads, done)
-            else:
-                for i in todo:
-                    done(*_compute_chunk(plan, i, threads))
-        if store is not None:
-            # lazily (dask): the grid is never held in memory at once
-            ds = store.dataset()
-        else:
-            parts = [chunks[i] for i in range(plan.nchunks)]
-            ds = xr.concat(parts, dim=list(over)[0]) if len(parts) > 1 else parts[0]
-    finally:
-        if store is not None:
-            store.close()
+    ds = _run(plan, layout, _compute_chunk, _chunk_vars, out, client, threads, progress, f"sweep {measure}")
     ds.attrs.update(layout.attrs)
     if plan.measure == "final_well" or plan.measure == "locked":
         # read from the store in this process (threads): a cluster's workers need not see 'out'
@@ -589,27 +592,303 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
     return ds
 
 
-def attractor_map(scene: Scene, over: dict, *, transient: float = 600.0, samples: int = 48, tol: float = 1e-6,
-                  merge_tol: float = 1e-3, max_period: int | None = None, cell: float = 0.05,
-                  rtol: float = 1e-10, atol: float = 1e-12, threads: int = 0,
-                  out: str | os.PathLike[str] | None = None, client: distributed.Client | None = None,
-                  progress: bool = False, chunk_points: int = 20000) -> AttractorMap:
+#: the recurrence finder's keywords and their defaults (pendula.attractor_map documents them)
+RECURRENCE_DEFAULTS = {"cell": 0.1, "recurrence_cell": 0.25, "near": 0.01, "consecutive": 2,
+                       "consecutive_chaotic": 10, "recurrences": 100, "collect": 1000, "max_periods": 3000,
+                       "max_period": 12, "merge_tol": 1e-3, "pilot": 64, "rtol": 1e-7, "atol": 1e-9,
+                       "recheck_rtol": 1e-10, "recheck_atol": 1e-12}
+#: Newton's tolerances on the stroboscopic map of a recurrence (pendula_gsl_periodic_orbit)
+_NEWTON_RTOL, _NEWTON_TOL = 1e-11, 1e-10
+#: pilot points and points that found a new attractor are run in batches of this many against the
+#: attractors found before the batch (a fixed number: the result never depends on the threads)
+_DISCOVERY_BATCH = 16
+#: the raw answer of the labelling pass: an attractor of the pilot's (>= 0) or one of these
+_RAW_UNDECIDED, _RAW_NEW_PERIODIC, _RAW_NEW_CHAOTIC = -1, -2, -3
+#: kernel outputs before the cycle points (pendula_attractors%at_nfixed)
+_AT_NFIXED = 12
+
+
+class _AttractorPlan(_Plan):
+    """The labelling pass of a recurrence attractor map: the grid, the options, the pilot's table."""
+
+    def __init__(self, scene, over, opts: dict, chunk_points: int):
+        super().__init__(scene, over, "attractor", opts["rtol"], opts["atol"], float(opts["max_periods"]), 0.0,
+                         1, chunk_points)
+        self.opts = dict(opts)
+        o = self.opts
+        self.cfg = np.array([o["cell"], o["recurrence_cell"], o["near"], o["max_periods"], o["max_period"],
+                             o["recurrences"], o["collect"], _NEWTON_RTOL, _NEWTON_TOL, 2.0], dtype=float)
+        self.nout = _AT_NFIXED + 2 * o["max_period"]
+        self.table = None
+
+    def key(self) -> dict:
+        return {"scene": self.scene.to_namelist(), "measure": "attractor", "method": "recurrence",
+                "over": {k: v.tolist() for k, v in self.over.items()}, "options": self.opts, "rows": self.rows}
+
+
+def _attractor_block(plan: _AttractorPlan, p: np.ndarray, table, rtol: float, atol: float, maxc: int,
+                     threads: int):
+    """One kernel call of the recurrence finder (pendula_attractors) that Ctrl-C stops."""
+    from . import _kernel
+    kcell, klab, need = table
+    cancel = _interrupt.cancel_flag()
+    out, cells, ncell, st = _interrupt.call(_kernel.attractor_block, np.asfortranarray(p), rtol, atol, plan.cfg,
+                                            kcell, klab, need, plan.nout, maxc, int(threads), cancel,
+                                            cancel=cancel)
+    if cancel[0]:
+        raise KeyboardInterrupt
+    return out, cells, ncell, st
+
+
+def _raw(out: np.ndarray, st: np.ndarray) -> np.ndarray:
+    """The labelling pass's answer of each point: a known attractor's index, or a _RAW_* code."""
+    kind = np.where(st == 0, out[0], np.nan)
+    return np.select([kind == 0, kind == 1, kind == 2], [out[1], _RAW_NEW_PERIODIC, _RAW_NEW_CHAOTIC],
+                     _RAW_UNDECIDED).astype(np.int64)
+
+
+def _attractor_chunk(plan: _AttractorPlan, i: int, threads: int):
+    """Label chunk i against the pilot's attractors; points next to another answer (a grid neighbour
+    along any axis, across chunk edges too) are computed again at the tight tolerances, whose answer
+    is kept.  out[..., :] = raw answer, drive periods integrated, recheck (0 no, 1 same, 2 changed)."""
+    p, shape = plan.params(i)
+    o = plan.opts
+
+    def raw_of(pp):
+        out, _, _, st = _attractor_block(plan, pp, plan.table, plan.rtol, plan.atol, 1, threads)
+        return _raw(out, st), out[4], st
+
+    raw, periods, st = raw_of(p)
+    lo, hi = i * plan.rows, i * plan.rows + shape[0]
+    parts = [raw.reshape(shape)]
+    if lo > 0:
+        pb, sb = plan.params_rows(lo - 1, lo)
+        parts.insert(0, raw_of(pb)[0].reshape(sb))
+    if hi < plan.shape[0]:
+        pa, sa = plan.params_rows(hi, hi + 1)
+        parts.append(raw_of(pa)[0].reshape(sa))
+    first = 1 if lo > 0 else 0
+    edge = _edge_mask(np.concatenate(parts, axis=0))[first:first + shape[0]]
+    idx = np.flatnonzero(edge.ravel())
+    recheck = np.zeros(raw.size, dtype=np.int64)
+    if idx.size:
+        out2, _, _, st2 = _attractor_block(plan, p[:, idx], plan.table, o["recheck_rtol"], o["recheck_atol"], 1,
+                                           threads)
+        raw2 = _raw(out2, st2)
+        recheck[idx] = np.where(raw2 != raw[idx], 2, 1)
+        raw[idx], st[idx] = raw2, st2
+        periods[idx] += out2[4]
+    res = np.stack([raw, periods, recheck], axis=-1).reshape(shape + (3,))
+    return i, res, st.reshape(shape)
+
+
+def _attractor_vars(plan, out, st) -> dict:
+    return {"raw_attractor": out[..., 0].astype(np.int32), "periods": out[..., 1],
+            "recheck": out[..., 2].astype(np.int32), "status": st.astype(np.int32)}
+
+
+def _attractor_layout(plan: _AttractorPlan):
+    from ._store import Layout, Variable
+    dims = tuple(plan.over)
+
+    def meta(name):
+        long_name, units = _AXIS_META[name]
+        return {"long_name": long_name, "units": units}
+    coords = {n: (plan.over[n], meta(n)) for n in dims}
+    variables = {
+        "status": Variable(dims, np.dtype(np.int32), _status_attrs(), -1),
+        "raw_attractor": Variable(dims, np.dtype(np.int32), {
+            "long_name": "labelling pass: index of the pilot's attractor, or -1 undecided, -2 a new periodic "
+                         "attractor, -3 a new chaotic attractor", "units": "1"}, -9),
+        "periods": Variable(dims, np.dtype(np.float64), {
+            "long_name": "drive periods integrated until the point was decided", "units": "1"}, np.nan),
+        "recheck": Variable(dims, np.dtype(np.int32), {
+            "long_name": "boundary recheck at the tight tolerances: 0 not rechecked, 1 same answer, 2 changed",
+            "units": "1"}, -1)}
+    attrs = {"Conventions": "CF-1.10", "title": "pendula attractor map (labelling pass)",
+             "scene": plan.scene.to_namelist(), "measure": "attractor", "method": "recurrence",
+             "status_codes": json.dumps(STATUS), **{k: v for k, v in plan.opts.items()}}
+    return Layout(axes={n: plan.over[n] for n in dims}, coords=coords, variables=variables, rows=plan.rows,
+                  identity=json.dumps(plan.key(), sort_keys=True), attrs=attrs)
+
+
+def _discover(plan: _AttractorPlan, p: np.ndarray, found, threads: int, rtol: float | None = None,
+              atol: float | None = None):
+    """Run points (columns of p, in this order) in batches of _DISCOVERY_BATCH, each batch against the
+    attractors found before it (at rtol, atol: default the plan's); new attractors join ``found``.  Returns (index in found or -1, status,
+    drive periods) per point: the same for any thread count, chunking or cluster."""
+    n = p.shape[1]
+    labels = np.full(n, -1, dtype=np.int64)
+    status = np.zeros(n, dtype=np.int32)
+    periods = np.zeros(n)
+    for b0 in range(0, n, _DISCOVERY_BATCH):
+        b = slice(b0, min(n, b0 + _DISCOVERY_BATCH))
+        out, cells, ncell, st = _attractor_block(plan, p[:, b], found.table(), rtol or plan.rtol,
+                                                 atol if atol is not None else plan.atol, plan.opts["collect"] * 4,
+                                                 threads)
+        for j in range(out.shape[1]):
+            g = b0 + j
+            status[g], periods[g] = st[j], out[4, j]
+            if st[j] != 0:
+                continue
+            kind = int(out[0, j])
+            if kind == 0:
+                labels[g] = int(out[1, j])
+            elif kind == 1:
+                k = int(out[11, j])
+                labels[g] = found.add_periodic(int(out[2, j]), int(out[3, j]), out[_AT_NFIXED:_AT_NFIXED + 2 * k:2, j],
+                                               out[_AT_NFIXED + 1:_AT_NFIXED + 2 * k:2, j], out[5:9, j])
+            else:
+                labels[g] = found.add_chaotic(cells[:ncell[j], j])
+    return labels, status, periods
+
+
+def _pilot_points(shape: tuple, target: int) -> np.ndarray:
+    """The pilot: every s-th point along each axis (s the same on every axis, the smallest giving at most
+    ``target`` points), in a fixed shuffled order; flat indices into the grid."""
+    s = 1
+    while math.prod(-(-n // s) for n in shape) > target:
+        s += 1
+    axes = [np.arange(0, n, s) for n in shape]
+    mesh = np.meshgrid(*axes, indexing="ij")
+    flat = np.ravel_multi_index(tuple(m.ravel() for m in mesh), shape)
+    return flat[np.random.default_rng(20260).permutation(flat.size)]
+
+
+def _recurrence_options(kw: dict) -> dict:
+    """The recurrence finder's options, checked (one checker, _checks) and with their defaults."""
+    o = dict(RECURRENCE_DEFAULTS)
+    o.update({k: v for k, v in kw.items() if v is not None})
+    for name in ("cell", "recurrence_cell", "near", "merge_tol"):
+        o[name] = _checks.real(o[name], name, 0.0, 10.0, lo_open=True)
+    if o["cell"] < 1e-6 or o["recurrence_cell"] < 1e-6:
+        raise ValueError("cell and recurrence_cell must be at least 1e-6 (the cells of one turn are counted)")
+    o["consecutive"] = _checks.count(o["consecutive"], "consecutive", 1, 10**6)
+    o["consecutive_chaotic"] = _checks.count(o["consecutive_chaotic"], "consecutive_chaotic", 1, 10**6)
+    o["recurrences"] = _checks.count(o["recurrences"], "recurrences", 1, 10**6)
+    o["collect"] = _checks.count(o["collect"], "collect", 1, 10**5)
+    o["max_period"] = _checks.count(o["max_period"], "max_period", 1, 64)
+    o["max_periods"] = _checks.count(o["max_periods"], "max_periods", 1, 10**7)
+    o["pilot"] = _checks.count(o["pilot"], "pilot", 1, 10**5)
+    o["rtol"], o["atol"] = _checks.tolerances(o["rtol"], o["atol"])
+    o["recheck_rtol"], o["recheck_atol"] = _checks.tolerances(o["recheck_rtol"], o["recheck_atol"])
+    return o
+
+
+def _check_work(scene: Scene, over: dict, max_periods: int) -> None:
+    """max_periods drive periods of the slowest drive must stay within a sweep point's time limit."""
+    om = float(np.min(over.get("drive_frequency", np.array([scene.drive_frequency]))))
+    t = max_periods * 2 * math.pi / om
+    limit = _checks._sweep_limits()[1]
+    if not t <= limit:
+        raise ValueError(f"max_periods: {max_periods} drive periods of drive_frequency {om:g} are {t:.3g} time "
+                         f"units, beyond a sweep point's limit {limit:g} (lower max_periods)")
+
+
+def _check_driven(scene: Scene, over: dict, what: str) -> None:
+    amp = over.get("drive_amplitude", np.array([scene.drive_amplitude]))
+    om = over.get("drive_frequency", np.array([scene.drive_frequency]))
+    if scene.pivot_amplitude != 0 and "pivot_amplitude" not in over:
+        return      # a vibrating pivot drives the scene too (its frequency > 0: the scene's check)
+    if not (np.all(om > 0) and np.all(amp != 0)):
+        raise ValueError(f"drive_amplitude, drive_frequency: {what} reads the stroboscopic map of a periodically "
+                         "driven scene (drive_frequency > 0, drive_amplitude != 0 at every grid point, or a "
+                         "vibrating pivot)")
+
+
+def attractor_map(scene: Scene, over: dict, *, method: Literal["recurrence", "samples"] | None = None,
+                  cell: float | None = None, recurrence_cell: float | None = None, near: float | None = None,
+                  consecutive: int | None = None, consecutive_chaotic: int | None = None,
+                  recurrences: int | None = None, collect: int | None = None, max_periods: int | None = None,
+                  max_period: int | None = None, merge_tol: float | None = None, pilot: int | None = None,
+                  rtol: float | None = None, atol: float | None = None, recheck_rtol: float | None = None,
+                  recheck_atol: float | None = None, transient: float | None = None, samples: int | None = None,
+                  tol: float | None = None, threads: int = 0, out: str | os.PathLike[str] | None = None,
+                  client: distributed.Client | None = None, progress: bool = False,
+                  chunk_points: int = 20000) -> AttractorMap:
     """Find the attractors of a driven scene and label each grid point by the one its orbit ends on.
+
+    The default method, ``'recurrence'``, follows each orbit on the
+    stroboscopic map (one sample per drive period) and stops it as soon as it
+    is decided, in the spirit of Datseris & Wagemakers' AttractorsViaRecurrences
+    (Attractors.jl).  The section is cut into square cells ``cell`` wide:
+
+    * an orbit whose samples lie in the cells of one known attractor (its
+      points and their 8 neighbouring cells) for ``consecutive`` samples in a
+      row (``consecutive_chaotic`` for a chaotic attractor) is labelled;
+    * an orbit whose samples recur after k <= ``max_period`` drive periods to
+      within ``near`` (two samples in a row) is refined by Newton on the
+      stroboscopic map (the core of :func:`pendula.periodic_orbit`); when Newton
+      converges to an orbit within ``near`` whose Floquet multipliers lie inside
+      the unit circle, it is a new periodic attractor (a confirmed stable orbit,
+      its period and multipliers exact to Newton's tolerance);
+    * an orbit that falls ``recurrences`` samples in a row in cells
+      (``recurrence_cell`` wide) it has visited before, over more than
+      2 ``max_period`` distinct cells (or over fewer, when a second such streak
+      shows no cycle closing in: a thin chaotic set), is a new chaotic
+      attractor, whose cells are collected over ``collect`` more samples;
+    * an orbit decided by none of these within ``max_periods`` drive periods
+      is **undecided** (label -1, status 1): counted and reported, never called
+      chaotic.
+
+    The labels depend on the grid and the options only, never on the threads,
+    the chunking, a resumed store or a cluster: a *pilot* (every s-th point on
+    each axis, at most ``pilot`` points, in a fixed order) finds the
+    attractors in batches of 16 points, each batch against the attractors the
+    batches before it found; every grid point is then labelled against the
+    pilot's attractors alone; the points that found a new attractor are run
+    again, in grid order and the same batches, against the pilot's attractors
+    and the new ones as they are found.  Attractors are numbered by a rule on
+    the attractors alone (periodic by period, then the angle and velocity of
+    their first point; chaotic after them by basin size).
+
+    The labelling runs at the loose tolerances ``rtol``, ``atol``; every point
+    with a grid neighbour (along any axis, across chunks too) of another
+    answer is run again at ``recheck_rtol``, ``recheck_atol``, and that answer
+    is kept.  The result says how many were rechecked and how many changed.
+
+    ``method='samples'`` (the former method, used when ``transient`` or
+    ``samples`` is given) integrates every point over ``transient`` and reads
+    ``samples`` stroboscopic samples for recurrence
+    (:func:`pendula.dynamics.attractors.label_attractors`).
 
     Parameters
     ----------
     scene : Scene
-        A periodically driven scene (``drive_frequency > 0``, or a vibrating pivot).
+        A periodically driven scene (``drive_frequency > 0`` and ``drive_amplitude != 0``, or a
+        vibrating pivot).
     over : dict
         The grid, as for :func:`pendula.sweep` (e.g. ``{'theta0': ..., 'v0': ...}`` for a basin map).
-    transient : float, optional
-        Time skipped before sampling (rounded up to whole drive periods; default 600).
-    samples : int, optional
-        Stroboscopic samples per point read for recurrence (default 48).
-    tol, merge_tol, max_period, cell : optional
-        See ``pendula.dynamics.attractors.label_attractors``.
+    method : {'recurrence', 'samples'}, optional
+        Default 'recurrence', or 'samples' when ``transient`` or ``samples`` is given.
+    cell : float, optional
+        Width of the labelling cells on the section (default 0.1).
+    recurrence_cell : float, optional
+        Width of the cells in which an orbit's own recurrence is counted (default 0.25).
+    near : float, optional
+        Recurrence distance (max-norm, angle modulo 2 pi) at which Newton is tried (default 0.01).
+    consecutive, consecutive_chaotic : int, optional
+        Samples in a row in a known attractor's cells that label a point (default 2, and 10 for a
+        chaotic attractor).
+    recurrences : int, optional
+        Samples in a row in already-visited cells that make a chaotic attractor (default 100).
+    collect : int, optional
+        Samples over which a new chaotic attractor's cells are collected (default 1000).
+    max_periods : int, optional
+        The limit: drive periods per point before it is undecided (default 3000).
+    max_period : int, optional
+        The longest period looked for (default 12; 'samples': samples // 2).
+    merge_tol : float, optional
+        Two periodic orbits are one when each point of one lies within this of the other's (default 1e-3).
+    pilot : int, optional
+        Most pilot points (default 64).
     rtol, atol : float, optional
-        The integrator's tolerances (default 1e-10, 1e-12).
+        The labelling tolerances of DOP853 (default 1e-7, 1e-9; 'samples': 1e-10, 1e-12).
+    recheck_rtol, recheck_atol : float, optional
+        The tolerances of the boundary recheck (default 1e-10, 1e-12).
+    transient, samples, tol : optional
+        Method 'samples': the time skipped (rounded up to whole drive periods; default 600), the samples
+        read (default 48) and the recurrence tolerance (default 1e-6).
     threads, out, client, progress, chunk_points : optional
         As for :func:`pendula.sweep` (a stored, resumable run with ``out``); the
         labels do not depend on them.
@@ -617,69 +896,393 @@ def attractor_map(scene: Scene, over: dict, *, transient: float = 600.0, samples
     Returns
     -------
     AttractorMap
-        The label map as a Dataset, the attractors, and the basin measures.
+        The label map as a Dataset (``attractor``, ``period``, ``status``;
+        the recurrence method also ``periods``, the drive periods each point
+        took, and ``recheck``), the attractors, the basin measures, and the
+        counts ``undecided``, ``rechecked`` and ``recheck_changed``.
 
     Raises
     ------
+    TypeError
+        An argument of the wrong kind (a float or a bool where a whole number is wanted), named.
     ValueError
-        If the scene is not driven or an argument is out of range.
+        If the scene is not driven, an argument is out of range, or ``cell``
+        is too coarse to tell two attractors apart.
+
+    Warns
+    -----
+    RuntimeWarning
+        When no point is decided within ``max_periods``.
 
     See Also
     --------
-    sweep : ``measure='attractor'`` gives the same map's Dataset.
-    periodic_orbit : Newton's method on one periodic attractor.
+    attractor_continuation : the attractors and their basin fractions over a parameter.
+    sweep : ``measure='attractor'`` gives the 'samples' map's Dataset.
+    periodic_orbit : Newton's method on one periodic orbit.
 
     Examples
     --------
     >>> import pendula
     >>> sc = pendula.Scene(damping=0.5, drive_amplitude=1.35, drive_frequency=2/3)
-    >>> am = pendula.attractor_map(sc, {"theta0": [-2.0, 0.0, 2.0], "v0": [-3.0, 0.0, 3.0]}, transient=300, samples=16)
-    >>> [(a.kind, a.period) for a in am.attractors]      # two period-1 rotations, one each way
-    [('periodic', 1), ('periodic', 1)]
+    >>> am = pendula.attractor_map(sc, {"theta0": [-2.0, 0.0, 2.0], "v0": [-3.0, 0.0, 3.0]})
+    >>> [(a.kind, a.period, a.winding) for a in am.attractors]      # two period-1 rotations, one each way
+    [('periodic', 1, -1), ('periodic', 1, 1)]
+    >>> bool(max(abs(am.attractors[0].multipliers)) < 1)             # stable: a confirmed orbit
+    True
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a pendula.Scene, got {type(scene).__name__}")
-    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or not 4 <= samples <= 4096:
-        raise ValueError(f"samples must be a whole number between 4 and 4096, got {samples!r}")
-    for name, val in (("tol", tol), ("merge_tol", merge_tol), ("cell", cell)):
-        if not (isinstance(val, (int, float, np.floating)) and math.isfinite(val) and val > 0):
-            raise ValueError(f"{name} must be a positive finite number, got {val!r}")
-    if not (scene.drive_frequency > 0 and scene.drive_amplitude != 0) and "drive_frequency" not in over and \
-            scene.pivot_amplitude == 0:      # a vibrating pivot drives the scene too
-        raise ValueError("drive_amplitude, drive_frequency: attractor maps read the stroboscopic map of a "
-                         "periodically driven scene (drive_frequency > 0, drive_amplitude != 0, or a "
-                         "vibrating pivot)")
-    pc = sweep(scene, over=over, measure="poincare", transient=transient, samples=int(samples), rtol=rtol,
-               atol=atol, threads=threads, out=out, client=client, progress=progress, chunk_points=chunk_points)
-    from .dynamics.attractors import AttractorMap, basin_entropy, boundary_fraction, label_attractors, \
-        uncertainty_exponent
-    labels, atts = label_attractors(pc.theta.values, pc.v.values, tol=tol, merge_tol=merge_tol,
-                                    max_period=max_period, cell=cell)
-    labels = np.where(pc.status.values == 0, labels, -1)
+    if method is None:
+        method = "samples" if (transient is not None or samples is not None) else "recurrence"
+    if not isinstance(method, str) or method not in ("recurrence", "samples"):
+        raise ValueError(f"parameter 'method' must be 'recurrence' or 'samples'; got {method!r}")
+    _model_rule(scene, "attractor_map")
+    _checks.angle(scene.theta0, "field 'theta0'")
+    over = _check_over(scene, over)
+    _check_driven(scene, over, "attractor_map")
+    threads = _checks.threads(threads)
+    chunk_points = _checks.count(chunk_points, "chunk_points", 1)
+    if method == "samples":
+        rec_only = {"cell": None, "recurrence_cell": recurrence_cell, "near": near, "consecutive": consecutive,
+                    "consecutive_chaotic": consecutive_chaotic, "recurrences": recurrences, "collect": collect,
+                    "max_periods": max_periods, "pilot": pilot, "recheck_rtol": recheck_rtol,
+                    "recheck_atol": recheck_atol}
+        given = [k for k, v in rec_only.items() if v is not None]
+        if given:
+            raise TypeError(f"attractor_map: {', '.join(given)} belong to method 'recurrence', not 'samples'")
+        return _attractor_map_samples(scene, over, transient=600.0 if transient is None else transient,
+                                      samples=48 if samples is None else samples, tol=1e-6 if tol is None else tol,
+                                      merge_tol=1e-3 if merge_tol is None else merge_tol, max_period=max_period,
+                                      cell=0.05 if cell is None else cell, rtol=1e-10 if rtol is None else rtol,
+                                      atol=1e-12 if atol is None else atol, threads=threads, out=out,
+                                      client=client, progress=progress, chunk_points=chunk_points)
+    if tol is not None:
+        raise TypeError("attractor_map: tol belongs to method 'samples' (the recurrence method refines by Newton)")
+    opts = _recurrence_options(dict(cell=cell, recurrence_cell=recurrence_cell, near=near, consecutive=consecutive,
+                                    consecutive_chaotic=consecutive_chaotic, recurrences=recurrences,
+                                    collect=collect, max_periods=max_periods, max_period=max_period,
+                                    merge_tol=merge_tol, pilot=pilot, rtol=rtol, atol=atol,
+                                    recheck_rtol=recheck_rtol, recheck_atol=recheck_atol))
+    _check_work(scene, over, opts["max_periods"])
+    return _attractor_map_recurrence(scene, over, opts, threads, out, client, progress, chunk_points)
+
+
+def _attractor_map_recurrence(scene, over, opts, threads, out, client, progress, chunk_points) -> AttractorMap:
+    import warnings
+
+    from .dynamics.attractors import AttractorSet
     xr = require("xarray", "sweep", "pendula.attractor_map")
-    dims = tuple(d for d in pc.theta.dims if d != "sample")
+    plan = _AttractorPlan(scene, over, opts, chunk_points)
+    npts = math.prod(plan.shape)
+    # 1. the pilot finds the attractors
+    found = AttractorSet(opts["cell"], opts["merge_tol"], opts["consecutive"], opts["consecutive_chaotic"])
+    pidx = _pilot_points(plan.shape, opts["pilot"])
+    pall, _ = plan.params_rows(0, plan.shape[0])
+    _discover(plan, pall[:, pidx], found, threads)
+    plan.table = found.table()
+    n_pilot_att = len(found.items)
+    # 2. every point labelled against the pilot's attractors (chunked, stored, on a cluster)
+    ds = _run(plan, _attractor_layout(plan), _attractor_chunk, _attractor_vars, out, client, threads, progress,
+              "attractor map")
+    raw = np.asarray(ds.raw_attractor.values, dtype=np.int64).ravel()
+    status = np.asarray(ds.status.values, dtype=np.int32).ravel().copy()
+    periods = np.asarray(ds.periods.values, dtype=float).ravel().copy()
+    recheck = np.asarray(ds.recheck.values).ravel()
+    # 3. points that found a new attractor: again, in grid order, against the pilot's and the new ones
+    labels = np.where(raw >= 0, raw, -1)
+    new_all = (raw == _RAW_NEW_PERIODIC) | (raw == _RAW_NEW_CHAOTIC)
+    new = np.flatnonzero(new_all)
+    # at the tolerances that gave the answer: the loose ones, then the boundary points' tight ones
+    for sel, tols in ((new_all & (recheck == 0), (plan.rtol, plan.atol)),
+                      (new_all & (recheck > 0), (opts["recheck_rtol"], opts["recheck_atol"]))):
+        idx = np.flatnonzero(sel)
+        if idx.size:
+            lab_new, st_new, per_new = _discover(plan, pall[:, idx], found, threads, *tols)
+            labels[idx], status[idx] = lab_new, st_new
+            periods[idx] += per_new
+    counts = np.bincount(labels[labels >= 0], minlength=len(found.items))
+    atts, remap = found.attractors(counts, npts)
+    labels = remap[labels].reshape(plan.shape)     # remap[-1] = -1: undecided stays -1
+    status = status.reshape(plan.shape)
+    undecided = int((labels < 0).sum())
+    if undecided == npts:
+        warnings.warn(f"attractor_map: no point was decided within max_periods = {opts['max_periods']} drive "
+                      "periods (status 1: raise max_periods)", RuntimeWarning, stacklevel=3)
+    dims = tuple(plan.over)
+    coords = {d: (d, plan.over[d], dict(zip(("long_name", "units"), _AXIS_META[d]))) for d in dims}
+    ds_out = xr.Dataset(
+        {"periods": (dims, periods.reshape(plan.shape), {
+            "long_name": "drive periods integrated until the point was decided", "units": "1"}),
+         "recheck": (dims, recheck.reshape(plan.shape).astype(np.int32), {
+             "long_name": "boundary recheck at the tight tolerances: 0 not rechecked, 1 same answer, 2 changed",
+             "units": "1"}),
+         "status": (dims, status, _status_attrs())}, coords=coords)
+    extra = {"method": "recurrence", "pilot_points": int(pidx.size), "pilot_attractors": n_pilot_att,
+             "new_in_labelling": int(new.size), "undecided": undecided, "rechecked": int((recheck > 0).sum()),
+             "recheck_changed": int((recheck == 2).sum()), "mean_periods": float(periods.mean()),
+             **{k: v for k, v in opts.items()}}
+    return _finish_map(ds_out, labels, atts, scene, extra)
+
+
+def _finish_map(ds, labels, atts, scene, extra: dict) -> AttractorMap:
+    """The map's Dataset (``attractor``, ``period`` added, CF flags, the measures and the options as
+    attributes) and the AttractorMap."""
+    from .dynamics.attractors import basin_entropy, boundary_fraction, uncertainty_exponent
+    dims = tuple(d for d in ds.status.dims)
     per = np.array([a.period for a in atts] + [-1])[labels]
-    ds = xr.Dataset(
-        {"attractor": (dims, labels.astype(np.int32), {
-            "long_name": "attractor of the stroboscopic map the orbit ends on",
-            "flag_values": np.arange(-1, len(atts), dtype=np.int32),
-            "flag_meanings": " ".join(["undecided"] + [f"{a.kind}_period_{a.period}_{a.label}" if a.period
-                                                       else f"chaotic_{a.label}" for a in atts])}),
-         "period": (dims, per.astype(np.int32), {"long_name": "period of the attractor in drive periods "
-                                                              "(0 chaotic, -1 undecided)",
-                                                 "units": "1"})},
-        coords={d: pc[d] for d in dims})
-    ds.attrs.update({k: pc.attrs[k] for k in pc.attrs if k != "measure"})
+    ds["attractor"] = (dims, labels.astype(np.int32), {
+        "long_name": "attractor of the stroboscopic map the orbit ends on (-1 undecided)",
+        "flag_values": np.arange(-1, len(atts), dtype=np.int32),
+        "flag_meanings": " ".join(["undecided"] + [f"{a.kind}_period_{a.period}_{a.label}" if a.period
+                                                   else f"chaotic_{a.label}" for a in atts])})
+    ds["period"] = (dims, per.astype(np.int32), {"long_name": "period of the attractor in drive periods "
+                                                              "(0 chaotic, -1 undecided)", "units": "1"})
     bf = boundary_fraction(labels)
     sb, sbb = basin_entropy(labels) if labels.ndim == 2 and min(labels.shape) >= 5 else (math.nan, math.nan)
     alpha = uncertainty_exponent(labels)[0] if len(atts) > 1 else math.nan
-    ds.attrs.update({"measure": "attractor", "tol": tol, "merge_tol": merge_tol, "cell": cell,
+    ds.attrs.update({"Conventions": "CF-1.10", "title": "pendula attractor map: the attractor each initial state "
+                                                         "ends on", "scene": scene.to_namelist(),
+                     "measure": "attractor", "status_codes": json.dumps(STATUS),
                      "boundary_fraction": bf, "basin_entropy": sb, "boundary_basin_entropy": sbb,
                      "uncertainty_exponent": alpha,
                      "attractors": json.dumps([{"label": x.label, "kind": x.kind, "period": x.period,
-                                                "theta": x.theta.tolist(), "v": x.v.tolist(),
-                                                "fraction": x.fraction} for x in atts])})
-    return AttractorMap(ds, atts, bf, sb, sbb, alpha)
+                                                "winding": x.winding, "theta": x.theta.tolist(),
+                                                "v": x.v.tolist(), "fraction": x.fraction,
+                                                "multipliers_abs": np.abs(x.multipliers).tolist()}
+                                               for x in atts])})
+    ds.attrs.update(extra)
+    return AttractorMap(ds, atts, bf, sb, sbb, alpha, undecided=int(extra.get("undecided", (labels < 0).sum())),
+                        rechecked=int(extra.get("rechecked", 0)), recheck_changed=int(extra.get("recheck_changed", 0)))
+
+
+def _attractor_map_samples(scene, over, *, transient, samples, tol, merge_tol, max_period, cell, rtol, atol,
+                           threads, out, client, progress, chunk_points) -> AttractorMap:
+    """The former method: every point integrated over ``transient``, ``samples`` read for recurrence."""
+    samples = _checks.count(samples, "samples", 4, 4096)
+    tol = _checks.real(tol, "tol", 0.0, lo_open=True)
+    merge_tol = _checks.real(merge_tol, "merge_tol", 0.0, lo_open=True)
+    cell = _checks.real(cell, "cell", 0.0, lo_open=True)
+    if max_period is not None:
+        max_period = _checks.count(max_period, "max_period", 1, samples - 1)
+    pc = sweep(scene, over=over, measure="poincare", transient=transient, samples=samples, rtol=rtol,
+               atol=atol, threads=threads, out=out, client=client, progress=progress, chunk_points=chunk_points)
+    from .dynamics.attractors import label_attractors
+    labels, atts = label_attractors(pc.theta.values, pc.v.values, tol=tol, merge_tol=merge_tol,
+                                    max_period=max_period, cell=cell)
+    st = pc.status.values
+    labels = np.where(st == 0, labels, -1)
+    dims = tuple(d for d in pc.theta.dims if d != "sample")
+    ds = pc[["status"]].load() if hasattr(pc, "load") else pc[["status"]]
+    ds = ds.drop_vars([c for c in ds.coords if c not in dims])
+    extra = {k: pc.attrs[k] for k in pc.attrs if k not in ("measure", "title")}
+    extra.update({"method": "samples", "tol": tol, "merge_tol": merge_tol, "cell": cell,
+                  "undecided": int((labels < 0).sum())})
+    return _finish_map(ds, labels, atts, scene, extra)
+
+
+def _attractor_distance(a, b) -> float:
+    """The distance of two attractors on the section (max-norm, angle modulo 2 pi): the largest distance
+    from a point of either to the nearest point of the other (Hausdorff); periodic attractors by their
+    cycle points, chaotic ones by their cells' centres.  Attractors of another kind or period are
+    infinitely far apart."""
+    from .dynamics.attractors import _dist
+    if a["kind"] != b["kind"] or a["period"] != b["period"]:
+        return math.inf
+    ta, va, tb, vb = (np.asarray(a["theta"]), np.asarray(a["v"]), np.asarray(b["theta"]), np.asarray(b["v"]))
+    d = _dist(ta[:, None], va[:, None], tb[None, :], vb[None, :])
+    return float(max(d.min(axis=1).max(), d.min(axis=0).max()))
+
+
+def attractor_continuation(scene: Scene, over: dict[str, ArrayLike], param: str, values: ArrayLike, *,
+                           match_tol: float = 0.5, out: str | os.PathLike[str] | None = None, threads: int = 0,
+                           client: distributed.Client | None = None, progress: bool = False,
+                           **options: float | int) -> xarray.Dataset:
+    """The attractors of a driven scene and their basin fractions as one scene field moves.
+
+    At each value of ``param`` the attractor map over the grid ``over`` is
+    computed (:func:`attractor_map`, method 'recurrence', with ``options``);
+    each attractor is then matched to one of the previous value's attractors:
+    the pairs of the same kind and period are taken in order of their distance
+    on the section (the Hausdorff distance in the max-norm, angle modulo 2 pi,
+    between a periodic attractor's cycle points or a chaotic attractor's cells),
+    nearest first, each attractor at most once, while the distance is below
+    ``match_tol``; an attractor left unmatched is a new one (Datseris, Rossi &
+    Wagemakers 2023, "global continuation", with matching by distance).  An
+    attractor that vanishes and comes back later is a new one.
+
+    Parameters
+    ----------
+    scene : Scene
+        A periodically driven scene.
+    over : dict
+        The grid of initial states (e.g. ``{'theta0': ..., 'v0': ...}``).
+    param : str
+        The scene field that moves (one of ``eps``, ``damping``, ``torque``,
+        ``drive_amplitude``, ``drive_frequency``, ``drive_phase``), not an axis of ``over``.
+    values : array_like
+        Its values, strictly increasing or strictly decreasing (at least 1).
+    match_tol : float, optional
+        The largest distance at which two attractors of neighbouring values are one (default 0.5).
+    out : str or path, optional
+        A folder for a resumable run: each value's map is a store ``out/value_NNNN/sweep.zarr`` and its
+        summary ``out/value_NNNN/summary.json``; started again with the same ``out``, finished values are
+        read back and unfinished ones resumed.  A folder of another continuation is refused.
+    threads, client, progress : optional
+        As for :func:`pendula.sweep`.
+    **options
+        The options of :func:`attractor_map` (``cell``, ``consecutive``, ``max_periods``, ``rtol`` ...).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``fraction`` on (``param``, ``attractor``): the fraction of the grid in each attractor's basin,
+        NaN where the attractor does not exist; ``undecided`` on (``param``): the fraction of points
+        decided by no rule; coordinates ``kind`` and ``period`` on ``attractor``; ``theta`` and ``v``
+        (``param``, ``attractor``): the attractor's first cycle point (NaN for a chaotic one).
+
+    Raises
+    ------
+    TypeError
+        A wrong kind of argument (named).
+    ValueError
+        An unknown or gridded ``param``, values that are not finite or not monotonic, an ``out`` that
+        holds another continuation, or a bad option of :func:`attractor_map`.
+
+    See Also
+    --------
+    attractor_map : one value's attractors and basins.
+
+    Examples
+    --------
+    >>> import numpy as np, pendula
+    >>> sc = pendula.Scene(damping=0.5, drive_frequency=2/3)
+    >>> ds = pendula.attractor_continuation(sc, {"theta0": np.linspace(-3, 3, 6), "v0": np.linspace(-3, 3, 6)},
+    ...                                     "drive_amplitude", [1.34, 1.35])
+    >>> ds.fraction.sizes["attractor"], [int(p) for p in ds.period.values]
+    (2, [1, 1])
+    >>> bool(np.allclose(ds.fraction.sum("attractor") + ds.undecided, 1.0))
+    True
+    """
+    xr = require("xarray", "sweep", "pendula.attractor_continuation")
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a pendula.Scene, got {type(scene).__name__}")
+    fields = tuple(f for f in GRIDDABLE if f not in ("theta0", "v0"))
+    if not isinstance(param, str) or param not in fields:
+        raise ValueError(f"parameter 'param' must be one of {', '.join(fields)}; got {param!r}")
+    if isinstance(over, dict) and param in over:
+        raise ValueError(f"parameter 'param': {param!r} is an axis of 'over' too")
+    vals = _checks.grid_values(values, "parameter 'values'")
+    if vals.size > 1 and not (np.all(np.diff(vals) > 0) or np.all(np.diff(vals) < 0)):
+        raise ValueError("parameter 'values' must be strictly increasing or strictly decreasing (the attractors "
+                         "are followed from one value to the next)")
+    match_tol = _checks.real(match_tol, "match_tol", 0.0, lo_open=True)
+    for bad in ("method", "transient", "samples", "tol", "out", "chunk_points"):
+        if bad in options:
+            raise TypeError(f"attractor_continuation: {bad!r} is not an option here (method 'recurrence' only)")
+    for v in (vals.min(), vals.max()):
+        try:
+            scene.replace(**{param: float(v)})
+        except SceneError as exc:
+            raise ValueError(f"parameter 'values': {exc}") from None
+    over_c = _check_over(scene, over)
+    _check_driven(scene.replace(**{param: float(vals[0])}), over_c, "attractor_continuation")
+    opts = _recurrence_options(options)     # checked once, before any work
+    for val in vals:
+        sv = scene.replace(**{param: float(val)})
+        _check_driven(sv, over_c, "attractor_continuation")
+        _check_work(sv, over_c, opts["max_periods"])
+    root = None
+    if out is not None:
+        from ._store import _write_json_atomic
+        root = pathlib.Path(out)
+        if root.exists() and not root.is_dir():
+            raise NotADirectoryError(20, "is not a folder", str(root))
+        ident = {"scene": scene.to_namelist(), "over": {k: v.tolist() for k, v in over_c.items()}, "param": param,
+                 "values": vals.tolist(), "match_tol": match_tol, "options": opts}
+        root.mkdir(exist_ok=True)
+        idf = root / "continuation.json"
+        if idf.exists():
+            try:
+                old = json.loads(idf.read_text())
+            except (OSError, ValueError):
+                old = None
+            if old != json.loads(json.dumps(ident)):
+                raise ValueError(f"parameter 'out': {root} holds another continuation (or a damaged one); "
+                                 "use another folder")
+        else:
+            _write_json_atomic(idf, ident)
+    per_value = []
+    for i, val in enumerate(vals):
+        summary = None
+        if root is not None:
+            sf = root / f"value_{i:04d}" / "summary.json"
+            if sf.exists():
+                try:
+                    summary = json.loads(sf.read_text())
+                except (OSError, ValueError):
+                    summary = None
+        if summary is None:
+            am = attractor_map(scene.replace(**{param: float(val)}), over_c, threads=threads, client=client,
+                               progress=progress, out=None if root is None else root / f"value_{i:04d}", **options)
+            npts = am.dataset.attractor.size
+            summary = {"value": float(val), "undecided": am.undecided / npts,
+                       "attractors": [{"kind": a.kind, "period": a.period, "fraction": a.fraction,
+                                       "theta": np.asarray(a.theta).tolist(), "v": np.asarray(a.v).tolist()}
+                                      for a in am.attractors]}
+            if root is not None:
+                _write_json_atomic(root / f"value_{i:04d}" / "summary.json", summary)
+        per_value.append(summary)
+    # matching, value to value
+    ids = []          # per value: the continued attractor id of each attractor
+    kinds, periods = [], []
+    for i, s in enumerate(per_value):
+        cur = s["attractors"]
+        assign = [-1] * len(cur)
+        if i > 0:
+            prev = per_value[i - 1]["attractors"]
+            pairs = sorted((_attractor_distance(a, b), ja, jb) for ja, a in enumerate(cur) for jb, b in enumerate(prev))
+            used = set()
+            for d, ja, jb in pairs:
+                if d >= match_tol:
+                    break
+                if assign[ja] < 0 and jb not in used:
+                    assign[ja] = ids[i - 1][jb]
+                    used.add(jb)
+        for ja, a in enumerate(cur):
+            if assign[ja] < 0:
+                assign[ja] = len(kinds)
+                kinds.append(a["kind"])
+                periods.append(a["period"])
+        ids.append(assign)
+    n_att = len(kinds)
+    frac = np.full((vals.size, n_att), np.nan)
+    th = np.full((vals.size, n_att), np.nan)
+    vv = np.full((vals.size, n_att), np.nan)
+    for i, s in enumerate(per_value):
+        for ja, a in enumerate(s["attractors"]):
+            frac[i, ids[i][ja]] = a["fraction"]
+            if a["kind"] == "periodic":
+                th[i, ids[i][ja]], vv[i, ids[i][ja]] = a["theta"][0], a["v"][0]
+    meta = _AXIS_META[param]
+    dims = (param, "attractor")
+    return xr.Dataset(
+        {"fraction": (dims, frac, {"long_name": "fraction of the grid in the attractor's basin (NaN: the "
+                                                "attractor does not exist)", "units": "1"}),
+         "undecided": ((param,), np.array([s["undecided"] for s in per_value]),
+                       {"long_name": "fraction of the grid decided by no rule within max_periods", "units": "1"}),
+         "theta": (dims, th, {"long_name": "first point of the periodic attractor on the section", "units": "rad"}),
+         "v": (dims, vv, {"long_name": "first point of the periodic attractor on the section",
+                          "units": "rad s-1"})},
+        coords={param: (param, vals, {"long_name": meta[0], "units": meta[1]}),
+                "attractor": ("attractor", np.arange(n_att), {"long_name": "attractor, continued over the values"}),
+                "kind": ("attractor", np.array(kinds, dtype=str), {"long_name": "periodic or chaotic"}),
+                "period": ("attractor", np.array(periods, dtype=np.int32),
+                           {"long_name": "period in drive periods (0 chaotic)", "units": "1"})},
+        attrs={"Conventions": "CF-1.10", "title": f"pendula attractor continuation: basin fractions over {param}",
+               "scene": scene.to_namelist(), "param": param, "match_tol": match_tol,
+               "matching": "attractors of one kind and period matched to the previous value's by Hausdorff "
+                           "distance on the section (max-norm, angle modulo 2 pi), nearest pairs first, below "
+                           "match_tol", **opts})
 
 
 def iv_curve(scene: Scene | str | os.PathLike[str], torques: ArrayLike,
@@ -881,7 +1484,7 @@ def plot_sweep(ds, path) -> pathlib.Path:
     measure = ds.attrs["measure"]
     dims = [d for d in ds.dims if d != "sample"]
     var = {"final_well": "well", "locked": "locked", "mean_velocity": "mean_velocity", "poincare": "theta",
-           "lyapunov": "lyapunov"}[measure]
+           "lyapunov": "lyapunov", "attractor": "attractor"}[measure]
     fig, ax = plt.subplots(figsize=(6.4, 4.8))
     if measure == "poincare":
         x = np.repeat(ds[dims[0]].values, ds.sizes["sample"])
@@ -897,7 +1500,7 @@ def plot_sweep(ds, path) -> pathlib.Path:
             z = z.isel({d: 0 for d in dims[2:]})
         z = z.transpose(dims[0], dims[1]).values
         x, y = ds[dims[0]].values, ds[dims[1]].values
-        if measure in ("final_well", "locked"):
+        if measure in ("final_well", "locked", "attractor"):
             lo, hi = np.nanmin(z), np.nanmax(z)
             lo, hi = (0, 1) if not np.isfinite(lo) else (int(lo), int(hi))
             cmap = plt.get_cmap("tab20", hi - lo + 1)

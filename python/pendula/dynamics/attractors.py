@@ -33,14 +33,14 @@ fractal one), fitted over e = 1, 2, 4, ... grid steps.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..scene import Scene
 
-__all__ = ["Attractor", "AttractorMap", "label_attractors", "basin_entropy", "uncertainty_exponent",
-           "boundary_fraction"]
+__all__ = ["Attractor", "AttractorMap", "AttractorSet", "label_attractors", "basin_entropy",
+           "uncertainty_exponent", "boundary_fraction", "cell_ids", "edge_mask"]
 
 TWO_PI = 2 * math.pi
 
@@ -58,10 +58,17 @@ class Attractor:
     period : int
         Drive periods of the cycle (0 for a chaotic attractor).
     theta, v : numpy.ndarray
-        The cycle's points on the section (theta in [-pi, pi)), or, for a chaotic
-        attractor, the samples of one of its points.
+        The cycle's points on the section (theta in [-pi, pi)), from its point of
+        smallest angle; for a chaotic attractor, the centres of the cells it
+        visits (recurrence method) or the samples of one of its points ('samples').
     fraction : float
         The fraction of the grid in its basin.
+    multipliers : numpy.ndarray
+        A periodic attractor's Floquet multipliers (the eigenvalues of the
+        monodromy matrix over its period, largest modulus first; all inside the
+        unit circle); empty for a chaotic attractor or a map read from samples.
+    winding : int
+        Turns per period of a periodic attractor (0 for an oscillation or a chaotic one).
     """
 
     label: int
@@ -70,6 +77,8 @@ class Attractor:
     theta: np.ndarray
     v: np.ndarray
     fraction: float
+    multipliers: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=complex))
+    winding: int = 0
 
     def __repr__(self) -> str:
         what = f"period={self.period}" if self.kind == "periodic" else f"{np.size(self.theta)} samples"
@@ -225,17 +234,28 @@ def boundary_fraction(labels) -> float:
     >>> boundary_fraction([[0, 0, 1, 1]])
     0.5
     """
-    lab = np.asarray(labels)
-    edge = np.zeros(lab.shape, dtype=bool)
-    for ax in range(lab.ndim):
-        d = np.diff(lab, axis=ax) != 0
-        lo = [slice(None)] * lab.ndim
-        hi = [slice(None)] * lab.ndim
+    return float(edge_mask(np.asarray(labels)).mean())
+
+
+def edge_mask(ans: np.ndarray) -> np.ndarray:
+    """The points of a grid of answers with a grid neighbour (along any axis) that answers differently.
+
+    Examples
+    --------
+    >>> from pendula.dynamics.attractors import edge_mask
+    >>> edge_mask(np.array([0, 0, 1, 1])).tolist()
+    [False, True, True, False]
+    """
+    edge = np.zeros(ans.shape, dtype=bool)
+    for ax in range(ans.ndim):
+        d = np.diff(ans, axis=ax) != 0
+        lo = [slice(None)] * ans.ndim
+        hi = [slice(None)] * ans.ndim
         lo[ax] = slice(0, -1)
         hi[ax] = slice(1, None)
         edge[tuple(lo)] |= d
         edge[tuple(hi)] |= d
-    return float(edge.mean())
+    return edge
 
 
 def basin_entropy(labels, box: int = 5) -> tuple[float, float]:
@@ -349,6 +369,10 @@ class AttractorMap:
         NaN unless the grid has two axes.
     uncertainty_exponent : float
         NaN when the map holds one attractor.
+    undecided : int
+        Points decided by no rule within the limit (label -1), or whose integration failed.
+    rechecked, recheck_changed : int
+        Basin-boundary points run again at the tight tolerances, and how many of them changed label.
     """
 
     dataset: object
@@ -357,6 +381,9 @@ class AttractorMap:
     basin_entropy: float
     boundary_basin_entropy: float
     uncertainty_exponent: float
+    undecided: int = 0
+    rechecked: int = 0
+    recheck_changed: int = 0
 
     def __repr__(self) -> str:
         ds = self.dataset
@@ -367,5 +394,137 @@ class AttractorMap:
         atts = "; ".join(f"{a.label}: {a.kind}" + (f" period {a.period}" if a.kind == "periodic" else "")
                          + f" ({a.fraction:.0%})" for a in self.attractors)
         return (f"AttractorMap(grid {grid}, {len(self.attractors)} attractors [{atts}], "
-                f"boundary_fraction={self.boundary_fraction:.3g}, "
+                f"undecided={self.undecided}, boundary_fraction={self.boundary_fraction:.3g}, "
                 f"uncertainty_exponent={self.uncertainty_exponent:.3g})")
+
+
+# ---------------------------------------------------------------------------
+# The attractors a recurrence search has found, and the kernel's table of their cells
+# ---------------------------------------------------------------------------
+
+def cell_ids(theta, v, width: float) -> np.ndarray:
+    """The cell of width ``width`` holding each (theta, v), theta in [-pi, pi): the kernel's numbering
+    (pendula_attractors%at_cell_id): ``j * ni + i`` with ``i = floor((theta + pi) / width)`` (at most
+    ``ni - 1``), ``j = floor(v / width)`` and ``ni = ceil(2 pi / width)`` cells across one turn."""
+    th = np.asarray(theta, dtype=float)
+    ni = math.ceil(TWO_PI / width)
+    i = np.clip(np.floor((th + math.pi) / width), 0, ni - 1).astype(np.int64)
+    j = np.floor(np.clip(np.asarray(v, dtype=float) / width, -1e6, 1e6)).astype(np.int64)
+    return j * ni + i
+
+
+def _dilate(cells: np.ndarray, width: float) -> np.ndarray:
+    """The cells and their 8 neighbours (the angle wraps around)."""
+    ni = math.ceil(TWO_PI / width)
+    j, i = np.divmod(np.asarray(cells, dtype=np.int64), ni)
+    out = [((j + dj) * ni + (i + di) % ni) for dj in (-1, 0, 1) for di in (-1, 0, 1)]
+    return np.unique(np.concatenate(out))
+
+
+class AttractorSet:
+    """The attractors found so far by the recurrence search, in the order found (indices never change).
+
+    ``add_periodic`` and ``add_chaotic`` return the index of the attractor a
+    newly found one is (an old one it matches, or a new entry): two periodic
+    orbits are one when their periods and windings agree and every point of
+    one lies within ``merge_tol`` of a point of the other; two chaotic sets
+    are one when they share at least a tenth of the smaller set's cells (the
+    cells are then united).  ``table`` gives the kernel's labelling table: each
+    attractor's cells (a periodic orbit's points, a chaotic set's visited
+    cells) with their 8 neighbours; a cell claimed by two attractors labels
+    neither.
+    """
+
+    def __init__(self, cell: float, merge_tol: float, need_periodic: int, need_chaotic: int):
+        self.cell, self.merge_tol = cell, merge_tol
+        self.need = {"periodic": need_periodic, "chaotic": need_chaotic}
+        self.items: list[dict] = []
+
+    def copy(self) -> AttractorSet:
+        new = AttractorSet(self.cell, self.merge_tol, self.need["periodic"], self.need["chaotic"])
+        new.items = [dict(a) for a in self.items]
+        return new
+
+    def add_periodic(self, k: int, winding: int, theta, v, monodromy) -> int:
+        theta, v = np.asarray(theta, dtype=float), np.asarray(v, dtype=float)
+        for idx, a in enumerate(self.items):
+            if a["kind"] == "periodic" and a["period"] == k and a["winding"] == winding and theta.size == \
+                    a["theta"].size:
+                d = _dist(theta[:, None], v[:, None], a["theta"][None, :], a["v"][None, :]).min(axis=1)
+                if d.max() < self.merge_tol:
+                    return idx
+        q = int(np.argmin(theta))      # the cycle from its point of smallest angle
+        self.items.append({"kind": "periodic", "period": int(k), "winding": int(winding),
+                           "theta": np.roll(theta, -q), "v": np.roll(v, -q),
+                           "monodromy": np.asarray(monodromy, dtype=float).reshape(2, 2),
+                           "cells": np.unique(cell_ids(theta, v, self.cell))})
+        return len(self.items) - 1
+
+    def add_chaotic(self, cells) -> int:
+        cells = np.unique(np.asarray(cells, dtype=np.int64))
+        for idx, a in enumerate(self.items):
+            if a["kind"] == "chaotic":
+                shared = np.intersect1d(a["cells"], cells, assume_unique=True).size
+                if shared > 0 and 10 * shared >= min(a["cells"].size, cells.size):
+                    a["cells"] = np.union1d(a["cells"], cells)
+                    return idx
+        self.items.append({"kind": "chaotic", "period": 0, "winding": 0, "cells": cells})
+        return len(self.items) - 1
+
+    def table(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(kcell sorted, klab, need): the kernel's table; ValueError when the cell width cannot tell
+        two attractors apart (every cell of one is claimed by another)."""
+        if not self.items:
+            return np.array([-2**62], np.int64), np.array([-1], np.int32), np.array([1], np.int32)
+        ids, labs = [], []
+        for idx, a in enumerate(self.items):
+            c = _dilate(a["cells"], self.cell)
+            ids.append(c)
+            labs.append(np.full(c.size, idx, dtype=np.int32))
+        ids, labs = np.concatenate(ids), np.concatenate(labs)
+        uniq, inv = np.unique(ids, return_inverse=True)
+        lo = np.full(uniq.size, len(self.items), dtype=np.int32)
+        hi = np.full(uniq.size, -1, dtype=np.int32)
+        np.minimum.at(lo, inv, labs)
+        np.maximum.at(hi, inv, labs)
+        # a cell of two attractors labels neither: the orbit goes on until it is in cells of one only
+        keep = lo == hi
+        kcell, klab = uniq[keep], lo[keep]
+        for idx, a in enumerate(self.items):
+            if not np.isin(a["cells"], kcell).any():
+                other = sorted({int(x) for x in labs[np.isin(ids, a["cells"])] if x != idx})
+                raise ValueError(f"parameter 'cell': cells {self.cell:g} wide cannot tell attractor {idx} "
+                                 f"({a['kind']}) from attractor(s) {other}: every cell of it is another's too; "
+                                 "use a smaller cell")
+        need = np.array([self.need[a["kind"]] for a in self.items], dtype=np.int32)
+        return np.ascontiguousarray(kcell, np.int64), np.ascontiguousarray(klab, np.int32), need
+
+    def attractors(self, counts: np.ndarray, npts: int) -> tuple[list, np.ndarray]:
+        """The attractors with points in their basins, numbered by the rule on the attractors alone
+        (periodic by period, then the angle and velocity of their first point; chaotic ones after them
+        by basin size, then by their smallest cell), and the map from indices here to those labels
+        (-1 for attractors with no point)."""
+        live = [i for i in range(len(self.items)) if counts[i] > 0]
+
+        def key(i):
+            a = self.items[i]
+            if a["kind"] == "periodic":
+                return (0, a["period"], round(float(a["theta"][0]), 6), round(float(a["v"][0]), 6), 0, 0)
+            return (1, 0, 0.0, 0.0, -int(counts[i]), int(a["cells"][0]))
+        live.sort(key=key)
+        remap = np.full(len(self.items) + 1, -1, dtype=np.int64)
+        out = []
+        ni = math.ceil(TWO_PI / self.cell)
+        for lab, i in enumerate(live):
+            a = self.items[i]
+            remap[i] = lab
+            if a["kind"] == "periodic":
+                mu = np.linalg.eigvals(a["monodromy"]).astype(complex)
+                mu = mu[np.argsort(-np.abs(mu), kind="stable")]
+                out.append(Attractor(lab, "periodic", a["period"], a["theta"].copy(), a["v"].copy(),
+                                     counts[i] / max(npts, 1), mu, a["winding"]))
+            else:
+                j, ii = np.divmod(a["cells"], ni)
+                out.append(Attractor(lab, "chaotic", 0, (ii + 0.5) * self.cell - math.pi, (j + 0.5) * self.cell,
+                                     counts[i] / max(npts, 1)))
+        return out, remap
