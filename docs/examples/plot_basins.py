@@ -20,6 +20,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import pendula
+import pendula.plot
 
 n = 60
 grid = {"theta0": np.linspace(-np.pi, np.pi, n),
