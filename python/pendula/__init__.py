@@ -43,6 +43,8 @@ from .systems.cord import cord_state, flip_map, flip_sequence  # noqa: E402
 # sweeps over parameter grids; xarray is imported only when a sweep runs
 from .sweeps import attractor_map, iv_curve, sweep  # noqa: E402
 from .dynamics import Equilibrium, PeriodicOrbit, equilibria, periodic_orbit  # noqa: E402
+from .dynamics import (Bifurcation, Branch, ContinuationError, EquilibriumBranch, continue_equilibria,  # noqa: E402
+                       continue_orbit)
 from .spectrum import precompute_wisdom, wisdom_path  # noqa: E402
 
 # the version of the installed metadata (written once, in meson.build)
@@ -57,4 +59,5 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "angle_density", "angle_cdf", "arcsine_density", "flip_map", "cord_state", "flip_sequence",
            "sweep", "iv_curve",
            "precompute_wisdom", "wisdom_path",
-           "equilibria", "Equilibrium", "periodic_orbit", "PeriodicOrbit", "attractor_map"]
+           "equilibria", "Equilibrium", "periodic_orbit", "PeriodicOrbit", "attractor_map",
+           "continue_orbit", "continue_equilibria", "Branch", "Bifurcation", "EquilibriumBranch", "ContinuationError"]
