@@ -330,7 +330,7 @@ class _Tracer:
                 Ub, evb, it = self.correct(prob, Upred, t, Upred)
                 tb, _ = self.tangent(prob, Ub, evb, t)
             except (NewtonError, FlowError) as exc:
-                if prob.mode == "section" and self.homoclinic(prob, U, ev, t):
+                if prob.mode == "section" and self.homoclinic(prob, U, ev, t, h):
                     return None
                 h *= 0.5
                 if h < self.hmin:
@@ -376,10 +376,13 @@ class _Tracer:
             if final is not None:
                 self.end = final
                 return None
-            if prob.mode == "section" and evb.T > 4 * T_first and self.homoclinic(prob, Ub, evb, tb):
+            if prob.mode == "section" and evb.T > 1.5 * T_first and evb.T > ev.T \
+                    and self.homoclinic(prob, Ub, evb, tb, abs(Ub[2] - U[2])):
+                # the period grows: the homoclinic orbit lies within a few steps
                 return None
             if it <= 3:
-                h = min(1.5 * h, self.hmax)
+                # (an autonomous period grows without bound near the homoclinic: steps grow with it)
+                h = min(1.5 * h, max(self.hmax, 0.2 * float(evb.T)) if prob.mode == "section" else self.hmax)
             U, ev, t, tests, stable = Ub, evb, tb, testsb, stableb
 
     def events(self, prob, Ua, eva, ta, tests_a, Ub, evb, tb, tests_b):
@@ -455,17 +458,17 @@ class _Tracer:
         return child, U1, ev1, t1
 
     # -- the homoclinic end of an autonomous running orbit
-    def homoclinic(self, prob, U, ev, t) -> bool:
+    def homoclinic(self, prob, U, ev, t, dp) -> bool:
         """Locate the parameter where the saddle's unstable manifold reaches the next saddle, beyond U
-        in the branch's direction; True (and the branch ended) when it lies within reach."""
+        in the branch's direction; True (and the branch ended) when it lies within 4 dp."""
         sign = 1.0 if t[2] > 0 else -1.0
         p = float(U[2])
         d0 = _splitting(prob.scene(p), prob.winding, prob.rtol, prob.atol)
         if not (d0 is not None and d0 > 0):
             return False
-        width = max(abs(self.stop - self.p0) * 1e-3, 1e-9)
+        width = max(4 * dp, 1e-12 * max(1.0, abs(p)))
         q, dq = p, None
-        for _ in range(60):
+        for _ in range(1):
             q = p + sign * width
             if (q - self.stop) * (self.stop - p) > 0 or not math.isfinite(q):
                 return False
@@ -494,12 +497,14 @@ class _Tracer:
 
 
 def _saddle(sc: Scene):
-    sad = [e for e in equilibria(sc) if e.kind == "saddle"]
+    """The saddle of one turn with its eigenvalues, and the angles of the other rest points."""
+    eqs = equilibria(sc)
+    sad = [e for e in eqs if e.kind == "saddle"]
     if not sad:
         return None
     e = sad[0]
     lam = np.sort(e.eigenvalues.real)
-    return e.theta, float(lam[1]), float(lam[0])
+    return e.theta, float(lam[1]), float(lam[0]), [x.theta for x in eqs if x is not e]
 
 
 def _crossing(sc: Scene, x0, target: float, direction: float, w: float, horizon: float, rtol, atol):
@@ -513,12 +518,14 @@ def _crossing(sc: Scene, x0, target: float, direction: float, w: float, horizon:
     for i in range(len(times)):
         if w * ends[i, 1] <= 0:
             return None
-        if w * (ends[i, 0] - target) >= 0:
-            t = times[i] - (ends[i, 0] - target) / ends[i, 1]
-            for _ in range(8):
+        if direction * w * (ends[i, 0] - target) >= 0:
+            # Newton in time inside the grid interval [times[i-1], times[i]]
+            a, b = sorted((times[i - 1] if i else 0.0, times[i]))
+            t = min(max(times[i] - (ends[i, 0] - target) / ends[i, 1], a), b)
+            for _ in range(12):
                 end, _, f = flow(sc, x0, [t], rtol, atol)
                 dt = (end[0, 0] - target) / f[0, 0]
-                t -= dt
+                t = min(max(t - dt, a), b)
                 if abs(dt) <= 1e-15 * abs(t):
                     break
             end, _, _ = flow(sc, x0, [t], rtol, atol)
@@ -527,21 +534,25 @@ def _crossing(sc: Scene, x0, target: float, direction: float, w: float, horizon:
 
 
 def _splitting(sc: Scene, w: int, rtol: float, atol: float, delta: float = 1e-7):
-    """The splitting v_u - v_s (times the direction w) at theta_s + w pi of the saddle's unstable
-    manifold and the next saddle's stable manifold: positive where the running orbit exists, zero
-    at the homoclinic orbit; None when the unstable manifold falls back before the section, +inf
-    when there is no saddle (the running orbit exists for sure)."""
+    """The splitting of the saddle's unstable manifold from the next saddle's stable manifold (one turn
+    on, in the direction w), as w (v_u - v_s) on the section theta = next saddle - w Delta, Delta half
+    the gap to the rest point before it (at most 1): positive where the running orbit exists, zero at
+    the homoclinic orbit.  None when the unstable manifold falls back before the section, +inf when
+    there is no saddle (the running orbit exists for sure)."""
     sd = _saddle(sc)
     if sd is None:
         return math.inf
-    ths, lu, ls = sd
-    target = ths + w * math.pi
+    ths, lu, ls, others = sd
+    nxt = ths + 2 * math.pi * w
+    gaps = [(w * (nxt - th)) % (2 * math.pi) for th in others]
+    gap = min([g for g in gaps if g > 0] or [2 * math.pi])
+    target = nxt - w * min(1.0, 0.5 * gap)
     hu = (math.log(1 / delta) + 20) / lu
-    hs = (math.log(1 / delta) + 20) / abs(ls)
     vu = _crossing(sc, (ths + w * delta, w * delta * lu), target, 1.0, w, hu, rtol, atol)
     if vu is None:
         return None
-    vs = _crossing(sc, (ths + 2 * math.pi * w - w * delta, -w * delta * ls), target, -1.0, w, hs, rtol, atol)
+    hs = (math.log(1 / delta) + 5) / abs(ls)
+    vs = _crossing(sc, (nxt - w * delta, -w * delta * ls), target, -1.0, w, hs, rtol, atol)
     if vs is None:
         return None
     return w * (vu - vs)
