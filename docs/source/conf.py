@@ -110,7 +110,8 @@ html_last_updated_fmt = None
 SECTIONS = {
     "getting_started": ["install*"],
     "guide": ["guide/exact", "guide/integrators", "guide/spectra", "guide/damping", "guide/driven",
-              "guide/cord", "guide/cycloid", "guide/gravity", "guide/density", "guide/dynamics", "guide/sweeps",
+              "guide/cord", "guide/cycloid", "guide/gravity", "guide/density", "guide/dynamics", "guide/continuation",
+              "guide/sweeps",
               "sweeps_at_scale*", "guide/scenes", "scenes*", "vocabulary", "guide/architecture"],
     "reports": ["reports/accuracy", "accuracy*", "elliptic_edges*", "model_accuracy*", "reports/cost", "work_precision*", "reports/benchmarks",
                 "reports/limits"],
@@ -168,6 +169,8 @@ API_GROUPS = [
     ("Sweeps", ["sweep", "iv_curve"]),
     ("Equilibria, periodic orbits and attractors", ["equilibria", "Equilibrium", "periodic_orbit",
                                                     "PeriodicOrbit", "attractor_map"]),
+    ("Continuation and bifurcations", ["continue_orbit", "Branch", "Bifurcation", "continue_equilibria",
+                                       "EquilibriumBranch", "ContinuationError"]),
 ]
 
 

@@ -832,7 +832,11 @@ def continue_equilibria(scene: Scene, param: str, stop: float, points: int = 101
                     a = mid
                 else:
                     b = mid
-            more, fewer = (a, b) if na > len(eqs[i + 1]) else (b, a)
+            more = a if na > len(eqs[i + 1]) else b
+            # the merged pair itself where the kernel meets it (|tau| = eps exactly: one saddle-node)
+            for x in (a, b):
+                if any(e.kind == "saddle-node" for e in at(x)):
+                    more = x
             merged = at(more)
             sn = [e for e in merged if e.kind == "saddle-node"] or merged
             e = min(sn, key=lambda e: abs(e.eigenvalues).min()) if sn else None
