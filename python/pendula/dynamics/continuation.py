@@ -78,7 +78,7 @@ class Bifurcation:
     >>> sc = pendula.Scene(damping=0.5, drive_amplitude=1.0, drive_frequency=2/3)
     >>> br = pendula.continue_orbit(sc, (0.1, 1.9), "drive_amplitude", 1.07)
     >>> [(b.kind, round(b.value, 6)) for b in br.bifurcations]
-    [('pitchfork', 1.018442)]
+    [('pitchfork', 1.004319)]
     """
 
     kind: str
@@ -121,9 +121,9 @@ class Branch:
     --------
     >>> import pendula
     >>> sc = pendula.Scene(damping=0.5, drive_amplitude=1.0, drive_frequency=2/3)
-    >>> br = pendula.continue_orbit(sc, (0.1, 1.9), "drive_amplitude", 1.01)
+    >>> br = pendula.continue_orbit(sc, (0.1, 1.9), "drive_amplitude", 1.004)
     >>> br.end, bool(br.stable.all()), round(float(br.values[-1]), 12)
-    ('stop', True, 1.01)
+    ('stop', True, 1.004)
     """
 
     scene: Scene
@@ -640,7 +640,7 @@ def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: f
     >>> sc = pendula.Scene(damping=0.5, drive_amplitude=1.0, drive_frequency=2/3)
     >>> br = pendula.continue_orbit(sc, (0.1, 1.9), "drive_amplitude", 1.075, follow="stable")
     >>> [(b.kind, b.period, round(b.value, 8)) for b in br.bifurcations]
-    [('pitchfork', 1.0, 1.01844186), ('period-doubling', 1.0, 1.06588017)]
+    [('pitchfork', 1.0, 1.00431948), ('period-doubling', 1.0, 1.06637286)]
     """
     check_driven_rigid(scene, "continue_orbit")
     p0 = _param_value(scene, param)
