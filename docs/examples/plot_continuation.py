@@ -56,31 +56,38 @@ def section_points(br):
     return out
 
 
-amps = np.linspace(1.0, A_END, 240)
-diagram = pendula.sweep(drive.replace(rtol=1e-9, atol=1e-11), over={"drive_amplitude": amps},
-                        measure="poincare", transient=800.0, samples=32)
+# the orbit diagram from the continued orbit's state at A = 1.0 (other attractors coexist: from rest
+# the pendulum lands on another one)
+amps = np.linspace(1.0, A_END, 300)
+diagram = pendula.sweep(drive.replace(theta0=po.theta, v0=po.v, rtol=1e-9, atol=1e-11),
+                        over={"drive_amplitude": amps}, measure="poincare", transient=800.0, samples=32)
+curves = [(section_points(br), br, "-" if br is route else "--") for br in [route] + left]
 
-fig, (ax, axr, axh) = plt.subplots(1, 3, figsize=(15, 5), gridspec_kw={"width_ratios": [2.2, 1, 1.2]})
+fig, axs = plt.subplots(2, 2, figsize=(12, 9))
+(ax, axz), (axr, axh) = axs
 v = diagram.v.values
-ax.plot(np.repeat(amps, v.shape[1]), v.ravel(), ",", color="0.6")
-for br, style in [(route, "-")] + [(b, "--") for b in left]:
-    pts = section_points(br)
-    kmax = max(len(p[1]) for p in pts)
-    for seg in np.unique(br.segment):
-        idx = np.nonzero(br.segment == seg)[0]
-        for j in range(kmax):
-            xs = [pts[i][0] for i in idx if j < len(pts[i][1])]
-            ys = [pts[i][1][j] for i in idx if j < len(pts[i][1])]
-            if len(xs) > 1:
-                ax.plot(xs, ys, style, color="C0" if style == "-" else "C3", lw=1)
-for b in route.bifurcations:
-    ax.plot(b.value, b.v, "o", color="k", ms=4)
-    ax.annotate(f"{b.kind}\nA={b.value:.6f}", (b.value, b.v), fontsize=6, xytext=(4, 4),
+for a, lo, title in ((ax, 1.0, "attracting route (solid), left behind (dashed)"),
+                     (axz, 1.077, "the cascade, enlarged")):
+    a.plot(np.repeat(amps, v.shape[1]), v.ravel(), ",", color="0.55")
+    for pts, br, style in curves:
+        kmax = max(len(p[1]) for p in pts)
+        for seg in np.unique(br.segment):
+            idx = np.nonzero(br.segment == seg)[0]
+            for j in range(kmax):
+                xs = [pts[i][0] for i in idx if j < len(pts[i][1])]
+                ys = [pts[i][1][j] for i in idx if j < len(pts[i][1])]
+                if len(xs) > 1:
+                    a.plot(xs, ys, style, color="C0" if style == "-" else "C3", lw=1)
+    for b in route.bifurcations:
+        a.plot(b.value, b.v, "o", color="k", ms=4)
+    a.set_xlim(lo, A_END)
+    a.set_xlabel("drive amplitude A")
+    a.set_ylabel("v on the section")
+    a.set_title(title)
+for b in route.bifurcations[:2]:
+    ax.annotate(f"{b.kind}\nA = {b.value:.8f}", (b.value, b.v), fontsize=7, xytext=(4, -22),
                 textcoords="offset points")
-ax.set_xlim(1.0, A_END)
-ax.set_xlabel("drive amplitude A")
-ax.set_ylabel("v on the section")
-ax.set_title("attracting route (solid), left behind (dashed)")
+axz.set_ylim(1.6, 2.1)
 
 pd = np.array([b.value for b in route.bifurcations if b.kind == "period-doubling"])
 gaps = np.diff(pd)

@@ -22,6 +22,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -30,6 +31,9 @@ from ..scene import Scene, SceneError, _NUMBERS, _WHOLE
 from .equilibria import equilibria
 from .periodic import (FlowError, NewtonError, OrbitProblem, check_driven_rigid, check_guess, drive_period,
                        flow, multipliers_of, newton, reduce_angle)
+
+if TYPE_CHECKING:   # xarray is optional: named in annotations only
+    import xarray
 
 __all__ = ["Bifurcation", "Branch", "ContinuationError", "EquilibriumBranch", "continue_orbit",
            "continue_equilibria", "BIFURCATION_KINDS"]
@@ -46,7 +50,7 @@ _MAXIT = 10           # corrector iterations before the step is halved
 class ContinuationError(ValueError):
     """The continuation could not go on; ``branch`` holds the part traced before it stopped."""
 
-    def __init__(self, message: str, branch: "Branch | None" = None):
+    def __init__(self, message: str, branch: "Branch | None" = None) -> None:
         super().__init__(message)
         self.branch = branch
 
@@ -141,7 +145,7 @@ class Branch:
     def __len__(self) -> int:
         return len(self.values)
 
-    def to_xarray(self):
+    def to_xarray(self) -> xarray.Dataset:
         """The branch as an xarray Dataset with dims (``point``, ``multiplier``).
 
         Returns
