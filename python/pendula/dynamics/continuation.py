@@ -48,7 +48,27 @@ _MAXIT = 10           # corrector iterations before the step is halved
 
 
 class ContinuationError(ValueError):
-    """The continuation could not go on; ``branch`` holds the part traced before it stopped."""
+    """The continuation could not go on; ``branch`` holds the part traced before it stopped.
+
+    A ValueError, raised by :func:`continue_orbit` when a step shrinks to nothing (say at a fold the
+    steps cannot pass); the message names the field and where the branch stopped.
+
+    Attributes
+    ----------
+    branch : Branch or None
+        The points traced before the error.
+
+    See Also
+    --------
+    continue_orbit : raises it.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> err = pendula.ContinuationError("torque: the step shrank to nothing at torque = 0.3")
+    >>> isinstance(err, ValueError), err.branch
+    (True, None)
+    """
 
     def __init__(self, message: str, branch: "Branch | None" = None) -> None:
         super().__init__(message)
@@ -75,6 +95,10 @@ class Bifurcation:
         The orbit's state on its section (the saddle, for a homoclinic; the rest point, for a saddle-node).
     multipliers : numpy.ndarray
         The Floquet multipliers there (eigenvalues, for an equilibrium).
+
+    See Also
+    --------
+    continue_orbit, continue_equilibria : find them.
 
     Examples
     --------
@@ -120,6 +144,11 @@ class Branch:
         In the order met.
     end : str
         Why the branch ends (``'stop'`` when it reached ``stop``).
+
+    See Also
+    --------
+    continue_orbit : makes it.
+    Bifurcation : its records of the bifurcations.
 
     Examples
     --------
@@ -746,6 +775,10 @@ class EquilibriumBranch:
     bifurcations : tuple of Bifurcation
         The saddle-nodes, each where the number of rest points changes, at the last double
         on the side that has them.
+
+    See Also
+    --------
+    continue_equilibria : makes it.
 
     Examples
     --------
