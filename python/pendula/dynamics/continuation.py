@@ -874,6 +874,8 @@ def continue_equilibria(scene: Scene, param: str, stop: float, points: int = 101
             for x in (a, b):
                 if any(e.kind == "saddle-node" for e in at(x)):
                     more = x
+            if bifs and bifs[-1].value == more:      # the merged point was itself a sample: met twice
+                continue
             merged = at(more)
             sn = [e for e in merged if e.kind == "saddle-node"] or merged
             e = min(sn, key=lambda e: abs(e.eigenvalues).min()) if sn else None
