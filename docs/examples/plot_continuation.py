@@ -68,7 +68,7 @@ fig, axs = plt.subplots(2, 2, figsize=(12, 9))
 v = diagram.v.values
 for a, lo, title in ((ax, 1.0, "attracting route (solid), left behind (dashed)"),
                      (axz, 1.077, "the cascade, enlarged")):
-    a.plot(np.repeat(amps, v.shape[1]), v.ravel(), ",", color="0.55")
+    a.plot(np.repeat(amps, v.shape[1]), v.ravel(), ".", ms=2.5, color="0.7", zorder=0, label="sweep (poincare)")
     for pts, br, style in curves:
         kmax = max(len(p[1]) for p in pts)
         for seg in np.unique(br.segment):
@@ -77,7 +77,7 @@ for a, lo, title in ((ax, 1.0, "attracting route (solid), left behind (dashed)")
                 xs = [pts[i][0] for i in idx if j < len(pts[i][1])]
                 ys = [pts[i][1][j] for i in idx if j < len(pts[i][1])]
                 if len(xs) > 1:
-                    a.plot(xs, ys, style, color="C0" if style == "-" else "C3", lw=1)
+                    a.plot(xs, ys, style, color="C0" if style == "-" else "C3", lw=0.9)
     for b in route.bifurcations:
         a.plot(b.value, b.v, "o", color="k", ms=4)
     a.set_xlim(lo, A_END)
