@@ -183,6 +183,13 @@ def test_param_not_a_scene_field_or_not_numeric():
 def test_param_that_does_not_apply_is_named():
     with pytest.raises(ValueError, match="theta0"):
         pendula.continue_orbit(CASCADE, (0.1, 1.9), "theta0", 1.0)
+    with pytest.raises(ValueError, match="cord_length"):
+        pendula.continue_orbit(CASCADE, (0.1, 1.9), "cord_length", 2.0)
+    running = Scene(damping=0.1, torque=0.5)
+    with pytest.raises(ValueError, match="drive_frequency"):
+        pendula.continue_orbit(running, (0.0, 5.0), "drive_frequency", 1.0)
+    with pytest.raises(ValueError, match="drive_amplitude"):
+        pendula.continue_orbit(running, (0.0, 5.0), "drive_amplitude", 1.0)
 
 
 def test_stop_on_the_wrong_side_is_named():

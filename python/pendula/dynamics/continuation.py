@@ -694,6 +694,9 @@ def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: f
     else:
         if scene.drive_amplitude != 0.0 or scene.drive_frequency != 0.0:
             raise ValueError("drive_frequency: a drive of frequency 0 is a constant torque; give it as torque")
+        if param == "drive_amplitude":
+            raise ValueError("param: continuing drive_amplitude from 0 turns the autonomous scene into a driven "
+                             "one; start from a driven scene (drive_amplitude and drive_frequency non-zero)")
         if x0[1] == 0.0:
             raise ValueError("guess: an autonomous running orbit needs a velocity (guess[1] != 0)")
         w = winding or (1 if x0[1] > 0 else -1)
