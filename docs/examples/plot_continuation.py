@@ -16,7 +16,8 @@ section.
 Middle: the ratios of successive doubling intervals against Feigenbaum's
 δ = 4.6692.  Right: the retrapping torque of the undriven pendulum (the
 homoclinic end of the running orbit, continued in the torque) against the
-damping, with Stewart-McCumber's 4β/π for small damping.
+damping, with Stewart-McCumber's 4β/π for small damping and the lowest
+running torque of :func:`pendula.iv_curve`'s down branch beside it.
 """
 
 import math
@@ -106,6 +107,16 @@ for beta in betas:
     br = pendula.continue_orbit(pendula.Scene(damping=float(beta), torque=1.5), (0.0, 6.0), "torque", 0.0)
     taus.append(br.bifurcations[-1].value if br.bifurcations else math.nan)
 axh.plot(betas, taus, "o-", label="homoclinic (continuation)")
+# beside it, the I-V sweep's own figure: the lowest torque still running on the down branch
+torques = np.round(np.arange(0.02, 1.205, 0.01), 2)
+iv_betas = np.array([0.1, 0.3, 0.5, 0.7, 0.9])
+iv_tau = []
+for beta in iv_betas:
+    r = pendula.iv_curve(pendula.Scene(damping=float(beta)), torques, "down", transient=200.0, t_max=200.0)
+    down = r.mean_velocity.sel(direction="down").values
+    running = torques[down > 0.1]
+    iv_tau.append(running.min() if len(running) else math.nan)
+axh.plot(iv_betas, iv_tau, "x", color="C2", ms=9, label="iv_curve, down branch (torque step 0.01)")
 bb = np.linspace(0, 1.2, 50)
 axh.plot(bb, 4 * bb / math.pi, "k:", label="4β/π (Stewart-McCumber)")
 axh.axhline(1.0, color="0.6", lw=0.8)
