@@ -43,6 +43,8 @@ BIFURCATION_KINDS = ("fold", "pitchfork", "period-doubling", "neimark-sacker", "
 
 #: The most points of one continuation (the work limit).
 MAX_POINTS = 20_000
+#: A branch ends where a multiplier's modulus exceeds this: single shooting cannot follow it further.
+MAX_MULTIPLIER = 1e6
 _TOL = 1e-11          # Newton's tolerance on the residual (the flow's own accuracy is about 1e-12)
 _MAXIT = 10           # corrector iterations before the step is halved
 
@@ -367,12 +369,15 @@ class _Tracer:
                     return None
                 h *= 0.5
                 if h < self.hmin:
-                    self.fail(f"the branch cannot be continued past {self.param} = {U[2]!r} "
+                    self.fail(f"the branch cannot be continued past {self.param} = {float(U[2])!r} "
                               f"(theta={self._state(prob, U[:2])[0]:.6g}, v={self._state(prob, U[:2])[1]:.6g}): "
                               f"{exc}; the step shrank below {self.hmin:.1e}")
                 continue
             testsb = _tests(prob.mode, evb)
-            jump = any(abs(testsb[key] - tests[key]) > 0.5 for key in ("period-doubling", "pitchfork", "plus")
+            # a test function that moves far in one step could hide two sign changes: shorter steps
+            # (far relative to its size: an unstable orbit's 1 + tr M + det M may be in the thousands)
+            jump = any(abs(testsb[key] - tests[key]) > 0.5 * (1 + min(abs(testsb[key]), abs(tests[key])))
+                       for key in ("period-doubling", "pitchfork", "plus")
                        if key in tests and math.isfinite(tests[key]) and math.isfinite(testsb[key]))
             if (np.dot(t, tb) < 0.98 or jump) and h > 1e3 * self.hmin:
                 h *= 0.5
@@ -388,7 +393,7 @@ class _Tracer:
                 Ub, evb = Ue, eve
                 tb, _ = self.tangent(prob, Ub, evb, t)
                 testsb = _tests(prob.mode, evb)
-                final = "stop" if edge == self.stop else f"turned back to {self.param} = {edge!r} (past a fold)"
+                final = "stop" if edge == self.stop else f"turned back to {self.param} = {float(edge)!r} (past a fold)"
             # bifurcations between U and Ub
             events = self.events(prob, U, ev, t, tests, Ub, evb, tb, testsb)
             stableb = _stable(prob.mode, evb)
@@ -402,12 +407,17 @@ class _Tracer:
                             return ("switch", kind, prob, Uc, evc, t)
                     elif kind in ("fold", "neimark-sacker") and not stableb:
                         self.record(prob, Uc, evc)
-                        self.end = (f"{kind} at {self.param} = {Uc[2]!r}: the attracting orbit ends there "
+                        self.end = (f"{kind} at {self.param} = {float(Uc[2])!r}: the attracting orbit ends there "
                                     "(the motion jumps to another attractor)")
                         return None
             self.record(prob, Ub, evb)
             if final is not None:
                 self.end = final
+                return None
+            big = float(np.max(np.abs(multipliers_of(evb.M))))
+            if big > MAX_MULTIPLIER:
+                self.end = (f"at {self.param} = {float(Ub[2])!r} a multiplier reaches {big:.1e}: too unstable for single "
+                            "shooting (Newton's basin shrinks to the flow's error times that)")
                 return None
             if prob.mode == "section" and evb.T > 1.5 * T_first and evb.T > ev.T \
                     and self.homoclinic(prob, Ub, evb, tb, abs(Ub[2] - U[2])):
@@ -440,7 +450,7 @@ class _Tracer:
             try:
                 s, (Uc, evc) = _root(g, 0.0, tests_a[key], sb, tests_b[key], xtol=1e-13 * (1 + abs(sb)))
             except (NewtonError, FlowError) as exc:
-                self.fail(f"the {kind} between {self.param} = {Ua[2]!r} and {Ub[2]!r} could not be located: {exc}")
+                self.fail(f"the {kind} between {self.param} = {float(Ua[2])!r} and {float(Ub[2])!r} could not be located: {exc}")
             found.append((s, kind, Uc, evc))
         found.sort(key=lambda e: e[0])
         return found
@@ -449,7 +459,7 @@ class _Tracer:
     def switch(self, kind, prob, Us, evs, t_parent):
         k2, w2 = (prob.k, prob.winding) if kind == "pitchfork" else (2 * prob.k, 2 * prob.winding)
         if k2 > 10**4:
-            self.end = f"{kind} at {self.param} = {Us[2]!r}: the child's period exceeds 10000 drive periods"
+            self.end = f"{kind} at {self.param} = {float(Us[2])!r}: the child's period exceeds 10000 drive periods"
             return None
         child = OrbitProblem(prob.base, "map", k2, w2, self.param, prob.rtol, prob.atol)
         parent_map = OrbitProblem(prob.base, "map", prob.k, prob.winding, self.param, prob.rtol, prob.atol)
@@ -475,12 +485,12 @@ class _Tracer:
             if off > 0.1 * hb and abs(U1[2] - Us[2]) > 1e-9 * max(1.0, abs(Us[2])):
                 break
         else:
-            self.end = f"{kind} at {self.param} = {Us[2]!r}: no child branch found next to it"
+            self.end = f"{kind} at {self.param} = {float(Us[2])!r}: no child branch found next to it"
             return None
         # supercritical (the child on the far side, attracting: its multiplier 1 - O(hb^2) inside the
         # circle) or subcritical (on the near side, repelling)
         if (U1[2] - Us[2]) * (self.stop - Us[2]) < 0:
-            self.end = (f"{kind} at {self.param} = {Us[2]!r} is subcritical: no attracting child branch "
+            self.end = (f"{kind} at {self.param} = {float(Us[2])!r} is subcritical: no attracting child branch "
                         "(the motion jumps to another attractor)")
             return None
         t1, _ = self.tangent(child, U1, ev1)
@@ -525,7 +535,7 @@ class _Tracer:
         theta = sad[0].theta if sad else math.nan
         self.bifs.append(Bifurcation("homoclinic", float(ph), math.inf, theta, 0.0, np.array([1.0, 0.0],
                                                                                               dtype=complex)))
-        self.end = f"homoclinic at {self.param} = {ph!r}: the period diverges"
+        self.end = f"homoclinic at {self.param} = {float(ph)!r}: the period diverges"
         return True
 
 

@@ -170,7 +170,7 @@ class OrbitProblem:
         self._cache = (p, sc)
         return sc
 
-    def evaluate(self, u, p: float | None, jacobian: bool = True) -> Evaluation:
+    def evaluate(self, u, p: float | None) -> Evaluation:
         sc = self.scene(p)
         u = np.asarray(u, dtype=np.float64)
         if self.mode == "section":
@@ -182,7 +182,10 @@ class OrbitProblem:
             F = np.array([end[0] - self.theta_s - 2 * math.pi * self.winding, end[1] - u[0]])
             J = np.array([[mono[0, 1], f[0]], [mono[1, 1] - 1.0, f[1]]])
             return Evaluation(F, J, mono, T)
-        T = drive_period(sc, self.k)
+        try:
+            T = drive_period(sc, self.k)
+        except ValueError as exc:        # a continuation in drive_frequency that reaches the time limit
+            raise FlowError(str(exc)) from None
         if self.mode == "half":
             end, mono, _ = flow(sc, u, [0.5 * T], self.rtol, self.atol)
             end, DG = end[0], -mono[0]
@@ -195,7 +198,7 @@ class OrbitProblem:
     def dFdp(self, u, p: float, F) -> np.ndarray:
         """dF/dp by a forward difference (it steers Newton and the tangent; the roots do not depend on it)."""
         dp = 1e-7 * max(1.0, abs(p))
-        ev = self.evaluate(u, p + dp, jacobian=False)
+        ev = self.evaluate(u, p + dp)
         return (ev.F - F) / dp
 
 
