@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings, strategies as st
 from scipy.integrate import solve_ivp
 
 import pendula
@@ -157,6 +158,33 @@ def test_saddle_node_where_torque_equals_eps_exactly(eps):
             c = eps * math.cos(e.theta)
             ref = np.sort_complex(np.roots([1.0, 0.2, c]))
             np.testing.assert_allclose(np.sort_complex(e.eigenvalues), ref, rtol=1e-12, atol=1e-12 * eps)
+
+
+@settings(max_examples=40, deadline=None)
+@given(eps=st.floats(1e-3, 1e3), beta=st.floats(0.0, 3.0), up=st.booleans())
+def test_saddle_node_bisected_to_the_last_double(eps, beta, up):
+    # from either side, in the torque: the saddle-node at |tau| = eps to the bit (the kernel meets it exactly)
+    start, stop = (0.3 * eps, 2 * eps) if up else (-2 * eps, -0.3 * eps)
+    eb = pendula.continue_equilibria(Scene(damping=beta, eps=eps, torque=start), "torque", stop, points=5)
+    (b,) = eb.bifurcations
+    assert b.value == (eps if up else -eps)
+
+
+def test_branch_through_the_pitchfork_goes_on_unstable():
+    # follow='branch': the symmetric orbit is followed past its pitchfork, unstable beyond it
+    po = pendula.periodic_orbit(CASCADE, guess=(0.1, 1.9))
+    br = pendula.continue_orbit(CASCADE, (po.theta, po.v), "drive_amplitude", 1.02)
+    (b,) = br.bifurcations
+    assert b.kind == "pitchfork" and br.end == "stop"
+    assert np.all(br.stable[br.values < b.value - 1e-9]) and not np.any(br.stable[br.values > b.value + 1e-9])
+    # the symmetry holds along it: theta(T/2) = -theta(0), v(T/2) = -v(0), by scipy
+    i = len(br) // 2
+    a = float(br.values[i])
+
+    def rhs(t, y):
+        return [y[1], -0.5 * y[1] - math.sin(y[0]) + a * math.cos(2 * t / 3)]
+    s = solve_ivp(rhs, (0, 1.5 * math.pi), [br.theta[i], br.v[i]], method="DOP853", rtol=1e-12, atol=1e-12)
+    assert abs(math.remainder(s.y[0, -1] + br.theta[i], 2 * math.pi)) < 1e-8 and abs(s.y[1, -1] + br.v[i]) < 1e-8
 
 
 def test_equilibria_trace_is_minus_damping_no_hopf():
