@@ -5,8 +5,10 @@ Equilibria of the torqued damped pendulum and their stability
 θ'' + β θ' + sin θ = τ rests where sin θ = τ: at θ* = asin τ (a stable
 spiral, or a node when β² > 4 cos θ*) and at π − asin τ (a saddle), until
 the two merge in a saddle-node at τ = 1 and the pendulum must run
-(Suzuki & Suzuki, section 7.1; :func:`pendula.equilibria`).  Right: the
-real parts of the eigenvalues, λ² + βλ + cos θ* = 0.
+(Suzuki & Suzuki, section 7.1), followed in τ by
+:func:`pendula.continue_equilibria`, which locates the saddle-nodes (black
+crosses) at |τ| = 1 exactly.  Right: the real parts of the eigenvalues,
+λ² + βλ + cos θ* = 0.
 """
 
 import matplotlib.pyplot as plt
@@ -21,9 +23,11 @@ colors = {"stable spiral": "tab:blue", "stable node": "tab:green",
           "saddle-node": "k"}
 fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
 seen = set()
-for tau in taus:
-    for e in pendula.equilibria(pendula.Scene(damping=beta,
-                                              torque=float(tau))):
+eb = pendula.continue_equilibria(
+    pendula.Scene(damping=beta, torque=float(taus[0])), "torque",
+    float(taus[-1]), points=len(taus))
+for tau, eqs in zip(eb.values, eb.equilibria):
+    for e in eqs:
         label = e.kind if e.kind not in seen else None
         seen.add(e.kind)
         ax1.plot(tau, e.theta, ".", ms=3, color=colors.get(e.kind, "0.5"),
@@ -31,6 +35,8 @@ for tau in taus:
         ax2.plot([tau, tau], e.eigenvalues.real, ".", ms=2,
                  color=colors.get(e.kind, "0.5"))
 ax1.set(xlabel="torque τ / ε", ylabel="θ*", title=f"rest points, β = {beta}")
+for b in eb.bifurcations:
+    ax1.plot(b.value, b.theta, "kx", ms=8)
 ax1.legend(fontsize=8, markerscale=3)
 ax2.axhline(0, color="0.6", lw=0.8)
 ax2.set(xlabel="torque τ / ε", ylabel="Re λ",

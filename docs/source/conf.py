@@ -121,6 +121,7 @@ SECTIONS = {
     "guide": ["guide/exact", "guide/integrators", "guide/effects", "guide/spectra", "guide/damping",
               "guide/josephson", "guide/driven",
               "guide/cord", "guide/cycloid", "guide/gravity", "guide/density", "guide/dynamics", "guide/attractors",
+              "guide/continuation",
               "guide/sweeps",
               "sweeps_at_scale*", "guide/scenes", "scenes*", "vocabulary", "guide/architecture"],
     "reports": ["reports/accuracy", "accuracy*", "elliptic_edges*", "model_accuracy*", "reports/cost", "work_precision*", "reports/benchmarks",
@@ -180,6 +181,8 @@ API_GROUPS = [
     ("Equilibria, periodic orbits and attractors", ["equilibria", "Equilibrium", "periodic_orbit",
                                                     "PeriodicOrbit", "attractor_map",
                                                     "attractor_continuation"]),
+    ("Continuation and bifurcations", ["continue_orbit", "Branch", "Bifurcation", "continue_equilibria",
+                                       "EquilibriumBranch", "ContinuationError"]),
     ("The Josephson junction", ["Junction", "SwitchingCurrents"]),
 ]
 

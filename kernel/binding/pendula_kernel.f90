@@ -716,36 +716,37 @@ subroutine equilibria_v(nmax, model, kind, par, eps, r, beta, tau, lo, hi, theta
   end do
 end subroutine equilibria_v
 
-! A periodic orbit of the stroboscopic map over period (k drive periods) of a checked scene's model
-! (its fields, as scene_check_v returns them; the model is the dispatcher's scene_model), advancing
-! theta by 2 pi winding: Newton (GSL hybridsj) on the monodromy.  x0: the guess, xo: the orbit; mono:
-! row-major monodromy; info: [iterations, rhs evaluations, residual].  status 0 ok, 1 no convergence,
-! 2 the flow failed, 3 stalled, 100 the fields do not form a scene.
-subroutine periodic_orbit_v(x, words, nw, wlen, nout, ngrid, period, winding, rtol, atol, tol, maxit, x0, &
-                            xo, mono, info, status)
-  use, intrinsic :: iso_c_binding, only: c_loc
+! The flow of a checked scene's model (its fields, as scene_check_v returns them; the model is the
+! dispatcher's scene_model) from x0 at t = 0 through the times (one sign, in order away from 0) with
+! its monodromy: ends(:, i) the state, monos(:, i) the row-major monodromy, fend(:, i) the right-hand
+! side (theta', v') at times(i); nfev the right-hand side evaluations.  The one core of the periodic
+! orbits and their continuation.  At most nmax steps; cancel(1) non-zero (set by another thread) stops
+! it.  status 0 ok, 1 the flow failed (non-finite, or rk8pd's error), 2 more than nmax steps,
+! 3 cancelled, 100 the fields do not form a scene.
+subroutine flow_monodromy_v(x, words, nw, wlen, nout, ngrid, nt, times, x0, rtol, atol, nmax, cancel, &
+                            ends, monos, fend, nfev, status)
+  use, intrinsic :: iso_c_binding, only: c_loc, c_long
   use pendula_scene, only: scene_t, scene_from_fields
   use pendula_simulate, only: scene_model
   use pendula_integrators, only: pendulum_model
-  use pendula_gsl_iface, only: pendula_gsl_periodic_orbit
+  use pendula_gsl_iface, only: pendula_gsl_flow_monodromy
   implicit none
   !f2py threadsafe
   double precision, intent(in) :: x(31)
   character(len=*), intent(in) :: words
-  integer, intent(in) :: nw, nout, ngrid
+  integer, intent(in) :: nw, nout, ngrid, nt
   integer, intent(in) :: wlen(nw)
-  double precision, intent(in) :: period, winding, rtol, atol, tol, x0(2)
-  integer, intent(in) :: maxit
-  double precision, intent(out) :: xo(2)
-  double precision, intent(out) :: mono(4), info(3)
+  double precision, intent(in) :: times(nt), x0(2), rtol, atol, nmax
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: ends(2, nt), monos(4, nt), fend(2, nt), nfev
   integer, intent(out) :: status
   !f2py intent(hide), depend(wlen) :: nw = len(wlen)
+  !f2py intent(hide), depend(times) :: nt = len(times)
   type(scene_t) :: sc
   type(pendulum_model), target :: m
   double precision :: g, length, none(0)
   character(len=512) :: msg
-  xo = x0
-  mono = 0; info = 0
+  ends = 0; monos = 0; fend = 0; nfev = 0
   call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
                          g, length, status, msg)
   if (status /= 0) then
@@ -753,8 +754,9 @@ subroutine periodic_orbit_v(x, words, nw, wlen, nout, ngrid, period, winding, rt
     return
   end if
   m = scene_model(sc)
-  status = pendula_gsl_periodic_orbit(c_loc(m), period, winding, rtol, atol, tol, maxit, xo, mono, info)
-end subroutine periodic_orbit_v
+  status = pendula_gsl_flow_monodromy(c_loc(m), x0(1), x0(2), nt, times, rtol, atol, &
+                                      int(min(nmax, 9.0d18), c_long), cancel(1), ends, monos, fend, nfev)
+end subroutine flow_monodromy_v
 
 ! ==================== effects: a user's force, dry friction's energy balance ====================
 ! A user's force crosses the binding as an address (f2py cannot wrap procedure pointers): faddr is
@@ -802,48 +804,6 @@ subroutine simulate_force_v(x, words, nw, wlen, nout, ngrid, n, t, faddr, np, fp
   f = transfer(int(faddr, c_intptr_t), f)
   call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel(1), f, fparams)
 end subroutine simulate_force_v
-
-! periodic_orbit_v with the user's force added to the scene's force law.
-subroutine periodic_orbit_force_v(x, words, nw, wlen, nout, ngrid, period, winding, rtol, atol, tol, maxit, x0, &
-                                  faddr, np, fparams, xo, mono, info, status)
-  use, intrinsic :: iso_c_binding, only: c_loc, c_funptr, c_intptr_t
-  use pendula_scene, only: scene_t, scene_from_fields
-  use pendula_simulate, only: scene_model, attach_force
-  use pendula_integrators, only: pendulum_model
-  use pendula_gsl_iface, only: pendula_gsl_periodic_orbit
-  implicit none
-  !f2py threadsafe
-  double precision, intent(in) :: x(31)
-  character(len=*), intent(in) :: words
-  integer, intent(in) :: nw, nout, ngrid, np
-  integer, intent(in) :: wlen(nw)
-  double precision, intent(in) :: period, winding, rtol, atol, tol, x0(2)
-  integer, intent(in) :: maxit
-  integer(8), intent(in) :: faddr
-  double precision, intent(in), target :: fparams(np)
-  double precision, intent(out) :: xo(2)
-  double precision, intent(out) :: mono(4), info(3)
-  integer, intent(out) :: status
-  !f2py intent(hide), depend(wlen) :: nw = len(wlen)
-  !f2py intent(hide), depend(fparams) :: np = len(fparams)
-  type(scene_t) :: sc
-  type(pendulum_model), target :: m
-  type(c_funptr) :: f
-  double precision :: g, length, none(0)
-  character(len=512) :: msg
-  xo = x0
-  mono = 0; info = 0
-  call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
-                         g, length, status, msg)
-  if (status /= 0 .or. faddr == 0) then
-    status = 100
-    return
-  end if
-  m = scene_model(sc)
-  f = transfer(int(faddr, c_intptr_t), f)
-  call attach_force(m, f, fparams)
-  status = pendula_gsl_periodic_orbit(c_loc(m), period, winding, rtol, atol, tol, maxit, xo, mono, info)
-end subroutine periodic_orbit_force_v
 
 ! The turning points of the rigid pendulum with dry friction mu (and a torque tau) from (theta0, v0):
 ! times(1:count), angles(1:count) where v = 0; stuck = 1 when it sticks at the last one.  status as
@@ -975,3 +935,46 @@ subroutine attractor_block(npts, params, rtol, atol, cfg, nk, kcell, klab, natt,
   call attractor_points(npts, params, rtol, atol, cfg, nk, kcell, klab, natt, need, nout, out, maxc, cells, &
                         ncell, pstat, nthreads, cancel(1))
 end subroutine attractor_block
+
+! flow_monodromy_v with the user's force (its address faddr and fparams(np), as simulate_force_v) added to
+! the scene's force law; the monodromy's derivatives of the force by central differences (accel_jacobian).
+subroutine flow_monodromy_force_v(x, words, nw, wlen, nout, ngrid, nt, times, x0, rtol, atol, nmax, faddr, np, &
+                                  fparams, cancel, ends, monos, fend, nfev, status)
+  use, intrinsic :: iso_c_binding, only: c_loc, c_long, c_funptr, c_intptr_t
+  use pendula_scene, only: scene_t, scene_from_fields
+  use pendula_simulate, only: scene_model, attach_force
+  use pendula_integrators, only: pendulum_model
+  use pendula_gsl_iface, only: pendula_gsl_flow_monodromy
+  implicit none
+  !f2py threadsafe
+  double precision, intent(in) :: x(31)
+  character(len=*), intent(in) :: words
+  integer, intent(in) :: nw, nout, ngrid, nt, np
+  integer, intent(in) :: wlen(nw)
+  double precision, intent(in) :: times(nt), x0(2), rtol, atol, nmax
+  integer(8), intent(in) :: faddr
+  double precision, intent(in), target :: fparams(np)
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: ends(2, nt), monos(4, nt), fend(2, nt), nfev
+  integer, intent(out) :: status
+  !f2py intent(hide), depend(wlen) :: nw = len(wlen)
+  !f2py intent(hide), depend(times) :: nt = len(times)
+  !f2py intent(hide), depend(fparams) :: np = len(fparams)
+  type(scene_t) :: sc
+  type(pendulum_model), target :: m
+  type(c_funptr) :: f
+  double precision :: g, length, none(0)
+  character(len=512) :: msg
+  ends = 0; monos = 0; fend = 0; nfev = 0
+  call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
+                         g, length, status, msg)
+  if (status /= 0 .or. faddr == 0) then
+    status = 100
+    return
+  end if
+  m = scene_model(sc)
+  f = transfer(int(faddr, c_intptr_t), f)
+  call attach_force(m, f, fparams)
+  status = pendula_gsl_flow_monodromy(c_loc(m), x0(1), x0(2), nt, times, rtol, atol, &
+                                      int(min(nmax, 9.0d18), c_long), cancel(1), ends, monos, fend, nfev)
+end subroutine flow_monodromy_force_v

@@ -82,11 +82,8 @@ int pendula_gsl_rk8pd(const void *model, double theta0, double v0, int n, const 
 }
 
 /* ------------------------------------------------------------------ */
-/* Periodic orbits of the stroboscopic map: Newton on the monodromy.    */
-
-#include <gsl/gsl_multiroots.h>
-#include <gsl/gsl_vector.h>
-#include <gsl/gsl_matrix.h>
+/* The flow with its monodromy: the one core of the periodic orbits and  */
+/* their continuation (python/pendula/dynamics/periodic.py).             */
 
 void pendula_accel_jac_c(const void *model, double t, double th, double v, double *dadth, double *dadv);
 
@@ -106,38 +103,85 @@ static int pendula_variational_rhs(double t, const double y[], double f[], void 
   return GSL_SUCCESS;
 }
 
-/* The flow over [0, T] from (theta0, v0) with its monodromy matrix
- * mono = [[dtheta/dtheta0, dtheta/dv0], [dv/dtheta0, dv/dv0]] (row major). */
-int pendula_gsl_flow_monodromy(const void *model, double theta0, double v0, double T,
-                               double rtol, double atol, double *end, double *mono, double *nfev) {
+/* How often the cancel flag is read (steps). */
+#define PENDULA_CANCEL_POLL 256
+
+/* The flow from (theta0, v0) at t = 0 through the times tout[0 .. nt-1] (all of
+ * one sign, in order away from 0: forward or backward in time), with the
+ * monodromy mono = [[dtheta/dtheta0, dtheta/dv0], [dv/dtheta0, dv/dv0]] (row
+ * major, 4 numbers a time) and the right-hand side (theta', v') at each time.
+ * rk8pd with GSL's standard step control, stepped here so that the cancel flag
+ * is read every PENDULA_CANCEL_POLL steps and at most nmax steps are taken.
+ * Returns 0, 1 (the integrator failed or the state left the finite numbers),
+ * 2 (more than nmax steps: the work limit), 3 (cancelled). */
+int pendula_gsl_flow_monodromy(const void *model, double theta0, double v0, int nt, const double *tout,
+                               double rtol, double atol, long nmax, const volatile int *cancel,
+                               double *ends, double *monos, double *fend, double *nfev) {
   struct pendula_sys s = {model, 0};
   gsl_odeiv2_system sys = {pendula_variational_rhs, NULL, 6, &s};
-  gsl_odeiv2_driver *d = gsl_odeiv2_driver_alloc_standard_new(&sys, gsl_odeiv2_step_rk8pd,
-                                                              1e-3, atol, rtol, 1.0, 0.0);
-  if (d == NULL) return GSL_ENOMEM;
-  double t = 0.0, y[6] = {theta0, v0, 1.0, 0.0, 0.0, 1.0};
-  int status = gsl_odeiv2_driver_apply(d, &t, T, y);
-  gsl_odeiv2_driver_free(d);
-  *nfev += (double)s.nfev;
-  if (status != GSL_SUCCESS) return status;
-  for (int i = 0; i < 6; ++i)
-    if (!isfinite(y[i])) return GSL_EBADFUNC;
-  end[0] = y[0];
-  end[1] = y[1];
-  mono[0] = y[2]; mono[1] = y[4];
-  mono[2] = y[3]; mono[3] = y[5];
-  return GSL_SUCCESS;
+  gsl_odeiv2_step *st = gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, 6);
+  gsl_odeiv2_control *c = gsl_odeiv2_control_standard_new(atol, rtol, 1.0, 0.0);
+  gsl_odeiv2_evolve *e = gsl_odeiv2_evolve_alloc(6);
+  int status = 0;
+  if (st == NULL || c == NULL || e == NULL) status = 1;
+  double t = 0.0, y[6] = {theta0, v0, 1.0, 0.0, 0.0, 1.0}, f[6];
+  double h = (nt > 0 && tout[nt - 1] < 0.0) ? -1e-3 : 1e-3;
+  long steps = 0;
+  for (int i = 0; i < nt && status == 0; ++i) {
+    while (t != tout[i]) {
+      if (steps >= nmax) { status = 2; break; }
+      if (steps % PENDULA_CANCEL_POLL == 0 && *cancel != 0) { status = 3; break; }
+      if (gsl_odeiv2_evolve_apply(e, c, st, &sys, &t, tout[i], &h, y) != GSL_SUCCESS) { status = 1; break; }
+      ++steps;
+      if (!(isfinite(y[0]) && isfinite(y[1]) && isfinite(y[2]) && isfinite(y[3]) && isfinite(y[4]) &&
+            isfinite(y[5]))) { status = 1; break; }
+    }
+    if (status != 0) break;
+    pendula_variational_rhs(t, y, f, &s);
+    ends[2 * i] = y[0];
+    ends[2 * i + 1] = y[1];
+    monos[4 * i] = y[2]; monos[4 * i + 1] = y[4];
+    monos[4 * i + 2] = y[3]; monos[4 * i + 3] = y[5];
+    fend[2 * i] = f[0];
+    fend[2 * i + 1] = f[1];
+  }
+  if (e != NULL) gsl_odeiv2_evolve_free(e);
+  if (c != NULL) gsl_odeiv2_control_free(c);
+  if (st != NULL) gsl_odeiv2_step_free(st);
+  *nfev = (double)s.nfev;
+  return status;
 }
 
+/* ------------------------------------------------------------------ */
+/* Newton inside the kernel: the attractor finder's confirmation of a   */
+/* recurring cycle (kernel/sweep/pendula_attractors.f90), on OpenMP     */
+/* threads where Python's Newton (dynamics/periodic.py) cannot run.     */
+/* The flow and monodromy are the one core above.                       */
+
+#include <gsl/gsl_multiroots.h>
+#include <gsl/gsl_vector.h>
+#include <gsl/gsl_matrix.h>
+
 struct pendula_po { const void *model; double T, shift, rtol, atol, nfev; };
+
+/* The flow over [0, T] with its monodromy, within the work limit of the
+ * dynamics (max(1e6, 1000 T) steps); not cancellable (a few periods). */
+static int pendula_po_flow(struct pendula_po *po, double th, double v, double *end, double *mono) {
+  static const volatile int no_cancel = 0;
+  double fend[2], nfev = 0.0;
+  long nmax = (long)fmax(1e6, fmin(1e12, 1000.0 * fabs(po->T)));
+  int st = pendula_gsl_flow_monodromy(po->model, th, v, 1, &po->T, po->rtol, po->atol, nmax, &no_cancel,
+                                      end, mono, fend, &nfev);
+  po->nfev += nfev;
+  return st == 0 ? GSL_SUCCESS : GSL_EBADFUNC;
+}
 
 /* F(x) = P(x) - x - (2 pi winding, 0) and its Jacobian M - I. */
 static int pendula_po_fdf(const gsl_vector *x, void *p, gsl_vector *f, gsl_matrix *J) {
   struct pendula_po *po = (struct pendula_po *)p;
   double end[2], mono[4];
-  int st = pendula_gsl_flow_monodromy(po->model, gsl_vector_get(x, 0), gsl_vector_get(x, 1), po->T,
-                                      po->rtol, po->atol, end, mono, &po->nfev);
-  if (st != GSL_SUCCESS) return GSL_EBADFUNC;
+  if (pendula_po_flow(po, gsl_vector_get(x, 0), gsl_vector_get(x, 1), end, mono) != GSL_SUCCESS)
+    return GSL_EBADFUNC;
   if (f != NULL) {
     gsl_vector_set(f, 0, end[0] - gsl_vector_get(x, 0) - po->shift);
     gsl_vector_set(f, 1, end[1] - gsl_vector_get(x, 1));
@@ -163,8 +207,8 @@ static int pendula_po_df(const gsl_vector *x, void *p, gsl_matrix *J) {
  * 2 pi winding, by GSL's hybridsj (Powell's hybrid method with the exact
  * Jacobian M - I, a safeguarded Newton).  x: guess in, orbit out; mono: the
  * monodromy at the orbit; info = [iterations, rhs evaluations, residual].
- * Returns 0, 1 (no convergence in maxit), 2 (the flow failed: non-finite or
- * the integrator's error), 3 (the iteration stalled: GSL_ENOPROG). */
+ * Returns 0, 1 (no convergence in maxit), 2 (the flow failed: non-finite, the
+ * integrator's error or the work limit), 3 (the iteration stalled). */
 int pendula_gsl_periodic_orbit(const void *model, double T, double winding, double rtol, double atol,
                                double tol, int maxit, double *x, double *mono, double *info) {
   struct pendula_po po = {model, T, 6.283185307179586 * winding, rtol, atol, 0.0};
@@ -194,7 +238,7 @@ int pendula_gsl_periodic_orbit(const void *model, double T, double winding, doub
     x[0] = gsl_vector_get(sv->x, 0);
     x[1] = gsl_vector_get(sv->x, 1);
     double end[2];
-    if (pendula_gsl_flow_monodromy(model, x[0], x[1], T, rtol, atol, end, mono, &po.nfev) != GSL_SUCCESS)
+    if (pendula_po_flow(&po, x[0], x[1], end, mono) != GSL_SUCCESS)
       result = 2;
     info[2] = fmax(fabs(end[0] - x[0] - po.shift), fabs(end[1] - x[1]));
   } else {

@@ -54,10 +54,17 @@ contains
     real(dp), intent(in) :: beta, c
     real(dp), intent(out) :: re1, im1, re2, im2
     integer, intent(out) :: kind
-    real(dp) :: disc, s, q, l1, l2
-    disc = beta * beta - 4.0_dp * c
+    real(dp) :: disc, s, q, l1, l2, sc
+    ! scaled by sc = max(|beta|, 2 sqrt|c|): beta^2 - 4 c neither overflows (beta = 1e200) nor
+    ! loses c next to a huge beta (the small root c / q keeps it)
+    sc = max(abs(beta), 2.0_dp * sqrt(abs(c)))
+    if (sc > 0.0_dp) then
+      disc = (beta / sc)**2 - 4.0_dp * ((c / sc) / sc)
+    else
+      disc = 0.0_dp
+    end if
     if (disc >= 0.0_dp) then
-      s = sqrt(disc)
+      s = sc * sqrt(disc)
       q = -0.5_dp * (beta + sign(s, beta))
       l1 = q
       if (q /= 0.0_dp) then
@@ -69,7 +76,7 @@ contains
       im1 = 0.0_dp; im2 = 0.0_dp
     else
       re1 = -0.5_dp * beta; re2 = re1
-      im1 = 0.5_dp * sqrt(-disc); im2 = -im1
+      im1 = 0.5_dp * sc * sqrt(-disc); im2 = -im1
     end if
     if (c < 0.0_dp) then
       kind = ek_saddle
@@ -91,16 +98,24 @@ contains
     real(dp), intent(inout) :: theta(:), cs(:)
     integer, intent(inout) :: count, status
     real(dp) :: n1, n2, n, y
+    integer :: i, ncopies
     ! whole numbers around (lo - x) / 2 pi and (hi - x) / 2 pi, one beyond each
     ! end (the test below decides), in floating point: no integer overflow
     n1 = aint((lo - x) / two_pi) - 2.0_dp
     n2 = aint((hi - x) / two_pi) + 2.0_dp
+    ! beyond 2^50 turns n + 1 is no longer exact enough to count copies (and an
+    ! angle of 2^52 has no fractional digits left): refused, never a long loop
+    if (.not. (abs(n1) < 2.0_dp**50 .and. abs(n2) < 2.0_dp**50)) then
+      status = eq_bad_param
+      return
+    end if
     if (n2 - n1 > real(size(theta), dp) + 4.0_dp) then
       status = eq_too_many
       return
     end if
-    n = n1
-    do while (n <= n2)
+    ncopies = int(n2 - n1)
+    do i = 0, ncopies
+      n = n1 + real(i, dp)
       ! 2 pi n in two parts: the copy is the nearest double to x + 2 pi n
       y = x + (n * two_pi + n * (2.0_dp * pi_lo))
       if (y > lo .and. y <= hi) then
@@ -112,7 +127,6 @@ contains
         theta(count) = y
         cs(count) = c
       end if
-      n = n + 1.0_dp
     end do
   end subroutine append_copies
 
@@ -175,13 +189,16 @@ contains
   elemental function field_slope(kind, par, eps, theta) result(s)
     integer, intent(in) :: kind
     real(dp), intent(in) :: par, eps, theta
-    real(dp) :: s, w, rho, sn
+    real(dp) :: s, w, rho, sn, q
     sn = sin(theta)
     w = sin(0.5_dp * theta)**2
     select case (kind)
     case (gk_inverse_square)
-      rho = sqrt((par - 1.0_dp)**2 + 4.0_dp * par * w)
-      s = -eps * par * (par - 1.0_dp)**2 * (cos(theta) / rho**3 - 3.0_dp * par * sn * sn / rho**5)
+      ! in the ratios q = (d - 1) / rho <= 1 and d / rho, so that a far field (d = 1e200) does not
+      ! overflow: d (d-1)^2 / rho^3 = (d / rho) q^2, 3 d^2 (d-1)^2 / rho^5 = 3 (d / rho)^2 q^2 / rho
+      rho = hypot(par - 1.0_dp, 2.0_dp * sqrt(par * w))
+      q = (par - 1.0_dp) / rho
+      s = -eps * (par / rho) * q * q * (cos(theta) - 3.0_dp * (par / rho) * sn * sn / rho)
     case (gk_linear)
       s = -eps * ((1.0_dp - 2.0_dp * par * w) * cos(theta) - par * sn * sn)
     case default

@@ -50,6 +50,8 @@ from .sweeps import attractor_continuation, attractor_map, iv_curve, sweep  # no
 # the Josephson junction in laboratory units (RCSJ on the pendulum)
 from .junction import Junction, SwitchingCurrents  # noqa: E402
 from .dynamics import Equilibrium, PeriodicOrbit, equilibria, periodic_orbit  # noqa: E402
+from .dynamics import (Bifurcation, Branch, ContinuationError, EquilibriumBranch, continue_equilibria,  # noqa: E402
+                       continue_orbit)
 from .spectrum import precompute_wisdom, wisdom_path  # noqa: E402
 
 # the version of the installed metadata (written once, in meson.build)
@@ -66,4 +68,6 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "precompute_wisdom", "wisdom_path",
            "equilibria", "Equilibrium", "periodic_orbit", "PeriodicOrbit", "attractor_map",
            "friction_turning_points", "FrictionTurningPoints",
-           "Junction", "SwitchingCurrents", "attractor_continuation"]
+           "Junction", "SwitchingCurrents", "attractor_continuation",
+           "continue_orbit", "continue_equilibria", "Branch", "Bifurcation", "EquilibriumBranch",
+           "ContinuationError"]

@@ -4,14 +4,19 @@
 - :mod:`.periodic`: periodic orbits of a driven scene, by Newton on the stroboscopic
   map with its monodromy (the Floquet multipliers); the one Newton/monodromy core
   the rest of this package builds on;
+- :mod:`.continuation`: periodic orbits and equilibria followed in a parameter, with their
+  bifurcations (on the same core);
 - :mod:`.attractors`: the attractors of the stroboscopic map and their basins.
 
 The public names are importable from :mod:`pendula` as well.
 """
 
 from .attractors import Attractor, AttractorMap
+from .continuation import (BIFURCATION_KINDS, Bifurcation, Branch, ContinuationError, EquilibriumBranch,
+                           continue_equilibria, continue_orbit)
 from .equilibria import EQUILIBRIUM_KINDS, Equilibrium, equilibria
 from .periodic import PeriodicOrbit, periodic_orbit
 
 __all__ = ["Equilibrium", "equilibria", "EQUILIBRIUM_KINDS", "PeriodicOrbit", "periodic_orbit",
-           "Attractor", "AttractorMap"]
+           "Attractor", "AttractorMap", "continue_orbit", "continue_equilibria", "Branch", "Bifurcation",
+           "EquilibriumBranch", "ContinuationError", "BIFURCATION_KINDS"]

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import _kernel
+from .. import _checks, _kernel
 from ..scene import Scene
 from ..systems.gravity import field_of
 
@@ -97,7 +97,8 @@ def equilibria(scene: Scene, window: tuple[float, float] = (-math.pi, math.pi)) 
         ``damping`` and ``torque`` are used.  A periodically driven scene
         (``drive_amplitude != 0``) has no rest points: see :func:`periodic_orbit`.
     window : (float, float), optional
-        The angles ``lo < theta <= hi`` to list (default one turn, ``(-pi, pi]``).
+        The angles ``lo < theta <= hi`` to list (default one turn, ``(-pi, pi]``);
+        ``|lo|, |hi| <= 2**52``.
 
     Returns
     -------
@@ -106,9 +107,11 @@ def equilibria(scene: Scene, window: tuple[float, float] = (-math.pi, math.pi)) 
 
     Raises
     ------
+    TypeError
+        If the window is not two real numbers (strings, bytes and bools are refused).
     ValueError
-        If the scene is driven, or the window is not finite and increasing, or
-        holds more than ``MAX_EQUILIBRIA`` rest points.
+        If the scene is driven, or the window is not finite and increasing,
+        beyond ``|theta| = 2**52``, or holds more than ``MAX_EQUILIBRIA`` rest points.
 
     See Also
     --------
@@ -133,12 +136,12 @@ def equilibria(scene: Scene, window: tuple[float, float] = (-math.pi, math.pi)) 
     if scene.drive_amplitude != 0.0:
         raise ValueError("drive_amplitude: a periodically driven scene has no equilibria "
                          "(it is not autonomous); its periodic orbits come from pendula.periodic_orbit")
-    try:
-        lo, hi = (float(w) for w in window)
-    except (TypeError, ValueError):
-        raise TypeError(f"window must be two numbers (lo, hi), got {window!r}") from None
-    if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
-        raise ValueError(f"window must be finite with lo < hi, got {window!r}")
+    if isinstance(window, (str, bytes)) or not hasattr(window, "__len__") or len(window) != 2:
+        raise TypeError(f"window must be two numbers (lo, hi), got {window!r:.60}")
+    # |theta| <= 2^52: beyond it an angle has no fractional digits left (the one checker's rule)
+    lo, hi = _checks.angle(window[0], "window[0]"), _checks.angle(window[1], "window[1]")
+    if not lo < hi:
+        raise ValueError(f"window must have lo < hi, got {window!r}")
     if (hi - lo) / (2 * math.pi) * 2 + 2 > MAX_EQUILIBRIA:
         raise ValueError(f"window: at most {MAX_EQUILIBRIA} equilibria per call; "
                          f"a window of {(hi - lo) / (2 * math.pi):.3g} turns holds more")
@@ -148,7 +151,7 @@ def equilibria(scene: Scene, window: tuple[float, float] = (-math.pi, math.pi)) 
         scene.torque, lo, hi)
     if status == 1:
         raise ValueError("the scene's parameters have no equilibria to compute (eps, the field's parameter "
-                         "and the torque must be finite)")
+                         "and the torque must be finite, the window within 2^50 turns)")
     if status == 2:
         raise ValueError(f"window: more than {MAX_EQUILIBRIA} equilibria")
     out = []

@@ -1,10 +1,12 @@
 """Periodic orbits of a driven scene: Newton on the stroboscopic map and its monodromy.
 
 The flow and its monodromy matrix (the variational equations) run in the
-kernel (GSL's rk8pd and its hybrid Newton solver, ``kernel/glue/pendula_gsl.c``);
-this module turns a :class:`~pendula.Scene` into the kernel's arguments and the
-answer into a record.  It is the one Newton-on-the-stroboscopic-map core of
-the dynamics: continuation and the attractor finder build on it.
+kernel (GSL's rk8pd, ``kernel/glue/pendula_gsl.c``, stepped there so that it
+polls the cancel flag and stops at a work limit); Newton's iteration on the
+map runs here.  This module is the one Newton-and-monodromy core of the
+dynamics: :func:`periodic_orbit` is Newton at a fixed parameter, and the
+continuation (:mod:`.continuation`) is the same Newton with the parameter as
+one more unknown and one more (pseudo-arclength) equation.
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .. import _checks, _kernel
+from .. import _checks, _interrupt, _kernel
 from ..scene import Scene
 
 __all__ = ["PeriodicOrbit", "periodic_orbit"]
@@ -88,9 +90,234 @@ class PeriodicOrbit:
                 f"kind={self.kind!r}{wind}, stable={self.stable}, |multipliers|=[{mods}])")
 
 
-_PO_STATUS = {1: "Newton's iteration did not converge (try another guess, or a looser tol)",
-              2: "the flow over one period failed (the state left the finite numbers, or rk8pd failed)",
-              3: "Newton's iteration stalled without reaching the tolerance (try another guess)"}
+#: The work limit of one flow: at most max(MAX_FLOW_STEPS, STEPS_PER_TIME * |t|) rk8pd steps over a time t
+#: (a period of the driven pendulum takes a few hundred; 1000 per unit time is a hundred times what a
+#: pendulum with frequencies near 1 needs).
+MAX_FLOW_STEPS = 10**6
+STEPS_PER_TIME = 1000
+#: Flows up to this many steps (tens of milliseconds) run without the interruptible worker thread.
+_DIRECT_STEPS = 20_000
+
+_FLOW_STATUS = {1: "the flow failed (the state left the finite numbers, or rk8pd could not meet its tolerance)",
+                2: f"the flow needed more than max({MAX_FLOW_STEPS:.0e}, {STEPS_PER_TIME} t) steps (the work limit)",
+                100: "the scene's fields were refused by the kernel"}
+
+
+class FlowError(ValueError):
+    """The flow over a period failed or exceeded the work limit (private to the dynamics)."""
+
+
+def max_time() -> float:
+    """The longest time one flow may span (the kernel's limit on times, 1e8)."""
+    return _checks._sweep_limits()[1]
+
+
+def flow(scene: Scene, x0, times, rtol: float, atol: float, force=None):
+    """The scene's flow from ``x0`` at t = 0 through ``times`` (one sign, in order away from 0), with the
+    monodromy: (states (n, 2), monodromies (n, 2, 2), right-hand sides (n, 2)).  Ctrl-C stops it (the
+    kernel polls the cancel flag); FlowError when it fails or needs more than MAX_FLOW_STEPS steps.
+    ``force``: a user's force checked by ``_checks.force``, added to the scene's force law."""
+    fx, words, wlen, nout, ngrid = scene._kernel_fields
+    cancel = _interrupt.cancel_flag()
+    times = np.ascontiguousarray(times, dtype=np.float64).reshape(-1)
+    args = (fx, words, wlen, nout, ngrid, times, np.asarray(x0, dtype=np.float64), rtol, atol)
+    if force is None:
+        fn, extra = _kernel.flow_monodromy_v, ()
+    else:
+        fn, extra = _kernel.flow_monodromy_force_v, (force.address, force.params)
+    # a short flow (most are: a period takes a few hundred steps) runs directly, since handing it to a
+    # worker thread costs more than the flow; one that needs more steps starts again, interruptibly
+    nmax = max(float(MAX_FLOW_STEPS), STEPS_PER_TIME * float(np.max(np.abs(times), initial=0.0)))
+    ends, monos, fend, _nfev, status = fn(*args, float(_DIRECT_STEPS), *extra, cancel)
+    if status == 2:
+        ends, monos, fend, _nfev, status = _interrupt.call(fn, *args, nmax, *extra, cancel, cancel=cancel)
+    if status == 3:                       # cancelled from another thread's flag
+        raise KeyboardInterrupt
+    if status:
+        raise FlowError(_FLOW_STATUS.get(int(status), f"the flow failed (status {int(status)})"))
+    return ends.T.copy(), monos.T.reshape(-1, 2, 2).copy(), fend.T.copy()
+
+
+def forcing_frequency(scene: Scene) -> float:
+    """The angular frequency of a scene's periodic forcing: the drive's, or a vibrating pivot's (the two
+    must agree when both are there); ValueError naming the fields when there is none or two."""
+    freqs = {f for a, f in ((scene.drive_amplitude, scene.drive_frequency),
+                            (scene.pivot_amplitude, scene.pivot_frequency)) if a != 0.0 and f != 0.0}
+    if len(freqs) > 1:
+        raise ValueError("fields 'drive_frequency' and 'pivot_frequency': a periodic orbit needs one forcing "
+                         "period; give the drive and the pivot the same frequency")
+    if not freqs:
+        raise ValueError("drive_amplitude, drive_frequency: periodic_orbit needs a periodically driven scene "
+                         "(or a vibrating pivot); an undriven scene's rest points come from pendula.equilibria")
+    return abs(freqs.pop())
+
+
+def drive_period(scene: Scene, k: int) -> float:
+    """k periods of a driven scene's forcing, refused (ValueError naming drive_frequency) beyond the time
+    limit."""
+    omega = forcing_frequency(scene)
+    period = k * 2 * math.pi / omega
+    if not period <= max_time():
+        raise ValueError(f"drive_frequency: {k} drive period(s) of 2 pi / {omega!r} = "
+                         f"{period:.3g} exceed the time limit {max_time():.0e} (work beyond the limits is refused)")
+    return period
+
+
+class NewtonError(ValueError):
+    """Newton's iteration on a periodic orbit did not converge (private: the callers say where)."""
+
+    def __init__(self, message: str, iterations: int, residual: float, state):
+        super().__init__(message)
+        self.iterations, self.residual, self.state = iterations, residual, state
+
+
+class Evaluation:
+    """One evaluation of an orbit problem at (u, p): the residual F, its Jacobian J in u, the monodromy M of
+    the whole orbit, the time period T (and, for the half-period map, its derivative DG)."""
+
+    __slots__ = ("F", "J", "M", "T", "DG")
+
+    def __init__(self, F, J, M, T, DG=None):
+        self.F, self.J, self.M, self.T, self.DG = F, J, M, T, DG
+
+
+class OrbitProblem:
+    """A periodic orbit as the root of F(u; p) = 0 in two unknowns u, for a scene family in one field.
+
+    mode ``'map'``: u = (theta, v) at t = 0, F = P(u) - u - (2 pi winding, 0), P the flow over k drive
+    periods (the stroboscopic map), J = M - I.
+    mode ``'half'``: a symmetric orbit (theta, v, t) -> (2 pi m - theta, -v, t + T/2) of a scene with that
+    symmetry (no torque, odd k): u a fixed point of G(u) = (2 pi m - theta(T/2), -v(T/2)); G o G = P, so
+    M = DG^2, and the symmetry-breaking pitchfork of P is where DG has the eigenvalue -1.
+    mode ``'section'``: an autonomous running orbit: u = (v, T) on the section theta = theta_s, F =
+    (theta(T) - theta_s - 2 pi winding, v(T) - v).
+    """
+
+    def __init__(self, scene: Scene, mode: str, k: int = 1, winding: int = 0, param: str | None = None,
+                 rtol: float = 1e-12, atol: float = 1e-12, m: int = 0, theta_s: float = 0.0, force=None):
+        self.base, self.mode, self.k, self.winding, self.param = scene, mode, k, winding, param
+        self.rtol, self.atol, self.m, self.theta_s, self.force = rtol, atol, m, theta_s, force
+        self._cache: tuple | None = None
+
+    def scene(self, p: float | None) -> Scene:
+        if self.param is None or p is None:
+            return self.base
+        if self._cache is not None and self._cache[0] == p:
+            return self._cache[1]
+        sc = self.base.replace(**{self.param: float(p)})
+        self._cache = (p, sc)
+        return sc
+
+    def evaluate(self, u, p: float | None) -> Evaluation:
+        sc = self.scene(p)
+        u = np.asarray(u, dtype=np.float64)
+        if self.mode == "section":
+            T = float(u[1])
+            if not 0.0 < T <= max_time():
+                raise FlowError(f"the period {T:.3g} left (0, {max_time():.0e}]")
+            end, mono, f = flow(sc, (self.theta_s, u[0]), [T], self.rtol, self.atol, self.force)
+            end, mono, f = end[0], mono[0], f[0]
+            F = np.array([end[0] - self.theta_s - 2 * math.pi * self.winding, end[1] - u[0]])
+            J = np.array([[mono[0, 1], f[0]], [mono[1, 1] - 1.0, f[1]]])
+            return Evaluation(F, J, mono, T)
+        try:
+            T = drive_period(sc, self.k)
+        except ValueError as exc:        # a continuation in drive_frequency that reaches the time limit
+            raise FlowError(str(exc)) from None
+        if self.mode == "half":
+            end, mono, _ = flow(sc, u, [0.5 * T], self.rtol, self.atol, self.force)
+            end, DG = end[0], -mono[0]
+            F = np.array([2 * math.pi * self.m - end[0] - u[0], -end[1] - u[1]])
+            return Evaluation(F, DG - np.eye(2), DG @ DG, T, DG)
+        end, mono, _ = flow(sc, u, [T], self.rtol, self.atol, self.force)
+        F = end[0] - u - np.array([2 * math.pi * self.winding, 0.0])
+        return Evaluation(F, mono[0] - np.eye(2), mono[0], T)
+
+    def dFdp(self, u, p: float, F) -> np.ndarray:
+        """dF/dp by a forward difference (it steers Newton and the tangent; the roots do not depend on it)."""
+        dp = 1e-7 * max(1.0, abs(p))
+        ev = self.evaluate(u, p + dp)
+        return (ev.F - F) / dp
+
+
+def newton(problem: OrbitProblem, u, p, tol: float, maxit: int, plane=None):
+    """Newton's iteration on F(u; p) = 0: the one corrector of the dynamics.
+
+    plane None: p fixed, u the unknowns (a periodic orbit at one parameter).  plane = (n, U0): the
+    parameter is a third unknown and the third equation is n . ((u, p) - U0) = 0 (the pseudo-arclength
+    condition of a continuation step, or a branch switch).  Converged when the residual and the last step
+    are below tol; steps longer than 1 in the state are shortened to 1 (a guess far from an orbit).
+    Returns (u, p, Evaluation at the root, iterations); NewtonError (with how far it got) otherwise."""
+    u = np.array(u, dtype=np.float64)
+    p = None if p is None else float(p)
+    last = math.inf
+    res = math.inf
+    for it in range(1, maxit + 2):
+        try:
+            ev = problem.evaluate(u, p)
+        except FlowError as exc:
+            raise NewtonError(f"{exc} at iteration {it}", it, res, (u, p)) from None
+        res = float(np.max(np.abs(ev.F)))
+        if not math.isfinite(res):
+            raise NewtonError(f"the residual is not finite at iteration {it}", it, res, (u, p))
+        scale = 1.0 + float(np.max(np.abs(u)))
+        if res <= tol * scale and last <= math.sqrt(tol) * scale * 1e-2 or res == 0.0:
+            return u, p, ev, it
+        if it > maxit:
+            break
+        if plane is None:
+            A, rhs = ev.J, -ev.F
+        else:
+            n, U0 = plane
+            Fp = problem.dFdp(u, p, ev.F)
+            A = np.zeros((3, 3))
+            A[:2, :2], A[:2, 2], A[2] = ev.J, Fp, n
+            rhs = -np.append(ev.F, np.dot(n, np.append(u, p) - U0))
+        try:
+            d = np.linalg.solve(A, rhs)
+        except np.linalg.LinAlgError:
+            raise NewtonError(f"the Jacobian is singular at iteration {it}", it, res, (u, p)) from None
+        big = float(np.max(np.abs(d[:2])))
+        if big > 1.0:
+            d = d / big
+        last = float(np.max(np.abs(d)))
+        u = u + d[:2]
+        if plane is not None:
+            p = p + float(d[2])
+    raise NewtonError(f"no convergence in {maxit} iterations", maxit, res, (u, p))
+
+
+def multipliers_of(M) -> np.ndarray:
+    """The eigenvalues of a monodromy, complex, largest modulus first."""
+    mu = np.linalg.eigvals(M).astype(complex)
+    return mu[np.argsort(-np.abs(mu), kind="stable")]
+
+
+def reduce_angle(theta: float) -> float:
+    """theta taken to [-pi, pi] (the force is 2 pi periodic)."""
+    return float(theta) - 2 * math.pi * round(float(theta) / (2 * math.pi))
+
+
+def check_driven_rigid(scene, who: str) -> None:
+    """The scene kinds the periodic orbits support (the rigid pendulum in the uniform field)."""
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a pendula.Scene, got {type(scene).__name__}")
+    if scene.guide != "none" or scene.cord != "rigid" or scene.gravity != "uniform":
+        model = "cycloid" if scene.guide != "none" else ("flexible cord" if scene.cord != "rigid" else
+                                                           f"gravity = {scene.gravity!r}")
+        raise NotImplementedError(f"{who}: the {model} model is not supported yet "
+                                  "(only the rigid pendulum in the uniform field)")
+
+
+def check_guess(guess, scene: Scene) -> np.ndarray:
+    """A state (theta, v): two reals, |theta| <= 2^52, theta reduced to [-pi, pi]."""
+    if guess is None:
+        guess = (scene.theta0, scene.v0)
+    if isinstance(guess, (str, bytes)) or not hasattr(guess, "__len__") or len(guess) != 2:
+        raise TypeError(f"guess must be a state (theta, v) of two numbers, got {guess!r:.60}")
+    th = _checks.angle(guess[0], "guess[0] (theta)")
+    v = _checks.real(guess[1], "guess[1] (v)")
+    return np.array([reduce_angle(th), v])
 
 
 def periodic_orbit(scene: Scene, guess: tuple[float, float] | None = None, k: int = 1, winding: int = 0,
@@ -101,11 +328,13 @@ def periodic_orbit(scene: Scene, guess: tuple[float, float] | None = None, k: in
     The map ``P`` takes the state at ``t = 0`` to the state ``k`` drive periods
     later; a periodic orbit is a root of ``P(x) - x - (2 pi winding, 0)``.  The
     flow and its monodromy matrix (the variational equations) come from GSL's
-    rk8pd, the root from GSL's hybrid Newton method with that exact Jacobian.
+    rk8pd, the root from Newton's method with that exact Jacobian ``M - I``
+    (steps longer than 1 shortened to 1).
     The Floquet multipliers are the eigenvalues of the monodromy; their
     product is ``exp(-damping * period)`` (Liouville), and ``log|mu| / period``
     are the orbit's Lyapunov exponents, the ones a ``lyapunov`` sweep measures
-    on an attracting orbit.
+    on an attracting orbit.  Ctrl-C stops the call; one flow takes at most
+    ``MAX_FLOW_STEPS`` steps.
 
     Parameters
     ----------
@@ -114,15 +343,16 @@ def periodic_orbit(scene: Scene, guess: tuple[float, float] | None = None, k: in
         ``drive_frequency`` non-zero); ``eps``, ``damping``, ``torque`` and
         ``drive_phase`` are used.
     guess : (float, float), optional
-        The starting state ``(theta, v)``; default ``(scene.theta0, scene.v0)``.
+        The starting state ``(theta, v)``, ``|theta| <= 2**52``; default
+        ``(scene.theta0, scene.v0)``.
     k : int, optional
         The period in drive periods (default 1).
     winding : int, optional
         Turns per period of a running orbit (default 0, an oscillation).
     tol : float, optional
-        Newton's stopping tolerance on the residual and the step (default 1e-11).
+        Newton's stopping tolerance on the residual (default 1e-11).
     rtol, atol : float, optional
-        The integrator's tolerances (default 1e-12).
+        The integrator's tolerances (default 1e-12; ``0 < rtol < 1``, ``0 <= atol < 1``).
     maxit : int, optional
         The most Newton iterations (default 100).
     force, force_params : optional
@@ -141,15 +371,19 @@ def periodic_orbit(scene: Scene, guess: tuple[float, float] | None = None, k: in
 
     Raises
     ------
+    TypeError
+        If an argument is not of its kind (a string, bytes or bool where a number is wanted).
     ValueError
-        If the scene is not driven, an argument is out of range, or Newton's
-        iteration fails (the message says how).
+        If the scene is not driven, an argument is out of range, ``k`` drive
+        periods exceed the time limit 1e8, the flow exceeds the work limit, or
+        Newton's iteration fails (the message says where it got).
     NotImplementedError
         For the flexible cord, the cycloidal guide and the non-uniform fields.
 
     See Also
     --------
     equilibria : the rest points of an autonomous scene.
+    continue_orbit : the orbit followed as a parameter moves, and its bifurcations.
 
     Examples
     --------
@@ -161,65 +395,32 @@ def periodic_orbit(scene: Scene, guess: tuple[float, float] | None = None, k: in
     >>> print(f"{po.exponents[0]:.6f}")
     -0.250000
     """
-    if not isinstance(scene, Scene):
-        raise TypeError(f"scene must be a pendula.Scene, got {type(scene).__name__}")
-    if scene.guide != "none" or scene.cord != "rigid" or scene.gravity != "uniform":
-        model = "cycloid" if scene.guide != "none" else ("flexible cord" if scene.cord != "rigid" else
-                                                           f"gravity = {scene.gravity!r}")
-        raise NotImplementedError(f"periodic_orbit: the {model} model is not supported yet "
-                                  "(only the rigid pendulum in the uniform field)")
-    # the forcing's period: the drive's or the vibrating pivot's
-    freqs = {f for a, f in ((scene.drive_amplitude, scene.drive_frequency),
-                            (scene.pivot_amplitude, scene.pivot_frequency)) if a != 0.0 and f != 0.0}
+    check_driven_rigid(scene, "periodic_orbit")
     if scene.friction != 0.0:
         raise ValueError("field 'friction': periodic_orbit needs a smooth flow (its monodromy); dry friction "
                          "sticks: simulate the scene instead")
-    if len(freqs) > 1:
-        raise ValueError("fields 'drive_frequency' and 'pivot_frequency': periodic_orbit needs one forcing "
-                         "period; give the drive and the pivot the same frequency")
-    if not freqs:
-        raise ValueError("drive_amplitude, drive_frequency: periodic_orbit needs a periodically driven scene; "
-                         "an undriven scene's rest points come from pendula.equilibria")
-    for name, val in (("k", k), ("winding", winding), ("maxit", maxit)):
-        if isinstance(val, bool) or not isinstance(val, (int, np.integer)):
-            raise TypeError(f"{name} must be a whole number, got {val!r}")
-    if not 1 <= k <= 10**4:
-        raise ValueError(f"k must be between 1 and 10000 drive periods, got {k}")
-    if not 1 <= maxit <= 10**4:
-        raise ValueError(f"maxit must be between 1 and 10000, got {maxit}")
-    if abs(winding) > 10**9:
-        raise ValueError(f"winding must be at most 1e9 turns in magnitude, got {winding}")
-    for name, val in (("tol", tol), ("rtol", rtol), ("atol", atol)):
-        if not (isinstance(val, (int, float, np.floating)) and math.isfinite(val) and val > 0):
-            raise ValueError(f"{name} must be a positive finite number, got {val!r}")
-    if guess is None:
-        guess = (scene.theta0, scene.v0)
+    forcing_frequency(scene)
+    k = _checks.count(k, "k", 1, 10**4)
+    maxit = _checks.count(maxit, "maxit", 1, 10**4)
+    winding = _checks.count(winding, "winding", -10**9, 10**9)
+    tol = _checks.real(tol, "tol", 0.0, lo_open=True)
+    rtol, atol = _checks.tolerances(rtol, atol)
+    x0 = check_guess(guess, scene)
+    period = drive_period(scene, k)
+    uf = None if force is None and force_params is None else _checks.force(force, force_params)
+    problem = OrbitProblem(scene, "map", k, winding, rtol=rtol, atol=atol, force=uf)
     try:
-        x0 = np.array([float(guess[0]), float(guess[1])], dtype=np.float64)
-        if len(guess) != 2:
-            raise ValueError
-    except (TypeError, ValueError, IndexError):
-        raise ValueError(f"guess must be a state (theta, v), got {guess!r}") from None
-    if not np.all(np.isfinite(x0)):
-        raise ValueError(f"guess must be finite, got {guess!r}")
-    period = k * 2 * math.pi / abs(freqs.pop())
-    fx, words, wlen, nout, ngrid = scene._kernel_fields     # the scene as the kernel checked it
-    if force is None and force_params is None:
-        x, mono, info, status = _kernel.periodic_orbit_v(fx, words, wlen, nout, ngrid, period, float(winding),
-                                                         rtol, atol, tol, maxit, x0)
-    else:
-        uf = _checks.force(force, force_params)
-        x, mono, info, status = _kernel.periodic_orbit_force_v(fx, words, wlen, nout, ngrid, period,
-                                                               float(winding), rtol, atol, tol, maxit, x0,
-                                                               uf.address, uf.params)
+        x, _, ev, _ = newton(problem, x0, None, tol, maxit)
+    except NewtonError as exc:
+        if uf is not None:
+            uf.reraise()
+        u = exc.state[0]
+        raise ValueError(f"periodic_orbit: Newton's iteration from guess {tuple(x0.tolist())} failed: {exc}; "
+                         f"it got to theta={u[0]:.6g}, v={u[1]:.6g} with residual {exc.residual:.3g} "
+                         "(try another guess, or a looser tol)") from None
+    if uf is not None:
         uf.reraise()
-    if status:
-        raise ValueError(f"periodic_orbit: {_PO_STATUS[status]}; residual {info[2]:.3g} after {int(info[0])} "
-                         "iterations")
-    # the state on the section, theta taken to (-pi, pi] (the force is 2 pi periodic)
-    theta = float(x[0]) - 2 * math.pi * round(float(x[0]) / (2 * math.pi))
-    m = mono.reshape(2, 2).copy()
-    mu = np.linalg.eigvals(m).astype(complex)
-    mu = mu[np.argsort(-np.abs(mu), kind="stable")]
-    return PeriodicOrbit(theta, float(x[1]), period, mu, np.log(np.abs(mu)) / period, m, int(winding),
-                         float(info[2]))
+    m = ev.M.copy()
+    mu = multipliers_of(m)
+    return PeriodicOrbit(reduce_angle(x[0]), float(x[1]), period, mu, np.log(np.abs(mu)) / period, m,
+                         int(winding), float(np.max(np.abs(ev.F))))

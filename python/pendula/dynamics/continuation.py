@@ -1,0 +1,898 @@
+"""Continuation: a periodic orbit or an equilibrium followed as one scene field moves, with its bifurcations.
+
+Pseudo-arclength continuation (Keller; Kuznetsov, *Elements of Applied
+Bifurcation Theory*, section 10.2) on the one Newton-and-monodromy core of
+:mod:`.periodic`: the orbit's two unknowns and the parameter are three
+unknowns, the third equation fixes the arclength along the tangent, so the
+branch is followed through turning points.  Bifurcations are found by the
+sign of test functions of the monodromy ``M`` (``det(M - I)``, ``det(M + I)``,
+``det M - 1`` for a complex pair, the tangent's parameter component at a
+fold) and located by solving the test function's root along the branch
+(Illinois regula falsi, each evaluation a corrected point of the branch), not
+by the step size.  The pendulum's symmetry (theta, v, t) -> (-theta, -v,
+t + T/2) of an untorqued drive is used exactly: a symmetric orbit is followed
+as a fixed point of the half-period map G (G o G = P), where the
+symmetry-breaking pitchfork is a regular flip of G.  The homoclinic end of a
+running autonomous orbit is located by the splitting of the saddle's unstable
+manifold from the next saddle's stable one.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .. import _checks
+from ..scene import Scene, SceneError, _NUMBERS, _WHOLE
+from .equilibria import equilibria
+from .periodic import (FlowError, NewtonError, OrbitProblem, check_driven_rigid, check_guess, drive_period,
+                       flow, multipliers_of, newton, reduce_angle)
+
+if TYPE_CHECKING:   # xarray is optional: named in annotations only
+    import xarray
+
+__all__ = ["Bifurcation", "Branch", "ContinuationError", "EquilibriumBranch", "continue_orbit",
+           "continue_equilibria", "BIFURCATION_KINDS"]
+
+#: The kinds of bifurcation a branch reports.
+BIFURCATION_KINDS = ("fold", "pitchfork", "period-doubling", "neimark-sacker", "homoclinic", "saddle-node")
+
+#: The most points of one continuation (the work limit).
+MAX_POINTS = 20_000
+#: A branch ends where a multiplier's modulus exceeds this: single shooting cannot follow it further.
+MAX_MULTIPLIER = 1e6
+_TOL = 1e-11          # Newton's tolerance on the residual (the flow's own accuracy is about 1e-12)
+_MAXIT = 10           # corrector iterations before the step is halved
+
+
+class ContinuationError(ValueError):
+    """The continuation could not go on; ``branch`` holds the part traced before it stopped.
+
+    A ValueError, raised by :func:`continue_orbit` when a step shrinks to nothing (say at a fold the
+    steps cannot pass); the message names the field and where the branch stopped.
+
+    Attributes
+    ----------
+    branch : Branch or None
+        The points traced before the error.
+
+    See Also
+    --------
+    continue_orbit : raises it.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> err = pendula.ContinuationError("torque: the step shrank to nothing at torque = 0.3")
+    >>> isinstance(err, ValueError), err.branch
+    (True, None)
+    """
+
+    def __init__(self, message: str, branch: "Branch | None" = None) -> None:
+        super().__init__(message)
+        self.branch = branch
+
+
+@dataclass(frozen=True)
+class Bifurcation:
+    """A bifurcation on a branch, located by solving its defining condition.
+
+    Attributes
+    ----------
+    kind : str
+        ``'fold'`` (a multiplier through +1 where the branch turns), ``'pitchfork'`` (through +1 where
+        the symmetric orbit's symmetry breaks: a branch point), ``'period-doubling'`` (through -1),
+        ``'neimark-sacker'`` (a complex pair through the unit circle), ``'homoclinic'`` (the period
+        diverges: the orbit meets a saddle), ``'saddle-node'`` (two equilibria merge).
+    value : float
+        The parameter at the bifurcation.
+    period : float
+        Drive periods k of a driven orbit, the time period of an autonomous one (``inf`` at a
+        homoclinic), 0 for an equilibrium.
+    theta, v : float
+        The orbit's state on its section (the saddle, for a homoclinic; the rest point, for a saddle-node).
+    multipliers : numpy.ndarray
+        The Floquet multipliers there (eigenvalues, for an equilibrium).
+
+    See Also
+    --------
+    continue_orbit, continue_equilibria : find them.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> sc = pendula.Scene(damping=0.5, drive_amplitude=1.0, drive_frequency=2/3)
+    >>> br = pendula.continue_orbit(sc, (0.1, 1.9), "drive_amplitude", 1.07)
+    >>> [(b.kind, round(b.value, 6)) for b in br.bifurcations]
+    [('pitchfork', 1.004319)]
+    """
+
+    kind: str
+    value: float
+    period: float
+    theta: float
+    v: float
+    multipliers: np.ndarray
+
+
+@dataclass(frozen=True)
+class Branch:
+    """A continued branch of periodic orbits (one call of :func:`continue_orbit`).
+
+    Attributes
+    ----------
+    scene : Scene
+        The scene the continuation started from.
+    param : str
+        The scene field continued in.
+    values : numpy.ndarray
+        The parameter at each point.
+    theta, v : numpy.ndarray
+        The state on the section at each point (theta in ``[-pi, pi]``; for an autonomous orbit theta
+        is the section's angle).
+    period : numpy.ndarray
+        Drive periods k of a driven orbit, the time period of an autonomous one.
+    multipliers : numpy.ndarray
+        The two Floquet multipliers at each point (complex, shape (points, 2), largest modulus first).
+    stable : numpy.ndarray
+        True where the orbit attracts (for an autonomous orbit: the non-trivial multiplier ``det M``).
+    segment : numpy.ndarray
+        The segment of each point: 0, and one more after each switch to a child branch (``follow='stable'``).
+    bifurcations : tuple of Bifurcation
+        In the order met.
+    end : str
+        Why the branch ends (``'stop'`` when it reached ``stop``).
+
+    See Also
+    --------
+    continue_orbit : makes it.
+    Bifurcation : its records of the bifurcations.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> sc = pendula.Scene(damping=0.5, drive_amplitude=1.0, drive_frequency=2/3)
+    >>> br = pendula.continue_orbit(sc, (0.1, 1.9), "drive_amplitude", 1.004)
+    >>> br.end, bool(br.stable.all()), round(float(br.values[-1]), 12)
+    ('stop', True, 1.004)
+    """
+
+    scene: Scene
+    param: str
+    values: np.ndarray
+    theta: np.ndarray
+    v: np.ndarray
+    period: np.ndarray
+    multipliers: np.ndarray
+    stable: np.ndarray
+    segment: np.ndarray
+    bifurcations: tuple
+    end: str
+
+    def __len__(self) -> int:
+        return len(self.values)
+
+    def to_xarray(self) -> xarray.Dataset:
+        """The branch as an xarray Dataset with dims (``point``, ``multiplier``).
+
+        Returns
+        -------
+        xarray.Dataset
+            Variables: the parameter (named for the field), ``theta``, ``v``, ``period``,
+            ``multipliers`` (complex), ``stable``, ``segment``; the bifurcations in the attribute
+            ``bifurcations`` as text.
+
+        Examples
+        --------
+        >>> import pendula
+        >>> sc = pendula.Scene(damping=0.5, drive_amplitude=1.0, drive_frequency=2/3)
+        >>> ds = pendula.continue_orbit(sc, (0.1, 1.9), "drive_amplitude", 1.01).to_xarray()
+        >>> dict(ds.sizes)["multiplier"]
+        2
+        """
+        import xarray as xr
+        n = len(self.values)
+        return xr.Dataset(
+            {self.param: ("point", self.values), "theta": ("point", self.theta), "v": ("point", self.v),
+             "period": ("point", self.period), "multipliers": (("point", "multiplier"), self.multipliers),
+             "stable": ("point", self.stable), "segment": ("point", self.segment)},
+            coords={"point": np.arange(n), "multiplier": np.arange(2)},
+            attrs={"param": self.param, "end": self.end,
+                   "bifurcations": "; ".join(f"{b.kind} at {self.param}={b.value!r}" for b in self.bifurcations)})
+
+
+# ---------------------------------------------------------------- arguments
+
+def _param_value(scene: Scene, param) -> float:
+    if not isinstance(param, str):
+        raise TypeError(f"param must be the name of a scene field (str), not {type(param).__name__}")
+    names = {f.name for f in dataclasses.fields(Scene)}
+    if param not in names:
+        raise ValueError(f"param: {param!r} is not a scene field")
+    if param not in _NUMBERS or param in _WHOLE:
+        raise ValueError(f"param: the scene field {param!r} is not a real number; continuation needs one")
+    return float(getattr(scene, param))
+
+
+def _stop_value(scene: Scene, param: str, p0: float, stop) -> float:
+    stop = _checks.real(stop, "stop")
+    if stop == p0:
+        raise ValueError(f"stop: equals the scene's {param} = {p0!r}; give the value to continue to")
+    if param in ("drive_amplitude", "drive_frequency") and scene.drive_amplitude != 0 and (stop <= 0) != (p0 <= 0):
+        raise ValueError(f"stop: {param} = {stop!r} is on the other side of 0 from the scene's {p0!r}; "
+                         "at 0 the scene is no longer driven")
+    try:
+        scene.replace(**{param: stop})
+    except SceneError as exc:
+        raise SceneError(f"stop: {exc}") from None
+    return stop
+
+
+# ---------------------------------------------------------------- the branch tracer
+
+def _tangent(J, Fp, previous=None) -> np.ndarray:
+    """The unit null vector of [J | Fp] (2 x 3: the cross product of its rows), oriented along previous."""
+    t = np.cross(np.append(J[0], Fp[0]), np.append(J[1], Fp[1]))
+    t = t / np.linalg.norm(t)
+    if previous is not None and np.dot(t, previous) < 0:
+        t = -t
+    return t
+
+
+def _tests(mode: str, ev) -> dict:
+    """The test functions at one point: each changes sign at its bifurcation."""
+    M = ev.M
+    tr, det = float(np.trace(M)), float(np.linalg.det(M))
+    out = {"fold": float(np.linalg.det(ev.J))}
+    if mode == "section":       # the trivial multiplier 1 and det M: only the fold and the homoclinic
+        return out
+    out["period-doubling"] = 1.0 + tr + det
+    if mode == "half":
+        D = ev.DG
+        out["pitchfork"] = 1.0 + float(np.trace(D)) + float(np.linalg.det(D))
+    else:
+        out["plus"] = 1.0 - tr + det
+    out["neimark-sacker"] = det - 1.0 if tr * tr < 4.0 * det else math.nan
+    return out
+
+
+def _stable(mode: str, ev) -> bool:
+    if mode == "section":
+        return bool(abs(np.linalg.det(ev.M)) < 1.0)
+    return bool(np.all(np.abs(multipliers_of(ev.M)) < 1.0))
+
+
+def _root(g, a: float, ga: float, b: float, gb: float, xtol: float, maxit: int = 80):
+    """The root of g in [a, b] (ga, gb of opposite signs) by Illinois regula falsi, bisecting when a
+    value is not finite; g returns (value, payload).  Returns (x, payload) of the last evaluation."""
+    side = 0
+    x, payload = b, None
+    for _ in range(maxit):
+        if math.isfinite(ga) and math.isfinite(gb) and gb != ga:
+            x = (a * gb - b * ga) / (gb - ga)
+            if not min(a, b) < x < max(a, b):
+                x = 0.5 * (a + b)
+        else:
+            x = 0.5 * (a + b)
+        gx, payload = g(x)
+        if gx == 0.0:
+            break
+        if (gx > 0) == (gb > 0):
+            b, gb = x, gx
+            if side == -1 and math.isfinite(ga):
+                ga *= 0.5
+            side = -1
+        else:
+            a, ga = x, gx
+            if side == 1 and math.isfinite(gb):
+                gb *= 0.5
+            side = 1
+        if abs(b - a) <= xtol:
+            break
+    return x, payload
+
+
+class _Tracer:
+    """The state of one continue_orbit call."""
+
+    def __init__(self, scene, param, p0, stop, follow, step):
+        self.scene, self.param, self.p0, self.stop, self.follow = scene, param, p0, stop, follow
+        span = abs(stop - p0)
+        self.h0 = step if step is not None else min(0.05, span / 20)
+        self.hmax = max(self.h0, span / 10) if step is None else step * 4
+        self.hmin = 1e-10 * max(1.0, abs(p0), abs(stop))
+        self.rows: list = []          # (p, theta, v, period, mu0, mu1, stable, segment)
+        self.bifs: list = []
+        self.segment = 0
+        self.end = ""
+
+    # -- records
+    def _period(self, prob, ev) -> float:
+        return float(ev.T) if prob.mode == "section" else float(prob.k)
+
+    def _state(self, prob, u):
+        if prob.mode == "section":
+            return reduce_angle(prob.theta_s), float(u[0])
+        return reduce_angle(u[0]), float(u[1])
+
+    def record(self, prob, U, ev):
+        th, v = self._state(prob, U[:2])
+        mu = multipliers_of(ev.M)
+        self.rows.append((float(U[2]), th, v, self._period(prob, ev), mu[0], mu[1], _stable(prob.mode, ev),
+                          self.segment))
+
+    def bifurcation(self, kind, prob, U, ev):
+        th, v = self._state(prob, U[:2])
+        self.bifs.append(Bifurcation(kind, float(U[2]), self._period(prob, ev), th, v, multipliers_of(ev.M)))
+
+    def branch(self) -> Branch:
+        r = self.rows
+        col = (lambda i, dt=float: np.array([x[i] for x in r], dtype=dt))
+        mus = np.array([[x[4], x[5]] for x in r], dtype=complex).reshape(-1, 2)
+        return Branch(self.scene, self.param, col(0), col(1), col(2), col(3), mus, col(6, bool), col(7, int),
+                      tuple(self.bifs), self.end)
+
+    def fail(self, message):
+        self.end = "error"
+        raise ContinuationError(f"{self.param}: {message}", self.branch())
+
+    # -- the corrector at a given arclength along a tangent
+    def correct(self, prob, Upred, n, U0, maxit=_MAXIT):
+        u, p, ev, it = newton(prob, Upred[:2], Upred[2], _TOL, maxit, plane=(n, U0))
+        return np.append(u, p), ev, it
+
+    def tangent(self, prob, U, ev, previous=None):
+        Fp = prob.dFdp(U[:2], U[2], ev.F)
+        return _tangent(ev.J, Fp, previous), Fp
+
+    # -- one branch (a segment), from a corrected point with its tangent
+    def run_segment(self, prob, U, ev, t):
+        h = self.h0
+        lo, hi = sorted((self.p0, self.stop))
+        tests = _tests(prob.mode, ev)
+        stable = _stable(prob.mode, ev)
+        T_first = float(ev.T)
+        while True:
+            if len(self.rows) >= MAX_POINTS:
+                self.end = f"work limit: {MAX_POINTS} points"
+                return None
+            Upred = U + h * t
+            try:
+                Ub, evb, it = self.correct(prob, Upred, t, Upred)
+                tb, _ = self.tangent(prob, Ub, evb, t)
+            except (NewtonError, FlowError) as exc:
+                if prob.mode == "section" and self.homoclinic(prob, U, ev, t, h):
+                    return None
+                h *= 0.5
+                if h < self.hmin:
+                    self.fail(f"the branch cannot be continued past {self.param} = {float(U[2])!r} "
+                              f"(theta={self._state(prob, U[:2])[0]:.6g}, v={self._state(prob, U[:2])[1]:.6g}): "
+                              f"{exc}; the step shrank below {self.hmin:.1e}")
+                continue
+            testsb = _tests(prob.mode, evb)
+            # a test function that moves far in one step could hide two sign changes: shorter steps
+            # (far relative to its size: an unstable orbit's 1 + tr M + det M may be in the thousands)
+            jump = any(abs(testsb[key] - tests[key]) > 0.5 * (1 + min(abs(testsb[key]), abs(tests[key])))
+                       for key in ("period-doubling", "pitchfork", "plus")
+                       if key in tests and math.isfinite(tests[key]) and math.isfinite(testsb[key]))
+            if (np.dot(t, tb) < 0.98 or jump) and h > 1e3 * self.hmin:
+                h *= 0.5
+                continue
+            # the stop, or the start side after a turn: the last point exactly there
+            pb = Ub[2]
+            final = None
+            if pb > hi or pb < lo:
+                edge = hi if pb > hi else lo
+                n = np.array([0.0, 0.0, 1.0])
+                frac = (edge - U[2]) / (pb - U[2])
+                Ue, eve, _ = self.correct(prob, U + frac * (Ub - U), n, np.array([0.0, 0.0, edge]), maxit=20)
+                Ub, evb = Ue, eve
+                tb, _ = self.tangent(prob, Ub, evb, t)
+                testsb = _tests(prob.mode, evb)
+                final = "stop" if edge == self.stop else f"turned back to {self.param} = {float(edge)!r} (past a fold)"
+            # bifurcations between U and Ub
+            events = self.events(prob, U, ev, t, tests, Ub, evb, tb, testsb)
+            stableb = _stable(prob.mode, evb)
+            for s, kind, Uc, evc in events:
+                self.bifurcation(kind, prob, Uc, evc)
+                if self.follow == "stable" and stable:
+                    if kind in ("pitchfork", "period-doubling"):
+                        # the stable side of the point: follow the child if this branch lost stability
+                        if not stableb:
+                            self.record(prob, Uc, evc)
+                            return ("switch", kind, prob, Uc, evc, t)
+                    elif kind in ("fold", "neimark-sacker") and not stableb:
+                        self.record(prob, Uc, evc)
+                        self.end = (f"{kind} at {self.param} = {float(Uc[2])!r}: the attracting orbit ends there "
+                                    "(the motion jumps to another attractor)")
+                        return None
+            self.record(prob, Ub, evb)
+            if final is not None:
+                self.end = final
+                return None
+            big = float(np.max(np.abs(multipliers_of(evb.M))))
+            if big > MAX_MULTIPLIER:
+                self.end = (f"at {self.param} = {float(Ub[2])!r} a multiplier reaches {big:.1e}: too unstable for single "
+                            "shooting (Newton's basin shrinks to the flow's error times that)")
+                return None
+            if prob.mode == "section" and evb.T > 1.5 * T_first and evb.T > ev.T \
+                    and self.homoclinic(prob, Ub, evb, tb, abs(Ub[2] - U[2])):
+                # the period grows: the homoclinic orbit lies within a few steps
+                return None
+            if it <= 3:
+                # (an autonomous period grows without bound near the homoclinic: steps grow with it)
+                h = min(1.5 * h, max(self.hmax, 0.2 * float(evb.T)) if prob.mode == "section" else self.hmax)
+            U, ev, t, tests, stable = Ub, evb, tb, testsb, stableb
+
+    def events(self, prob, Ua, eva, ta, tests_a, Ub, evb, tb, tests_b):
+        """The bifurcations between two points, located, in the order met."""
+        sb = float(np.dot(ta, Ub - Ua))
+        found = []
+        folded = (ta[2] > 0) != (tb[2] > 0)
+        cand = []
+        if folded:
+            cand.append(("fold", "fold"))
+        for key in ("pitchfork", "period-doubling", "neimark-sacker"):
+            if key in tests_a and math.isfinite(tests_a[key]) and math.isfinite(tests_b[key]) \
+                    and (tests_a[key] > 0) != (tests_b[key] > 0):
+                cand.append((key, key))
+        if "plus" in tests_a and (tests_a["plus"] > 0) != (tests_b["plus"] > 0) and not folded:
+            cand.append(("pitchfork", "plus"))
+        for kind, key in cand:
+            def g(s, key=key):
+                Upred = Ua + (s / sb) * (Ub - Ua) if sb else Ua
+                Uc, evc, _ = self.correct(prob, Upred, ta, Ua + s * ta, maxit=20)
+                return _tests(prob.mode, evc)[key], (Uc, evc)
+            try:
+                s, (Uc, evc) = _root(g, 0.0, tests_a[key], sb, tests_b[key], xtol=1e-13 * (1 + abs(sb)))
+            except (NewtonError, FlowError) as exc:
+                self.fail(f"the {kind} between {self.param} = {float(Ua[2])!r} and {float(Ub[2])!r} could not be located: {exc}")
+            found.append((s, kind, Uc, evc))
+        found.sort(key=lambda e: e[0])
+        return found
+
+    # -- branch switching at a pitchfork or a period doubling
+    def switch(self, kind, prob, Us, evs, t_parent):
+        k2, w2 = (prob.k, prob.winding) if kind == "pitchfork" else (2 * prob.k, 2 * prob.winding)
+        if k2 > 10**4:
+            self.end = f"{kind} at {self.param} = {float(Us[2])!r}: the child's period exceeds 10000 drive periods"
+            return None
+        child = OrbitProblem(prob.base, "map", k2, w2, self.param, prob.rtol, prob.atol)
+        parent_map = OrbitProblem(prob.base, "map", prob.k, prob.winding, self.param, prob.rtol, prob.atol)
+        target = 1.0 if kind == "pitchfork" else -1.0
+        mu, vec = np.linalg.eig(evs.M)
+        i = int(np.argmin(np.abs(mu - target)))
+        e = np.real(vec[:, i])
+        e = e / np.linalg.norm(e)
+        if e[0] < 0 or (e[0] == 0 and e[1] < 0):
+            e = -e
+        E = np.append(e, 0.0)
+        n = E - np.dot(E, t_parent) * t_parent
+        n = n / np.linalg.norm(n)
+        # the child next to the branch point (close: the next doubling of a cascade may be near)
+        for hb in (1e-5, 1e-4, 1e-3, 1e-2):
+            Upred = Us + (hb / np.dot(n, E)) * E
+            try:
+                U1, ev1, _ = self.correct(child, Upred, n, Upred, maxit=20)
+                off = float(np.max(np.abs((prob if kind == "pitchfork" else parent_map).evaluate(U1[:2], U1[2]).F)))
+            except (NewtonError, FlowError):
+                continue
+            # a child distinct from the parent, its parameter offset (c hb^2) resolved above the noise
+            if off > 0.1 * hb and abs(U1[2] - Us[2]) > 1e-9 * max(1.0, abs(Us[2])):
+                break
+        else:
+            self.end = f"{kind} at {self.param} = {float(Us[2])!r}: no child branch found next to it"
+            return None
+        # supercritical (the child on the far side, attracting: its multiplier 1 - O(hb^2) inside the
+        # circle) or subcritical (on the near side, repelling)
+        if (U1[2] - Us[2]) * (self.stop - Us[2]) < 0:
+            self.end = (f"{kind} at {self.param} = {float(Us[2])!r} is subcritical: no attracting child branch "
+                        "(the motion jumps to another attractor)")
+            return None
+        t1, _ = self.tangent(child, U1, ev1)
+        if np.dot(t1, U1 - Us) < 0:
+            t1 = -t1
+        self.segment += 1
+        self.record(child, U1, ev1)
+        return child, U1, ev1, t1
+
+    # -- the homoclinic end of an autonomous running orbit
+    def homoclinic(self, prob, U, ev, t, dp) -> bool:
+        """Locate the parameter where the saddle's unstable manifold reaches the next saddle, beyond U
+        in the branch's direction; True (and the branch ended) when it lies within 4 dp."""
+        sign = 1.0 if t[2] > 0 else -1.0
+        p = float(U[2])
+        d0 = _splitting(prob.scene(p), prob.winding, prob.rtol, prob.atol)
+        if not (d0 is not None and d0 > 0):
+            return False
+        width = max(4 * dp, 1e-12 * max(1.0, abs(p)))
+        q, dq = p, None
+        for _ in range(1):
+            q = p + sign * width
+            if (q - self.stop) * (self.stop - p) > 0 or not math.isfinite(q):
+                return False
+            try:
+                dq = _splitting(prob.scene(q), prob.winding, prob.rtol, prob.atol)
+            except SceneError:
+                return False
+            if dq is None or dq <= 0:
+                break
+            p, d0 = q, dq
+            width *= 2
+        else:
+            return False
+
+        def g(x):
+            d = _splitting(prob.scene(x), prob.winding, prob.rtol, prob.atol)
+            return (-1.0 if d is None else d), None
+        ph, _ = _root(g, p, d0, q, -1.0 if dq is None else dq, xtol=1e-14 * max(1.0, abs(p)))
+        sc = prob.scene(ph)
+        sad = [e for e in equilibria(sc) if e.kind == "saddle"]
+        theta = sad[0].theta if sad else math.nan
+        self.bifs.append(Bifurcation("homoclinic", float(ph), math.inf, theta, 0.0, np.array([1.0, 0.0],
+                                                                                              dtype=complex)))
+        self.end = f"homoclinic at {self.param} = {float(ph)!r}: the period diverges"
+        return True
+
+
+def _saddle(sc: Scene):
+    """The saddle of one turn with its eigenvalues, and the angles of the other rest points."""
+    eqs = equilibria(sc)
+    sad = [e for e in eqs if e.kind == "saddle"]
+    if not sad:
+        return None
+    e = sad[0]
+    lam = np.sort(e.eigenvalues.real)
+    return e.theta, float(lam[1]), float(lam[0]), [x.theta for x in eqs if x is not e]
+
+
+def _crossing(sc: Scene, x0, target: float, direction: float, w: float, horizon: float, rtol, atol):
+    """The velocity where the orbit from x0 (forward in time when direction > 0) first reaches
+    theta = target, refined by Newton in time; None when it turns back first."""
+    times = direction * horizon * np.arange(1, 401) / 400
+    try:
+        ends, _, _ = flow(sc, x0, times, rtol, atol)
+    except FlowError:
+        return None
+    for i in range(len(times)):
+        if w * ends[i, 1] <= 0:
+            return None
+        if direction * w * (ends[i, 0] - target) >= 0:
+            # Newton in time inside the grid interval [times[i-1], times[i]]
+            a, b = sorted((times[i - 1] if i else 0.0, times[i]))
+            t = min(max(times[i] - (ends[i, 0] - target) / ends[i, 1], a), b)
+            for _ in range(12):
+                end, _, f = flow(sc, x0, [t], rtol, atol)
+                dt = (end[0, 0] - target) / f[0, 0]
+                t = min(max(t - dt, a), b)
+                if abs(dt) <= 1e-15 * abs(t):
+                    break
+            end, _, _ = flow(sc, x0, [t], rtol, atol)
+            return float(end[0, 1])
+    return None
+
+
+def _splitting(sc: Scene, w: int, rtol: float, atol: float, delta: float = 1e-7):
+    """The splitting of the saddle's unstable manifold from the next saddle's stable manifold (one turn
+    on, in the direction w), as w (v_u - v_s) on the section theta = next saddle - w Delta, Delta half
+    the gap to the rest point before it (at most 1): positive where the running orbit exists, zero at
+    the homoclinic orbit.  None when the unstable manifold falls back before the section, +inf when
+    there is no saddle (the running orbit exists for sure)."""
+    sd = _saddle(sc)
+    if sd is None:
+        return math.inf
+    ths, lu, ls, others = sd
+    nxt = ths + 2 * math.pi * w
+    gaps = [(w * (nxt - th)) % (2 * math.pi) for th in others]
+    gap = min([g for g in gaps if g > 0] or [2 * math.pi])
+    target = nxt - w * min(1.0, 0.5 * gap)
+    hu = (math.log(1 / delta) + 20) / lu
+    vu = _crossing(sc, (ths + w * delta, w * delta * lu), target, 1.0, w, hu, rtol, atol)
+    if vu is None:
+        return None
+    hs = (math.log(1 / delta) + 5) / abs(ls)
+    vs = _crossing(sc, (nxt - w * delta, -w * delta * ls), target, -1.0, w, hs, rtol, atol)
+    if vs is None:
+        return None
+    return w * (vu - vs)
+
+
+def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: float, *, k: int = 1,
+                   winding: int = 0, follow: str = "branch", step: float | None = None) -> Branch:
+    """A periodic orbit followed in one scene field by pseudo-arclength continuation, with its bifurcations.
+
+    From the orbit Newton's method finds at ``guess`` (as :func:`periodic_orbit`),
+    the branch is followed until ``param`` reaches ``stop``, through turning
+    points (folds).  A driven scene's orbit is a fixed point of the k-fold
+    stroboscopic map advancing ``winding`` turns; an autonomous scene's (torque
+    and damping, no drive) is a running orbit on the section ``theta = guess[0]``
+    with its period as an unknown.  Along the branch the Floquet multipliers
+    are watched; each bifurcation is located by solving its test function's
+    root along the branch (to about 1e-12 in the parameter), not by the step:
+
+    * ``'fold'``: a multiplier through +1 where the branch turns;
+    * ``'pitchfork'``: through +1 where the symmetric orbit of an untorqued drive,
+      ``(theta, v, t) -> (-theta, -v, t + T/2)``, breaks its symmetry;
+    * ``'period-doubling'``: through -1;
+    * ``'neimark-sacker'``: a complex pair through the unit circle;
+    * ``'homoclinic'``: the period of an autonomous running orbit diverges where
+      it meets the saddle (the retrapping torque of the damped pendulum).
+
+    With ``follow='stable'`` the attracting orbit is followed: at a pitchfork
+    or a period doubling where the branch loses stability the call switches to
+    the stable child (period 2k after a doubling), so one call traces the
+    route from a period-1 orbit through the cascade; at a fold, a subcritical
+    bifurcation or a Neimark-Sacker point the attracting orbit ends and so does
+    the branch (``Branch.end`` says why).  Ctrl-C stops the call.
+
+    Parameters
+    ----------
+    scene : Scene
+        A rigid pendulum in the uniform field: driven (``drive_amplitude`` and
+        ``drive_frequency`` non-zero) or autonomous (no drive, a torque).
+    guess : (float, float)
+        A state ``(theta, v)`` near the orbit at the start.
+    param : str
+        The numeric scene field to move (``'drive_amplitude'``, ``'drive_frequency'``,
+        ``'damping'``, ``'torque'``, ``'eps'``, ...).
+    stop : float
+        The value of ``param`` to continue to.
+    k : int, optional
+        The period in drive periods (driven scenes; default 1).
+    winding : int, optional
+        Turns per period (default 0; an autonomous running orbit takes the sign of ``guess[1]``).
+    follow : {'branch', 'stable'}, optional
+        Follow the one branch through everything (default), or the attracting orbit.
+    step : float, optional
+        The first arclength step (default ``min(0.05, |stop - start| / 20)``); steps adapt.
+
+    Returns
+    -------
+    Branch
+        The points, their multipliers and stability, and the bifurcations.
+
+    Raises
+    ------
+    TypeError
+        If ``param`` is not a string or an argument is not of its kind.
+    ValueError
+        If ``param`` is not a numeric scene field or does not change the orbit,
+        ``stop`` equals the start or lies beyond 0 of the drive, the guess does
+        not converge (the message says where Newton got), or ``follow='stable'``
+        starts on an unstable orbit.
+    ContinuationError
+        A ValueError: the branch cannot be continued (a step shrank to nothing,
+        say at a fold it cannot pass); its ``branch`` holds the part traced.
+    NotImplementedError
+        For the flexible cord, the cycloidal guide and the non-uniform fields.
+
+    See Also
+    --------
+    periodic_orbit : one orbit by Newton's method.
+    continue_equilibria : the rest points against a parameter.
+
+    Examples
+    --------
+    The damped driven pendulum's symmetric orbit breaks its symmetry, then doubles its period:
+
+    >>> import pendula
+    >>> sc = pendula.Scene(damping=0.5, drive_amplitude=1.0, drive_frequency=2/3)
+    >>> br = pendula.continue_orbit(sc, (0.1, 1.9), "drive_amplitude", 1.075, follow="stable")
+    >>> [(b.kind, b.period, round(b.value, 8)) for b in br.bifurcations]
+    [('pitchfork', 1.0, 1.00431948), ('period-doubling', 1.0, 1.06637286)]
+    """
+    check_driven_rigid(scene, "continue_orbit")
+    p0 = _param_value(scene, param)
+    stop = _stop_value(scene, param, p0, stop)
+    k = _checks.count(k, "k", 1, 10**4)
+    winding = _checks.count(winding, "winding", -10**9, 10**9)
+    if follow not in ("branch", "stable"):
+        raise ValueError(f"follow must be 'branch' or 'stable', got {follow!r:.40}")
+    if step is not None:
+        step = _checks.real(step, "step", 0.0, lo_open=True)
+    x0 = check_guess(guess, scene)
+    driven = scene.drive_amplitude != 0.0 and scene.drive_frequency != 0.0
+    tracer = _Tracer(scene, param, p0, stop, follow, step)
+    if driven:
+        drive_period(scene, k)
+        prob = OrbitProblem(scene, "map", k, winding, param)
+        u0 = x0
+    else:
+        if scene.drive_amplitude != 0.0 or scene.drive_frequency != 0.0:
+            raise ValueError("drive_frequency: a drive of frequency 0 is a constant torque; give it as torque")
+        if param == "drive_amplitude":
+            raise ValueError("param: continuing drive_amplitude from 0 turns the autonomous scene into a driven "
+                             "one; start from a driven scene (drive_amplitude and drive_frequency non-zero)")
+        if x0[1] == 0.0:
+            raise ValueError("guess: an autonomous running orbit needs a velocity (guess[1] != 0)")
+        w = winding or (1 if x0[1] > 0 else -1)
+        if abs(w) != 1:
+            raise ValueError(f"winding: an autonomous running orbit turns once a period (+-1), got {winding}")
+        prob = OrbitProblem(scene, "section", 1, w, param, theta_s=float(x0[0]))
+        T0 = _first_return(scene, x0, w, prob.rtol, prob.atol)
+        u0 = np.array([x0[1], T0])
+    try:
+        u, _, ev, _ = newton(prob, u0, p0, _TOL, 100)
+    except NewtonError as exc:
+        raise ValueError(f"guess: Newton's iteration for the starting orbit at {param} = {p0!r} failed: {exc}; it "
+                         f"got to {tuple(float(x) for x in exc.state[0])} with residual {exc.residual:.3g}") from None
+    if driven and scene.torque == 0.0 and param != "torque" and winding == 0 and k % 2 == 1:
+        # the symmetric orbit of an untorqued drive: follow it on the half-period map
+        T = drive_period(scene, k)
+        end, _, _ = flow(scene, u, [0.5 * T], prob.rtol, prob.atol)
+        m = round((end[0, 0] + u[0]) / (2 * math.pi))
+        if max(abs(2 * math.pi * m - end[0, 0] - u[0]), abs(end[0, 1] + u[1])) < 1e-6:
+            half = OrbitProblem(scene, "half", k, 0, param, m=m)
+            try:
+                u, _, ev, _ = newton(half, u, p0, _TOL, 20)
+                prob = half
+            except NewtonError:
+                pass
+    U = np.append(u, p0)
+    t, Fp = tracer.tangent(prob, U, ev)
+    if not np.any(Fp):
+        raise ValueError(f"param: the orbit does not depend on {param!r} (changing it does not change the flow)")
+    if t[2] == 0.0:
+        raise ContinuationError(f"{param}: the starting orbit sits on a fold; start a little away from it")
+    if (t[2] > 0) != (stop > p0):
+        t = -t
+    if follow == "stable" and not _stable(prob.mode, ev):
+        raise ValueError("follow: the orbit at guess is unstable; follow='stable' starts from an attracting orbit")
+    tracer.record(prob, U, ev)
+    while True:
+        out = tracer.run_segment(prob, U, ev, t)
+        if out is None:
+            break
+        _, kind, prob_s, Us, evs, ts = out
+        sw = tracer.switch(kind, prob_s, Us, evs, ts)
+        if sw is None:
+            break
+        prob, U, ev, t = sw
+    return tracer.branch()
+
+
+def _first_return(scene: Scene, x0, w: int, rtol: float, atol: float) -> float:
+    """The time the orbit from x0 takes to advance one turn (the guess of an autonomous period)."""
+    horizon = 40 * math.pi / abs(x0[1])
+    times = horizon * np.arange(1, 801) / 800
+    try:
+        ends, _, _ = flow(scene, x0, times, rtol, atol)
+    except FlowError as exc:
+        raise ValueError(f"guess: the flow from the guess failed: {exc}") from None
+    target = x0[0] + 2 * math.pi * w
+    hit = np.nonzero(w * (ends[:, 0] - target) >= 0)[0]
+    if len(hit) == 0:
+        raise ValueError(f"guess: the orbit from {tuple(x0.tolist())} does not turn over "
+                         f"within t = {horizon:.3g}; a running orbit needs a torque above the retrapping one")
+    return float(times[hit[0]])
+
+
+# ---------------------------------------------------------------- equilibria
+
+@dataclass(frozen=True)
+class EquilibriumBranch:
+    """The equilibria of an autonomous scene against one field (:func:`continue_equilibria`).
+
+    Attributes
+    ----------
+    param : str
+        The scene field.
+    values : numpy.ndarray
+        The parameter values.
+    equilibria : tuple of list of Equilibrium
+        The rest points (one turn, ``(-pi, pi]``) at each value.
+    bifurcations : tuple of Bifurcation
+        The saddle-nodes, each where the number of rest points changes, at the last double
+        on the side that has them.
+
+    See Also
+    --------
+    continue_equilibria : makes it.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> eb = pendula.continue_equilibria(pendula.Scene(damping=0.2), "torque", 1.5)
+    >>> [(b.kind, b.value) for b in eb.bifurcations]
+    [('saddle-node', 1.0)]
+    """
+
+    param: str
+    values: np.ndarray
+    equilibria: tuple
+    bifurcations: tuple
+
+
+def continue_equilibria(scene: Scene, param: str, stop: float, points: int = 101) -> EquilibriumBranch:
+    """The equilibria and their eigenvalues against one scene field, with the saddle-nodes located exactly.
+
+    The rest points come in closed form from the kernel (:func:`equilibria`) at
+    ``points`` values from the scene's to ``stop``; where their number changes a
+    saddle-node is located by bisection on the floating-point numbers to the
+    last double on the side where the pair exists (for the torqued rigid
+    pendulum ``|torque| = eps`` exactly).  The trace of the linearisation is
+    ``-damping`` at every rest point, so no Hopf bifurcation exists: a
+    damped pendulum's rest points change stability only through a saddle-node
+    (and at ``damping = 0``, a centre, with no limit cycle born).
+
+    Parameters
+    ----------
+    scene : Scene
+        An autonomous scene (no drive).
+    param : str
+        The numeric scene field to move (``'torque'``, ``'eps'``, ``'damping'``, ...).
+    stop : float
+        The value to move it to.
+    points : int, optional
+        Values sampled (default 101), at least 2.
+
+    Returns
+    -------
+    EquilibriumBranch
+
+    Raises
+    ------
+    TypeError
+        If ``param`` is not a string or ``points`` not a whole number.
+    ValueError
+        If the scene is driven, ``param`` is not a numeric scene field, or ``stop`` equals the start.
+
+    See Also
+    --------
+    equilibria : the rest points at one value.
+    continue_orbit : periodic orbits against a parameter.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> eb = pendula.continue_equilibria(pendula.Scene(damping=0.1, torque=0.5), "eps", 0.2, points=5)
+    >>> [len(e) for e in eb.equilibria], eb.bifurcations[0].value
+    ([2, 2, 2, 0, 0], 0.5)
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a pendula.Scene, got {type(scene).__name__}")
+    if scene.drive_amplitude != 0.0:
+        raise ValueError("drive_amplitude: a driven scene has no equilibria; continue its orbits with "
+                         "pendula.continue_orbit")
+    p0 = _param_value(scene, param)
+    stop = _stop_value(scene, param, p0, stop)
+    points = _checks.count(points, "points", 2, 10**6)
+    values = np.linspace(p0, stop, points)
+    values[-1] = stop
+
+    def at(p):
+        return equilibria(scene.replace(**{param: float(p)}))
+
+    eqs = [at(p) for p in values]
+    bifs = []
+    for i in range(points - 1):
+        if len(eqs[i]) != len(eqs[i + 1]):
+            a, b = float(values[i]), float(values[i + 1])
+            na = len(eqs[i])
+            # bisection on the doubles: a keeps the count of values[i]
+            for _ in range(2100):
+                mid = 0.5 * (a + b)
+                if mid in (a, b):
+                    break
+                if len(at(mid)) == na:
+                    a = mid
+                else:
+                    b = mid
+            more = a if na > len(eqs[i + 1]) else b
+            # the merged pair itself where the kernel meets it (|tau| = eps exactly: one saddle-node)
+            for x in (a, b):
+                if any(e.kind == "saddle-node" for e in at(x)):
+                    more = x
+            if bifs and bifs[-1].value == more:      # the merged point was itself a sample: met twice
+                continue
+            merged = at(more)
+            sn = [e for e in merged if e.kind == "saddle-node"] or merged
+            e = min(sn, key=lambda e: abs(e.eigenvalues).min()) if sn else None
+            bifs.append(Bifurcation("saddle-node", more, 0.0, e.theta if e else math.nan, 0.0,
+                                    e.eigenvalues if e else np.array([math.nan, math.nan], dtype=complex)))
+    return EquilibriumBranch(param, values, tuple(eqs), tuple(bifs))
+
