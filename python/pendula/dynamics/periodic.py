@@ -251,7 +251,7 @@ def newton(problem: OrbitProblem, u, p, tol: float, maxit: int, plane=None):
     u = np.array(u, dtype=np.float64)
     p = None if p is None else float(p)
     last = math.inf
-    res = math.inf
+    res = prev = math.inf
     for it in range(1, maxit + 2):
         try:
             ev = problem.evaluate(u, p)
@@ -261,8 +261,12 @@ def newton(problem: OrbitProblem, u, p, tol: float, maxit: int, plane=None):
         if not math.isfinite(res):
             raise NewtonError(f"the residual is not finite at iteration {it}", it, res, (u, p))
         scale = 1.0 + float(np.max(np.abs(u)))
-        if res <= tol * scale and last <= math.sqrt(tol) * scale * 1e-2 or res == 0.0:
+        # converged: the residual below tol and the last step small, or the residual below tol twice
+        # running (a nearly singular Jacobian, as at a multiplier next to 1, turns rounding-level
+        # residuals into steps that never shrink: the state is as determined as it can be)
+        if res <= tol * scale and (last <= math.sqrt(tol) * scale * 1e-2 or prev <= tol * scale) or res == 0.0:
             return u, p, ev, it
+        prev = res
         if it > maxit:
             break
         if plane is None:
