@@ -734,3 +734,30 @@ subroutine periodic_orbit_v(x, words, nw, wlen, nout, ngrid, period, winding, rt
   m = scene_model(sc)
   status = pendula_gsl_periodic_orbit(c_loc(m), period, winding, rtol, atol, tol, maxit, xo, mono, info)
 end subroutine periodic_orbit_v
+
+! ---------------------------------------------------------------- integrator options
+! One integration of the model (params as integrate_timed_v) with the
+! controller's PI term pi_beta (negative: the method's default; 0: pure I
+! control, Hairer's DOP853 as published) and, for Verner's 9(8), land = 1:
+! steps shortened to end on every output time instead of the dense output.
+! stats = [steps, accepted, rejected, rhs evaluations]; status as integrate_v.
+subroutine integrate_options_v(n, method, params, theta0, v0, t, rtol, atol, dt, pi_beta, land, theta, v, &
+                               stats, status)
+  use pendula_kinds, only: dp
+  use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate
+  implicit none
+  integer, intent(in) :: n, method, land
+  double precision, intent(in) :: params(6), theta0, v0, t(n), rtol, atol, dt, pi_beta
+  double precision, intent(out) :: theta(n), v(n), stats(4)
+  integer, intent(out) :: status
+  !f2py intent(hide), depend(t) :: n = len(t)
+  type(pendulum_model) :: m
+  type(event_spec) :: ev
+  type(run_stats) :: st
+  double precision :: tev(1), thev(1), vev(1)
+  integer :: nev
+  m = make_model(params(1), params(2), params(3), params(4), params(5), params(6))
+  call integrate(m, method, theta0, v0, t, rtol, atol, dt, theta, v, st, status, ev, nev, tev, thev, vev, &
+                 pi_beta=pi_beta, land=land /= 0)
+  stats = [dble(st%nsteps), dble(st%naccept), dble(st%nreject), dble(st%nfev)]
+end subroutine integrate_options_v
