@@ -32,7 +32,7 @@
 !> by the embedded 8th-order weights; no dense output (steps land on the output
 !> times, no events).
 module pendula_integrators
-  use pendula_kinds, only: dp, i8, nan_dp
+  use pendula_kinds, only: dp, i8, nan_dp, pi
   use pendula_gravity, only: gravity_accel
   use pendula_equilibria, only: field_slope
   implicit none
@@ -278,7 +278,7 @@ contains
     real(dp), intent(out) :: tev(:), thev(:), vev(:)
     integer :: n, ineg, k
     logical :: adaptive, land_out
-    real(dp) :: beta_set
+    real(dp) :: beta_set, th_start
     integer, volatile, target :: no_cancel
     no_cancel = 0
     beta_set = -1.0_dp
@@ -327,6 +327,14 @@ contains
         status = st_too_many_steps; return
       end if
     end if
+    ! The integration starts from theta0 reduced mod 2 pi (the force law is
+    ! 2 pi-periodic in theta for every model of pendulum_model): stepping the
+    ! absolute angle would round every increment to ulp(theta0) (2.4e-4 at
+    ! 2^40) and scale the angle's tolerance by rtol |theta0|.  The outputs are
+    ! theta0 + (theta_reduced - r0): the motion relative to the start, exact
+    ! to the rounding of the absolute angle.  |theta0| <= pi: nothing changes.
+    th_start = theta0
+    if (abs(theta0) > pi .and. abs(theta0) <= huge(theta0)) th_start = atan2(sin(theta0), cos(theta0))
     ! the first index with tout >= 0
     ineg = 0
     do k = 1, n
@@ -335,10 +343,13 @@ contains
     ! forward: tout(ineg+1:n); backward: tout(ineg:1:-1)
     if (ineg < n) then
       call one_direction(tout(ineg + 1:n), theta(ineg + 1:n), v(ineg + 1:n), 1.0_dp, .true.)
-      if (status /= st_ok .and. status /= st_stopped) return
     end if
     if (ineg > 0 .and. status == st_ok) then
       call one_direction(tout(ineg:1:-1), theta(ineg:1:-1), v(ineg:1:-1), -1.0_dp, .false.)
+    end if
+    if (th_start /= theta0) then
+      theta = theta0 + (theta - th_start)
+      thev(1:nev) = theta0 + (thev(1:nev) - th_start)
     end if
 
   contains
@@ -350,33 +361,36 @@ contains
       type(event_spec) :: e
       e = ev
       if (.not. with_events) e%kind = 0
+      ! a level of the angle moves with the reduced start
+      if (e%kind == 2 .or. e%kind == 3) e%level = (e%level - theta0) + th_start
+      if (status /= st_ok) return
       select case (method)
       case (m_vern9)
         if (present(cancel)) then
-          call run_verner(m, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, cancel, beta_set, land_out)
+          call run_verner(m, th_start, v0, ts, dir, rtol, atol, ths, vs, stats, status, cancel, beta_set, land_out)
         else
-          call run_verner(m, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, no_cancel, beta_set, &
+          call run_verner(m, th_start, v0, ts, dir, rtol, atol, ths, vs, stats, status, no_cancel, beta_set, &
                           land_out)
         end if
       case (m_dprkn6)
         if (present(cancel)) then
-          call run_nystrom(m, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, cancel)
+          call run_nystrom(m, th_start, v0, ts, dir, rtol, atol, ths, vs, stats, status, cancel)
         else
-          call run_nystrom(m, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, no_cancel)
+          call run_nystrom(m, th_start, v0, ts, dir, rtol, atol, ths, vs, stats, status, no_cancel)
         end if
       case (m_dopri5, m_dop853)
         if (present(cancel)) then
-          call run_adaptive(m, method, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, &
+          call run_adaptive(m, method, th_start, v0, ts, dir, rtol, atol, ths, vs, stats, status, &
                             e, nev, tev, thev, vev, cancel, beta_set)
         else
-          call run_adaptive(m, method, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, &
+          call run_adaptive(m, method, th_start, v0, ts, dir, rtol, atol, ths, vs, stats, status, &
                             e, nev, tev, thev, vev, no_cancel, beta_set)
         end if
       case default
         if (present(cancel)) then
-          call run_fixed(m, method, theta0, v0, ts, dir * dt, ths, vs, stats, status, cancel)
+          call run_fixed(m, method, th_start, v0, ts, dir * dt, ths, vs, stats, status, cancel)
         else
-          call run_fixed(m, method, theta0, v0, ts, dir * dt, ths, vs, stats, status, no_cancel)
+          call run_fixed(m, method, th_start, v0, ts, dir * dt, ths, vs, stats, status, no_cancel)
         end if
       end select
     end subroutine one_direction
