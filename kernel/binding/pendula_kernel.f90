@@ -761,3 +761,39 @@ subroutine integrate_options_v(n, method, params, theta0, v0, t, rtol, atol, dt,
                  pi_beta=pi_beta, land=land /= 0)
   stats = [dble(st%nsteps), dble(st%naccept), dble(st%nreject), dble(st%nfev)]
 end subroutine integrate_options_v
+
+! ---------------------------------------------------------------- a scene with other knobs
+! simulate_v for a scene whose fields were checked before and then changed in
+! the integrator's knobs only (method, rtol, atol, dt), without sweep values
+! or grids: the kernel checks the changed fields (check_scene, the one
+! checker) and runs them, so the Python layer need not build and check a new
+! Scene first.  status 100: the changed fields do not form a scene (msg says why).
+subroutine simulate_checked_v(x, words, nw, wlen, nout, ngrid, n, t, cancel, theta, v, energy, stats, method, &
+                              status, msg)
+  use pendula_scene, only: scene_t, scene_from_fields
+  use pendula_simulate, only: simulate_scene
+  implicit none
+  !f2py threadsafe
+  double precision, intent(in) :: x(25)
+  character(len=*), intent(in) :: words
+  integer, intent(in) :: nw, nout, ngrid, n
+  integer, intent(in) :: wlen(nw)
+  double precision, intent(in) :: t(n)
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: theta(n), v(n), energy(n), stats(4)
+  integer, intent(out) :: method, status
+  character(len=512), intent(out) :: msg
+  !f2py intent(hide), depend(wlen) :: nw = len(wlen)
+  !f2py intent(hide), depend(t) :: n = len(t)
+  type(scene_t) :: sc
+  double precision :: g, length, none(0)
+  method = -1
+  theta = 0; v = 0; energy = 0; stats = 0
+  call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .true., sc, &
+                         g, length, status, msg)
+  if (status /= 0) then
+    status = 100
+    return
+  end if
+  call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel(1))
+end subroutine simulate_checked_v

@@ -11,7 +11,7 @@ from numpy.typing import ArrayLike
 
 from ._checks import as_float
 from .systems.rigid import Orbit, energy, exact_motion, orbit
-from .scene import Scene
+from .scene import _NUMBER_LISTS, _NUMBERS, _WORDS, METHODS, Scene, SceneError
 from .systems import run
 from .systems.cord import simulate_cord
 from .systems.cycloid import cycloid_period
@@ -85,6 +85,19 @@ def simulate(scene: Scene, t: ArrayLike | None = None, method: str | None = None
         raise TypeError(f"simulate expects a pendula.Scene, got {type(scene).__name__}")
     if method is not None or rtol is not None or atol is not None or dt is not None:
         knobs = {k: v for k, v in (("method", method), ("rtol", rtol), ("atol", atol), ("dt", dt)) if v is not None}
+        variant = _with_knobs(scene, knobs)
+        if variant is not None:
+            # the kernel checks the changed fields as it runs them (no new Scene built and checked first),
+            # once: the variant is kept on the scene, marked as checked
+            tt = variant.times() if t is None else as_float(t, "t")
+            checked = variant.__dict__.get("_knobs_checked", False)
+            try:
+                tr = run(variant, tt, recheck=not checked)
+            except SceneError:
+                pass        # the knobs do not fit the scene: replace() below raises with the field named
+            else:
+                variant.__dict__["_knobs_checked"] = True
+                return tr
         scene = scene.replace(**knobs)
     t = scene.times() if t is None else as_float(t, "t")
     if scene.cord == "flexible":
@@ -143,3 +156,50 @@ def period(scene: Scene) -> float:
         raise ValueError(f"period(scene) is the exact period of a conservative orbit; the scene names "
                          f"{', '.join(scene.effects)} (see pendula.numerical_period for event-based periods)")
     return orbit(scene.theta0, scene.v0, scene.eps).period
+
+
+#: where the integrator's knobs sit among the kernel's fields of a scene
+_KNOB_NUMBER = {name: _NUMBERS.index(name) for name in ("rtol", "atol", "dt")}
+_METHOD_WORD = _WORDS.index("method")
+
+
+def _with_knobs(scene: Scene, knobs: dict) -> Scene | None:
+    """The scene with other integrator knobs (method, rtol, atol, dt), its kernel fields patched in place of
+    building and checking a new Scene (``simulate`` then has the kernel check them as it runs); kept on the
+    scene (a few, by the knobs) so that asking again costs a look-up; None where
+    that does not apply: a sweep or grid, the flexible cord (its own driver), a knob that is not a float or
+    a method name as written in ``METHODS`` (``Scene.replace`` converts and checks those)."""
+    key = tuple(knobs.items())
+    kept = scene.__dict__.get("_knob_variants")
+    if kept is not None and key in kept:
+        return kept[key]
+    if scene.sweep or scene.grid or scene.cord != "rigid" or any(getattr(scene, n) for n in _NUMBER_LISTS):
+        return None
+    for k, v in knobs.items():
+        if not (type(v) is str and v in METHODS if k == "method" else type(v) is float):
+            return None
+    x, words, wlen, nout, ngrid = scene._kernel_fields
+    x = x.copy()
+    for k, i in _KNOB_NUMBER.items():
+        if k in knobs:
+            x[i] = knobs[k]
+    if "method" in knobs:
+        start = int(wlen[:_METHOD_WORD].sum())
+        word = knobs["method"].encode()
+        words = words[:start] + word + words[start + int(wlen[_METHOD_WORD]):]
+        wlen = wlen.copy()
+        wlen[_METHOD_WORD] = len(word)
+    variant = object.__new__(Scene)
+    variant.__dict__.update({k: v for k, v in scene.__dict__.items() if k not in _NOT_COPIED})
+    variant.__dict__.update(knobs)
+    variant.__dict__["_kernel_fields"] = (x, words, wlen, nout, ngrid)
+    if kept is None or len(kept) >= _MAX_VARIANTS:
+        kept = scene.__dict__["_knob_variants"] = {}
+    kept[key] = variant
+    return variant
+
+
+#: a scene keeps at most this many variants with other knobs (the last ones asked for)
+_MAX_VARIANTS = 8
+#: what a variant does not inherit from its scene: the scene's own variants and check mark
+_NOT_COPIED = ("_knob_variants", "_knobs_checked")
