@@ -134,6 +134,14 @@ def test_verner_interpolant_extends_the_rows_to_their_nodes():
     assert c[16] == 1 and max(abs(A[16][j] - b[j]) for j in range(16)) < mp.mpf(10) ** -38
 
 
+def test_verner_interpolant_ends_on_the_step():
+    """b_i(1) = sum_k P_ik is the pair's own 9th-order weight b_i (0 for the five new stages)."""
+    from gen_rk_tables import verner98_interpolant
+    _, _, P = verner98_interpolant()
+    _, _, b, _ = verner98_matrices()
+    assert max(abs(sum(P[i]) - (b[i] if i < 16 else 0)) for i in range(21)) < mp.mpf(10) ** -34   # 40 digits, sums of 8
+
+
 def test_verner_interpolant_satisfies_the_continuous_conditions_to_order_eight():
     """A continuous extension of order 8: for every tree t with r <= 8 nodes and every power k of
     x, sum_i P_ik Phi_i(t) = [k == r] / gamma(t) (Owren & Zennaro; Hairer, Norsett & Wanner I,

@@ -768,8 +768,8 @@ end subroutine integrate_options_v
 ! or grids: the kernel checks the changed fields (check_scene, the one
 ! checker) and runs them, so the Python layer need not build and check a new
 ! Scene first.  status 100: the changed fields do not form a scene (msg says why).
-subroutine simulate_checked_v(x, words, nw, wlen, nout, ngrid, n, t, cancel, theta, v, energy, stats, method, &
-                              status, msg)
+subroutine simulate_checked_v(x, words, nw, wlen, nout, ngrid, n, t, cancel, land, theta, v, energy, stats, &
+                              method, status, msg)
   use pendula_scene, only: scene_t, scene_from_fields
   use pendula_simulate, only: simulate_scene
   implicit none
@@ -783,6 +783,9 @@ subroutine simulate_checked_v(x, words, nw, wlen, nout, ngrid, n, t, cancel, the
   double precision, intent(out) :: theta(n), v(n), energy(n), stats(4)
   integer, intent(out) :: method, status
   character(len=512), intent(out) :: msg
+  !> 1: Verner's 9(8) lands its steps on the output times (see pendula_integrators: integrate)
+  integer, intent(in) :: land
+  !f2py integer optional, intent(in) :: land = 0
   !f2py intent(hide), depend(wlen) :: nw = len(wlen)
   !f2py intent(hide), depend(t) :: n = len(t)
   type(scene_t) :: sc
@@ -795,5 +798,21 @@ subroutine simulate_checked_v(x, words, nw, wlen, nout, ngrid, n, t, cancel, the
     status = 100
     return
   end if
-  call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel(1))
+  call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel(1), land /= 0)
 end subroutine simulate_checked_v
+
+! One step of Verner's 9(8) pair of size h from (theta0, v0) at t = 0 on the
+! model (params as integrate_timed_v) and its order-8 interpolant at the
+! fractions x of the step: the state at t = x h (x = 1: the step's own end).
+subroutine vern9_interpolant_v(nx, params, theta0, v0, h, x, theta, v)
+  use pendula_kinds, only: dp
+  use pendula_integrators, only: pendulum_model, make_model, vern9_one_step_dense
+  implicit none
+  integer, intent(in) :: nx
+  double precision, intent(in) :: params(6), theta0, v0, h, x(nx)
+  double precision, intent(out) :: theta(nx), v(nx)
+  !f2py intent(hide), depend(x) :: nx = len(x)
+  type(pendulum_model) :: m
+  m = make_model(params(1), params(2), params(3), params(4), params(5), params(6))
+  call vern9_one_step_dense(m, theta0, v0, h, x, theta, v)
+end subroutine vern9_interpolant_v

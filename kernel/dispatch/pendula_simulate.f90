@@ -118,10 +118,12 @@ contains
   !> energy: the model's invariant along the path; stats = [steps, accepted,
   !> rejected, rhs evaluations]; method: the code of what answered (m_exact
   !> for the exact path).  msg explains a non-zero status.
-  subroutine simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel)
+  subroutine simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel, land)
     type(scene_t), intent(in) :: sc
     !> non-zero (set by another thread) stops an integration: status sim_cancelled
     integer, intent(inout), volatile, optional :: cancel
+    !> Verner's 9(8): steps end on the output times (see pendula_integrators: integrate)
+    logical, intent(in), optional :: land
     real(dp), intent(in) :: t(:)
     real(dp), intent(out) :: theta(:), v(:), energy(:), stats(4)
     integer, intent(out) :: method, status
@@ -144,7 +146,7 @@ contains
       else if (sc%method == 'exact') then
         status = sim_exact_refused
       else
-        call integrate_model(sc, t, theta, v, stats, method, status, cancel)
+        call integrate_model(sc, t, theta, v, stats, method, status, cancel, land)
       end if
       if (status == sim_ok) energy = rigid_energy(sc%eps, theta, v)
     case (mid_cord)
@@ -168,7 +170,7 @@ contains
       if (sc%method == 'exact') then
         status = sim_exact_refused
       else
-        call integrate_model(sc, t, theta, v, stats, method, status, cancel)
+        call integrate_model(sc, t, theta, v, stats, method, status, cancel, land)
         if (status == sim_ok) energy = scene_energy(sc, theta, v)
       end if
     end select
@@ -193,9 +195,10 @@ contains
   end function scene_model
 
   !> The scene's integrator on the rigid pendulum's force law with its effects.
-  subroutine integrate_model(sc, t, theta, v, stats, method, status, cancel)
+  subroutine integrate_model(sc, t, theta, v, stats, method, status, cancel, land)
     type(scene_t), intent(in) :: sc
     integer, intent(inout), volatile, optional :: cancel
+    logical, intent(in), optional :: land
     real(dp), intent(in) :: t(:)
     real(dp), intent(out) :: theta(:), v(:), stats(4)
     integer, intent(out) :: method, status
@@ -236,7 +239,7 @@ contains
       return
     end if
     call integrate(model, method, sc%theta0, sc%v0, t, sc%rtol, sc%atol, sc%dt, theta, v, st, status, &
-                   ev, nev, tev, thev, vev, cancel)
+                   ev, nev, tev, thev, vev, cancel, land=land)
     stats = [real(st%nsteps, dp), real(st%naccept, dp), real(st%nreject, dp), real(st%nfev, dp)]
     select case (status)
     case (0)

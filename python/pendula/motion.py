@@ -7,6 +7,7 @@ The rigid model's functions are re-exported here for compatibility.
 
 from __future__ import annotations
 
+import numpy as np
 from numpy.typing import ArrayLike
 
 from ._checks import as_float
@@ -22,7 +23,7 @@ __all__ = ["Orbit", "Trajectory", "orbit", "exact_motion", "energy", "simulate",
 
 
 def simulate(scene: Scene, t: ArrayLike | None = None, method: str | None = None, rtol: float | None = None,
-             atol: float | None = None, dt: float | None = None) -> Trajectory:
+             atol: float | None = None, dt: float | None = None, land_on_outputs: bool = False) -> Trajectory:
     """Run one scene at the times ``t`` (default: the scene's own output times).
 
     The scene selects its model (see :func:`pendula.models`); the kernel's
@@ -46,6 +47,11 @@ def simulate(scene: Scene, t: ArrayLike | None = None, method: str | None = None
         Tolerances of the adaptive methods (scipy ``solve_ivp``'s names).
     dt : float, optional
         Step of the fixed-step methods.
+    land_on_outputs : bool, optional
+        Verner's 9(8) pair ('vern9') only: end the steps exactly on the
+        output times, so that every output is a step's own 9th-order value,
+        instead of interpolating inside the steps (Verner's order-8
+        interpolant, the default: the steps are then never shortened).
 
     Returns
     -------
@@ -56,13 +62,15 @@ def simulate(scene: Scene, t: ArrayLike | None = None, method: str | None = None
     Raises
     ------
     TypeError
-        If `scene` is not a :class:`Scene`, or a time or knob has the wrong type.
+        If `scene` is not a :class:`Scene`, or a time or knob has the wrong
+        type (`land_on_outputs` not a bool).
     SceneError
         If a knob is invalid (an unknown method, a negative tolerance; a
         subclass of ValueError naming the field).
     ValueError
         If the computation cannot be done as asked (e.g. a fixed-step method
-        for the flexible cord, more steps than the limit).
+        for the flexible cord, more steps than the limit, `land_on_outputs`
+        with another method than 'vern9').
     NotImplementedError
         For a combination of model and effects not implemented.
 
@@ -80,9 +88,17 @@ def simulate(scene: Scene, t: ArrayLike | None = None, method: str | None = None
     'dop853'
     >>> pendula.simulate(pendula.Scene(v0=1.9), [0.0, 1.0]).method     # conservative: exact
     'exact'
+    >>> landed = pendula.simulate(pendula.Scene(v0=1.0, damping=0.1), [0.0, 0.5, 1.0], method="vern9",
+    ...                           land_on_outputs=True)
+    >>> landed.stats["steps"] >= 2                                      # a step ends on each output
+    True
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"simulate expects a pendula.Scene, got {type(scene).__name__}")
+    if not isinstance(land_on_outputs, (bool, np.bool_)):
+        raise TypeError(f"land_on_outputs must be True or False, not {type(land_on_outputs).__name__}")
+    if land_on_outputs:
+        return _landed(scene, t, method, rtol, atol, dt)
     if method is not None or rtol is not None or atol is not None or dt is not None:
         knobs = {k: v for k, v in (("method", method), ("rtol", rtol), ("atol", atol), ("dt", dt)) if v is not None}
         variant = _with_knobs(scene, knobs)
@@ -105,6 +121,18 @@ def simulate(scene: Scene, t: ArrayLike | None = None, method: str | None = None
         # damping, torque or drive) the integrator with the tension event between exact flights
         return simulate_cord(scene, t)
     return run(scene, t)
+
+
+def _landed(scene, t, method, rtol, atol, dt):
+    """simulate(..., land_on_outputs=True): Verner's 9(8) pair with its steps ending on the outputs."""
+    knobs = {k: v for k, v in (("method", method), ("rtol", rtol), ("atol", atol), ("dt", dt)) if v is not None}
+    scene = scene.replace(**knobs) if knobs else scene
+    if scene.method != "vern9":
+        raise ValueError(f"land_on_outputs: only Verner's 9(8) pair (method 'vern9') lands its steps on the "
+                         f"outputs on request (dop853 and dopri5 interpolate, dprkn6 always lands); the method is "
+                         f"{scene.method!r}")
+    t = scene.times() if t is None else as_float(t, "t")
+    return run(scene, t, land=True)
 
 
 def period(scene: Scene) -> float:

@@ -114,12 +114,13 @@ def models() -> list[ModelInfo]:
     return out
 
 
-def run(scene: Scene, t, recheck: bool = False) -> Trajectory:
+def run(scene: Scene, t, recheck: bool = False, land: bool = False) -> Trajectory:
     """Run a scene through the kernel's dispatcher at the times t (any order).
 
     recheck: the kernel checks the scene's fields before running them (a scene
     whose integrator knobs were changed without building a new Scene: see
-    pendula.motion.simulate); a refusal is a SceneError.
+    pendula.motion.simulate); a refusal is a SceneError.  land: Verner's 9(8) pair
+    ends its steps on the output times instead of interpolating.
 
     Raises
     ------
@@ -140,9 +141,13 @@ def run(scene: Scene, t, recheck: bool = False) -> Trajectory:
     while True:
         cancel = _interrupt.cancel_flag()
         long = bool(scene.effects) and _long_run(scene, sorted_t)
-        theta_s, v_s, e_s, stats, method, status, msg = _interrupt.call(
-            _kernel.simulate_checked_v if recheck else _kernel.simulate_v, x, words, wlen, nout, ngrid, sorted_t,
-            cancel, cancel=cancel, long=long)
+        if recheck or land:
+            out = _interrupt.call(_kernel.simulate_checked_v, x, words, wlen, nout, ngrid, sorted_t, cancel,
+                                  int(land), cancel=cancel, long=long)
+        else:
+            out = _interrupt.call(_kernel.simulate_v, x, words, wlen, nout, ngrid, sorted_t, cancel, cancel=cancel,
+                                  long=long)
+        theta_s, v_s, e_s, stats, method, status, msg = out
         if status != _UNSORTED or order is not None:
             break
         order = np.argsort(flat, kind="stable")
