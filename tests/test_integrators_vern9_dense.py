@@ -67,6 +67,6 @@ def test_verner_lands_on_the_outputs_when_asked():
 def test_landing_is_refused_for_other_methods_and_non_bools():
     s = pendula.Scene(v0=1.0, damping=0.1)
     with pytest.raises(ValueError, match="land_on_outputs"):
-        pendula.simulate(s, [0.0, 1.0], method="dop853", land_on_outputs=True)
+        pendula.simulate(s, [0.0, 1.0], method="gsl-rk8pd", land_on_outputs=True)
     with pytest.raises(TypeError, match="land_on_outputs"):
         pendula.simulate(s, [0.0, 1.0], method="vern9", land_on_outputs="yes")

@@ -738,8 +738,8 @@ end subroutine periodic_orbit_v
 ! ---------------------------------------------------------------- integrator options
 ! One integration of the model (params as integrate_timed_v) with the
 ! controller's PI term pi_beta (negative: the method's default; 0: pure I
-! control, Hairer's DOP853 as published) and, for Verner's 9(8), land = 1:
-! steps shortened to end on every output time instead of the dense output.
+! control, Hairer's DOP853 as published) and land = 1: steps shortened to end
+! on every output time instead of interpolating (DOPRI5, DOP853, Verner's 9(8)).
 ! stats = [steps, accepted, rejected, rhs evaluations]; status as integrate_v.
 subroutine integrate_options_v(n, method, params, theta0, v0, t, rtol, atol, dt, pi_beta, land, theta, v, &
                                stats, status)
@@ -783,7 +783,7 @@ subroutine simulate_checked_v(x, words, nw, wlen, nout, ngrid, n, t, cancel, lan
   double precision, intent(out) :: theta(n), v(n), energy(n), stats(4)
   integer, intent(out) :: method, status
   character(len=512), intent(out) :: msg
-  !> 1: Verner's 9(8) lands its steps on the output times (see pendula_integrators: integrate)
+  !> 1: the adaptive pairs land their steps on the output times (see pendula_integrators: integrate)
   integer, intent(in) :: land
   !f2py integer optional, intent(in) :: land = 0
   !f2py intent(hide), depend(wlen) :: nw = len(wlen)
@@ -816,3 +816,39 @@ subroutine vern9_interpolant_v(nx, params, theta0, v0, h, x, theta, v)
   m = make_model(params(1), params(2), params(3), params(4), params(5), params(6))
   call vern9_one_step_dense(m, theta0, v0, h, x, theta, v)
 end subroutine vern9_interpolant_v
+
+! integrate_timed_v for the adaptive integrators with integrate_options_v's
+! options (pi_beta: negative for the method's default; land = 1: the steps end
+! on the output times): the study's clock for those variants.
+subroutine integrate_timed_options_v(nrep, n, method, params, theta0, v0, t, rtol, atol, pi_beta, land, theta, v, &
+                                     stats, seconds, status)
+  use pendula_kinds, only: dp
+  use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate
+  implicit none
+  integer, intent(in) :: nrep, n, method, land
+  double precision, intent(in) :: params(6), theta0, v0, t(n), rtol, atol, pi_beta
+  double precision, intent(out) :: theta(n), v(n), stats(4), seconds
+  integer, intent(out) :: status
+  !f2py intent(hide), depend(t) :: n = len(t)
+  type(pendulum_model) :: m
+  type(event_spec) :: ev
+  type(run_stats) :: st
+  double precision :: tev(1), thev(1), vev(1), c0, c1
+  integer :: rep, nev
+  stats = 0; seconds = 0; status = 0
+  theta = 0; v = 0
+  if (nrep < 1) then
+    status = 1
+    return
+  end if
+  m = make_model(params(1), params(2), params(3), params(4), params(5), params(6))
+  call cpu_time(c0)
+  do rep = 1, nrep
+    call integrate(m, method, theta0, v0, t, rtol, atol, 0.0_dp, theta, v, st, status, ev, nev, tev, thev, vev, &
+                   pi_beta=pi_beta, land=land /= 0)
+    stats = [dble(st%nsteps), dble(st%naccept), dble(st%nreject), dble(st%nfev)]
+    if (status /= 0) exit
+  end do
+  call cpu_time(c1)
+  seconds = (c1 - c0) / nrep
+end subroutine integrate_timed_options_v

@@ -122,7 +122,7 @@ contains
     type(scene_t), intent(in) :: sc
     !> non-zero (set by another thread) stops an integration: status sim_cancelled
     integer, intent(inout), volatile, optional :: cancel
-    !> Verner's 9(8): steps end on the output times (see pendula_integrators: integrate)
+    !> the adaptive pairs end their steps on the output times (see pendula_integrators: integrate)
     logical, intent(in), optional :: land
     real(dp), intent(in) :: t(:)
     real(dp), intent(out) :: theta(:), v(:), energy(:), stats(4)

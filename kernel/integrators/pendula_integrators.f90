@@ -17,7 +17,8 @@
 !> Adaptive (rtol, atol): DOPRI5 (5(4), Shampine's 4th-order dense output)
 !> and DOP853 (8(5,3), 7th-order dense output with three extra stages), both
 !> with Gustafsson's PI step-size control in Hairer's form (pi_controller).  Output at requested times comes
-!> from the dense output; steps are never shortened to hit them.  Events are
+!> from the dense output; steps are never shortened to hit them (unless asked:
+!> integrate's land, then each output is a step's own end).  Events are
 !> located on the dense output: each accepted step is sampled at 4 interior
 !> points, so that two sign changes in one step are not missed, then refined
 !> by the Illinois method.
@@ -265,8 +266,9 @@ contains
     !> the PI term of the step-size controller instead of the method's default
     !> (pi_controller; 0: pure I control, Hairer's DOP853 as published); ignored if negative
     real(dp), intent(in), optional :: pi_beta
-    !> Verner's 9(8): shorten the steps to end on every output time (no
-    !> interpolation: the outputs are the steps' own 9th-order values)
+    !> the adaptive pairs with an interpolant (DOPRI5, DOP853, Verner's 9(8)):
+    !> shorten the steps to end on every output time (no interpolation: the
+    !> outputs are the steps' own values)
     logical, intent(in), optional :: land
     !> set to non-zero by another thread to stop the run (status st_cancelled)
     integer, intent(inout), volatile, optional :: cancel
@@ -383,10 +385,10 @@ contains
       case (m_dopri5, m_dop853)
         if (present(cancel)) then
           call run_adaptive(m, method, th_start, v0, ts, dir, rtol, atol, ths, vs, stats, status, &
-                            e, nev, tev, thev, vev, cancel, beta_set)
+                            e, nev, tev, thev, vev, cancel, beta_set, land_out)
         else
           call run_adaptive(m, method, th_start, v0, ts, dir, rtol, atol, ths, vs, stats, status, &
-                            e, nev, tev, thev, vev, no_cancel, beta_set)
+                            e, nev, tev, thev, vev, no_cancel, beta_set, land_out)
         end if
       case default
         if (present(cancel)) then
@@ -875,18 +877,20 @@ contains
   ! ====================================================================
 
   subroutine run_adaptive(m, method, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, &
-                          ev, nev, tev, thev, vev, cancel, beta_set)
+                          ev, nev, tev, thev, vev, cancel, beta_set, land)
     type(pendulum_model), intent(in) :: m
     integer, intent(inout), volatile :: cancel
     integer, intent(in) :: method
     real(dp), intent(in) :: theta0, v0, ts(:), dir, rtol, atol, beta_set
+    !> end the steps on the output times (their values then the steps' own, not interpolated)
+    logical, intent(in) :: land
     real(dp), intent(inout) :: ths(:), vs(:)
     type(run_stats), intent(inout) :: stats
     integer, intent(inout) :: status
     type(event_spec), intent(in) :: ev
     integer, intent(inout) :: nev
     real(dp), intent(inout) :: tev(:), thev(:), vev(:)
-    real(dp) :: t, y(2), f0(2), ynew(2), fnew(2), h, err, hnew, fac, fac11, facold, tend, x
+    real(dp) :: t, y(2), f0(2), ynew(2), fnew(2), h, err, hnew, fac, fac11, facold, tend, x, target, hfree
     real(dp) :: k(0:15, 2), cont(2, 0:6), expo1, beta, facc1, facc2, safe, gprev, yy(2)
     integer :: kout, order
     logical :: last, reject, stop_now, need_dense
@@ -930,8 +934,12 @@ contains
           status = st_cancelled; return
         end if
       end if
-      if (dir * (t + h - tend) >= 0.0_dp) then
-        h = tend - t
+      ! the step ends on the last output time (land: on the next one) rather than pass it
+      target = tend
+      if (land) target = ts(kout)
+      hfree = h
+      if (dir * (t + h - target) >= 0.0_dp) then
+        h = target - t
         last = .true.
       end if
       if (method == m_dop853) then
@@ -960,7 +968,7 @@ contains
         if (ev%kind /= 0) call locate_events(stop_now)
         ! outputs inside (t, t + h]
         do while (kout <= size(ts))
-          if (dir * (ts(kout) - (t + h)) > 0.0_dp) exit
+          if (dir * (ts(kout) - (t + h)) > 0.0_dp .and. .not. (last .and. ts(kout) == target)) exit
           ! (nested: Fortran's .and. need not short-circuit, and tev(0) does not exist)
           if (stop_now) then
             if (dir * (ts(kout) - tev(nev)) > 0.0_dp) exit
@@ -975,9 +983,13 @@ contains
           return
         end if
         t = t + h
+        if (last) t = target
         y = ynew
         f0 = fnew
-        if (last .or. kout > size(ts)) exit
+        if (kout > size(ts) .or. (last .and. .not. land)) exit
+        ! a step shortened to land on an output does not shrink the next one
+        if (last .and. land) hnew = sign(max(abs(hnew), abs(hfree)), h)
+        last = .false.
         if (abs(hnew) > abs(h) .and. reject) hnew = h
         reject = .false.
         h = hnew
