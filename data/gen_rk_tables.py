@@ -81,10 +81,10 @@ def gauss_mu_tables(g2a, g2b, g3a, g3b):
                               arr("g3_mu", mu_form(g3a, g3b))])
 
 
-def verner98_values():
-    """name -> mpf of data/verner98_coefficients.csv."""
+def csv_values(name):
+    """name -> mpf of one of the coefficient files beside this script (data/NAME: lines name,value)."""
     mp.mp.dps = 50
-    path = pathlib.Path(__file__).resolve().parent / "verner98_coefficients.csv"
+    path = pathlib.Path(__file__).resolve().parent / name
     vals = {}
     for line in path.read_text().splitlines():
         if line.startswith("#") or line.startswith("name,"):
@@ -92,6 +92,11 @@ def verner98_values():
         k, v = line.split(",")
         vals[k] = mp.mpf(v)
     return vals
+
+
+def verner98_values():
+    """name -> mpf of data/verner98_coefficients.csv."""
+    return csv_values("verner98_coefficients.csv")
 
 
 def verner98_matrices():
@@ -109,14 +114,7 @@ def verner98_interpolant():
     """c (21), A (21 x 21) of the pair extended by the interpolant's stages 17-21, and P (21 x 8):
     b_i(x) = sum_k P[i][k-1] x^k, at 50 digits (the published 40)."""
     c, A, _, _ = verner98_matrices()
-    mp.mp.dps = 50
-    path = pathlib.Path(__file__).resolve().parent / "verner98_interpolant.csv"
-    vals = {}
-    for line in path.read_text().splitlines():
-        if line.startswith("#") or line.startswith("name,"):
-            continue
-        k, v = line.split(",")
-        vals[k] = mp.mpf(v)
+    vals = csv_values("verner98_interpolant.csv")
     n = 21
     c = list(c) + [vals[f"c{i}"] for i in range(17, n + 1)]
     A = [list(r) + [mp.mpf(0)] * (n - 16) for r in A] + \

@@ -52,9 +52,9 @@ def gamma(t):
     return g
 
 
-def residuals(c, A, b, max_order):
-    """max |b . Phi(t) - 1/gamma(t)| per order, for the tableau (any number type)."""
-    s = len(b)
+def elementary_weights(A):
+    """t -> Phi(t), the vector over the stages of the elementary weights of tree t (memoised)."""
+    s = len(A)
     memo = {}
 
     def phi(t):   # vector over stages
@@ -66,7 +66,13 @@ def residuals(c, A, b, max_order):
                 v = [v[i] * ap[i] for i in range(s)]
             memo[t] = v
         return memo[t]
+    return phi
 
+
+def residuals(c, A, b, max_order):
+    """max |b . Phi(t) - 1/gamma(t)| per order, for the tableau (any number type)."""
+    s = len(b)
+    phi = elementary_weights(A)
     res = {}
     for n in range(1, max_order + 1):
         res[n] = max(abs(sum(b[i] * phi(t)[i] for i in range(s)) - mp.mpf(1) / gamma(t)) for t in trees(n))
@@ -151,17 +157,7 @@ def test_verner_interpolant_satisfies_the_continuous_conditions_to_order_eight()
     from gen_rk_tables import verner98_interpolant
     c, A, P = verner98_interpolant()
     s = len(c)
-    memo = {}
-
-    def phi(t):
-        if t not in memo:
-            v = [mp.mpf(1)] * s
-            for ch in t:
-                p = phi(ch)
-                ap = [sum(A[i][j] * p[j] for j in range(i)) for i in range(s)]
-                v = [v[i] * ap[i] for i in range(s)]
-            memo[t] = v
-        return memo[t]
+    phi = elementary_weights(A)
 
     worst = 0
     for r in range(1, 9):

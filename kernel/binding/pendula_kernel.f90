@@ -248,14 +248,21 @@ end subroutine scene_check_v
 ! Run a checked scene (its fields, as scene_check_v returns them; no sweep)
 ! at the times t (sorted ascending when an integrator answers).  method: the
 ! code of what answered (0 = exact path); status 0 ok, otherwise msg says why
-! (see pendula_simulate; 100: the fields do not form a scene).
-subroutine simulate_v(x, words, nw, wlen, nout, ngrid, n, t, cancel, theta, v, energy, stats, method, status, msg)
+! (see pendula_simulate; 100: the fields do not form a scene).  recheck = 1: the
+! kernel checks the fields first (check_scene, the one checker: a scene whose
+! integrator knobs were changed without building a new Scene); land = 1: the
+! adaptive pairs end their steps on the output times.
+subroutine simulate_v(x, words, nw, wlen, nout, ngrid, n, t, cancel, recheck, land, theta, v, energy, stats, method, &
+                      status, msg)
   use pendula_scene, only: scene_t, scene_from_fields
   use pendula_simulate, only: simulate_scene
   implicit none
   !f2py threadsafe
   double precision, intent(in) :: x(25)
   character(len=*), intent(in) :: words
+  integer, intent(in) :: recheck, land
+  !f2py integer optional, intent(in) :: recheck = 0
+  !f2py integer optional, intent(in) :: land = 0
   integer, intent(in) :: nw, nout, ngrid, n
   integer, intent(in) :: wlen(nw)
   double precision, intent(in) :: t(n)
@@ -269,13 +276,13 @@ subroutine simulate_v(x, words, nw, wlen, nout, ngrid, n, t, cancel, theta, v, e
   double precision :: g, length, none(0)
   method = -1
   theta = 0; v = 0; energy = 0; stats = 0
-  call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
+  call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, recheck /= 0, sc, &
                          g, length, status, msg)
   if (status /= 0) then
     status = 100
     return
   end if
-  call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel(1))
+  call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel(1), land /= 0)
 end subroutine simulate_v
 
 ! The model registry, one model per line of `table` (fields separated by '|':
@@ -762,44 +769,6 @@ subroutine integrate_options_v(n, method, params, theta0, v0, t, rtol, atol, dt,
   stats = [dble(st%nsteps), dble(st%naccept), dble(st%nreject), dble(st%nfev)]
 end subroutine integrate_options_v
 
-! ---------------------------------------------------------------- a scene with other knobs
-! simulate_v for a scene whose fields were checked before and then changed in
-! the integrator's knobs only (method, rtol, atol, dt), without sweep values
-! or grids: the kernel checks the changed fields (check_scene, the one
-! checker) and runs them, so the Python layer need not build and check a new
-! Scene first.  status 100: the changed fields do not form a scene (msg says why).
-subroutine simulate_checked_v(x, words, nw, wlen, nout, ngrid, n, t, cancel, land, theta, v, energy, stats, &
-                              method, status, msg)
-  use pendula_scene, only: scene_t, scene_from_fields
-  use pendula_simulate, only: simulate_scene
-  implicit none
-  !f2py threadsafe
-  double precision, intent(in) :: x(25)
-  character(len=*), intent(in) :: words
-  integer, intent(in) :: nw, nout, ngrid, n
-  integer, intent(in) :: wlen(nw)
-  double precision, intent(in) :: t(n)
-  integer, intent(inout), volatile :: cancel(1)
-  double precision, intent(out) :: theta(n), v(n), energy(n), stats(4)
-  integer, intent(out) :: method, status
-  character(len=512), intent(out) :: msg
-  !> 1: the adaptive pairs land their steps on the output times (see pendula_integrators: integrate)
-  integer, intent(in) :: land
-  !f2py integer optional, intent(in) :: land = 0
-  !f2py intent(hide), depend(wlen) :: nw = len(wlen)
-  !f2py intent(hide), depend(t) :: n = len(t)
-  type(scene_t) :: sc
-  double precision :: g, length, none(0)
-  method = -1
-  theta = 0; v = 0; energy = 0; stats = 0
-  call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .true., sc, &
-                         g, length, status, msg)
-  if (status /= 0) then
-    status = 100
-    return
-  end if
-  call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel(1), land /= 0)
-end subroutine simulate_checked_v
 
 ! One step of Verner's 9(8) pair of size h from (theta0, v0) at t = 0 on the
 ! model (params as integrate_timed_v) and its order-8 interpolant at the

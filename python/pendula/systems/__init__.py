@@ -141,13 +141,9 @@ def run(scene: Scene, t, recheck: bool = False, land: bool = False) -> Trajector
     while True:
         cancel = _interrupt.cancel_flag()
         long = bool(scene.effects) and _long_run(scene, sorted_t)
-        if recheck or land:
-            out = _interrupt.call(_kernel.simulate_checked_v, x, words, wlen, nout, ngrid, sorted_t, cancel,
-                                  int(land), cancel=cancel, long=long)
-        else:
-            out = _interrupt.call(_kernel.simulate_v, x, words, wlen, nout, ngrid, sorted_t, cancel, cancel=cancel,
-                                  long=long)
-        theta_s, v_s, e_s, stats, method, status, msg = out
+        theta_s, v_s, e_s, stats, method, status, msg = _interrupt.call(
+            _kernel.simulate_v, x, words, wlen, nout, ngrid, sorted_t, cancel, int(recheck), int(land),
+            cancel=cancel, long=long)
         if status != _UNSORTED or order is not None:
             break
         order = np.argsort(flat, kind="stable")
