@@ -1,16 +1,20 @@
-"""Re-run the work-precision study side by side: pendula and every peer interleaved in one process.
+"""Re-run the work-precision study for the methods whose code changed, side by side with the peers.
 
-Each problem's runs (pendula's methods, GSL's rk8pd, SciPy's RK45, DOP853 and LSODA, SUNDIALS CVODE,
-numbalsoda, diffrax's Dopri8 and Tsit5 jitted, one problem and vmapped over 256) are calibrated and
-timed once, then all again in turn, ROUNDS rounds in all; each keeps its best round
-(pendula.studies.workprecision.run_study with interleave).  SciPy's Radau (seconds per run at tight
-tolerances, never SciPy's fastest in the stored study) is not re-run: its rows are kept from the
-record this run replaces, marked ``"kept_from": <that record's date>``.  The load average of the
-machine is recorded before and after.  Writes data/bench/work_precision.json (with ``cells``: per
-problem and target, pendula's fastest method, the fastest compiled peer and SciPy's, and the ratios)
-and regenerates the report page's tables and figures.
+The runs of each problem (pendula's DOP853 and Verner 9(8), each with its interpolant and landing
+on the outputs; GSL's rk8pd; numbalsoda's DOP853 and LSODA; diffrax's Dopri8 and Tsit5, jitted, one
+problem and vmapped over 256) are calibrated and timed once, then all again in turn, ROUNDS rounds
+in all; each keeps its best round (pendula.studies.workprecision.run_study with interleave).  The
+rows of every other method are kept from the record this run replaces, marked ``"kept_from": <that
+record's date>``: pendula's DOPRI5, RKN pair, fixed-step methods and exact path (their code did not
+change), SciPy (a Python loop, 70 to 290 times slower in every cell: seconds per run at tight
+tolerances) and SUNDIALS CVODE (called through Python, about 40 times slower).  The machine's load
+average is recorded.  The merged record gets ``cells``: per problem and target, pendula's fastest
+method, the fastest compiled peer and SciPy's, and the ratios.
 
-Usage:  python data/bench/work_precision_run.py [--rounds 5] [--problems damped,driven]
+Usage:
+    python data/bench/work_precision_run.py --problems damped,driven --out part1.json [--rounds 5]
+    python data/bench/work_precision_run.py --merge part1.json part2.json ...
+        (writes data/bench/work_precision.json and regenerates the report page's tables and figures)
 """
 
 import argparse
@@ -21,6 +25,11 @@ import pathlib
 from pendula.studies import workprecision as wp
 
 RECORD = pathlib.Path(__file__).resolve().parent / "work_precision.json"
+#: the methods re-run (pendula's changed ones and the compiled peers that are not called through Python)
+RERUN = ("dop853", "dop853" + wp.LANDED, "vern9", "vern9" + wp.LANDED, "gsl-rk8pd", "lsoda",
+         "Dopri8", "Tsit5", f"Dopri8-vmap{wp.DIFFRAX_BATCH}", f"Tsit5-vmap{wp.DIFFRAX_BATCH}")
+#: packages whose rows named like a re-run method are re-run (SciPy's 'DOP853' is not numbalsoda's 'dop853')
+RERUN_PACKAGES = ("pendula", "gsl", "numbalsoda", "diffrax")
 
 
 def cells(record):
@@ -35,30 +44,46 @@ def cells(record):
     return out
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--rounds", type=int, default=5)
-    ap.add_argument("--problems", default=",".join(wp.PROBLEMS))
-    args = ap.parse_args()
-    old = json.loads(RECORD.read_text())
-    problems = tuple(args.problems.split(","))
-    methods = [m for m in set(r[1] for p in wp.PROBLEMS.values() for r in wp._plan(p, wp.TOLS, False))
-               if m != "Radau"] + ["exact"]
+def rerun(problems, rounds, out):
     load_before = list(os.getloadavg())
-    rec = wp.run_study(problems=problems, methods=methods, interleave=args.rounds)
+    rec = wp.run_study(problems=problems, methods=RERUN, packages=RERUN_PACKAGES, interleave=rounds)
     rec["load_average_1_5_15_before"] = load_before
-    kept = [dict(r, kept_from=old["date"]) for r in old["rows"]
-            if r["method"] == "Radau" or r["problem"] not in problems]
-    rec["rows"] += kept
+    pathlib.Path(out).write_text(json.dumps(rec, indent=1) + "\n")
+    print(f"wrote {out}")
+
+
+def merge(parts):
+    old = json.loads(RECORD.read_text())
+    recs = [json.loads(pathlib.Path(p).read_text()) for p in parts]
+    rec = wp.merge_records(recs)
+    again = {(r["problem"], r["package"], r["method"]) for r in rec["rows"]}
+    rec["rows"] += [dict(r, kept_from=r.get("kept_from", old["date"])) for r in old["rows"]
+                    if (r["problem"], r["package"], r["method"]) not in again]
     rec["floors"] = {**old["floors"], **rec["floors"]}
-    rec["note"] = (f"interleaved run, {args.rounds} rounds, best kept; SciPy Radau rows (and the rows of problems "
-                   f"not re-run) kept from the run of {old['date']}")
+    rec["load_average_1_5_15"] = [x["load_average_1_5_15"] for x in recs]
+    rec["load_average_1_5_15_before"] = [x.get("load_average_1_5_15_before") for x in recs]
+    rec["note"] = (f"re-run side by side, {recs[0]['interleave']} interleaved rounds, best kept, of "
+                   f"{', '.join(RERUN)} (pendula, GSL, numbalsoda, diffrax); every other row kept from the run of "
+                   f"{old['date']} (its code did not change, or a peer called through Python: SciPy, CVODE)")
     rec["cells"] = cells(rec)
     RECORD.write_text(json.dumps(rec, indent=1) + "\n")
     print(f"wrote {RECORD}")
     for c in rec["cells"]:
         print(c)
     wp.regenerate_docs(RECORD)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--rounds", type=int, default=5)
+    ap.add_argument("--problems", default=",".join(wp.PROBLEMS))
+    ap.add_argument("--out")
+    ap.add_argument("--merge", nargs="+")
+    args = ap.parse_args()
+    if args.merge:
+        merge(args.merge)
+    else:
+        rerun(tuple(args.problems.split(",")), args.rounds, args.out)
 
 
 if __name__ == "__main__":
