@@ -790,7 +790,8 @@ def summary_rst(record: dict) -> str:
                      f"{len(slower)}: " + ", ".join(f"{a['problem']} {a['target']:.0e} ({_cell(a['compiled'])}, "
                                                      f"{a['compiled_ratio']:.2f})" for a in slower) + ".")
     for pkg, method in (("numbalsoda", "dop853"), ("gsl", "gsl-rk8pd"), ("sundials", "CVODE-Adams"),
-                        ("numbalsoda", "lsoda")):
+                        ("numbalsoda", "lsoda"), ("diffrax", "Dopri8"), ("diffrax", f"Dopri8-vmap{DIFFRAX_BATCH}"),
+                        ("diffrax", "Tsit5"), ("diffrax", f"Tsit5-vmap{DIFFRAX_BATCH}")):
         r = _same_setting_ratios(record, pkg, method)
         if r:
             lines.append(f"* {pkg} {method} / pendula's dop853 at the same problem and rtol: median "
@@ -814,7 +815,7 @@ def versions_rst(record: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-PACKAGE_STYLE = {"pendula": "-", "gsl": "--", "scipy": ":", "sundials": "-.", "numbalsoda": "-."}
+PACKAGE_STYLE = {"pendula": "-", "gsl": "--", "scipy": ":", "sundials": "-.", "numbalsoda": "-.", "diffrax": ":"}
 
 
 def write_figures(record: dict, outdir) -> list[pathlib.Path]:
