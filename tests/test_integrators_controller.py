@@ -30,8 +30,8 @@ def _counts(method, beta, reference):
     for name, p in PROBLEMS.items():
         t = reference[name]["t"]
         for rtol in RTOLS:
-            th, v, st, status = _kernel.integrate_options_v(_KCODES[method], _params(p), p["theta0"], p["v0"], t,
-                                                           rtol, rtol, 0.0, beta, 0)
+            th, v, st, _, status = _kernel.integrate_timed_v(1, _KCODES[method], _params(p), p["theta0"], p["v0"],
+                                                             t, rtol, rtol, 0.0, beta, 0)
             assert status == 0
             steps += st[0]
             rejected += st[2]

@@ -633,9 +633,13 @@ end subroutine ellipj_dd_v
 ! measured by the kernel around the integration alone (no argument conversion
 ! or Python call inside the interval).  method: 0 = the exact path (eps =
 ! params(1), conservative only), 1.. = the integrators' codes, 10 = GSL rk8pd.
-! theta, v, stats: those of the last run.  status as integrate_v.
-subroutine integrate_timed_v(nrep, n, method, params, theta0, v0, t, rtol, atol, dt, theta, v, stats, &
-                             seconds, status)
+! theta, v, stats: those of the last run.  status as integrate_v.  Options of
+! the adaptive pairs: pi_beta, the PI term of the step-size controller
+! (negative: the method's default; 0: pure I control, Hairer's DOP853 as
+! published); land = 1: the steps end on the output times instead of
+! interpolating (DOPRI5, DOP853, Verner's 9(8)).
+subroutine integrate_timed_v(nrep, n, method, params, theta0, v0, t, rtol, atol, dt, pi_beta, land, theta, v, &
+                             stats, seconds, status)
   use, intrinsic :: iso_c_binding, only: c_loc
   use pendula_kinds, only: dp
   use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate
@@ -644,6 +648,10 @@ subroutine integrate_timed_v(nrep, n, method, params, theta0, v0, t, rtol, atol,
   implicit none
   integer, intent(in) :: nrep, n, method
   double precision, intent(in) :: params(6), theta0, v0, t(n), rtol, atol, dt
+  double precision, intent(in) :: pi_beta
+  !f2py double precision optional, intent(in) :: pi_beta = -1.0
+  integer, intent(in) :: land
+  !f2py integer optional, intent(in) :: land = 0
   double precision, intent(out) :: theta(n), v(n), stats(4), seconds
   integer, intent(out) :: status
   !f2py intent(hide), depend(t) :: n = len(t)
@@ -672,7 +680,8 @@ subroutine integrate_timed_v(nrep, n, method, params, theta0, v0, t, rtol, atol,
       if (status /= 0) status = 100 + status
       stats = [gs(1), gs(1), 0.0d0, gs(2)]
     case default
-      call integrate(m, method, theta0, v0, t, rtol, atol, dt, theta, v, st, status, ev, nev, tev, thev, vev)
+      call integrate(m, method, theta0, v0, t, rtol, atol, dt, theta, v, st, status, ev, nev, tev, thev, vev, &
+                     pi_beta=pi_beta, land=land /= 0)
       stats = [dble(st%nsteps), dble(st%naccept), dble(st%nreject), dble(st%nfev)]
     end select
     if (status /= 0) exit
@@ -742,32 +751,6 @@ subroutine periodic_orbit_v(x, words, nw, wlen, nout, ngrid, period, winding, rt
   status = pendula_gsl_periodic_orbit(c_loc(m), period, winding, rtol, atol, tol, maxit, xo, mono, info)
 end subroutine periodic_orbit_v
 
-! ---------------------------------------------------------------- integrator options
-! One integration of the model (params as integrate_timed_v) with the
-! controller's PI term pi_beta (negative: the method's default; 0: pure I
-! control, Hairer's DOP853 as published) and land = 1: steps shortened to end
-! on every output time instead of interpolating (DOPRI5, DOP853, Verner's 9(8)).
-! stats = [steps, accepted, rejected, rhs evaluations]; status as integrate_v.
-subroutine integrate_options_v(n, method, params, theta0, v0, t, rtol, atol, dt, pi_beta, land, theta, v, &
-                               stats, status)
-  use pendula_kinds, only: dp
-  use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate
-  implicit none
-  integer, intent(in) :: n, method, land
-  double precision, intent(in) :: params(6), theta0, v0, t(n), rtol, atol, dt, pi_beta
-  double precision, intent(out) :: theta(n), v(n), stats(4)
-  integer, intent(out) :: status
-  !f2py intent(hide), depend(t) :: n = len(t)
-  type(pendulum_model) :: m
-  type(event_spec) :: ev
-  type(run_stats) :: st
-  double precision :: tev(1), thev(1), vev(1)
-  integer :: nev
-  m = make_model(params(1), params(2), params(3), params(4), params(5), params(6))
-  call integrate(m, method, theta0, v0, t, rtol, atol, dt, theta, v, st, status, ev, nev, tev, thev, vev, &
-                 pi_beta=pi_beta, land=land /= 0)
-  stats = [dble(st%nsteps), dble(st%naccept), dble(st%nreject), dble(st%nfev)]
-end subroutine integrate_options_v
 
 
 ! One step of Verner's 9(8) pair of size h from (theta0, v0) at t = 0 on the
@@ -786,38 +769,3 @@ subroutine vern9_interpolant_v(nx, params, theta0, v0, h, x, theta, v)
   call vern9_one_step_dense(m, theta0, v0, h, x, theta, v)
 end subroutine vern9_interpolant_v
 
-! integrate_timed_v for the adaptive integrators with integrate_options_v's
-! options (pi_beta: negative for the method's default; land = 1: the steps end
-! on the output times): the study's clock for those variants.
-subroutine integrate_timed_options_v(nrep, n, method, params, theta0, v0, t, rtol, atol, pi_beta, land, theta, v, &
-                                     stats, seconds, status)
-  use pendula_kinds, only: dp
-  use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate
-  implicit none
-  integer, intent(in) :: nrep, n, method, land
-  double precision, intent(in) :: params(6), theta0, v0, t(n), rtol, atol, pi_beta
-  double precision, intent(out) :: theta(n), v(n), stats(4), seconds
-  integer, intent(out) :: status
-  !f2py intent(hide), depend(t) :: n = len(t)
-  type(pendulum_model) :: m
-  type(event_spec) :: ev
-  type(run_stats) :: st
-  double precision :: tev(1), thev(1), vev(1), c0, c1
-  integer :: rep, nev
-  stats = 0; seconds = 0; status = 0
-  theta = 0; v = 0
-  if (nrep < 1) then
-    status = 1
-    return
-  end if
-  m = make_model(params(1), params(2), params(3), params(4), params(5), params(6))
-  call cpu_time(c0)
-  do rep = 1, nrep
-    call integrate(m, method, theta0, v0, t, rtol, atol, 0.0_dp, theta, v, st, status, ev, nev, tev, thev, vev, &
-                   pi_beta=pi_beta, land=land /= 0)
-    stats = [dble(st%nsteps), dble(st%naccept), dble(st%nreject), dble(st%nfev)]
-    if (status /= 0) exit
-  end do
-  call cpu_time(c1)
-  seconds = (c1 - c0) / nrep
-end subroutine integrate_timed_options_v

@@ -260,12 +260,8 @@ def run_pendula(p, t, method, rtol=0.0, dt=0.0, batch=BATCH_SECONDS, max_batches
     last = {}
 
     def run_batch(n):
-        if land:
-            th, v, stats, sec, status = _kernel.integrate_timed_options_v(n, code, prm, p["theta0"], p["v0"], t,
-                                                                          rtol, rtol, -1.0, 1)
-        else:
-            th, v, stats, sec, status = _kernel.integrate_timed_v(n, code, prm, p["theta0"], p["v0"], t,
-                                                                  rtol, rtol, dt)
+        th, v, stats, sec, status = _kernel.integrate_timed_v(n, code, prm, p["theta0"], p["v0"], t, rtol, rtol, dt,
+                                                              -1.0, int(land))
         if status != 0:
             raise RuntimeError(f"{method}: kernel status {status}")
         last["theta"], last["v"], last["stats"] = th, v, stats
