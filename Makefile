@@ -31,9 +31,9 @@ test-debug: $(VENV)/.installed
 bench: $(VENV)/.installed
 	$(PY) -m pendula bench
 
-# the peers of the work-precision study (SciPy, SUNDIALS CVODE, numbalsoda): the extra pendula[bench]
+# the peers of the work-precision study (SciPy, SUNDIALS CVODE, numbalsoda, diffrax): the extra pendula[bench]
 bench-peers: $(VENV)/.installed
-	$(PY) -m pip install -q "scipy>=1.11" "scikit-sundae>=1.0" "numbalsoda>=0.3.4" "numba>=0.59"
+	$(PY) -m pip install -q "scipy>=1.11" "scikit-sundae>=1.0" "numbalsoda>=0.3.4" "numba>=0.59" "diffrax>=0.6" "jax>=0.4.30"
 
 system-deps:
 	@dpkg -s $(APT_PKGS) >/dev/null 2>&1 || { \

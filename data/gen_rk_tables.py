@@ -24,6 +24,8 @@
   published exact forms): nodes V9_C, matrix V9_A, weights V9_B and the
   differences V9_E to the embedded 8th-order weights.  Its Butcher order
   conditions (all 486 trees to order 9) are checked by tests/test_verner_coefficients.py.
+  Its order-8 interpolant (Verner's own, five more stages; data/verner98_interpolant.csv):
+  the nodes V9I_C and rows V9I_A of stages 17-21 and the weight polynomials V9I_P(stage, power).
 
 Usage:  python data/gen_rk_tables.py
 """
@@ -79,10 +81,10 @@ def gauss_mu_tables(g2a, g2b, g3a, g3b):
                               arr("g3_mu", mu_form(g3a, g3b))])
 
 
-def verner98_values():
-    """name -> mpf of data/verner98_coefficients.csv."""
+def csv_values(name):
+    """name -> mpf of one of the coefficient files beside this script (data/NAME: lines name,value)."""
     mp.mp.dps = 50
-    path = pathlib.Path(__file__).resolve().parent / "verner98_coefficients.csv"
+    path = pathlib.Path(__file__).resolve().parent / name
     vals = {}
     for line in path.read_text().splitlines():
         if line.startswith("#") or line.startswith("name,"):
@@ -90,6 +92,11 @@ def verner98_values():
         k, v = line.split(",")
         vals[k] = mp.mpf(v)
     return vals
+
+
+def verner98_values():
+    """name -> mpf of data/verner98_coefficients.csv."""
+    return csv_values("verner98_coefficients.csv")
 
 
 def verner98_matrices():
@@ -103,12 +110,30 @@ def verner98_matrices():
     return c, A, b, e
 
 
+def verner98_interpolant():
+    """c (21), A (21 x 21) of the pair extended by the interpolant's stages 17-21, and P (21 x 8):
+    b_i(x) = sum_k P[i][k-1] x^k, at 50 digits (the published 40)."""
+    c, A, _, _ = verner98_matrices()
+    vals = csv_values("verner98_interpolant.csv")
+    n = 21
+    c = list(c) + [vals[f"c{i}"] for i in range(17, n + 1)]
+    A = [list(r) + [mp.mpf(0)] * (n - 16) for r in A] + \
+        [[vals.get(f"a{i}_{j}", mp.mpf(0)) for j in range(1, n + 1)] for i in range(17, n + 1)]
+    P = [[vals.get(f"p{i}_{k}", mp.mpf(0)) for k in range(1, 9)] for i in range(1, n + 1)]
+    return c, A, P
+
+
 def verner98_tables():
     c, A, b, e = verner98_matrices()
+    ci, Ai, P = verner98_interpolant()
     fl = lambda v: [float(x) for x in v]  # noqa: E731
     return "\n".join(["! Verner's 9(8) pair (Verner 2010): 16 stages (index 0..15), no FSAL",
                       arr("v9_c", fl(c)), arr("v9_a", [fl(r) for r in A]), arr("v9_b", fl(b)),
-                      arr("v9_e", fl(e))])
+                      arr("v9_e", fl(e)),
+                      "! its order-8 interpolant: stages 16..20 (16: f at the new point), weights",
+                      "! b_i(x) = sum_k v9i_p(i, k) x^k, k = 1..8 (stored with index 0..7)",
+                      arr("v9i_c", fl(ci[16:])), arr("v9i_a", [fl(r) for r in Ai[16:]]),
+                      arr("v9i_p", [fl(r) for r in P])])
 
 
 def rkn6_tables():

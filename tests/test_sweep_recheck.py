@@ -58,8 +58,9 @@ def test_recheck_sees_neighbours_across_chunk_edges(vstar):
     assert int((whole.status == 4).sum()) >= 1
     # with one point per chunk every neighbour is across a chunk edge
     assert whole.identical(one_per_chunk)
-    # an uncertain point is one whose loose answer is not the right one
-    for k in np.flatnonzero(whole.status.values == 4):
+    # an uncertain point is one whose loose answer is not the right one; the grid's point at vstar
+    # itself lies on the boundary (to the bisection's 1e-14), where no tolerance decides the well
+    for k in np.flatnonzero((whole.status.values == 4) & (np.abs(v0 - vstar) > 1e-9)):
         loose = pendula.sweep(Scene(damping=0.1), over={"v0": [v0[k]]}, measure="final_well", rtol=1e-5,
                               atol=1e-7).well.item()
         assert loose != scipy_well(v0[k], 0.1)
@@ -141,7 +142,7 @@ def test_pendula_run_recheck_three_axes_matches_python(tmp_path):
     scene = tmp_path / "c.nml"
     scene.write_text("&scene\n damping = 0.1\n grid = 'v0', 'torque', 'theta0'\n grid1_range = 2.2037, 2.2039, 5\n"
                      " grid2_range = 0, 1e-3, 40\n grid3_range = 0, 1e-3, 60\n measure = 'final_well'\n"
-                     " rtol = 1e-5\n atol = 1e-7\n/\n")
+                     " rtol = 1e-4\n atol = 1e-6\n/\n")     # loose enough that some answer changes on recheck
     r = _pendula_run(scene, "-o", tmp_path / "c.csv")
     assert r.returncode == 0, r.stderr
     tab = np.loadtxt(tmp_path / "c.csv", delimiter=",", comments="#", skiprows=2)

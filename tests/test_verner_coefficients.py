@@ -52,9 +52,9 @@ def gamma(t):
     return g
 
 
-def residuals(c, A, b, max_order):
-    """max |b . Phi(t) - 1/gamma(t)| per order, for the tableau (any number type)."""
-    s = len(b)
+def elementary_weights(A):
+    """t -> Phi(t), the vector over the stages of the elementary weights of tree t (memoised)."""
+    s = len(A)
     memo = {}
 
     def phi(t):   # vector over stages
@@ -66,7 +66,13 @@ def residuals(c, A, b, max_order):
                 v = [v[i] * ap[i] for i in range(s)]
             memo[t] = v
         return memo[t]
+    return phi
 
+
+def residuals(c, A, b, max_order):
+    """max |b . Phi(t) - 1/gamma(t)| per order, for the tableau (any number type)."""
+    s = len(b)
+    phi = elementary_weights(A)
     res = {}
     for n in range(1, max_order + 1):
         res[n] = max(abs(sum(b[i] * phi(t)[i] for i in range(s)) - mp.mpf(1) / gamma(t)) for t in trees(n))
@@ -120,3 +126,48 @@ def test_verner_doubles_of_the_kernel_satisfy_the_conditions(exact):
     # and each double is its exact coefficient rounded
     ce, Ae, be, ee = exact
     assert all(float(x) == y for x, y in zip(be, b)) and all(float(x) == y for x, y in zip(ce, c))
+
+
+# ---------------------------------------------------------------- the interpolant
+
+def test_verner_interpolant_extends_the_rows_to_their_nodes():
+    """The five stages of the interpolant (data/verner98_interpolant.csv) sum to their nodes, and
+    stage 17 is the step's own new point (the row of b, at c = 1)."""
+    from gen_rk_tables import verner98_interpolant
+    c, A, _ = verner98_interpolant()
+    _, _, b, _ = verner98_matrices()
+    assert max(abs(sum(A[i]) - c[i]) for i in range(16, 21)) < mp.mpf(10) ** -38
+    assert c[16] == 1 and max(abs(A[16][j] - b[j]) for j in range(16)) < mp.mpf(10) ** -38
+
+
+def test_verner_interpolant_ends_on_the_step():
+    """b_i(1) = sum_k P_ik is the pair's own 9th-order weight b_i (0 for the five new stages)."""
+    from gen_rk_tables import verner98_interpolant
+    _, _, P = verner98_interpolant()
+    _, _, b, _ = verner98_matrices()
+    assert max(abs(sum(P[i]) - (b[i] if i < 16 else 0)) for i in range(21)) < mp.mpf(10) ** -34   # 40 digits, sums of 8
+
+
+def test_verner_interpolant_satisfies_the_continuous_conditions_to_order_eight():
+    """A continuous extension of order 8: for every tree t with r <= 8 nodes and every power k of
+    x, sum_i P_ik Phi_i(t) = [k == r] / gamma(t) (Owren & Zennaro; Hairer, Norsett & Wanner I,
+    section II.6), so that b(x) . Phi(t) = x^r / gamma(t).  To 1e-35 (the published 40 digits);
+    and inside the step (x = 1/2) an order-9 condition fails: the interpolant is of order 8, one
+    less than the pair."""
+    from gen_rk_tables import verner98_interpolant
+    c, A, P = verner98_interpolant()
+    s = len(c)
+    phi = elementary_weights(A)
+
+    worst = 0
+    for r in range(1, 9):
+        for t in trees(r):
+            ph = phi(t)
+            for k in range(8):
+                want = mp.mpf(1) / gamma(t) if k + 1 == r else 0
+                worst = max(worst, abs(sum(P[i][k] * ph[i] for i in range(s)) - want))
+    assert worst < mp.mpf(10) ** -35, worst
+    x = mp.mpf(1) / 2      # (at x = 1 the weights are the pair's own, of order 9)
+    miss = max(abs(sum(sum(P[i][k] * x ** (k + 1) for k in range(8)) * phi(t)[i] for i in range(s))
+                   - x ** 9 / gamma(t)) for t in trees(9))
+    assert miss > mp.mpf(10) ** -6

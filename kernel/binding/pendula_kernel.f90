@@ -252,14 +252,21 @@ end subroutine scene_check_v
 ! Run a checked scene (its fields, as scene_check_v returns them; no sweep)
 ! at the times t (sorted ascending when an integrator answers).  method: the
 ! code of what answered (0 = exact path); status 0 ok, otherwise msg says why
-! (see pendula_simulate; 100: the fields do not form a scene).
-subroutine simulate_v(x, words, nw, wlen, nout, ngrid, n, t, cancel, theta, v, energy, stats, method, status, msg)
+! (see pendula_simulate; 100: the fields do not form a scene).  recheck = 1: the
+! kernel checks the fields first (check_scene, the one checker: a scene whose
+! integrator knobs were changed without building a new Scene); land = 1: the
+! adaptive pairs end their steps on the output times.
+subroutine simulate_v(x, words, nw, wlen, nout, ngrid, n, t, cancel, recheck, land, theta, v, energy, stats, method, &
+                      status, msg)
   use pendula_scene, only: scene_t, scene_from_fields
   use pendula_simulate, only: simulate_scene
   implicit none
   !f2py threadsafe
   double precision, intent(in) :: x(31)
   character(len=*), intent(in) :: words
+  integer, intent(in) :: recheck, land
+  !f2py integer optional, intent(in) :: recheck = 0
+  !f2py integer optional, intent(in) :: land = 0
   integer, intent(in) :: nw, nout, ngrid, n
   integer, intent(in) :: wlen(nw)
   double precision, intent(in) :: t(n)
@@ -273,13 +280,13 @@ subroutine simulate_v(x, words, nw, wlen, nout, ngrid, n, t, cancel, theta, v, e
   double precision :: g, length, none(0)
   method = -1
   theta = 0; v = 0; energy = 0; stats = 0
-  call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
+  call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, recheck /= 0, sc, &
                          g, length, status, msg)
   if (status /= 0) then
     status = 100
     return
   end if
-  call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel(1))
+  call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel(1), land=land /= 0)
 end subroutine simulate_v
 
 ! The model registry, one model per line of `table` (fields separated by '|':
@@ -647,9 +654,13 @@ end subroutine ellipj_dd_v
 ! measured by the kernel around the integration alone (no argument conversion
 ! or Python call inside the interval).  method: 0 = the exact path (eps =
 ! params(1), conservative only), 1.. = the integrators' codes, 10 = GSL rk8pd.
-! theta, v, stats: those of the last run.  status as integrate_v.
-subroutine integrate_timed_v(nrep, n, method, params, theta0, v0, t, rtol, atol, dt, theta, v, stats, &
-                             seconds, status)
+! theta, v, stats: those of the last run.  status as integrate_v.  Options of
+! the adaptive pairs: pi_beta, the PI term of the step-size controller
+! (negative: the method's default; 0: pure I control, Hairer's DOP853 as
+! published); land = 1: the steps end on the output times instead of
+! interpolating (DOPRI5, DOP853, Verner's 9(8)).
+subroutine integrate_timed_v(nrep, n, method, params, theta0, v0, t, rtol, atol, dt, pi_beta, land, theta, v, &
+                             stats, seconds, status)
   use, intrinsic :: iso_c_binding, only: c_loc
   use pendula_kinds, only: dp
   use pendula_integrators, only: pendulum_model, make_model, event_spec, run_stats, integrate
@@ -658,6 +669,10 @@ subroutine integrate_timed_v(nrep, n, method, params, theta0, v0, t, rtol, atol,
   implicit none
   integer, intent(in) :: nrep, n, method
   double precision, intent(in) :: params(6), theta0, v0, t(n), rtol, atol, dt
+  double precision, intent(in) :: pi_beta
+  !f2py double precision optional, intent(in) :: pi_beta = -1.0
+  integer, intent(in) :: land
+  !f2py integer optional, intent(in) :: land = 0
   double precision, intent(out) :: theta(n), v(n), stats(4), seconds
   integer, intent(out) :: status
   !f2py intent(hide), depend(t) :: n = len(t)
@@ -686,7 +701,8 @@ subroutine integrate_timed_v(nrep, n, method, params, theta0, v0, t, rtol, atol,
       if (status /= 0) status = 100 + status
       stats = [gs(1), gs(1), 0.0d0, gs(2)]
     case default
-      call integrate(m, method, theta0, v0, t, rtol, atol, dt, theta, v, st, status, ev, nev, tev, thev, vev)
+      call integrate(m, method, theta0, v0, t, rtol, atol, dt, theta, v, st, status, ev, nev, tev, thev, vev, &
+                     pi_beta=pi_beta, land=land /= 0)
       stats = [dble(st%nsteps), dble(st%naccept), dble(st%nreject), dble(st%nfev)]
     end select
     if (status /= 0) exit
@@ -765,8 +781,8 @@ end subroutine flow_monodromy_v
 ! passed to it as given.
 
 ! simulate_v with the user's force added to the scene's force law (the scene is integrated).
-subroutine simulate_force_v(x, words, nw, wlen, nout, ngrid, n, t, faddr, np, fparams, cancel, theta, v, energy, &
-                            stats, method, status, msg)
+subroutine simulate_force_v(x, words, nw, wlen, nout, ngrid, n, t, faddr, np, fparams, cancel, land, theta, v, &
+                            energy, stats, method, status, msg)
   use, intrinsic :: iso_c_binding, only: c_funptr, c_intptr_t
   use pendula_kinds, only: dp
   use pendula_scene, only: scene_t, scene_from_fields
@@ -781,6 +797,8 @@ subroutine simulate_force_v(x, words, nw, wlen, nout, ngrid, n, t, faddr, np, fp
   integer(8), intent(in) :: faddr
   double precision, intent(in), target :: fparams(np)
   integer, intent(inout), volatile :: cancel(1)
+  integer, intent(in) :: land
+  !f2py integer optional, intent(in) :: land = 0
   double precision, intent(out) :: theta(n), v(n), energy(n), stats(4)
   integer, intent(out) :: method, status
   character(len=512), intent(out) :: msg
@@ -802,7 +820,7 @@ subroutine simulate_force_v(x, words, nw, wlen, nout, ngrid, n, t, faddr, np, fp
     return
   end if
   f = transfer(int(faddr, c_intptr_t), f)
-  call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel(1), f, fparams)
+  call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel(1), f, fparams, land /= 0)
 end subroutine simulate_force_v
 
 ! The turning points of the rigid pendulum with dry friction mu (and a torque tau) from (theta0, v0):
@@ -978,3 +996,20 @@ subroutine flow_monodromy_force_v(x, words, nw, wlen, nout, ngrid, nt, times, x0
   status = pendula_gsl_flow_monodromy(c_loc(m), x0(1), x0(2), nt, times, rtol, atol, &
                                       int(min(nmax, 9.0d18), c_long), cancel(1), ends, monos, fend, nfev)
 end subroutine flow_monodromy_force_v
+
+! One step of Verner's 9(8) pair of size h from (theta0, v0) at t = 0 on the
+! model (params as integrate_timed_v) and its order-8 interpolant at the
+! fractions x of the step: the state at t = x h (x = 1: the step's own end).
+subroutine vern9_interpolant_v(nx, params, theta0, v0, h, x, theta, v)
+  use pendula_kinds, only: dp
+  use pendula_integrators, only: pendulum_model, make_model, vern9_one_step_dense
+  implicit none
+  integer, intent(in) :: nx
+  double precision, intent(in) :: params(6), theta0, v0, h, x(nx)
+  double precision, intent(out) :: theta(nx), v(nx)
+  !f2py intent(hide), depend(x) :: nx = len(x)
+  type(pendulum_model) :: m
+  m = make_model(params(1), params(2), params(3), params(4), params(5), params(6))
+  call vern9_one_step_dense(m, theta0, v0, h, x, theta, v)
+end subroutine vern9_interpolant_v
+

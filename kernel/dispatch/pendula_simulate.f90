@@ -125,7 +125,7 @@ contains
   !> energy: the model's invariant along the path; stats = [steps, accepted,
   !> rejected, rhs evaluations]; method: the code of what answered (m_exact
   !> for the exact path).  msg explains a non-zero status.
-  subroutine simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel, force, fparams)
+  subroutine simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel, force, fparams, land)
     type(scene_t), intent(in) :: sc
     !> non-zero (set by another thread) stops an integration: status sim_cancelled
     integer, intent(inout), volatile, optional :: cancel
@@ -133,6 +133,8 @@ contains
     !> params it reads: the scene is then integrated with it added to the force law
     type(c_funptr), intent(in), optional :: force
     real(dp), intent(in), target, contiguous, optional :: fparams(:)
+    !> the adaptive pairs end their steps on the output times (see pendula_integrators: integrate)
+    logical, intent(in), optional :: land
     real(dp), intent(in) :: t(:)
     real(dp), intent(out) :: theta(:), v(:), energy(:), stats(4)
     integer, intent(out) :: method, status
@@ -165,7 +167,7 @@ contains
       else if (sc%method == 'exact') then
         status = sim_exact_refused
       else
-        call integrate_model(sc, t, theta, v, stats, method, status, cancel, force, fparams)
+        call integrate_model(sc, t, theta, v, stats, method, status, cancel, force, fparams, land)
       end if
       if (status == sim_ok) energy = rigid_energy(sc%eps, theta, v)
     case (mid_cord)
@@ -189,7 +191,7 @@ contains
       if (sc%method == 'exact') then
         status = sim_exact_refused
       else
-        call integrate_model(sc, t, theta, v, stats, method, status, cancel, force, fparams)
+        call integrate_model(sc, t, theta, v, stats, method, status, cancel, force, fparams, land)
         if (status == sim_ok) energy = scene_energy(sc, theta, v)
       end if
     end select
@@ -227,11 +229,12 @@ contains
   end subroutine attach_force
 
   !> The scene's integrator on the rigid pendulum's force law with its effects.
-  subroutine integrate_model(sc, t, theta, v, stats, method, status, cancel, force, fparams)
+  subroutine integrate_model(sc, t, theta, v, stats, method, status, cancel, force, fparams, land)
     type(scene_t), intent(in) :: sc
     integer, intent(inout), volatile, optional :: cancel
     type(c_funptr), intent(in), optional :: force
     real(dp), intent(in), target, contiguous, optional :: fparams(:)
+    logical, intent(in), optional :: land
     real(dp), intent(in) :: t(:)
     real(dp), intent(out) :: theta(:), v(:), stats(4)
     integer, intent(out) :: method, status
@@ -283,7 +286,7 @@ contains
       return
     end if
     call integrate(model, method, sc%theta0, sc%v0, t, sc%rtol, sc%atol, sc%dt, theta, v, st, status, &
-                   ev, nev, tev, thev, vev, cancel)
+                   ev, nev, tev, thev, vev, cancel, land=land)
     stats = [real(st%nsteps, dp), real(st%naccept, dp), real(st%nreject, dp), real(st%nfev, dp)]
     select case (status)
     case (0)

@@ -4,8 +4,8 @@ Method names (a contract): 'rk4', 'verlet', 'yoshida4', 'yoshida6', 'yoshida8',
 'gauss4', 'gauss6' (fixed step: they take ``dt``), 'dopri5', 'dop853',
 'gsl-rk8pd', 'dprkn6' (adaptive: they take ``rtol`` and ``atol``; 'dprkn6', Dormand &
 Prince's Runge-Kutta-Nystrom pair RKN6(4), takes undamped scenes only and has no dense
-output, so no events), 'vern9' (Verner's 9(8) pair, any scene, no dense output: no
-events), 'exact' and 'auto'.
+output, so no events), 'vern9' (Verner's 9(8) pair, any scene, Verner's order-8
+interpolant; no events), 'exact' and 'auto'.
 The right-hand side holds only the effects the scene names.
 """
 
@@ -38,7 +38,7 @@ FIXED_STEP = ("rk4", "verlet", "yoshida4", "yoshida6", "yoshida8", "gauss4", "ga
 ADAPTIVE = ("dopri5", "dop853", "gsl-rk8pd", "dprkn6", "vern9")
 _STATUS = {1: "the step dt must be positive", 2: "rtol must be > 0 and atol >= 0", 3: "unknown method",
            5: "step size underflow (the problem may be singular or the tolerance unreachable)",
-           6: "the state became non-finite", 9: "events need a method with dense output (dopri5, dop853)",
+           6: "the state became non-finite", 9: "events are located on the dense output of dopri5 and dop853 only",
            7: "the run needs more steps than the work limit (1e8 adaptive, 2e9 fixed-step): shorten the span, "
               "or give a larger dt or rtol",
            8: "interrupted",

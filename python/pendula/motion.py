@@ -7,12 +7,13 @@ The rigid model's functions are re-exported here for compatibility.
 
 from __future__ import annotations
 
+import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _checks
 from ._checks import as_float
 from .systems.rigid import Orbit, energy, exact_motion, orbit
-from .scene import Scene
+from .scene import _NUMBER_LISTS, _NUMBERS, _WORDS, METHODS, Scene, SceneError
 from .systems import run
 from .systems.cord import simulate_cord
 from .systems.cycloid import cycloid_period
@@ -24,7 +25,7 @@ __all__ = ["Orbit", "Trajectory", "orbit", "exact_motion", "energy", "simulate",
 
 def simulate(scene: Scene, t: ArrayLike | None = None, method: str | None = None, rtol: float | None = None,
              atol: float | None = None, dt: float | None = None, force: object = None,
-             force_params: ArrayLike | None = None) -> Trajectory:
+             force_params: ArrayLike | None = None, land_on_outputs: bool = False) -> Trajectory:
     """Run one scene at the times ``t`` (default: the scene's own output times).
 
     The scene selects its model (see :func:`pendula.models`); the kernel's
@@ -61,6 +62,13 @@ def simulate(scene: Scene, t: ArrayLike | None = None, method: str | None = None
         The params the force reads, passed as given (the force must read no
         more than ``len(force_params)`` values; a force with an attribute
         ``nparams`` gets exactly that many, or ValueError).
+    land_on_outputs : bool, optional
+        The adaptive pairs with an interpolant ('dopri5', 'dop853', 'vern9'):
+        end the steps exactly on the output times, so that every output is a
+        step's own value, instead of interpolating inside the steps (the
+        default: the steps are then never shortened).  With outputs closer
+        than the steps the tolerance allows, landing costs more steps and
+        gives more accuracy; the work-precision study shows where each wins.
 
     Returns
     -------
@@ -71,15 +79,17 @@ def simulate(scene: Scene, t: ArrayLike | None = None, method: str | None = None
     Raises
     ------
     TypeError
-        If `scene` is not a :class:`Scene`, a time or knob has the wrong type, or
-        `force` is None, not callable or a ctypes function of another signature.
+        If `scene` is not a :class:`Scene`, a time or knob has the wrong type
+        (`land_on_outputs` not a bool), or `force` is None, not callable or a
+        ctypes function of another signature.
     SceneError
         If a knob is invalid (an unknown method, a negative tolerance; a
         subclass of ValueError naming the field).
     ValueError
         If the computation cannot be done as asked (e.g. a fixed-step method
-        for the flexible cord, more steps than the limit), or the force
-        returned NaN (the message gives the time and state).
+        for the flexible cord, more steps than the limit, `land_on_outputs`
+        with a method that does not interpolate), or the force returned NaN
+        (the message gives the time and state).
     NotImplementedError
         For a combination of model and effects not implemented.
 
@@ -97,20 +107,57 @@ def simulate(scene: Scene, t: ArrayLike | None = None, method: str | None = None
     'dop853'
     >>> pendula.simulate(pendula.Scene(v0=1.9), [0.0, 1.0]).method     # conservative: exact
     'exact'
+    >>> landed = pendula.simulate(pendula.Scene(v0=1.0, damping=0.1), [0.0, 0.5, 1.0], method="vern9",
+    ...                           land_on_outputs=True)
+    >>> landed.stats["steps"] >= 2                                      # a step ends on each output
+    True
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"simulate expects a pendula.Scene, got {type(scene).__name__}")
-    if method is not None or rtol is not None or atol is not None or dt is not None:
+    if not isinstance(land_on_outputs, (bool, np.bool_)):
+        raise TypeError(f"land_on_outputs must be True or False, not {type(land_on_outputs).__name__}")
+    uf = None if force is None and force_params is None else _checks.force(force, force_params)
+    if land_on_outputs:
+        return _landed(scene, t, method, rtol, atol, dt, uf)
+    if uf is None and (method is not None or rtol is not None or atol is not None or dt is not None):
         knobs = {k: v for k, v in (("method", method), ("rtol", rtol), ("atol", atol), ("dt", dt)) if v is not None}
+        variant = _with_knobs(scene, knobs)
+        if variant is not None:
+            # the kernel checks the changed fields as it runs them (no new Scene built and checked first),
+            # once: the variant is kept on the scene, marked as checked
+            tt = variant.times() if t is None else as_float(t, "t")
+            checked = variant.__dict__.get("_knobs_checked", False)
+            try:
+                tr = run(variant, tt, recheck=not checked)
+            except SceneError:
+                pass        # the knobs do not fit the scene: replace() below raises with the field named
+            else:
+                variant.__dict__["_knobs_checked"] = True
+                return tr
         scene = scene.replace(**knobs)
+    elif method is not None or rtol is not None or atol is not None or dt is not None:
+        scene = scene.replace(**{k: v for k, v in (("method", method), ("rtol", rtol), ("atol", atol), ("dt", dt))
+                                 if v is not None})
     t = scene.times() if t is None else as_float(t, "t")
-    if force is not None or force_params is not None:
-        return run(scene, t, _checks.force(force, force_params))
+    if uf is not None:
+        return run(scene, t, uf)
     if scene.cord == "flexible":
         # the flexible cord's own driver: the kernel's exact circle-flight-jerk path, or (with
         # damping, torque or drive) the integrator with the tension event between exact flights
         return simulate_cord(scene, t)
     return run(scene, t)
+
+
+def _landed(scene, t, method, rtol, atol, dt, force=None):
+    """simulate(..., land_on_outputs=True): an adaptive pair with its steps ending on the outputs."""
+    knobs = {k: v for k, v in (("method", method), ("rtol", rtol), ("atol", atol), ("dt", dt)) if v is not None}
+    scene = scene.replace(**knobs) if knobs else scene
+    if scene.method not in _LANDING or scene.cord != "rigid":
+        raise ValueError(f"land_on_outputs: the adaptive pairs that interpolate ({', '.join(_LANDING)}) land their "
+                         f"steps on the outputs on request, on the rigid cord (dprkn6 always lands, the fixed-step "
+                         f"methods branch off a step); the method is {scene.method!r}, the cord {scene.cord!r}")
+    t = scene.times() if t is None else as_float(t, "t")
+    return run(scene, t, force, land=True)
 
 
 def period(scene: Scene) -> float:
@@ -162,3 +209,52 @@ def period(scene: Scene) -> float:
         raise ValueError(f"period(scene) is the exact period of a conservative orbit; the scene names "
                          f"{', '.join(scene.effects)} (see pendula.numerical_period for event-based periods)")
     return orbit(scene.theta0, scene.v0, scene.eps).period
+
+
+#: where the integrator's knobs sit among the kernel's fields of a scene
+_KNOB_NUMBER = {name: _NUMBERS.index(name) for name in ("rtol", "atol", "dt")}
+_METHOD_WORD = _WORDS.index("method")
+
+
+def _with_knobs(scene: Scene, knobs: dict) -> Scene | None:
+    """The scene with other integrator knobs (method, rtol, atol, dt), its kernel fields patched in place of
+    building and checking a new Scene (``simulate`` then has the kernel check them as it runs); kept on the
+    scene (a few, by the knobs) so that asking again costs a look-up; None where
+    that does not apply: a sweep or grid, the flexible cord (its own driver), a knob that is not a float or
+    a method name as written in ``METHODS`` (``Scene.replace`` converts and checks those)."""
+    key = tuple(knobs.items())
+    kept = scene.__dict__.get("_knob_variants")
+    if kept is not None and key in kept:
+        return kept[key]
+    if scene.sweep or scene.grid or scene.cord != "rigid" or any(getattr(scene, n) for n in _NUMBER_LISTS):
+        return None
+    for k, v in knobs.items():
+        if not (type(v) is str and v in METHODS if k == "method" else type(v) is float):
+            return None
+    x, words, wlen, nout, ngrid = scene._kernel_fields
+    x = x.copy()
+    for k, i in _KNOB_NUMBER.items():
+        if k in knobs:
+            x[i] = knobs[k]
+    if "method" in knobs:
+        start = int(wlen[:_METHOD_WORD].sum())
+        word = knobs["method"].encode()
+        words = words[:start] + word + words[start + int(wlen[_METHOD_WORD]):]
+        wlen = wlen.copy()
+        wlen[_METHOD_WORD] = len(word)
+    variant = object.__new__(Scene)
+    variant.__dict__.update({k: v for k, v in scene.__dict__.items() if k not in _NOT_COPIED})
+    variant.__dict__.update(knobs)
+    variant.__dict__["_kernel_fields"] = (x, words, wlen, nout, ngrid)
+    if kept is None or len(kept) >= _MAX_VARIANTS:
+        kept = scene.__dict__["_knob_variants"] = {}
+    kept[key] = variant
+    return variant
+
+
+#: the methods that land their steps on the outputs on request (simulate's land_on_outputs)
+_LANDING = ("dopri5", "dop853", "vern9")
+#: a scene keeps at most this many variants with other knobs (the last ones asked for)
+_MAX_VARIANTS = 8
+#: what a variant does not inherit from its scene: the scene's own variants and check mark
+_NOT_COPIED = ("_knob_variants", "_knobs_checked")

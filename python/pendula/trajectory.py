@@ -32,9 +32,11 @@ class Trajectory:
     scene : Scene
         The scene that was run.
     stats : dict
-        Work done: steps, right-hand-side evaluations, rejected steps (empty
-        for the exact solution); for the flexible cord also the number of
-        flips and the reason the run stopped.
+        Work done: ``steps`` (attempted), ``accepted``, ``rejected``,
+        ``rejection_rate`` (rejected / steps: how often the step-size
+        controller had to retry), ``rhs_evaluations`` (empty for the exact
+        solution); for the flexible cord also the number of flips and the
+        reason the run stopped.
     x, y, r : ndarray or None
         Flexible cord only: the bob's position (pivot at the origin, y up) and
         distance from the pivot, in units of the cord length (r < 1 in flight).
@@ -74,6 +76,10 @@ class Trajectory:
     flips: dict | None = None
 
     def __post_init__(self):
+        # the share of attempted steps the step-size controller rejected (adaptive methods)
+        steps = self.stats.get("steps") if isinstance(self.stats, dict) else None
+        if steps is not None and "rejected" in self.stats and "rejection_rate" not in self.stats:
+            self.stats["rejection_rate"] = self.stats["rejected"] / steps if steps > 0 else 0.0
         if self.flips is not None and not isinstance(self.flips, FlipLog):
             self.flips = FlipLog(self.flips)
 

@@ -46,7 +46,9 @@ MAX_BATCHES = 10
 
 #: pendula's methods and their settings (rtol for adaptive ones, with atol = rtol; dt for fixed-step ones)
 TOLS = [10.0 ** -k for k in range(3, 15)]
-PENDULA_ADAPTIVE = ("dopri5", "dop853", "vern9", "gsl-rk8pd")
+#: the suffix of a method run with its steps landing on the output times (simulate's land_on_outputs)
+LANDED = "-landed"
+PENDULA_ADAPTIVE = ("dopri5", "dop853", "dop853" + LANDED, "vern9", "vern9" + LANDED, "gsl-rk8pd")
 #: methods for theta'' = f(t, theta) only (no damping): the Runge-Kutta-Nystrom pair
 PENDULA_NYSTROM = ("dprkn6",)
 PENDULA_FIXED = {"rk4": [0.1, 0.05, 0.025, 0.0125, 0.00625, 0.003125],
@@ -213,6 +215,30 @@ def best_time(run_batch, batch_seconds=BATCH_SECONDS, max_batches=MAX_BATCHES) -
     return {"seconds": min(times), "repeats": n * len(times), "spread": spread}
 
 
+def _first_round(run_batch, batch_seconds=BATCH_SECONDS, max_batches=MAX_BATCHES) -> dict:
+    """The interleaved study's first timing of a run: n calibrated as in :func:`best_time`, one batch;
+    the run_batch is kept (``_run_batch``) for the later rounds (:func:`_more_rounds`)."""
+    t1 = run_batch(1)
+    n = max(1, min(100000, int(batch_seconds / max(t1, 1e-7)))) if t1 < batch_seconds else 1
+    sec = run_batch(n)
+    return {"seconds": sec, "repeats": n, "spread": float("inf"), "_run_batch": (run_batch, n, [sec])}
+
+
+def _more_rounds(timers, rounds, progress, label):
+    """Rounds 2..rounds of the interleaved study: every run once per round, in turn; each row keeps
+    its best round and the spread of its three best ((third - best) / best)."""
+    for k in range(1, rounds):
+        for row, (run_batch, n, times) in timers:
+            times.append(run_batch(n))
+        if progress:
+            print(f"  {label}: round {k + 1} of {rounds}", flush=True)
+    for row, (run_batch, n, times) in timers:
+        s = sorted(times)
+        row["seconds"] = s[0]
+        row["repeats"] = n * len(times)
+        row["spread"] = (s[2] - s[0]) / s[0] if len(s) >= 3 and s[0] > 0 else float("inf")
+
+
 def _process_batch(fn):
     """run_batch for a Python-called solver: process CPU time around n calls."""
     def run_batch(n):
@@ -229,24 +255,29 @@ _KCODES = {"exact": 0, "rk4": 1, "verlet": 2, "yoshida4": 3, "yoshida6": 4, "yos
            "gauss6": 7, "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10, "dprkn6": 11, "vern9": 12}
 
 
-def run_pendula(p, t, method, rtol=0.0, dt=0.0, batch=BATCH_SECONDS, max_batches=MAX_BATCHES):
+def run_pendula(p, t, method, rtol=0.0, dt=0.0, batch=BATCH_SECONDS, max_batches=MAX_BATCHES, timer=None):
     """theta, v and the timing of one pendula run, timed by the kernel's own clock
-    (integrate_timed_v: the integration repeated inside the kernel)."""
+    (integrate_timed_v: the integration repeated inside the kernel); the timing carries the run's
+    work: steps (attempted), rejected, rhs_evaluations."""
     from .. import _kernel
 
-    code = _KCODES[method]
+    land = method.endswith(LANDED)
+    code = _KCODES[method[:-len(LANDED)] if land else method]
     prm = _params(p)
     last = {}
 
     def run_batch(n):
-        th, v, stats, sec, status = _kernel.integrate_timed_v(n, code, prm, p["theta0"], p["v0"], t,
-                                                              rtol, rtol, dt)
+        th, v, stats, sec, status = _kernel.integrate_timed_v(n, code, prm, p["theta0"], p["v0"], t, rtol, rtol, dt,
+                                                              -1.0, int(land))
         if status != 0:
             raise RuntimeError(f"{method}: kernel status {status}")
-        last["theta"], last["v"] = th, v
+        last["theta"], last["v"], last["stats"] = th, v, stats
         return sec
 
-    tm = best_time(run_batch, batch, max_batches)
+    tm = (timer or best_time)(run_batch, batch, max_batches)
+    if code != 0:
+        st = last["stats"]
+        tm.update({"steps": int(st[0]), "rejected": int(st[2]), "rhs_evaluations": int(st[3])})
     return last["theta"], last["v"], tm
 
 
@@ -267,7 +298,7 @@ def _rhs_numpy(p):
     return f
 
 
-def run_scipy(p, t, method, rtol, batch=BATCH_SECONDS, max_batches=MAX_BATCHES):
+def run_scipy(p, t, method, rtol, batch=BATCH_SECONDS, max_batches=MAX_BATCHES, timer=None):
     """SciPy's solve_ivp at the output times t (its dense output), timed by process CPU time."""
     solve_ivp = require("scipy.integrate", "bench", "pendula accuracy integrators (the SciPy peers)").solve_ivp
 
@@ -277,14 +308,14 @@ def run_scipy(p, t, method, rtol, batch=BATCH_SECONDS, max_batches=MAX_BATCHES):
 
     def once():
         last["sol"] = solve_ivp(f, (0.0, t[-1]), y0, method=method, t_eval=t, rtol=rtol, atol=rtol)
-    tm = best_time(_process_batch(once), batch, max_batches)
+    tm = (timer or best_time)(_process_batch(once), batch, max_batches)
     sol = last["sol"]
     if not sol.success or sol.y.shape[1] != t.size:
         return None, None, tm
     return sol.y[0], sol.y[1], tm
 
 
-def run_cvode(p, t, method, rtol, batch=BATCH_SECONDS, max_batches=MAX_BATCHES):
+def run_cvode(p, t, method, rtol, batch=BATCH_SECONDS, max_batches=MAX_BATCHES, timer=None):
     """SUNDIALS CVODE (scikit-sundae) with 'Adams' or 'BDF', outputs at t, timed by process CPU time."""
     from sksundae.cvode import CVODE
 
@@ -307,7 +338,7 @@ def run_cvode(p, t, method, rtol, batch=BATCH_SECONDS, max_batches=MAX_BATCHES):
 
     def once():
         last["sol"] = solver.solve(t, y0)
-    tm = best_time(_process_batch(once), batch, max_batches)
+    tm = (timer or best_time)(_process_batch(once), batch, max_batches)
     sol = last["sol"]
     if not sol.success or sol.y.shape[0] != t.size:
         return None, None, tm
@@ -347,7 +378,7 @@ def _numbalsoda_runner(p, method):
     return loop
 
 
-def run_numbalsoda(p, t, method, rtol, batch=BATCH_SECONDS, max_batches=MAX_BATCHES):
+def run_numbalsoda(p, t, method, rtol, batch=BATCH_SECONDS, max_batches=MAX_BATCHES, timer=None):
     """numbalsoda's LSODA or DOP853 (compiled, rhs a numba.cfunc), called n times from a jitted loop
     (no Python inside the timed interval but the one call), timed by process CPU time."""
     loop = _numbalsoda_runner(p, method)
@@ -359,11 +390,89 @@ def run_numbalsoda(p, t, method, rtol, batch=BATCH_SECONDS, max_batches=MAX_BATC
         t0 = time.process_time()
         last["r"] = loop(n, y0, t, rtol)
         return (time.process_time() - t0) / n
-    tm = best_time(run_batch, batch, max_batches)
+    tm = (timer or best_time)(run_batch, batch, max_batches)
     usol, ok = last["r"]
     if not ok:
         return None, None, tm
     return usol[:, 0], usol[:, 1], tm
+
+
+#: diffrax's solvers in the study, and the batch of the vmapped form (one problem repeated: the time per problem)
+DIFFRAX_SOLVERS = ("Dopri8", "Tsit5")
+DIFFRAX_BATCH = 256
+_DIFFRAX_CACHE: dict = {}
+
+
+def _diffrax_solver(solver, batched):
+    """A jitted diffrax solve (x64) of theta'' = -eps sin(theta) - beta v + tau + amp cos(omega t + phase)
+    with the parameters, times, initial state and tolerance as arguments (traced: one compilation per
+    solver and form, whatever the problem and the tolerance).  Returns (function, compile seconds)."""
+    key = (solver, batched)
+    if key in _DIFFRAX_CACHE:
+        return _DIFFRAX_CACHE[key]
+    import jax
+
+    jax.config.update("jax_enable_x64", True)
+    import diffrax
+    import jax.numpy as jnp
+
+    def rhs(tt, y, prm):
+        eps, beta, tau, amp, om, ph = prm[0], prm[1], prm[2], prm[3], prm[4], prm[5]
+        return jnp.stack([y[1], -eps * jnp.sin(y[0]) - beta * y[1] + tau + amp * jnp.cos(om * tt + ph)])
+
+    term = diffrax.ODETerm(rhs)
+    method = getattr(diffrax, solver)()
+
+    def one(y0, ts, prm, rtol):
+        sol = diffrax.diffeqsolve(term, method, t0=ts[0], t1=ts[-1], dt0=None, y0=y0, args=prm,
+                                  saveat=diffrax.SaveAt(ts=ts),
+                                  stepsize_controller=diffrax.PIDController(rtol=rtol, atol=rtol),
+                                  max_steps=10 ** 6, throw=False)
+        return sol.ys, sol.result == diffrax.RESULTS.successful
+
+    fn = jax.jit(jax.vmap(one, in_axes=(0, None, None, None)) if batched else one)
+    _DIFFRAX_CACHE[key] = fn
+    return fn
+
+
+def run_diffrax(p, t, method, rtol, batch=BATCH_SECONDS, max_batches=MAX_BATCHES, timer=None):
+    """diffrax (JAX, jitted, x64): 'Dopri8' or 'Tsit5' on one problem, or '...-vmap256' on a batch of
+    DIFFRAX_BATCH copies (seconds: per problem).  Timed by process CPU time around the calls (all of
+    XLA's threads); the first call of a form (compilation) is timed apart as ``compile_seconds``."""
+    import jax.numpy as jnp
+
+    batched = method.endswith(f"-vmap{DIFFRAX_BATCH}")
+    solver = method.split("-")[0]
+    fresh = (solver, batched) not in _DIFFRAX_CACHE
+    fn = _diffrax_solver(solver, batched)
+    y0 = jnp.array([p["theta0"], p["v0"]])
+    if batched:
+        y0 = jnp.tile(y0, (DIFFRAX_BATCH, 1))
+    args = (y0, jnp.asarray(t), jnp.asarray(_params(p)), jnp.asarray(rtol))
+    c0 = time.process_time()
+    ys, ok = fn(*args)
+    ys.block_until_ready()
+    first = time.process_time() - c0
+    per = DIFFRAX_BATCH if batched else 1
+    last = {}
+
+    def run_batch(n):
+        t0 = time.process_time()
+        for _ in range(n):
+            r = fn(*args)
+            r[0].block_until_ready()
+        last["r"] = r
+        return (time.process_time() - t0) / n / per
+    tm = (timer or best_time)(run_batch, batch, max_batches)
+    if fresh:
+        tm["compile_seconds"] = max(0.0, first - tm["seconds"] * per)
+    ys, ok = last["r"]
+    ys, ok = np.asarray(ys), np.asarray(ok)
+    if not np.all(ok):
+        return None, None, tm
+    if batched:
+        ys = ys[0]
+    return ys[:, 0], ys[:, 1], tm
 
 
 # ---------------------------------------------------------------- the study
@@ -373,7 +482,7 @@ def peer_versions() -> dict:
     import importlib.metadata as md
 
     out = {}
-    for name in ("pendula", "numpy", "scipy", "scikit-sundae", "numbalsoda", "numba", "mpmath"):
+    for name in ("pendula", "numpy", "scipy", "scikit-sundae", "numbalsoda", "numba", "mpmath", "jax", "diffrax"):
         try:
             out[name] = md.version(name)
         except md.PackageNotFoundError:
@@ -429,10 +538,17 @@ def _plan(p, tols, quick):
         runs += [("numbalsoda", m, "rtol", r) for m in ("lsoda", "dop853") for r in tols]
     except ImportError:
         pass
+    try:
+        import diffrax  # noqa: F401
+        runs += [("diffrax", m + form, "rtol", r) for m in DIFFRAX_SOLVERS for form in ("", f"-vmap{DIFFRAX_BATCH}")
+                 for r in tols]
+    except ImportError:
+        pass
     return runs
 
 
-def run_study(problems=None, tols=None, quick=False, progress=True, reference=None, methods=None) -> dict:
+def run_study(problems=None, tols=None, quick=False, progress=True, reference=None, methods=None,
+              packages=None, interleave=0) -> dict:
     """Run the work-precision study.
 
     Every method and setting on every problem; errors against the stored reference;
@@ -454,6 +570,12 @@ def run_study(problems=None, tols=None, quick=False, progress=True, reference=No
         The reference file (see :func:`load_reference`).
     methods : sequence of str, optional
         Only these methods.
+    packages : sequence of str, optional
+        Only these packages ('pendula', 'gsl', 'scipy', 'sundials', 'numbalsoda', 'diffrax').
+    interleave : int
+        0: each run timed to a stable best (:func:`best_time`) before the next.  N > 0: every run of
+        a problem is calibrated and timed once, then all of them again in turn, N rounds in all, and
+        the best round kept (pendula and its peers side by side under the same load).
 
     Returns
     -------
@@ -491,10 +613,15 @@ def run_study(problems=None, tols=None, quick=False, progress=True, reference=No
         runs = _plan(p, tols, quick)
         if methods:
             runs = [r for r in runs if r[1] in methods]
+        if packages:
+            runs = [r for r in runs if r[0] in packages]
+        timers = []
         if p["conservative"] and (not methods or "exact" in methods):
             runs = [("pendula", "exact", "-", 0.0)] + runs
         for k, (pkg, method, knob, value) in enumerate(runs):
             kw = dict(batch=batch, max_batches=max_batches)
+            if interleave:
+                kw["timer"] = _first_round
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 try:
@@ -505,6 +632,8 @@ def run_study(problems=None, tols=None, quick=False, progress=True, reference=No
                         th, v, tm = run_scipy(p, t, method, value, **kw)
                     elif pkg == "sundials":
                         th, v, tm = run_cvode(p, t, method.split("-")[1], value, **kw)
+                    elif pkg == "diffrax":
+                        th, v, tm = run_diffrax(p, t, method, value, **kw)
                     else:
                         th, v, tm = run_numbalsoda(p, t, method, value, **kw)
                 except RuntimeError as exc:
@@ -517,14 +646,21 @@ def run_study(problems=None, tols=None, quick=False, progress=True, reference=No
             row = {"problem": pname, "package": pkg, "method": method, "setting": f"{knob}={value:g}"
                    if knob != "-" else "-", knob if knob != "-" else "rtol": value if knob != "-" else None}
             row.update(err)
+            timer_state = tm.pop("_run_batch", None)
             row.update(tm)
             rows.append(row)
+            if timer_state is not None:
+                timers.append((row, timer_state))
             if progress:
                 print(f"  {pname:9s} {pkg:10s} {method:12s} {row['setting']:12s} err {err['error_max']:9.2e} "
                       f"{tm['seconds'] * 1e3:9.3f} ms  ({tm['repeats']} runs, spread {tm['spread']:.1%})",
                       flush=True)
+        _more_rounds(timers, interleave, progress, pname)
+    import os
+
     return {"date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),
-            "machine": machine(), "versions": peer_versions(),
+            "machine": machine(), "versions": peer_versions(), "load_average_1_5_15": list(os.getloadavg()),
+            "interleave": interleave,
             "clock": "process CPU time: the kernel's cpu_time around the repeated integration for pendula and "
                      "GSL; time.process_time around the calls for the Python-called peers (numbalsoda: around "
                      "one call of a jitted loop over the runs)",
@@ -740,7 +876,8 @@ def summary_rst(record: dict) -> str:
                      f"{len(slower)}: " + ", ".join(f"{a['problem']} {a['target']:.0e} ({_cell(a['compiled'])}, "
                                                      f"{a['compiled_ratio']:.2f})" for a in slower) + ".")
     for pkg, method in (("numbalsoda", "dop853"), ("gsl", "gsl-rk8pd"), ("sundials", "CVODE-Adams"),
-                        ("numbalsoda", "lsoda")):
+                        ("numbalsoda", "lsoda"), ("diffrax", "Dopri8"), ("diffrax", f"Dopri8-vmap{DIFFRAX_BATCH}"),
+                        ("diffrax", "Tsit5"), ("diffrax", f"Tsit5-vmap{DIFFRAX_BATCH}")):
         r = _same_setting_ratios(record, pkg, method)
         if r:
             lines.append(f"* {pkg} {method} / pendula's dop853 at the same problem and rtol: median "
@@ -764,7 +901,7 @@ def versions_rst(record: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-PACKAGE_STYLE = {"pendula": "-", "gsl": "--", "scipy": ":", "sundials": "-.", "numbalsoda": "-."}
+PACKAGE_STYLE = {"pendula": "-", "gsl": "--", "scipy": ":", "sundials": "-.", "numbalsoda": "-.", "diffrax": ":"}
 
 #: the families of methods a figure shows one curve of (the best), in the legend's order
 FAMILIES = (("pendula, adaptive", lambda r: r["package"] == "pendula" and r["method"] not in PENDULA_FIXED

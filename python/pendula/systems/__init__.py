@@ -126,9 +126,15 @@ def _force_failure(t, theta, v) -> str:
             f"v = {v[k - 1]!r}, the last finite output) and before t = {t[min(k, len(t) - 1)]!r}")
 
 
-def run(scene: Scene, t, force: _checks.Force | None = None) -> Trajectory:
+def run(scene: Scene, t, force: _checks.Force | None = None, recheck: bool = False,
+        land: bool = False) -> Trajectory:
     """Run a scene through the kernel's dispatcher at the times t (any order);
     ``force``: a user's force (checked by ``_checks.force``) added to its force law.
+
+    recheck: the kernel checks the scene's fields before running them (a scene
+    whose integrator knobs were changed without building a new Scene: see
+    pendula.motion.simulate); a refusal is a SceneError.  land: Verner's 9(8) pair
+    ends its steps on the output times instead of interpolating.
 
     Raises
     ------
@@ -151,11 +157,12 @@ def run(scene: Scene, t, force: _checks.Force | None = None) -> Trajectory:
         long = bool(scene.effects) and _long_run(scene, sorted_t)
         if force is None:
             theta_s, v_s, e_s, stats, method, status, msg = _interrupt.call(
-                _kernel.simulate_v, x, words, wlen, nout, ngrid, sorted_t, cancel, cancel=cancel, long=long)
+                _kernel.simulate_v, x, words, wlen, nout, ngrid, sorted_t, cancel, int(recheck), int(land),
+                cancel=cancel, long=long)
         else:
             theta_s, v_s, e_s, stats, method, status, msg = _interrupt.call(
                 _kernel.simulate_force_v, x, words, wlen, nout, ngrid, sorted_t, force.address, force.params,
-                cancel, cancel=cancel, long=True)
+                cancel, int(land), cancel=cancel, long=True)
             force.reraise()
         if status != _UNSORTED or order is not None:
             break
