@@ -167,7 +167,13 @@ contains
       else if (sc%method == 'exact') then
         status = sim_exact_refused
       else
-        call integrate_model(sc, t, theta, v, stats, method, status, cancel, force, fparams, land)
+        ! an absent force and its params are not passed on (an absent contiguous array's
+        ! descriptor would be read by the call under -fcheck)
+        if (present(force)) then
+          call integrate_model(sc, t, theta, v, stats, method, status, cancel, force, fparams, land=land)
+        else
+          call integrate_model(sc, t, theta, v, stats, method, status, cancel, land=land)
+        end if
       end if
       if (status == sim_ok) energy = rigid_energy(sc%eps, theta, v)
     case (mid_cord)
@@ -191,7 +197,13 @@ contains
       if (sc%method == 'exact') then
         status = sim_exact_refused
       else
-        call integrate_model(sc, t, theta, v, stats, method, status, cancel, force, fparams, land)
+        ! an absent force and its params are not passed on (an absent contiguous array's
+        ! descriptor would be read by the call under -fcheck)
+        if (present(force)) then
+          call integrate_model(sc, t, theta, v, stats, method, status, cancel, force, fparams, land=land)
+        else
+          call integrate_model(sc, t, theta, v, stats, method, status, cancel, land=land)
+        end if
         if (status == sim_ok) energy = scene_energy(sc, theta, v)
       end if
     end select
