@@ -2,13 +2,13 @@
 Air drag against linear damping
 ===============================
 
-Quadratic drag, θ'' = −sin θ − γ θ'|θ'|, is strong at high speed and vanishes
+Quadratic drag, θ'' = −sin θ − γ θ' abs(θ'), is strong at high speed and vanishes
 quickly as the speed falls; linear damping, −β θ', keeps the same rate.  With
 the two matched on the first swing, drag wins early and loses late: the
 amplitude under drag falls like 1/(1 + c t) (each swing loses a fixed
 fraction of its amplitude squared), under linear damping like exp(−βt/2).
 pendula integrates drag in stretches between the v = 0 events, with the sign
-of the drag term fixed on each (never a smoothed |v|).
+of the drag term fixed on each (never a smoothed abs(v)).
 """
 
 import matplotlib.pyplot as plt

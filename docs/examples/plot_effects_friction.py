@@ -5,10 +5,10 @@ Dry friction: the amplitude falls linearly, then the bob sticks
 Coulomb friction at the pivot, θ'' = −ε sin θ − μ sgn θ', takes a fixed
 amount of energy per radian travelled, so each half swing loses (for small
 angles) 2μ/ε of amplitude: the envelope is a straight line, not the
-exponential of linear damping.  At the turning point where |ε sin θ| ≤ μ
+exponential of linear damping.  At the turning point where abs(ε sin θ) ≤ μ
 the bob sticks for good.  The curve is pendula's integrated path (DOP853,
 stopped and restarted at every v = 0 event); the dots are the exact turning
-points from the energy balance ε (cos θb − cos θa) = μ |θb − θa|
+points from the energy balance ε (cos θb − cos θa) = μ abs(θb − θa)
 (:func:`pendula.friction_turning_points`).
 """
 

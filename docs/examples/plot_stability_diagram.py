@@ -7,7 +7,7 @@ spiral, or a node when β² > 4 cos θ*) and at π − asin τ (a saddle), until
 the two merge in a saddle-node at τ = 1 and the pendulum must run
 (Suzuki & Suzuki, section 7.1), followed in τ by
 :func:`pendula.continue_equilibria`, which locates the saddle-nodes (black
-crosses) at |τ| = 1 exactly.  Right: the real parts of the eigenvalues,
+crosses) at abs(τ) = 1 exactly.  Right: the real parts of the eigenvalues,
 λ² + βλ + cos θ* = 0.
 """
 

@@ -353,7 +353,7 @@ def angle_cdf(scene: Scene, theta: ArrayLike) -> NDArray[np.float64] | np.float6
         angle_cdf(theta) + 1``, whereas :func:`angle_density` wraps
         (``angle_density(theta + 2 pi) = angle_density(theta)``).  The CDF of
         the angle taken modulo 2 pi is ``angle_cdf(theta) % 1`` on [-pi, pi);
-        beyond |theta| = 2^52 it is NaN with a RuntimeWarning (the turns are
+        beyond abs(theta) = 2^52 it is NaN with a RuntimeWarning (the turns are
         no longer exact), and +-inf at +-inf.
 
     Raises

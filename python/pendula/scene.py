@@ -148,11 +148,11 @@ class Scene:
         Poincare samples.
     friction : float
         Dry (Coulomb) friction mu >= 0 at the pivot: -mu sgn(theta') while
-        moving; at rest the bob sticks while |eps sin(theta) - forces| <= mu
+        moving; at rest the bob sticks while abs(eps sin(theta) - forces) <= mu
         (static and kinetic coefficients equal).  Stops and restarts are
         events (dopri5 or dop853).
     drag : float
-        Quadratic air drag gamma >= 0: -gamma theta' |theta'|.
+        Quadratic air drag gamma >= 0: -gamma theta' abs(theta').
     pivot_amplitude, pivot_frequency : float
         A vertically vibrating pivot y = a cos(Omega t) (in units of the
         length): the effective gravity eps - a Omega^2 cos(Omega t).  A pivot

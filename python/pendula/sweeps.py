@@ -850,7 +850,7 @@ def attractor_map(scene: Scene, over: dict, *, method: Literal["recurrence", "sa
     ``method='samples'`` (the former method, used when ``transient`` or
     ``samples`` is given) integrates every point over ``transient`` and reads
     ``samples`` stroboscopic samples for recurrence
-    (:func:`pendula.dynamics.attractors.label_attractors`).
+    (``pendula.dynamics.attractors.label_attractors``).
 
     Parameters
     ----------
