@@ -22,7 +22,12 @@ damp = pendula.simulate(pendula.Scene(theta0=2.5, damping=0.08), t)
 
 
 def maxima(tr):
-    k = np.flatnonzero((tr.theta[1:-1] > tr.theta[:-2]) & (tr.theta[1:-1] >= tr.theta[2:])) + 1
+    k = (
+        np.flatnonzero(
+            (tr.theta[1:-1] > tr.theta[:-2]) & (tr.theta[1:-1] >= tr.theta[2:])
+        )
+        + 1
+    )
     return tr.t[k], tr.theta[k]
 
 
@@ -34,7 +39,11 @@ ax1.legend(fontsize=8)
 for tr, lab in ((drag, "drag"), (damp, "linear")):
     tm, am = maxima(tr)
     ax2.semilogy(tm, am, "o-", ms=3, lw=0.8, label=lab)
-ax2.set(xlabel="t", ylabel="amplitude (maxima of θ)", title="amplitude: 1/(1 + ct) against exp(−βt/2)")
+ax2.set(
+    xlabel="t",
+    ylabel="amplitude (maxima of θ)",
+    title="amplitude: 1/(1 + ct) against exp(−βt/2)",
+)
 ax2.legend(fontsize=8)
 fig.tight_layout()
 plt.show()

@@ -24,12 +24,23 @@ import pendula
 
 a, W = 0.05, 40.0
 t = np.linspace(0, 12, 121)
-up = pendula.simulate(pendula.Scene(theta0=math.pi - 0.3, pivot_amplitude=a, pivot_frequency=W), t)
+up = pendula.simulate(
+    pendula.Scene(theta0=math.pi - 0.3, pivot_amplitude=a, pivot_frequency=W),
+    t,
+)
 down = pendula.simulate(pendula.Scene(theta0=math.pi - 0.3), t)
 
-fig, (axp, axt) = plt.subplots(1, 2, figsize=(8, 3.4), dpi=60, gridspec_kw={"width_ratios": [1, 1.6]})
-axp.set(xlim=(-2.6, 2.6), ylim=(-1.4, 1.4), aspect="equal", xticks=[], yticks=[],
-        title=f"vibrating pivot (a = {a}, Ω = {W:g}) | still pivot")
+fig, (axp, axt) = plt.subplots(
+    1, 2, figsize=(8, 3.4), dpi=60, gridspec_kw={"width_ratios": [1, 1.6]}
+)
+axp.set(
+    xlim=(-2.6, 2.6),
+    ylim=(-1.4, 1.4),
+    aspect="equal",
+    xticks=[],
+    yticks=[],
+    title=f"vibrating pivot (a = {a}, Ω = {W:g}) | still pivot",
+)
 rods = [axp.plot([], [], lw=2, color=c)[0] for c in ("tab:blue", "0.5")]
 bobs = [axp.plot([], [], "o", ms=9, color=c)[0] for c in ("tab:blue", "0.5")]
 axt.plot(t, up.theta, color="tab:blue", label="vibrating pivot")
@@ -42,7 +53,9 @@ fig.tight_layout()
 
 def frame(k):
     for i, (tr, x0) in enumerate(((up, -1.2), (down, 1.2))):
-        yp = 0.2 * math.cos(W * t[k]) if i == 0 else 0.0     # the pivot's motion, exaggerated
+        yp = (
+            0.2 * math.cos(W * t[k]) if i == 0 else 0.0
+        )  # the pivot's motion, exaggerated
         x, y = x0 + math.sin(tr.theta[k]), yp - math.cos(tr.theta[k])
         rods[i].set_data([x0, x], [yp, y])
         bobs[i].set_data([x], [y])
@@ -58,20 +71,40 @@ freqs = np.linspace(1.5, 25.0, 71)
 stable = np.zeros((len(freqs), len(amps)))
 for i, w in enumerate(freqs):
     for j, aa in enumerate(amps):
-        po = pendula.periodic_orbit(pendula.Scene(pivot_amplitude=float(aa), pivot_frequency=float(w)),
-                                    guess=(math.pi, 0.0), rtol=1e-9, atol=1e-11)
+        po = pendula.periodic_orbit(
+            pendula.Scene(pivot_amplitude=float(aa), pivot_frequency=float(w)),
+            guess=(math.pi, 0.0),
+            rtol=1e-9,
+            atol=1e-11,
+        )
         stable[i, j] = np.max(np.abs(po.multipliers)) <= 1 + 1e-6
 fig2, ax = plt.subplots(figsize=(6.4, 4.4))
-ax.contourf(amps, freqs, stable, levels=[-0.5, 0.5, 1.5], colors=["white", "tab:green"], alpha=0.5)
+ax.contourf(
+    amps,
+    freqs,
+    stable,
+    levels=[-0.5, 0.5, 1.5],
+    colors=["white", "tab:green"],
+    alpha=0.5,
+)
 fine = np.linspace(amps[0], amps[-1], 4000)
 q = 2 * fine
-for curve, label, style in ((mathieu_a(0, q), "δ = a₀(q)", "-"), (mathieu_b(1, q), "δ = b₁(q)", "--")):
+for curve, label, style in (
+    (mathieu_a(0, q), "δ = a₀(q)", "-"),
+    (mathieu_b(1, q), "δ = b₁(q)", "--"),
+):
     with np.errstate(invalid="ignore", divide="ignore"):
         w = np.where(curve < 0, np.sqrt(-4.0 / curve), np.nan)
     ax.plot(fine, w, "k" + style, lw=1, label=f"Mathieu: {label}")
-ax.plot(amps, math.sqrt(2) / amps, ":", color="tab:red", label="Kapitza: aΩ = √2")
-ax.set(xlabel="pivot amplitude a (in units of l)", ylabel="pivot frequency Ω", ylim=(freqs[0], freqs[-1]),
-       title="inverted pendulum: stable (green) from Floquet multipliers")
+ax.plot(
+    amps, math.sqrt(2) / amps, ":", color="tab:red", label="Kapitza: aΩ = √2"
+)
+ax.set(
+    xlabel="pivot amplitude a (in units of l)",
+    ylabel="pivot frequency Ω",
+    ylim=(freqs[0], freqs[-1]),
+    title="inverted pendulum: stable (green) from Floquet multipliers",
+)
 ax.legend(fontsize=8, loc="upper right")
 fig2.tight_layout()
 plt.show()
