@@ -739,27 +739,32 @@ end subroutine equilibria_v
 ! orbits and their continuation.  At most nmax steps; cancel(1) non-zero (set by another thread) stops
 ! it.  status 0 ok, 1 the flow failed (non-finite, or rk8pd's error), 2 more than nmax steps,
 ! 3 cancelled, 100 the fields do not form a scene.
-subroutine flow_monodromy_v(x, words, nw, wlen, nout, ngrid, nt, times, x0, rtol, atol, nmax, cancel, &
-                            ends, monos, fend, nfev, status)
-  use, intrinsic :: iso_c_binding, only: c_loc, c_long
+subroutine flow_monodromy_v(x, words, nw, wlen, nout, ngrid, nt, times, x0, rtol, atol, nmax, faddr, np, fparams, &
+                            cancel, ends, monos, fend, nfev, status)
+  use, intrinsic :: iso_c_binding, only: c_loc, c_long, c_funptr, c_intptr_t
   use pendula_scene, only: scene_t, scene_from_fields
-  use pendula_simulate, only: scene_model
+  use pendula_simulate, only: scene_model, attach_force
   use pendula_integrators, only: pendulum_model
   use pendula_gsl_iface, only: pendula_gsl_flow_monodromy
   implicit none
   !f2py threadsafe
   double precision, intent(in) :: x(31)
   character(len=*), intent(in) :: words
-  integer, intent(in) :: nw, nout, ngrid, nt
+  integer, intent(in) :: nw, nout, ngrid, nt, np
   integer, intent(in) :: wlen(nw)
   double precision, intent(in) :: times(nt), x0(2), rtol, atol, nmax
+  !> a user's force (its address, as simulate_force_v; 0: none) and the params it reads
+  integer(8), intent(in) :: faddr
+  double precision, intent(in), target :: fparams(np)
   integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: ends(2, nt), monos(4, nt), fend(2, nt), nfev
   integer, intent(out) :: status
   !f2py intent(hide), depend(wlen) :: nw = len(wlen)
   !f2py intent(hide), depend(times) :: nt = len(times)
+  !f2py intent(hide), depend(fparams) :: np = len(fparams)
   type(scene_t) :: sc
   type(pendulum_model), target :: m
+  type(c_funptr) :: f
   double precision :: g, length, none(0)
   character(len=512) :: msg
   ends = 0; monos = 0; fend = 0; nfev = 0
@@ -770,6 +775,10 @@ subroutine flow_monodromy_v(x, words, nw, wlen, nout, ngrid, nt, times, x0, rtol
     return
   end if
   m = scene_model(sc)
+  if (faddr /= 0) then
+    f = transfer(int(faddr, c_intptr_t), f)
+    call attach_force(m, f, fparams)
+  end if
   status = pendula_gsl_flow_monodromy(c_loc(m), x0(1), x0(2), nt, times, rtol, atol, &
                                       int(min(nmax, 9.0d18), c_long), cancel(1), ends, monos, fend, nfev)
 end subroutine flow_monodromy_v
@@ -954,48 +963,6 @@ subroutine attractor_block(npts, params, rtol, atol, cfg, nk, kcell, klab, natt,
                         ncell, pstat, nthreads, cancel(1))
 end subroutine attractor_block
 
-! flow_monodromy_v with the user's force (its address faddr and fparams(np), as simulate_force_v) added to
-! the scene's force law; the monodromy's derivatives of the force by central differences (accel_jacobian).
-subroutine flow_monodromy_force_v(x, words, nw, wlen, nout, ngrid, nt, times, x0, rtol, atol, nmax, faddr, np, &
-                                  fparams, cancel, ends, monos, fend, nfev, status)
-  use, intrinsic :: iso_c_binding, only: c_loc, c_long, c_funptr, c_intptr_t
-  use pendula_scene, only: scene_t, scene_from_fields
-  use pendula_simulate, only: scene_model, attach_force
-  use pendula_integrators, only: pendulum_model
-  use pendula_gsl_iface, only: pendula_gsl_flow_monodromy
-  implicit none
-  !f2py threadsafe
-  double precision, intent(in) :: x(31)
-  character(len=*), intent(in) :: words
-  integer, intent(in) :: nw, nout, ngrid, nt, np
-  integer, intent(in) :: wlen(nw)
-  double precision, intent(in) :: times(nt), x0(2), rtol, atol, nmax
-  integer(8), intent(in) :: faddr
-  double precision, intent(in), target :: fparams(np)
-  integer, intent(inout), volatile :: cancel(1)
-  double precision, intent(out) :: ends(2, nt), monos(4, nt), fend(2, nt), nfev
-  integer, intent(out) :: status
-  !f2py intent(hide), depend(wlen) :: nw = len(wlen)
-  !f2py intent(hide), depend(times) :: nt = len(times)
-  !f2py intent(hide), depend(fparams) :: np = len(fparams)
-  type(scene_t) :: sc
-  type(pendulum_model), target :: m
-  type(c_funptr) :: f
-  double precision :: g, length, none(0)
-  character(len=512) :: msg
-  ends = 0; monos = 0; fend = 0; nfev = 0
-  call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
-                         g, length, status, msg)
-  if (status /= 0 .or. faddr == 0) then
-    status = 100
-    return
-  end if
-  m = scene_model(sc)
-  f = transfer(int(faddr, c_intptr_t), f)
-  call attach_force(m, f, fparams)
-  status = pendula_gsl_flow_monodromy(c_loc(m), x0(1), x0(2), nt, times, rtol, atol, &
-                                      int(min(nmax, 9.0d18), c_long), cancel(1), ends, monos, fend, nfev)
-end subroutine flow_monodromy_force_v
 
 ! One step of Verner's 9(8) pair of size h from (theta0, v0) at t = 0 on the
 ! model (params as integrate_timed_v) and its order-8 interpolant at the
