@@ -357,7 +357,7 @@ def test_python_api_names_the_missing_extra(venv, tmp_path):
     out = run(venv, ["python", "-c", code], tmp_path)
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == ("MissingExtraError | pendula.sweep needs xarray, which is not installed: "
-                                  "pip install 'pendula[sweep]'"), out.stdout
+                                  "pip install 'pendula[xarray]'"), out.stdout
 
 
 @needs_wheel

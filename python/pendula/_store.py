@@ -55,6 +55,7 @@ import os
 import pathlib
 import shutil
 import socket
+import time
 import warnings
 from dataclasses import dataclass, field
 
@@ -228,7 +229,14 @@ class StoreLock:
             try:
                 fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
             except OSError as exc:
-                holder = os.pread(fd, 200, 0).decode(errors="replace").strip() or "unknown"
+                # the holder writes its pid and host just after taking the flock: give it a moment
+                holder = ""
+                for _wait in range(50):
+                    holder = os.pread(fd, 200, 0).decode(errors="replace").strip()
+                    if holder:
+                        break
+                    time.sleep(0.02)
+                holder = holder or "unknown"
                 os.close(fd)
                 if exc.errno not in (errno.EWOULDBLOCK, errno.EAGAIN, errno.EACCES):
                     raise
