@@ -167,13 +167,7 @@ contains
       else if (sc%method == 'exact') then
         status = sim_exact_refused
       else
-        ! an absent force and its params are not passed on (an absent contiguous array's
-        ! descriptor would be read by the call under -fcheck)
-        if (present(force)) then
-          call integrate_model(sc, t, theta, v, stats, method, status, cancel, force, fparams, land=land)
-        else
-          call integrate_model(sc, t, theta, v, stats, method, status, cancel, land=land)
-        end if
+        call integrated()
       end if
       if (status == sim_ok) energy = rigid_energy(sc%eps, theta, v)
     case (mid_cord)
@@ -197,17 +191,21 @@ contains
       if (sc%method == 'exact') then
         status = sim_exact_refused
       else
-        ! an absent force and its params are not passed on (an absent contiguous array's
-        ! descriptor would be read by the call under -fcheck)
-        if (present(force)) then
-          call integrate_model(sc, t, theta, v, stats, method, status, cancel, force, fparams, land=land)
-        else
-          call integrate_model(sc, t, theta, v, stats, method, status, cancel, land=land)
-        end if
+        call integrated()
         if (status == sim_ok) energy = scene_energy(sc, theta, v)
       end if
     end select
     if (status /= sim_ok) msg = simulate_status_text(status)
+  contains
+    !> The scene's integrator, with the user's force when there is one (an absent force and its
+    !> params are not passed on: an absent contiguous array's descriptor would be read by the call).
+    subroutine integrated()
+      if (present(force)) then
+        call integrate_model(sc, t, theta, v, stats, method, status, cancel, force, fparams, land=land)
+      else
+        call integrate_model(sc, t, theta, v, stats, method, status, cancel, land=land)
+      end if
+    end subroutine integrated
   end subroutine simulate_scene
 
   !> The right-hand side a scene calls for: the pendulum model of the
