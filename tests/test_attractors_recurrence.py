@@ -73,18 +73,34 @@ def test_default_map_at_1_07_finds_exactly_the_two_period2_attractors(map_107):
 
 def test_labels_match_the_long_transient_run_on_995_permille_of_stable_points(map_107):
     for A, m in (("1.07", map_107), ("1.35", attractor_map(scene(1.35), grid(REF["cases"]["1.35"]["n"])))):
-        case = REF["cases"][A]
-        ref = np.array(case["labels"])
-        stable = np.array(case["stable"], dtype=bool)
-        # our labels in the reference's numbering: match the cycles by position
-        ours = np.full(ref.shape, -9)
-        for a in m.attractors:
-            for j, c in enumerate(case["cycles"]):
-                if c["period"] == a.period and min(section_dist(c["theta"][0], c["v"][0], t, v)
-                                                   for t, v in zip(a.theta, a.v)) < 1e-6:
-                    ours[m.dataset.attractor.values == a.label] = j
-        agree = (ours == ref)[stable].mean()
-        assert agree >= 0.995, f"A = {A}: {agree:.4f} of the stable points agree"
+        assert_matches_long_run(A, m)
+
+
+@pytest.mark.parametrize("case", ["1.35 150", "1.07 150"])
+def test_coarse_to_fine_map_matches_the_long_transient_run_on_995_permille_of_stable_points(case):
+    # 150 x 150: four levels (strides 8, 4, 2, 1); at 1.35 most points inherit their label, at 1.07 (intermixed
+    # basins, uncertainty exponent about 0.14) the 4 x 4 blocks of the level above rarely agree
+    A = float(case.split()[0])
+    m = attractor_map(scene(A), grid(REF["cases"][case]["n"]))
+    assert json.loads(m.dataset.attrs["levels"]) == [8, 4, 2, 1]
+    assert m.dataset.attrs["inherited"] == int(m.dataset.inherited.values.sum()) > 0
+    assert_matches_long_run(case, m)
+
+
+def assert_matches_long_run(case_name, m):
+    """At least 99.5 % of the points whose long-run label is stable under rtol 1e-12 get that label."""
+    case = REF["cases"][case_name]
+    ref = np.array(case["labels"])
+    stable = np.array(case["stable"], dtype=bool)
+    # our labels in the reference's numbering: match the cycles by position
+    ours = np.full(ref.shape, -9)
+    for a in m.attractors:
+        for j, c in enumerate(case["cycles"]):
+            if c["period"] == a.period and min(section_dist(c["theta"][0], c["v"][0], t, v)
+                                               for t, v in zip(a.theta, a.v)) < 1e-6:
+                ours[m.dataset.attractor.values == a.label] = j
+    agree = (ours == ref)[stable].mean()
+    assert agree >= 0.995, f"{case_name}: {agree:.4f} of the stable points agree"
 
 
 def test_chaotic_attractor_at_1_2_is_one_and_holds_an_independent_orbit():
@@ -110,6 +126,35 @@ def test_default_map_at_1_35_finds_the_two_period1_rotations():
     for a in am.attractors:
         th, v = scipy_strobe(1.35, float(a.theta[0]), float(a.v[0]), 1)
         assert section_dist(th[0], v[0], a.theta[0], a.v[0]) < 1e-8
+
+
+def test_grid_of_levels_gives_the_same_labels_whatever_the_threads_chunking_or_resume(tmp_path):
+    # 66 x 64: levels of strides 4, 2, 1, each inheriting from the one above; chunks of one row (7 points)
+    sc, g = scene(1.35), grid(66, 64)
+    ref = attractor_map(sc, g)
+    assert json.loads(ref.dataset.attrs["levels"]) == [4, 2, 1] and ref.dataset.attrs["inherited"] > 0
+    for kw in ({"chunk_points": 7, "threads": 1}, {"chunk_points": 500, "threads": 2},
+               {"chunk_points": 1000, "out": tmp_path / "s"}, {"chunk_points": 1000, "out": tmp_path / "s"}):
+        other = attractor_map(sc, g, **kw)
+        np.testing.assert_array_equal(other.dataset.attractor.values, ref.dataset.attractor.values)
+        np.testing.assert_array_equal(other.dataset.inherited.values, ref.dataset.inherited.values)
+        np.testing.assert_array_equal(other.dataset.recheck.values, ref.dataset.recheck.values)
+
+
+def test_grid_not_over_theta0_and_v0_is_one_level_without_inheritance():
+    sc = scene(1.35)
+    m = attractor_map(sc, {"theta0": np.linspace(-3, 3, 80)})
+    assert json.loads(m.dataset.attrs["levels"]) == [1] and m.dataset.attrs["inherited"] == 0
+    off = attractor_map(sc, grid(40, 40), inherit=False)
+    assert json.loads(off.dataset.attrs["levels"]) == [1] and off.dataset.attrs["inherited"] == 0
+
+
+def test_inheriting_costs_fewer_drive_periods_and_keeps_the_labels_of_smooth_basins():
+    # at 1.35 the basins are smooth on the grid's scale: inherited labels equal the orbit-by-orbit ones
+    sc, g = scene(1.35), grid(64, 64)
+    on, off = attractor_map(sc, g), attractor_map(sc, g, inherit=False)
+    assert on.dataset.attrs["mean_periods"] < 0.6 * off.dataset.attrs["mean_periods"]
+    assert (on.dataset.attractor.values != off.dataset.attractor.values).mean() < 0.005
 
 
 @pytest.mark.parametrize("pilot", [64, 1])
@@ -188,14 +233,15 @@ def test_undriven_scene_is_refused():
 
 
 @pytest.mark.parametrize("kw", [{"max_period": 2.5}, {"consecutive": True}, {"recurrences": 10.0},
-                                {"cell": True}, {"near": "0.1"}, {"pilot": 1.5}, {"max_periods": np.float64(9)}])
+                                {"cell": True}, {"near": "0.1"}, {"pilot": 1.5}, {"max_periods": np.float64(9)},
+                                {"inherit": 1}, {"inherit": "yes"}, {"margin": 1.0}])
 def test_arguments_of_the_wrong_kind_are_type_errors_naming_them(kw):
     with pytest.raises(TypeError, match=next(iter(kw))):
         attractor_map(scene(1.35), grid(3), **kw)
 
 
 @pytest.mark.parametrize("kw", [{"max_period": 0}, {"cell": -0.1}, {"near": math.nan}, {"rtol": 2.0},
-                                {"method": "fast"}])
+                                {"method": "fast"}, {"margin": -1}])
 def test_arguments_out_of_range_are_value_errors(kw):
     with pytest.raises(ValueError):
         attractor_map(scene(1.35), grid(3), **kw)
@@ -256,7 +302,7 @@ def test_continuation_param_must_be_a_scene_field_off_the_grid():
 def test_labels_on_a_dask_cluster_equal_the_local_run():
     distributed = pytest.importorskip("dask.distributed")
     import logging
-    sc, g = scene(1.35), grid(12, 10)
+    sc, g = scene(1.35), grid(36, 34)      # levels of strides 2 and 1: both on the cluster
     ref = attractor_map(sc, g, pilot=1)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None,
                                   silence_logs=logging.CRITICAL) as cluster, distributed.Client(cluster) as client:

@@ -25,6 +25,16 @@
 !>     the cells of the attractor are then collected over `collect` more samples;
 !>  4. undecided: none of these by max_periods drive periods (status 1).
 !>
+!> Before these rules, from the sample after `inherit_from` periods on, an
+!> orbit may take its label from a coarser basin map (a grid of decided
+!> points over theta0 and v0 given by the caller): when the sample lies in a
+!> rectangle of that grid whose corners, and `margin` more grid points on each
+!> side, all carry the same attractor, the point is that attractor's (the
+!> stroboscopic map is the same every period, so a sample's attractor is the
+!> one of the initial states around it).  Cells inherited from decided
+!> neighbours, as in Attractors.jl's basin cells, but from a finished coarser
+!> map only, so the answer never depends on the order the points are run in.
+!>
 !> Thread safety: no module variables; each point works on its own locals.
 !> Results never depend on the thread count: each point is computed by one
 !> thread from its inputs and the table only.
@@ -41,15 +51,15 @@ module pendula_attractors
   public :: attractor_points, at_ncfg, at_nfixed, at_cell_id
 
   !> configuration entries (cfg): cell, rcell, near, max_periods, kmax, recurrences,
-  !> collect, newton rtol, newton tol, nconf
-  integer, parameter :: at_ncfg = 10
+  !> collect, newton rtol, newton tol, nconf, margin, inherit_from
+  integer, parameter :: at_ncfg = 12
   !> fixed outputs per point before the cycle points (see attractor_points)
   integer, parameter :: at_nfixed = 12
   !> Newton's iterations on a recurrence (it starts within `near` of a stable cycle: a few suffice)
   integer, parameter :: newton_maxit = 10
   integer, parameter :: ps_decided = 0, ps_unsettled = 1, ps_not_applicable = 2, ps_cancelled = 5
   !> outcomes
-  real(dp), parameter :: oc_known = 0.0_dp, oc_periodic = 1.0_dp, oc_chaotic = 2.0_dp
+  real(dp), parameter :: oc_known = 0.0_dp, oc_periodic = 1.0_dp, oc_chaotic = 2.0_dp, oc_inherited = 3.0_dp
   !> a hash set's empty slot
   integer(int64), parameter :: empty = -huge(1_int64)
 
@@ -71,8 +81,10 @@ contains
   !> phase, theta0, v0.  cfg: see at_ncfg.  The table of known attractors:
   !> kcell(nk) sorted cell ids (width cfg(1)), klab(nk) their attractor
   !> (0 .. natt-1), need(natt) the consecutive samples that label a point.
+  !> The coarser basin map: bth(nbt), bv(nbv) increasing, blab(nbt, nbv) the
+  !> attractor of each of its points (< 0: none; nbt or nbv < 2: no map).
   !> out(nout, i), nout >= at_nfixed + 2: (1) outcome 0 known / 1 new periodic /
-  !> 2 new chaotic; (2) the known attractor's index or -1; (3) period k; (4)
+  !> 2 new chaotic / 3 inherited from the basin map; (2) the known attractor's index or -1; (3) period k; (4)
   !> turns per k periods; (5) drive periods integrated; (6:9) the monodromy
   !> (row-major); (10) Newton's residual; (11) the largest |multiplier|;
   !> (12) the cycle points returned; (13:) theta, v of the cycle points (a
@@ -80,13 +92,13 @@ contains
   !> attractor's cells (ncell(i) of them, at most maxc).  pstat: 0 decided,
   !> 1 undecided by max_periods, 2 not driven, 5 cancelled, 100 + s the
   !> integrator failed.
-  subroutine attractor_points(npts, params, rtol, atol, cfg, nk, kcell, klab, natt, need, nout, out, maxc, &
-                              cells, ncell, pstat, nthreads, cancel)
+  subroutine attractor_points(npts, params, rtol, atol, cfg, nk, kcell, klab, natt, need, nbt, nbv, bth, bv, &
+                              blab, nout, out, maxc, cells, ncell, pstat, nthreads, cancel)
     !$ use omp_lib, only: omp_get_max_threads
-    integer, intent(in) :: npts, nk, natt, nout, maxc, nthreads
-    real(dp), intent(in) :: params(np_params, npts), rtol, atol, cfg(at_ncfg)
+    integer, intent(in) :: npts, nk, natt, nbt, nbv, nout, maxc, nthreads
+    real(dp), intent(in) :: params(np_params, npts), rtol, atol, cfg(at_ncfg), bth(nbt), bv(nbv)
     integer(int64), intent(in) :: kcell(nk)
-    integer, intent(in) :: klab(nk), need(natt)
+    integer, intent(in) :: klab(nk), need(natt), blab(nbt, nbv)
     real(dp), intent(out) :: out(nout, npts)
     integer(int64), intent(out) :: cells(maxc, npts)
     integer, intent(out) :: ncell(npts), pstat(npts)
@@ -97,29 +109,30 @@ contains
     if (nthreads > 0) nt = min(nthreads, 256)
     nt = max(1, min(nt, 256))
     !$omp parallel do schedule(dynamic, 4) default(none) num_threads(nt) &
-    !$omp   shared(npts, params, rtol, atol, cfg, nk, kcell, klab, natt, need, nout, out, maxc, cells, ncell, &
-    !$omp          pstat, cancel)
+    !$omp   shared(npts, params, rtol, atol, cfg, nk, kcell, klab, natt, need, nbt, nbv, bth, bv, blab, nout, &
+    !$omp          out, maxc, cells, ncell, pstat, cancel)
     do i = 1, npts
       if (cancel /= 0) then
         out(:, i) = nan_dp; pstat(i) = ps_cancelled; ncell(i) = 0; cells(:, i) = 0
       else
-        call one_point(params(:, i), rtol, atol, cfg, kcell, klab, need, out(:, i), cells(:, i), ncell(i), &
-                       pstat(i), cancel)
+        call one_point(params(:, i), rtol, atol, cfg, kcell, klab, need, bth, bv, blab, out(:, i), cells(:, i), &
+                       ncell(i), pstat(i), cancel)
       end if
     end do
     !$omp end parallel do
   end subroutine attractor_points
 
-  subroutine one_point(p, rtol, atol, cfg, kcell, klab, need, o, cl, ncl, st, cancel)
-    real(dp), intent(in) :: p(np_params), rtol, atol, cfg(at_ncfg)
+  subroutine one_point(p, rtol, atol, cfg, kcell, klab, need, bth, bv, blab, o, cl, ncl, st, cancel)
+    real(dp), intent(in) :: p(np_params), rtol, atol, cfg(at_ncfg), bth(:), bv(:)
     integer(int64), intent(in) :: kcell(:)
-    integer, intent(in) :: klab(:), need(:)
+    integer, intent(in) :: klab(:), need(:), blab(:, :)
     real(dp), intent(out) :: o(:)
     integer(int64), intent(out) :: cl(:)
     integer, intent(out) :: ncl, st
     integer, intent(inout), volatile :: cancel
     real(dp) :: cell, rcell, near, tp, th, v, x(2), mono(4), info(3), mu, d, dlast, dnow, dstart
     integer :: nfail, nseen, natt_fill, kmax, nrec, ncollect, nconf, maxp, n, k, j, prev, cnt, revisits, ndist, retry, h, q, lab, s
+    integer :: margin, from
     integer(int64) :: c, turns, w
     real(dp), allocatable :: hth(:), hv(:)
     integer(int64), allocatable :: hturn(:), seen(:), dist(:), att(:)
@@ -130,6 +143,7 @@ contains
     cell = cfg(1); rcell = cfg(2); near = cfg(3)
     maxp = int(min(cfg(4), 1.0e8_dp)); kmax = int(cfg(5)); nrec = int(cfg(6)); ncollect = int(cfg(7))
     nconf = max(1, int(cfg(10)))
+    margin = int(min(max(cfg(11), 0.0_dp), 1.0e6_dp)); from = int(min(max(cfg(12), 1.0_dp), 1.0e8_dp))
     ! a periodic forcing (a drive, or a vibrating pivot) sets the stroboscopic map's period
     if (.not. (forcing_omega(p) > 0.0_dp) .or. (p(4) == 0.0_dp .and. p(9) == 0.0_dp) .or. &
         .not. (abs(p(7)) <= 4503599627370496.0_dp)) then
@@ -155,6 +169,15 @@ contains
         th = th - two_pi; w = w + 1
       end if
       turns = turns + w
+      ! 0. the coarser basin map
+      if (n >= from .and. size(bth) >= 2 .and. size(bv) >= 2) then
+        lab = basin_label(bth, bv, blab, th, v, margin)
+        if (lab >= 0) then
+          o(1) = oc_inherited; o(2) = real(lab, dp); o(3) = 0.0_dp; o(4) = 0.0_dp; o(5) = real(n, dp)
+          o(12) = 1.0_dp; o(13) = th; o(14) = v
+          return
+        end if
+      end if
       ! 1. the cells of a known attractor
       if (size(kcell) > 0) then
         lab = lookup(kcell, klab, at_cell_id(th, v, cell))
@@ -362,6 +385,39 @@ contains
     end if
     if (.not. (r == r)) r = huge(1.0_dp)
   end function max_multiplier
+
+  !> The attractor of the basin map's rectangle holding (th, v) when its
+  !> corners and `margin` more grid points on each side (as far as the grid
+  !> goes) all carry it; otherwise, or outside the grid, -1.
+  pure integer function basin_label(bth, bv, blab, th, v, margin) result(lab)
+    real(dp), intent(in) :: bth(:), bv(:), th, v
+    integer, intent(in) :: blab(:, :), margin
+    integer :: i, j
+    lab = -1
+    if (.not. (th >= bth(1) .and. th <= bth(size(bth)) .and. v >= bv(1) .and. v <= bv(size(bv)))) return
+    i = interval(bth, th); j = interval(bv, v)
+    associate (blk => blab(max(1, i - margin):min(size(bth), i + 1 + margin), &
+                           max(1, j - margin):min(size(bv), j + 1 + margin)))
+      if (blk(1, 1) >= 0) then
+        if (all(blk == blk(1, 1))) lab = blk(1, 1)
+      end if
+    end associate
+  end function basin_label
+
+  !> The i in 1 .. size(x) - 1 with x(i) <= y <= x(i + 1) (x increasing, y within it).
+  pure integer function interval(x, y) result(i)
+    real(dp), intent(in) :: x(:), y
+    integer :: hi, mid
+    i = 1; hi = size(x)
+    do while (hi - i > 1)
+      mid = (i + hi) / 2
+      if (x(mid) <= y) then
+        i = mid
+      else
+        hi = mid
+      end if
+    end do
+  end function interval
 
   !> The attractor of cell c in the sorted table, or -1.
   pure integer function lookup(kcell, klab, c) result(lab)

@@ -596,7 +596,11 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
 RECURRENCE_DEFAULTS = {"cell": 0.1, "recurrence_cell": 0.25, "near": 0.01, "consecutive": 2,
                        "consecutive_chaotic": 10, "recurrences": 100, "collect": 1000, "max_periods": 3000,
                        "max_period": 12, "merge_tol": 1e-3, "pilot": 64, "rtol": 1e-7, "atol": 1e-9,
-                       "recheck_rtol": 1e-10, "recheck_atol": 1e-12}
+                       "recheck_rtol": 1e-10, "recheck_atol": 1e-12, "inherit": True, "margin": 1}
+#: a basin map over (theta0, v0) is built coarse to fine, each level (every s-th point along both axes, s a
+#: power of 2) inheriting from the finished level above it; the coarsest level has at least this many points
+#: along each axis
+_LEVEL_MIN_POINTS = 16
 #: Newton's tolerances on the stroboscopic map of a recurrence (pendula_gsl_periodic_orbit)
 _NEWTON_RTOL, _NEWTON_TOL = 1e-11, 1e-10
 #: pilot points and points that found a new attractor are run in batches of this many against the
@@ -617,9 +621,15 @@ class _AttractorPlan(_Plan):
         self.opts = dict(opts)
         o = self.opts
         self.cfg = np.array([o["cell"], o["recurrence_cell"], o["near"], o["max_periods"], o["max_period"],
-                             o["recurrences"], o["collect"], _NEWTON_RTOL, _NEWTON_TOL, 2.0], dtype=float)
+                             o["recurrences"], o["collect"], _NEWTON_RTOL, _NEWTON_TOL, 2.0, o["margin"], 1.0],
+                            dtype=float)
         self.nout = _AT_NFIXED + 2 * o["max_period"]
         self.table = None
+        # the coarser level's basin map (theta0 axis, v0 axis, labels on (theta0, v0)); none: no level above
+        self.basin = (np.zeros(1), np.zeros(1), np.full((1, 1), -1, dtype=np.int32))
+        # the points the level above decided: {'label', 'status', 'periods', 'recheck', 'inherited'} on the
+        # grid (label -9 where the point is this level's to run), or None
+        self.given = None
 
     def key(self) -> dict:
         return {"scene": self.scene.to_namelist(), "measure": "attractor", "method": "recurrence",
@@ -631,10 +641,11 @@ def _attractor_block(plan: _AttractorPlan, p: np.ndarray, table, rtol: float, at
     """One kernel call of the recurrence finder (pendula_attractors) that Ctrl-C stops."""
     from . import _kernel
     kcell, klab, need = table
+    bth, bv, blab = plan.basin
     cancel = _interrupt.cancel_flag()
     out, cells, ncell, st = _interrupt.call(_kernel.attractor_block, np.asfortranarray(p), rtol, atol, plan.cfg,
-                                            kcell, klab, need, plan.nout, maxc, int(threads), cancel,
-                                            cancel=cancel)
+                                            kcell, klab, need, bth, bv, blab, plan.nout, maxc, int(threads),
+                                            cancel, cancel=cancel)
     if cancel[0]:
         raise KeyboardInterrupt
     return out, cells, ncell, st
@@ -643,34 +654,55 @@ def _attractor_block(plan: _AttractorPlan, p: np.ndarray, table, rtol: float, at
 def _raw(out: np.ndarray, st: np.ndarray) -> np.ndarray:
     """The labelling pass's answer of each point: a known attractor's index, or a _RAW_* code."""
     kind = np.where(st == 0, out[0], np.nan)
-    return np.select([kind == 0, kind == 1, kind == 2], [out[1], _RAW_NEW_PERIODIC, _RAW_NEW_CHAOTIC],
+    return np.select([(kind == 0) | (kind == 3), kind == 1, kind == 2], [out[1], _RAW_NEW_PERIODIC,
+                                                                          _RAW_NEW_CHAOTIC],
                      _RAW_UNDECIDED).astype(np.int64)
 
 
+def _attractor_rows(plan: _AttractorPlan, lo: int, hi: int, rtol: float, atol: float, threads: int):
+    """Rows lo .. hi - 1 of a level: (raw answer, status, drive periods, inherited, rechecked before) per
+    point, flat; the points the level above decided are taken from it, the others run in the kernel."""
+    p, shape = plan.params_rows(lo, hi)
+    n = p.shape[1]
+    raw = np.full(n, _RAW_UNDECIDED, dtype=np.int64)
+    st = np.zeros(n, dtype=np.int32)
+    periods = np.zeros(n)
+    inherited = np.zeros(n, dtype=np.int64)
+    before = np.zeros(n, dtype=np.int64)
+    run = np.ones(n, dtype=bool)
+    if plan.given is not None:
+        g = {k: np.asarray(v[lo:hi]).ravel() for k, v in plan.given.items()}
+        run = g["label"] == -9
+        keep = ~run
+        raw[keep], st[keep], periods[keep] = g["label"][keep], g["status"][keep], g["periods"][keep]
+        inherited[keep], before[keep] = g["inherited"][keep], g["recheck"][keep]
+    idx = np.flatnonzero(run)
+    if idx.size:
+        out, _, _, s = _attractor_block(plan, p[:, idx], plan.table, rtol, atol, 1, threads)
+        raw[idx], st[idx], periods[idx], inherited[idx] = _raw(out, s), s, out[4], (s == 0) & (out[0] == 3)
+    return p, shape, raw, st, periods, inherited, before
+
+
 def _attractor_chunk(plan: _AttractorPlan, i: int, threads: int):
-    """Label chunk i against the pilot's attractors; points next to another answer (a grid neighbour
-    along any axis, across chunk edges too) are computed again at the tight tolerances, whose answer
-    is kept.  out[..., :] = raw answer, drive periods integrated, recheck (0 no, 1 same, 2 changed)."""
-    p, shape = plan.params(i)
+    """Label chunk i of a level against the attractors found so far and the level above's basin map;
+    points next to another answer (a grid neighbour along any axis, across chunk edges too) are computed
+    again at the tight tolerances, whose answer is kept (once: a point the level above rechecked keeps
+    that answer).  out[..., :] = raw answer, drive periods integrated, recheck (0 no, 1 same, 2 changed),
+    inherited (1: labelled from the level above's basin map)."""
     o = plan.opts
-
-    def raw_of(pp):
-        out, _, _, st = _attractor_block(plan, pp, plan.table, plan.rtol, plan.atol, 1, threads)
-        return _raw(out, st), out[4], st
-
-    raw, periods, st = raw_of(p)
-    lo, hi = i * plan.rows, i * plan.rows + shape[0]
+    lo = i * plan.rows
+    hi = min(lo + plan.rows, plan.shape[0])
+    p, shape, raw, st, periods, inherited, recheck = _attractor_rows(plan, lo, hi, plan.rtol, plan.atol, threads)
     parts = [raw.reshape(shape)]
     if lo > 0:
-        pb, sb = plan.params_rows(lo - 1, lo)
-        parts.insert(0, raw_of(pb)[0].reshape(sb))
+        parts.insert(0, _attractor_rows(plan, lo - 1, lo, plan.rtol, plan.atol, threads)[2].reshape(
+            (1,) + shape[1:]))
     if hi < plan.shape[0]:
-        pa, sa = plan.params_rows(hi, hi + 1)
-        parts.append(raw_of(pa)[0].reshape(sa))
+        parts.append(_attractor_rows(plan, hi, hi + 1, plan.rtol, plan.atol, threads)[2].reshape(
+            (1,) + shape[1:]))
     first = 1 if lo > 0 else 0
     edge = _edge_mask(np.concatenate(parts, axis=0))[first:first + shape[0]]
-    idx = np.flatnonzero(edge.ravel())
-    recheck = np.zeros(raw.size, dtype=np.int64)
+    idx = np.flatnonzero(edge.ravel() & (recheck == 0))
     if idx.size:
         out2, _, _, st2 = _attractor_block(plan, p[:, idx], plan.table, o["recheck_rtol"], o["recheck_atol"], 1,
                                            threads)
@@ -678,13 +710,15 @@ def _attractor_chunk(plan: _AttractorPlan, i: int, threads: int):
         recheck[idx] = np.where(raw2 != raw[idx], 2, 1)
         raw[idx], st[idx] = raw2, st2
         periods[idx] += out2[4]
-    res = np.stack([raw, periods, recheck], axis=-1).reshape(shape + (3,))
+        inherited[idx] = (st2 == 0) & (out2[0] == 3)
+    res = np.stack([raw, periods, recheck, inherited], axis=-1).reshape(shape + (4,))
     return i, res, st.reshape(shape)
 
 
 def _attractor_vars(plan, out, st) -> dict:
     return {"raw_attractor": out[..., 0].astype(np.int32), "periods": out[..., 1],
-            "recheck": out[..., 2].astype(np.int32), "status": st.astype(np.int32)}
+            "recheck": out[..., 2].astype(np.int32), "inherited": out[..., 3].astype(np.int8),
+            "status": st.astype(np.int32)}
 
 
 def _attractor_layout(plan: _AttractorPlan):
@@ -704,7 +738,9 @@ def _attractor_layout(plan: _AttractorPlan):
             "long_name": "drive periods integrated until the point was decided", "units": "1"}, np.nan),
         "recheck": Variable(dims, np.dtype(np.int32), {
             "long_name": "boundary recheck at the tight tolerances: 0 not rechecked, 1 same answer, 2 changed",
-            "units": "1"}, -1)}
+            "units": "1"}, -1),
+        "inherited": Variable(dims, np.dtype(np.int8), {
+            "long_name": "1: labelled from the coarser level's basin map", "units": "1"}, -1)}
     attrs = {"Conventions": "CF-1.10", "title": "pendula attractor map (labelling pass)",
              "scene": plan.scene.to_namelist(), "measure": "attractor", "method": "recurrence",
              "status_codes": json.dumps(STATUS), **{k: v for k, v in plan.opts.items()}}
@@ -772,6 +808,8 @@ def _recurrence_options(kw: dict) -> dict:
     o["pilot"] = _checks.count(o["pilot"], "pilot", 1, 10**5)
     o["rtol"], o["atol"] = _checks.tolerances(o["rtol"], o["atol"])
     o["recheck_rtol"], o["recheck_atol"] = _checks.tolerances(o["recheck_rtol"], o["recheck_atol"])
+    o["inherit"] = _checks.flag(o["inherit"], "inherit")
+    o["margin"] = _checks.count(o["margin"], "margin", 0, 1000)
     return o
 
 
@@ -802,7 +840,8 @@ def attractor_map(scene: Scene, over: dict, *, method: Literal["recurrence", "sa
                   recurrences: int | None = None, collect: int | None = None, max_periods: int | None = None,
                   max_period: int | None = None, merge_tol: float | None = None, pilot: int | None = None,
                   rtol: float | None = None, atol: float | None = None, recheck_rtol: float | None = None,
-                  recheck_atol: float | None = None, transient: float | None = None, samples: int | None = None,
+                  recheck_atol: float | None = None, inherit: bool | None = None, margin: int | None = None,
+                  transient: float | None = None, samples: int | None = None,
                   tol: float | None = None, threads: int = 0, out: str | os.PathLike[str] | None = None,
                   client: distributed.Client | None = None, progress: bool = False,
                   chunk_points: int = 20000) -> AttractorMap:
@@ -841,6 +880,22 @@ def attractor_map(scene: Scene, over: dict, *, method: Literal["recurrence", "sa
     and the new ones as they are found.  Attractors are numbered by a rule on
     the attractors alone (periodic by period, then the angle and velocity of
     their first point; chaotic after them by basin size).
+
+    A basin map over ``theta0`` and ``v0`` (the grid's two axes, both
+    increasing) is built coarse to fine when ``inherit`` is true (the
+    default): first every s-th point along both axes (s a power of 2, the
+    coarsest level keeping at least 16 points on each axis), then the points
+    between them, level by level.  From its first sample on, an orbit of a
+    finer level takes its label from the finished level above when the sample
+    lies in a rectangle of that level's grid whose corners, and ``margin``
+    more grid points on each side, all carry one attractor (the stroboscopic
+    map is the same every period, so the sample ends where the initial states
+    around it end).  Where the basins are smooth on the grid's scale most
+    orbits are then decided after one or two drive periods; where they are
+    intermixed the rectangles disagree and orbits run on to their attractor.
+    A level depends on the finished level above only, so the labels still
+    depend on the grid and the options alone.  The result counts the points
+    that ``inherited`` their label.
 
     The labelling runs at the loose tolerances ``rtol``, ``atol``; every point
     with a grid neighbour (along any axis, across chunks too) of another
@@ -886,6 +941,14 @@ def attractor_map(scene: Scene, over: dict, *, method: Literal["recurrence", "sa
         The labelling tolerances of DOP853 (default 1e-7, 1e-9; 'samples': 1e-10, 1e-12).
     recheck_rtol, recheck_atol : float, optional
         The tolerances of the boundary recheck (default 1e-10, 1e-12).
+    inherit : bool, optional
+        Build a map over ``theta0`` and ``v0`` coarse to fine, finer orbits taking their label from the
+        level above (default True); ignored for other grids.
+    margin : int, optional
+        Grid points of the level above beyond a rectangle's corners, on each side, that must carry the
+        same attractor before a sample in the rectangle takes it (default 1: a 4 x 4 block).  With 0
+        (the corners alone) intermixed basins are mislabelled: at drive_amplitude 1.07 a quarter of the
+        points of a 150 x 150 map.
     transient, samples, tol : optional
         Method 'samples': the time skipped (rounded up to whole drive periods; default 600), the samples
         read (default 48) and the recurrence tolerance (default 1e-6).
@@ -898,8 +961,10 @@ def attractor_map(scene: Scene, over: dict, *, method: Literal["recurrence", "sa
     AttractorMap
         The label map as a Dataset (``attractor``, ``period``, ``status``;
         the recurrence method also ``periods``, the drive periods each point
-        took, and ``recheck``), the attractors, the basin measures, and the
-        counts ``undecided``, ``rechecked`` and ``recheck_changed``.
+        took, ``recheck`` and ``inherited``; its attributes ``levels``, the
+        strides of the levels, and ``inherited``, their count), the
+        attractors, the basin measures, and the counts ``undecided``,
+        ``rechecked`` and ``recheck_changed``.
 
     Raises
     ------
@@ -946,7 +1011,7 @@ def attractor_map(scene: Scene, over: dict, *, method: Literal["recurrence", "sa
         rec_only = {"cell": None, "recurrence_cell": recurrence_cell, "near": near, "consecutive": consecutive,
                     "consecutive_chaotic": consecutive_chaotic, "recurrences": recurrences, "collect": collect,
                     "max_periods": max_periods, "pilot": pilot, "recheck_rtol": recheck_rtol,
-                    "recheck_atol": recheck_atol}
+                    "recheck_atol": recheck_atol, "inherit": inherit, "margin": margin}
         given = [k for k, v in rec_only.items() if v is not None]
         if given:
             raise TypeError(f"attractor_map: {', '.join(given)} belong to method 'recurrence', not 'samples'")
@@ -962,9 +1027,30 @@ def attractor_map(scene: Scene, over: dict, *, method: Literal["recurrence", "sa
                                     consecutive_chaotic=consecutive_chaotic, recurrences=recurrences,
                                     collect=collect, max_periods=max_periods, max_period=max_period,
                                     merge_tol=merge_tol, pilot=pilot, rtol=rtol, atol=atol,
-                                    recheck_rtol=recheck_rtol, recheck_atol=recheck_atol))
+                                    recheck_rtol=recheck_rtol, recheck_atol=recheck_atol, inherit=inherit,
+                                    margin=margin))
     _check_work(scene, over, opts["max_periods"])
     return _attractor_map_recurrence(scene, over, opts, threads, out, client, progress, chunk_points)
+
+
+def _level_strides(over: dict, opts: dict) -> list[int]:
+    """The levels of a basin map, coarsest first: strides s = 2^L ... 2, 1 along both axes, the coarsest
+    keeping at least _LEVEL_MIN_POINTS points on each; [1] (one level, nothing inherited) unless the grid is
+    over theta0 and v0 alone, both increasing, and inheriting is asked for."""
+    if not opts["inherit"] or set(over) != {"theta0", "v0"} or \
+            not all(np.all(np.diff(v) > 0) for v in over.values()):
+        return [1]
+    s = 1
+    while min(-(-len(v) // (2 * s)) for v in over.values()) >= _LEVEL_MIN_POINTS:
+        s *= 2
+    return [2 ** k for k in range(int(math.log2(s)), -1, -1)]
+
+
+def _basin(over: dict, labels: np.ndarray):
+    """The kernel's basin map of a level: (theta0 axis, v0 axis, labels on (theta0, v0), Fortran order)."""
+    lab = labels if list(over)[0] == "theta0" else labels.T
+    return (np.ascontiguousarray(over["theta0"], dtype=float), np.ascontiguousarray(over["v0"], dtype=float),
+            np.asfortranarray(lab, dtype=np.int32))
 
 
 def _attractor_map_recurrence(scene, over, opts, threads, out, client, progress, chunk_points) -> AttractorMap:
@@ -972,55 +1058,81 @@ def _attractor_map_recurrence(scene, over, opts, threads, out, client, progress,
 
     from .dynamics.attractors import AttractorSet
     xr = require("xarray", "sweep", "pendula.attractor_map")
-    plan = _AttractorPlan(scene, over, opts, chunk_points)
-    npts = math.prod(plan.shape)
+    fine = _AttractorPlan(scene, over, opts, chunk_points)
+    npts = math.prod(fine.shape)
     # 1. the pilot finds the attractors
     found = AttractorSet(opts["cell"], opts["merge_tol"], opts["consecutive"], opts["consecutive_chaotic"])
-    pidx = _pilot_points(plan.shape, opts["pilot"])
-    pall, _ = plan.params_rows(0, plan.shape[0])
-    _discover(plan, pall[:, pidx], found, threads)
-    plan.table = found.table()
+    pidx = _pilot_points(fine.shape, opts["pilot"])
+    pall, _ = fine.params_rows(0, fine.shape[0])
+    _discover(fine, pall[:, pidx], found, threads)
     n_pilot_att = len(found.items)
-    # 2. every point labelled against the pilot's attractors (chunked, stored, on a cluster)
-    ds = _run(plan, _attractor_layout(plan), _attractor_chunk, _attractor_vars, out, client, threads, progress,
-              "attractor map")
-    raw = np.asarray(ds.raw_attractor.values, dtype=np.int64).ravel()
-    status = np.asarray(ds.status.values, dtype=np.int32).ravel().copy()
-    periods = np.asarray(ds.periods.values, dtype=float).ravel().copy()
-    recheck = np.asarray(ds.recheck.values).ravel()
-    # 3. points that found a new attractor: again, in grid order, against the pilot's and the new ones
-    labels = np.where(raw >= 0, raw, -1)
-    new_all = (raw == _RAW_NEW_PERIODIC) | (raw == _RAW_NEW_CHAOTIC)
-    new = np.flatnonzero(new_all)
-    # at the tolerances that gave the answer: the loose ones, then the boundary points' tight ones
-    for sel, tols in ((new_all & (recheck == 0), (plan.rtol, plan.atol)),
-                      (new_all & (recheck > 0), (opts["recheck_rtol"], opts["recheck_atol"]))):
-        idx = np.flatnonzero(sel)
-        if idx.size:
-            lab_new, st_new, per_new = _discover(plan, pall[:, idx], found, threads, *tols)
-            labels[idx], status[idx] = lab_new, st_new
-            periods[idx] += per_new
+    # 2. level by level, coarse to fine: every point of a level labelled against the attractors found so far
+    #    and the basin map of the level above (chunked, on a cluster; the finest level stored under out)
+    strides = _level_strides(fine.over, opts)
+    given = basin = None
+    new_total = 0
+    for s in strides:
+        plan = fine if s == 1 else _AttractorPlan(scene, {k: v[::s] for k, v in fine.over.items()}, opts,
+                                                  chunk_points)
+        plan.table = found.table()
+        if basin is not None:
+            plan.basin, plan.given = basin, given
+        desc = "attractor map" if len(strides) == 1 else f"attractor map, level {strides.index(s) + 1} of " \
+                                                         f"{len(strides)}"
+        ds = _run(plan, _attractor_layout(plan), _attractor_chunk, _attractor_vars, out if s == 1 else None,
+                  client, threads, progress, desc)
+        raw = np.asarray(ds.raw_attractor.values, dtype=np.int64).ravel()
+        status = np.asarray(ds.status.values, dtype=np.int32).ravel().copy()
+        periods = np.asarray(ds.periods.values, dtype=float).ravel().copy()
+        recheck = np.asarray(ds.recheck.values).ravel()
+        inherited = np.asarray(ds.inherited.values).ravel()
+        # 3. points that found a new attractor: again, in grid order, against the attractors found so far
+        labels = np.where(raw >= 0, raw, -1)
+        new_all = (raw == _RAW_NEW_PERIODIC) | (raw == _RAW_NEW_CHAOTIC)
+        new_total += int(new_all.sum())
+        plev, _ = plan.params_rows(0, plan.shape[0])
+        # at the tolerances that gave the answer: the loose ones, then the boundary points' tight ones
+        for sel, tols in ((new_all & (recheck == 0), (plan.rtol, plan.atol)),
+                          (new_all & (recheck > 0), (opts["recheck_rtol"], opts["recheck_atol"]))):
+            idx = np.flatnonzero(sel)
+            if idx.size:
+                lab_new, st_new, per_new = _discover(plan, plev[:, idx], found, threads, *tols)
+                labels[idx], status[idx] = lab_new, st_new
+                periods[idx] += per_new
+        if s > 1:
+            # the next level: every other point along both axes is this level's
+            nxt = tuple(len(v[::s // 2]) for v in fine.over.values())
+            given = {"label": np.full(nxt, -9, dtype=np.int64), "status": np.zeros(nxt, dtype=np.int32),
+                     "periods": np.zeros(nxt), "recheck": np.zeros(nxt, dtype=np.int64),
+                     "inherited": np.zeros(nxt, dtype=np.int64)}
+            for k, vals in (("label", labels), ("status", status), ("periods", periods), ("recheck", recheck),
+                            ("inherited", inherited)):
+                given[k][::2, ::2] = vals.reshape(plan.shape)
+            basin = _basin(plan.over, labels.reshape(plan.shape))
     counts = np.bincount(labels[labels >= 0], minlength=len(found.items))
     atts, remap = found.attractors(counts, npts)
-    labels = remap[labels].reshape(plan.shape)     # remap[-1] = -1: undecided stays -1
-    status = status.reshape(plan.shape)
+    labels = remap[labels].reshape(fine.shape)     # remap[-1] = -1: undecided stays -1
+    status = status.reshape(fine.shape)
     undecided = int((labels < 0).sum())
     if undecided == npts:
         warnings.warn(f"attractor_map: no point was decided within max_periods = {opts['max_periods']} drive "
                       "periods (status 1: raise max_periods)", RuntimeWarning, stacklevel=3)
-    dims = tuple(plan.over)
-    coords = {d: (d, plan.over[d], dict(zip(("long_name", "units"), _AXIS_META[d]))) for d in dims}
+    dims = tuple(fine.over)
+    coords = {d: (d, fine.over[d], dict(zip(("long_name", "units"), _AXIS_META[d]))) for d in dims}
     ds_out = xr.Dataset(
-        {"periods": (dims, periods.reshape(plan.shape), {
+        {"periods": (dims, periods.reshape(fine.shape), {
             "long_name": "drive periods integrated until the point was decided", "units": "1"}),
-         "recheck": (dims, recheck.reshape(plan.shape).astype(np.int32), {
+         "recheck": (dims, recheck.reshape(fine.shape).astype(np.int32), {
              "long_name": "boundary recheck at the tight tolerances: 0 not rechecked, 1 same answer, 2 changed",
              "units": "1"}),
+         "inherited": (dims, inherited.reshape(fine.shape).astype(np.int8), {
+             "long_name": "1: labelled from a coarser level's basin map", "units": "1"}),
          "status": (dims, status, _status_attrs())}, coords=coords)
     extra = {"method": "recurrence", "pilot_points": int(pidx.size), "pilot_attractors": n_pilot_att,
-             "new_in_labelling": int(new.size), "undecided": undecided, "rechecked": int((recheck > 0).sum()),
+             "new_in_labelling": new_total, "undecided": undecided, "rechecked": int((recheck > 0).sum()),
              "recheck_changed": int((recheck == 2).sum()), "mean_periods": float(periods.mean()),
-             **{k: v for k, v in opts.items()}}
+             "levels": json.dumps(strides), "inherited": int((inherited > 0).sum()),
+             **{k: (int(v) if isinstance(v, bool) else v) for k, v in opts.items()}}
     return _finish_map(ds_out, labels, atts, scene, extra)
 
 
