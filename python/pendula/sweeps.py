@@ -603,9 +603,15 @@ RECURRENCE_DEFAULTS = {"cell": 0.1, "recurrence_cell": 0.25, "near": 0.01, "cons
 _LEVEL_MIN_POINTS = 16
 #: Newton's tolerances on the stroboscopic map of a recurrence (pendula_gsl_periodic_orbit)
 _NEWTON_RTOL, _NEWTON_TOL = 1e-11, 1e-10
-#: pilot points and points that found a new attractor are run in batches of this many against the
-#: attractors found before the batch (a fixed number: the result never depends on the threads)
+#: pilot points and points that found a new attractor are run in batches of 1, 1, 2, 4, 8 and then this
+#: many, each against the attractors found before the batch (fixed sizes: the result never depends on the
+#: threads; small first batches, so that one orbit finds an attractor, a chaotic one costing a thousand
+#: periods, before its neighbours look for it again)
 _DISCOVERY_BATCH = 16
+#: a basin-boundary point whose label was inherited at one of its first samples is not run again at the
+#: tight tolerances: its sample lay a grid step of the level above inside a block of one attractor, far
+#: beyond what the loose tolerance's error (about rtol a period, grown over a few periods) can move it
+_RECHECK_INHERITED_WITHIN = 3
 #: the raw answer of the labelling pass: an attractor of the pilot's (>= 0) or one of these
 _RAW_UNDECIDED, _RAW_NEW_PERIODIC, _RAW_NEW_CHAOTIC = -1, -2, -3
 #: kernel outputs before the cycle points (pendula_attractors%at_nfixed)
@@ -701,8 +707,11 @@ def _attractor_chunk(plan: _AttractorPlan, i: int, threads: int):
         parts.append(_attractor_rows(plan, hi, hi + 1, plan.rtol, plan.atol, threads)[2].reshape(
             (1,) + shape[1:]))
     first = 1 if lo > 0 else 0
-    edge = _edge_mask(np.concatenate(parts, axis=0))[first:first + shape[0]]
-    idx = np.flatnonzero(edge.ravel() & (recheck == 0))
+    edge = _edge_mask(np.concatenate(parts, axis=0))[first:first + shape[0]].ravel()
+    # inherited within the first samples: left as it is (recheck 3)
+    early = edge & (recheck == 0) & (inherited > 0) & (periods <= _RECHECK_INHERITED_WITHIN)
+    recheck[early] = 3
+    idx = np.flatnonzero(edge & (recheck == 0))
     if idx.size:
         out2, _, _, st2 = _attractor_block(plan, p[:, idx], plan.table, o["recheck_rtol"], o["recheck_atol"], 1,
                                            threads)
@@ -737,7 +746,8 @@ def _attractor_layout(plan: _AttractorPlan):
         "periods": Variable(dims, np.dtype(np.float64), {
             "long_name": "drive periods integrated until the point was decided", "units": "1"}, np.nan),
         "recheck": Variable(dims, np.dtype(np.int32), {
-            "long_name": "boundary recheck at the tight tolerances: 0 not rechecked, 1 same answer, 2 changed",
+            "long_name": "boundary recheck at the tight tolerances: 0 not rechecked, 1 same answer, 2 changed, "
+                         "3 not run again (inherited within three drive periods)",
             "units": "1"}, -1),
         "inherited": Variable(dims, np.dtype(np.int8), {
             "long_name": "1: labelled from the coarser level's basin map", "units": "1"}, -1)}
@@ -749,21 +759,24 @@ def _attractor_layout(plan: _AttractorPlan):
 
 
 def _discover(plan: _AttractorPlan, p: np.ndarray, found, threads: int, rtol: float | None = None,
-              atol: float | None = None):
-    """Run points (columns of p, in this order) in batches of _DISCOVERY_BATCH, each batch against the
-    attractors found before it (at rtol, atol: default the plan's); new attractors join ``found``.  Returns (index in found or -1, status,
-    drive periods) per point: the same for any thread count, chunking or cluster."""
+              atol: float | None = None, kinds: tuple = ("periodic", "chaotic")):
+    """Run points (columns of p, in this order) in batches of 1, 1, 2, 4, 8, 16, 16 ..., each batch against
+    the attractors of these ``kinds`` found before it (at rtol, atol: default the plan's); new attractors
+    join ``found``.  Returns (index in found or -1, status, drive periods) per point: the same for any
+    thread count, chunking or cluster."""
     n = p.shape[1]
     labels = np.full(n, -1, dtype=np.int64)
     status = np.zeros(n, dtype=np.int32)
     periods = np.zeros(n)
-    for b0 in range(0, n, _DISCOVERY_BATCH):
-        b = slice(b0, min(n, b0 + _DISCOVERY_BATCH))
-        out, cells, ncell, st = _attractor_block(plan, p[:, b], found.table(), rtol or plan.rtol,
+    b0, k = 0, 0
+    while b0 < n:
+        b = slice(b0, min(n, b0 + min(_DISCOVERY_BATCH, 2 ** max(k - 1, 0))))
+        b0, k = b.stop, k + 1
+        out, cells, ncell, st = _attractor_block(plan, p[:, b], found.table(kinds), rtol or plan.rtol,
                                                  atol if atol is not None else plan.atol, plan.opts["collect"] * 4,
                                                  threads)
         for j in range(out.shape[1]):
-            g = b0 + j
+            g = b.start + j
             status[g], periods[g] = st[j], out[4, j]
             if st[j] != 0:
                 continue
@@ -1064,7 +1077,9 @@ def _attractor_map_recurrence(scene, over, opts, threads, out, client, progress,
     found = AttractorSet(opts["cell"], opts["merge_tol"], opts["consecutive"], opts["consecutive_chaotic"])
     pidx = _pilot_points(fine.shape, opts["pilot"])
     pall, _ = fine.params_rows(0, fine.shape[0])
-    _discover(fine, pall[:, pidx], found, threads)
+    # (each pilot orbit finds its own periodic attractor, confirmed by Newton, rather than being labelled by
+    # a known one's cells: cells too coarse to tell two attractors apart then show as a conflict)
+    _discover(fine, pall[:, pidx], found, threads, kinds=("chaotic",))
     n_pilot_att = len(found.items)
     # 2. level by level, coarse to fine: every point of a level labelled against the attractors found so far
     #    and the basin map of the level above (chunked, on a cluster; the finest level stored under out)
@@ -1123,13 +1138,15 @@ def _attractor_map_recurrence(scene, over, opts, threads, out, client, progress,
         {"periods": (dims, periods.reshape(fine.shape), {
             "long_name": "drive periods integrated until the point was decided", "units": "1"}),
          "recheck": (dims, recheck.reshape(fine.shape).astype(np.int32), {
-             "long_name": "boundary recheck at the tight tolerances: 0 not rechecked, 1 same answer, 2 changed",
+             "long_name": "boundary recheck at the tight tolerances: 0 not rechecked, 1 same answer, 2 changed, "
+                         "3 not run again (inherited within three drive periods)",
              "units": "1"}),
          "inherited": (dims, inherited.reshape(fine.shape).astype(np.int8), {
              "long_name": "1: labelled from a coarser level's basin map", "units": "1"}),
          "status": (dims, status, _status_attrs())}, coords=coords)
     extra = {"method": "recurrence", "pilot_points": int(pidx.size), "pilot_attractors": n_pilot_att,
-             "new_in_labelling": new_total, "undecided": undecided, "rechecked": int((recheck > 0).sum()),
+             "new_in_labelling": new_total, "undecided": undecided, "rechecked": int(((recheck == 1) | (recheck == 2)).sum()),
+             "boundary_inherited": int((recheck == 3).sum()),
              "recheck_changed": int((recheck == 2).sum()), "mean_periods": float(periods.mean()),
              "levels": json.dumps(strides), "inherited": int((inherited > 0).sum()),
              **{k: (int(v) if isinstance(v, bool) else v) for k, v in opts.items()}}

@@ -471,13 +471,16 @@ class AttractorSet:
         self.items.append({"kind": "chaotic", "period": 0, "winding": 0, "cells": cells})
         return len(self.items) - 1
 
-    def table(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(kcell sorted, klab, need): the kernel's table; ValueError when the cell width cannot tell
-        two attractors apart (every cell of one is claimed by another)."""
-        if not self.items:
-            return np.array([-2**62], np.int64), np.array([-1], np.int32), np.array([1], np.int32)
+    def table(self, kinds: tuple = ("periodic", "chaotic")) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(kcell sorted, klab, need): the kernel's table of the attractors of these kinds; ValueError when
+        the cell width cannot tell two attractors apart (every cell of one is claimed by another)."""
+        if not any(a["kind"] in kinds for a in self.items):
+            return np.array([-2**62], np.int64), np.array([-1], np.int32), np.ones(max(1, len(self.items)),
+                                                                                    np.int32)
         ids, labs = [], []
         for idx, a in enumerate(self.items):
+            if a["kind"] not in kinds:
+                continue
             c = _dilate(a["cells"], self.cell)
             ids.append(c)
             labs.append(np.full(c.size, idx, dtype=np.int32))
@@ -491,7 +494,7 @@ class AttractorSet:
         keep = lo == hi
         kcell, klab = uniq[keep], lo[keep]
         for idx, a in enumerate(self.items):
-            if not np.isin(a["cells"], kcell).any():
+            if a["kind"] in kinds and not np.isin(a["cells"], kcell).any():
                 other = sorted({int(x) for x in labs[np.isin(ids, a["cells"])] if x != idx})
                 raise ValueError(f"parameter 'cell': cells {self.cell:g} wide cannot tell attractor {idx} "
                                  f"({a['kind']}) from attractor(s) {other}: every cell of it is another's too; "
