@@ -886,11 +886,12 @@ def attractor_map(scene: Scene, over: dict, *, method: Literal["recurrence", "sa
     The labels depend on the grid and the options only, never on the threads,
     the chunking, a resumed store or a cluster: a *pilot* (every s-th point on
     each axis, at most ``pilot`` points, in a fixed order) finds the
-    attractors in batches of 16 points, each batch against the attractors the
-    batches before it found; every grid point is then labelled against the
-    pilot's attractors alone; the points that found a new attractor are run
-    again, in grid order and the same batches, against the pilot's attractors
-    and the new ones as they are found.  Attractors are numbered by a rule on
+    attractors in batches of 1, 1, 2, 4, 8 and then 16 points, each batch
+    against the chaotic attractors the batches before it found (a periodic one
+    each pilot orbit finds by Newton itself, so that a ``cell`` too coarse
+    shows as a conflict); every grid point is then labelled against the
+    pilot's attractors; the points that found a new attractor are run again,
+    in grid order and the same batches, against the attractors found so far.  Attractors are numbered by a rule on
     the attractors alone (periodic by period, then the angle and velocity of
     their first point; chaotic after them by basin size).
 
