@@ -141,6 +141,16 @@ def test_grid_of_levels_gives_the_same_labels_whatever_the_threads_chunking_or_r
         np.testing.assert_array_equal(other.dataset.recheck.values, ref.dataset.recheck.values)
 
 
+def test_map_of_a_small_window_inherits_only_inside_it_and_keeps_the_labels():
+    # the orbits leave the window (|v| > 0.5, |theta| > 1) at once: only samples that fall back inside it
+    # may inherit, and the labels stay those of the orbit-by-orbit map
+    sc = scene(1.35)
+    g = {"theta0": np.linspace(-1.0, 1.0, 64), "v0": np.linspace(-0.5, 0.5, 64)}
+    on, off = attractor_map(sc, g), attractor_map(sc, g, inherit=False)
+    assert json.loads(on.dataset.attrs["levels"]) == [4, 2, 1] and on.dataset.attrs["inherited"] > 0
+    assert (on.dataset.attractor.values == off.dataset.attractor.values).mean() >= 0.995
+
+
 def test_grid_not_over_theta0_and_v0_is_one_level_without_inheritance():
     sc = scene(1.35)
     m = attractor_map(sc, {"theta0": np.linspace(-3, 3, 80)})

@@ -693,8 +693,9 @@ def _attractor_chunk(plan: _AttractorPlan, i: int, threads: int):
     """Label chunk i of a level against the attractors found so far and the level above's basin map;
     points next to another answer (a grid neighbour along any axis, across chunk edges too) are computed
     again at the tight tolerances, whose answer is kept (once: a point the level above rechecked keeps
-    that answer).  out[..., :] = raw answer, drive periods integrated, recheck (0 no, 1 same, 2 changed),
-    inherited (1: labelled from the level above's basin map)."""
+    that answer; a point that inherited its label within _RECHECK_INHERITED_WITHIN periods keeps it).
+    out[..., :] = raw answer, drive periods integrated, recheck (0 no, 1 same, 2 changed, 3 inherited
+    early, not run again), inherited (1: labelled from the level above's basin map)."""
     o = plan.opts
     lo = i * plan.rows
     hi = min(lo + plan.rows, plan.shape[0])
