@@ -158,6 +158,7 @@ def test_store_in_use_is_refused_naming_store_and_holder_then_stale_lock_taken_o
     finally:
         holder.kill()
         holder.wait()
+        holder.stdout.close()
     # the holder died without releasing: its lock file (with its pid) is stale and taken over
     assert str(holder.pid) in (out / "sweep.lock").read_text()
     ds = pendula.sweep(SCENE, out=out, **KW)
@@ -336,6 +337,7 @@ def test_two_cli_sweeps_on_the_same_output_second_exits_5_naming_the_store(tmp_p
         finally:
             first.kill()
             first.wait()
+            first.stderr.close()
         if refused:
             break
     assert refused, "the first sweep ended before the second started, three times"
