@@ -151,7 +151,6 @@ def test_histogram_of_an_integrated_trajectory(method, kw):
             assert d > 0.99 / n
 
 
-@pytest.mark.filterwarnings("ignore:cycloid")      # at the cusp amplitude theta' has no value at the cusp
 def test_cycloid_density_is_the_arcsine_law_in_s_at_every_amplitude():
     for th0 in (1e-4, 0.5, 1.2, math.pi / 2):
         sc = Scene(guide="cycloid", theta0=th0)
@@ -161,7 +160,13 @@ def test_cycloid_density_is_the_arcsine_law_in_s_at_every_amplitude():
         assert np.allclose(angle_cdf(sc, th), 0.5 + np.arcsin(s / A) / math.pi, rtol=0, atol=4 * EPS)
         # and against time: the fraction of a period the exact path spends below theta
         t = np.linspace(0, pendula.period(sc), 20001)[:-1]
-        path = pendula.simulate(sc, t).theta
+        if th0 == math.pi / 2:
+            # at the cusp amplitude theta' has no value at the cusps: NaN there, said by a RuntimeWarning
+            with pytest.warns(RuntimeWarning, match="cusp"):
+                path = pendula.simulate(sc, t).theta
+            path = path[np.isfinite(path)]
+        else:
+            path = pendula.simulate(sc, t).theta
         for x in th[:3]:
             assert np.mean(path <= x) == pytest.approx(float(angle_cdf(sc, x)), abs=2e-4)
         # density = d(cdf)/dtheta
