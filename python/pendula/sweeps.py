@@ -665,9 +665,10 @@ def _raw(out: np.ndarray, st: np.ndarray) -> np.ndarray:
                      _RAW_UNDECIDED).astype(np.int64)
 
 
-def _attractor_rows(plan: _AttractorPlan, lo: int, hi: int, rtol: float, atol: float, threads: int):
-    """Rows lo .. hi - 1 of a level: (raw answer, status, drive periods, inherited, rechecked before) per
-    point, flat; the points the level above decided are taken from it, the others run in the kernel."""
+def _attractor_rows(plan: _AttractorPlan, lo: int, hi: int, threads: int):
+    """Rows lo .. hi - 1 of a level: (raw answer, status, drive periods, inherited, recheck so far) per
+    point, flat; the points the level above decided are taken from it, the others run in the kernel, at
+    the loose tolerances or, where the level above predicts a basin boundary, at the tight ones (recheck 4)."""
     p, shape = plan.params_rows(lo, hi)
     n = p.shape[1]
     raw = np.full(n, _RAW_UNDECIDED, dtype=np.int64)
@@ -676,17 +677,33 @@ def _attractor_rows(plan: _AttractorPlan, lo: int, hi: int, rtol: float, atol: f
     inherited = np.zeros(n, dtype=np.int64)
     before = np.zeros(n, dtype=np.int64)
     run = np.ones(n, dtype=bool)
+    tight = np.zeros(n, dtype=bool)
     if plan.given is not None:
         g = {k: np.asarray(v[lo:hi]).ravel() for k, v in plan.given.items()}
         run = g["label"] == -9
         keep = ~run
         raw[keep], st[keep], periods[keep] = g["label"][keep], g["status"][keep], g["periods"][keep]
         inherited[keep], before[keep] = g["inherited"][keep], g["recheck"][keep]
-    idx = np.flatnonzero(run)
-    if idx.size:
-        out, _, _, s = _attractor_block(plan, p[:, idx], plan.table, rtol, atol, 1, threads)
-        raw[idx], st[idx], periods[idx], inherited[idx] = _raw(out, s), s, out[4], (s == 0) & (out[0] == 3)
+        tight = run & g["tight"]
+        before[tight] = 4
+    o = plan.opts
+    for idx, rtol, atol in ((np.flatnonzero(run & ~tight), plan.rtol, plan.atol),
+                            (np.flatnonzero(tight), o["recheck_rtol"], o["recheck_atol"])):
+        if idx.size:
+            out, _, _, s = _attractor_block(plan, p[:, idx], plan.table, rtol, atol, 1, threads)
+            raw[idx], st[idx], periods[idx], inherited[idx] = _raw(out, s), s, out[4], (s == 0) & (out[0] == 3)
     return p, shape, raw, st, periods, inherited, before
+
+
+def _predicted_boundary(coarse: np.ndarray, shape: tuple) -> np.ndarray:
+    """The points of a level (shape) whose nearest points of the level above (its labels ``coarse``, every
+    other point along both axes) do not all carry one attractor: on a basin boundary in all likelihood."""
+    i = np.arange(shape[0])[:, None]
+    j = np.arange(shape[1])[None, :]
+    i0, i1 = i // 2, np.minimum((i + 1) // 2, coarse.shape[0] - 1)
+    j0, j1 = j // 2, np.minimum((j + 1) // 2, coarse.shape[1] - 1)
+    c = [coarse[i0, j0], coarse[i0, j1], coarse[i1, j0], coarse[i1, j1]]
+    return (c[0] < 0) | (c[0] != c[1]) | (c[0] != c[2]) | (c[0] != c[3])
 
 
 def _attractor_chunk(plan: _AttractorPlan, i: int, threads: int):
@@ -699,14 +716,12 @@ def _attractor_chunk(plan: _AttractorPlan, i: int, threads: int):
     o = plan.opts
     lo = i * plan.rows
     hi = min(lo + plan.rows, plan.shape[0])
-    p, shape, raw, st, periods, inherited, recheck = _attractor_rows(plan, lo, hi, plan.rtol, plan.atol, threads)
+    p, shape, raw, st, periods, inherited, recheck = _attractor_rows(plan, lo, hi, threads)
     parts = [raw.reshape(shape)]
     if lo > 0:
-        parts.insert(0, _attractor_rows(plan, lo - 1, lo, plan.rtol, plan.atol, threads)[2].reshape(
-            (1,) + shape[1:]))
+        parts.insert(0, _attractor_rows(plan, lo - 1, lo, threads)[2].reshape((1,) + shape[1:]))
     if hi < plan.shape[0]:
-        parts.append(_attractor_rows(plan, hi, hi + 1, plan.rtol, plan.atol, threads)[2].reshape(
-            (1,) + shape[1:]))
+        parts.append(_attractor_rows(plan, hi, hi + 1, threads)[2].reshape((1,) + shape[1:]))
     first = 1 if lo > 0 else 0
     edge = _edge_mask(np.concatenate(parts, axis=0))[first:first + shape[0]].ravel()
     # inherited within the first samples: left as it is (recheck 3)
@@ -748,7 +763,8 @@ def _attractor_layout(plan: _AttractorPlan):
             "long_name": "drive periods integrated until the point was decided", "units": "1"}, np.nan),
         "recheck": Variable(dims, np.dtype(np.int32), {
             "long_name": "boundary recheck at the tight tolerances: 0 not rechecked, 1 same answer, 2 changed, "
-                         "3 not run again (inherited within three drive periods)",
+                         "3 not run again (inherited within three drive periods), 4 run at the tight "
+                         "tolerances from the start (a boundary predicted by the level above)",
             "units": "1"}, -1),
         "inherited": Variable(dims, np.dtype(np.int8), {
             "long_name": "1: labelled from the coarser level's basin map", "units": "1"}, -1)}
@@ -1121,7 +1137,8 @@ def _attractor_map_recurrence(scene, over, opts, threads, out, client, progress,
             nxt = tuple(len(v[::s // 2]) for v in fine.over.values())
             given = {"label": np.full(nxt, -9, dtype=np.int64), "status": np.zeros(nxt, dtype=np.int32),
                      "periods": np.zeros(nxt), "recheck": np.zeros(nxt, dtype=np.int64),
-                     "inherited": np.zeros(nxt, dtype=np.int64)}
+                     "inherited": np.zeros(nxt, dtype=np.int64),
+                     "tight": _predicted_boundary(labels.reshape(plan.shape), nxt)}
             for k, vals in (("label", labels), ("status", status), ("periods", periods), ("recheck", recheck),
                             ("inherited", inherited)):
                 given[k][::2, ::2] = vals.reshape(plan.shape)
@@ -1141,14 +1158,15 @@ def _attractor_map_recurrence(scene, over, opts, threads, out, client, progress,
             "long_name": "drive periods integrated until the point was decided", "units": "1"}),
          "recheck": (dims, recheck.reshape(fine.shape).astype(np.int32), {
              "long_name": "boundary recheck at the tight tolerances: 0 not rechecked, 1 same answer, 2 changed, "
-                         "3 not run again (inherited within three drive periods)",
+                         "3 not run again (inherited within three drive periods), 4 run at the tight "
+                         "tolerances from the start (a boundary predicted by the level above)",
              "units": "1"}),
          "inherited": (dims, inherited.reshape(fine.shape).astype(np.int8), {
              "long_name": "1: labelled from a coarser level's basin map", "units": "1"}),
          "status": (dims, status, _status_attrs())}, coords=coords)
     extra = {"method": "recurrence", "pilot_points": int(pidx.size), "pilot_attractors": n_pilot_att,
              "new_in_labelling": new_total, "undecided": undecided, "rechecked": int(((recheck == 1) | (recheck == 2)).sum()),
-             "boundary_inherited": int((recheck == 3).sum()),
+             "boundary_inherited": int((recheck == 3).sum()), "tight_from_start": int((recheck == 4).sum()),
              "recheck_changed": int((recheck == 2).sum()), "mean_periods": float(periods.mean()),
              "levels": json.dumps(strides), "inherited": int((inherited > 0).sum()),
              **{k: (int(v) if isinstance(v, bool) else v) for k, v in opts.items()}}
