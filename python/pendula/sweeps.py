@@ -695,15 +695,18 @@ def _attractor_rows(plan: _AttractorPlan, lo: int, hi: int, threads: int):
     return p, shape, raw, st, periods, inherited, before
 
 
-def _predicted_boundary(coarse: np.ndarray, shape: tuple) -> np.ndarray:
+def _predicted_boundary(coarse: np.ndarray, ran: np.ndarray, shape: tuple) -> np.ndarray:
     """The points of a level (shape) whose nearest points of the level above (its labels ``coarse``, every
-    other point along both axes) do not all carry one attractor: on a basin boundary in all likelihood."""
+    other point along both axes) do not all carry one attractor, one of them at least having run to its
+    attractor rather than inherit its label (``ran``): on an intertwined basin boundary in all likelihood
+    (next to a smooth boundary the points of the level above inherit their labels, and so will these)."""
     i = np.arange(shape[0])[:, None]
     j = np.arange(shape[1])[None, :]
     i0, i1 = i // 2, np.minimum((i + 1) // 2, coarse.shape[0] - 1)
     j0, j1 = j // 2, np.minimum((j + 1) // 2, coarse.shape[1] - 1)
     c = [coarse[i0, j0], coarse[i0, j1], coarse[i1, j0], coarse[i1, j1]]
-    return (c[0] < 0) | (c[0] != c[1]) | (c[0] != c[2]) | (c[0] != c[3])
+    r = ran[i0, j0] | ran[i0, j1] | ran[i1, j0] | ran[i1, j1]
+    return r & ((c[0] < 0) | (c[0] != c[1]) | (c[0] != c[2]) | (c[0] != c[3]))
 
 
 def _attractor_chunk(plan: _AttractorPlan, i: int, threads: int):
@@ -904,10 +907,10 @@ def attractor_map(scene: Scene, over: dict, *, method: Literal["recurrence", "sa
     the chunking, a resumed store or a cluster: a *pilot* (every s-th point on
     each axis, at most ``pilot`` points, in a fixed order) finds the
     attractors in batches of 1, 1, 2, 4, 8 and then 16 points, each batch
-    against the chaotic attractors the batches before it found (a periodic one
-    each pilot orbit finds by Newton itself, so that a ``cell`` too coarse
-    shows as a conflict); every grid point is then labelled against the
-    pilot's attractors; the points that found a new attractor are run again,
+    against the attractors the batches before it found (the first 16 orbits
+    find their periodic attractors by Newton themselves, so that a ``cell``
+    too coarse to tell two apart shows as a conflict); every grid point is
+    then labelled against the pilot's attractors; the points that found a new attractor are run again,
     in grid order and the same batches, against the attractors found so far.  Attractors are numbered by a rule on
     the attractors alone (periodic by period, then the angle and velocity of
     their first point; chaotic after them by basin size).
@@ -931,7 +934,12 @@ def attractor_map(scene: Scene, over: dict, *, method: Literal["recurrence", "sa
     The labelling runs at the loose tolerances ``rtol``, ``atol``; every point
     with a grid neighbour (along any axis, across chunks too) of another
     answer is run again at ``recheck_rtol``, ``recheck_atol``, and that answer
-    is kept.  The result says how many were rechecked and how many changed.
+    is kept, unless it inherited its label within three drive periods (its
+    sample lay a grid step inside a block of one attractor; ``recheck`` 3);
+    a point whose nearest points of the level above disagree, one of them
+    having run to its attractor rather than inherit it, runs at the tight
+    tolerances from the start (``recheck`` 4).  The result says how many
+    were rechecked and how many changed.
 
     ``method='samples'`` (the former method, used when ``transient`` or
     ``samples`` is given) integrates every point over ``transient`` and reads
@@ -1095,9 +1103,12 @@ def _attractor_map_recurrence(scene, over, opts, threads, out, client, progress,
     found = AttractorSet(opts["cell"], opts["merge_tol"], opts["consecutive"], opts["consecutive_chaotic"])
     pidx = _pilot_points(fine.shape, opts["pilot"])
     pall, _ = fine.params_rows(0, fine.shape[0])
-    # (each pilot orbit finds its own periodic attractor, confirmed by Newton, rather than being labelled by
-    # a known one's cells: cells too coarse to tell two attractors apart then show as a conflict)
-    _discover(fine, pall[:, pidx], found, threads, kinds=("chaotic",))
+    # (the first _DISCOVERY_BATCH pilot orbits find their own periodic attractors, confirmed by Newton, rather
+    # than being labelled by a known one's cells: cells too coarse to tell two attractors apart then show as
+    # a conflict; the others are labelled by the cells of all the attractors found before them)
+    first = pidx[:_DISCOVERY_BATCH]
+    _discover(fine, pall[:, first], found, threads, kinds=("chaotic",))
+    _discover(fine, pall[:, pidx[first.size:]], found, threads)
     n_pilot_att = len(found.items)
     # 2. level by level, coarse to fine: every point of a level labelled against the attractors found so far
     #    and the basin map of the level above (chunked, on a cluster; the finest level stored under out)
@@ -1138,7 +1149,8 @@ def _attractor_map_recurrence(scene, over, opts, threads, out, client, progress,
             given = {"label": np.full(nxt, -9, dtype=np.int64), "status": np.zeros(nxt, dtype=np.int32),
                      "periods": np.zeros(nxt), "recheck": np.zeros(nxt, dtype=np.int64),
                      "inherited": np.zeros(nxt, dtype=np.int64),
-                     "tight": _predicted_boundary(labels.reshape(plan.shape), nxt)}
+                     "tight": _predicted_boundary(labels.reshape(plan.shape),
+                                                  (inherited == 0).reshape(plan.shape), nxt)}
             for k, vals in (("label", labels), ("status", status), ("periods", periods), ("recheck", recheck),
                             ("inherited", inherited)):
                 given[k][::2, ::2] = vals.reshape(plan.shape)
