@@ -26,6 +26,12 @@
   conditions (all 486 trees to order 9) are checked by tests/test_verner_coefficients.py.
   Its order-8 interpolant (Verner's own, five more stages; data/verner98_interpolant.csv):
   the nodes V9I_C and rows V9I_A of stages 17-21 and the weight polynomials V9I_P(stage, power).
+* Verner's 'most efficient' 8(7) pair (13 stages; Verner 2010 and his web page): read from
+  data/verner87_coefficients.csv (exact rationals): V8_C, V8_A, V8_B and the differences V8_E to
+  the embedded 7th-order weights; its order-8 interpolant (eight more stages, the first the new
+  point's f; data/verner87_interpolant.csv): V8I_C, V8I_A, V8I_P.  The order conditions (all trees
+  to order 8, the embedded weights to order 7, the interpolant's continuous conditions to order 8)
+  are checked by tests/test_verner87_coefficients.py.
 
 Usage:  python data/gen_rk_tables.py
 """
@@ -90,7 +96,11 @@ def csv_values(name):
         if line.startswith("#") or line.startswith("name,"):
             continue
         k, v = line.split(",")
-        vals[k] = mp.mpf(v)
+        if "/" in v:                     # an exact rational p/q
+            num, den = v.split("/")
+            vals[k] = mp.mpf(int(num)) / int(den)
+        else:
+            vals[k] = mp.mpf(v)
     return vals
 
 
@@ -134,6 +144,44 @@ def verner98_tables():
                       "! b_i(x) = sum_k v9i_p(i, k) x^k, k = 1..8 (stored with index 0..7)",
                       arr("v9i_c", fl(ci[16:])), arr("v9i_a", [fl(r) for r in Ai[16:]]),
                       arr("v9i_p", [fl(r) for r in P])])
+
+
+def verner87_matrices():
+    """c (13), A (13 x 13), b (13), e = b - bhat (13) of Verner's 'most efficient' 8(7) pair, at 50
+    digits from the exact rationals of data/verner87_coefficients.csv."""
+    vals = csv_values("verner87_coefficients.csv")
+    n = 13
+    c = [mp.mpf(0)] + [vals.get(f"c{k}", mp.mpf(1)) for k in range(2, n + 1)]
+    A = [[vals.get(f"a{i + 1:02d}{j + 1:02d}", mp.mpf(0)) for j in range(n)] for i in range(n)]
+    b = [vals.get(f"b{j + 1}", mp.mpf(0)) for j in range(n)]
+    e = [vals.get(f"btilde{j + 1}", mp.mpf(0)) for j in range(n)]
+    return c, A, b, e
+
+
+def verner87_interpolant():
+    """c (21), A (21 x 21) of the 8(7) pair extended by its interpolant's stages 14-21, and P (21 x 8):
+    b_i(x) = sum_k P[i][k-1] x^k, at 50 digits (the published 40)."""
+    c, A, _, _ = verner87_matrices()
+    vals = csv_values("verner87_interpolant.csv")
+    n, s = 21, 13
+    c = list(c) + [vals[f"c{i}"] for i in range(s + 1, n + 1)]
+    A = [list(r) + [mp.mpf(0)] * (n - s) for r in A] + \
+        [[vals.get(f"a{i}_{j}", mp.mpf(0)) for j in range(1, n + 1)] for i in range(s + 1, n + 1)]
+    P = [[vals.get(f"p{i}_{k}", mp.mpf(0)) for k in range(1, 9)] for i in range(1, n + 1)]
+    return c, A, P
+
+
+def verner87_tables():
+    c, A, b, e = verner87_matrices()
+    ci, Ai, P = verner87_interpolant()
+    fl = lambda v: [float(x) for x in v]  # noqa: E731
+    return "\n".join(["! Verner's 'most efficient' 8(7) pair (Verner 2010): 13 stages (index 0..12), no FSAL",
+                      arr("v8_c", fl(c)), arr("v8_a", [fl(r) for r in A]), arr("v8_b", fl(b)),
+                      arr("v8_e", fl(e)),
+                      "! its order-8 interpolant: stages 13..20 (13: f at the new point), weights",
+                      "! b_i(x) = sum_k v8i_p(i, k) x^k, k = 1..8 (stored with index 0..7)",
+                      arr("v8i_c", fl(ci[13:])), arr("v8i_a", [fl(r) for r in Ai[13:]]),
+                      arr("v8i_p", [fl(r) for r in P])])
 
 
 def rkn6_tables():
@@ -219,6 +267,7 @@ def main():
     out.append(arr("yo8_w", y8))
     out.append(rkn6_tables())
     out.append(verner98_tables())
+    out.append(verner87_tables())
     OUT.write_text("\n".join(out))
     print(f"wrote {OUT}")
 

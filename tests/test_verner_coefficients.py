@@ -115,7 +115,7 @@ def stored(name):
     vals = [float(v.replace("_dp", "")) for v in re.findall(r"-?[0-9.]+(?:[eE][-+]?\d+)?_dp", m.group(3))]
     n = int(m.group(1).split(":")[1]) + 1
     a = np.array(vals)
-    return a.reshape((n, n), order="F") if m.group(2) else a
+    return a.reshape((n, int(m.group(2).split(":")[1]) + 1), order="F") if m.group(2) else a
 
 
 def test_verner_doubles_of_the_kernel_satisfy_the_conditions(exact):
