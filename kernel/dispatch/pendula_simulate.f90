@@ -22,7 +22,7 @@ module pendula_simulate
     gr_libration, gr_rotation
   use pendula_integrators, only: pendulum_model, make_model, add_effects, event_spec, run_stats, integrate, m_rk4, m_verlet, &
     m_yoshida4, m_yoshida6, m_yoshida8, m_gauss4, m_gauss6, m_dopri5, m_dop853, st_too_many_steps, &
-    st_cancelled, st_velocity_force, m_dprkn6, m_vern9, max_steps, max_fixed_steps
+    st_cancelled, st_velocity_force, m_dprkn6, m_vern9, m_vern8, max_steps, max_fixed_steps
   use pendula_gsl_iface, only: pendula_gsl_rk8pd
   use pendula_stick_slip, only: stick_slip_run, switched, ss_backward, ss_release_failed
   implicit none
@@ -37,7 +37,8 @@ module pendula_simulate
     sim_nonfinite_t = 23, sim_cord_effects = 24, sim_velocity_force = 25, &
     sim_switch_backward = 26, sim_force_method = 27, sim_force_model = 28, sim_release_failed = 29, &
     sim_noise_backward = 30, sim_force_noise = 31
-  !> method codes: the integrators' 1..9, 11 (dprkn6) and 12 (vern9), then GSL's rk8pd and the exact path
+  !> method codes: the integrators' 1..9, 11 (dprkn6), 12 (vern9) and 14 (vern8), then GSL's rk8pd, the
+  !> exact path and the Langevin path
   integer, parameter, public :: m_gsl_rk8pd = 10, m_exact = 0, m_langevin = 13
 
   !> What a model is, for users (`pendula models`) and for the dispatcher.
@@ -117,6 +118,7 @@ contains
     case ('gsl-rk8pd'); method_code = m_gsl_rk8pd
     case ('dprkn6');   method_code = m_dprkn6
     case ('vern9');    method_code = m_vern9
+    case ('vern8');    method_code = m_vern8
     case default;      method_code = -1
     end select
   end function method_code

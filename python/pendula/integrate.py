@@ -5,7 +5,7 @@ Method names (a contract): 'rk4', 'verlet', 'yoshida4', 'yoshida6', 'yoshida8',
 'gsl-rk8pd', 'dprkn6' (adaptive: they take ``rtol`` and ``atol``; 'dprkn6', Dormand &
 Prince's Runge-Kutta-Nystrom pair RKN6(4), takes undamped scenes only and has no dense
 output, so no events), 'vern9' (Verner's 9(8) pair, any scene, Verner's order-8
-interpolant; no events), 'exact' and 'auto'.
+interpolant; no events), 'vern8' (Verner's 8(7) pair, likewise), 'exact' and 'auto'.
 The right-hand side holds only the effects the scene names.
 """
 
@@ -33,9 +33,9 @@ if TYPE_CHECKING:   # xarray is optional: named in annotations only
 __all__ = ["integrate_scene", "find_events", "numerical_period", "Events", "FIXED_STEP", "ADAPTIVE"]
 
 CODES = {"rk4": 1, "verlet": 2, "yoshida4": 3, "yoshida6": 4, "yoshida8": 5, "gauss4": 6, "gauss6": 7,
-         "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10, "dprkn6": 11, "vern9": 12}
+         "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10, "dprkn6": 11, "vern9": 12, "vern8": 14}
 FIXED_STEP = ("rk4", "verlet", "yoshida4", "yoshida6", "yoshida8", "gauss4", "gauss6")
-ADAPTIVE = ("dopri5", "dop853", "gsl-rk8pd", "dprkn6", "vern9")
+ADAPTIVE = ("dopri5", "dop853", "gsl-rk8pd", "dprkn6", "vern9", "vern8")
 _STATUS = {1: "the step dt must be positive", 2: "rtol must be > 0 and atol >= 0", 3: "unknown method",
            5: "step size underflow (the problem may be singular or the tolerance unreachable)",
            6: "the state became non-finite", 9: "events are located on the dense output of dopri5 and dop853 only",

@@ -63,7 +63,7 @@ def simulate(scene: Scene, t: ArrayLike | None = None, method: str | None = None
         more than ``len(force_params)`` values; a force with an attribute
         ``nparams`` gets exactly that many, or ValueError).
     land_on_outputs : bool, optional
-        The adaptive pairs with an interpolant ('dopri5', 'dop853', 'vern9'):
+        The adaptive pairs with an interpolant ('dopri5', 'dop853', 'vern9', 'vern8'):
         end the steps exactly on the output times, so that every output is a
         step's own value, instead of interpolating inside the steps (the
         default: the steps are then never shortened).  With outputs closer
@@ -253,7 +253,7 @@ def _with_knobs(scene: Scene, knobs: dict) -> Scene | None:
 
 
 #: the methods that land their steps on the outputs on request (simulate's land_on_outputs)
-_LANDING = ("dopri5", "dop853", "vern9")
+_LANDING = ("dopri5", "dop853", "vern9", "vern8")
 #: a scene keeps at most this many variants with other knobs (the last ones asked for)
 _MAX_VARIANTS = 8
 #: what a variant does not inherit from its scene: the scene's own variants and check mark

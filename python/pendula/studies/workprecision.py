@@ -252,7 +252,8 @@ def _process_batch(fn):
 # ---------------------------------------------------------------- pendula (kernel clock)
 
 _KCODES = {"exact": 0, "rk4": 1, "verlet": 2, "yoshida4": 3, "yoshida6": 4, "yoshida8": 5, "gauss4": 6,
-           "gauss6": 7, "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10, "dprkn6": 11, "vern9": 12}
+           "gauss6": 7, "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10, "dprkn6": 11, "vern9": 12,
+           "vern8": 14}
 
 
 def run_pendula(p, t, method, rtol=0.0, dt=0.0, batch=BATCH_SECONDS, max_batches=MAX_BATCHES, timer=None):
