@@ -109,7 +109,7 @@ def test_damped_pendulum_settles_in_the_published_wells():
     for beta, n in published.items():
         s = pendula.Scene(v0=2.3, damping=beta, rtol=1e-10, atol=1e-12)
         tr = pendula.simulate(s, [0.0, 3000.0])
-        assert tr.method == "dop853"
+        assert tr.method in ("dop853", "vern9", "vern8")     # auto's pick: tests/test_integrators_auto.py
         assert round(tr.theta[-1] / (2 * np.pi)) == n, beta
         assert abs(tr.theta[-1] - 2 * np.pi * n) < 1e-3 and abs(tr.v[-1]) < 1e-3
 
@@ -139,7 +139,7 @@ def test_drive_enters_the_right_hand_side():
 def test_absent_effects_are_not_in_the_model():
     s = pendula.Scene(v0=1.5, damping=0.0, torque=0.0)
     assert s.effects == () and pendula.simulate(s).method == "exact"
-    assert pendula.simulate(s.replace(damping=0.1)).method == "dop853"
+    assert pendula.simulate(s.replace(damping=0.1)).method in ("dop853", "vern9", "vern8")   # auto's table
 
 
 # ------------------------------------------------------------ events and periods

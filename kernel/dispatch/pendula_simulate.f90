@@ -5,8 +5,8 @@
 !> is taken once.  A scene's fields select one model from the registry below;
 !> the model says whether its exact (closed-form) path answers the effects the
 !> scene names; otherwise the integrator the scene names (or, for 'auto', the
-!> cheapest one at the default tolerances: DOP853, see README) integrates the
-!> model's right-hand side.
+!> fastest one for the scene's problem class and rtol in the work-precision
+!> study: auto_method) integrates the model's right-hand side.
 !>
 !> Adding a model: one module in kernel/models, one entry in `registry`, one
 !> case in simulate_scene (and one line in python/pendula/models/__init__.py).
@@ -27,7 +27,7 @@ module pendula_simulate
   use pendula_stick_slip, only: stick_slip_run, switched, ss_backward, ss_release_failed
   implicit none
   private
-  public :: model_info_t, registry, select_model, method_code, simulate_scene, simulate_status_text, &
+  public :: model_info_t, registry, select_model, method_code, auto_method, simulate_scene, simulate_status_text, &
             scene_energy, model_orbit_facts, cord_integrated, cord_scene_run, scene_model, attach_force
 
   integer, parameter, public :: sim_ok = 0, sim_bad_state = 1, sim_unsupported = 10, &
@@ -122,6 +122,48 @@ contains
     case default;      method_code = -1
     end select
   end function method_code
+
+  !> The integrator method='auto' picks for an integrated rigid-pendulum scene:
+  !> the table pendula_auto_methods.inc (generated from the recorded
+  !> work-precision study by data/bench/gen_auto_methods.py, committed) by the
+  !> scene's problem class (auto_class) and the nearest decade of its rtol
+  !> (clamped to the study's 1e-3 ... 1e-14); DOP853 for scenes outside the
+  !> study's classes and with a user's force (forced).
+  pure integer function auto_method(sc, forced)
+    type(scene_t), intent(in) :: sc
+    logical, intent(in) :: forced
+    include 'pendula_auto_methods.inc'
+    integer :: cls, k
+    auto_method = m_dop853
+    cls = auto_class(sc)
+    if (forced .or. cls == 0 .or. .not. (sc%rtol > 0.0_dp .and. sc%rtol <= huge(1.0_dp))) return
+    k = min(auto_last_decade, max(auto_first_decade, nint(-log10(sc%rtol))))
+    auto_method = auto_methods(k, cls)
+  end function auto_method
+
+  !> The work-precision study's problem class of a rigid-pendulum scene under
+  !> uniform gravity: 5 driven (a periodic drive, with anything else), 4
+  !> torqued (a constant torque, damped or not), 3 damped, 2 a conservative
+  !> rotation (energy above the separatrix, v0^2/2 + eps (1 - cos theta0) > 2
+  !> eps), 1 a conservative libration; 0 for every other scene (friction, drag,
+  !> a vibrating pivot, another gravity field: not in the study).
+  pure integer function auto_class(sc)
+    type(scene_t), intent(in) :: sc
+    auto_class = 0
+    if (sc%friction /= 0.0_dp .or. sc%drag /= 0.0_dp .or. sc%pivot_amplitude /= 0.0_dp .or. &
+        trim(sc%gravity) /= 'uniform' .or. trim(sc%cord) /= 'rigid' .or. trim(sc%guide) /= 'none') return
+    if (sc%drive_amplitude /= 0.0_dp) then
+      auto_class = 5
+    else if (sc%torque /= 0.0_dp) then
+      auto_class = 4
+    else if (sc%damping /= 0.0_dp) then
+      auto_class = 3
+    else if (0.5_dp * sc%v0**2 + sc%eps * (1.0_dp - cos(sc%theta0)) > 2.0_dp * sc%eps) then
+      auto_class = 2
+    else
+      auto_class = 1
+    end if
+  end function auto_class
 
   !> Run one scene at the times t (sorted ascending when an integrator runs).
   !> energy: the model's invariant along the path; stats = [steps, accepted,
@@ -256,7 +298,7 @@ contains
     real(dp) :: tev(1), thev(1), vev(1), gs(2)
     type(pendulum_model), target :: model
     method = method_code(sc%method)
-    if (sc%method == 'auto') method = m_dop853
+    if (sc%method == 'auto') method = auto_method(sc, present(force))
     if (method < 1) then
       status = sim_unsupported; return
     end if

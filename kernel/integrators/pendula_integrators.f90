@@ -775,43 +775,8 @@ contains
   ! Verner's 9(8) and 8(7) pairs
   ! ====================================================================
 
-  !> One step of Verner's 9(8) pair on (theta, v) from (t, y) with k(0, :) =
-  !> f(t, y) given: the stages k(1:15, :), the 9th-order solution ynew and the
-  !> difference e to the embedded 8th-order one.  15 evaluations.
-  pure subroutine vern9_step(m, t, y, h, k, ynew, e)
-    integer, parameter :: ns = 15
-    real(dp), parameter :: va(0:ns, 0:ns) = v9_a, vc(0:ns) = v9_c, vb(0:ns) = v9_b, ve(0:ns) = v9_e
-    include 'pendula_verner_step.inc'
-  end subroutine vern9_step
-
-  !> One step of Verner's 8(7) pair on (theta, v) from (t, y) with k(0, :) =
-  !> f(t, y) given: the stages k(1:12, :), the 8th-order solution ynew and the
-  !> difference e to the embedded 7th-order one.  12 evaluations.
-  pure subroutine vern8_step(m, t, y, h, k, ynew, e)
-    integer, parameter :: ns = 12
-    real(dp), parameter :: va(0:ns, 0:ns) = v8_a, vc(0:ns) = v8_c, vb(0:ns) = v8_b, ve(0:ns) = v8_e
-    include 'pendula_verner_step.inc'
-  end subroutine vern8_step
-
-  !> The interpolant's own stages (index inew+1..20) of the step [t, t + h] from
-  !> y, with k(0:inew, :) the pair's stages and f(t + h, ynew) at index inew
-  !> (16 for the 9(8) pair: 4 more evaluations; 13 for the 8(7): 7 more).
-  !> Rows ai(inew:20, 0:20) and nodes ci(inew:20) of Verner's interpolant.
-  pure subroutine verner_dense_stages(m, t, y, h, inew, ai, ci, k)
-    type(pendulum_model), intent(in) :: m
-    integer, intent(in) :: inew
-    real(dp), intent(in) :: t, y(2), h, ai(inew:20, 0:20), ci(inew:20)
-    real(dp), intent(inout) :: k(0:20, 2)
-    real(dp) :: ys(2)
-    integer :: st, i
-    do st = inew + 1, 20
-      do i = 1, 2
-        ys(i) = y(i) + h * dot_product(ai(st, 0:st - 1), k(0:st - 1, i))
-      end do
-      k(st, 1) = ys(2)
-      k(st, 2) = accel(m, t + ci(st) * h, ys(1), ys(2))
-    end do
-  end subroutine verner_dense_stages
+  ! vern9_step, vern9_dense_stages, vern8_step, vern8_dense_stages (generated)
+  include 'pendula_verner_steps.inc'
 
   !> The state at t + x h on the step [t, t + h] from y (0 <= x <= 1): y + h sum_i
   !> b_i(x) k_i with Verner's weight polynomials b_i(x) = sum_j p_ij x^j, j = 1..8.
@@ -862,9 +827,9 @@ contains
     end if
     k(inew, 1) = ynew(2); k(inew, 2) = accel(m, h, ynew(1), ynew(2))
     if (method == m_vern8) then
-      call verner_dense_stages(m, 0.0_dp, y, h, inew, v8i_a, v8i_c, k)
+      call vern8_dense_stages(m, 0.0_dp, y, h, k)
     else
-      call verner_dense_stages(m, 0.0_dp, y, h, inew, v9i_a, v9i_c, k)
+      call vern9_dense_stages(m, 0.0_dp, y, h, k)
     end if
     do i = 1, size(x)
       if (method == m_vern8) then
@@ -968,9 +933,9 @@ contains
         if (kout <= size(ts)) then
           if (dir * (ts(kout) - (t + hs)) < 0.0_dp) then
             if (method == m_vern8) then
-              call verner_dense_stages(m, t, y, hs, inew, v8i_a, v8i_c, k)
+              call vern8_dense_stages(m, t, y, hs, k)
             else
-              call verner_dense_stages(m, t, y, hs, inew, v9i_a, v9i_c, k)
+              call vern9_dense_stages(m, t, y, hs, k)
             end if
             stats%nfev = stats%nfev + (20 - inew)
             do while (kout <= size(ts))

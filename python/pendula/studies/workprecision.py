@@ -48,7 +48,8 @@ MAX_BATCHES = 10
 TOLS = [10.0 ** -k for k in range(3, 15)]
 #: the suffix of a method run with its steps landing on the output times (simulate's land_on_outputs)
 LANDED = "-landed"
-PENDULA_ADAPTIVE = ("dopri5", "dop853", "dop853" + LANDED, "vern9", "vern9" + LANDED, "gsl-rk8pd")
+PENDULA_ADAPTIVE = ("dopri5", "dop853", "dop853" + LANDED, "vern9", "vern9" + LANDED, "vern8", "vern8" + LANDED,
+                    "gsl-rk8pd")
 #: methods for theta'' = f(t, theta) only (no damping): the Runge-Kutta-Nystrom pair
 PENDULA_NYSTROM = ("dprkn6",)
 PENDULA_FIXED = {"rk4": [0.1, 0.05, 0.025, 0.0125, 0.00625, 0.003125],
