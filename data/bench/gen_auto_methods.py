@@ -5,10 +5,10 @@ The classes are the study's five problems (pendula.studies.workprecision.PROBLEM
 libration and rotation (no damping, torque or drive; below or above the separatrix), damped (damping
 only), torqued (a constant torque, with or without damping) and driven (a periodic drive, with
 anything else).  For each class and each rtol = atol = 10^-k of the study (k = 3 ... 14) the
-candidates are pendula's adaptive pairs with an interpolant as a scene runs them (dopri5, dop853,
-vern9, vern8: outputs interpolated, steps not landed); a candidate qualifies when its largest error
-over the outputs is no larger than DOP853's at the same rtol (the method 'auto' meant before) or
-than 10 rtol, and the fastest qualifying one is the pick.  Scenes outside the five classes (friction,
+pick is pendula.studies.workprecision.auto_picks's (the one rule, which the study's figures draw
+too): the fastest of pendula's adaptive pairs with an interpolant as a scene runs them (dopri5,
+dop853, vern9, vern8: outputs interpolated, steps not landed) whose largest error over the outputs
+is no larger than DOP853's at the same rtol (the method 'auto' meant before) or than 10 rtol.  Scenes outside the five classes (friction,
 drag, a vibrating pivot, non-uniform gravity, a user's force, events) keep DOP853: the study did not
 measure them, and events need its dense output.
 
@@ -23,33 +23,31 @@ import json
 import pathlib
 import sys
 
+from pendula.studies import workprecision as wp
+
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 RECORD = ROOT / "data" / "bench" / "work_precision.json"
 OUT = ROOT / "kernel" / "dispatch" / "pendula_auto_methods.inc"
 #: the classes in the kernel's order (pendula_simulate: auto_class) and the study's problem for each
 CLASSES = ("libration", "rotation", "damped", "torqued", "driven")
-DECADES = range(3, 15)
-CANDIDATES = ("dopri5", "dop853", "vern9", "vern8")
+DECADES = wp.AUTO_DECADES
+CANDIDATES = wp.AUTO_CANDIDATES
 #: the kernel's names of their method codes (pendula_integrators)
 CODE_NAMES = {"dopri5": "m_dopri5", "dop853": "m_dop853", "vern9": "m_vern9", "vern8": "m_vern8"}
-#: a candidate qualifies with an error up to this many times rtol (or up to DOP853's own)
-SLACK = 10.0
 
 
 def picks(record):
     """{(class, k): (method, row of the pick, row of dop853)} from the record's rows."""
-    rows = [r for r in record["rows"] if r["package"] == "pendula" and r["method"] in CANDIDATES]
+    best = wp.auto_picks(record["rows"])
+    rows = record["rows"]
     out = {}
     for cls in CLASSES:
         for k in DECADES:
             rtol = 10.0 ** -k
-            at = {r["method"]: r for r in rows
-                  if r["problem"] == cls and abs(r["rtol"] - rtol) <= 1e-6 * rtol and r.get("error_max") is not None}
-            base = at.get("dop853")
-            bound = max(SLACK * rtol, base["error_max"] if base else 0.0)
-            ok = [r for r in at.values() if r["error_max"] <= bound]
-            best = min(ok, key=lambda r: r["seconds"]) if ok else base
-            out[cls, k] = ((best or {"method": "dop853"})["method"], best, base)
+            base = next((r for r in rows if r["problem"] == cls and r["package"] == "pendula"
+                         and r["method"] == "dop853" and abs(r["rtol"] - rtol) <= 1e-6 * rtol), None)
+            row = best.get((cls, k))
+            out[cls, k] = ((row or {"method": "dop853"})["method"], row, base)
     return out
 
 

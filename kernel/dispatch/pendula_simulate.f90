@@ -27,7 +27,8 @@ module pendula_simulate
   use pendula_stick_slip, only: stick_slip_run, switched, ss_backward, ss_release_failed
   implicit none
   private
-  public :: model_info_t, registry, select_model, method_code, auto_method, simulate_scene, simulate_status_text, &
+  public :: model_info_t, registry, select_model, method_code, method_name, auto_method, simulate_scene, &
+            simulate_status_text, &
             scene_energy, model_orbit_facts, cord_integrated, cord_scene_run, scene_model, attach_force
 
   integer, parameter, public :: sim_ok = 0, sim_bad_state = 1, sim_unsupported = 10, &
@@ -122,6 +123,19 @@ contains
     case default;      method_code = -1
     end select
   end function method_code
+
+  !> The name of a method code (method_code's inverse; '' for an unknown code).
+  pure function method_name(code) result(name)
+    integer, intent(in) :: code
+    character(len=16) :: name
+    character(len=16), parameter :: names(15) = [character(len=16) :: 'exact', 'rk4', 'verlet', 'yoshida4', &
+      'yoshida6', 'yoshida8', 'gauss4', 'gauss6', 'dopri5', 'dop853', 'gsl-rk8pd', 'dprkn6', 'vern9', 'vern8', 'auto']
+    integer :: i
+    name = ''
+    do i = 1, size(names)
+      if (method_code(names(i)) == code) name = names(i)
+    end do
+  end function method_name
 
   !> The integrator method='auto' picks for an integrated rigid-pendulum scene:
   !> the table pendula_auto_methods.inc (generated from the recorded

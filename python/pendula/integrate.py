@@ -59,17 +59,6 @@ CYCLOID_MAX_SAMPLES = 10**9
 CYCLOID_BLOCK = 1 << 16
 
 
-def choose_method(scene: Scene) -> str:
-    """What 'auto' picks: the exact solution whenever the scene allows it,
-    otherwise DOP853.  The work-precision study (docs: What accuracy costs in time) finds DOP853 and GSL's
-    rk8pd within a few per cent of each other at equal final error, and both
-    far cheaper than every other method below 1e-6; DOP853 also has dense
-    output, runs backwards in time and locates events, which rk8pd here does not."""
-    if scene.is_conservative_rigid:
-        return "exact"
-    return "dop853"
-
-
 def _run(scene, method, t_sorted, ev_kind=0, ev_level=0.0, ev_dir=0, terminal=False, max_events=1):
     if method not in CODES:
         raise ValueError(f"unknown method {method!r}; known: {', '.join(CODES)}, exact, auto")

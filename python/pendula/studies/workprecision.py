@@ -23,6 +23,7 @@ N_OUT = 100
 # ---- end of problem definitions
 
 __all__ = ["PROBLEMS", "N_OUT", "TARGETS", "load_reference", "errors", "best_time", "run_study", "answer_table",
+           "auto_picks", "AUTO_CANDIDATES", "AUTO_DECADES",
            "answer_rst", "write_figures", "merge_records", "study_main", "regenerate_docs"]
 
 import datetime
@@ -917,9 +918,58 @@ FAMILIES = (("pendula, adaptive", lambda r: r["package"] == "pendula" and r["met
 _LEVELS = tuple(10.0 ** (-k / 2) for k in range(4, 27))
 
 
+#: the pairs method='auto' chooses from (outputs interpolated, steps not landed) and the rtol decades
+AUTO_CANDIDATES = ("dopri5", "dop853", "vern9", "vern8")
+AUTO_DECADES = tuple(range(3, 15))
+#: a candidate qualifies with an error up to this many times rtol (or up to DOP853's own)
+AUTO_SLACK = 10.0
+#: the name of the rows that stand for method='auto' in the figures
+AUTO = "auto"
+
+
+def auto_picks(rows: list[dict]) -> dict:
+    """What ``method='auto'`` integrates with, per problem and rtol decade, from a recorded study.
+
+    For each of the study's problems (a class of scenes) and each rtol = atol = 10^-k, k = 3 ... 14,
+    the fastest of pendula's pairs with an interpolant (AUTO_CANDIDATES) whose largest error over
+    the outputs is no larger than DOP853's at that rtol or than 10 rtol.  The one rule:
+    data/bench/gen_auto_methods.py writes it into the kernel's dispatcher, the figures draw it.
+
+    Parameters
+    ----------
+    rows : list of dict
+        The rows of a record of :func:`run_study`.
+
+    Returns
+    -------
+    dict
+        (problem, k) -> the row of the pick (None when the record has no candidate there).
+
+    Examples
+    --------
+    >>> from pendula.studies.workprecision import auto_picks
+    >>> rows = [dict(problem="damped", package="pendula", method=m, rtol=1e-6, error_max=e, seconds=s)
+    ...         for m, e, s in (("dop853", 4e-6, 2.0), ("vern9", 3e-6, 1.5), ("vern8", 9e-5, 1.0))]
+    >>> auto_picks(rows)["damped", 6]["method"]
+    'vern9'
+    """
+    cand = [r for r in rows if r["package"] == "pendula" and r["method"] in AUTO_CANDIDATES
+            and r.get("error_max") is not None and r.get("rtol")]
+    out = {}
+    for pname in dict.fromkeys(r["problem"] for r in rows):
+        for k in AUTO_DECADES:
+            rtol = 10.0 ** -k
+            at = {r["method"]: r for r in cand if r["problem"] == pname and abs(r["rtol"] - rtol) <= 1e-6 * rtol}
+            base = at.get("dop853")
+            bound = max(AUTO_SLACK * rtol, base["error_max"] if base else 0.0)
+            ok = [r for r in at.values() if r["error_max"] <= bound]
+            out[pname, k] = min(ok, key=lambda r: r["seconds"]) if ok else base
+    return out
+
+
 def best_of_families(rows: list[dict]) -> list[tuple[str, str, str]]:
-    """The curves of a problem's figure: the best method of each family, and pendula's DOP853
-    (what ``method='auto'`` integrates with) when it is not already the best of its family.
+    """The curves of a problem's figure: the best method of each family, and what ``method='auto'``
+    integrates with (:func:`auto_picks`: rows named 'auto', when the rows have them).
 
     The best method of a family is the one fastest at the most error levels (10^-2 ... 10^-13 in
     half decades, each reached by at least one of the family); ties go to the smaller sum of log
@@ -944,6 +994,8 @@ def best_of_families(rows: list[dict]) -> list[tuple[str, str, str]]:
     [('SciPy', 'scipy', 'DOP853')]
     """
     out = []
+    has_auto = any(r["method"] == AUTO for r in rows)
+    rows = [r for r in rows if r["method"] != AUTO]
     for family, member in FAMILIES:
         fam = [r for r in rows if member(r)]
         methods = list(dict.fromkeys((r["package"], r["method"]) for r in fam))
@@ -964,8 +1016,8 @@ def best_of_families(rows: list[dict]) -> list[tuple[str, str, str]]:
                 logt[m] += math.log(best.get(m, 1e3))      # a level a method misses counts as very slow
         pkg, method = max(methods, key=lambda m: (wins[m], -logt[m]))
         out.append((family, pkg, method))
-        if family == "pendula, adaptive" and method != "dop853" and ("pendula", "dop853") in methods:
-            out.append(("pendula, method='auto'", "pendula", "dop853"))
+        if family == "pendula, adaptive" and has_auto:
+            out.append(("pendula, method='auto'", "pendula", AUTO))
     return out
 
 
@@ -1002,6 +1054,8 @@ def write_figures(record: dict, outdir) -> list[pathlib.Path]:
     outdir.mkdir(parents=True, exist_ok=True)
     files = []
     rows = record["rows"]
+    # method='auto': the rows of its picks, one per rtol decade
+    rows = rows + [dict(r, method=AUTO) for r in auto_picks(rows).values() if r is not None]
     for pname in dict.fromkeys(r["problem"] for r in rows):
         pr = [r for r in rows if r["problem"] == pname]
         fig, ax = plt.subplots(figsize=(7.5, 5.8))
