@@ -110,61 +110,23 @@ def verner98_values():
     return csv_values("verner98_coefficients.csv")
 
 
-def verner98_matrices():
-    """c (16), A (16 x 16), b (16), e = b - bhat (16) of Verner's 9(8) pair, at 50 digits."""
-    vals = verner98_values()
-    n = 16
-    c = [mp.mpf(0)] + [vals.get(f"c{k}", mp.mpf(1)) for k in range(1, n)]
+def _verner_pair(name, n, node):
+    """c (n), A (n x n), b (n), e = b - bhat (n) of a Verner pair from data/NAME (node(k): the name of
+    stage k's node, 0-based k; absent nodes are 1, absent entries 0), at 50 digits."""
+    vals = csv_values(name)
+    c = [mp.mpf(0)] + [vals.get(node(k), mp.mpf(1)) for k in range(1, n)]
     A = [[vals.get(f"a{i + 1:02d}{j + 1:02d}", mp.mpf(0)) for j in range(n)] for i in range(n)]
     b = [vals.get(f"b{j + 1}", mp.mpf(0)) for j in range(n)]
     e = [vals.get(f"btilde{j + 1}", mp.mpf(0)) for j in range(n)]
     return c, A, b, e
 
 
-def verner98_interpolant():
-    """c (21), A (21 x 21) of the pair extended by the interpolant's stages 17-21, and P (21 x 8):
-    b_i(x) = sum_k P[i][k-1] x^k, at 50 digits (the published 40)."""
-    c, A, _, _ = verner98_matrices()
-    vals = csv_values("verner98_interpolant.csv")
-    n = 21
-    c = list(c) + [vals[f"c{i}"] for i in range(17, n + 1)]
-    A = [list(r) + [mp.mpf(0)] * (n - 16) for r in A] + \
-        [[vals.get(f"a{i}_{j}", mp.mpf(0)) for j in range(1, n + 1)] for i in range(17, n + 1)]
-    P = [[vals.get(f"p{i}_{k}", mp.mpf(0)) for k in range(1, 9)] for i in range(1, n + 1)]
-    return c, A, P
-
-
-def verner98_tables():
-    c, A, b, e = verner98_matrices()
-    ci, Ai, P = verner98_interpolant()
-    fl = lambda v: [float(x) for x in v]  # noqa: E731
-    return "\n".join(["! Verner's 9(8) pair (Verner 2010): 16 stages (index 0..15), no FSAL",
-                      arr("v9_c", fl(c)), arr("v9_a", [fl(r) for r in A]), arr("v9_b", fl(b)),
-                      arr("v9_e", fl(e)),
-                      "! its order-8 interpolant: stages 16..20 (16: f at the new point), weights",
-                      "! b_i(x) = sum_k v9i_p(i, k) x^k, k = 1..8 (stored with index 0..7)",
-                      arr("v9i_c", fl(ci[16:])), arr("v9i_a", [fl(r) for r in Ai[16:]]),
-                      arr("v9i_p", [fl(r) for r in P])])
-
-
-def verner87_matrices():
-    """c (13), A (13 x 13), b (13), e = b - bhat (13) of Verner's 'most efficient' 8(7) pair, at 50
-    digits from the exact rationals of data/verner87_coefficients.csv."""
-    vals = csv_values("verner87_coefficients.csv")
-    n = 13
-    c = [mp.mpf(0)] + [vals.get(f"c{k}", mp.mpf(1)) for k in range(2, n + 1)]
-    A = [[vals.get(f"a{i + 1:02d}{j + 1:02d}", mp.mpf(0)) for j in range(n)] for i in range(n)]
-    b = [vals.get(f"b{j + 1}", mp.mpf(0)) for j in range(n)]
-    e = [vals.get(f"btilde{j + 1}", mp.mpf(0)) for j in range(n)]
-    return c, A, b, e
-
-
-def verner87_interpolant():
-    """c (21), A (21 x 21) of the 8(7) pair extended by its interpolant's stages 14-21, and P (21 x 8):
-    b_i(x) = sum_k P[i][k-1] x^k, at 50 digits (the published 40)."""
-    c, A, _, _ = verner87_matrices()
-    vals = csv_values("verner87_interpolant.csv")
-    n, s = 21, 13
+def _verner_extended(pair, name):
+    """c (21), A (21 x 21) of a Verner pair extended by its interpolant's stages (data/NAME: nodes cI
+    and rows aI_J of stages I = s+1 ... 21, 1-based) and P (21 x 8): b_i(x) = sum_k P[i][k-1] x^k."""
+    c, A, _, _ = pair
+    vals = csv_values(name)
+    n, s = 21, len(c)
     c = list(c) + [vals[f"c{i}"] for i in range(s + 1, n + 1)]
     A = [list(r) + [mp.mpf(0)] * (n - s) for r in A] + \
         [[vals.get(f"a{i}_{j}", mp.mpf(0)) for j in range(1, n + 1)] for i in range(s + 1, n + 1)]
@@ -172,17 +134,52 @@ def verner87_interpolant():
     return c, A, P
 
 
-def verner87_tables():
-    c, A, b, e = verner87_matrices()
-    ci, Ai, P = verner87_interpolant()
+def verner98_matrices():
+    """c (16), A (16 x 16), b (16), e = b - bhat (16) of Verner's 9(8) pair, at 50 digits."""
+    return _verner_pair("verner98_coefficients.csv", 16, lambda k: f"c{k}")
+
+
+def verner98_interpolant():
+    """c (21), A (21 x 21) of the pair extended by the interpolant's stages 17-21, and P (21 x 8):
+    b_i(x) = sum_k P[i][k-1] x^k, at 50 digits (the published 40)."""
+    return _verner_extended(verner98_matrices(), "verner98_interpolant.csv")
+
+
+def _verner_tables(title, tag, pair, extended):
+    """The kernel's tables of a Verner pair (TAG_c, TAG_a, TAG_b, TAG_e) and of its interpolant
+    (TAGi_c, TAGi_a: the rows from f at the new point on; TAGi_p)."""
+    c, A, b, e = pair
+    ci, Ai, P = extended
+    s = len(c)
     fl = lambda v: [float(x) for x in v]  # noqa: E731
-    return "\n".join(["! Verner's 'most efficient' 8(7) pair (Verner 2010): 13 stages (index 0..12), no FSAL",
-                      arr("v8_c", fl(c)), arr("v8_a", [fl(r) for r in A]), arr("v8_b", fl(b)),
-                      arr("v8_e", fl(e)),
-                      "! its order-8 interpolant: stages 13..20 (13: f at the new point), weights",
-                      "! b_i(x) = sum_k v8i_p(i, k) x^k, k = 1..8 (stored with index 0..7)",
-                      arr("v8i_c", fl(ci[13:])), arr("v8i_a", [fl(r) for r in Ai[13:]]),
-                      arr("v8i_p", [fl(r) for r in P])])
+    return "\n".join([f"! {title}: {s} stages (index 0..{s - 1}), no FSAL",
+                      arr(f"{tag}_c", fl(c)), arr(f"{tag}_a", [fl(r) for r in A]), arr(f"{tag}_b", fl(b)),
+                      arr(f"{tag}_e", fl(e)),
+                      f"! its order-8 interpolant: stages {s}..20 ({s}: f at the new point), weights",
+                      f"! b_i(x) = sum_k {tag}i_p(i, k) x^k, k = 1..8 (stored with index 0..7)",
+                      arr(f"{tag}i_c", fl(ci[s:])), arr(f"{tag}i_a", [fl(r) for r in Ai[s:]]),
+                      arr(f"{tag}i_p", [fl(r) for r in P])])
+
+
+def verner98_tables():
+    return _verner_tables("Verner's 9(8) pair (Verner 2010)", "v9", verner98_matrices(), verner98_interpolant())
+
+
+def verner87_matrices():
+    """c (13), A (13 x 13), b (13), e = b - bhat (13) of Verner's 'most efficient' 8(7) pair, at 50
+    digits from the exact rationals of data/verner87_coefficients.csv."""
+    return _verner_pair("verner87_coefficients.csv", 13, lambda k: f"c{k + 1}")
+
+
+def verner87_interpolant():
+    """c (21), A (21 x 21) of the 8(7) pair extended by its interpolant's stages 14-21, and P (21 x 8):
+    b_i(x) = sum_k P[i][k-1] x^k, at 50 digits (the published 40)."""
+    return _verner_extended(verner87_matrices(), "verner87_interpolant.csv")
+
+
+def verner87_tables():
+    return _verner_tables("Verner's 'most efficient' 8(7) pair (Verner 2010)", "v8", verner87_matrices(),
+                          verner87_interpolant())
 
 
 def verner_step_code(name, tab, c, A, b, e, what):

@@ -4,8 +4,9 @@ The orders are measured on one step of the kernel's own stepper from the exact s
 conservative pendulum (pendula.exact_motion: closed form, Jacobi functions): the step's end (x = 1,
 the pair's 8th-order weights) has a local error C h^9, and so has the interpolant inside the step
 (an interpolant of order 8); the exponents are fitted over steps where the asymptotic regime is
-reached and round-off (~1e-14) stays far below.  Whole runs are checked against the closed form and
-against SciPy's DOP853 at rtol 1e-13 on the equation written out here.  The coefficients are
+reached and round-off (~1e-14) stays far below.  Whole runs are checked against SciPy's DOP853 at
+rtol 1e-13 on the equation written out here, and against the closed form with vern9's tests
+(tests/test_integrators.py, tests/test_integrators_vern9_dense.py, parametrized over both pairs).  The coefficients are
 checked against their order conditions in tests/test_verner87_coefficients.py.
 """
 
@@ -17,7 +18,6 @@ from scipy.integrate import solve_ivp
 
 import pendula
 from pendula import _kernel
-from pendula.integrate import integrate_scene
 
 VERN8 = 14      # the kernel's method code
 PARAMS = np.array([1.0, 0.0, 0.0, 0.0, 0.0, 0.0])
@@ -57,29 +57,6 @@ def test_vern8_interpolant_starts_on_the_step():
     """At x = 0 the interpolant gives the step's start exactly (its weights vanish there)."""
     th, v = _kernel.verner_interpolant_v(VERN8, PARAMS, 0.3, 1.5, 0.4, np.array([0.0]))
     assert th[0] == 0.3 and v[0] == 1.5
-
-
-def test_vern8_converges_with_the_tolerance_forwards_and_backwards():
-    t = np.array([-13.7, -2.0, 0.0, 3.3, 25.0])
-    ex, vex = pendula.exact_motion(0.0, 1.9, 1.0, t)
-    errs = []
-    for tol in (1e-6, 1e-9, 1e-12):
-        tr = integrate_scene(pendula.Scene(v0=1.9, rtol=tol, atol=tol), t, "vern8")
-        errs.append(max(np.abs(tr.theta - ex).max(), np.abs(tr.v - vex).max()))
-    assert errs[0] > errs[1] > errs[2], errs
-    assert errs[2] < 1e-9, errs
-
-
-def test_vern8_outputs_do_not_cut_the_steps():
-    """101 outputs cost no more steps than 2, and the interpolated outputs are as accurate as the
-    steps (against the closed form)."""
-    s = pendula.Scene(v0=1.9, rtol=1e-11, atol=1e-11)
-    t = np.linspace(0.0, 20.0, 101)
-    many = integrate_scene(s, t, "vern8")
-    two = integrate_scene(s, [0.0, 20.0], "vern8")
-    assert many.stats["steps"] == two.stats["steps"]
-    ex, vex = pendula.exact_motion(0.0, 1.9, 1.0, t)
-    assert max(np.abs(many.theta - ex).max(), np.abs(many.v - vex).max()) <= 20 * abs(two.theta[-1] - ex[-1]) + 1e-11
 
 
 def test_vern8_damped_torqued_driven_scene_against_scipy():

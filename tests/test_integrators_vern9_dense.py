@@ -41,13 +41,14 @@ def test_verner_interpolant_starts_on_the_step():
     assert th[0] == 0.3 and v[0] == 1.5
 
 
-def test_verner_outputs_do_not_cut_the_steps():
+@pytest.mark.parametrize("method", ["vern9", "vern8"])
+def test_verner_outputs_do_not_cut_the_steps(method):
     """101 outputs cost no more steps than 2 (the steps were shortened to land on each before), and
     the outputs are as accurate as the steps (against the closed form)."""
     s = pendula.Scene(v0=1.9, rtol=1e-11, atol=1e-11)
     t = np.linspace(0.0, 20.0, 101)
-    many = integrate_scene(s, t, "vern9")
-    two = integrate_scene(s, [0.0, 20.0], "vern9")
+    many = integrate_scene(s, t, method)
+    two = integrate_scene(s, [0.0, 20.0], method)
     assert many.stats["steps"] == two.stats["steps"]
     ex, vex = pendula.exact_motion(0.0, 1.9, 1.0, t)
     assert max(np.abs(many.theta - ex).max(), np.abs(many.v - vex).max()) <= 20 * abs(two.theta[-1] - ex[-1]) + 1e-11
