@@ -15,6 +15,7 @@ and the ratios.
 Usage:
     python data/bench/work_precision_run.py --problems damped,driven --out part1.json [--rounds 5]
     python data/bench/work_precision_run.py --packages scipy,sundials --rounds 1 --out part9.json
+    python data/bench/work_precision_run.py --problems torqued --tols 1e-3,...,1e-15 --out part2.json
     python data/bench/work_precision_run.py --merge part1.json part2.json ...
         (writes data/bench/work_precision.json and regenerates the report page's tables and figures)
 """
@@ -43,9 +44,9 @@ def cells(record):
     return out
 
 
-def rerun(problems, rounds, out, packages):
+def rerun(problems, rounds, out, packages, tols=None):
     load_before = list(os.getloadavg())
-    rec = wp.run_study(problems=problems, packages=packages, interleave=rounds)
+    rec = wp.run_study(problems=problems, packages=packages, interleave=rounds, tols=tols)
     rec["load_average_1_5_15_before"] = load_before
     rec["packages"] = list(packages)
     pathlib.Path(out).write_text(json.dumps(rec, indent=1) + "\n")
@@ -63,8 +64,8 @@ def merge(parts):
     rec["floors"] = {**old["floors"], **rec["floors"]}
     rec["load_average_1_5_15"] = [x["load_average_1_5_15"] for x in recs]
     rec["load_average_1_5_15_before"] = [x.get("load_average_1_5_15_before") for x in recs]
-    parts = "; ".join(f"{', '.join(x.get('packages', []))}: {x['interleave']} interleaved rounds, best kept"
-                      for x in recs)
+    parts = "; ".join(dict.fromkeys(f"{', '.join(x.get('packages', []))}: {x['interleave']} interleaved rounds, "
+                                    f"best kept" for x in recs))
     rec["note"] = (f"re-run by problem, every method of each package side by side ({parts})"
                    + (f"; the rows of {', '.join(kept)} kept from the run of {old['date']}" if kept else ""))
     rec["cells"] = cells(rec)
@@ -82,11 +83,13 @@ def main():
     ap.add_argument("--out")
     ap.add_argument("--merge", nargs="+")
     ap.add_argument("--packages", default=",".join(COMPILED))
+    ap.add_argument("--tols", help="rtol settings of the adaptive methods, comma-separated (default: the study's)")
     args = ap.parse_args()
     if args.merge:
         merge(args.merge)
     else:
-        rerun(tuple(args.problems.split(",")), args.rounds, args.out, tuple(args.packages.split(",")))
+        tols = [float(x) for x in args.tols.split(",")] if args.tols else None
+        rerun(tuple(args.problems.split(",")), args.rounds, args.out, tuple(args.packages.split(",")), tols)
 
 
 if __name__ == "__main__":

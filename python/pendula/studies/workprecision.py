@@ -619,7 +619,7 @@ def run_study(problems=None, tols=None, quick=False, progress=True, reference=No
         if packages:
             runs = [r for r in runs if r[0] in packages]
         timers = []
-        if p["conservative"] and (not methods or "exact" in methods):
+        if p["conservative"] and (not methods or "exact" in methods) and (not packages or "pendula" in packages):
             runs = [("pendula", "exact", "-", 0.0)] + runs
         for k, (pkg, method, knob, value) in enumerate(runs):
             kw = dict(batch=batch, max_batches=max_batches)
@@ -876,8 +876,14 @@ def summary_rst(record: dict) -> str:
     if comp:
         lines.append(f"* fastest compiled peer / pendula's fastest: {min(a['compiled_ratio'] for a in comp):.2f} to "
                      f"{max(a['compiled_ratio'] for a in comp):.2f} over {len(comp)} cells; pendula is slower in "
-                     f"{len(slower)}: " + ", ".join(f"{a['problem']} {a['target']:.0e} ({_cell(a['compiled'])}, "
-                                                     f"{a['compiled_ratio']:.2f})" for a in slower) + ".")
+                     + (f"{len(slower)}: " + ", ".join(f"{a['problem']} {a['target']:.0e} ({_cell(a['compiled'])}, "
+                                                       f"{a['compiled_ratio']:.2f})" for a in slower)
+                        if slower else "none") + ".")
+    slow_sci = [a for a in table if a["scipy_ratio"] is not None and a["scipy_ratio"] < 30]
+    if slow_sci:
+        lines.append("* below 30 times SciPy: " + ", ".join(
+            f"{a['problem']} {a['target']:.0e} (pendula {_cell(a['pendula'])}, SciPy {_cell(a['scipy'])}, "
+            f"{a['scipy_ratio']:.0f})" for a in slow_sci) + ".")
     for pkg, method in (("numbalsoda", "dop853"), ("gsl", "gsl-rk8pd"), ("sundials", "CVODE-Adams"),
                         ("numbalsoda", "lsoda"), ("diffrax", "Dopri8"), ("diffrax", f"Dopri8-vmap{DIFFRAX_BATCH}"),
                         ("diffrax", "Tsit5"), ("diffrax", f"Tsit5-vmap{DIFFRAX_BATCH}")):
