@@ -13,6 +13,8 @@ drag, a vibrating pivot, non-uniform gravity, a user's force, events) keep DOP85
 measure them, and events need its dense output.
 
 The include is a source file of the kernel: generated here and committed, never edited by hand.
+The build does not see a Fortran include change by itself: writing it touches the dispatcher
+(kernel/dispatch/pendula_simulate.f90), so that `make .venv/.installed` recompiles it.
 
 Usage:  python data/bench/gen_auto_methods.py [--check]
         (--check: exit 1 when the committed include differs from what the record gives)
@@ -28,6 +30,7 @@ from pendula.studies import workprecision as wp
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 RECORD = ROOT / "data" / "bench" / "work_precision.json"
 OUT = ROOT / "kernel" / "dispatch" / "pendula_auto_methods.inc"
+DISPATCHER = ROOT / "kernel" / "dispatch" / "pendula_simulate.f90"
 #: the classes in the kernel's order (pendula_simulate: auto_class) and the study's problem for each
 CLASSES = ("libration", "rotation", "damped", "torqued", "driven")
 DECADES = wp.AUTO_DECADES
@@ -78,7 +81,9 @@ def main():
     text = include_text(record, table)
     if args.check:
         sys.exit(0 if OUT.read_text() == text else 1)
-    OUT.write_text(text)
+    if not OUT.is_file() or OUT.read_text() != text:
+        OUT.write_text(text)
+        DISPATCHER.touch()
     for cls in CLASSES:
         for k in DECADES:
             m, best, base = table[cls, k]
