@@ -26,6 +26,12 @@
   conditions (all 486 trees to order 9) are checked by tests/test_verner_coefficients.py.
   Its order-8 interpolant (Verner's own, five more stages; data/verner98_interpolant.csv):
   the nodes V9I_C and rows V9I_A of stages 17-21 and the weight polynomials V9I_P(stage, power).
+* Verner's 'most efficient' 8(7) pair (13 stages; Verner 2010 and his web page): read from
+  data/verner87_coefficients.csv (exact rationals): V8_C, V8_A, V8_B and the differences V8_E to
+  the embedded 7th-order weights; its order-8 interpolant (eight more stages, the first the new
+  point's f; data/verner87_interpolant.csv): V8I_C, V8I_A, V8I_P.  The order conditions (all trees
+  to order 8, the embedded weights to order 7, the interpolant's continuous conditions to order 8)
+  are checked by tests/test_verner87_coefficients.py.
 
 Usage:  python data/gen_rk_tables.py
 """
@@ -38,6 +44,7 @@ from scipy.integrate._ivp import dop853_coefficients as d8
 from scipy.integrate._ivp.rk import RK45
 
 OUT = pathlib.Path(__file__).resolve().parents[1] / "kernel" / "integrators" / "pendula_rk_tables.inc"
+STEPS_OUT = OUT.with_name("pendula_verner_steps.inc")
 
 
 def arr(name, a):
@@ -90,7 +97,11 @@ def csv_values(name):
         if line.startswith("#") or line.startswith("name,"):
             continue
         k, v = line.split(",")
-        vals[k] = mp.mpf(v)
+        if "/" in v:                     # an exact rational p/q
+            num, den = v.split("/")
+            vals[k] = mp.mpf(int(num)) / int(den)
+        else:
+            vals[k] = mp.mpf(v)
     return vals
 
 
@@ -99,41 +110,150 @@ def verner98_values():
     return csv_values("verner98_coefficients.csv")
 
 
-def verner98_matrices():
-    """c (16), A (16 x 16), b (16), e = b - bhat (16) of Verner's 9(8) pair, at 50 digits."""
-    vals = verner98_values()
-    n = 16
-    c = [mp.mpf(0)] + [vals.get(f"c{k}", mp.mpf(1)) for k in range(1, n)]
+def _verner_pair(name, n, node):
+    """c (n), A (n x n), b (n), e = b - bhat (n) of a Verner pair from data/NAME (node(k): the name of
+    stage k's node, 0-based k; absent nodes are 1, absent entries 0), at 50 digits."""
+    vals = csv_values(name)
+    c = [mp.mpf(0)] + [vals.get(node(k), mp.mpf(1)) for k in range(1, n)]
     A = [[vals.get(f"a{i + 1:02d}{j + 1:02d}", mp.mpf(0)) for j in range(n)] for i in range(n)]
     b = [vals.get(f"b{j + 1}", mp.mpf(0)) for j in range(n)]
     e = [vals.get(f"btilde{j + 1}", mp.mpf(0)) for j in range(n)]
     return c, A, b, e
 
 
-def verner98_interpolant():
-    """c (21), A (21 x 21) of the pair extended by the interpolant's stages 17-21, and P (21 x 8):
-    b_i(x) = sum_k P[i][k-1] x^k, at 50 digits (the published 40)."""
-    c, A, _, _ = verner98_matrices()
-    vals = csv_values("verner98_interpolant.csv")
-    n = 21
-    c = list(c) + [vals[f"c{i}"] for i in range(17, n + 1)]
-    A = [list(r) + [mp.mpf(0)] * (n - 16) for r in A] + \
-        [[vals.get(f"a{i}_{j}", mp.mpf(0)) for j in range(1, n + 1)] for i in range(17, n + 1)]
+def _verner_extended(pair, name):
+    """c (21), A (21 x 21) of a Verner pair extended by its interpolant's stages (data/NAME: nodes cI
+    and rows aI_J of stages I = s+1 ... 21, 1-based) and P (21 x 8): b_i(x) = sum_k P[i][k-1] x^k."""
+    c, A, _, _ = pair
+    vals = csv_values(name)
+    n, s = 21, len(c)
+    c = list(c) + [vals[f"c{i}"] for i in range(s + 1, n + 1)]
+    A = [list(r) + [mp.mpf(0)] * (n - s) for r in A] + \
+        [[vals.get(f"a{i}_{j}", mp.mpf(0)) for j in range(1, n + 1)] for i in range(s + 1, n + 1)]
     P = [[vals.get(f"p{i}_{k}", mp.mpf(0)) for k in range(1, 9)] for i in range(1, n + 1)]
     return c, A, P
 
 
-def verner98_tables():
-    c, A, b, e = verner98_matrices()
-    ci, Ai, P = verner98_interpolant()
+def verner98_matrices():
+    """c (16), A (16 x 16), b (16), e = b - bhat (16) of Verner's 9(8) pair, at 50 digits."""
+    return _verner_pair("verner98_coefficients.csv", 16, lambda k: f"c{k}")
+
+
+def verner98_interpolant():
+    """c (21), A (21 x 21) of the pair extended by the interpolant's stages 17-21, and P (21 x 8):
+    b_i(x) = sum_k P[i][k-1] x^k, at 50 digits (the published 40)."""
+    return _verner_extended(verner98_matrices(), "verner98_interpolant.csv")
+
+
+def _verner_tables(title, tag, pair, extended):
+    """The kernel's tables of a Verner pair (TAG_c, TAG_a, TAG_b, TAG_e) and of its interpolant
+    (TAGi_c, TAGi_a: the rows from f at the new point on; TAGi_p)."""
+    c, A, b, e = pair
+    ci, Ai, P = extended
+    s = len(c)
     fl = lambda v: [float(x) for x in v]  # noqa: E731
-    return "\n".join(["! Verner's 9(8) pair (Verner 2010): 16 stages (index 0..15), no FSAL",
-                      arr("v9_c", fl(c)), arr("v9_a", [fl(r) for r in A]), arr("v9_b", fl(b)),
-                      arr("v9_e", fl(e)),
-                      "! its order-8 interpolant: stages 16..20 (16: f at the new point), weights",
-                      "! b_i(x) = sum_k v9i_p(i, k) x^k, k = 1..8 (stored with index 0..7)",
-                      arr("v9i_c", fl(ci[16:])), arr("v9i_a", [fl(r) for r in Ai[16:]]),
-                      arr("v9i_p", [fl(r) for r in P])])
+    return "\n".join([f"! {title}: {s} stages (index 0..{s - 1}), no FSAL",
+                      arr(f"{tag}_c", fl(c)), arr(f"{tag}_a", [fl(r) for r in A]), arr(f"{tag}_b", fl(b)),
+                      arr(f"{tag}_e", fl(e)),
+                      f"! its order-8 interpolant: stages {s}..20 ({s}: f at the new point), weights",
+                      f"! b_i(x) = sum_k {tag}i_p(i, k) x^k, k = 1..8 (stored with index 0..7)",
+                      arr(f"{tag}i_c", fl(ci[s:])), arr(f"{tag}i_a", [fl(r) for r in Ai[s:]]),
+                      arr(f"{tag}i_p", [fl(r) for r in P])])
+
+
+def verner98_tables():
+    return _verner_tables("Verner's 9(8) pair (Verner 2010)", "v9", verner98_matrices(), verner98_interpolant())
+
+
+def verner87_matrices():
+    """c (13), A (13 x 13), b (13), e = b - bhat (13) of Verner's 'most efficient' 8(7) pair, at 50
+    digits from the exact rationals of data/verner87_coefficients.csv."""
+    return _verner_pair("verner87_coefficients.csv", 13, lambda k: f"c{k + 1}")
+
+
+def verner87_interpolant():
+    """c (21), A (21 x 21) of the 8(7) pair extended by its interpolant's stages 14-21, and P (21 x 8):
+    b_i(x) = sum_k P[i][k-1] x^k, at 50 digits (the published 40)."""
+    return _verner_extended(verner87_matrices(), "verner87_interpolant.csv")
+
+
+def verner87_tables():
+    return _verner_tables("Verner's 'most efficient' 8(7) pair (Verner 2010)", "v8", verner87_matrices(),
+                          verner87_interpolant())
+
+
+def verner_step_code(name, tab, c, A, b, e, what):
+    """The Fortran text of one Verner stepper on (theta, v): each stage's sum written out over the
+    nonzero entries of its row of A (columns 1-4 or 1-5 of the later rows vanish), as GSL's rk8pd is
+    written, so that the 2-D system pays for no zero."""
+    s = len(b)
+    sub = [f"  !> One step of {what} on (theta, v) from (t, y) with k(0, :) = f(t, y) given:",
+           f"  !> the stages k(1:{s - 1}, :), the solution ynew and the difference e to the embedded",
+           f"  !> solution ({s - 1} evaluations).  Generated by data/gen_rk_tables.py from the tables",
+           f"  !> {tab}_a, {tab}_b, {tab}_e: each sum over the nonzero coefficients only.",
+           f"  pure subroutine {name}(m, t, y, h, k, ynew, e)",
+           "    type(pendulum_model), intent(in) :: m",
+           "    real(dp), intent(in) :: t, y(2), h",
+           "    real(dp), intent(inout) :: k(0:20, 2)",
+           "    real(dp), intent(out) :: ynew(2), e(2)",
+           "    real(dp) :: ys(2)",
+           "    integer :: i"]
+
+    def sum_of(coef, row, idx, comp):
+        terms = [f"{coef}({row}{j}) * k({j}, {comp})" for j in idx]
+        return " &\n        + ".join(" + ".join(terms[i:i + 3]) for i in range(0, len(terms), 3))
+
+    for st in range(1, s):
+        nz = [j for j in range(st) if A[st][j] != 0]
+        for comp in (1, 2):
+            sub.append(f"    ys({comp}) = y({comp}) + h * ({sum_of(tab + '_a', f'{st}, ', nz, comp)})")
+        sub.append(f"    k({st}, 1) = ys(2)")
+        sub.append(f"    k({st}, 2) = accel(m, t + {tab}_c({st}) * h, ys(1), ys(2))")
+    nb = [j for j in range(s) if b[j] != 0]
+    ne = [j for j in range(s) if e[j] != 0]
+    sub.append("    do i = 1, 2")
+    sub.append(f"      ynew(i) = y(i) + h * ({sum_of(tab + '_b', '', nb, 'i')})")
+    sub.append(f"      e(i) = h * ({sum_of(tab + '_e', '', ne, 'i')})")
+    sub.append("    end do")
+    sub.append(f"  end subroutine {name}")
+    return "\n".join(sub) + "\n"
+
+
+def verner_dense_stage_code(name, tab, inew, A, what):
+    """The Fortran text of the interpolant's own stages inew+1..20 of a Verner pair, each sum over
+    the nonzero entries of its row (tab: the rows inew..20 of the extended matrix, as tab(st - inew, j))."""
+    sub = [f"  !> The interpolant's own stages {inew + 1}..20 of {what} on the step [t, t + h] from y, with",
+           f"  !> k(0:{inew}, :) the pair's stages and f(t + h, ynew) at index {inew} ({20 - inew} evaluations).",
+           f"  !> Generated by data/gen_rk_tables.py from {tab}_a, {tab}_c: each sum over the nonzero coefficients.",
+           f"  pure subroutine {name}(m, t, y, h, k)",
+           "    type(pendulum_model), intent(in) :: m",
+           "    real(dp), intent(in) :: t, y(2), h",
+           "    real(dp), intent(inout) :: k(0:20, 2)",
+           "    real(dp) :: ys(2)"]
+    for st in range(inew + 1, 21):
+        nz = [j for j in range(st) if A[st][j] != 0]
+        for comp in (1, 2):
+            terms = [f"{tab}_a({st - inew}, {j}) * k({j}, {comp})" for j in nz]
+            body = " &\n        + ".join(" + ".join(terms[i:i + 3]) for i in range(0, len(terms), 3))
+            sub.append(f"    ys({comp}) = y({comp}) + h * ({body})")
+        sub.append(f"    k({st}, 1) = ys(2)")
+        sub.append(f"    k({st}, 2) = accel(m, t + {tab}_c({st - inew}) * h, ys(1), ys(2))")
+    sub.append(f"  end subroutine {name}")
+    return "\n".join(sub) + "\n"
+
+
+def verner_steps():
+    c9, A9, b9, e9 = verner98_matrices()
+    c8, A8, b8, e8 = verner87_matrices()
+    head = ["! Generated by data/gen_rk_tables.py -- the Verner steppers of pendula_integrators with",
+            "! their sums written out over the nonzero coefficients; never edited by hand.", ""]
+    _, A9i, _ = verner98_interpolant()
+    _, A8i, _ = verner87_interpolant()
+    return "\n".join(head) + "\n".join([
+        verner_step_code("vern9_step", "v9", c9, A9, b9, e9, "Verner's 9(8) pair"),
+        verner_dense_stage_code("vern9_dense_stages", "v9i", 16, A9i, "Verner's 9(8) interpolant"),
+        verner_step_code("vern8_step", "v8", c8, A8, b8, e8, "Verner's 8(7) pair"),
+        verner_dense_stage_code("vern8_dense_stages", "v8i", 13, A8i, "Verner's 8(7) interpolant")])
 
 
 def rkn6_tables():
@@ -219,8 +339,11 @@ def main():
     out.append(arr("yo8_w", y8))
     out.append(rkn6_tables())
     out.append(verner98_tables())
+    out.append(verner87_tables())
     OUT.write_text("\n".join(out))
     print(f"wrote {OUT}")
+    STEPS_OUT.write_text(verner_steps())
+    print(f"wrote {STEPS_OUT}")
 
 
 if __name__ == "__main__":

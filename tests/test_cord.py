@@ -267,8 +267,11 @@ def test_damping_with_flexible_cord():
 def test_no_flight_is_the_rigid_pendulum():
     for extra in ({}, {"damping": 0.05}, {"torque": 0.1, "damping": 0.2}):
         sc = Scene(cord="flexible", v0=1.2, t_end=40, n_samples=401, **extra)
-        a, b = pendula.simulate(sc), pendula.simulate(sc.replace(cord="rigid"))
-        assert a.method == b.method and np.array_equal(a.theta, b.theta) and np.array_equal(a.v, b.v)
+        # the cord integrates its circles by dop853 under 'auto' (its tension event needs the dense
+        # output); the rigid scene by the same method gives the same numbers
+        a = pendula.simulate(sc)
+        b = pendula.simulate(sc.replace(cord="rigid"), method=a.method)
+        assert np.array_equal(a.theta, b.theta) and np.array_equal(a.v, b.v)
         assert a.flips["t_leave"].size == 0
 
 

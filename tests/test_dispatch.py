@@ -35,7 +35,7 @@ def test_conservative_rigid_scene_takes_the_exact_path():
 
 def test_scene_with_effects_is_integrated_by_its_method():
     tr = pendula.simulate(Scene(v0=1.0, damping=0.1), [0.0, 2.0, 1.0])
-    assert tr.method == "dop853" and tr.stats["steps"] > 0
+    assert tr.method in ("dop853", "vern9", "vern8") and tr.stats["steps"] > 0   # auto: tests/test_integrators_auto.py
     one = pendula.simulate(Scene(v0=1.0, damping=0.1), [1.0])
     assert tr.theta[2] == pytest.approx(one.theta[0], rel=1e-9)
 

@@ -180,7 +180,7 @@ def test_uniform_integrator_path_unchanged():
     t = np.linspace(0, 30, 301)
     sc = pendula.Scene(eps=1.3, damping=0.1, drive_amplitude=0.2, drive_frequency=0.9, theta0=1.0, v0=0.3)
     a = _kernel.integrate_v(*sc._kernel_fields, 9, t, 0, 0.0, 0, 0, 1, np.zeros(1, np.int32))
-    b = pendula.simulate(sc, t)
+    b = pendula.simulate(sc, t, method="dop853")
     assert np.array_equal(a[0], b.theta) and np.array_equal(a[1], b.v)
 
 

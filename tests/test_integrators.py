@@ -109,7 +109,7 @@ def test_damped_pendulum_settles_in_the_published_wells():
     for beta, n in published.items():
         s = pendula.Scene(v0=2.3, damping=beta, rtol=1e-10, atol=1e-12)
         tr = pendula.simulate(s, [0.0, 3000.0])
-        assert tr.method == "dop853"
+        assert tr.method in ("dop853", "vern9", "vern8")     # auto's pick: tests/test_integrators_auto.py
         assert round(tr.theta[-1] / (2 * np.pi)) == n, beta
         assert abs(tr.theta[-1] - 2 * np.pi * n) < 1e-3 and abs(tr.v[-1]) < 1e-3
 
@@ -139,7 +139,7 @@ def test_drive_enters_the_right_hand_side():
 def test_absent_effects_are_not_in_the_model():
     s = pendula.Scene(v0=1.5, damping=0.0, torque=0.0)
     assert s.effects == () and pendula.simulate(s).method == "exact"
-    assert pendula.simulate(s.replace(damping=0.1)).method == "dop853"
+    assert pendula.simulate(s.replace(damping=0.1)).method in ("dop853", "vern9", "vern8")   # auto's table
 
 
 # ------------------------------------------------------------ events and periods
@@ -266,12 +266,13 @@ def test_nystrom_pair_through_simulate():
 
 # ------------------------------------------------------------ Verner's 9(8) pair
 
-def test_verner_pair_converges_with_the_tolerance_forwards_and_backwards():
+@pytest.mark.parametrize("method", ["vern9", "vern8"])
+def test_verner_pair_converges_with_the_tolerance_forwards_and_backwards(method):
     t = np.array([-13.7, -2.0, 0.0, 3.3, 25.0])
     ex, vex = pendula.exact_motion(0.0, 1.9, 1.0, t)
     errs = []
     for tol in (1e-6, 1e-9, 1e-12):
-        tr = integrate_scene(pendula.Scene(v0=1.9, rtol=tol, atol=tol), t, "vern9")
+        tr = integrate_scene(pendula.Scene(v0=1.9, rtol=tol, atol=tol), t, method)
         errs.append(max(np.abs(tr.theta - ex).max(), np.abs(tr.v - vex).max()))
     assert errs[0] > errs[1] > errs[2], errs
     assert errs[2] < 1e-9, errs

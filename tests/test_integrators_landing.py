@@ -12,7 +12,7 @@ import pendula
 from pendula.integrate import integrate_scene
 
 
-@pytest.mark.parametrize("method", ["dopri5", "dop853", "vern9"])
+@pytest.mark.parametrize("method", ["dopri5", "dop853", "vern9", "vern8"])
 def test_landing_pairs_end_a_step_on_each_output(method):
     s = pendula.Scene(v0=1.9, rtol=1e-10, atol=1e-10)
     t = np.linspace(0.0, 20.0, 81)

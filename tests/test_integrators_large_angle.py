@@ -36,7 +36,7 @@ def _scipy(theta0, v0, beta):
 
 
 @pytest.mark.parametrize("theta0", [2.0 ** 40, -2.0 ** 45 + 0.3, 1.0e6, 2.0 ** 52])
-@pytest.mark.parametrize("method,knobs", [("dop853", {}), ("dopri5", {}), ("vern9", {}),
+@pytest.mark.parametrize("method,knobs", [("dop853", {}), ("dopri5", {}), ("vern9", {}), ("vern8", {}),
                                           ("rk4", {"dt": 1e-3})])
 def test_huge_starting_angle_gives_the_motion_of_its_reduced_angle(theta0, method, knobs):
     """v to 1e-8 (the tolerance asked, 1e-10, times the growth over the span); theta - theta0 to

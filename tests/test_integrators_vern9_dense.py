@@ -20,7 +20,7 @@ X = np.linspace(0.1, 0.9, 9)
 
 def _interp_error(h, theta0, v0):
     """The interpolant's error over nine points inside one step of size h (2-norm over points and components)."""
-    th, v = _kernel.vern9_interpolant_v(PARAMS, theta0, v0, h, X)
+    th, v = _kernel.verner_interpolant_v(12, PARAMS, theta0, v0, h, X)
     ex_th, ex_v = pendula.exact_motion(theta0, v0, 1.0, X * h)
     return float(np.sqrt(np.sum((th - ex_th) ** 2 + (v - ex_v) ** 2)))
 
@@ -37,17 +37,18 @@ def test_verner_interpolant_is_of_order_eight(theta0, v0, hs):
 
 def test_verner_interpolant_starts_on_the_step():
     """At x = 0 the interpolant gives the step's start exactly (its weights vanish there)."""
-    th, v = _kernel.vern9_interpolant_v(PARAMS, 0.3, 1.5, 0.4, np.array([0.0]))
+    th, v = _kernel.verner_interpolant_v(12, PARAMS, 0.3, 1.5, 0.4, np.array([0.0]))
     assert th[0] == 0.3 and v[0] == 1.5
 
 
-def test_verner_outputs_do_not_cut_the_steps():
+@pytest.mark.parametrize("method", ["vern9", "vern8"])
+def test_verner_outputs_do_not_cut_the_steps(method):
     """101 outputs cost no more steps than 2 (the steps were shortened to land on each before), and
     the outputs are as accurate as the steps (against the closed form)."""
     s = pendula.Scene(v0=1.9, rtol=1e-11, atol=1e-11)
     t = np.linspace(0.0, 20.0, 101)
-    many = integrate_scene(s, t, "vern9")
-    two = integrate_scene(s, [0.0, 20.0], "vern9")
+    many = integrate_scene(s, t, method)
+    two = integrate_scene(s, [0.0, 20.0], method)
     assert many.stats["steps"] == two.stats["steps"]
     ex, vex = pendula.exact_motion(0.0, 1.9, 1.0, t)
     assert max(np.abs(many.theta - ex).max(), np.abs(many.v - vex).max()) <= 20 * abs(two.theta[-1] - ex[-1]) + 1e-11

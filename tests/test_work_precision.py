@@ -135,20 +135,12 @@ def test_record_has_every_problem_and_package(record):
 
 
 def test_auto_picks_what_the_recorded_table_says(record):
-    """'auto' integrates every non-conservative scene by DOP853: on the damped problems it is
-    pendula's fastest method with dense output (outputs that cost no steps) at every target
-    the table reaches."""
-    for a in wp.answer_table(record):
-        if wp.PROBLEMS[a["problem"]]["conservative"]:
-            continue
-        rows = [r for r in record["rows"] if r["problem"] == a["problem"] and r["package"] == "pendula"
-                and r["method"] in ("dopri5", "dop853") and r["error_max"] <= a["target"]]
-        if rows:
-            # read from the stored record (data/bench/work_precision.json), not timed here
-            recorded_fastest = min(rows, key=lambda r: r["seconds"])["method"]
-            assert recorded_fastest == "dop853", a["problem"]
+    """'auto' integrates a non-conservative scene by the recorded study's pick for its class and rtol
+    (auto_picks, read from the stored record, not timed here; the whole table in
+    tests/test_integrators_auto.py), and answers a conservative one by the exact path."""
+    picks = wp.auto_picks(record["rows"])
     scene = pendula.Scene(v0=2.3, damping=0.1, rtol=1e-9, atol=1e-9)
-    assert pendula.simulate(scene, [0.0, 1.0]).method == "dop853"
+    assert pendula.simulate(scene, [0.0, 1.0]).method == picks["damped", 9]["method"]
     assert pendula.simulate(pendula.Scene(v0=2.5), [0.0, 1.0]).method == "exact"
 
 

@@ -1,18 +1,21 @@
-"""Re-run the work-precision study for the methods whose code changed, side by side with the peers.
+"""Re-run the work-precision study, side by side with the peers.
 
-The runs of each problem (pendula's DOP853 and Verner 9(8), each with its interpolant and landing
-on the outputs; GSL's rk8pd; numbalsoda's DOP853 and LSODA; diffrax's Dopri8 and Tsit5, jitted, one
-problem and vmapped over 256) are calibrated and timed once, then all again in turn, ROUNDS rounds
-in all; each keeps its best round (pendula.studies.workprecision.run_study with interleave).  The
-rows of every other method are kept from the record this run replaces, marked ``"kept_from": <that
-record's date>``: pendula's DOPRI5, RKN pair, fixed-step methods and exact path (their code did not
-change), SciPy (a Python loop, 70 to 290 times slower in every cell: seconds per run at tight
-tolerances) and SUNDIALS CVODE (called through Python, about 40 times slower).  The machine's load
-average is recorded.  The merged record gets ``cells``: per problem and target, pendula's fastest
-method, the fastest compiled peer and SciPy's, and the ratios.
+The runs of each problem (by default every method of pendula, with and without landing on the
+outputs, its exact path; GSL's rk8pd; numbalsoda's DOP853 and LSODA; diffrax's Dopri8 and Tsit5,
+jitted, one problem and vmapped over 256: every compiled method) are calibrated and timed once,
+then all again in turn, ROUNDS rounds in all; each keeps its best round
+(pendula.studies.workprecision.run_study with interleave).  The peers called through Python, SciPy
+(a Python loop, 70 to 330 times slower in every cell: seconds per run at tight tolerances) and
+SUNDIALS CVODE (about 40 times slower), are run by their own invocation (--packages scipy,sundials)
+or their rows kept from the record this run replaces, marked ``"kept_from": <that record's date>``.
+The machine's load average is recorded before and after each part.  The merged record gets
+``cells``: per problem and target, pendula's fastest method, the fastest compiled peer and SciPy's,
+and the ratios.
 
 Usage:
     python data/bench/work_precision_run.py --problems damped,driven --out part1.json [--rounds 5]
+    python data/bench/work_precision_run.py --packages scipy,sundials --rounds 1 --out part9.json
+    python data/bench/work_precision_run.py --problems torqued --tols 1e-3,...,1e-15 --out part2.json
     python data/bench/work_precision_run.py --merge part1.json part2.json ...
         (writes data/bench/work_precision.json and regenerates the report page's tables and figures)
 """
@@ -25,11 +28,8 @@ import pathlib
 from pendula.studies import workprecision as wp
 
 RECORD = pathlib.Path(__file__).resolve().parent / "work_precision.json"
-#: the methods re-run (pendula's changed ones and the compiled peers that are not called through Python)
-RERUN = ("dop853", "dop853" + wp.LANDED, "vern9", "vern9" + wp.LANDED, "gsl-rk8pd", "lsoda",
-         "Dopri8", "Tsit5", f"Dopri8-vmap{wp.DIFFRAX_BATCH}", f"Tsit5-vmap{wp.DIFFRAX_BATCH}")
-#: packages whose rows named like a re-run method are re-run (SciPy's 'DOP853' is not numbalsoda's 'dop853')
-RERUN_PACKAGES = ("pendula", "gsl", "numbalsoda", "diffrax")
+#: the packages re-run side by side by default: pendula and the compiled peers (not called through Python)
+COMPILED = ("pendula", "gsl", "numbalsoda", "diffrax")
 
 
 def cells(record):
@@ -44,10 +44,11 @@ def cells(record):
     return out
 
 
-def rerun(problems, rounds, out):
+def rerun(problems, rounds, out, packages, tols=None):
     load_before = list(os.getloadavg())
-    rec = wp.run_study(problems=problems, methods=RERUN, packages=RERUN_PACKAGES, interleave=rounds)
+    rec = wp.run_study(problems=problems, packages=packages, interleave=rounds, tols=tols)
     rec["load_average_1_5_15_before"] = load_before
+    rec["packages"] = list(packages)
     pathlib.Path(out).write_text(json.dumps(rec, indent=1) + "\n")
     print(f"wrote {out}")
 
@@ -57,14 +58,16 @@ def merge(parts):
     recs = [json.loads(pathlib.Path(p).read_text()) for p in parts]
     rec = wp.merge_records(recs)
     again = {(r["problem"], r["package"], r["method"]) for r in rec["rows"]}
+    kept = sorted({r["package"] for r in old["rows"] if (r["problem"], r["package"], r["method"]) not in again})
     rec["rows"] += [dict(r, kept_from=r.get("kept_from", old["date"])) for r in old["rows"]
                     if (r["problem"], r["package"], r["method"]) not in again]
     rec["floors"] = {**old["floors"], **rec["floors"]}
     rec["load_average_1_5_15"] = [x["load_average_1_5_15"] for x in recs]
     rec["load_average_1_5_15_before"] = [x.get("load_average_1_5_15_before") for x in recs]
-    rec["note"] = (f"re-run side by side, {recs[0]['interleave']} interleaved rounds, best kept, of "
-                   f"{', '.join(RERUN)} (pendula, GSL, numbalsoda, diffrax); every other row kept from the run of "
-                   f"{old['date']} (its code did not change, or a peer called through Python: SciPy, CVODE)")
+    parts = "; ".join(dict.fromkeys(f"{', '.join(x.get('packages', []))}: {x['interleave']} interleaved rounds, "
+                                    f"best kept" for x in recs))
+    rec["note"] = (f"re-run by problem, every method of each package side by side ({parts})"
+                   + (f"; the rows of {', '.join(kept)} kept from the run of {old['date']}" if kept else ""))
     rec["cells"] = cells(rec)
     RECORD.write_text(json.dumps(rec, indent=1) + "\n")
     print(f"wrote {RECORD}")
@@ -79,11 +82,14 @@ def main():
     ap.add_argument("--problems", default=",".join(wp.PROBLEMS))
     ap.add_argument("--out")
     ap.add_argument("--merge", nargs="+")
+    ap.add_argument("--packages", default=",".join(COMPILED))
+    ap.add_argument("--tols", help="rtol settings of the adaptive methods, comma-separated (default: the study's)")
     args = ap.parse_args()
     if args.merge:
         merge(args.merge)
     else:
-        rerun(tuple(args.problems.split(",")), args.rounds, args.out)
+        tols = [float(x) for x in args.tols.split(",")] if args.tols else None
+        rerun(tuple(args.problems.split(",")), args.rounds, args.out, tuple(args.packages.split(",")), tols)
 
 
 if __name__ == "__main__":

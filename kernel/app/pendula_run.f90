@@ -24,7 +24,8 @@ program pendula_run
   use pendula_kinds, only: dp, two_pi
   use pendula_scene, only: scene_t, read_scene, scene_effects, scene_summary, scene_member, max_outputs
   use pendula_exact, only: pendulum_orbit, orbit_setup, orbit_eval, orbit_period, orbit_theta_max
-  use pendula_simulate, only: simulate_scene, select_model, sim_ok, simulate_status_text, model_orbit_facts
+  use pendula_simulate, only: simulate_scene, select_model, sim_ok, simulate_status_text, model_orbit_facts, &
+    auto_method, method_name
   use pendula_sweep, only: sweep_scene_csv
   implicit none
   character(len=4096) :: path, out, arg, orbit_out
@@ -323,7 +324,8 @@ contains
       if (sc%guide == 'cycloid') then   ! closed form
         call out_line(f, '# solver = exact (the cycloidal pendulum: a harmonic oscillator in s, closed form)')
       else if (sc%method == 'auto') then
-        call out_line(f, '# solver = dop853 (method auto: the scene names effects)')
+        call out_line(f, '# solver = ' // trim(method_name(auto_method(sc, .false.))) // &
+                      ' (method auto: the work-precision study''s pick for the scene''s class and rtol)')
       else
         call out_line(f, '# solver = ' // trim(sc%method))
       end if

@@ -966,19 +966,20 @@ subroutine attractor_block(npts, params, rtol, atol, cfg, nk, kcell, klab, natt,
 end subroutine attractor_block
 
 
-! One step of Verner's 9(8) pair of size h from (theta0, v0) at t = 0 on the
-! model (params as integrate_timed_v) and its order-8 interpolant at the
-! fractions x of the step: the state at t = x h (x = 1: the step's own end).
-subroutine vern9_interpolant_v(nx, params, theta0, v0, h, x, theta, v)
+! One step of Verner's 9(8) pair (method 12) or 8(7) pair (method 14) of size h
+! from (theta0, v0) at t = 0 on the model (params as integrate_timed_v) and its
+! order-8 interpolant at the fractions x of the step: the state at t = x h (x =
+! 1: the step's own end).
+subroutine verner_interpolant_v(method, nx, params, theta0, v0, h, x, theta, v)
   use pendula_kinds, only: dp
-  use pendula_integrators, only: pendulum_model, make_model, vern9_one_step_dense
+  use pendula_integrators, only: pendulum_model, make_model, verner_one_step_dense
   implicit none
-  integer, intent(in) :: nx
+  integer, intent(in) :: method, nx
   double precision, intent(in) :: params(6), theta0, v0, h, x(nx)
   double precision, intent(out) :: theta(nx), v(nx)
   !f2py intent(hide), depend(x) :: nx = len(x)
   type(pendulum_model) :: m
   m = make_model(params(1), params(2), params(3), params(4), params(5), params(6))
-  call vern9_one_step_dense(m, theta0, v0, h, x, theta, v)
-end subroutine vern9_interpolant_v
+  call verner_one_step_dense(m, method, theta0, v0, h, x, theta, v)
+end subroutine verner_interpolant_v
 

@@ -5,8 +5,8 @@
 !> is taken once.  A scene's fields select one model from the registry below;
 !> the model says whether its exact (closed-form) path answers the effects the
 !> scene names; otherwise the integrator the scene names (or, for 'auto', the
-!> cheapest one at the default tolerances: DOP853, see README) integrates the
-!> model's right-hand side.
+!> fastest one for the scene's problem class and rtol in the work-precision
+!> study: auto_method) integrates the model's right-hand side.
 !>
 !> Adding a model: one module in kernel/models, one entry in `registry`, one
 !> case in simulate_scene (and one line in python/pendula/models/__init__.py).
@@ -22,12 +22,13 @@ module pendula_simulate
     gr_libration, gr_rotation
   use pendula_integrators, only: pendulum_model, make_model, add_effects, event_spec, run_stats, integrate, m_rk4, m_verlet, &
     m_yoshida4, m_yoshida6, m_yoshida8, m_gauss4, m_gauss6, m_dopri5, m_dop853, st_too_many_steps, &
-    st_cancelled, st_velocity_force, m_dprkn6, m_vern9, max_steps, max_fixed_steps
+    st_cancelled, st_velocity_force, m_dprkn6, m_vern9, m_vern8, max_steps, max_fixed_steps
   use pendula_gsl_iface, only: pendula_gsl_rk8pd
   use pendula_stick_slip, only: stick_slip_run, switched, ss_backward, ss_release_failed
   implicit none
   private
-  public :: model_info_t, registry, select_model, method_code, simulate_scene, simulate_status_text, &
+  public :: model_info_t, registry, select_model, method_code, method_name, auto_method, simulate_scene, &
+            simulate_status_text, &
             scene_energy, model_orbit_facts, cord_integrated, cord_scene_run, scene_model, attach_force
 
   integer, parameter, public :: sim_ok = 0, sim_bad_state = 1, sim_unsupported = 10, &
@@ -37,7 +38,8 @@ module pendula_simulate
     sim_nonfinite_t = 23, sim_cord_effects = 24, sim_velocity_force = 25, &
     sim_switch_backward = 26, sim_force_method = 27, sim_force_model = 28, sim_release_failed = 29, &
     sim_noise_backward = 30, sim_force_noise = 31
-  !> method codes: the integrators' 1..9, 11 (dprkn6) and 12 (vern9), then GSL's rk8pd and the exact path
+  !> method codes: the integrators' 1..9, 11 (dprkn6), 12 (vern9) and 14 (vern8), then GSL's rk8pd, the
+  !> exact path and the Langevin path
   integer, parameter, public :: m_gsl_rk8pd = 10, m_exact = 0, m_langevin = 13
 
   !> What a model is, for users (`pendula models`) and for the dispatcher.
@@ -117,9 +119,65 @@ contains
     case ('gsl-rk8pd'); method_code = m_gsl_rk8pd
     case ('dprkn6');   method_code = m_dprkn6
     case ('vern9');    method_code = m_vern9
+    case ('vern8');    method_code = m_vern8
     case default;      method_code = -1
     end select
   end function method_code
+
+  !> The name of a method code (method_code's inverse; '' for an unknown code).
+  pure function method_name(code) result(name)
+    integer, intent(in) :: code
+    character(len=16) :: name
+    character(len=16), parameter :: names(15) = [character(len=16) :: 'exact', 'rk4', 'verlet', 'yoshida4', &
+      'yoshida6', 'yoshida8', 'gauss4', 'gauss6', 'dopri5', 'dop853', 'gsl-rk8pd', 'dprkn6', 'vern9', 'vern8', 'auto']
+    integer :: i
+    name = ''
+    do i = 1, size(names)
+      if (method_code(names(i)) == code) name = names(i)
+    end do
+  end function method_name
+
+  !> The integrator method='auto' picks for an integrated rigid-pendulum scene:
+  !> the table pendula_auto_methods.inc (generated from the recorded
+  !> work-precision study by data/bench/gen_auto_methods.py, committed) by the
+  !> scene's problem class (auto_class) and the nearest decade of its rtol
+  !> (clamped to the study's 1e-3 ... 1e-14); DOP853 for scenes outside the
+  !> study's classes and with a user's force (forced).
+  pure integer function auto_method(sc, forced)
+    type(scene_t), intent(in) :: sc
+    logical, intent(in) :: forced
+    include 'pendula_auto_methods.inc'
+    integer :: cls, k
+    auto_method = m_dop853
+    cls = auto_class(sc)
+    if (forced .or. cls == 0 .or. .not. (sc%rtol > 0.0_dp .and. sc%rtol <= huge(1.0_dp))) return
+    k = min(auto_last_decade, max(auto_first_decade, nint(-log10(sc%rtol))))
+    auto_method = auto_methods(k, cls)
+  end function auto_method
+
+  !> The work-precision study's problem class of a rigid-pendulum scene under
+  !> uniform gravity: 5 driven (a periodic drive, with anything else), 4
+  !> torqued (a constant torque, damped or not), 3 damped, 2 a conservative
+  !> rotation (energy above the separatrix, v0^2/2 + eps (1 - cos theta0) > 2
+  !> eps), 1 a conservative libration; 0 for every other scene (friction, drag,
+  !> a vibrating pivot, another gravity field: not in the study).
+  pure integer function auto_class(sc)
+    type(scene_t), intent(in) :: sc
+    auto_class = 0
+    if (sc%friction /= 0.0_dp .or. sc%drag /= 0.0_dp .or. sc%pivot_amplitude /= 0.0_dp .or. &
+        trim(sc%gravity) /= 'uniform' .or. trim(sc%cord) /= 'rigid' .or. trim(sc%guide) /= 'none') return
+    if (sc%drive_amplitude /= 0.0_dp) then
+      auto_class = 5
+    else if (sc%torque /= 0.0_dp) then
+      auto_class = 4
+    else if (sc%damping /= 0.0_dp) then
+      auto_class = 3
+    else if (0.5_dp * sc%v0**2 + sc%eps * (1.0_dp - cos(sc%theta0)) > 2.0_dp * sc%eps) then
+      auto_class = 2
+    else
+      auto_class = 1
+    end if
+  end function auto_class
 
   !> Run one scene at the times t (sorted ascending when an integrator runs).
   !> energy: the model's invariant along the path; stats = [steps, accepted,
@@ -254,7 +312,7 @@ contains
     real(dp) :: tev(1), thev(1), vev(1), gs(2)
     type(pendulum_model), target :: model
     method = method_code(sc%method)
-    if (sc%method == 'auto') method = m_dop853
+    if (sc%method == 'auto') method = auto_method(sc, present(force))
     if (method < 1) then
       status = sim_unsupported; return
     end if

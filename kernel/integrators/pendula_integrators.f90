@@ -33,6 +33,9 @@
 !> by the embedded 8th-order weights; outputs inside a step from Verner's
 !> order-8 interpolant (5 more stages, the first the next step's), or, on
 !> request (land), steps shortened to end on the output times; no events.
+!> Verner's 'most efficient' 8(7) pair likewise: 13 stages, the step
+!> controlled by the embedded 7th-order weights, Verner's order-8 interpolant
+!> (8 more stages, the first the next step's).
 module pendula_integrators
   use, intrinsic :: iso_c_binding, only: c_double, c_ptr, c_null_ptr
   use pendula_kinds, only: dp, i8, nan_dp, pi
@@ -42,14 +45,17 @@ module pendula_integrators
   private
   public :: pendulum_model, make_model, add_effects, user_force_fn, free_accel, &
     event_spec, run_stats, integrate, accel, accel_jacobian, &
-    dop853_error_norm, dop853_step_2, dop853_step_6, system_rhs, vern9_one_step_dense
+    dop853_error_norm, dop853_step_2, dop853_step_6, system_rhs, verner_one_step_dense
 
   include 'pendula_rk_tables.inc'
   !> DOP853's A transposed, so that each stage's weights are contiguous
   real(dp), parameter :: d8_at(0:15, 0:15) = transpose(d8_a)
+  !> The nodes of all 21 stages of Verner's pairs with their interpolants
+  real(dp), parameter :: v9_cc(0:20) = [v9_c, v9i_c], v8_cc(0:20) = [v8_c, v8i_c]
 
   integer, parameter, public :: m_rk4 = 1, m_verlet = 2, m_yoshida4 = 3, m_yoshida6 = 4, &
-    m_yoshida8 = 5, m_gauss4 = 6, m_gauss6 = 7, m_dopri5 = 8, m_dop853 = 9, m_dprkn6 = 11, m_vern9 = 12
+    m_yoshida8 = 5, m_gauss4 = 6, m_gauss6 = 7, m_dopri5 = 8, m_dop853 = 9, m_dprkn6 = 11, m_vern9 = 12, &
+    m_vern8 = 14
   integer, parameter, public :: st_ok = 0, st_bad_step = 1, st_bad_tol = 2, st_bad_method = 3, &
     st_step_underflow = 5, st_nonfinite = 6, st_no_dense = 9, st_stopped = 10, &
     st_too_many_steps = 7, st_cancelled = 8, st_velocity_force = 12
@@ -70,7 +76,9 @@ module pendula_integrators
   !> and needs 4 % fewer evaluations for the same errors (0.04: 16 %, 0.08:
   !> 4 % but 7 % more evaluations).  Verner's 9(8) with its interpolant: 0.05
   !> (15 % -> 4 %, 2 % fewer evaluations; 0.04: 8 %, 0.06: 2 % but 4 % more).
-  real(dp), parameter :: dop853_beta = 0.06_dp, vern9_beta = 0.05_dp
+  !> Verner's 8(7) with its interpolant: 0.05 (17 % -> 7 %, 3 % fewer
+  !> evaluations; 0.04: 10 %, 0.06: 4 % but 1 % more, 0.08: 0.2 % but 14 % more).
+  real(dp), parameter :: dop853_beta = 0.06_dp, vern9_beta = 0.05_dp, vern8_beta = 0.05_dp
 
   type :: pendulum_model
     real(dp) :: eps = 1.0_dp, beta = 0.0_dp, tau = 0.0_dp
@@ -318,6 +326,11 @@ contains
       if (beta_set >= 0.0_dp) beta = beta_set
       expo = 1.0_dp / 9.0_dp - 0.2_dp * beta
       facc1 = 1.0_dp / 0.333_dp; facc2 = 1.0_dp / 6.0_dp; safe = 0.9_dp
+    case (m_vern8)
+      beta = vern8_beta
+      if (beta_set >= 0.0_dp) beta = beta_set
+      expo = 1.0_dp / 8.0_dp - 0.2_dp * beta
+      facc1 = 1.0_dp / 0.333_dp; facc2 = 1.0_dp / 6.0_dp; safe = 0.9_dp
     case default
       beta = 0.04_dp
       if (beta_set >= 0.0_dp) beta = beta_set
@@ -350,7 +363,7 @@ contains
     !> the PI term of the step-size controller instead of the method's default
     !> (pi_controller; 0: pure I control, Hairer's DOP853 as published); ignored if negative
     real(dp), intent(in), optional :: pi_beta
-    !> the adaptive pairs with an interpolant (DOPRI5, DOP853, Verner's 9(8)):
+    !> the adaptive pairs with an interpolant (DOPRI5, DOP853, Verner's 9(8) and 8(7)):
     !> shorten the steps to end on every output time (no interpolation: the
     !> outputs are the steps' own values)
     logical, intent(in), optional :: land
@@ -378,11 +391,13 @@ contains
     theta = nan_dp; v = nan_dp
     nev = 0
     status = st_ok
-    adaptive = method == m_dopri5 .or. method == m_dop853 .or. method == m_dprkn6 .or. method == m_vern9
-    if ((method < m_rk4 .or. method > m_dop853) .and. method /= m_dprkn6 .and. method /= m_vern9) then
+    adaptive = method == m_dopri5 .or. method == m_dop853 .or. method == m_dprkn6 .or. method == m_vern9 &
+               .or. method == m_vern8
+    if ((method < m_rk4 .or. method > m_dop853) .and. method /= m_dprkn6 .and. method /= m_vern9 &
+        .and. method /= m_vern8) then
       status = st_bad_method; return
     end if
-    if (method == m_vern9 .and. ev%kind /= 0) then
+    if ((method == m_vern9 .or. method == m_vern8) .and. ev%kind /= 0) then
       status = st_no_dense; return
     end if
     if (method == m_dprkn6) then
@@ -453,12 +468,13 @@ contains
       if (e%kind == 2 .or. e%kind == 3) e%level = (e%level - theta0) + th_start
       if (status /= st_ok) return
       select case (method)
-      case (m_vern9)
+      case (m_vern9, m_vern8)
         if (present(cancel)) then
-          call run_verner(m, th_start, v0, ts, dir, rtol, atol, ths, vs, stats, status, cancel, beta_set, land_out)
-        else
-          call run_verner(m, th_start, v0, ts, dir, rtol, atol, ths, vs, stats, status, no_cancel, beta_set, &
+          call run_verner(m, method, th_start, v0, ts, dir, rtol, atol, ths, vs, stats, status, cancel, beta_set, &
                           land_out)
+        else
+          call run_verner(m, method, th_start, v0, ts, dir, rtol, atol, ths, vs, stats, status, no_cancel, &
+                          beta_set, land_out)
         end if
       case (m_dprkn6)
         if (present(cancel)) then
@@ -756,102 +772,88 @@ contains
   end subroutine run_nystrom
 
   ! ====================================================================
-  ! Verner's 9(8) pair
+  ! Verner's 9(8) and 8(7) pairs
   ! ====================================================================
 
-  !> One step of Verner's 9(8) pair on (theta, v) from (t, y) with k(0, :) =
-  !> f(t, y) given: the stages k(1:15, :), the 9th-order solution ynew and the
-  !> difference e to the embedded 8th-order one.  15 evaluations.
-  pure subroutine vern9_step(m, t, y, h, k, ynew, e)
-    type(pendulum_model), intent(in) :: m
-    real(dp), intent(in) :: t, y(2), h
-    real(dp), intent(inout) :: k(0:20, 2)
-    real(dp), intent(out) :: ynew(2), e(2)
-    real(dp) :: ys(2)
-    integer :: st, i
-    do st = 1, 15
-      do i = 1, 2
-        ys(i) = y(i) + h * dot_product(v9_a(st, 0:st - 1), k(0:st - 1, i))
-      end do
-      k(st, 1) = ys(2)
-      k(st, 2) = accel(m, t + v9_c(st) * h, ys(1), ys(2))
-    end do
-    do i = 1, 2
-      ynew(i) = y(i) + h * dot_product(v9_b, k(0:15, i))
-      e(i) = h * dot_product(v9_e, k(0:15, i))
-    end do
-  end subroutine vern9_step
-
-  !> The interpolant's stages 17-20 (index 17..20) of the step [t, t + h] from
-  !> y, with k(16, :) = f(t + h, ynew) given (Verner's order-8 interpolant of
-  !> the 9(8) pair).  4 evaluations.
-  pure subroutine vern9_dense_stages(m, t, y, h, k)
-    type(pendulum_model), intent(in) :: m
-    real(dp), intent(in) :: t, y(2), h
-    real(dp), intent(inout) :: k(0:20, 2)
-    real(dp) :: ys(2)
-    integer :: st, i
-    do st = 17, 20
-      do i = 1, 2
-        ys(i) = y(i) + h * dot_product(v9i_a(st - 16, 0:st - 1), k(0:st - 1, i))
-      end do
-      k(st, 1) = ys(2)
-      k(st, 2) = accel(m, t + v9i_c(st - 16) * h, ys(1), ys(2))
-    end do
-  end subroutine vern9_dense_stages
+  ! vern9_step, vern9_dense_stages, vern8_step, vern8_dense_stages (generated)
+  include 'pendula_verner_steps.inc'
 
   !> The state at t + x h on the step [t, t + h] from y (0 <= x <= 1): y + h sum_i
   !> b_i(x) k_i with Verner's weight polynomials b_i(x) = sum_j p_ij x^j, j = 1..8.
-  !> The weights reach 1.3e4 while their sum is x: the sum is formed as
-  !> x k_0 + sum_i b_i(x) (k_i - k_0), whose terms are O(h), so that the
-  !> cancellation costs 1e4 eps h |f'| instead of 1e4 eps |f| (1e-12 at h = 0.2).
-  pure function vern9_dense(y, h, k, x) result(yo)
-    real(dp), intent(in) :: y(2), h, k(0:20, 2), x
-    real(dp) :: yo(2), w(1:20)
+  !> The weights reach 1.3e4 (9(8)) and 1.4e6 (8(7)) while sum_i b_i(x) = x and
+  !> sum_i b_i(x) c_i = x^2/2 (the conditions of order 1 and 2): the sum is formed
+  !> as x k_0 + x^2/2 d + sum_i b_i(x) (k_i - k_0 - c_i d), d = k_inew - k_0 (f at
+  !> the step's end minus f at its start, h f' + O(h^2)), whose terms are O(h^2),
+  !> so that the cancellation costs 1e6 eps h^2 |f''| instead of 1e6 eps h |f'|
+  !> (1e-11 at h = 0.2 for the 8(7) pair's weights).  c(0:20): the stages' nodes.
+  pure function verner_dense(y, h, k, x, p, c, inew) result(yo)
+    real(dp), intent(in) :: y(2), h, k(0:20, 2), x, p(0:20, 0:7), c(0:20)
+    integer, intent(in) :: inew
+    real(dp) :: yo(2), w(1:20), d
     integer :: i, j
     do i = 1, 20
-      w(i) = v9i_p(i, 7)
+      w(i) = p(i, 7)
       do j = 6, 0, -1
-        w(i) = w(i) * x + v9i_p(i, j)
+        w(i) = w(i) * x + p(i, j)
       end do
       w(i) = w(i) * x
     end do
     do i = 1, 2
-      yo(i) = y(i) + h * (x * k(0, i) + dot_product(w, k(1:20, i) - k(0, i)))
+      d = k(inew, i) - k(0, i)
+      yo(i) = y(i) + h * (x * k(0, i) + 0.5_dp * x * x * d + dot_product(w, k(1:20, i) - k(0, i) - c(1:20) * d))
     end do
-  end function vern9_dense
+  end function verner_dense
 
-  !> One step of Verner's 9(8) pair of size h from (theta0, v0) at t = 0 and its
-  !> interpolant at the fractions x of the step (the interpolant's order is
-  !> measured with it: tests/test_integrators_vern9_dense.py).
-  pure subroutine vern9_one_step_dense(m, theta0, v0, h, x, theta, v)
+  !> One step of Verner's pair (method m_vern9 or m_vern8) of size h from
+  !> (theta0, v0) at t = 0 and its interpolant at the fractions x of the step
+  !> (the interpolants' order is measured with it:
+  !> tests/test_integrators_vern9_dense.py, tests/test_integrators_vern8.py).
+  pure subroutine verner_one_step_dense(m, method, theta0, v0, h, x, theta, v)
     type(pendulum_model), intent(in) :: m
+    integer, intent(in) :: method
     real(dp), intent(in) :: theta0, v0, h, x(:)
     real(dp), intent(out) :: theta(:), v(:)
     real(dp) :: y(2), ynew(2), e(2), k(0:20, 2), yy(2)
-    integer :: i
+    integer :: i, inew
     y = [theta0, v0]
     k = 0.0_dp
     k(0, 1) = y(2); k(0, 2) = accel(m, 0.0_dp, y(1), y(2))
-    call vern9_step(m, 0.0_dp, y, h, k, ynew, e)
-    k(16, 1) = ynew(2); k(16, 2) = accel(m, h, ynew(1), ynew(2))
-    call vern9_dense_stages(m, 0.0_dp, y, h, k)
+    if (method == m_vern8) then
+      inew = 13
+      call vern8_step(m, 0.0_dp, y, h, k, ynew, e)
+    else
+      inew = 16
+      call vern9_step(m, 0.0_dp, y, h, k, ynew, e)
+    end if
+    k(inew, 1) = ynew(2); k(inew, 2) = accel(m, h, ynew(1), ynew(2))
+    if (method == m_vern8) then
+      call vern8_dense_stages(m, 0.0_dp, y, h, k)
+    else
+      call vern9_dense_stages(m, 0.0_dp, y, h, k)
+    end if
     do i = 1, size(x)
-      yy = vern9_dense(y, h, k, x(i))
+      if (method == m_vern8) then
+        yy = verner_dense(y, h, k, x(i), v8i_p, v8_cc, inew)
+      else
+        yy = verner_dense(y, h, k, x(i), v9i_p, v9_cc, inew)
+      end if
       theta(i) = yy(1); v(i) = yy(2)
     end do
-  end subroutine vern9_one_step_dense
+  end subroutine verner_one_step_dense
 
-  !> Verner's 9(8) pair on (theta, v): 16 evaluations per step (the 16th is
-  !> f at the new point, the next step's first stage), Hairer's RMS error norm
-  !> of the difference to the embedded 8th-order solution, the step controlled
-  !> by pi_controller (exponent 1/9, PI term vern9_beta, factors in [1/6, 3]).
-  !> Outputs inside a step come from Verner's order-8 interpolant (4 more
-  !> evaluations on the steps that hold an output), so the steps are never
+  !> Verner's 9(8) pair (method m_vern9) on (theta, v): 16 evaluations per step
+  !> (the 16th is f at the new point, the next step's first stage), Hairer's RMS
+  !> error norm of the difference to the embedded 8th-order solution, the step
+  !> controlled by pi_controller (exponent 1/9, PI term vern9_beta, factors in
+  !> [1/6, 3]); Verner's 8(7) pair (m_vern8) likewise with 13 evaluations per
+  !> step (exponent 1/8, PI term vern8_beta).  Outputs inside a step come from
+  !> Verner's order-8 interpolant (4 more evaluations on the steps that hold an
+  !> output for the 9(8) pair, 7 for the 8(7)), so the steps are never
   !> shortened for them; land: the steps are shortened to end on each output
-  !> time instead (the outputs are then the steps' own 9th-order values).
-  subroutine run_verner(m, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, cancel, beta_set, land)
+  !> time instead (the outputs are then the steps' own values).
+  subroutine run_verner(m, method, theta0, v0, ts, dir, rtol, atol, ths, vs, stats, status, cancel, beta_set, land)
     type(pendulum_model), intent(in) :: m
+    integer, intent(in) :: method
     integer, intent(inout), volatile :: cancel
     real(dp), intent(in) :: theta0, v0, ts(:), dir, rtol, atol, beta_set
     logical, intent(in) :: land
@@ -860,11 +862,14 @@ contains
     integer, intent(inout) :: status
     real(dp) :: t, y(2), ynew(2), e(2), sk(2), k(0:20, 2), err, h, hnew, hs, fac, fac11, target, yy(2)
     real(dp) :: safe, expo, facc1, facc2, beta, facold
-    integer :: kout
+    integer :: kout, inew
     logical :: reject, hit
 
     if (size(ts) == 0) return
-    call pi_controller(m_vern9, beta_set, expo, beta, facc1, facc2, safe)
+    call pi_controller(method, beta_set, expo, beta, facc1, facc2, safe)
+    ! the index of f at the new point (the next step's first stage, the interpolant's first own stage)
+    inew = 16
+    if (method == m_vern8) inew = 13
     facold = 1.0e-4_dp
     t = 0.0_dp; y = [theta0, v0]
     kout = 1
@@ -903,8 +908,12 @@ contains
       hit = dir * (t + h - target) >= 0.0_dp
       hs = h
       if (hit) hs = target - t
-      call vern9_step(m, t, y, hs, k, ynew, e)
-      stats%nfev = stats%nfev + 15
+      if (method == m_vern8) then
+        call vern8_step(m, t, y, hs, k, ynew, e)
+      else
+        call vern9_step(m, t, y, hs, k, ynew, e)
+      end if
+      stats%nfev = stats%nfev + (inew - 1)
       stats%nsteps = stats%nsteps + 1
       sk = atol + rtol * max(abs(y), abs(ynew))
       err = sqrt(0.5_dp * sum((e / sk)**2))
@@ -917,17 +926,25 @@ contains
       if (err <= 1.0_dp) then
         facold = max(err, 1.0e-4_dp)
         stats%naccept = stats%naccept + 1
-        ! f at the new point: the next step's first stage and the interpolant's stage 16
-        k(16, 1) = ynew(2); k(16, 2) = accel(m, t + hs, ynew(1), ynew(2))
+        ! f at the new point: the next step's first stage and the interpolant's stage inew
+        k(inew, 1) = ynew(2); k(inew, 2) = accel(m, t + hs, ynew(1), ynew(2))
         stats%nfev = stats%nfev + 1
         ! outputs strictly inside the step, from the interpolant
         if (kout <= size(ts)) then
           if (dir * (ts(kout) - (t + hs)) < 0.0_dp) then
-            call vern9_dense_stages(m, t, y, hs, k)
-            stats%nfev = stats%nfev + 4
+            if (method == m_vern8) then
+              call vern8_dense_stages(m, t, y, hs, k)
+            else
+              call vern9_dense_stages(m, t, y, hs, k)
+            end if
+            stats%nfev = stats%nfev + (20 - inew)
             do while (kout <= size(ts))
               if (dir * (ts(kout) - (t + hs)) >= 0.0_dp) exit
-              yy = vern9_dense(y, hs, k, (ts(kout) - t) / hs)
+              if (method == m_vern8) then
+                yy = verner_dense(y, hs, k, (ts(kout) - t) / hs, v8i_p, v8_cc, inew)
+              else
+                yy = verner_dense(y, hs, k, (ts(kout) - t) / hs, v9i_p, v9_cc, inew)
+              end if
               ths(kout) = yy(1); vs(kout) = yy(2)
               kout = kout + 1
             end do
@@ -936,7 +953,7 @@ contains
         t = t + hs
         if (hit) t = target
         y = ynew
-        k(0, :) = k(16, :)
+        k(0, :) = k(inew, :)
         do while (kout <= size(ts))
           if (ts(kout) /= t) exit
           ths(kout) = y(1); vs(kout) = y(2)

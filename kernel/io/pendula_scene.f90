@@ -703,8 +703,9 @@ contains
     character(len=*), intent(out) :: msg
     character(len=16), parameter :: known_outputs(11) = [character(len=16) :: 'trajectory', 'theta_t', &
       'v_t', 'phase', 'energy', 'period', 'omega', 'theta_max', 'series', 'lindstedt', 'spectrum']
-    character(len=16), parameter :: methods(14) = [character(len=16) :: 'auto', 'exact', 'rk4', 'verlet', &
-      'yoshida4', 'yoshida6', 'yoshida8', 'gauss4', 'gauss6', 'dopri5', 'dop853', 'gsl-rk8pd', 'dprkn6', 'vern9']
+    character(len=16), parameter :: methods(15) = [character(len=16) :: 'auto', 'exact', 'rk4', 'verlet', &
+      'yoshida4', 'yoshida6', 'yoshida8', 'gauss4', 'gauss6', 'dopri5', 'dop853', 'gsl-rk8pd', 'dprkn6', 'vern9', &
+      'vern8']
     character(len=16), parameter :: sweepable(7) = [character(len=16) :: 'v0', 'theta0', 'eps', &
       'damping', 'torque', 'drive_amplitude', 'drive_frequency']
     character(len=16), parameter :: cords(2) = [character(len=16) :: 'rigid', 'flexible'], &

@@ -5,7 +5,7 @@ Method names (a contract): 'rk4', 'verlet', 'yoshida4', 'yoshida6', 'yoshida8',
 'gsl-rk8pd', 'dprkn6' (adaptive: they take ``rtol`` and ``atol``; 'dprkn6', Dormand &
 Prince's Runge-Kutta-Nystrom pair RKN6(4), takes undamped scenes only and has no dense
 output, so no events), 'vern9' (Verner's 9(8) pair, any scene, Verner's order-8
-interpolant; no events), 'exact' and 'auto'.
+interpolant; no events), 'vern8' (Verner's 8(7) pair, likewise), 'exact' and 'auto'.
 The right-hand side holds only the effects the scene names.
 """
 
@@ -33,9 +33,9 @@ if TYPE_CHECKING:   # xarray is optional: named in annotations only
 __all__ = ["integrate_scene", "find_events", "numerical_period", "Events", "FIXED_STEP", "ADAPTIVE"]
 
 CODES = {"rk4": 1, "verlet": 2, "yoshida4": 3, "yoshida6": 4, "yoshida8": 5, "gauss4": 6, "gauss6": 7,
-         "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10, "dprkn6": 11, "vern9": 12}
+         "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10, "dprkn6": 11, "vern9": 12, "vern8": 14}
 FIXED_STEP = ("rk4", "verlet", "yoshida4", "yoshida6", "yoshida8", "gauss4", "gauss6")
-ADAPTIVE = ("dopri5", "dop853", "gsl-rk8pd", "dprkn6", "vern9")
+ADAPTIVE = ("dopri5", "dop853", "gsl-rk8pd", "dprkn6", "vern9", "vern8")
 _STATUS = {1: "the step dt must be positive", 2: "rtol must be > 0 and atol >= 0", 3: "unknown method",
            5: "step size underflow (the problem may be singular or the tolerance unreachable)",
            6: "the state became non-finite", 9: "events are located on the dense output of dopri5 and dop853 only",
@@ -57,17 +57,6 @@ CYCLOID_SAMPLES_PER_PERIOD = 64
 #: the most samples of the exact path one event search takes (in blocks of CYCLOID_BLOCK)
 CYCLOID_MAX_SAMPLES = 10**9
 CYCLOID_BLOCK = 1 << 16
-
-
-def choose_method(scene: Scene) -> str:
-    """What 'auto' picks: the exact solution whenever the scene allows it,
-    otherwise DOP853.  The work-precision study (docs: What accuracy costs in time) finds DOP853 and GSL's
-    rk8pd within a few per cent of each other at equal final error, and both
-    far cheaper than every other method below 1e-6; DOP853 also has dense
-    output, runs backwards in time and locates events, which rk8pd here does not."""
-    if scene.is_conservative_rigid:
-        return "exact"
-    return "dop853"
 
 
 def _run(scene, method, t_sorted, ev_kind=0, ev_level=0.0, ev_dir=0, terminal=False, max_events=1):

@@ -23,6 +23,7 @@ N_OUT = 100
 # ---- end of problem definitions
 
 __all__ = ["PROBLEMS", "N_OUT", "TARGETS", "load_reference", "errors", "best_time", "run_study", "answer_table",
+           "auto_picks", "AUTO_CANDIDATES", "AUTO_DECADES",
            "answer_rst", "write_figures", "merge_records", "study_main", "regenerate_docs"]
 
 import datetime
@@ -48,7 +49,8 @@ MAX_BATCHES = 10
 TOLS = [10.0 ** -k for k in range(3, 15)]
 #: the suffix of a method run with its steps landing on the output times (simulate's land_on_outputs)
 LANDED = "-landed"
-PENDULA_ADAPTIVE = ("dopri5", "dop853", "dop853" + LANDED, "vern9", "vern9" + LANDED, "gsl-rk8pd")
+PENDULA_ADAPTIVE = ("dopri5", "dop853", "dop853" + LANDED, "vern9", "vern9" + LANDED, "vern8", "vern8" + LANDED,
+                    "gsl-rk8pd")
 #: methods for theta'' = f(t, theta) only (no damping): the Runge-Kutta-Nystrom pair
 PENDULA_NYSTROM = ("dprkn6",)
 PENDULA_FIXED = {"rk4": [0.1, 0.05, 0.025, 0.0125, 0.00625, 0.003125],
@@ -252,7 +254,8 @@ def _process_batch(fn):
 # ---------------------------------------------------------------- pendula (kernel clock)
 
 _KCODES = {"exact": 0, "rk4": 1, "verlet": 2, "yoshida4": 3, "yoshida6": 4, "yoshida8": 5, "gauss4": 6,
-           "gauss6": 7, "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10, "dprkn6": 11, "vern9": 12}
+           "gauss6": 7, "dopri5": 8, "dop853": 9, "gsl-rk8pd": 10, "dprkn6": 11, "vern9": 12,
+           "vern8": 14}
 
 
 def run_pendula(p, t, method, rtol=0.0, dt=0.0, batch=BATCH_SECONDS, max_batches=MAX_BATCHES, timer=None):
@@ -616,7 +619,7 @@ def run_study(problems=None, tols=None, quick=False, progress=True, reference=No
         if packages:
             runs = [r for r in runs if r[0] in packages]
         timers = []
-        if p["conservative"] and (not methods or "exact" in methods):
+        if p["conservative"] and (not methods or "exact" in methods) and (not packages or "pendula" in packages):
             runs = [("pendula", "exact", "-", 0.0)] + runs
         for k, (pkg, method, knob, value) in enumerate(runs):
             kw = dict(batch=batch, max_batches=max_batches)
@@ -873,8 +876,14 @@ def summary_rst(record: dict) -> str:
     if comp:
         lines.append(f"* fastest compiled peer / pendula's fastest: {min(a['compiled_ratio'] for a in comp):.2f} to "
                      f"{max(a['compiled_ratio'] for a in comp):.2f} over {len(comp)} cells; pendula is slower in "
-                     f"{len(slower)}: " + ", ".join(f"{a['problem']} {a['target']:.0e} ({_cell(a['compiled'])}, "
-                                                     f"{a['compiled_ratio']:.2f})" for a in slower) + ".")
+                     + (f"{len(slower)}: " + ", ".join(f"{a['problem']} {a['target']:.0e} ({_cell(a['compiled'])}, "
+                                                       f"{a['compiled_ratio']:.2f})" for a in slower)
+                        if slower else "none") + ".")
+    slow_sci = [a for a in table if a["scipy_ratio"] is not None and a["scipy_ratio"] < 30]
+    if slow_sci:
+        lines.append("* below 30 times SciPy: " + ", ".join(
+            f"{a['problem']} {a['target']:.0e} (pendula {_cell(a['pendula'])}, SciPy {_cell(a['scipy'])}, "
+            f"{a['scipy_ratio']:.0f})" for a in slow_sci) + ".")
     for pkg, method in (("numbalsoda", "dop853"), ("gsl", "gsl-rk8pd"), ("sundials", "CVODE-Adams"),
                         ("numbalsoda", "lsoda"), ("diffrax", "Dopri8"), ("diffrax", f"Dopri8-vmap{DIFFRAX_BATCH}"),
                         ("diffrax", "Tsit5"), ("diffrax", f"Tsit5-vmap{DIFFRAX_BATCH}")):
@@ -915,9 +924,58 @@ FAMILIES = (("pendula, adaptive", lambda r: r["package"] == "pendula" and r["met
 _LEVELS = tuple(10.0 ** (-k / 2) for k in range(4, 27))
 
 
+#: the pairs method='auto' chooses from (outputs interpolated, steps not landed) and the rtol decades
+AUTO_CANDIDATES = ("dopri5", "dop853", "vern9", "vern8")
+AUTO_DECADES = tuple(range(3, 15))
+#: a candidate qualifies with an error up to this many times rtol (or up to DOP853's own)
+AUTO_SLACK = 10.0
+#: the name of the rows that stand for method='auto' in the figures
+AUTO = "auto"
+
+
+def auto_picks(rows: list[dict]) -> dict:
+    """What ``method='auto'`` integrates with, per problem and rtol decade, from a recorded study.
+
+    For each of the study's problems (a class of scenes) and each rtol = atol = 10^-k, k = 3 ... 14,
+    the fastest of pendula's pairs with an interpolant (AUTO_CANDIDATES) whose largest error over
+    the outputs is no larger than DOP853's at that rtol or than 10 rtol.  The one rule:
+    data/bench/gen_auto_methods.py writes it into the kernel's dispatcher, the figures draw it.
+
+    Parameters
+    ----------
+    rows : list of dict
+        The rows of a record of :func:`run_study`.
+
+    Returns
+    -------
+    dict
+        (problem, k) -> the row of the pick (None when the record has no candidate there).
+
+    Examples
+    --------
+    >>> from pendula.studies.workprecision import auto_picks
+    >>> rows = [dict(problem="damped", package="pendula", method=m, rtol=1e-6, error_max=e, seconds=s)
+    ...         for m, e, s in (("dop853", 4e-6, 2.0), ("vern9", 3e-6, 1.5), ("vern8", 9e-5, 1.0))]
+    >>> auto_picks(rows)["damped", 6]["method"]
+    'vern9'
+    """
+    cand = [r for r in rows if r["package"] == "pendula" and r["method"] in AUTO_CANDIDATES
+            and r.get("error_max") is not None and r.get("rtol")]
+    out = {}
+    for pname in dict.fromkeys(r["problem"] for r in rows):
+        for k in AUTO_DECADES:
+            rtol = 10.0 ** -k
+            at = {r["method"]: r for r in cand if r["problem"] == pname and abs(r["rtol"] - rtol) <= 1e-6 * rtol}
+            base = at.get("dop853")
+            bound = max(AUTO_SLACK * rtol, base["error_max"] if base else 0.0)
+            ok = [r for r in at.values() if r["error_max"] <= bound]
+            out[pname, k] = min(ok, key=lambda r: r["seconds"]) if ok else base
+    return out
+
+
 def best_of_families(rows: list[dict]) -> list[tuple[str, str, str]]:
-    """The curves of a problem's figure: the best method of each family, and pendula's DOP853
-    (what ``method='auto'`` integrates with) when it is not already the best of its family.
+    """The curves of a problem's figure: the best method of each family, and what ``method='auto'``
+    integrates with (:func:`auto_picks`: rows named 'auto', when the rows have them).
 
     The best method of a family is the one fastest at the most error levels (10^-2 ... 10^-13 in
     half decades, each reached by at least one of the family); ties go to the smaller sum of log
@@ -942,6 +1000,8 @@ def best_of_families(rows: list[dict]) -> list[tuple[str, str, str]]:
     [('SciPy', 'scipy', 'DOP853')]
     """
     out = []
+    has_auto = any(r["method"] == AUTO for r in rows)
+    rows = [r for r in rows if r["method"] != AUTO]
     for family, member in FAMILIES:
         fam = [r for r in rows if member(r)]
         methods = list(dict.fromkeys((r["package"], r["method"]) for r in fam))
@@ -962,8 +1022,8 @@ def best_of_families(rows: list[dict]) -> list[tuple[str, str, str]]:
                 logt[m] += math.log(best.get(m, 1e3))      # a level a method misses counts as very slow
         pkg, method = max(methods, key=lambda m: (wins[m], -logt[m]))
         out.append((family, pkg, method))
-        if family == "pendula, adaptive" and method != "dop853" and ("pendula", "dop853") in methods:
-            out.append(("pendula, method='auto'", "pendula", "dop853"))
+        if family == "pendula, adaptive" and has_auto:
+            out.append(("pendula, method='auto'", "pendula", AUTO))
     return out
 
 
@@ -1000,6 +1060,8 @@ def write_figures(record: dict, outdir) -> list[pathlib.Path]:
     outdir.mkdir(parents=True, exist_ok=True)
     files = []
     rows = record["rows"]
+    # method='auto': the rows of its picks, one per rtol decade
+    rows = rows + [dict(r, method=AUTO) for r in auto_picks(rows).values() if r is not None]
     for pname in dict.fromkeys(r["problem"] for r in rows):
         pr = [r for r in rows if r["problem"] == pname]
         fig, ax = plt.subplots(figsize=(7.5, 5.8))

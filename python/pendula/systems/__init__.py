@@ -29,7 +29,7 @@ __all__ = ["ModelInfo", "models", "run", "METHOD_NAMES"]
 #: the kernel's method codes (kernel/dispatch/pendula_simulate.f90)
 METHOD_NAMES = {0: "exact", 1: "rk4", 2: "verlet", 3: "yoshida4", 4: "yoshida6", 5: "yoshida8",
                 6: "gauss4", 7: "gauss6", 8: "dopri5", 9: "dop853", 10: "gsl-rk8pd", 11: "dprkn6", 12: "vern9",
-                13: "langevin"}
+                13: "langevin", 14: "vern8"}
 
 # kernel status -> exception type (the kernel's message is the text)
 _NOT_IMPLEMENTED = 14
