@@ -65,6 +65,7 @@ def main():
                        "mean_drive_periods_per_point": am.dataset.attrs["mean_periods"],
                        "levels": am.dataset.attrs["levels"], "inherited": am.dataset.attrs["inherited"],
                        "boundary_inherited_not_rechecked": am.dataset.attrs["boundary_inherited"],
+                       "tight_from_start": am.dataset.attrs["tight_from_start"],
                        "new_in_labelling": am.dataset.attrs["new_in_labelling"]}
     rows = {k: {"best_wall_s": best[k], "best_process_cpu_s": cpu[k], **info.get(k, {})} for k in best}
     for A in amps:
