@@ -779,16 +779,16 @@ def _attractor_layout(plan: _AttractorPlan):
 
 
 def _discover(plan: _AttractorPlan, p: np.ndarray, found, threads: int, rtol: float | None = None,
-              atol: float | None = None, kinds: tuple = ("periodic", "chaotic")):
-    """Run points (columns of p, in this order) in batches of 1, 1, 2, 4, 8, 16, 16 ..., each batch against
-    the attractors of these ``kinds`` found before it (at rtol, atol: default the plan's); new attractors
-    join ``found``.  Returns (index in found or -1, status, drive periods) per point: the same for any
-    thread count, chunking or cluster."""
+              atol: float | None = None, kinds: tuple = ("periodic", "chaotic"), grow: bool = True):
+    """Run points (columns of p, in this order) in batches of 1, 1, 2, 4, 8, 16, 16 ... (of 16 unless
+    ``grow``), each batch against the attractors of these ``kinds`` found before it (at rtol, atol: default
+    the plan's); new attractors join ``found``.  Returns (index in found or -1, status, drive periods) per
+    point: the same for any thread count, chunking or cluster."""
     n = p.shape[1]
     labels = np.full(n, -1, dtype=np.int64)
     status = np.zeros(n, dtype=np.int32)
     periods = np.zeros(n)
-    b0, k = 0, 0
+    b0, k = 0, (0 if grow else 5)
     while b0 < n:
         b = slice(b0, min(n, b0 + min(_DISCOVERY_BATCH, 2 ** max(k - 1, 0))))
         b0, k = b.stop, k + 1
@@ -1108,7 +1108,7 @@ def _attractor_map_recurrence(scene, over, opts, threads, out, client, progress,
     # a conflict; the others are labelled by the cells of all the attractors found before them)
     first = pidx[:_DISCOVERY_BATCH]
     _discover(fine, pall[:, first], found, threads, kinds=("chaotic",))
-    _discover(fine, pall[:, pidx[first.size:]], found, threads)
+    _discover(fine, pall[:, pidx[first.size:]], found, threads, grow=False)
     n_pilot_att = len(found.items)
     # 2. level by level, coarse to fine: every point of a level labelled against the attractors found so far
     #    and the basin map of the level above (chunked, on a cluster; the finest level stored under out)
