@@ -249,6 +249,11 @@ subroutine scene_check_v(x, words, nw, wlen, nout, ngrid, ns, sweep_values, n1, 
   call scene_to_fields(sc, g, length, x_out, words_out, wlen_out, nout_out, ngrid_out)
 end subroutine scene_check_v
 
+! A user's force crosses the binding as an address (f2py cannot wrap procedure pointers): faddr is
+! the address of a C function double f(double t, double theta, double v, const double *params)
+! (a ctypes function, a numba cfunc), converted by c_f_procpointer in the kernel; fparams(np) is
+! passed to it as given.
+!
 ! Run a checked scene (its fields, as scene_check_v returns them; no sweep)
 ! at the times t (sorted ascending when an integrator answers).  method: the
 ! code of what answered (0 = exact path); status 0 ok, otherwise msg says why
@@ -256,8 +261,9 @@ end subroutine scene_check_v
 ! kernel checks the fields first (check_scene, the one checker: a scene whose
 ! integrator knobs were changed without building a new Scene); land = 1: the
 ! adaptive pairs end their steps on the output times.
-subroutine simulate_v(x, words, nw, wlen, nout, ngrid, n, t, cancel, recheck, land, theta, v, energy, stats, method, &
-                      status, msg)
+subroutine simulate_v(x, words, nw, wlen, nout, ngrid, n, t, faddr, np, fparams, cancel, recheck, land, theta, v, &
+                      energy, stats, method, status, msg)
+  use, intrinsic :: iso_c_binding, only: c_funptr, c_intptr_t
   use pendula_scene, only: scene_t, scene_from_fields
   use pendula_simulate, only: simulate_scene
   implicit none
@@ -267,16 +273,22 @@ subroutine simulate_v(x, words, nw, wlen, nout, ngrid, n, t, cancel, recheck, la
   integer, intent(in) :: recheck, land
   !f2py integer optional, intent(in) :: recheck = 0
   !f2py integer optional, intent(in) :: land = 0
-  integer, intent(in) :: nw, nout, ngrid, n
+  integer, intent(in) :: nw, nout, ngrid, n, np
   integer, intent(in) :: wlen(nw)
   double precision, intent(in) :: t(n)
+  !> a user's force added to the scene's force law (its address, as said above; 0: none) and the
+  !> params it reads
+  integer(8), intent(in) :: faddr
+  double precision, intent(in), target :: fparams(np)
   integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: theta(n), v(n), energy(n), stats(4)
   integer, intent(out) :: method, status
   character(len=512), intent(out) :: msg
   !f2py intent(hide), depend(wlen) :: nw = len(wlen)
   !f2py intent(hide), depend(t) :: n = len(t)
+  !f2py intent(hide), depend(fparams) :: np = len(fparams)
   type(scene_t) :: sc
+  type(c_funptr) :: f
   double precision :: g, length, none(0)
   method = -1
   theta = 0; v = 0; energy = 0; stats = 0
@@ -286,7 +298,12 @@ subroutine simulate_v(x, words, nw, wlen, nout, ngrid, n, t, cancel, recheck, la
     status = 100
     return
   end if
-  call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel(1), land=land /= 0)
+  if (faddr == 0) then
+    call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel(1), land=land /= 0)
+  else
+    f = transfer(int(faddr, c_intptr_t), f)
+    call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel(1), f, fparams, land /= 0)
+  end if
 end subroutine simulate_v
 
 ! The model registry, one model per line of `table` (fields separated by '|':
@@ -553,17 +570,30 @@ end subroutine cord_scene_v
 ! drag per point.
 ! nthreads <= 0: OpenMP's default (OMP_NUM_THREADS, else all cores).
 ! cancel(1) non-zero (set by another thread) stops the block: status 5.
-subroutine sweep_block(measure, npts, params, rtol, atol, t_tr, t_max, nout, nthreads, cancel, out, pstat)
+subroutine sweep_block(measure, npts, params, rtol, atol, t_tr, t_max, nout, nthreads, faddr, np, fparams, cancel, &
+                       out, pstat)
+  use, intrinsic :: iso_c_binding, only: c_funptr, c_intptr_t
   use pendula_sweep, only: sweep_points
   implicit none
-  integer, intent(in) :: measure, npts, nout, nthreads
+  integer, intent(in) :: measure, npts, nout, nthreads, np
   double precision, intent(in) :: params(12, npts), rtol, atol, t_tr, t_max
+  !> a user's force, called from every thread (its address; 0: none) and the params it reads
+  integer(8), intent(in) :: faddr
+  double precision, intent(in), target :: fparams(np)
   integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: out(nout, npts)
   integer, intent(out) :: pstat(npts)
   !f2py threadsafe
   !f2py intent(hide), depend(params) :: npts = shape(params, 1)
-  call sweep_points(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, nthreads, cancel(1))
+  !f2py intent(hide), depend(fparams) :: np = len(fparams)
+  type(c_funptr) :: f
+  if (faddr == 0) then
+    call sweep_points(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, nthreads, cancel(1))
+  else
+    f = transfer(int(faddr, c_intptr_t), f)
+    call sweep_points(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, nthreads, cancel(1), &
+                      f, fparams)
+  end if
 end subroutine sweep_block
 
 ! One adiabatic I-V branch (torques in the order given, state carried over).
@@ -753,7 +783,7 @@ subroutine flow_monodromy_v(x, words, nw, wlen, nout, ngrid, nt, times, x0, rtol
   integer, intent(in) :: nw, nout, ngrid, nt, np
   integer, intent(in) :: wlen(nw)
   double precision, intent(in) :: times(nt), x0(2), rtol, atol, nmax
-  !> a user's force (its address, as simulate_force_v; 0: none) and the params it reads
+  !> a user's force (its address, as simulate_v; 0: none) and the params it reads
   integer(8), intent(in) :: faddr
   double precision, intent(in), target :: fparams(np)
   integer, intent(inout), volatile :: cancel(1)
@@ -783,54 +813,7 @@ subroutine flow_monodromy_v(x, words, nw, wlen, nout, ngrid, nt, times, x0, rtol
                                       int(min(nmax, 9.0d18), c_long), cancel(1), ends, monos, fend, nfev)
 end subroutine flow_monodromy_v
 
-! ==================== effects: a user's force, dry friction's energy balance ====================
-! A user's force crosses the binding as an address (f2py cannot wrap procedure pointers): faddr is
-! the address of a C function double f(double t, double theta, double v, const double *params)
-! (a ctypes function, a numba cfunc), converted by c_f_procpointer in the kernel; fparams(np) is
-! passed to it as given.
-
-! simulate_v with the user's force added to the scene's force law (the scene is integrated).
-subroutine simulate_force_v(x, words, nw, wlen, nout, ngrid, n, t, faddr, np, fparams, cancel, land, theta, v, &
-                            energy, stats, method, status, msg)
-  use, intrinsic :: iso_c_binding, only: c_funptr, c_intptr_t
-  use pendula_kinds, only: dp
-  use pendula_scene, only: scene_t, scene_from_fields
-  use pendula_simulate, only: simulate_scene
-  implicit none
-  !f2py threadsafe
-  double precision, intent(in) :: x(31)
-  character(len=*), intent(in) :: words
-  integer, intent(in) :: nw, nout, ngrid, n, np
-  integer, intent(in) :: wlen(nw)
-  double precision, intent(in) :: t(n)
-  integer(8), intent(in) :: faddr
-  double precision, intent(in), target :: fparams(np)
-  integer, intent(inout), volatile :: cancel(1)
-  integer, intent(in) :: land
-  !f2py integer optional, intent(in) :: land = 0
-  double precision, intent(out) :: theta(n), v(n), energy(n), stats(4)
-  integer, intent(out) :: method, status
-  character(len=512), intent(out) :: msg
-  !f2py intent(hide), depend(wlen) :: nw = len(wlen)
-  !f2py intent(hide), depend(t) :: n = len(t)
-  !f2py intent(hide), depend(fparams) :: np = len(fparams)
-  type(scene_t) :: sc
-  type(c_funptr) :: f
-  double precision :: g, length, none(0)
-  theta = 0; v = 0; energy = 0; stats = 0; method = -1
-  call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
-                         g, length, status, msg)
-  if (status /= 0) then
-    status = 100
-    return
-  end if
-  if (faddr == 0) then
-    status = 101; msg = 'force: a null function pointer'
-    return
-  end if
-  f = transfer(int(faddr, c_intptr_t), f)
-  call simulate_scene(sc, t, theta, v, energy, stats, method, status, msg, cancel(1), f, fparams, land /= 0)
-end subroutine simulate_force_v
+! ==================== effects: dry friction's energy balance ====================
 
 ! The turning points of the rigid pendulum with dry friction mu (and a torque tau) from (theta0, v0):
 ! times(1:count), angles(1:count) where v = 0; stuck = 1 when it sticks at the last one.  status as
@@ -846,29 +829,6 @@ subroutine friction_turning_v(eps, tau, mu, theta0, v0, nmax, times, angles, cou
   call friction_turning(eps, tau, mu, theta0, v0, times, angles, count, st, status)
   stuck = merge(1, 0, st)
 end subroutine friction_turning_v
-
-! sweep_block with a user's force (its address faddr and fparams(np), as simulate_force_v) added to
-! every point's force law; the kernel calls it from every OpenMP thread.
-subroutine sweep_block_force(measure, npts, params, rtol, atol, t_tr, t_max, nout, nthreads, faddr, np, fparams, &
-                             cancel, out, pstat)
-  use, intrinsic :: iso_c_binding, only: c_funptr, c_intptr_t
-  use pendula_sweep, only: sweep_points
-  implicit none
-  integer, intent(in) :: measure, npts, nout, nthreads, np
-  double precision, intent(in) :: params(12, npts), rtol, atol, t_tr, t_max
-  integer(8), intent(in) :: faddr
-  double precision, intent(in), target :: fparams(np)
-  integer, intent(inout), volatile :: cancel(1)
-  double precision, intent(out) :: out(nout, npts)
-  integer, intent(out) :: pstat(npts)
-  !f2py threadsafe
-  !f2py intent(hide), depend(params) :: npts = shape(params, 1)
-  !f2py intent(hide), depend(fparams) :: np = len(fparams)
-  type(c_funptr) :: f
-  f = transfer(int(faddr, c_intptr_t), f)
-  call sweep_points(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, nthreads, cancel(1), &
-                    f, fparams)
-end subroutine sweep_block_force
 ! ---------------------------------------------------------------- thermal noise (pendula_langevin)
 
 ! The sweep's mean_velocity with thermal noise at temperature temp: point i

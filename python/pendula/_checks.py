@@ -306,6 +306,11 @@ class Force:
             raise self.errors[0]
 
 
+def force_args(f: Force | None) -> tuple[int, np.ndarray]:
+    """The (address, params) a kernel call takes for a checked force, or for none (address 0)."""
+    return (0, np.zeros(0)) if f is None else (f.address, f.params)
+
+
 def force(f, params, name: str = "force") -> Force:
     """Check a user's force and its params (see :func:`pendula.simulate`): a ctypes function
     with argtypes (double, double, double, POINTER(double) or c_void_p) and restype double, a

@@ -152,12 +152,11 @@ def _block(code, p, rtol, atol, t_tr, t_max, nout, threads, force=None):
     few integration windows; the process stays usable); ``force``: a checked user's force."""
     from . import _kernel
     cancel = _interrupt.cancel_flag()
-    if force is None:
-        out, st = _interrupt.call(_kernel.sweep_block, code, p, rtol, atol, t_tr, t_max, nout, int(threads), cancel,
-                                  cancel=cancel)
-    else:   # the user's force, called by the kernel from every thread
-        out, st = _interrupt.call(_kernel.sweep_block_force, code, p, rtol, atol, t_tr, t_max, nout, int(threads),
-                                  force.address, force.params, cancel, cancel=cancel)
+    # the user's force (address 0: none) is called by the kernel from every thread
+    faddr, fparams = _checks.force_args(force)
+    out, st = _interrupt.call(_kernel.sweep_block, code, p, rtol, atol, t_tr, t_max, nout, int(threads), faddr,
+                              fparams, cancel, cancel=cancel)
+    if force is not None:
         force.reraise()
     if cancel[0]:
         raise KeyboardInterrupt

@@ -112,10 +112,6 @@ def max_time() -> float:
     return _checks._sweep_limits()[1]
 
 
-#: the params of no user's force
-_NO_PARAMS = np.zeros(0)
-
-
 def flow(scene: Scene, x0, times, rtol: float, atol: float, force=None):
     """The scene's flow from ``x0`` at t = 0 through ``times`` (one sign, in order away from 0), with the
     monodromy: (states (n, 2), monodromies (n, 2, 2), right-hand sides (n, 2)).  Ctrl-C stops it (the
@@ -125,7 +121,7 @@ def flow(scene: Scene, x0, times, rtol: float, atol: float, force=None):
     cancel = _interrupt.cancel_flag()
     times = np.ascontiguousarray(times, dtype=np.float64).reshape(-1)
     args = (fx, words, wlen, nout, ngrid, times, np.asarray(x0, dtype=np.float64), rtol, atol)
-    extra = (0, _NO_PARAMS) if force is None else (force.address, force.params)
+    extra = _checks.force_args(force)
     fn = _kernel.flow_monodromy_v
     # a short flow (most are: a period takes a few hundred steps) runs directly, since handing it to a
     # worker thread costs more than the flow; one that needs more steps starts again, interruptibly

@@ -155,14 +155,11 @@ def run(scene: Scene, t, force: _checks.Force | None = None, recheck: bool = Fal
     while True:
         cancel = _interrupt.cancel_flag()
         long = bool(scene.effects) and _long_run(scene, sorted_t)
-        if force is None:
-            theta_s, v_s, e_s, stats, method, status, msg = _interrupt.call(
-                _kernel.simulate_v, x, words, wlen, nout, ngrid, sorted_t, cancel, int(recheck), int(land),
-                cancel=cancel, long=long)
-        else:
-            theta_s, v_s, e_s, stats, method, status, msg = _interrupt.call(
-                _kernel.simulate_force_v, x, words, wlen, nout, ngrid, sorted_t, force.address, force.params,
-                cancel, int(land), cancel=cancel, long=True)
+        faddr, fparams = _checks.force_args(force)
+        theta_s, v_s, e_s, stats, method, status, msg = _interrupt.call(
+            _kernel.simulate_v, x, words, wlen, nout, ngrid, sorted_t, faddr, fparams, cancel, int(recheck),
+            int(land), cancel=cancel, long=long or force is not None)
+        if force is not None:
             force.reraise()
         if status != _UNSORTED or order is not None:
             break
