@@ -26,6 +26,7 @@ module pendula_langevin
   use, intrinsic :: iso_c_binding, only: c_int64_t, c_int32_t, c_double
   use, intrinsic :: iso_fortran_env, only: int64
   use pendula_kinds, only: dp, two_pi, pi, nan_dp
+  use pendula_threads, only: thread_count
   use pendula_integrators, only: pendulum_model, accel, make_model
   implicit none
   private
@@ -238,18 +239,6 @@ contains
     end do
   end subroutine langevin_moments
 
-  !> The OpenMP threads of a set of paths: nthreads when positive (at most
-  !> 256, the sweeps' limit), else OpenMP's default.
-  function path_threads(nthreads) result(nt)
-    !$ use omp_lib, only: omp_get_max_threads
-    integer, intent(in) :: nthreads
-    integer :: nt
-    nt = 1
-    !$ nt = omp_get_max_threads()
-    if (nthreads > 0) nt = nthreads
-    nt = max(1, min(nt, 256))
-  end function path_threads
-
   !> First-passage times out of a tilted well: n paths (path i has stream
   !> (seed, i - 1)), each from the well's bottom asin(tau / eps) with v drawn
   !> from the Maxwell distribution at temp, run until theta >= theta_exit
@@ -267,7 +256,7 @@ contains
     real(dp) :: th, v
     type(langevin_stream) :: s
     status = lv_ok
-    nt = path_threads(nthreads)
+    nt = thread_count(nthreads)
     jmax = int(min(t_max / h, real(langevin_max_steps, dp)), int64)
     !$omp parallel do schedule(dynamic, 1) default(none) num_threads(nt) &
     !$omp   shared(m, temp, seed, h, theta_exit, n, times, cancel, jmax, status) private(i, th, v, s, j, st)
@@ -319,7 +308,7 @@ contains
     if (.not. (rate > 0.0_dp .and. h > 0.0_dp .and. temp >= 0.0_dp .and. beta > 0.0_dp)) then
       status = lv_bad_argument; isw = nan_dp; return
     end if
-    nt = path_threads(nthreads)
+    nt = thread_count(nthreads)
     jmax = int(min(i_max / rate / h, real(langevin_max_steps, dp)), int64)
     !$omp parallel do schedule(dynamic, 1) default(none) num_threads(nt) &
     !$omp   shared(beta, temp, rate, seed, h, n, isw, cancel, jmax) &

@@ -40,6 +40,7 @@
 !> thread from its inputs and the table only.
 module pendula_attractors
   use pendula_kinds, only: dp, pi, two_pi, nan_dp
+  use pendula_threads, only: thread_count
   use pendula_integrators, only: pendulum_model
   use pendula_sweep, only: advance, forcing_omega, np_params
   use pendula_lyapunov, only: point_model
@@ -94,7 +95,6 @@ contains
   !> integrator failed.
   subroutine attractor_points(npts, params, rtol, atol, cfg, nk, kcell, klab, natt, need, nbt, nbv, bth, bv, &
                               blab, nout, out, maxc, cells, ncell, pstat, nthreads, cancel)
-    !$ use omp_lib, only: omp_get_max_threads
     integer, intent(in) :: npts, nk, natt, nbt, nbv, nout, maxc, nthreads
     real(dp), intent(in) :: params(np_params, npts), rtol, atol, cfg(at_ncfg), bth(nbt), bv(nbv)
     integer(int64), intent(in) :: kcell(nk)
@@ -104,10 +104,7 @@ contains
     integer, intent(out) :: ncell(npts), pstat(npts)
     integer, intent(inout), volatile :: cancel
     integer :: i, nt
-    nt = 1
-    !$ nt = omp_get_max_threads()
-    if (nthreads > 0) nt = min(nthreads, 256)
-    nt = max(1, min(nt, 256))
+    nt = thread_count(nthreads)
     !$omp parallel do schedule(dynamic, 4) default(none) num_threads(nt) &
     !$omp   shared(npts, params, rtol, atol, cfg, nk, kcell, klab, natt, need, nbt, nbv, bth, bv, blab, nout, &
     !$omp          out, maxc, cells, ncell, pstat, cancel)

@@ -41,6 +41,7 @@
 !> sweep_max_angle (sweep_limits gives them to the Python layer).
 module pendula_sweep
   use pendula_kinds, only: dp, pi, two_pi, nan_dp
+  use pendula_threads, only: thread_count, max_threads
   use pendula_scene, only: scene_t
   use pendula_integrators, only: pendulum_model, event_spec, run_stats, integrate, &
     m_dop853, st_ok, st_cancelled
@@ -67,7 +68,7 @@ module pendula_sweep
     ps_uncertain = 4, ps_cancelled = 5, ps_locked = 6
   !> OpenMP threads of one sweep call: 0 (OpenMP's default) or 1 .. sweep_max_threads;
   !> the kernel clamps anything else into that range (the callers refuse it first)
-  integer, parameter, public :: sweep_max_threads = 256
+  integer, parameter, public :: sweep_max_threads = max_threads
   !> the longest t_max and transient a sweep point may be asked for (time units:
   !> about 1.6e7 small-oscillation periods at eps = 1, hours of work per point)
   real(dp), parameter, public :: sweep_max_time = 1.0e8_dp
@@ -90,7 +91,6 @@ contains
   !> point's force law, called from every thread; final_well and locked do not apply with it.
   subroutine sweep_points(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, nthreads, cancel, &
                           force, fparams)
-    !$ use omp_lib, only: omp_get_max_threads
     integer, intent(in) :: measure, npts, nout, nthreads
     real(dp), intent(in) :: params(np_params, npts), rtol, atol, t_tr, t_max
     real(dp), intent(out) :: out(nout, npts)
@@ -101,12 +101,7 @@ contains
     type(pendulum_model) :: uf
     integer :: i, nt
     if (present(force)) call attach_force(uf, force, fparams)
-    ! nthreads > 0: that many threads (at most sweep_max_threads); otherwise
-    ! OpenMP's default (OMP_NUM_THREADS, or all cores)
-    nt = 1
-    !$ nt = omp_get_max_threads()
-    if (nthreads > 0) nt = min(nthreads, sweep_max_threads)
-    nt = max(1, min(nt, sweep_max_threads))
+    nt = thread_count(nthreads)
     !$omp parallel do schedule(dynamic, 16) default(none) num_threads(nt) &
     !$omp   shared(measure, npts, params, rtol, atol, t_tr, t_max, nout, out, pstat, cancel, uf)
     do i = 1, npts
@@ -634,7 +629,6 @@ contains
   !> Langevin step (<= 0: langevin_default_dt).  out(:, i) = <v>, its
   !> standard error, NaN (no Shapiro step under noise).
   subroutine sweep_points_noisy(npts, params, temp, seed, first, dt, t_tr, t_max, out, pstat, nthreads, cancel)
-    !$ use omp_lib, only: omp_get_max_threads
     integer, intent(in) :: npts, nthreads
     real(dp), intent(in) :: params(np_params, npts), temp, dt, t_tr, t_max
     integer(int64), intent(in) :: seed, first
@@ -644,10 +638,7 @@ contains
     integer :: i, nt
     type(langevin_stream) :: s
     real(dp) :: th, v
-    nt = 1
-    !$ nt = omp_get_max_threads()
-    if (nthreads > 0) nt = min(nthreads, sweep_max_threads)
-    nt = max(1, min(nt, sweep_max_threads))
+    nt = thread_count(nthreads)
     !$omp parallel do schedule(dynamic, 4) default(none) num_threads(nt) &
     !$omp   shared(npts, params, temp, seed, first, dt, t_tr, t_max, out, pstat, cancel) private(i, s, th, v)
     do i = 1, npts
