@@ -148,8 +148,8 @@ contains
     end if
     tp = two_pi / forcing_omega(p)
     h = kmax + nconf + 1                       ! history ring of the last h samples
-    allocate(hth(0:h - 1), hv(0:h - 1), hturn(0:h - 1), seen(0:8191), dist(0:2 * kmax), att(0:2 * size(cl) - 1))
-    nseen = 0            ! the set `seen` is filled with `empty` when rule 3 first needs it
+    allocate(hth(0:h - 1), hv(0:h - 1), hturn(0:h - 1), dist(0:2 * kmax))
+    nseen = 0            ! the sets `seen` and `att` are made when rule 3 first needs them
     th = p(7) - two_pi * anint(p(7) / two_pi); v = p(8); turns = 0
     prev = -1; cnt = 0; revisits = 0; ndist = 0; retry = 0; nfail = 0; dstart = -1.0_dp
     do n = 1, maxp
@@ -251,7 +251,9 @@ contains
         end do
       end if
       ! 3. recurrence in cells of its own: a chaotic attractor
-      if (nseen == 0) seen = empty
+      if (.not. allocated(seen)) then      ! most orbits are decided before they need it
+        allocate(seen(0:8191)); seen = empty
+      end if
       c = at_cell_id(th, v, rcell)
       if (hs_insert(seen, nseen, c)) then
         revisits = 0; ndist = 0
@@ -275,6 +277,7 @@ contains
         end if
         if (ndist > 2 * kmax) then
           ! the attractor's cells over `collect` more samples
+          allocate(att(0:2 * size(cl) - 1))
           att = empty; natt_fill = 0
           isnew = hs_insert(att, natt_fill, at_cell_id(th, v, cell))
           do j = 1, ncollect
