@@ -215,16 +215,18 @@ class _Plan:
 
     def params_rows(self, lo: int, hi: int) -> np.ndarray:
         """The kernel's (12, npts) parameter block of rows lo .. hi - 1 of the first axis."""
-        names = list(self.over)
-        axes = [self.over[names[0]][lo:hi]] + [self.over[n] for n in names[1:]]
-        mesh = np.meshgrid(*axes, indexing="ij")
-        npts = mesh[0].size
-        p = np.empty((len(_PARAM_ORDER), npts), order="F")
+        inner = math.prod(self.shape[1:])
+        return self.params_at(np.arange(lo * inner, hi * inner)), (hi - lo,) + self.shape[1:]
+
+    def params_at(self, flat: np.ndarray) -> np.ndarray:
+        """The kernel's (12, npts) parameter block of the grid points with these flat (C-order) indices."""
+        flat = np.asarray(flat, dtype=np.int64)
+        p = np.empty((len(_PARAM_ORDER), flat.size), order="F")
         for j, f in enumerate(_PARAM_ORDER):
             p[j] = getattr(self.scene, f)
-        for n, m in zip(names, mesh):
-            p[_PARAM_ORDER.index(n)] = m.ravel()
-        return p, (hi - lo,) + self.shape[1:]
+        for n, ix in zip(self.over, np.unravel_index(flat, self.shape)):
+            p[_PARAM_ORDER.index(n)] = self.over[n][ix]
+        return p
 
 
 def _answers(out, st):
@@ -1101,13 +1103,12 @@ def _attractor_map_recurrence(scene, over, opts, threads, out, client, progress,
     # 1. the pilot finds the attractors
     found = AttractorSet(opts["cell"], opts["merge_tol"], opts["consecutive"], opts["consecutive_chaotic"])
     pidx = _pilot_points(fine.shape, opts["pilot"])
-    pall, _ = fine.params_rows(0, fine.shape[0])
     # (the first _DISCOVERY_BATCH pilot orbits find their own periodic attractors, confirmed by Newton, rather
     # than being labelled by a known one's cells: cells too coarse to tell two attractors apart then show as
     # a conflict; the others are labelled by the cells of all the attractors found before them)
     first = pidx[:_DISCOVERY_BATCH]
-    _discover(fine, pall[:, first], found, threads, kinds=("chaotic",))
-    _discover(fine, pall[:, pidx[first.size:]], found, threads, grow=False)
+    _discover(fine, fine.params_at(first), found, threads, kinds=("chaotic",))
+    _discover(fine, fine.params_at(pidx[first.size:]), found, threads, grow=False)
     n_pilot_att = len(found.items)
     # 2. level by level, coarse to fine: every point of a level labelled against the attractors found so far
     #    and the basin map of the level above (chunked, on a cluster; the finest level stored under out)
@@ -1133,13 +1134,12 @@ def _attractor_map_recurrence(scene, over, opts, threads, out, client, progress,
         labels = np.where(raw >= 0, raw, -1)
         new_all = (raw == _RAW_NEW_PERIODIC) | (raw == _RAW_NEW_CHAOTIC)
         new_total += int(new_all.sum())
-        plev, _ = plan.params_rows(0, plan.shape[0])
         # at the tolerances that gave the answer: the loose ones, then the boundary points' tight ones
         for sel, tols in ((new_all & (recheck == 0), (plan.rtol, plan.atol)),
                           (new_all & (recheck > 0), (opts["recheck_rtol"], opts["recheck_atol"]))):
             idx = np.flatnonzero(sel)
             if idx.size:
-                lab_new, st_new, per_new = _discover(plan, plev[:, idx], found, threads, *tols)
+                lab_new, st_new, per_new = _discover(plan, plan.params_at(idx), found, threads, *tols)
                 labels[idx], status[idx] = lab_new, st_new
                 periods[idx] += per_new
         if s > 1:
