@@ -509,22 +509,15 @@ class _Tracer:
         d0 = _splitting(prob.scene(p), prob.winding, prob.rtol, prob.atol)
         if not (d0 is not None and d0 > 0):
             return False
-        width = max(4 * dp, 1e-12 * max(1.0, abs(p)))
-        q, dq = p, None
-        for _ in range(1):
-            q = p + sign * width
-            if (q - self.stop) * (self.stop - p) > 0 or not math.isfinite(q):
-                return False
-            try:
-                dq = _splitting(prob.scene(q), prob.winding, prob.rtol, prob.atol)
-            except SceneError:
-                return False
-            if dq is None or dq <= 0:
-                break
-            p, d0 = q, dq
-            width *= 2
-        else:
+        q = p + sign * max(4 * dp, 1e-12 * max(1.0, abs(p)))
+        if (q - self.stop) * (self.stop - p) > 0 or not math.isfinite(q):
             return False
+        try:
+            dq = _splitting(prob.scene(q), prob.winding, prob.rtol, prob.atol)
+        except SceneError:
+            return False
+        if dq is not None and dq > 0:
+            return False            # the manifold still falls short of the next saddle 4 dp on
 
         def g(x):
             d = _splitting(prob.scene(x), prob.winding, prob.rtol, prob.atol)
