@@ -13,7 +13,8 @@ from pendula import Scene
 def test_models_lists_the_registry():
     ms = {m.name: m for m in pendula.models()}
     assert list(ms)[0] == "rigid" and ms["rigid"].implemented and ms["rigid"].path == "exact"
-    assert set(ms["rigid"].effects) == {"damping", "torque", "drive", "friction", "drag", "pivot", "force"}
+    assert set(ms["rigid"].effects) == {"damping", "torque", "drive", "friction", "drag", "pivot", "noise",
+                                          "force"}
     assert ms["rigid"].exact_with == ()  # exact only without effects
     assert {"cord", "cycloid", "gravity"} <= set(ms)
 
@@ -22,8 +23,13 @@ def test_models_command_prints_the_same_table():
     out = subprocess.run([sys.executable, "-m", "pendula", "models"], capture_output=True, text=True, check=True)
     lines = out.stdout.splitlines()
     assert lines[0].split()[0] == "model"
-    names = [ln.split()[0] for ln in lines[2:]]
+    n = len(pendula.models())
+    names = [ln.split()[0] for ln in lines[2:2 + n]]
     assert names == [m.name for m in pendula.models()]
+    # then the capability table, one block per model: every row of pendula.capabilities() is printed
+    printed = {(m.name, ln.split()[0]) for m in pendula.models() for ln in
+               out.stdout.split(f"\n{m.name}: ")[1].split("\n\n")[0].splitlines()[3:] if ln.strip()}
+    assert {(c.system, c.tool) for c in pendula.capabilities()} <= printed
 
 
 def test_conservative_rigid_scene_takes_the_exact_path():

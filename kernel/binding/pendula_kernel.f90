@@ -309,7 +309,7 @@ end subroutine simulate_v
 ! The model registry, one model per line of `table` (fields separated by '|':
 ! name, selector, effects, exact_with, path, implemented, summary).
 subroutine models_v(table)
-  use pendula_simulate, only: registry
+  use pendula_system, only: registry
   implicit none
   character(len=8192), intent(out) :: table
   integer :: i
@@ -320,6 +320,79 @@ subroutine models_v(table)
       '|' // merge('yes', 'no ', registry(i)%implemented) // '|' // trim(registry(i)%summary) // new_line('a')
   end do
 end subroutine models_v
+
+! The capability table (pendula_system), one row per line: tool|system|honours|planned|needs|note.
+subroutine capability_table_v(table)
+  use pendula_system, only: capability_table
+  implicit none
+  character(len=16384), intent(out) :: table
+  table = capability_table()
+end subroutine capability_table_v
+
+! Does `tool` honour every effect of the scene (and the fields named in
+! `swept`, and a user's force when force /= 0)?  status 0; 2 refused, 3 not
+! implemented, 4 unknown tool (msg names the field); 100 the fields do not
+! form a scene.
+subroutine capability_check_v(x, words, nw, wlen, nout, ngrid, tool, swept, force, status, msg)
+  use pendula_scene, only: scene_t, scene_from_fields
+  use pendula_system, only: capability_check
+  implicit none
+  double precision, intent(in) :: x(31)
+  character(len=*), intent(in) :: words, tool, swept
+  integer, intent(in) :: nw, nout, ngrid, force
+  integer, intent(in) :: wlen(nw)
+  integer, intent(out) :: status
+  character(len=512), intent(out) :: msg
+  !f2py intent(hide), depend(wlen) :: nw = len(wlen)
+  type(scene_t) :: sc
+  double precision :: g, length, none(0)
+  call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
+                         g, length, status, msg)
+  if (status /= 0) then
+    status = 100
+    return
+  end if
+  call capability_check(sc, tool, swept, force /= 0, status, msg)
+end subroutine capability_check_v
+
+! The scene's time scales as rates (1 / time; pendula_time_scales, in the
+! order of `names`, 12 characters each), the angular frequency of its
+! periodic forcing (pendula_system's scene_forcing: fstatus 0 forced, 1
+! autonomous, 2 a drive and a pivot at different frequencies), and the
+! Langevin default step.  status 100: the fields do not form a scene.
+subroutine scene_time_scales_v(x, words, nw, wlen, nout, ngrid, rates, names, omega, fstatus, langevin_dt, status)
+  use pendula_scene, only: scene_t, scene_from_fields
+  use pendula_system, only: scene_rates, scene_forcing
+  use pendula_time_scales, only: scale_names
+  use pendula_langevin, only: langevin_default_dt
+  implicit none
+  double precision, intent(in) :: x(31)
+  character(len=*), intent(in) :: words
+  integer, intent(in) :: nw, nout, ngrid
+  integer, intent(in) :: wlen(nw)
+  double precision, intent(out) :: rates(9), omega, langevin_dt
+  character(len=108), intent(out) :: names
+  integer, intent(out) :: fstatus, status
+  !f2py intent(hide), depend(wlen) :: nw = len(wlen)
+  type(scene_t) :: sc
+  double precision :: g, length, none(0)
+  character(len=512) :: msg
+  integer :: i
+  rates = 0; omega = 0; fstatus = 1; langevin_dt = 0
+  names = ''
+  do i = 1, size(scale_names)
+    names(12 * (i - 1) + 1:12 * i) = scale_names(i)
+  end do
+  call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
+                         g, length, status, msg)
+  if (status /= 0) then
+    status = 100
+    return
+  end if
+  rates = scene_rates(sc)
+  call scene_forcing(sc, omega, fstatus)
+  langevin_dt = langevin_default_dt(rates)
+end subroutine scene_time_scales_v
 
 ! Integrate a checked scene's model (its fields, as scene_check_v returns
 ! them) from its theta0, v0: method codes 1..9, 11, 12 (see
@@ -613,29 +686,6 @@ subroutine sweep_iv_branch(params, ntau, taus, rtol, atol, t_tr, t_avg, temp, se
                  cancel(1))
 end subroutine sweep_iv_branch
 
-! The sweep's model rule on a scene's text (status 0 ok; 3 the model is not
-! one a sweep runs; 100 the text is not a valid scene), msg says why.
-subroutine sweep_model_check_v(x, words, nw, wlen, nout, ngrid, what, status, msg)
-  use pendula_scene, only: scene_t, scene_from_fields
-  use pendula_sweep, only: sweep_model_rule
-  implicit none
-  double precision, intent(in) :: x(31)
-  character(len=*), intent(in) :: words, what
-  integer, intent(in) :: nw, nout, ngrid
-  integer, intent(in) :: wlen(nw)
-  integer, intent(out) :: status
-  character(len=512), intent(out) :: msg
-  !f2py intent(hide), depend(wlen) :: nw = len(wlen)
-  type(scene_t) :: sc
-  double precision :: g, length, none(0)
-  call scene_from_fields(x, words, wlen, nout, ngrid, none, none, none, none, none, none, none, .false., sc, &
-                         g, length, status, msg)
-  if (status /= 0) then
-    status = 100
-    return
-  end if
-  call sweep_model_rule(sc, what, status, msg)
-end subroutine sweep_model_check_v
 
 ! The sweep's limits: [max threads, max t_max and transient, max |theta0|].
 subroutine sweep_limits_v(lim)

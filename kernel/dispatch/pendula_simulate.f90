@@ -8,8 +8,9 @@
 !> fastest one for the scene's problem class and rtol in the work-precision
 !> study: auto_method) integrates the model's right-hand side.
 !>
-!> Adding a model: one module in kernel/models, one entry in `registry`, one
-!> case in simulate_scene (and one line in python/pendula/models/__init__.py).
+!> The registry of models, select_model and the capability table are the
+!> system contract's (pendula_system); adding a model: one module in
+!> kernel/models, its entry and rows there, one case in simulate_scene.
 module pendula_simulate
   use, intrinsic :: iso_c_binding, only: c_loc, c_funptr, c_f_procpointer, c_null_ptr, c_associated, &
     c_funloc
@@ -25,9 +26,12 @@ module pendula_simulate
     st_cancelled, st_velocity_force, m_dprkn6, m_vern9, m_vern8, max_steps, max_fixed_steps
   use pendula_gsl_iface, only: pendula_gsl_rk8pd
   use pendula_stick_slip, only: stick_slip_run, switched, ss_backward, ss_release_failed
+  use pendula_system, only: model_info_t, registry, select_model, mid_rigid, mid_cord, mid_cycloid, mid_gravity, &
+    scene_rates, capability_check, cap_ok, cap_not_implemented
   implicit none
   private
-  public :: model_info_t, registry, select_model, method_code, method_name, auto_method, simulate_scene, &
+  public :: model_info_t, registry, select_model, mid_rigid, mid_cord, mid_cycloid, mid_gravity, &
+            method_code, method_name, auto_method, simulate_scene, &
             simulate_status_text, &
             scene_energy, model_orbit_facts, cord_integrated, cord_scene_run, scene_model, attach_force
 
@@ -36,71 +40,13 @@ module pendula_simulate
     sim_model_clash = 15, sim_exact_refused = 16, sim_backward = 17, sim_gsl_failed = 18, &
     sim_too_many_steps = 19, sim_cancelled = 20, sim_closed_form_only = 21, sim_beyond_cusp = 22, &
     sim_nonfinite_t = 23, sim_cord_effects = 24, sim_velocity_force = 25, &
-    sim_switch_backward = 26, sim_force_method = 27, sim_force_model = 28, sim_release_failed = 29, &
+    sim_switch_backward = 26, sim_force_method = 27, sim_refused = 28, sim_release_failed = 29, &
     sim_noise_backward = 30, sim_force_noise = 31
   !> method codes: the integrators' 1..9, 11 (dprkn6), 12 (vern9) and 14 (vern8), then GSL's rk8pd, the
   !> exact path and the Langevin path
   integer, parameter, public :: m_gsl_rk8pd = 10, m_exact = 0, m_langevin = 13
 
-  !> What a model is, for users (`pendula models`) and for the dispatcher.
-  type :: model_info_t
-    character(len=16) :: name = ''
-    !> the scene fields that select it
-    character(len=48) :: selector = ''
-    !> the effects it accepts, and those under which its exact path still answers
-    character(len=64) :: effects = '', exact_with = ''
-    !> 'exact', 'integrated' or 'hybrid' (exact pieces joined at events)
-    character(len=12) :: path = ''
-    logical :: implemented = .false.
-    character(len=72) :: summary = ''
-  end type model_info_t
-
-  integer, parameter, public :: mid_rigid = 1, mid_cord = 2, mid_cycloid = 3, mid_gravity = 4
-  type(model_info_t), parameter :: registry(4) = [ &
-    model_info_t('rigid', "cord='rigid' guide='none' gravity='uniform'", &
-                 'damping torque drive friction drag pivot force', &
-                 '(none)', 'exact', .true., 'rigid pendulum, Jacobi elliptic solution in every regime'), &
-    model_info_t('cord', "cord='flexible'", 'damping torque drive', '(none)', 'hybrid', .true., &
-                 'bob on a flexible cord (Garfinkel): circle, free flight, jerk'), &
-    model_info_t('cycloid', "guide='cycloid'", 'damping torque drive', 'damping torque drive', 'exact', &
-                 .true., 'cycloidal guide (Huygens): isochronous, closed form'), &
-    model_info_t('gravity', "gravity='inverse-square' or 'linear'", &
-                 'damping torque drive friction drag pivot force', '(none)', &
-                 'integrated', .true., 'non-uniform gravity: energy, quadrature period, integrators')]
-
 contains
-
-  !> The model a scene selects (status sim_model_clash when two are named;
-  !> sim_not_implemented, with msg, when the model is not built yet).
-  subroutine select_model(sc, id, status, msg)
-    type(scene_t), intent(in) :: sc
-    integer, intent(out) :: id, status
-    character(len=*), intent(out) :: msg
-    integer :: n
-    status = sim_ok
-    msg = ''
-    id = mid_rigid
-    n = 0
-    if (sc%cord /= 'rigid') then
-      id = mid_cord; n = n + 1
-    end if
-    if (sc%guide /= 'none') then
-      id = mid_cycloid; n = n + 1
-    end if
-    if (sc%gravity /= 'uniform') then
-      id = mid_gravity; n = n + 1
-    end if
-    if (n > 1) then
-      status = sim_model_clash
-      msg = 'the scene names more than one model (cord = ''' // trim(sc%cord) // ''', guide = ''' // &
-            trim(sc%guide) // ''', gravity = ''' // trim(sc%gravity) // '''); pendula runs one at a time'
-    else if (.not. registry(id)%implemented) then
-      status = sim_not_implemented
-      msg = 'the effect(s) ' // trim(scene_effects(sc)) // ' are not implemented in pendula yet (model ''' // &
-            trim(registry(id)%name) // ''': cord = ''' // trim(sc%cord) // ''', guide = ''' // &
-            trim(sc%guide) // ''', gravity = ''' // trim(sc%gravity) // ''')'
-    end if
-  end subroutine select_model
 
   !> The code of a method name (-1: unknown).
   pure integer function method_code(name)
@@ -205,8 +151,13 @@ contains
     method = -1
     call select_model(sc, id, status, msg)
     if (status /= sim_ok) return
-    if (present(force) .and. (id == mid_cord .or. id == mid_cycloid)) then
-      status = sim_force_model; msg = simulate_status_text(status); return
+    ! what simulate honours on this model (the capability table); the scene's
+    ! own rules have refused the combinations no model takes
+    call capability_check(sc, 'simulate', '', present(force), status, msg)
+    if (status == cap_not_implemented) then
+      status = sim_not_implemented; return
+    else if (status /= cap_ok) then
+      status = sim_refused; return
     end if
     select case (id)
     case (mid_rigid)
@@ -396,7 +347,7 @@ contains
     real(dp) :: h
     method = m_langevin
     h = sc%dt
-    if (.not. (h > 0.0_dp)) h = langevin_default_dt(sc%eps, sc%drive_frequency)
+    if (.not. (h > 0.0_dp)) h = langevin_default_dt(scene_rates(sc))
     no_cancel = 0
     if (present(cancel)) then
       call langevin_path(scene_model(sc), sc%noise, sc%seed, h, sc%theta0, sc%v0, t, theta, v, nsteps, status, &
@@ -607,8 +558,7 @@ contains
                                      'forward in time only: give times >= 0'
     case (sim_force_method);     s = 'field ''method'': a force of (t, theta, v) needs a method that ' // &
                                      'evaluates the whole right-hand side (not verlet, yoshida*, dprkn6)'
-    case (sim_force_model);      s = 'a user force is added to the rigid pendulum or non-uniform gravity ' // &
-                                     'only (not the flexible cord or the cycloidal guide)'
+    case (sim_refused);          s = 'the capability table refuses a field of the scene on its model'
     case (sim_release_failed);   s = 'field ''friction'': the time the stuck bob breaks loose was not ' // &
                                      'located (GSL root finder failed)'
     case (sim_noise_backward);   s = 'a scene with noise runs forward from t = 0 only (a Langevin path has ' // &

@@ -41,9 +41,10 @@ module pendula_integrators
   use pendula_kinds, only: dp, i8, nan_dp, pi
   use pendula_gravity, only: gravity_accel
   use pendula_equilibria, only: field_slope
+  use pendula_time_scales, only: n_scales, time_rates, fastest_rate
   implicit none
   private
-  public :: pendulum_model, make_model, add_effects, user_force_fn, free_accel, &
+  public :: pendulum_model, make_model, add_effects, model_rates, user_force_fn, free_accel, &
     event_spec, run_stats, integrate, accel, accel_jacobian, &
     dop853_error_norm, dop853_step_2, dop853_step_6, system_rhs, verner_one_step_dense
 
@@ -206,6 +207,14 @@ contains
     me%dragged = gamma /= 0.0_dp
     me%vibrated = pamp /= 0.0_dp
   end function add_effects
+
+  !> The model's time-scale rates (pendula_time_scales) from the state's speed v0.
+  pure function model_rates(m, v0) result(r)
+    type(pendulum_model), intent(in) :: m
+    real(dp), intent(in) :: v0
+    real(dp) :: r(n_scales)
+    r = time_rates(m%eps, m%beta, m%tau, m%amp, m%omega, m%pamp, m%pomega, m%gkind, m%gpar, m%mu, m%gamma, v0)
+  end function model_rates
 
   !> theta'' without the friction term (the force friction must hold at rest).
   pure function free_accel(m, t, th, v) result(a)
@@ -422,10 +431,11 @@ contains
     end if
     ! a run that certainly needs more than max_steps fails at once, not after
     ! them: every method takes at least 4 steps per period of the fastest of
-    ! the small oscillation, the drive and the damping (t = 1e15, a drive at
-    ! 1e300 rad/s); a rotation turns at about |v0|
+    ! the model's time scales (pendula_time_scales: the oscillation in its
+    ! field, the drive, the pivot and its force, the damping, a rotation at
+    ! |v0|; t = 1e15, a drive at 1e300 rad/s)
     if (n > 0 .and. adaptive) then
-      if (.not. (max(abs(tout(1)), abs(tout(n))) * max(sqrt(m%eps), m%omega, m%pomega, m%beta, abs(v0)) &
+      if (.not. (max(abs(tout(1)), abs(tout(n))) * fastest_rate(model_rates(m, v0)) &
                  * (4.0_dp / 6.283185307179586_dp) < real(max_steps, dp))) then
         status = st_too_many_steps; return
       end if

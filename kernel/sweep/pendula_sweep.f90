@@ -35,28 +35,30 @@
 !> 100 + s: the integrator failed with status s.
 !>
 !> The rules every caller applies before a sweep (pendula.sweep, pendula.iv_curve,
-!> pendula-run) live here: sweep_model_rule (a sweep runs the rigid pendulum
-!> with damping, torque and drive; a scene naming another model is refused,
-!> the model named) and the limits sweep_max_threads, sweep_max_time and
+!> pendula-run) live in the capability table (pendula_system: which measure
+!> honours which field on which model; a scene naming another model is
+!> refused, the model named) and here: the limits sweep_max_threads, sweep_max_time and
 !> sweep_max_angle (sweep_limits gives them to the Python layer).
 module pendula_sweep
   use pendula_kinds, only: dp, pi, two_pi, nan_dp
   use pendula_threads, only: thread_count, max_threads
+  use pendula_time_scales, only: n_scales, time_rates
   use pendula_scene, only: scene_t
   use pendula_integrators, only: pendulum_model, event_spec, run_stats, integrate, &
     m_dop853, st_ok, st_cancelled
   use pendula_lyapunov, only: lyapunov_point, ly_cancelled, point_model
   use pendula_stick_slip, only: stick_slip_run, switched
   use pendula_outfile, only: outfile_t, out_line, out_reals
-  use pendula_simulate, only: select_model, registry, mid_rigid, sim_ok, attach_force
+  use pendula_simulate, only: attach_force
+  use pendula_system, only: capability_check, cap_ok, cap_not_implemented
   use, intrinsic :: iso_c_binding, only: c_funptr
   use pendula_langevin, only: langevin_stream, langevin_open, langevin_steps, langevin_default_dt, lv_ok, &
     lv_cancelled
   use, intrinsic :: iso_fortran_env, only: int64
   implicit none
   private
-  public :: sweep_points, sweep_points_noisy, iv_branch, np_params, sweep_scene_csv, sweep_model_rule, sweep_limits
-  public :: advance, forcing_omega   ! one window of a point's orbit; the period of its forcing (the attractor finder)
+  public :: sweep_points, sweep_points_noisy, iv_branch, np_params, sweep_scene_csv, sweep_limits
+  public :: advance, forcing_omega, point_rates   ! one window of a point's orbit; the period of its forcing (the attractor finder)
   public :: ms_final_well, ms_mean_velocity, ms_locked, ms_poincare, ms_lyapunov
 
   !> eps, beta, tau, amp, omega, phase, theta0, v0, then the vibrating pivot's amplitude and frequency,
@@ -120,30 +122,6 @@ contains
     real(dp), intent(out) :: lim(3)
     lim = [real(sweep_max_threads, dp), sweep_max_time, sweep_max_angle]
   end subroutine sweep_limits
-
-  !> The model rule of every sweep and I-V curve: the kernel's sweep runs the
-  !> rigid pendulum (with damping, torque, drive, pivot, friction, drag) only; a scene naming
-  !> another model (a flexible cord, a cycloidal guide, non-uniform gravity)
-  !> gets status 3 and msg names the model (NotImplementedError in Python,
-  !> exit 3 from pendula-run).  what: the caller's name for the run.
-  subroutine sweep_model_rule(sc, what, status, msg)
-    type(scene_t), intent(in) :: sc
-    character(len=*), intent(in) :: what
-    integer, intent(out) :: status
-    character(len=*), intent(out) :: msg
-    integer :: id
-    call select_model(sc, id, status, msg)
-    if (status /= sim_ok) then
-      status = 3; return
-    end if
-    status = 0; msg = ''
-    if (id /= mid_rigid) then
-      status = 3
-      msg = trim(what) // ' runs the rigid pendulum only; the model ''' // trim(registry(id)%name) // &
-        ''' (cord = ''' // trim(sc%cord) // ''', guide = ''' // trim(sc%guide) // ''', gravity = ''' // &
-        trim(sc%gravity) // ''') is not implemented for sweeps: use pendula.simulate per point'
-    end if
-  end subroutine sweep_model_rule
 
   subroutine one_point(measure, p, rtol, atol, t_tr, t_max, o, st, cancel, uf)
     integer, intent(in) :: measure
@@ -418,6 +396,13 @@ contains
 
   !> The angular frequency of the periodic forcing (the stroboscopic map's): the drive's, or
   !> the vibrating pivot's when there is no drive; 0 when the two differ (no common period here).
+  !> A sweep point's time-scale rates (pendula_time_scales; sweeps run the rigid pendulum in the uniform field).
+  pure function point_rates(p) result(r)
+    real(dp), intent(in) :: p(np_params)
+    real(dp) :: r(n_scales)
+    r = time_rates(p(1), p(2), p(3), p(4), p(5), p(9), p(10), 0, 0.0_dp, p(11), p(12), p(8))
+  end function point_rates
+
   pure real(dp) function forcing_omega(p)
     real(dp), intent(in) :: p(np_params)
     forcing_omega = p(5)
@@ -556,7 +541,7 @@ contains
     m = point_model(p, p(6), 0.0_dp)
     driven = p(4) /= 0.0_dp .and. p(5) > 0.0_dp
     h = dt
-    if (.not. (h > 0.0_dp)) h = langevin_default_dt(p(1), p(5))
+    if (.not. (h > 0.0_dp)) h = langevin_default_dt(point_rates(p))
     if (driven) then
       tp = two_pi / p(5)
       per = max(1_int64, ceiling(tp / h - 1.0e-12_dp, int64))
@@ -741,8 +726,8 @@ contains
   !> pendula.sweep (boundary_recheck), with the row after each block computed
   !> ahead so that neighbours across block edges are seen; the answers are
   !> those of pendula.sweep whatever its chunks.
-  !> status: 0 ok, 2 bad scene for a sweep, 3 the scene's model is not one a
-  !> sweep runs (sweep_model_rule), 5 write error (f%err holds errno).
+  !> status: 0 ok, 2 bad scene for a sweep (a field the measure does not honour: the capability
+  !> table), 3 the scene's model is not one a sweep runs, 5 write error (f%err holds errno).
   subroutine sweep_scene_csv(sc, f, status, msg)
     type(scene_t), intent(in) :: sc
     type(outfile_t), intent(inout) :: f
@@ -758,8 +743,6 @@ contains
     integer, volatile :: no_cancel
     status = 0; msg = ''
     no_cancel = 0
-    call sweep_model_rule(sc, 'a sweep', status, msg)
-    if (status /= 0) return
     if (.not. (sc%sweep_t_max <= sweep_max_time) .or. .not. (sc%sweep_transient <= sweep_max_time)) then
       status = 2
       write(msg, '(a, es8.1, a)') 'fields ''sweep_t_max'' and ''sweep_transient'' must be at most ', &
@@ -775,11 +758,16 @@ contains
     case default
       status = 2; msg = 'field ''measure'' must name a measure for a sweep'; return
     end select
-    if (sc%noise > 0.0_dp .and. measure /= ms_mean_velocity) then
-      status = 2
-      msg = 'field ''noise'': a sweep with thermal noise measures ''mean_velocity'' only (the measure ''' // &
-            trim(sc%measure) // ''' asks a deterministic question)'
-      return
+    ! the capability table: the fields this measure honours on the scene's model, the grid's axes counted on
+    head = ''
+    do k = 1, sc%n_grid
+      head = trim(head) // ' ' // trim(sc%grid(k))
+    end do
+    call capability_check(sc, 'sweep:' // trim(sc%measure), head, .false., status, msg)
+    if (status == cap_not_implemented) then
+      status = 3; return
+    else if (status /= cap_ok) then
+      status = 2; return
     end if
     n = 1
     n(1:sc%n_grid) = sc%grid_n(1:sc%n_grid)

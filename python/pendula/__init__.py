@@ -38,6 +38,7 @@ from .motion import Orbit, Trajectory, energy, exact_motion, orbit, period, simu
 from .scene import Scene, SceneError  # noqa: E402
 from .series import period_from_series, period_series, poincare_lindstedt  # noqa: E402
 from .systems import ModelInfo, models  # noqa: E402
+from .systems.contract import Capability, TimeScales, capabilities, time_scales  # noqa: E402
 from .spectrum import FourierSeries, Spectrum, fourier_series, odd_harmonics_above, spectra, spectrum  # noqa: E402
 
 # Huygens' cycloidal pendulum, non-uniform gravity, the density of the angle
@@ -62,7 +63,7 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Orbit", "Trajectory", "period_series", "period_from_series", "poincare_lindstedt",
            "find_events", "numerical_period", "Events",
            "spectrum", "spectra", "Spectrum", "fourier_series", "FourierSeries", "odd_harmonics_above",
-           "models", "ModelInfo", "cycloid_geometry", "cycloid_period", "CycloidGeometry", "gravity_orbit",
+           "models", "ModelInfo", "capabilities", "Capability", "time_scales", "TimeScales", "cycloid_geometry", "cycloid_period", "CycloidGeometry", "gravity_orbit",
            "angle_density", "angle_cdf", "arcsine_density", "flip_map", "cord_state", "flip_sequence",
            "sweep", "iv_curve",
            "precompute_wisdom", "wisdom_path",

@@ -374,12 +374,41 @@ def cmd_models(args) -> int:
                      "no effect" if not m.exact_with and m.path != "integrated" else
                      (" ".join(m.exact_with) if m.exact_with else "-"),
                      m.path, "yes" if m.implemented else "not yet"))
+    _print_table(rows)
+    _print_capabilities()
+    return 0
+
+
+def _print_table(rows) -> None:
     widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]))]
     for k, r in enumerate(rows):
         print("  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip())
         if k == 0:
             print("  ".join("-" * w for w in widths))
-    return 0
+
+
+def _print_capabilities() -> None:
+    """The capability table, one block per model: which tool honours which effect."""
+    from .systems import models
+    from .systems.contract import EFFECTS, capabilities
+
+    caps = capabilities()
+    print("\nWhat each tool honours, model by model (yes: changes the answer; -: refused, naming the field;"
+          "\nlater: not implemented yet; need: one of these must be on; force: a user's force argument)")
+    for m in models():
+        rows = [("tool",) + tuple(EFFECTS)]
+        for c in caps:
+            if c.system != m.name:
+                continue
+            rows.append((c.tool,) + tuple("yes" if e in c.honours else "later" if e in c.planned else "-"
+                                          for e in EFFECTS))
+            if c.needs:
+                rows[-1] = tuple(x + "/need" if e in c.needs else x for x, e in zip(rows[-1], ("",) + tuple(EFFECTS)))
+        print(f"\n{m.name}: {m.summary}")
+        _print_table(rows)
+        absent = sorted({c.tool for c in caps} - {r[0] for r in rows[1:]})
+        if absent:
+            print(f"does not run the {m.name} model: {', '.join(absent)}")
 
 
 def main(argv=None) -> int:

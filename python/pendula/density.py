@@ -31,6 +31,7 @@ from numpy.typing import ArrayLike, NDArray
 from ._checks import as_float
 from . import _kernel
 from .scene import Scene
+from .systems.contract import require
 
 __all__ = ["angle_density", "angle_cdf", "arcsine_density"]
 
@@ -75,28 +76,19 @@ def arcsine_density(theta: ArrayLike, theta_init: float) -> NDArray[np.float64]:
     return out
 
 
-def _check(scene):
+def _check(scene, tool="angle_density"):
     from .scene import Scene
 
     if not isinstance(scene, Scene):
         raise TypeError(f"expected a pendula.Scene, got {type(scene).__name__}")
-    if scene.cord != "rigid":
-        raise NotImplementedError("angle_density: the flexible cord (its flights leave the circle) is not "
-                                  "implemented")
-    bad = [e for e in scene.effects if e in ("damping", "drive")]
-    if bad:
-        raise ValueError(f"the density of the angle is defined over the period of a conservative orbit; "
-                         f"the scene names {', '.join(bad)}")
-    if "torque" in scene.effects and scene.guide != "cycloid":
-        raise NotImplementedError("angle_density: the rigid pendulum with a constant torque is not "
-                                  "implemented (only the cycloid accepts torque here)")
+    require(scene, tool)    # the capability table: the fields the density honours, the rest refused by name
 
 
 class _Model:
     """What the density needs from one orbit: (density, cdf) callables."""
 
-    def __init__(self, scene):
-        _check(scene)
+    def __init__(self, scene, tool="angle_density"):
+        _check(scene, tool)
         self.scene = scene
         if scene.guide == "cycloid":
             self._setup_cycloid()
@@ -384,4 +376,4 @@ def angle_cdf(scene: Scene, theta: ArrayLike) -> NDArray[np.float64] | np.float6
     [0.5, 1.5]
     """
     theta = as_float(theta, "theta")
-    return _Model(scene).cdf(theta)
+    return _Model(scene, "angle_cdf").cdf(theta)

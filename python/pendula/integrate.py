@@ -22,6 +22,7 @@ from . import _checks, _interrupt, _kernel
 from ._checks import as_float
 from .scene import Scene
 from .systems import run
+from .systems.contract import require
 from .systems.cord import simulate_cord
 from .systems.cycloid import cycloid_motion, cycloid_period
 from .systems.gravity import gravity_orbit
@@ -235,6 +236,7 @@ def find_events(scene: Scene, kind: str = "turning", level: float = 0.0, directi
     (2, 6.699975664)
     """
     _checks.instance(scene, "scene", Scene, "a pendula.Scene")
+    require(scene, "find_events")    # the capability table: noise refused, friction not yet
     if kind not in _EVENT_KINDS and kind not in CORD_EVENT_KINDS:
         raise ValueError(f"kind must be one of {', '.join(tuple(_EVENT_KINDS) + CORD_EVENT_KINDS)}, got {kind!r}")
     direction = _DIRECTIONS.get(direction, direction) if isinstance(direction, str) else direction
@@ -322,6 +324,7 @@ def numerical_period(scene: Scene, periods: int = 20, method: str = "dop853") ->
         raise TypeError(f"periods must be a number, got {periods!r}")
     if not 2 <= periods <= 1e6:
         raise ValueError(f"periods must be between 2 and 1e6, got {periods!r}")
+    require(scene, "numerical_period")    # a conservative orbit's period (the cycloid: any torque)
     if scene.guide == "cycloid":
         # Huygens: the period does not depend on the amplitude; a torque only shifts the centre
         if scene.damping != 0.0 or scene.drive_amplitude != 0.0:

@@ -15,6 +15,7 @@ from ._checks import as_float
 from .systems.rigid import Orbit, energy, exact_motion, orbit
 from .scene import _NUMBER_LISTS, _NUMBERS, _WORDS, METHODS, Scene, SceneError
 from .systems import run
+from .systems.contract import require
 from .systems.cord import simulate_cord
 from .systems.cycloid import cycloid_period
 from .systems.gravity import gravity_orbit
@@ -201,14 +202,12 @@ def period(scene: Scene) -> float:
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"period expects a pendula.Scene, got {type(scene).__name__}")
+    require(scene, "period")      # the capability table: a conservative orbit's fact (the cycloid: any torque)
     # the cycloid (any amplitude) and non-uniform gravity (exact quadrature) have their own periods
-    if set(scene.effects) <= {"guide", "torque"} and scene.guide == "cycloid":
+    if scene.guide == "cycloid":
         return cycloid_period(scene)
-    if scene.effects == ("gravity",):
+    if scene.gravity != "uniform":
         return gravity_orbit(scene).period
-    if not scene.is_conservative_rigid:
-        raise ValueError(f"period(scene) is the exact period of a conservative orbit; the scene names "
-                         f"{', '.join(scene.effects)} (see pendula.numerical_period for event-based periods)")
     return orbit(scene.theta0, scene.v0, scene.eps).period
 
 

@@ -71,6 +71,7 @@ from . import _checks, _interrupt
 from ._files import atomic_path, save_figure
 from ._progress import Progress
 from .scene import GRIDDABLE, MEASURES, Scene, SceneError
+from .systems import contract
 from .dynamics.attractors import AttractorMap, edge_mask as _edge_mask
 
 if TYPE_CHECKING:   # xarray and distributed are optional: named in annotations only
@@ -132,19 +133,6 @@ def _check_over(scene: Scene, over) -> dict:
         raise ValueError(f"parameter 'over': {npts} grid points; a sweep takes at most "
                          f"{_checks.MAX_GRID_POINTS:.0e} (split it, or use a coarser grid)")
     return out
-
-
-def _model_rule(scene: Scene, what: str) -> None:
-    """The kernel's sweep model rule (pendula_sweep%sweep_model_rule): a
-    NotImplementedError naming the model when a sweep cannot run it."""
-    from . import _kernel
-    x, words, wlen, nout, ngrid = scene._kernel_fields     # the scene as the kernel checked it
-    status, msg = _kernel.sweep_model_check_v(x, words, wlen, nout, ngrid, what.encode())
-    msg = msg.decode(errors="replace").strip() if isinstance(msg, bytes) else str(msg).strip()
-    if status == 3:
-        raise NotImplementedError(msg)
-    if status != 0:
-        raise ValueError(f"parameter 'scene': {msg}")
 
 
 def _block(code, p, rtol, atol, t_tr, t_max, nout, threads, force=None):
@@ -549,18 +537,17 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
     if scene.noise > 0 and uf is not None:
         raise ValueError("fields 'noise' and 'force': a user's force with thermal noise is not implemented "
                          "(the Langevin integrator takes the scene's own force law only)")
-    if scene.noise > 0 and measure != "mean_velocity":
-        raise ValueError(f"field 'noise': a sweep with thermal noise measures 'mean_velocity' only (the "
-                         f"measure '{measure}' asks a deterministic question); got noise = {scene.noise}")
     if not isinstance(measure, str) or measure not in MEASURES + ("attractor",):
         raise ValueError(f"parameter 'measure' must be one of {', '.join(MEASURES + ('attractor',))}; "
                          f"got {measure!r}")
-    _model_rule(scene, f"measure '{measure}'")
     if scene.noise > 0 and (over or {}).keys() & {"damping"} and not np.all(np.asarray(over["damping"]) > 0):
         raise ValueError("field 'noise': every grid point needs damping > 0 (the thermal force comes with it)")
     _checks.angle(scene.theta0, "field 'theta0'")
     over = grid_of(scene) if over is None else over
     over = _check_over(scene, over)
+    # the capability table: the fields this measure honours, the rest (noise in a deterministic measure,
+    # another model) refused by name, a measure of the stroboscopic map refused without a forcing
+    contract.require(scene, f"sweep:{measure}", over=over, force=uf is not None)
     rtol, atol = _checks.tolerances(scene.rtol if rtol is None else rtol, scene.atol if atol is None else atol)
     t_max = _checks.duration(scene.sweep_t_max if t_max is None else t_max, "t_max")
     transient = _checks.duration(scene.sweep_transient if transient is None else transient, "transient",
@@ -578,9 +565,8 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
     if measure == "poincare" and math.prod(len(v) for v in over.values()) * samples > _checks.MAX_GRID_POINTS:
         raise ValueError(f"parameter 'samples': {samples} samples at each grid point is more than "
                          f"{_checks.MAX_GRID_POINTS:.0e} values")
-    if measure == "poincare" and not scene.drive_frequency > 0 and "drive_frequency" not in over and \
-            scene.pivot_amplitude == 0:
-        raise ValueError("measure 'poincare' needs a drive (drive_frequency > 0)")
+    if measure in ("poincare",):
+        _check_driven(scene, over, f"measure '{measure}'")
     plan = _Plan(scene, over, measure, rtol, atol, t_max, transient, samples, int(chunk_points))
     plan.force = uf
 
@@ -847,25 +833,48 @@ def _recurrence_options(kw: dict) -> dict:
     return o
 
 
+def _grid_scenes(scene: Scene, over: dict) -> list:
+    """The scene at each end of each grid axis (the extremes of every time scale and forcing)."""
+    out = [scene]
+    for name, vals in over.items():
+        for v in (float(np.min(vals)), float(np.max(vals))):
+            try:
+                out.append(scene.replace(**{name: v}))
+            except SceneError:
+                pass        # a value the scene refuses alone (refused with the grid's own check)
+    return out
+
+
 def _check_work(scene: Scene, over: dict, max_periods: int) -> None:
-    """max_periods drive periods of the slowest drive must stay within a sweep point's time limit."""
-    om = float(np.min(over.get("drive_frequency", np.array([scene.drive_frequency]))))
+    """max_periods forcing periods of the slowest forcing on the grid must stay within a sweep point's time
+    limit, and their expected steps at the fastest time scale (the kernel's rule) within the point's work
+    limit: refused before any work, naming the field."""
+    ends = _grid_scenes(scene, over)
+    om = min(contract.forcing_frequency(s, "max_periods") for s in ends)
     t = max_periods * 2 * math.pi / om
     limit = _checks._sweep_limits()[1]
     if not t <= limit:
-        raise ValueError(f"max_periods: {max_periods} drive periods of drive_frequency {om:g} are {t:.3g} time "
-                         f"units, beyond a sweep point's limit {limit:g} (lower max_periods)")
+        raise ValueError(f"max_periods: {max_periods} periods of the forcing at frequency {om:g} are {t:.3g} "
+                         f"time units, beyond a sweep point's limit {limit:g} (lower max_periods)")
+    worst = max(ends, key=lambda s: contract.time_scales(s).fastest)
+    steps = contract.expected_steps(worst, t, 1e-10)
+    if not steps <= contract.MAX_POINT_STEPS:
+        ts = contract.time_scales(worst)
+        fast = max(ts.rates, key=ts.rates.get)
+        raise ValueError(f"max_periods: {max_periods} forcing periods ({t:.3g} time units) at the fastest time "
+                         f"scale of the grid ({fast}, rate {ts.fastest:.3g}) are about {steps:.2g} integration "
+                         f"steps a point, beyond the limit {contract.MAX_POINT_STEPS:.0e} (lower max_periods, or a slower "
+                         f"{fast})")
 
 
 def _check_driven(scene: Scene, over: dict, what: str) -> None:
-    amp = over.get("drive_amplitude", np.array([scene.drive_amplitude]))
-    om = over.get("drive_frequency", np.array([scene.drive_frequency]))
-    if scene.pivot_amplitude != 0 and "pivot_amplitude" not in over:
-        return      # a vibrating pivot drives the scene too (its frequency > 0: the scene's check)
-    if not (np.all(om > 0) and np.all(amp != 0)):
-        raise ValueError(f"drive_amplitude, drive_frequency: {what} reads the stroboscopic map of a periodically "
-                         "driven scene (drive_frequency > 0, drive_amplitude != 0 at every grid point, or a "
-                         "vibrating pivot)")
+    """Every grid point's scene is periodically forced (the kernel's one definition: a drive, a vibrating
+    pivot, or both at one frequency); refused naming the fields otherwise."""
+    for s in _grid_scenes(scene, over):
+        contract.forcing_frequency(s, what)
+    for name in ("drive_amplitude", "drive_frequency", "pivot_amplitude", "pivot_frequency"):
+        if name in over and np.any(np.asarray(over[name]) == 0):
+            contract.forcing_frequency(scene.replace(**{name: 0.0}), f"{what} at {name} = 0")
 
 
 def attractor_map(scene: Scene, over: dict, *, method: Literal["recurrence", "samples"] | None = None,
@@ -1041,9 +1050,9 @@ def attractor_map(scene: Scene, over: dict, *, method: Literal["recurrence", "sa
         method = "samples" if (transient is not None or samples is not None) else "recurrence"
     if not isinstance(method, str) or method not in ("recurrence", "samples"):
         raise ValueError(f"parameter 'method' must be 'recurrence' or 'samples'; got {method!r}")
-    _model_rule(scene, "attractor_map")
     _checks.angle(scene.theta0, "field 'theta0'")
     over = _check_over(scene, over)
+    contract.require(scene, "attractor_map", over=over)
     _check_driven(scene, over, "attractor_map")
     threads = _checks.threads(threads)
     chunk_points = _checks.count(chunk_points, "chunk_points", 1)
@@ -1345,6 +1354,7 @@ def attractor_continuation(scene: Scene, over: dict[str, ArrayLike], param: str,
         except SceneError as exc:
             raise ValueError(f"parameter 'values': {exc}") from None
     over_c = _check_over(scene, over)
+    contract.require(scene, "attractor_continuation", over=tuple(over_c) + (param,))
     _check_driven(scene.replace(**{param: float(vals[0])}), over_c, "attractor_continuation")
     opts = _recurrence_options(options)     # checked once, before any work
     for val in vals:
@@ -1554,7 +1564,7 @@ def iv_curve(scene: Scene | str | os.PathLike[str], torques: ArrayLike,
     t_max = 400.0 if t_max is None else t_max
     if not isinstance(direction, str) or direction not in ("up", "down", "both"):
         raise ValueError(f"parameter 'direction' must be 'up', 'down' or 'both'; got {direction!r}")
-    _model_rule(scene, "iv_curve")
+    contract.require(scene, "iv_curve")
     _checks.angle(scene.theta0, "field 'theta0'")
     if not scene.damping > 0:
         raise ValueError("field 'damping' must be > 0 for an I-V curve (without damping <v> grows without bound)")

@@ -29,8 +29,9 @@ import numpy as np
 from .. import _checks
 from ..scene import Scene, SceneError, _NUMBERS, _WHOLE
 from .equilibria import equilibria
-from .periodic import (FlowError, NewtonError, OrbitProblem, check_driven_rigid, check_guess, drive_period,
-                       flow, multipliers_of, newton, reduce_angle)
+from ..systems.contract import require, time_scales
+from .periodic import (FlowError, NewtonError, OrbitProblem, check_guess, drive_period, flow, multipliers_of,
+                       newton, reduce_angle)
 
 if TYPE_CHECKING:   # xarray is optional: named in annotations only
     import xarray
@@ -678,7 +679,7 @@ def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: f
     >>> [(b.kind, b.period, round(b.value, 8)) for b in br.bifurcations]
     [('pitchfork', 1.0, 1.00431948), ('period-doubling', 1.0, 1.06637286)]
     """
-    check_driven_rigid(scene, "continue_orbit")
+    require(scene, "continue_orbit", over=(param,))      # the capability table: noise and dry friction refused by name
     p0 = _param_value(scene, param)
     stop = _stop_value(scene, param, p0, stop)
     k = _checks.count(k, "k", 1, 10**4)
@@ -688,7 +689,8 @@ def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: f
     if step is not None:
         step = _checks.real(step, "step", 0.0, lo_open=True)
     x0 = check_guess(guess, scene)
-    driven = scene.drive_amplitude != 0.0 and scene.drive_frequency != 0.0
+    # the one definition of a periodically forced scene (a drive, a vibrating pivot, or both at one frequency)
+    driven = time_scales(scene).forcing_status != 1
     tracer = _Tracer(scene, param, p0, stop, follow, step)
     if driven:
         drive_period(scene, k)
@@ -713,7 +715,8 @@ def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: f
     except NewtonError as exc:
         raise ValueError(f"guess: Newton's iteration for the starting orbit at {param} = {p0!r} failed: {exc}; it "
                          f"got to {tuple(float(x) for x in exc.state[0])} with residual {exc.residual:.3g}") from None
-    if driven and scene.torque == 0.0 and param != "torque" and winding == 0 and k % 2 == 1:
+    if driven and scene.pivot_amplitude == 0.0 and scene.torque == 0.0 and param != "torque" and winding == 0 \
+            and k % 2 == 1:
         # the symmetric orbit of an untorqued drive: follow it on the half-period map
         T = drive_period(scene, k)
         end, _, _ = flow(scene, u, [0.5 * T], prob.rtol, prob.atol)
@@ -848,9 +851,7 @@ def continue_equilibria(scene: Scene, param: str, stop: float, points: int = 101
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a pendula.Scene, got {type(scene).__name__}")
-    if scene.drive_amplitude != 0.0:
-        raise ValueError("drive_amplitude: a driven scene has no equilibria; continue its orbits with "
-                         "pendula.continue_orbit")
+    require(scene, "continue_equilibria", over=(param,))    # an autonomous smooth flow's rest points
     p0 = _param_value(scene, param)
     stop = _stop_value(scene, param, p0, stop)
     points = _checks.count(points, "points", 2, 10**6)

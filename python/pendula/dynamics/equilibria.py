@@ -14,6 +14,7 @@ import numpy as np
 
 from .. import _checks, _kernel
 from ..scene import Scene
+from ..systems.contract import require
 from ..systems.gravity import field_of
 
 __all__ = ["Equilibrium", "equilibria", "EQUILIBRIUM_KINDS", "MAX_EQUILIBRIA"]
@@ -127,15 +128,9 @@ def equilibria(scene: Scene, window: tuple[float, float] = (-math.pi, math.pi)) 
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a pendula.Scene, got {type(scene).__name__}")
-    if scene.friction != 0.0 or scene.pivot_amplitude != 0.0:
-        # dry friction makes every angle with |eps sin theta - tau| <= mu a rest state, and a
-        # vibrating pivot drives the scene (its theta = 0, pi are periodic orbits: periodic_orbit)
-        raise ValueError("fields 'friction'/'pivot_amplitude': equilibria are those of the scene without dry "
-                         "friction or a vibrating pivot; a vibrating pivot's rest states are periodic orbits "
-                         "(periodic_orbit(scene, guess=(pi, 0)))")
-    if scene.drive_amplitude != 0.0:
-        raise ValueError("drive_amplitude: a periodically driven scene has no equilibria "
-                         "(it is not autonomous); its periodic orbits come from pendula.periodic_orbit")
+    # the capability table: rest points of an autonomous smooth flow (a drive or a vibrating pivot makes
+    # the rest states periodic orbits: periodic_orbit; dry friction makes a band of angles rest states)
+    require(scene, "equilibria")
     if isinstance(window, (str, bytes)) or not hasattr(window, "__len__") or len(window) != 2:
         raise TypeError(f"window must be two numbers (lo, hi), got {window!r:.60}")
     # |theta| <= 2^52: beyond it an angle has no fractional digits left (the one checker's rule)

@@ -19,6 +19,7 @@ from numpy.typing import ArrayLike
 
 from .. import _checks, _interrupt, _kernel
 from ..scene import Scene
+from ..systems import contract
 
 __all__ = ["PeriodicOrbit", "periodic_orbit"]
 
@@ -137,17 +138,9 @@ def flow(scene: Scene, x0, times, rtol: float, atol: float, force=None):
 
 
 def forcing_frequency(scene: Scene) -> float:
-    """The angular frequency of a scene's periodic forcing: the drive's, or a vibrating pivot's (the two
-    must agree when both are there); ValueError naming the fields when there is none or two."""
-    freqs = {f for a, f in ((scene.drive_amplitude, scene.drive_frequency),
-                            (scene.pivot_amplitude, scene.pivot_frequency)) if a != 0.0 and f != 0.0}
-    if len(freqs) > 1:
-        raise ValueError("fields 'drive_frequency' and 'pivot_frequency': a periodic orbit needs one forcing "
-                         "period; give the drive and the pivot the same frequency")
-    if not freqs:
-        raise ValueError("drive_amplitude, drive_frequency: periodic_orbit needs a periodically driven scene "
-                         "(or a vibrating pivot); an undriven scene's rest points come from pendula.equilibria")
-    return abs(freqs.pop())
+    """The angular frequency of a scene's periodic forcing (the kernel's one definition: a drive, a vibrating
+    pivot, or both at one frequency); ValueError naming the fields when there is none or two."""
+    return contract.forcing_frequency(scene, "a periodic orbit")
 
 
 def drive_period(scene: Scene, k: int) -> float:
@@ -300,17 +293,6 @@ def reduce_angle(theta: float) -> float:
     return float(theta) - 2 * math.pi * round(float(theta) / (2 * math.pi))
 
 
-def check_driven_rigid(scene, who: str) -> None:
-    """The scene kinds the periodic orbits support (the rigid pendulum in the uniform field)."""
-    if not isinstance(scene, Scene):
-        raise TypeError(f"scene must be a pendula.Scene, got {type(scene).__name__}")
-    if scene.guide != "none" or scene.cord != "rigid" or scene.gravity != "uniform":
-        model = "cycloid" if scene.guide != "none" else ("flexible cord" if scene.cord != "rigid" else
-                                                           f"gravity = {scene.gravity!r}")
-        raise NotImplementedError(f"{who}: the {model} model is not supported yet "
-                                  "(only the rigid pendulum in the uniform field)")
-
-
 def check_guess(guess, scene: Scene) -> np.ndarray:
     """A state (theta, v): two reals, |theta| <= 2^52, theta reduced to [-pi, pi]."""
     if guess is None:
@@ -397,10 +379,8 @@ def periodic_orbit(scene: Scene, guess: tuple[float, float] | None = None, k: in
     >>> print(f"{po.exponents[0]:.6f}")
     -0.250000
     """
-    check_driven_rigid(scene, "periodic_orbit")
-    if scene.friction != 0.0:
-        raise ValueError("field 'friction': periodic_orbit needs a smooth flow (its monodromy); dry friction "
-                         "sticks: simulate the scene instead")
+    # the capability table: a smooth deterministic flow with a periodic forcing (noise, dry friction refused)
+    contract.require(scene, "periodic_orbit", force=force is not None)
     forcing_frequency(scene)
     k = _checks.count(k, "k", 1, 10**4)
     maxit = _checks.count(maxit, "maxit", 1, 10**4)

@@ -21,6 +21,7 @@ import numpy as np
 from .. import _interrupt, _kernel
 from .. import _checks
 from .._checks import as_float
+from . import contract
 from ..scene import Scene, SceneError
 from ..trajectory import Trajectory
 
@@ -30,6 +31,10 @@ __all__ = ["ModelInfo", "models", "run", "METHOD_NAMES"]
 METHOD_NAMES = {0: "exact", 1: "rk4", 2: "verlet", 3: "yoshida4", 4: "yoshida6", 5: "yoshida8",
                 6: "gauss4", 7: "gauss6", 8: "dopri5", 9: "dop853", 10: "gsl-rk8pd", 11: "dprkn6", 12: "vern9",
                 13: "langevin", 14: "vern8"}
+
+#: expected steps above which a run is made interruptible (fixed steps; an adaptive
+#: step costs about ten fixed ones)
+_LONG_STEPS = 1e5
 
 # kernel status -> exception type (the kernel's message is the text)
 _NOT_IMPLEMENTED = 14
@@ -202,12 +207,18 @@ def run(scene: Scene, t, force: _checks.Force | None = None, recheck: bool = Fal
 
 
 def _long_run(scene: Scene, t: np.ndarray) -> bool:
-    """Could this integration take more than a fraction of a second?  (Then it
-    runs where Ctrl-C can stop it; short runs skip the thread's ~50 us.)"""
+    """Could this integration take more than a few milliseconds?  Then it runs
+    where Ctrl-C can stop it (a worker thread, a fraction of a millisecond);
+    short runs skip that.  Decided by the expected work: the span in periods of
+    the scene's fastest time scale (the kernel's one time-scale rule, which sees
+    every field: the pivot's force, a steep field, the damping ...), times the
+    steps a period takes at the scene's tolerance, or the fixed steps."""
     if t.size == 0:
         return False
     span = max(abs(float(t[0])), abs(float(t[-1]))) if t.size < 2 or t[-1] >= t[0] else float(np.max(np.abs(t)))
-    if scene.dt > 0 and scene.method not in ("auto", "dop853", "dopri5", "gsl-rk8pd"):
-        return span / scene.dt > 1e5
-    rate = max(1.0, scene.eps ** 0.5, scene.drive_frequency, scene.damping)
-    return span * rate > 1e3 or scene.rtol < 1e-12
+    ts = contract.time_scales(scene)
+    if scene.noise > 0:
+        return span / (scene.dt if scene.dt > 0 else ts.langevin_dt) > _LONG_STEPS
+    if scene.dt > 0 and scene.method not in ("auto", "dop853", "dopri5", "gsl-rk8pd", "vern9", "vern8", "dprkn6"):
+        return span / scene.dt > _LONG_STEPS
+    return contract.expected_steps(scene, span) > _LONG_STEPS / 10

@@ -19,6 +19,7 @@ import numpy as np
 
 from .. import _kernel
 from ..scene import Scene
+from .contract import require
 
 __all__ = ["FrictionTurningPoints", "friction_turning_points"]
 
@@ -98,12 +99,8 @@ def friction_turning_points(scene: Scene, max_points: int = MAX_TURNING_POINTS) 
     from .. import _checks
     if not isinstance(scene, Scene):
         raise TypeError(f"friction_turning_points expects a pendula.Scene, got {type(scene).__name__}")
-    if scene.friction == 0.0:
-        raise ValueError("field 'friction': friction_turning_points needs a scene with dry friction > 0")
-    other = [e for e in scene.effects if e not in ("friction", "torque")]
-    if other:
-        raise ValueError(f"fields 'friction' and {', '.join(repr(o) for o in other)}: the exact energy balance "
-                         "holds for friction (and a torque) on the rigid pendulum in uniform gravity only")
+    # the capability table: dry friction (needed) and a torque on the rigid pendulum, the rest refused by name
+    require(scene, "friction_turning_points")
     n = _checks.count(max_points, "max_points", 1, 10**8)
     times, angles, count, stuck, status = _kernel.friction_turning_v(scene.eps, scene.torque, scene.friction,
                                                                      scene.theta0, scene.v0, n)

@@ -27,6 +27,7 @@ import numpy as np
 from .. import _kernel
 from .._checks import as_float
 from ..scene import Scene
+from .contract import require
 
 __all__ = ["KINDS", "field_of", "potential", "acceleration", "gravity_orbit", "GravityOrbit",
            "small_oscillation_omega"]
@@ -182,6 +183,7 @@ def gravity_orbit(scene: Scene) -> GravityOrbit:
 
     if not isinstance(scene, Scene):
         raise TypeError(f"gravity_orbit: scene must be a pendula.Scene, got {type(scene).__name__}")
+    require(scene, "gravity_orbit")     # the conservative orbit: every effect refused by name
     kind, par = field_of(scene)
     info, status = _kernel.gravity_orbit_v(kind, par, scene.eps, scene.theta0, scene.v0)
     if status:

@@ -1,0 +1,188 @@
+"""The capability table, walked whole: every (tool, system, effect) either
+changes the tool's answer or is refused by name.
+
+For each row of ``pendula.capabilities()`` (one tool on one system) and each
+effect, the tool runs on a small base scene of that system with and without
+the effect: an honoured effect must change the answer; an effect the row does
+not list must raise (a ValueError naming a field the scene turns on, or the
+scene itself refused by the scene rules); a planned one NotImplementedError.
+A tool run on a system it has no row for raises NotImplementedError.  So no
+tool can silently ignore a field, and the table cannot claim what a tool does
+not do.
+"""
+
+import json
+import warnings
+
+import numpy as np
+import pytest
+
+import pendula
+from pendula.systems.contract import EFFECTS
+
+#: each effect's fields, at values that change every tool's answer
+EFFECT_FIELDS = {"damping": dict(damping=0.15), "torque": dict(torque=0.2),
+                 "drive": dict(drive_amplitude=0.3, drive_frequency=0.7),
+                 "friction": dict(friction=0.05), "drag": dict(drag=0.1),
+                 "pivot": dict(pivot_amplitude=0.05, pivot_frequency=5.0), "noise": dict(noise=0.1, seed=1)}
+SYSTEMS = {"rigid": dict(theta0=1.0, v0=0.3), "cord": dict(cord="flexible", theta0=0.0, v0=2.08),
+           "cycloid": dict(guide="cycloid", theta0=0.5, v0=0.2),
+           "gravity": dict(gravity="linear", gravity_gradient=0.2, theta0=1.0, v0=0.3)}
+DRIVEN = dict(damping=0.5, drive_amplitude=1.2, drive_frequency=2 / 3)
+#: two period-1 rotations (the attractor tools' observable is an attractor's state)
+ROTATING = dict(damping=0.5, drive_amplitude=1.35, drive_frequency=2 / 3)
+GRID = {"theta0": [-1.0, 1.0], "v0": [0.0, 1.0]}
+
+
+def _arr(x):
+    return np.asarray(x, dtype=float).ravel()
+
+
+def _force(t, theta, v, params):
+    return 0.05 * np.cos(theta)
+
+
+def _attractors(am):
+    return _arr([np.r_[a.theta, a.v, a.period] for a in am.attractors][0])
+
+
+def _sweep_attractors(ds):
+    return _arr([np.r_[a["theta"], a["v"]] for a in json.loads(ds.attrs["attractors"])][0])
+
+
+#: tool -> (call(scene, force) returning an array, the base fields the tool needs)
+TOOLS = {
+    "simulate": (lambda s, f: _arr(pendula.simulate(s, np.linspace(0, 5, 11), force=f).theta), {}),
+    "find_events": (lambda s, f: _arr(pendula.find_events(s, "departure" if s.cord == "flexible" else "turning",
+                                                          t_end=8.0).t), {}),
+    "period": (lambda s, f: _arr(pendula.period(s)), {}),
+    "numerical_period": (lambda s, f: _arr(pendula.numerical_period(s, periods=2)), {}),
+    "equilibria": (lambda s, f: _arr([(e.theta, *np.real(e.eigenvalues)) for e in pendula.equilibria(s)]), {}),
+    "continue_equilibria": (lambda s, f: _arr([[(e.theta, *np.real(e.eigenvalues)) for e in q]
+                                               for q in pendula.continue_equilibria(s, "eps", 1.2,
+                                                                                    points=3).equilibria]), {}),
+    "periodic_orbit": (lambda s, f: _arr((lambda o: (o.theta, o.v, *np.abs(o.multipliers)))(
+        pendula.periodic_orbit(s, guess=(-0.5, 0.5), force=f))), DRIVEN),
+    "continue_orbit": (lambda s, f: _arr(pendula.continue_orbit(s, (-0.5, 0.5), "drive_amplitude",
+                                                                1.21).to_xarray().theta.values), DRIVEN),
+    "attractor_map": (lambda s, f: _attractors(pendula.attractor_map(s, GRID)), ROTATING),
+    "attractor_continuation": (lambda s, f: _arr(pendula.attractor_continuation(
+        s, GRID, "drive_amplitude", [1.35, 1.36]).theta.values), ROTATING),
+    "sweep:final_well": (lambda s, f: _arr([pendula.sweep(s, {"v0": [2.55, 2.65, 2.75]}, "final_well", t_max=200,
+                                                          force=f)[v].values for v in ("well", "t_decided")]),
+                         dict(damping=0.3)),
+    "sweep:mean_velocity": (lambda s, f: _arr(pendula.sweep(s, {"v0": [1.0, 2.5]}, "mean_velocity", t_max=50,
+                                                            transient=20, force=f).mean_velocity.values),
+                            dict(damping=0.3, torque=0.5)),
+    "sweep:locked": (lambda s, f: _arr([pendula.sweep(s, {"v0": [1.6, 1.8, 2.0]}, "locked", t_max=100,
+                                                      force=f)[v].values for v in ("locked", "t_decided")]),
+                     dict(damping=0.3, torque=0.5)),
+    "sweep:poincare": (lambda s, f: _arr(pendula.sweep(s, {"v0": [1.0, 2.5]}, "poincare", transient=10, samples=4,
+                                                       force=f).theta.values), DRIVEN),
+    "sweep:lyapunov": (lambda s, f: _arr(pendula.sweep(s, {"v0": [1.0]}, "lyapunov", t_max=60, transient=10,
+                                                       force=f).lyapunov.values), DRIVEN),
+    "sweep:attractor": (lambda s, f: _sweep_attractors(pendula.sweep(s, {"v0": [1.0, 2.5]}, "attractor")),
+                        ROTATING),
+    "iv_curve": (lambda s, f: _arr(pendula.iv_curve(s, [0.5, 1.2], direction="up", transient=20,
+                                                    t_max=40).mean_velocity.values), dict(damping=0.3)),
+    "angle_density": (lambda s, f: _arr(pendula.angle_density(s, [0.1, 0.4])), {}),
+    "angle_cdf": (lambda s, f: _arr(pendula.angle_cdf(s, [0.1, 0.4])), {}),
+    "gravity_orbit": (lambda s, f: _arr((lambda o: (o.period, o.theta_max))(pendula.gravity_orbit(s))), {}),
+    "friction_turning_points": (lambda s, f: _arr(pendula.friction_turning_points(s).angles[:5]),
+                                dict(friction=0.05)),
+}
+#: the tools that take a user's force (the 'force' effect is an argument of these only)
+TAKES_FORCE = {"simulate", "periodic_orbit", "sweep:final_well", "sweep:mean_velocity", "sweep:locked",
+               "sweep:poincare", "sweep:lyapunov"}
+#: honoured effects whose answer is invariant by the physics, not ignored (checked by the reason given)
+INVARIANT = {
+    ("period", "cycloid", "torque"): "Huygens: the cycloid is isochronous; a torque moves the centre only",
+    ("numerical_period", "cycloid", "torque"): "Huygens: the cycloid is isochronous",
+    ("equilibria", "rigid", "drag"): "drag ~ v|v| vanishes at rest with its derivative",
+    ("equilibria", "gravity", "drag"): "drag ~ v|v| vanishes at rest with its derivative",
+    ("continue_equilibria", "rigid", "drag"): "drag ~ v|v| vanishes at rest with its derivative",
+    ("continue_equilibria", "gravity", "drag"): "drag ~ v|v| vanishes at rest with its derivative",
+}
+ROWS = {(c.tool, c.system): c for c in pendula.capabilities()}
+
+
+#: a system's base state changed for one tool (a taut cord: its motion has a period)
+SYSTEM_FOR_TOOL = {("numerical_period", "cord"): dict(v0=1.2), ("sweep:final_well", "rigid"): dict(theta0=0.0),
+                   ("sweep:locked", "rigid"): dict(theta0=0.0)}
+
+
+def _scene(system, base, extra, tool=None):
+    kw = dict(SYSTEMS[system])
+    kw.update(SYSTEM_FOR_TOOL.get((tool, system), {}))
+    kw.update(base)
+    kw.update(extra)
+    return pendula.Scene(**kw)
+
+
+def test_every_tool_of_the_table_is_walked():
+    assert {c.tool for c in pendula.capabilities()} == set(TOOLS)
+    assert tuple(EFFECTS) == ("damping", "torque", "drive", "friction", "drag", "pivot", "noise", "force")
+
+
+@pytest.mark.parametrize("tool", sorted(TOOLS))
+def test_tool_honours_or_refuses_every_effect(tool):
+    call, base = TOOLS[tool]
+    for system in SYSTEMS:
+        row = ROWS.get((tool, system))
+        try:
+            s0 = _scene(system, base, {}, tool)
+        except pendula.SceneError:
+            assert row is None or row.needs, (tool, system)     # the scene rules refuse the base itself
+            continue
+        if row is None:
+            with pytest.raises(NotImplementedError, match=tool.split(":")[0]):
+                call(s0, None)
+            continue
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            a0 = call(s0, None)
+        for effect in EFFECTS:
+            if effect == "force" and tool not in TAKES_FORCE:
+                continue
+            on = dict(base)
+            if effect == "noise" and "damping" not in on:
+                on["damping"] = 0.15          # thermal noise comes with damping
+                try:
+                    s0e = _scene(system, on, {}, tool)
+                except pendula.SceneError:
+                    continue
+            else:
+                s0e = s0
+            if effect != "force" and on.get(EFFECTS[effect]):
+                continue                       # the base has it already (a tool's needs)
+            fields = dict(EFFECT_FIELDS.get(effect, {}))
+            if effect == "pivot" and on.get("drive_frequency"):
+                fields["pivot_frequency"] = on["drive_frequency"]     # one forcing period
+            try:
+                s1 = s0e if effect == "force" else _scene(system, on, fields, tool)
+            except pendula.SceneError:
+                assert effect not in row.honours, f"{tool} on {system} honours {effect}, the scene refuses it"
+                continue
+            f = _force if effect == "force" else None
+            where = f"{tool} on the {system} model with {effect}"
+            if effect in row.honours:
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore")
+                    a1 = call(s1, f)
+                    b0 = a0 if s0e is s0 else call(s0e, None)
+                if (tool, system, effect) in INVARIANT:
+                    continue
+                assert a1.shape != b0.shape or not np.array_equal(a1, b0, equal_nan=True), \
+                    f"{where}: honoured by the table, but the answer did not change"
+            elif effect in row.planned:
+                with pytest.raises(NotImplementedError):
+                    call(s1, f)
+            else:
+                with pytest.raises(ValueError) as err:
+                    call(s1, f)
+                on_fields = [EFFECTS[e] for e in EFFECTS if e != "force" and e not in row.honours
+                             and any(getattr(s1, k) for k in EFFECT_FIELDS[e] if k != "seed")]
+                if effect == "force":
+                    on_fields.append("force")
+                assert any(name in str(err.value) for name in on_fields), \
+                    f"{where}: refused, but the message names no refused field: {err.value}"
