@@ -359,7 +359,7 @@ def test_thin_chaotic_set_after_the_cascade_is_found_not_left_undecided():
 
 def test_sweep_figure_of_an_attractor_map_is_drawn(tmp_path):
     pytest.importorskip("matplotlib")
-    from pendula.sweeps import plot_sweep
+    from pendula.plot import plot_sweep
     ds = pendula.sweep(scene(1.35), {"theta0": np.linspace(-3, 3, 5), "v0": np.linspace(-3, 3, 4)}, "attractor",
                        transient=100.0, samples=8)
     assert plot_sweep(ds, tmp_path / "map.png").stat().st_size > 0
@@ -372,7 +372,7 @@ def test_ctrl_c_stops_a_long_attractor_map_within_seconds():
     import time
     code = ("import pendula, numpy as np\nprint('start', flush=True)\n"
             "sc = pendula.Scene(damping=0.5, drive_amplitude=1.2, drive_frequency=2/3)\n"
-            "pendula.attractor_map(sc, {'theta0': np.linspace(-3, 3, 4)}, recurrences=10**6, max_periods=10**6, "
+            "pendula.attractor_map(sc, {'theta0': np.linspace(-3, 3, 4)}, recurrences=10**6, max_periods=2 * 10**5, "
             "threads=1)\nprint('finished', flush=True)")
     p = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                          preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))

@@ -127,11 +127,11 @@ def test_long_work_stops_on_ctrl_c_and_has_a_bounded_identity(tmp_path):
     assert r.stdout.split()[0] == "interrupted", r.stdout
 
     # x02: a store's identity does not grow with its grid (10^6 points: a few hundred bytes, not 20 MB)
-    from pendula.sweeps import _Plan, _layout
+    from pendula._sweep_engine import Plan, layout_of
     scene = pendula.Scene(damping=0.5)
-    plan = _Plan(scene, {"v0": np.linspace(0.0, 3.0, 1_000_000)}, "final_well", 1e-10, 1e-12, 1.0, 0.0, 1, 20000)
-    small = _Plan(scene, {"v0": np.linspace(0.0, 3.0, 10)}, "final_well", 1e-10, 1e-12, 1.0, 0.0, 1, 20000)
-    big_id, small_id = _layout(plan).identity, _layout(small).identity
+    plan = Plan(scene, {"v0": np.linspace(0.0, 3.0, 1_000_000)}, "final_well", 1e-10, 1e-12, 1.0, 0.0, 1, 20000)
+    small = Plan(scene, {"v0": np.linspace(0.0, 3.0, 10)}, "final_well", 1e-10, 1e-12, 1.0, 0.0, 1, 20000)
+    big_id, small_id = layout_of(plan).identity, layout_of(small).identity
     assert len(big_id) < 2000 and abs(len(big_id) - len(small_id)) < 40, len(big_id)
     assert big_id != small_id                    # still names the grid: its length, ends and checksum
     moved = _Plan(scene, {"v0": np.r_[np.linspace(0.0, 3.0, 9), 3.0 + 1e-15]}, "final_well", 1e-10, 1e-12, 1.0,

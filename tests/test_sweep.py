@@ -68,12 +68,16 @@ def test_final_well_with_torque_against_scipy():
             assert ds.well[k] == scipy_final_well(1.0, 0.16, t, 0.0, 2.6, 1e-12)
 
 
-def test_final_well_not_applicable_without_damping_or_with_drive():
+def test_final_well_not_applicable_without_damping_refused_with_drive():
     ds = pendula.sweep(Scene(), over={"v0": [1.0]}, measure="final_well")
     assert int(ds.status[0]) == 2 and np.isnan(ds.well[0])
-    ds = pendula.sweep(Scene(damping=0.1, drive_amplitude=0.5, drive_frequency=1.0), over={"v0": [1.0]},
-                       measure="final_well")
-    assert int(ds.status[0]) == 2
+    # a driven orbit settles in no well: the capability table refuses the drive, naming its field
+    with pytest.raises(ValueError, match="drive_amplitude"):
+        pendula.sweep(Scene(damping=0.1, drive_amplitude=0.5, drive_frequency=1.0), over={"v0": [1.0]},
+                      measure="final_well")
+    with pytest.raises(ValueError, match="drive_amplitude"):
+        pendula.sweep(Scene(damping=0.1, drive_frequency=1.0), over={"drive_amplitude": [0.0, 0.5]},
+                      measure="final_well")
 
 
 def test_final_well_not_settled_by_limit_is_reported():

@@ -10,9 +10,11 @@ program pendula_ellip
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit, input_unit
   use pendula_kinds, only: dp
   use pendula_elliptic, only: jacobi_eval_varm
-  use pendula_text, only: strip_comment, split_tokens, parse_real, max_tokens
+  use pendula_text, only: strip_comment, split_tokens, parse_real, max_tokens, command_arg
   implicit none
-  character(len=4096) :: line, path
+  character(len=4096) :: line
+  character(len=:), allocatable :: path
+  character(len=512) :: argmsg
   character(len=:), allocatable :: body
   real(dp), allocatable :: u(:), m(:), mc(:), tmp(:,:), sn(:), cn(:), dn(:), am(:)
   real(dp) :: x(3)
@@ -22,14 +24,15 @@ program pendula_ellip
   unit = input_unit
   if (command_argument_count() > 1) call fail(0, 'usage: pendula-ellip [FILE]')
   if (command_argument_count() == 1) then
-    call get_command_argument(1, path)
-    if (trim(path) == '-h' .or. trim(path) == '--help') then
+    call command_arg(1, path, argmsg)
+    if (path == '-h' .or. path == '--help') then
       write(output_unit, '(a)') 'usage: pendula-ellip [FILE]   rows "u m" or "u m mc" -> "sn cn dn am"'
       stop
     end if
-    if (trim(path) /= '-') then
-      open(newunit=unit, file=trim(path), status='old', action='read', iostat=ios)
-      if (ios /= 0) call fail(0, 'cannot open input file "' // trim(path) // '"')
+    if (len_trim(argmsg) > 0) call fail(0, trim(argmsg))
+    if (path /= '-') then
+      open(newunit=unit, file=path, status='old', action='read', iostat=ios)
+      if (ios /= 0) call fail(0, 'cannot open input file "' // path // '"')
     end if
   end if
 

@@ -27,8 +27,10 @@ program pendula_run
   use pendula_simulate, only: simulate_scene, select_model, sim_ok, simulate_status_text, model_orbit_facts, &
     auto_method, method_name
   use pendula_sweep, only: sweep_scene_csv
+  use pendula_text, only: command_arg
   implicit none
-  character(len=4096) :: path, out, arg, orbit_out
+  character(len=:), allocatable :: path, out, arg, orbit_out
+  character(len=512) :: argmsg
   character(len=512) :: line
   type(outfile_t) :: f_out, f_orbit
   character(len=512), allocatable :: log_rows(:)
@@ -54,10 +56,11 @@ program pendula_run
   out = ''
   i = 1
   do while (i <= nargs)
-    call get_command_argument(i, arg)
+    call command_arg(i, arg, argmsg)
     if (arg == '-o' .or. arg == '--output') then
       if (i == nargs) call fail('option -o needs a file name')
-      call get_command_argument(i + 1, out)
+      call command_arg(i + 1, out, argmsg)
+      if (len_trim(argmsg) > 0) call fail(trim(argmsg))
       i = i + 2
     else if (arg == '-h' .or. arg == '--help') then
       write(output_unit, '(a)') 'usage: pendula-run SCENE.nml [-o OUT.csv] [--check]'
@@ -65,34 +68,35 @@ program pendula_run
     else if (arg == '--check') then
       check_only = .true.
       i = i + 1
-    else if (len_trim(path) == 0) then
+    else if (len(path) == 0) then
+      if (len_trim(argmsg) > 0) call fail(trim(argmsg))
       path = arg
       i = i + 1
     else
       call fail('unexpected argument "' // trim(arg) // '" (usage: pendula-run SCENE.nml [-o OUT.csv] [--check])')
     end if
   end do
-  if (len_trim(path) == 0) call fail('usage: pendula-run SCENE.nml [-o OUT.csv] [--check]')
+  if (len(path) == 0) call fail('usage: pendula-run SCENE.nml [-o OUT.csv] [--check]')
 
-  call read_scene(trim(path), sc, status, msg)
+  call read_scene(path, sc, status, msg)
   if (status /= 0) call fail(trim(msg))
   ! quiet: no gfortran note on the IEEE flags a literal such as 1e-400 raised (it reads as 0, by the rule)
   if (check_only) stop, quiet=.true.   ! --check: read and check the scene, run nothing
   call select_model(sc, i, status, msg)
-  if (status /= sim_ok) call fail(trim(path) // ': ' // trim(msg), 3)
+  if (status /= sim_ok) call fail(path // ': ' // trim(msg), 3)
 
   ! a scene with a grid is run by pendula_sweep (OpenMP), CSV to OUT through
   ! the checked writer (a temporary name renamed at the end; a write error,
   ! such as a full disk, is exit 5 and leaves nothing)
   if (sc%n_grid > 0) then
-    if (len_trim(out) == 0) out = '-'
-    call out_open(f_out, trim(out), status)
-    if (status /= 0) call fail_io('cannot write "' // trim(out) // '"', status)
+    if (len(out) == 0) out = '-'
+    call out_open(f_out, out, status)
+    if (status /= 0) call fail_io('cannot write "' // out // '"', status)
     call sweep_scene_csv(sc, f_out, status, msg)
-    if (status == 5) call fail_io('cannot write "' // trim(out) // '"', f_out%err)
-    if (status /= 0) call fail(trim(path) // ': ' // trim(msg), status)
+    if (status == 5) call fail_io('cannot write "' // out // '"', f_out%err)
+    if (status /= 0) call fail(path // ': ' // trim(msg), status)
     call out_close(f_out, status)
-    if (status /= 0) call fail_io('cannot write "' // trim(out) // '"', status)
+    if (status /= 0) call fail_io('cannot write "' // out // '"', status)
     stop, quiet=.true.
   end if
   want_traj = .false.
@@ -132,14 +136,14 @@ program pendula_run
     stop, quiet=.true.
   end if
   ! everything goes through the checked writer: OUT (or standard output, '-')
-  if (len_trim(out) == 0) out = '-'
-  call out_open(f_out, trim(out), status)
-  if (status /= 0) call fail_io('cannot write "' // trim(out) // '"', status)
+  if (len(out) == 0) out = '-'
+  call out_open(f_out, out, status)
+  if (status /= 0) call fail_io('cannot write "' // out // '"', status)
   two_files = want_traj .and. want_orbit .and. out /= '-'
   if (two_files) then
     orbit_out = beside(out, '_orbits.csv')
-    call out_open(f_orbit, trim(orbit_out), status)
-    if (status /= 0) call fail_io('cannot write "' // trim(orbit_out) // '"', status)
+    call out_open(f_orbit, orbit_out, status)
+    if (status /= 0) call fail_io('cannot write "' // orbit_out // '"', status)
   end if
   if (want_traj) then
     call header(f_out)
@@ -151,7 +155,7 @@ program pendula_run
     do i = 1, nmem
       member = scene_member(sc, i)
       call simulate_scene(member, t, theta, v, e, stats, method, status, msg)
-      if (status /= sim_ok) call fail(trim(path) // ': ' // trim(msg), 4)
+      if (status /= sim_ok) call fail(path // ': ' // trim(msg), 4)
       do j = 1, size(t)
         if (swept) then
           call out_line(f_out, out_reals([values(i), t(j), theta(j), v(j), e(j)]))
@@ -172,12 +176,12 @@ program pendula_run
   ! written, made durable and renamed into place only now; errors are exit 5
   if (two_files) then
     call out_close(f_orbit, status)
-    if (status /= 0) call fail_io('cannot write "' // trim(orbit_out) // '"', status)
+    if (status /= 0) call fail_io('cannot write "' // orbit_out // '"', status)
   end if
   call out_close(f_out, status)
   if (status /= 0) then
     if (out == '-') call fail_io('cannot write to standard output', status)
-    call fail_io('cannot write "' // trim(out) // '"', status)
+    call fail_io('cannot write "' // out // '"', status)
   end if
 
 contains
@@ -186,9 +190,9 @@ contains
   !> '.csv', then the suffix ('_orbits.csv', '_flips.csv').
   pure function beside(path, suffix) result(name)
     character(len=*), intent(in) :: path, suffix
-    character(len=len_trim(path) + len(suffix)) :: name
+    character(len=len(path) + len(suffix)) :: name
     integer :: j
-    j = len_trim(path)
+    j = len(path)
     if (j > 4) then
       if (path(j - 3:j) == '.csv') j = j - 4
     end if
@@ -206,19 +210,19 @@ contains
     type(outfile_t) :: f_flips
     integer :: k, m, nfl, stp, st, meth
     logical :: two
-    character(len=4096) :: flips_out
+    character(len=:), allocatable :: flips_out
     character(len=64) :: pre
     character(len=10), parameter :: stops(0:2) = [character(len=10) :: 't_end', 'max_flips', 'min_flight']
     allocate(x(size(t)), y(size(t)), r(size(t)), stat=st)
     if (st /= 0) call fail_memory(size(t))
-    if (len_trim(out) == 0) out = '-'
-    call out_open(f_out, trim(out), st)
-    if (st /= 0) call fail_io('cannot write "' // trim(out) // '"', st)
+    if (len(out) == 0) out = '-'
+    call out_open(f_out, out, st)
+    if (st /= 0) call fail_io('cannot write "' // out // '"', st)
     two = out /= '-'
     if (two) then
       flips_out = beside(out, '_flips.csv')
-      call out_open(f_flips, trim(flips_out), st)
-      if (st /= 0) call fail_io('cannot write "' // trim(flips_out) // '"', st)
+      call out_open(f_flips, flips_out, st)
+      if (st /= 0) call fail_io('cannot write "' // flips_out // '"', st)
     end if
     call header(f_out)
     if (cord_integrated(sc)) then
@@ -240,8 +244,8 @@ contains
     do m = 1, nmem
       member = scene_member(sc, m)
       call cord_scene_run(member, t, theta, v, x, y, r, flips, nfl, stp, stats, meth, st)
-      if (st == sim_cord_effects) call fail(trim(path) // ': ' // trim(simulate_status_text(st)))
-      if (st /= 0) call fail(trim(path) // ': ' // trim(simulate_status_text(st)), 4)
+      if (st == sim_cord_effects) call fail(path // ': ' // trim(simulate_status_text(st)))
+      if (st /= 0) call fail(path // ': ' // trim(simulate_status_text(st)), 4)
       e = 0.5_dp * v * v + 2.0_dp * member%eps * sin(0.5_dp * theta)**2
       pre = ''
       if (swept) pre = out_reals([values(m)]) // ','
@@ -265,17 +269,17 @@ contains
     else
       call flip_log(f_flips)
       call out_close(f_flips, st)
-      if (st /= 0) call fail_io('cannot write "' // trim(flips_out) // '"', st)
+      if (st /= 0) call fail_io('cannot write "' // flips_out // '"', st)
     end if
     call out_close(f_out, st)
-    if (st /= 0) call fail_io('cannot write "' // trim(out) // '"', st)
+    if (st /= 0) call fail_io('cannot write "' // out // '"', st)
   end subroutine run_cord
 
   !> The flip log of the flexible cord's runs (rows gathered in log_rows).
   subroutine flip_log(f)
     type(outfile_t), intent(inout) :: f
     integer :: i
-    call out_line(f, '# pendula-run flip log ' // trim(path))
+    call out_line(f, '# pendula-run flip log ' // path)
     call out_line(f, 'member,t_leave,theta_leave,t_return,theta_return,xi_before,xi_after,v_leave,v_return,' // &
       'run_stop_reason')
     do i = 1, size(log_rows)
@@ -291,7 +295,7 @@ contains
       member = scene_member(sc, i)
       call model_orbit_facts(member, has_facts, regime, orbit_k, orbit_period_value, orbit_theta_max_value, status)
       if (has_facts) then   ! the cycloid and gravity models' orbit facts
-        if (status /= 0) call fail(trim(path) // ': ' // trim(simulate_status_text(status)), 4)
+        if (status /= 0) call fail(path // ': ' // trim(simulate_status_text(status)), 4)
         call out_line(f, out_reals([member%theta0, member%v0, member%eps]) // ',' // &
           trim(regime_names(regime)) // ',' // &
           out_reals([orbit_k, orbit_period_value, merge(0.0_dp, two_pi / orbit_period_value, &
@@ -309,7 +313,7 @@ contains
     type(outfile_t), intent(inout) :: f
     character(len=:), allocatable :: summary
     integer :: a, b
-    call out_line(f, '# pendula-run ' // trim(path))
+    call out_line(f, '# pendula-run ' // path)
     ! the summary holds several lines: one out_line each
     summary = '# ' // trim(scene_summary(sc)) // new_line('a')
     a = 1
@@ -339,7 +343,7 @@ contains
     integer, intent(in) :: n
     character(len=32) :: num
     write(num, '(i0)') n
-    call fail(trim(path) // ': not enough memory for the arrays of ' // trim(num) // ' samples', 4)
+    call fail(path // ': not enough memory for the arrays of ' // trim(num) // ' samples', 4)
   end subroutine fail_memory
 
   subroutine fail_io(text, err)

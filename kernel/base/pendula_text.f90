@@ -3,7 +3,7 @@ module pendula_text
   use pendula_kinds, only: dp
   implicit none
   private
-  public :: strip_comment, split_tokens, parse_real, max_tokens
+  public :: strip_comment, split_tokens, parse_real, max_tokens, command_arg
 
   integer, parameter :: max_tokens = 16
 
@@ -82,5 +82,24 @@ contains
     read(tok, *, iostat=ios) x
     ok = ios == 0
   end subroutine parse_real
+
+  !> Command-line argument i, exactly as given (its length from the system), and
+  !> msg /= '' when it cannot be used as a file name: Fortran drops the trailing
+  !> blanks of a file name on open, so "out.csv " would name out.csv, another
+  !> file than the one given (the batch programs refuse it, naming it).
+  subroutine command_arg(i, arg, msg)
+    integer, intent(in) :: i
+    character(len=:), allocatable, intent(out) :: arg
+    character(len=*), intent(out) :: msg
+    integer :: n, st
+    msg = ''
+    call get_command_argument(i, length=n, status=st)
+    allocate(character(len=max(n, 0)) :: arg)
+    if (n > 0) call get_command_argument(i, arg, status=st)
+    if (n > 0) then
+      if (arg(n:n) == ' ') msg = 'argument "' // arg // '" ends in a blank: a file name must not (the ' // &
+        'blank would be dropped and another file named)'
+    end if
+  end subroutine command_arg
 
 end module pendula_text

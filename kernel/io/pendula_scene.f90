@@ -664,6 +664,21 @@ contains
     end select
   end subroutine set_swept
 
+  !> Any field a grid can sweep, set to a value (the griddable fields of check_grid).
+  pure subroutine set_field(m, field, value)
+    type(scene_t), intent(inout) :: m
+    character(len=*), intent(in) :: field
+    real(dp), intent(in) :: value
+    select case (trim(field))
+    case ('drive_phase');     m%drive_phase = value
+    case ('pivot_amplitude'); m%pivot_amplitude = value
+    case ('pivot_frequency'); m%pivot_frequency = value
+    case ('friction');        m%friction = value
+    case ('drag');            m%drag = value
+    case default;             call set_swept(m, field, value)
+    end select
+  end subroutine set_field
+
   !> Every rule about a scene.  g and length (NaN: not given) settle eps.
   !> status 0: fine (eps set, outputs default to 'trajectory'); otherwise
   !> msg names the field.
@@ -1063,7 +1078,10 @@ contains
     character(len=16), parameter :: measures(5) = [character(len=16) :: 'final_well', 'mean_velocity', &
       'locked', 'poincare', 'lyapunov']
     character(len=1) :: kc
-    integer :: k, nv, nr
+    integer :: k, nv, nr, j
+    real(dp) :: ends(2)
+    character(len=512) :: m2
+    type(scene_t), allocatable :: m
     msg = ''
     do k = 1, sc%n_grid
       if (.not. any(griddable == sc%grid(k))) then
@@ -1117,6 +1135,23 @@ contains
         end if
         sc%grid_n(k) = nint(sc%grid_range(3, k))
       end if
+      ! every grid value must make a valid scene, as a member of the grid (the rules of value_rules: the
+      ! same refusal as pendula.sweep's, which asks them of Scene.replace): the ends of each axis
+      if (nv > 0) then
+        ends = [minval(sc%grid_values(1:nv, k)), maxval(sc%grid_values(1:nv, k))]
+      else
+        ends = sc%grid_range(1:2, k)
+      end if
+      do j = 1, 2
+        allocate(m, source=sc)
+        call set_field(m, sc%grid(k), ends(j))
+        call value_rules(m, m2)
+        deallocate(m)
+        if (len_trim(m2) > 0) then
+          msg = 'field ''grid' // kc // ''' (' // trim(sc%grid(k)) // ' = ' // trim(num_text(ends(j))) // '): ' // &
+                trim(m2); return
+        end if
+      end do
     end do
     if (len_trim(sc%measure) > 0 .and. .not. any(measures == sc%measure)) then
       msg = 'field ''measure'' must be one of final_well, mean_velocity, locked, poincare, lyapunov; got ''' &

@@ -47,10 +47,11 @@ from .systems.gravity import gravity_orbit  # noqa: E402
 from .systems.cord import cord_state, flip_map, flip_sequence  # noqa: E402
 from .systems.friction import FrictionTurningPoints, friction_turning_points  # noqa: E402
 # sweeps over parameter grids; xarray is imported only when a sweep runs
-from .sweeps import attractor_continuation, attractor_map, iv_curve, sweep  # noqa: E402
+from .sweeps import sweep  # noqa: E402
+from .ivcurve import iv_curve  # noqa: E402
 # the Josephson junction in laboratory units (RCSJ on the pendulum)
 from .junction import Junction, SwitchingCurrents  # noqa: E402
-from .dynamics import Equilibrium, PeriodicOrbit, equilibria, periodic_orbit  # noqa: E402
+from .dynamics import Equilibrium, PeriodicOrbit, attractor_continuation, attractor_map, equilibria, periodic_orbit  # noqa: E402,E501
 from .dynamics import (Bifurcation, Branch, ContinuationError, EquilibriumBranch, continue_equilibria,  # noqa: E402
                        continue_orbit)
 from .spectrum import precompute_wisdom, wisdom_path  # noqa: E402

@@ -32,6 +32,7 @@ import sys
 
 import numpy as np
 
+from ._checks import path as _checks_path
 from ._files import gallery_dir
 from ._optional import EXIT_MISSING_EXTRA, MissingExtraError, require
 
@@ -230,7 +231,6 @@ def cmd_demo(args) -> int:
     import contextlib
     import io
     import json
-    import pathlib
 
     from .demos.cord import cord_demo
     from .demos import sweeps as sweep_demos
@@ -241,7 +241,11 @@ def cmd_demo(args) -> int:
     for module in ("matplotlib", "xarray", "tqdm", "scipy"):  # figures; sweeps (scipy: their NetCDF files)
         require(module, "all", "pendula demo")
     verbose = args.verbose
-    out = pathlib.Path(args.output)
+    try:
+        out = _checks_path(args.output, "--output")     # the one checker: '' is refused, never the current folder
+    except (TypeError, ValueError) as exc:
+        print(f"pendula demo: {exc}", file=sys.stderr)
+        return 2
     if verbose:
         print_elliptic_table()
     else:
@@ -359,9 +363,78 @@ def cmd_bench(args) -> int:
 
 def cmd_sweep(args) -> int:
     """pendula sweep SCENE -o OUT: the dataset (a Zarr store, resumable) and its figure."""
-    from .sweeps import cli_main
+    return sweep_main(args)
 
-    return cli_main(args)
+
+def sweep_main(args) -> int:
+    """``pendula sweep SCENE.nml -o OUT``: the dataset (the Zarr store OUT/sweep.zarr; with ``--netcdf``
+    also OUT/sweep.nc) and its figure (OUT/sweep.png).
+
+    One line on standard error for every failure, and the exit status of
+    pendula-run: 2 bad scene or arguments (``--threads``, ``--workers``,
+    ``--chunk-points`` out of range), 3 the scene's model is not one a sweep
+    runs, 4 the computation failed, 5 the output cannot be written (OUT is a
+    file, a device, read-only, a full disk, or another sweep is writing it);
+    nothing is left under a final name after a failure (the resumable store
+    stays).  A cluster started for ``--workers`` is closed on every path."""
+    import contextlib
+
+    from ._checks import count, path, threads as check_threads
+    from ._files import atomic_path
+    from ._store import StoreBusyError
+    from .plot import plot_sweep
+    from .scene import Scene, SceneError
+    from .sweeps import sweep
+
+    def say(msg: str, code: int) -> int:
+        print(f"pendula sweep: {msg}", file=sys.stderr)
+        return code
+
+    try:
+        out = path(args.output, "--output")     # the one checker: '' is refused, never the current folder
+        if getattr(args, "netcdf", False):     # before the sweep runs: a missing package is one line, exit 6
+            require("scipy.io", "sweep", "pendula sweep --netcdf (NetCDF3 through SciPy)")
+        workers = count(args.workers, "--workers", 0, 256)
+        threads = check_threads(args.threads, "--threads")
+        chunk_points = count(args.chunk_points, "--chunk-points", 1)
+        scene = Scene.from_file(args.scene)
+        if not scene.grid:
+            raise SceneError(f"{args.scene}: field 'grid' is empty: a sweep scene names 1 to 3 axes")
+        if out.exists() and not out.is_dir():
+            raise NotADirectoryError(20, "is not a folder", str(out))
+        with contextlib.ExitStack() as stack:
+            client = None
+            if workers:
+                from ._cluster import local_client
+                client = stack.enter_context(local_client(workers))   # closed, cluster and all, on leaving
+            ds = sweep(scene, out=out, chunk_points=chunk_points, client=client, threads=threads,
+                       progress=not args.quiet)
+        files = [out / "sweep.zarr"]
+        if getattr(args, "netcdf", False):
+            with atomic_path(out / "sweep.nc") as tmp:
+                ds.to_netcdf(tmp, engine="scipy")
+            files.append(out / "sweep.nc")
+        files.append(plot_sweep(ds, out / "sweep.png"))
+    except (SceneError, ValueError, TypeError) as exc:
+        return say(str(exc), 2)
+    except NotImplementedError as exc:
+        return say(f"{args.scene}: {exc}", 3)
+    except StoreBusyError as exc:     # another sweep writes the same output folder
+        return say(exc.strerror, 5)
+    except OSError as exc:
+        where = f"{exc.filename}: " if exc.filename else f"{out}: "
+        return say(f"cannot write the output: {where}{exc.strerror or exc}", 5)
+    except (ArithmeticError, RuntimeError, MemoryError) as exc:
+        return say(f"{args.scene}: {exc}", 4)
+    except Exception as exc:    # noqa: BLE001 - the Dask cluster failed (a worker died: KilledWorker ...)
+        if not type(exc).__module__.startswith(("distributed", "dask")):
+            raise
+        first = (str(exc).strip().splitlines() or [type(exc).__name__])[0]
+        return say(f"{args.scene}: the Dask cluster failed ({type(exc).__name__}: {first})", 4)
+    st = ds.status.values
+    print(f"pendula sweep: {st.size} points, {np.mean(st == 0) * 100:.1f} % decided -> "
+          f"{', '.join(map(str, files))}")
+    return 0
 
 
 def cmd_models(args) -> int:
@@ -450,7 +523,7 @@ def main(argv=None) -> int:
     p.set_defaults(func=cmd_spectrum)
     p = sub.add_parser("models", help="the models pendula knows, the effects each accepts, which keep the exact path")
     p.set_defaults(func=cmd_models)
-    # sweeps: the substance is in pendula.sweeps
+    # sweeps: the substance is in pendula.sweeps (the engine in pendula._sweep_engine)
     p = sub.add_parser("sweep", help="a sweep scene (grid + measure): OUT/sweep.zarr and OUT/sweep.png; resumes")
     p.add_argument("scene", help="scene file with 'grid' and 'measure'")
     p.add_argument("-o", "--output", default="out/sweep", help="output folder (chunks, dataset, figure)")

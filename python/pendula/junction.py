@@ -319,7 +319,7 @@ class Junction:
         >>> r.step.values.tolist(), (r.voltage / (f * pendula.junction.FLUX_QUANTUM)).values.tolist()
         ([[0.0, 1.0]], [[0.0, 1.0]])
         """
-        from .sweeps import iv_curve
+        from .ivcurve import iv_curve
         currents = _checks.grid_values(currents, "parameter 'currents'")
         wp = self.plasma_frequency
         tr = 200.0 if transient is None else _checks.real(transient, "parameter 'transient'", 0.0) * wp

@@ -17,7 +17,7 @@ import warnings
 
 import numpy as np
 
-from . import plot
+from . import _checks, plot
 from ._files import staging, write_csv
 from ._optional import MissingExtraError
 from ._progress import Progress
@@ -63,7 +63,7 @@ def run_scene(scene: Scene, outdir, stem: str | None = None, progress: bool = Tr
     is created with its missing parent folders (``mkdir -p``), as every output
     folder is; a file where the folder should be is a NotADirectoryError.
     """
-    outdir = pathlib.Path(outdir)
+    outdir = _checks.path(outdir, "outdir")     # the one checker: '' is refused, never the current folder
     if outdir.exists() and not outdir.is_dir():
         raise NotADirectoryError(errno.ENOTDIR, "is not a folder (the output folder of a run)", str(outdir))
     outdir.mkdir(parents=True, exist_ok=True)

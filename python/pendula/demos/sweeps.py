@@ -14,7 +14,9 @@ import numpy as np
 
 from ..elliptic import ellipe
 from ..scene import Scene
-from ..sweeps import iv_curve, plot_sweep, sweep
+from ..ivcurve import iv_curve
+from ..plot import plot_sweep
+from ..sweeps import sweep
 from .._files import save_figure, open_text  # the one writer: regular files only, whole or absent
 
 #: Suzuki & Suzuki, section 8.2: v0 -> the wells n (theta ~ 2 pi n) the text lists

@@ -6,12 +6,16 @@
   the rest of this package builds on;
 - :mod:`.continuation`: periodic orbits and equilibria followed in a parameter, with their
   bifurcations (on the same core);
-- :mod:`.attractors`: the attractors of the stroboscopic map and their basins.
+- :mod:`.attractors`: the attractors of the stroboscopic map and their basins (the records and the
+  measures of a basin map); :mod:`.attractor_maps` computes the maps (on the sweep engine),
+  :mod:`.attractor_continuation` follows them over a parameter.
 
 The public names are importable from :mod:`pendula` as well.
 """
 
 from .attractors import Attractor, AttractorMap
+from .attractor_maps import attractor_map
+from .attractor_continuation import attractor_continuation
 from .continuation import (BIFURCATION_KINDS, Bifurcation, Branch, ContinuationError, EquilibriumBranch,
                            continue_equilibria, continue_orbit)
 from .equilibria import EQUILIBRIUM_KINDS, Equilibrium, equilibria
@@ -19,4 +23,4 @@ from .periodic import PeriodicOrbit, periodic_orbit
 
 __all__ = ["Equilibrium", "equilibria", "EQUILIBRIUM_KINDS", "PeriodicOrbit", "periodic_orbit",
            "Attractor", "AttractorMap", "continue_orbit", "continue_equilibria", "Branch", "Bifurcation",
-           "EquilibriumBranch", "ContinuationError", "BIFURCATION_KINDS"]
+           "EquilibriumBranch", "ContinuationError", "BIFURCATION_KINDS", "attractor_map", "attractor_continuation"]

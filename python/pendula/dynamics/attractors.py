@@ -37,7 +37,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..scene import Scene
+from .._sweep_engine import edge_mask
 
 __all__ = ["Attractor", "AttractorMap", "AttractorSet", "label_attractors", "basin_entropy",
            "uncertainty_exponent", "boundary_fraction", "cell_ids", "edge_mask"]
@@ -235,27 +235,6 @@ def boundary_fraction(labels) -> float:
     0.5
     """
     return float(edge_mask(np.asarray(labels)).mean())
-
-
-def edge_mask(ans: np.ndarray) -> np.ndarray:
-    """The points of a grid of answers with a grid neighbour (along any axis) that answers differently.
-
-    Examples
-    --------
-    >>> from pendula.dynamics.attractors import edge_mask
-    >>> edge_mask(np.array([0, 0, 1, 1])).tolist()
-    [False, True, True, False]
-    """
-    edge = np.zeros(ans.shape, dtype=bool)
-    for ax in range(ans.ndim):
-        d = np.diff(ans, axis=ax) != 0
-        lo = [slice(None)] * ans.ndim
-        hi = [slice(None)] * ans.ndim
-        lo[ax] = slice(0, -1)
-        hi[ax] = slice(1, None)
-        edge[tuple(lo)] |= d
-        edge[tuple(hi)] |= d
-    return edge
 
 
 def basin_entropy(labels, box: int = 5) -> tuple[float, float]:
