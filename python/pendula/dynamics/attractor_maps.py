@@ -659,9 +659,16 @@ def _attractor_map_samples(scene, over, *, transient, samples, tol, merge_tol, m
     labels, atts = label_attractors(pc.theta.values, pc.v.values, tol=tol, merge_tol=merge_tol,
                                     max_period=max_period, cell=cell)
     st = pc.status.values
+    # a point still settling onto a cycle is not settled (status 1): undecided, never a guess
+    settling = (labels == -2) & (st == 0)
     labels = np.where(st == 0, labels, -1)
+    labels[settling] = -1
     dims = tuple(d for d in pc.theta.dims if d != "sample")
     ds = pc[["status"]].load() if hasattr(pc, "load") else pc[["status"]]
+    if settling.any():
+        st2 = ds.status.values.copy()
+        st2[settling] = 1
+        ds["status"] = (ds.status.dims, st2, ds.status.attrs)
     ds = ds.drop_vars([c for c in ds.coords if c not in dims])
     extra = {k: pc.attrs[k] for k in pc.attrs if k not in ("measure", "title")}
     extra.update({"method": "samples", "tol": tol, "merge_tol": merge_tol, "cell": cell,

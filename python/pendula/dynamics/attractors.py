@@ -112,7 +112,12 @@ def label_attractors(theta, v, *, tol=1e-6, merge_tol=1e-3, max_period=None, cel
     Returns
     -------
     labels : numpy.ndarray of int, shape (...)
-        The attractor of each point; -1 where the samples are not finite.
+        The attractor of each point; -1 where the samples are not finite, -2
+        where they are not settled: no cycle recurs within ``tol`` yet, but the
+        distance of the samples from a cycle of some period up to
+        ``max_period`` still shrinks (the later half of the samples within
+        half the earlier half's distance and below 0.1): an orbit converging
+        slowly to a periodic attractor is undecided, never called chaotic.
     attractors : list of Attractor
 
     Examples
@@ -147,6 +152,18 @@ def label_attractors(theta, v, *, tol=1e-6, merge_tol=1e-3, max_period=None, cel
         period[todo[d < tol]] = k
     labels = np.full(n, -1, dtype=np.int64)
     found = []   # (period, theta points, v points, indices)
+    # not settled: no period yet, but the samples still close in on a cycle of some period k (its distances
+    # after k periods fall from the earlier half of the samples to the later): undecided, not chaotic
+    settling = np.zeros(n, dtype=bool)
+    todo = np.flatnonzero(finite & (period == 0))
+    for k in range(1, kmax + 1):
+        if todo.size == 0 or S - k < 4:
+            break
+        d = _dist(th[todo, k:], vv[todo, k:], th[todo, :-k], vv[todo, :-k])
+        h = d.shape[1] // 2
+        late, early = d[:, h:].max(axis=1), d[:, :h].max(axis=1)
+        settling[todo[(late < 0.5 * early) & (late < 0.1)]] = True
+    labels[settling] = -2
 
     # periodic: one representative cycle per attractor, taken in a fixed order of the points
     per = np.flatnonzero(period > 0)
@@ -174,7 +191,7 @@ def label_attractors(theta, v, *, tol=1e-6, merge_tol=1e-3, max_period=None, cel
             found.append(("periodic", int(k), rep_th.copy(), rep_v.copy(), idx[members]))
 
     # chaotic: connected components of the graph point - visited cell
-    cha = np.flatnonzero(finite & (period == 0))
+    cha = np.flatnonzero(finite & (period == 0) & ~settling)
     if cha.size:
         ci = np.floor((th[cha] + math.pi) / cell).astype(np.int64)
         cj = np.floor(vv[cha] / cell).astype(np.int64)
