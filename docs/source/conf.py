@@ -185,6 +185,8 @@ API_GROUPS = [
                                        "EquilibriumBranch", "ContinuationError"]),
     ("The Josephson junction", ["Junction", "SwitchingCurrents"]),
 ]
+# the pendulum of the classroom (metres, seconds, degrees)
+API_GROUPS += [("The pendulum in laboratory units", ["Pendulum", "Swing"])]
 
 
 def _write_api() -> None:

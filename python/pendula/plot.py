@@ -11,7 +11,9 @@ One function per result, each taking what the library returns and an optional
   with the Lyapunov exponent of a ``lyapunov`` sweep beside it);
 - :func:`basins` -- an attractor map, one colour per attractor, the attractors drawn;
 - :func:`iv` -- an I-V curve, both directions, the Shapiro steps labelled;
-- :func:`fractions` -- basin fractions over a parameter, as stacked areas.
+- :func:`fractions` -- basin fractions over a parameter, as stacked areas;
+- :func:`animate` -- the pendulum swinging, written as a GIF (Pillow's
+  writer, nothing else needed) or an MP4 (FFmpeg's writer: ``ffmpeg`` on the PATH).
 
 The figures of ``pendula run`` (:func:`time_series`, :func:`phase_portrait`,
 :func:`spectra_figure` ...) take a scene and its runs, return the
@@ -36,6 +38,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from ._optional import require
 from ._files import save_figure  # the one writer: regular files only, whole or absent
+from .animation import animate  # noqa: F401  (pendula.plot.animate: GIF or MP4 through matplotlib's writers)
 
 if TYPE_CHECKING:   # matplotlib and xarray are optional: named in annotations only
     import matplotlib.axes
