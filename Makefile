@@ -35,11 +35,11 @@ bench: $(VENV)/.installed
 bench-peers: $(VENV)/.installed
 	$(PY) -m pip install -q "scipy>=1.11" "scikit-sundae>=1.0" "numbalsoda>=0.3.4" "numba>=0.59" "diffrax>=0.6" "jax>=0.4.30"
 
+# checked with dpkg (elsewhere: gfortran, pkg-config's gsl and fftw3, python3's venv);
+# what is missing is installed with apt-get as root or through sudo, or else named with
+# the commands that install it on Debian, Fedora and macOS, and make stops
 system-deps:
-	@dpkg -s $(APT_PKGS) >/dev/null 2>&1 || { \
-	  echo "installing system packages: $(APT_PKGS)"; \
-	  $(SUDO) apt-get update -qq && \
-	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $(APT_PKGS); }
+	@APT_PKGS="$(APT_PKGS)" PYTHON="$(PYTHON)" bash tools/system_deps.sh
 
 $(VENV)/.deps: pyproject.toml | system-deps
 	@[ -x $(PY) ] || $(PYTHON) -m venv $(VENV)
