@@ -225,3 +225,16 @@ def _offline_animation_player() -> None:
 
 
 _offline_animation_player()
+
+
+# ---- figures carry their smallest text size (pixels) for the browser check ----
+# docs/tools/figure_text.py: every PNG the build writes gets a text chunk
+# 'pendula-min-text-px'; tests/docs_browser_check.py fails a figure shown with
+# text under 9 px
+sys.path.insert(0, str(DOCS / "tools"))
+import figure_text  # noqa: E402
+
+figure_text.install()
+
+# ---- code blocks wrap within the column (docs/source/_static/pendula.css) ----
+html_css_files = ["pendula.css"]
