@@ -1,6 +1,6 @@
 # pendula: two commands do everything on a fresh Debian 12 machine.
 #   make demo   set up what is missing, then run the main job on its default
-#   make test   set up what is missing, then run the test suite
+#   make test   set up what is missing, then run the test suite (make test-full: its expensive part)
 #   make wheel  a portable, self-contained wheel in dist/ (and the sdist); make test-wheel tests both
 # Each step is skipped when already done (apt packages checked with dpkg,
 # .venv and the installed package kept fresh by stamp files).
@@ -22,7 +22,13 @@ demo: $(VENV)/.installed
 	$(PY) -m pendula demo
 
 test: $(VENV)/.installed
-	$(PY) -m pytest -q tests
+	$(PY) -m pytest -q -m "not full" tests
+
+# the expensive reference sweeps and process-level reliability runs that make test leaves out
+# (the marker 'full': tests/conftest.py's FULL, listed in docs/source/develop.md); CI runs both
+.PHONY: test-full
+test-full: $(VENV)/.installed
+	$(PY) -m pytest -q -m full tests
 
 # the debug variant (-fcheck=all; ASan and UBSan on the batch programs): see .ci/debug
 test-debug: $(VENV)/.installed
