@@ -128,6 +128,8 @@ SECTIONS = {
                 "reports/limits"],
     "about": ["bad_input*", "slips", "changelog", "license*", "develop"],
 }
+# the classroom pendulum (metres, seconds, degrees) right after the exact pendulum
+SECTIONS["guide"].insert(SECTIONS["guide"].index("guide/exact") + 1, "guide/laboratory")
 
 
 def _existing(pattern: str, taken: set[str]) -> list[str]:
