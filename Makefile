@@ -1,6 +1,6 @@
 # pendula: two commands do everything on a fresh Debian 12 machine.
 #   make demo   set up what is missing, then run the main job on its default
-#   make test   set up what is missing, then run the test suite
+#   make test   set up what is missing, then run the test suite (make test-full: its expensive part)
 #   make wheel  a portable, self-contained wheel in dist/ (and the sdist); make test-wheel tests both
 # Each step is skipped when already done (apt packages checked with dpkg,
 # .venv and the installed package kept fresh by stamp files).
@@ -22,7 +22,13 @@ demo: $(VENV)/.installed
 	$(PY) -m pendula demo
 
 test: $(VENV)/.installed
-	$(PY) -m pytest -q tests
+	$(PY) -m pytest -q -m "not full" tests
+
+# the expensive reference sweeps and process-level reliability runs that make test leaves out
+# (the marker 'full': tests/conftest.py's FULL, listed in docs/source/develop.md); CI runs both
+.PHONY: test-full
+test-full: $(VENV)/.installed
+	$(PY) -m pytest -q -m full tests
 
 # the debug variant (-fcheck=all; ASan and UBSan on the batch programs): see .ci/debug
 test-debug: $(VENV)/.installed
@@ -35,11 +41,11 @@ bench: $(VENV)/.installed
 bench-peers: $(VENV)/.installed
 	$(PY) -m pip install -q "scipy>=1.11" "scikit-sundae>=1.0" "numbalsoda>=0.3.4" "numba>=0.59" "diffrax>=0.6" "jax>=0.4.30"
 
+# checked with dpkg (elsewhere: gfortran, pkg-config's gsl and fftw3, python3's venv);
+# what is missing is installed with apt-get as root or through sudo, or else named with
+# the commands that install it on Debian, Fedora and macOS, and make stops
 system-deps:
-	@dpkg -s $(APT_PKGS) >/dev/null 2>&1 || { \
-	  echo "installing system packages: $(APT_PKGS)"; \
-	  $(SUDO) apt-get update -qq && \
-	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $(APT_PKGS); }
+	@APT_PKGS="$(APT_PKGS)" PYTHON="$(PYTHON)" bash tools/system_deps.sh
 
 $(VENV)/.deps: pyproject.toml | system-deps
 	@[ -x $(PY) ] || $(PYTHON) -m venv $(VENV)

@@ -19,6 +19,72 @@ def pytest_configure(config):
     child the tests start, and for the tests that interrupt this process itself."""
     if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
         signal.signal(signal.SIGINT, signal.default_int_handler)
+    config.addinivalue_line("markers", "full: an expensive reference sweep or process-level reliability run: "
+                            "deselected by `make test`, run by `make test-full` (CI runs both)")
+
+
+#: the tests of `make test-full` (the marker ``full``): each took 3 s or more of a 12-minute suite on a
+#: loaded 2-core machine (the list and what each protects: docs/source/develop.md).  Named here rather
+#: than decorated in place so that the list is one place; tests/test_full_marker.py checks each exists.
+FULL = (
+    "test_attractors_recurrence.py::test_coarse_to_fine_map_matches_the_long_transient_run_on_995_permille_of_stable_points",
+    "test_attractors_recurrence.py::test_grid_of_levels_gives_the_same_labels_whatever_the_threads_chunking_or_resume",
+    "test_continuation.py::test_homoclinic_retrapping_torque_against_scipy_manifold",
+    "test_continuation.py::test_liouville_det_along_every_branch",
+    "test_continuation.py::test_stewart_mccumber_small_damping_limit",
+    "test_cycloid.py::test_damped_driven_against_mpmath_ode",
+    "test_density.py::test_cdf_against_mpmath_time_integral",
+    "test_dynamics_bad_input.py::test_long_work_is_interruptible_and_limited",
+    "test_effects.py::test_friction_random_amplitudes_against_mpmath",
+    "test_effects.py::test_friction_turning_points_against_mpmath",
+    "test_fuzz.py::test_complete_integrals_and_nome",
+    "test_fuzz.py::test_sweep_any_keyword",
+    "test_fuzz_classes.py::test_long_work_stops_on_ctrl_c_and_has_a_bounded_identity",
+    "test_fuzz_classes.py::test_programs_fail_on_one_line_with_a_documented_exit_status",
+    "test_fuzz_classes.py::test_without_the_optional_extras_each_function_works_or_names_the_extra",
+    "test_gravity.py::test_inverse_square_distance_near_one_hunted",
+    "test_gravity.py::test_near_the_separatrix",
+    "test_gravity.py::test_period_against_mpmath_energy_integral",
+    "test_junction_steps.py::test_unlocked_error_bar_covers_a_long_average",
+    "test_reference_grids.py::test_accuracy_page_grid_table_is_the_generated_one",
+    "test_reliability_sweeps.py::test_cannot_stop_hybrid_cord_loop_stops_on_sigint",
+    "test_reliability_sweeps.py::test_cannot_stop_long_spectra_stop_on_sigint",
+    "test_reliability_sweeps.py::test_cannot_stop_the_process_stays_usable_after_a_cancelled_sweep",
+    "test_reliability_sweeps.py::test_cli_tracebacks_full_disk_leaves_nothing_under_a_final_name",
+    "test_reliability_sweeps.py::test_cli_tracebacks_run_and_sweep_succeed_with_room",
+    "test_reliability_sweeps.py::test_destructive_write_wisdom_cli_is_one_line",
+    "test_scene_corpus.py::test_both_programs_give_one_verdict_with_one_message",
+    "test_scene_fuzz.py::test_both_programs_accept_or_refuse_alike_with_one_message",
+    "test_spectrum.py::test_corrupt_or_foreign_wisdom_is_ignored_with_a_warning",
+    "test_spectrum.py::test_missing_wisdom_is_silent_and_saved_wisdom_is_used",
+    "test_sweep.py::test_boundary_points_uncertain_or_right",
+    "test_sweep.py::test_final_well_random_points_against_scipy",
+    "test_sweep.py::test_locked_and_running",
+    "test_sweep.py::test_mean_velocity_against_scipy",
+    "test_sweep.py::test_resume_after_kill",
+    "test_sweep_cluster.py::test_cli_workers_closes_the_cluster_it_opens",
+    "test_sweep_cluster.py::test_process_cluster_worker_killed_mid_run_result_complete_and_identical",
+    "test_sweep_lyapunov.py::test_random_amplitudes_against_scipy_reference",
+    "test_sweep_recheck.py::test_pendula_run_recheck_across_blocks_matches_python",
+    "test_sweep_store.py::test_resume_after_seeded_random_damage_always_gives_the_in_memory_result",
+    "test_sweep_store.py::test_resume_truncated_chunk_is_named_and_recomputed",
+    "test_sweep_store.py::test_resume_unreadable_store_metadata_rebuilds_the_store",
+    "test_sweep_store.py::test_two_cli_sweeps_on_the_same_output_second_exits_5_naming_the_store",
+    "test_sweep_store.py::test_two_sweeps_on_the_same_out_second_refused_first_completes",
+    "test_threads_spectrum.py::test_threads_hammering_spectra_of_many_lengths_match_serial_results",
+    "test_verner87_coefficients.py::test_verner87_interpolant_satisfies_the_continuous_conditions_to_order_eight",
+    "test_verner_coefficients.py::test_verner_interpolant_satisfies_the_continuous_conditions_to_order_eight",
+)
+
+
+def pytest_collection_modifyitems(config, items):
+    """Mark the tests of FULL (every parametrisation) with ``full``."""
+    full = set(FULL)
+    for item in items:
+        path = pathlib.Path(str(item.fspath)).name
+        name = item.originalname if hasattr(item, "originalname") else item.name
+        if f"{path}::{name}" in full:
+            item.add_marker(pytest.mark.full)
 
 
 @pytest.fixture(scope="session")

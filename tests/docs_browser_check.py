@@ -6,12 +6,14 @@ Serves the folder over HTTP on a free local port, then, through selenium and
 Debian's chromium + chromium-driver, checks on every page: it loads, the
 browser console holds no error, every image has loaded (a natural width > 0),
 every animation of the gallery has its player and its first frame, the page
-has a title (an ``h1`` with text in the main column), and no table or code
-block sticks out of the main column: a table may scroll inside its own
-container; code a reader copies must fit (no horizontal scroll bar), while
-printed output, plain listings and the API reference's doctest examples may
-scroll inside their block.  Then the search
-page must find ``ellipj``.  Exits 1 naming each failure; 0 when all
+has a title (an ``h1`` with text in the main column), no table sticks out of
+the main column (a table may scroll inside its own container), no code block
+scrolls sideways (code, output, listings and doctest examples alike must fit
+the column), and no figure's text is shown smaller than 9 px: each PNG the
+docs build writes carries its smallest text size in pixels
+(docs/tools/figure_text.py), which is scaled by the width the page shows the
+image at; figures without that record (committed images) are counted as
+unmeasured.  Then the search page must find ``ellipj``.  Exits 1 naming each failure; 0 when all
 pass.  (Not a pytest module: ``make docs-check`` runs it after ``make docs``.)
 """
 
@@ -24,6 +26,7 @@ import pathlib
 import sys
 import threading
 import time
+import urllib.parse
 
 CHROMIUM = "/usr/bin/chromium"
 CHROMEDRIVER = "/usr/bin/chromedriver"
@@ -89,16 +92,65 @@ for (const t of main.querySelectorAll('table')) {
   if (t.getBoundingClientRect().right > box.right + 1 && !scroller(t))
     out.overflow.push('table "' + t.textContent.trim().replace(/\\s+/g, ' ').slice(0, 60) + '"');
 }
-// code a reader copies must fit the column; printed output, plain listings and the API
-// reference's doctest examples (written to the code's line length) may scroll inside their block
-const mayScroll = p => p.closest('.sphx-glr-script-out, .highlight-text, .highlight-none, .highlight-default')
-  || location.pathname.includes('/generated/');
+// every code block fits the column: none sticks out, none scrolls sideways
 for (const p of main.querySelectorAll('div.highlight pre')) {
-  if (p.getBoundingClientRect().right > box.right + 1 || (p.scrollWidth > p.clientWidth + 1 && !mayScroll(p)))
+  if (p.getBoundingClientRect().right > box.right + 1 || p.scrollWidth > p.clientWidth + 1)
     out.overflow.push('code block "' + p.textContent.trim().split('\\n')[0].slice(0, 60) + '"');
 }
 return out;
 """
+
+
+# the PNG figures of the main column as shown: their address, shown width and natural width
+# (gallery thumbnails are previews, and the animation players' frames are inline data: both skipped)
+FIGURES_JS = """
+const main = document.querySelector('article.bd-article') || document.querySelector('main') || document.body;
+const out = [];
+for (const img of main.querySelectorAll('img')) {
+  if (img.closest('.sphx-glr-thumbcontainer')) continue;
+  const src = img.currentSrc || img.src;
+  if (!/^https?:.*[.]png([?#]|$)/i.test(src)) continue;
+  out.push({src: src, shown: img.getBoundingClientRect().width, natural: img.naturalWidth});
+}
+return out;
+"""
+
+#: the smallest text a figure may show, CSS pixels
+MIN_TEXT_PX = 9.0
+#: the PNG text chunk docs/tools/figure_text.py writes
+TEXT_KEY = "pendula-min-text-px"
+
+
+def png_min_text_px(path: pathlib.Path) -> float | None:
+    """The smallest text size a PNG records (pixels of the image), None when it records none."""
+    from PIL import Image
+
+    try:
+        with Image.open(path) as im:
+            value = getattr(im, "text", {}).get(TEXT_KEY) or im.info.get(TEXT_KEY)
+    except OSError:
+        return None
+    return float(value) if value else None
+
+
+def figure_failures(page: str, figures: list[dict], site: pathlib.Path) -> tuple[list[str], int]:
+    """(failures, unmeasured): each figure whose smallest text, scaled to the width it is shown at, is
+    under MIN_TEXT_PX; and how many figures record no text size."""
+    failures, unmeasured = [], 0
+    for f in figures:
+        if not (f["shown"] > 0 and f["natural"] > 0):   # hidden, or not loaded (reported by IMAGES_JS)
+            continue
+        rel = urllib.parse.unquote(urllib.parse.urlsplit(f["src"]).path).lstrip("/")
+        px = png_min_text_px(site / rel)
+        if px is None:
+            unmeasured += 1
+            continue
+        shown = px * f["shown"] / f["natural"]
+        if shown < MIN_TEXT_PX:
+            failures.append(f"{page}: figure {rel}: its smallest text is {shown:.1f} px as shown "
+                            f"({px:.1f} px in the image, shown at {f['shown']:.0f} of {f['natural']} px wide); "
+                            f"at least {MIN_TEXT_PX:g} px")
+    return failures, unmeasured
 
 
 def layout_failures(page: str, layout: dict) -> list[str]:
@@ -131,7 +183,7 @@ def main(argv=None) -> int:
     httpd, base = serve(site)
     driver = browser()
     failures = []
-    n_images = n_animations = 0
+    n_images = n_animations = n_unmeasured = 0
     try:
         for page in pages:
             driver.get(base + page)
@@ -146,6 +198,9 @@ def main(argv=None) -> int:
             n_images += driver.execute_script("return document.images.length")
             failures += [f"{page}: image not loaded: {src}" for src in bad]
             failures += layout_failures(page, driver.execute_script(LAYOUT_JS))
+            small, unmeasured = figure_failures(page, driver.execute_script(FIGURES_JS), site)
+            failures += small
+            n_unmeasured += unmeasured
             anim = driver.execute_script(ANIMATIONS_JS)
             n_animations += len(anim)
             failures += [f"{page}: animation {i} has no frame" for i, ok in enumerate(anim) if not ok]
@@ -169,8 +224,8 @@ def main(argv=None) -> int:
     finally:
         driver.quit()
         httpd.shutdown()
-    print(f"docs browser check: {len(pages)} pages, {n_images} images, {n_animations} animations, "
-          f"search for 'ellipj': {len(found)} results")
+    print(f"docs browser check: {len(pages)} pages, {n_images} images ({n_unmeasured} figures without a "
+          f"recorded text size), {n_animations} animations, search for 'ellipj': {len(found)} results")
     for f in failures:
         print("FAIL", f)
     return 1 if failures else 0

@@ -88,3 +88,30 @@ def test_demo_has_a_verbose_switch(capsys):
     with pytest.raises(SystemExit):
         cli.main(["demo", "--help"])
     assert "-v, --verbose" in capsys.readouterr().out
+
+
+def test_demo_explains_each_work_precision_figure_in_words():
+    """What pendula demo prints of the integrator study: a header naming the problem, then one line per
+    target saying what was timed and which is faster by how much (never a bare column of ratios)."""
+    from pendula.studies.explained import work_precision_sentences
+
+    lines = work_precision_sentences(_record())
+    assert lines[0].startswith("damped pendulum (v0 = ") and "largest error below" in lines[0]
+    body = lines[1:]
+    # 1e-3: pendula's dop853 at rtol=1e-3 (30 us, error 2e-4) against the peer GSL's rk8pd (80 us) and
+    # SciPy's DOP853 (17 ms): 80 / 30 and 17000 / 30
+    assert body[0].strip() == "1e-03: pendula's dop853 30 us; the fastest peer, gsl-rk8pd, 80 us: pendula is 2.67x faster"
+    assert body[1].strip() == "SciPy's fastest, DOP853, 17 ms: pendula is 567x faster"
+    # 1e-6 needs dop853 at rtol=1e-9 (90 us): GSL's 80 us is faster
+    assert "pendula is 1.12x slower" in body[2]
+    assert body[4:] == ["  1e-09: not reached: tightest rtol run 1e-09", "  1e-12: not reached: tightest rtol run 1e-09"]
+    assert all(("x faster" in ln or "x slower" in ln or "as fast" in ln or "not reached" in ln) for ln in body)
+    text = "\n".join(lines)
+    assert "SciPy / pendula" not in text and not FLOAT_NOISE.search(text)
+    assert max(len(ln) for ln in lines) <= 100
+
+
+def test_pendula_slower_is_said_as_slower():
+    from pendula.studies.explained import _faster
+
+    assert _faster(0.5) == "pendula is 2x slower" and _faster(1.0) == "as fast as pendula"

@@ -421,6 +421,56 @@ def test_sdist_installs_with_pip_where_the_build_tools_are(tmp_path):
     assert (site / "pendula" / "data" / "reference_grids.csv.gz").is_file()
 
 
+def _install_blocks():
+    """The install page's command blocks (``:class: install-commands``): (commands, expected output)."""
+    text = (ROOT / "docs" / "source" / "install.rst").read_text()
+    blocks = re.findall(r"^\.\. code-block:: console\n   :class: install-commands\n\n((?:   .*\n)+)", text, re.M)
+    out = []
+    for b in blocks:
+        lines = [ln[3:] for ln in b.splitlines()]
+        out.append(([ln[2:] for ln in lines if ln.startswith("$ ")], [ln for ln in lines if not ln.startswith("$ ")]))
+    return out
+
+
+def test_install_page_has_its_command_blocks():
+    blocks = _install_blocks()
+    assert len(blocks) == 2
+    assert any(".tar.gz" in c for c in blocks[1][0]) and any("'.[plot,sweep]'" in c for c in blocks[0][0])
+
+
+def _run_install_block(commands, expected, cwd):
+    """Run the page's commands as written, in bash, in ``cwd``; the last one's output is the page's."""
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
+    env["PATH"] = "/usr/local/bin:/usr/bin:/bin"      # the system's python3, not this test's environment
+    for cmd in commands:
+        out = subprocess.run(["bash", "-c", cmd], cwd=cwd, env=env, capture_output=True, text=True, timeout=3600)
+        assert out.returncode == 0, (cmd, out.stdout[-2000:], out.stderr[-3000:])
+    assert out.stdout.splitlines() == expected, (out.stdout, expected)
+
+
+@needs_sdist
+def test_install_page_commands_from_the_sdist_run_as_written(tmp_path):
+    """The page's sdist block, as written, in a fresh folder holding dist/ and a clean venv: pip builds the
+    kernel in an isolated environment (it fetches meson-python, meson, ninja and numpy from the index)."""
+    commands, expected = _install_blocks()[1]
+    (tmp_path / "dist").mkdir()
+    name = f"pendula-{project_version()}.tar.gz"
+    assert any(name in c for c in commands), f"the page names another version than {name}"
+    os.symlink(SDIST, tmp_path / "dist" / name)
+    _run_install_block(commands, expected, tmp_path)
+
+
+@needs_sdist
+def test_install_page_commands_in_a_fresh_clone_run_as_written(tmp_path):
+    """The page's clone block, as written, in a fresh clone of this repository (its committed files)."""
+    if shutil.which("git") is None:
+        pytest.skip("no git here")
+    commands, expected = _install_blocks()[0]
+    clone = tmp_path / "pendula"
+    subprocess.run(["git", "clone", "-q", str(ROOT), str(clone)], check=True, timeout=600)
+    _run_install_block(commands, expected, clone)
+
+
 def test_version_is_written_once():
     """meson.build holds the version; pyproject declares it dynamic; the package reads the metadata."""
     tomllib = pytest.importorskip("tomllib")  # Python 3.11

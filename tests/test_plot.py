@@ -168,7 +168,8 @@ def test_fractions_stacks_one_area_per_attractor():
     ax = pp.fractions(ds)
     assert len(ax.collections) == 3
     texts = [t.get_text() for t in ax.get_legend().get_texts()]
-    assert texts == ["attractor 0 (period 1)", "attractor 1 (period 2)", "attractor 2 (period 0)"]
+    assert texts == ["attractor 0: periodic, one drive period", "attractor 1: periodic, two drive periods",
+                     "attractor 2: no period found"]
     # the top of the stack is the whole
     top = ax.collections[-1].get_paths()[0].vertices[:, 1].max()
     assert math.isclose(top, 1.0)
@@ -217,3 +218,37 @@ def test_basins_draws_the_attractors_when_the_axes_are_swapped(attractor_map):
     ax = pp.basins(attractor_map.dataset.transpose("v0", "theta0"))
     for a, line in zip(attractor_map.attractors, ax.lines):
         assert np.array_equal(line.get_xdata(), a.v) and np.array_equal(line.get_ydata(), a.theta)
+
+
+def test_fractions_legend_names_kind_and_period_in_words():
+    f = np.full((2, 3), 1 / 3)
+    ds = xr.Dataset({"fraction": (("drive_amplitude", "attractor"), f)},
+                    coords={"drive_amplitude": [1.0, 1.1], "attractor": [0, 8, 9],
+                            "kind": ("attractor", ["periodic", "chaotic", "periodic"]),
+                            "period": ("attractor", [3, 0, 16])})
+    texts = [t.get_text() for t in pp.fractions(ds).get_legend().get_texts()]
+    assert texts == ["attractor 0: periodic, three drive periods", "attractor 8: chaotic",
+                     "attractor 9: periodic, 16 drive periods"]
+
+
+@pytest.mark.parametrize("n", [1, 10, 11, 20, 21, 60, 61, 150])
+def test_categorical_colours_never_repeat(n):
+    colours = pp._categorical(n)
+    assert len(colours) == n
+    assert len({tuple(round(float(x), 6) for x in c[:3]) for c in colours}) == n
+
+
+def test_fractions_of_21_attractors_have_21_colours():
+    f = np.full((2, 21), 1 / 21)
+    ds = xr.Dataset({"fraction": (("drive_amplitude", "attractor"), f)},
+                    coords={"drive_amplitude": [1.0, 1.1], "attractor": np.arange(21)})
+    ax = pp.fractions(ds)
+    faces = {tuple(np.round(c.get_facecolor()[0][:3], 6)) for c in ax.collections}
+    assert len(faces) == 21
+
+
+def test_velocity_label_is_in_reduced_units_when_eps_is_1(libration):
+    assert pp.phase(libration).get_ylabel() == "v (rad per time unit 1/ω₀, ε = 1)"
+    assert pp.trajectory(libration, which="v").get_ylabel() == "v (rad per time unit 1/ω₀, ε = 1)"
+    lab = pendula.Pendulum(1.0, amplitude_deg=20).motion().trajectory
+    assert pp.phase(lab).get_ylabel() == "v (rad per unit of t)"

@@ -128,6 +128,8 @@ SECTIONS = {
                 "reports/limits"],
     "about": ["bad_input*", "slips", "changelog", "license*", "develop"],
 }
+# the classroom pendulum (metres, seconds, degrees) right after the exact pendulum
+SECTIONS["guide"].insert(SECTIONS["guide"].index("guide/exact") + 1, "guide/laboratory")
 
 
 def _existing(pattern: str, taken: set[str]) -> list[str]:
@@ -185,6 +187,8 @@ API_GROUPS = [
                                        "EquilibriumBranch", "ContinuationError"]),
     ("The Josephson junction", ["Junction", "SwitchingCurrents"]),
 ]
+# the pendulum of the classroom (metres, seconds, degrees)
+API_GROUPS += [("The pendulum in laboratory units", ["Pendulum", "Swing"])]
 
 
 def _write_api() -> None:
@@ -223,3 +227,16 @@ def _offline_animation_player() -> None:
 
 
 _offline_animation_player()
+
+
+# ---- figures carry their smallest text size (pixels) for the browser check ----
+# docs/tools/figure_text.py: every PNG the build writes gets a text chunk
+# 'pendula-min-text-px'; tests/docs_browser_check.py fails a figure shown with
+# text under 9 px
+sys.path.insert(0, str(DOCS / "tools"))
+import figure_text  # noqa: E402
+
+figure_text.install()
+
+# ---- code blocks wrap within the column (docs/source/_static/pendula.css) ----
+html_css_files = ["pendula.css"]

@@ -24,6 +24,11 @@ spectrum, spectra, fourier_series, odd_harmonics_above
 Figures
 -------
 pendula.plot: trajectory, phase, spectrum, bifurcation, basins, iv, fractions
+
+Laboratory units
+----------------
+Pendulum (metres, seconds, degrees; pendula.plot.animate draws it), Swing,
+Junction (amperes, volts)
 """
 
 from . import _kernel as _k
@@ -55,6 +60,7 @@ from .dynamics import Equilibrium, PeriodicOrbit, attractor_continuation, attrac
 from .dynamics import (Bifurcation, Branch, ContinuationError, EquilibriumBranch, continue_equilibria,  # noqa: E402
                        continue_orbit)
 from .spectrum import precompute_wisdom, wisdom_path  # noqa: E402
+from .laboratory import Pendulum, Swing  # noqa: E402
 
 # the version of the installed metadata (written once, in meson.build)
 from ._version import __version__  # noqa: E402
@@ -73,3 +79,6 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Junction", "SwitchingCurrents", "attractor_continuation",
            "continue_orbit", "continue_equilibria", "Branch", "Bifurcation", "EquilibriumBranch",
            "ContinuationError"]
+
+# the pendulum of the classroom in metres, seconds and degrees
+__all__ += ["Pendulum", "Swing"]

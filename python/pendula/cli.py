@@ -287,9 +287,9 @@ def cmd_demo(args) -> int:
         integrator_study(out, 1e5, progress=not args.quiet and verbose, quick=True)
     if not verbose:
         record = json.loads((out / "work_precision.json").read_text())
-        from .studies.workprecision import answer_text
+        from .studies.explained import work_precision_sentences
 
-        print("\n".join("  " + line for line in answer_text(record).splitlines()))
+        print("\n".join("  " + line for line in work_precision_sentences(record)))
     print()
     sweep_demos.run(out / "sweeps", small=True, verbose=verbose)
     print(f"\n{len(written)} gallery files, the integrator study and the sweeps written to {out.resolve()}")

@@ -136,6 +136,11 @@ class Events:
     v: np.ndarray
     stats: dict
 
+    def __repr__(self) -> str:
+        n = np.size(self.t)
+        span = f" from t={self.t[0]:.6g} to {self.t[-1]:.6g}" if n else ""
+        return f"Events({n} events{span}, {self.stats.get('steps', 0)} steps)"
+
     def to_xarray(self) -> xarray.Dataset:
         """The events as an :class:`xarray.Dataset` along the dimension ``event``.
 

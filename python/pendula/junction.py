@@ -83,6 +83,13 @@ class SwitchingCurrents:
     ramp_rate: float
     temperature: float
 
+    def __repr__(self) -> str:
+        n = np.size(self.samples)
+        ok = int(np.sum(np.isfinite(self.samples)))
+        stats = f", mean {self.mean:.6g} A, width {self.width:.3g} A" if ok >= 2 else ""
+        return (f"SwitchingCurrents({n} ramps ({ok} switched){stats}, {np.size(self.counts)} bins, "
+                f"ramp {self.ramp_rate:.3g} A/s, T = {self.temperature:g} K)")
+
     @property
     def mean(self) -> float:
         """The mean switching current of the finite samples, A."""

@@ -11,7 +11,9 @@ One function per result, each taking what the library returns and an optional
   with the Lyapunov exponent of a ``lyapunov`` sweep beside it);
 - :func:`basins` -- an attractor map, one colour per attractor, the attractors drawn;
 - :func:`iv` -- an I-V curve, both directions, the Shapiro steps labelled;
-- :func:`fractions` -- basin fractions over a parameter, as stacked areas.
+- :func:`fractions` -- basin fractions over a parameter, as stacked areas;
+- :func:`animate` -- the pendulum swinging, written as a GIF (Pillow's
+  writer, nothing else needed) or an MP4 (FFmpeg's writer: ``ffmpeg`` on the PATH).
 
 The figures of ``pendula run`` (:func:`time_series`, :func:`phase_portrait`,
 :func:`spectra_figure` ...) take a scene and its runs, return the
@@ -37,6 +39,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from ._optional import require
 from ._files import save_figure  # the one writer: regular files only, whole or absent
+from .animation import animate  # noqa: F401  (pendula.plot.animate: GIF or MP4 through matplotlib's writers)
 
 if TYPE_CHECKING:   # matplotlib and xarray are optional: named in annotations only
     import matplotlib.axes
@@ -245,9 +248,29 @@ def _ax(ax, figsize=(7, 4)):
 
 
 def _categorical(n: int) -> list:
-    """n distinct colours for n categories (matplotlib's tab10, or tab20 beyond ten; repeated beyond twenty)."""
-    palette = _plt().get_cmap("tab10" if n <= 10 else "tab20").colors
-    return [palette[i % len(palette)] for i in range(n)]
+    """n distinct colours for n categories, never one twice: matplotlib's tab10 up to ten, tab20 up to
+    twenty, then tab20, tab20b and tab20c (60), then hues spaced evenly around the colour wheel at
+    three lightnesses for as many more as needed."""
+    plt = _plt()
+    if n <= 10:
+        return list(plt.get_cmap("tab10").colors[:n])
+    names = ("tab20",) if n <= 20 else ("tab20", "tab20b", "tab20c")
+    out = list(dict.fromkeys(tuple(c) for name in names for c in plt.get_cmap(name).colors))
+    if len(out) < n:
+        from matplotlib.colors import hsv_to_rgb
+        more = n - len(out)
+        per = -(-more // 3)
+        for i in range(more):
+            hue, shade = (i % per) / per, i // per
+            out.append(tuple(float(x) for x in hsv_to_rgb((hue, 0.75, (0.95, 0.7, 0.45)[shade]))))
+        out = list(dict.fromkeys(out))
+    return out[:n]
+
+
+def _v_label(scene) -> str:
+    """The angular velocity's label: in reduced units (the time unit 1/ω₀ = 1/√ε) when ε = 1, else per
+    unit of the scene's t (seconds when ε = g/l is in 1/s², as pendula.Pendulum's scene)."""
+    return "v (rad per time unit 1/ω₀, ε = 1)" if scene.eps == 1.0 else "v (rad per unit of t)"
 
 
 def _scene_label(scene) -> str:
@@ -284,7 +307,7 @@ def trajectory(tr: Trajectory, ax: matplotlib.axes.Axes | None = None, *, which:
     >>> tr = pendula.simulate(pendula.Scene(v0=1.9, damping=0.1, t_end=40.0))
     >>> ax = pendula.plot.trajectory(tr, which="v")
     >>> ax.get_ylabel()
-    'v (rad/s)'
+    'v (rad per time unit 1/ω₀, ε = 1)'
     """
     if which not in ("theta", "v", "energy"):
         raise ValueError(f"which must be 'theta', 'v' or 'energy', got {which!r}")
@@ -292,7 +315,7 @@ def trajectory(tr: Trajectory, ax: matplotlib.axes.Axes | None = None, *, which:
     kwargs.setdefault("lw", 1.0)
     ax.plot(tr.t, getattr(tr, which), **kwargs)
     ax.set_xlabel("t")
-    ax.set_ylabel({"theta": "theta (rad)", "v": "v (rad/s)", "energy": "energy"}[which])
+    ax.set_ylabel({"theta": "theta (rad)", "v": _v_label(tr.scene), "energy": "energy"}[which])
     if which == "theta":
         lo, hi = ax.get_ylim()
         for k in range(math.floor(lo / math.pi), math.ceil(hi / math.pi) + 1):
@@ -340,7 +363,7 @@ def phase(tr: Trajectory, ax: matplotlib.axes.Axes | None = None, *, separatrix:
         ax.plot(th, -sep, "k--", lw=0.7)
     ax.set_xlim(-math.pi, math.pi)
     ax.set_xlabel("theta (rad, folded into [-pi, pi))")
-    ax.set_ylabel("v (rad/s)")
+    ax.set_ylabel(_v_label(tr.scene))
     ax.set_title(_scene_label(tr.scene), fontsize=9)
     ax.grid(True, alpha=0.3)
     return ax
@@ -491,8 +514,25 @@ def _categories(am) -> tuple[Any, str, list[dict]]:
     raise ValueError("basins needs an AttractorMap, or a Dataset with the variable 'attractor' or 'well'")
 
 
-def _attractor_name(label: int, kind: str, period: int) -> str:
-    return f"{label}: period {period}" if kind == "periodic" else f"{label}: chaotic"
+#: small numbers in words, for the legends ("periodic, two drive periods")
+_NUMBER_WORDS = ("no", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten",
+                 "eleven", "twelve")
+
+
+def _period_words(period) -> str:
+    """'one drive period', 'two drive periods', ... '16 drive periods'."""
+    k = int(period)
+    word = _NUMBER_WORDS[k] if 0 <= k < len(_NUMBER_WORDS) else str(k)
+    return f"{word} drive period{'' if k == 1 else 's'}"
+
+
+def _attractor_name(label: int, kind: str | None, period) -> str:
+    """'3: periodic, two drive periods', '5: chaotic'; without a kind, a period of 0 is 'no period found'."""
+    if kind == "chaotic":
+        return f"{label}: chaotic"
+    if kind is None and not int(period):
+        return f"{label}: no period found"
+    return f"{label}: periodic, {_period_words(period)}"
 
 
 def basins(am: AttractorMap | xarray.Dataset, ax: matplotlib.axes.Axes | None = None, *,
@@ -653,7 +693,8 @@ def fractions(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None) -> mat
         A variable ``fraction`` on the dimensions (parameter, ``attractor``):
         the share of initial states ending on each attractor at each value of
         the parameter.  The attractor's name comes from the coordinates on
-        ``attractor`` (``kind`` and ``period`` when present, else its label).
+        ``attractor`` (``kind`` and ``period`` when present, in words: "attractor 1:
+        periodic, two drive periods", else its label).
     ax : matplotlib.axes.Axes, optional
         Where to draw (default: a new figure).
 
@@ -682,12 +723,18 @@ def fractions(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None) -> mat
     f = np.nan_to_num(ds.fraction.transpose("attractor", p).values)
     ax = _ax(ax)
     labels = []
+    coord = {name: ds.coords[name].values for name in ("kind", "period")
+             if name in ds.coords and ds.coords[name].dims == ("attractor",)}
     for i, a in enumerate(ds["attractor"].values):
-        extra = []
-        for name in ("kind", "period"):
-            if name in ds.coords and ds.coords[name].dims == ("attractor",):
-                extra.append(f"{name} {ds.coords[name].values[i]}")
-        labels.append(f"attractor {a}" + (f" ({', '.join(extra)})" if extra else ""))
+        if coord:   # named by kind and period in words: 'attractor 3: periodic, two drive periods'
+            kind = str(coord["kind"][i]) if "kind" in coord else None
+            period = coord["period"][i] if "period" in coord else 0
+            if kind == "periodic" and "period" not in coord:
+                labels.append(f"attractor {a}: periodic")
+            else:
+                labels.append("attractor " + _attractor_name(a, kind, period))
+        else:
+            labels.append(f"attractor {a}")
     ax.stackplot(ds[p].values, f, labels=labels, colors=_categorical(f.shape[0]), alpha=0.9)
     ax.set_xlim(float(ds[p].values.min()), float(ds[p].values.max()))
     ax.set_ylim(0.0, 1.0)

@@ -585,6 +585,11 @@ class FourierSeries(NamedTuple):
     omega: float
     amplitudes: np.ndarray
 
+    def __repr__(self) -> str:
+        a = np.abs(np.asarray(self.amplitudes))
+        top = f", largest {a.max():.6g}" if a.size else ""
+        return f"FourierSeries(omega={self.omega:.10g}, {a.size} amplitudes{top})"
+
 
 def fourier_series(theta0: float, v0: float, eps: float = 1.0, n: int = 10) -> FourierSeries:
     """The exact Fourier series of the orbit: a named pair (omega, amplitudes).

@@ -189,6 +189,10 @@ class FlipLog(dict):
     state); :meth:`to_xarray` gives them as a Dataset along ``flip``.
     """
 
+    def __repr__(self) -> str:
+        n = len(self.get("t_leave", ()))
+        return f"FlipLog({n} flips: {', '.join(self)})"
+
     def to_xarray(self) -> xarray.Dataset:
         """The flip log as an :class:`xarray.Dataset` along the dimension ``flip``.
 

@@ -119,6 +119,11 @@ class Bifurcation:
     v: float
     multipliers: np.ndarray
 
+    def __repr__(self) -> str:
+        mods = ", ".join(f"{abs(complex(m)):.4g}" for m in np.ravel(self.multipliers))
+        return (f"Bifurcation({self.kind!r} at {self.value:.10g}, period={self.period:.6g}, "
+                f"theta={self.theta:.6g}, v={self.v:.6g}, |multipliers|=[{mods}])")
+
 
 @dataclass(frozen=True)
 class Branch:
@@ -173,6 +178,12 @@ class Branch:
     segment: np.ndarray
     bifurcations: tuple
     end: str
+
+    def __repr__(self) -> str:
+        n = len(self.values)
+        span = f" from {self.values[0]:.6g} to {self.values[-1]:.6g}" if n else ""
+        return (f"Branch({self.param}{span}, {n} points, {int(np.sum(self.stable))} stable, "
+                f"bifurcations [{_bifurcation_list(self.bifurcations)}], end={self.end!r})")
 
     def __len__(self) -> int:
         return len(self.values)
@@ -801,6 +812,19 @@ class EquilibriumBranch:
     values: np.ndarray
     equilibria: tuple
     bifurcations: tuple
+
+    def __repr__(self) -> str:
+        n = len(self.values)
+        span = f" from {self.values[0]:.6g} to {self.values[-1]:.6g}" if n else ""
+        counts = sorted({len(e) for e in self.equilibria})
+        return (f"EquilibriumBranch({self.param}{span}, {n} values, {'-'.join(map(str, counts)) or 0} rest points "
+                f"a value, bifurcations [{_bifurcation_list(self.bifurcations)}])")
+
+
+def _bifurcation_list(bifs, most: int = 6) -> str:
+    """'kind at value; ...' of the first `most` bifurcations (and how many more)."""
+    text = "; ".join(f"{b.kind} at {b.value:.6g}" for b in bifs[:most])
+    return text + (f"; and {len(bifs) - most} more" if len(bifs) > most else "")
 
 
 def continue_equilibria(scene: Scene, param: str, stop: float, points: int = 101) -> EquilibriumBranch:

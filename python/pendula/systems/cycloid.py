@@ -212,6 +212,9 @@ class CycloidGeometry:
         a = np.linspace(-math.pi / 2, math.pi / 2, n)
         self.circle = np.array([4 * R * np.sin(a), 4 * R - 4 * R * np.cos(a)])
 
+    def __repr__(self) -> str:
+        return f"CycloidGeometry(R={self.R:.6g}, {self.path.shape[1]} points a curve, cord length {4 * self.R:.6g})"
+
     def cord(self, theta: float) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
         """The cord at free-cord angle theta: the wrapped part on the cheek and the free part.
 

@@ -60,6 +60,11 @@ class FrictionTurningPoints:
     stick_angle: float
     stick_time: float
 
+    def __repr__(self) -> str:
+        end = (f"stuck at theta={self.stick_angle:.6g} from t={self.stick_time:.6g}" if self.stuck
+               else "not stuck")
+        return f"FrictionTurningPoints({np.size(self.times)} turning points, {end})"
+
 
 def friction_turning_points(scene: Scene, max_points: int = MAX_TURNING_POINTS) -> FrictionTurningPoints:
     """The exact turning points and the stick of a pendulum with dry friction.
