@@ -45,6 +45,8 @@ CASES = {
     "Spectrum": lambda: pendula.simulate(pendula.Scene(v0=1.0, t_end=100.0, n_samples=1024)).spectrum(),
     "FourierSeries": lambda: pendula.fourier_series(1.0, 0.0),
     "ModelInfo": lambda: pendula.models()[0],
+    "Capability": lambda: pendula.capabilities()[0],
+    "TimeScales": lambda: pendula.time_scales(pendula.Scene(damping=0.1, pivot_amplitude=0.1, pivot_frequency=9.0)),
     "CycloidGeometry": lambda: pendula.cycloid_geometry(0.25),
     "FrictionTurningPoints": lambda: pendula.friction_turning_points(pendula.Scene(theta0=3.0, friction=0.01)),
     "Equilibrium": lambda: pendula.equilibria(pendula.Scene(damping=0.2, torque=0.5))[0],
