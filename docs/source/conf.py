@@ -169,7 +169,8 @@ _write_tocs()
 # ---- the API reference: every name of pendula.__all__, grouped --------------
 API_GROUPS = [
     ("Elliptic functions", ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome"]),
-    ("Scenes and simulation", ["Scene", "SceneError", "simulate", "Trajectory", "models", "ModelInfo"]),
+    ("Scenes and simulation", ["Scene", "SceneError", "simulate", "Trajectory", "models", "ModelInfo",
+                               "capabilities", "Capability", "time_scales", "TimeScales"]),
     ("The exact pendulum", ["orbit", "Orbit", "exact_motion", "period", "energy"]),
     ("Series", ["period_series", "period_from_series", "poincare_lindstedt"]),
     ("Events", ["find_events", "numerical_period", "Events"]),
