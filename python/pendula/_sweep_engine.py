@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -30,7 +31,38 @@ if TYPE_CHECKING:   # xarray is optional: named in annotations only
     import xarray
 
 #: kernel codes of the measures (kernel/sweep/pendula_sweep.f90)
-MEASURE_CODES = {"final_well": 1, "mean_velocity": 2, "locked": 3, "poincare": 4, "lyapunov": 5}
+
+
+@dataclass(frozen=True)
+class Measure:
+    """A measure of the kernel's sweep, declared once: what one grid point answers.
+
+    Which scene fields it honours and which it needs (a periodic forcing for
+    the stroboscopic ones) is the capability table's row ``sweep:NAME``.
+    """
+
+    name: str
+    #: the kernel's measure code (kernel/sweep/pendula_sweep.f90, ms_*)
+    code: int
+    #: its output variables, in the kernel's order
+    variables: tuple
+    #: what it is, in words (figure titles)
+    words: str
+    #: one value of each variable per stroboscopic sample (the grid gets a 'sample' axis)
+    per_sample: bool = False
+    #: a discrete answer: points on a boundary are computed again at 1000 times tighter tolerances
+    recheck: bool = False
+
+
+MEASURE_TABLE = {m.name: m for m in (
+    Measure("final_well", 1, ("well", "t_decided"), "the well an undriven damped orbit settles in", recheck=True),
+    Measure("mean_velocity", 2, ("mean_velocity", "mean_velocity_err", "step"),
+            "the mean velocity <v> (a junction's voltage)"),
+    Measure("locked", 3, ("locked", "t_decided"), "at rest (1) or running (0)", recheck=True),
+    Measure("poincare", 4, ("theta", "v"), "the state once per drive period (Poincare section)", per_sample=True),
+    Measure("lyapunov", 5, ("lyapunov", "lyapunov_err", "lyapunov2"), "the largest Lyapunov exponent"))}
+#: kernel codes of the measures
+MEASURE_CODES = {name: m.code for name, m in MEASURE_TABLE.items()}
 #: point status codes
 STATUS = {0: "decided", 1: "not settled / undecided by the limit", 2: "measure does not apply",
           3: "bad measure", 4: "uncertain: the answer changes with the tolerance",
@@ -114,21 +146,11 @@ class Plan:
         # never more rows than the axis has: the chunk is also the store's Zarr chunk shape
         self.rows = max(1, min(chunk_points // max(inner, 1), self.shape[0]))
         self.nchunks = -(-self.shape[0] // self.rows)
-        if measure == "poincare":
-            # the kernel rounds the transient up to whole periods of each point's drive
-            self.nout = 2 * samples
-            self.t_tr = transient
-        elif measure == "mean_velocity":
-            # <v>, its error bar and the Shapiro step of a phase-locked point
-            self.nout = 3
-            self.t_tr = transient
-        elif measure == "lyapunov":
-            # the kernel rounds transient and window up to whole periods, point by point
-            self.nout = 3
-            self.t_tr = transient
-        else:
-            self.nout = 2
-            self.t_tr = transient
+        # the kernel's outputs per point (a stroboscopic measure: per sample); the kernel rounds the
+        # transient up to whole periods of each point's own forcing where the measure samples it
+        m = MEASURE_TABLE.get(measure)
+        self.nout = 0 if m is None else len(m.variables) * (samples if m.per_sample else 1)
+        self.t_tr = transient
 
     def key(self) -> dict:
         """What names the sweep (a store's identity): of bounded size whatever the grid's, each axis
@@ -187,7 +209,7 @@ def compute_chunk(plan: Plan, i: int, threads: int):
     out, st = block(code, p, plan.rtol, plan.atol, plan.t_tr, plan.t_max, plan.nout, threads, plan.force)
     out = out.T.reshape(shape + (plan.nout,))
     st = st.reshape(shape)
-    if plan.measure in ("final_well", "locked"):
+    if MEASURE_TABLE[plan.measure].recheck:
         # Points on a basin boundary (a grid neighbour answers differently, along
         # any axis) are computed again at 1000 times tighter tolerances; where
         # the answer changes, it is not known: NaN and status 4.  The rows just
@@ -250,12 +272,6 @@ AXIS_META = {
     "pivot_frequency": ("vibrating pivot's angular frequency Omega", "rad s-1"),
     "friction": ("dry (Coulomb) friction mu", "rad s-2"), "drag": ("quadratic drag gamma", "1"),
 }
-#: the variables of each measure, in the kernel's output order
-MEASURE_VARS = {"final_well": ("well", "t_decided"), "locked": ("locked", "t_decided"),
-                 "mean_velocity": ("mean_velocity", "mean_velocity_err", "step"), "poincare": ("theta", "v"),
-                 "lyapunov": ("lyapunov", "lyapunov_err", "lyapunov2")}
-
-
 def status_attrs() -> dict:
     """CF flag attributes of 'status', from STATUS (flag_meanings: one word per code)."""
     import re
@@ -277,11 +293,12 @@ def layout_of(plan: Plan):
         return {"long_name": long_name, "units": units}
     coords = {n: (plan.over[n], meta(n)) for n in dims}
     vdims = dims
-    if plan.measure == "poincare":
+    measure = MEASURE_TABLE[plan.measure]
+    if measure.per_sample:
         coords["sample"] = (np.arange(plan.samples), meta("sample"))
         vdims = dims + ("sample",)
     variables = {"status": Variable(dims, np.dtype(np.int32), status_attrs(), -1)}
-    for n in MEASURE_VARS[plan.measure]:
+    for n in measure.variables:
         variables[n] = Variable(vdims, np.dtype(np.float64), meta(n), np.nan)
     attrs = {"Conventions": "CF-1.10", "title": f"pendula sweep: {plan.measure}", "scene": plan.scene.to_namelist(),
              "measure": plan.measure, "rtol": plan.rtol, "atol": plan.atol, "t_max": plan.t_max,
@@ -292,10 +309,11 @@ def layout_of(plan: Plan):
 
 def chunk_vars(plan: Plan, out: np.ndarray, st: np.ndarray) -> dict:
     """The kernel's output of one chunk as {variable: values}."""
-    if plan.measure == "poincare":
-        vals = {"theta": out[..., 0::2], "v": out[..., 1::2]}
+    names = MEASURE_TABLE[plan.measure].variables
+    if MEASURE_TABLE[plan.measure].per_sample:
+        vals = {n: out[..., k::len(names)] for k, n in enumerate(names)}
     else:
-        vals = {n: out[..., k] for k, n in enumerate(MEASURE_VARS[plan.measure])}
+        vals = {n: out[..., k] for k, n in enumerate(names)}
     vals["status"] = st.astype(np.int32)
     return vals
 
@@ -362,7 +380,7 @@ def run_measure(scene: Scene, over: dict, measure: str, rtol: float, atol: float
     layout = layout_of(plan)
     ds = run(plan, layout, compute_chunk, chunk_vars, out, client, threads, progress, f"sweep {measure}")
     ds.attrs.update(layout.attrs)
-    if plan.measure == "final_well" or plan.measure == "locked":
+    if MEASURE_TABLE[plan.measure].recheck:
         # read from the store in this process (threads): a cluster's workers need not see 'out'
         ds.attrs["fraction_decided"] = float((ds.status == 0).mean().compute(scheduler="threads"))
     return ds
