@@ -134,9 +134,9 @@ def test_long_work_stops_on_ctrl_c_and_has_a_bounded_identity(tmp_path):
     big_id, small_id = layout_of(plan).identity, layout_of(small).identity
     assert len(big_id) < 2000 and abs(len(big_id) - len(small_id)) < 40, len(big_id)
     assert big_id != small_id                    # still names the grid: its length, ends and checksum
-    moved = _Plan(scene, {"v0": np.r_[np.linspace(0.0, 3.0, 9), 3.0 + 1e-15]}, "final_well", 1e-10, 1e-12, 1.0,
+    moved = Plan(scene, {"v0": np.r_[np.linspace(0.0, 3.0, 9), 3.0 + 1e-15]}, "final_well", 1e-10, 1e-12, 1.0,
                   0.0, 1, 20000)
-    assert _layout(moved).identity != small_id   # one ulp-sized change of one value is another sweep
+    assert layout_of(moved).identity != small_id   # one ulp-sized change of one value is another sweep
     # and the store written records that identity, bounded
     pendula.sweep(scene, over={"v0": np.linspace(0.0, 3.0, 2000)}, measure="final_well", t_max=1.0,
                   out=tmp_path / "o")
