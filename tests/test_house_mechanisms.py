@@ -143,3 +143,15 @@ def test_batch_programs_refuse_an_argument_ending_in_a_blank(tmp_path):
                            timeout=60)
         assert r.returncode != 0 and "ends in a blank" in r.stderr, (cmd, r.stderr)
     assert sorted(os.listdir(tmp_path)) == ["s.nml"]
+
+
+def test_both_programs_refuse_a_seed_beyond_two_to_the_53(tmp_path):
+    # 2^53 + 1 is no double: read whole by the namelist and rounded by Python's fields, it named two seeds
+    scene = tmp_path / "seed.nml"
+    scene.write_text("&scene\n damping = 0.5, noise = 0.1, seed = 9007199254740993, t_end = 1.0\n/\n")
+    r = subprocess.run([os.path.join(BIN, "pendula-run"), str(scene)], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 2 and "seed" in r.stderr
+    with pytest.raises(pendula.SceneError, match="seed"):
+        pendula.Scene.from_file(scene)
+    scene.write_text("&scene\n damping = 0.5, noise = 0.1, seed = 9007199254740992, t_end = 1.0\n/\n")
+    assert pendula.Scene.from_file(scene).seed == 2**53

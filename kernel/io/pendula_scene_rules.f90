@@ -262,7 +262,7 @@ contains
       msg = 'field ''noise'' must be a finite temperature >= 0 (in units of eps), got ' // &
             trim(num_text(sc%noise)); return
     end if
-    if (sc%seed < 0 .or. real(sc%seed, dp) > seed_limit) then
+    if (sc%seed < 0_int64 .or. sc%seed > 9007199254740992_int64) then   ! 2^53 (seed_limit), compared whole
       msg = 'field ''seed'' must be a whole number from 0 to 2^53'; return
     end if
     if (sc%noise == 0) return
