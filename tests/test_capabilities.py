@@ -46,6 +46,13 @@ def _attractors(am):
     return _arr([np.r_[a.theta, a.v, a.period] for a in am.attractors][0])
 
 
+def _decided(ds, names):
+    """A sweep's variables; a measure that applies at no point is no answer (a refusal, not an honour)."""
+    st = ds.status.values
+    assert not np.all(st == 2), "every point: 'measure does not apply' (the table must refuse it at the door)"
+    return _arr([ds[n].values for n in names])
+
+
 def _sweep_attractors(ds):
     return _arr([np.r_[a["theta"], a["v"]] for a in json.loads(ds.attrs["attractors"])][0])
 
@@ -68,19 +75,19 @@ TOOLS = {
     "attractor_map": (lambda s, f: _attractors(pendula.attractor_map(s, GRID)), ROTATING),
     "attractor_continuation": (lambda s, f: _arr(pendula.attractor_continuation(
         s, GRID, "drive_amplitude", [1.35, 1.36]).theta.values), ROTATING),
-    "sweep:final_well": (lambda s, f: _arr([pendula.sweep(s, {"v0": [2.55, 2.65, 2.75]}, "final_well", t_max=200,
-                                                          force=f)[v].values for v in ("well", "t_decided")]),
+    "sweep:final_well": (lambda s, f: _decided(pendula.sweep(s, {"v0": [2.55, 2.65, 2.75]}, "final_well", t_max=200,
+                                                             force=f), ("well", "t_decided")),
                          dict(damping=0.3)),
-    "sweep:mean_velocity": (lambda s, f: _arr(pendula.sweep(s, {"v0": [1.0, 2.5]}, "mean_velocity", t_max=50,
-                                                            transient=20, force=f).mean_velocity.values),
+    "sweep:mean_velocity": (lambda s, f: _decided(pendula.sweep(s, {"v0": [1.0, 2.5]}, "mean_velocity", t_max=50,
+                                                                transient=20, force=f), ("mean_velocity",)),
                             dict(damping=0.3, torque=0.5)),
-    "sweep:locked": (lambda s, f: _arr([pendula.sweep(s, {"v0": [1.6, 1.8, 2.0]}, "locked", t_max=100,
-                                                      force=f)[v].values for v in ("locked", "t_decided")]),
+    "sweep:locked": (lambda s, f: _decided(pendula.sweep(s, {"v0": [1.6, 1.8, 2.0]}, "locked", t_max=100,
+                                                         force=f), ("locked", "t_decided")),
                      dict(damping=0.3, torque=0.5)),
-    "sweep:poincare": (lambda s, f: _arr(pendula.sweep(s, {"v0": [1.0, 2.5]}, "poincare", transient=10, samples=4,
-                                                       force=f).theta.values), DRIVEN),
-    "sweep:lyapunov": (lambda s, f: _arr(pendula.sweep(s, {"v0": [1.0]}, "lyapunov", t_max=60, transient=10,
-                                                       force=f).lyapunov.values), DRIVEN),
+    "sweep:poincare": (lambda s, f: _decided(pendula.sweep(s, {"v0": [1.0, 2.5]}, "poincare", transient=10,
+                                                           samples=4, force=f), ("theta",)), DRIVEN),
+    "sweep:lyapunov": (lambda s, f: _decided(pendula.sweep(s, {"v0": [1.0]}, "lyapunov", t_max=60, transient=10,
+                                                           force=f), ("lyapunov",)), DRIVEN),
     "sweep:attractor": (lambda s, f: _sweep_attractors(pendula.sweep(s, {"v0": [1.0, 2.5]}, "attractor")),
                         ROTATING),
     "iv_curve": (lambda s, f: _arr(pendula.iv_curve(s, [0.5, 1.2], direction="up", transient=20,

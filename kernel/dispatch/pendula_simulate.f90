@@ -27,7 +27,7 @@ module pendula_simulate
   use pendula_gsl_iface, only: pendula_gsl_rk8pd
   use pendula_stick_slip, only: stick_slip_run, switched, ss_backward, ss_release_failed
   use pendula_system, only: model_info_t, registry, select_model, mid_rigid, mid_cord, mid_cycloid, mid_gravity, &
-    scene_rates, capability_check, cap_ok, cap_not_implemented
+    scene_rates, capability_check, cap_ok, cap_not_implemented, any_effect
   implicit none
   private
   public :: model_info_t, registry, select_model, mid_rigid, mid_cord, mid_cycloid, mid_gravity, &
@@ -153,7 +153,8 @@ contains
     if (status /= sim_ok) return
     ! what simulate honours on this model (the capability table); the scene's
     ! own rules have refused the combinations no model takes
-    call capability_check(sc, 'simulate', '', present(force), status, msg)
+    status = cap_ok
+    if (any_effect(sc) .or. present(force)) call capability_check(sc, 'simulate', '', present(force), status, msg)
     if (status == cap_not_implemented) then
       status = sim_not_implemented; return
     else if (status /= cap_ok) then

@@ -28,7 +28,8 @@ module pendula_system
   implicit none
   private
   public :: model_info_t, registry, select_model, capability_t, capabilities, capability_check, &
-    capability_table, scene_forcing, scene_rates, scene_gravity, effect_names, effect_fields, scene_effect_on
+    capability_table, scene_forcing, scene_rates, scene_gravity, effect_names, effect_fields, scene_effect_on, &
+    any_effect
 
   integer, parameter, public :: sys_ok = 0, sys_model_clash = 15, sys_not_implemented = 14
   !> capability_check's answers: honoured, refused (a ValueError naming the field), not implemented (for
@@ -122,12 +123,14 @@ module pendula_system
                  'attractors are those of the deterministic stroboscopic map'), &
     capability_t('attractor_continuation', 'rigid', 'damping torque drive friction drag pivot', '', 'drive pivot', &
                  'attractors are those of the deterministic stroboscopic map'), &
-    capability_t('sweep:final_well', 'rigid', 'damping torque friction drag force', '', '', &
-                 'a final well is where an undriven orbit settles'), &
+    capability_t('sweep:final_well', 'rigid', 'damping torque friction drag', '', '', &
+                 'a final well is where an undriven orbit settles, judged by its energy'), &
     capability_t('sweep:mean_velocity', 'rigid', all8, '', '', ''), &
-    capability_t('sweep:locked', 'rigid', deterministic, '', '', sweep_note), &
+    capability_t('sweep:locked', 'rigid', 'damping torque friction drag', '', '', &
+                 'locked asks whether an undriven orbit comes to rest, judged by its energy'), &
     capability_t('sweep:poincare', 'rigid', deterministic, '', 'drive pivot', sweep_note), &
-    capability_t('sweep:lyapunov', 'rigid', deterministic, '', '', sweep_note), &
+    capability_t('sweep:lyapunov', 'rigid', 'damping torque drive drag pivot force', '', '', &
+                 'its variational equations need a smooth deterministic flow (dry friction sticks; noise is random)'), &
     capability_t('sweep:attractor', 'rigid', 'damping torque drive friction drag pivot', '', 'drive pivot', &
                  'attractors are those of the deterministic stroboscopic map'), &
     capability_t('iv_curve', 'rigid', 'damping drive friction drag pivot noise', '', '', &
@@ -176,6 +179,14 @@ contains
             trim(sc%guide) // ''', gravity = ''' // trim(sc%gravity) // ''')'
     end if
   end subroutine select_model
+
+  !> Does the scene turn any effect on?  (A scene without one has nothing a tool could refuse.)
+  pure logical function any_effect(sc)
+    type(scene_t), intent(in) :: sc
+    any_effect = sc%damping /= 0.0_dp .or. sc%torque /= 0.0_dp .or. sc%drive_amplitude /= 0.0_dp .or. &
+                 sc%friction /= 0.0_dp .or. sc%drag /= 0.0_dp .or. sc%pivot_amplitude /= 0.0_dp .or. &
+                 sc%noise /= 0.0_dp
+  end function any_effect
 
   !> Is effect k on in the scene, or swept (its field named in `swept`, words separated by blanks)?
   !> force: a user's force is given.
