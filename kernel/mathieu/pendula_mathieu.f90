@@ -124,50 +124,97 @@ contains
     end do
   end function sturm_count
 
-  !> The j-th (0-based) eigenvalue by bisection to adjacent floats.
-  pure real(dp) function bisect(d, e2, n, j, lo0, hi0, pivmin) result(x)
+  !> The j-th (0-based) eigenvalue: Rayleigh-quotient steps from the
+  !> twisted factorisation (cubic convergence), each checked by a Sturm
+  !> count that keeps a bracket [lo, hi] with count(lo) <= j < count(hi);
+  !> a step that leaves the bracket is replaced by bisection, and the
+  !> iteration stops only when the bracket holds the j-th eigenvalue alone
+  !> and the step is below an ulp.  Returns the eigenvector's normalised
+  !> components at the two ends too.
+  pure subroutine eigenvalue(d, e2, n, j, lo0, hi0, pivmin, x, first, last)
     integer, intent(in) :: n, j
     real(dp), intent(in) :: d(n), e2(n), lo0, hi0, pivmin
-    real(dp) :: lo, hi, mid, w
-    integer :: it
+    real(dp), intent(out) :: x, first, last
+    real(dp) :: lo, hi, w, step, xn, del
+    integer :: it, cl, ch, c
+    logical :: rq
     lo = lo0
     hi = hi0
     w = max(hi - lo, 1.0_dp)
     do it = 1, 60   ! widen until the bracket holds it (the bounds are Weyl's)
-      if (sturm_count(d, e2, n, lo, pivmin) <= j) exit
+      cl = sturm_count(d, e2, n, lo, pivmin)
+      if (cl <= j) exit
       lo = lo - w
       w = 2.0_dp * w
     end do
     w = max(hi - lo, 1.0_dp)
     do it = 1, 60
-      if (sturm_count(d, e2, n, hi, pivmin) > j) exit
+      ch = sturm_count(d, e2, n, hi, pivmin)
+      if (ch > j) exit
       hi = hi + w
       w = 2.0_dp * w
     end do
-    do it = 1, 2200
-      mid = lo + 0.5_dp * (hi - lo)
-      if (mid <= lo .or. mid >= hi) exit
-      if (sturm_count(d, e2, n, mid, pivmin) > j) then
-        hi = mid
+    ! bisection until the bracket holds the j-th eigenvalue alone: the
+    ! Rayleigh-quotient steps then stay with it or leave the bracket
+    do it = 1, 200
+      if (cl == j .and. ch == j + 1) exit
+      xn = lo + 0.5_dp * (hi - lo)
+      if (xn <= lo .or. xn >= hi) exit
+      c = sturm_count(d, e2, n, xn, pivmin)
+      if (c > j) then
+        hi = xn
+        ch = c
       else
-        lo = mid
+        lo = xn
+        cl = c
       end if
     end do
     x = lo + 0.5_dp * (hi - lo)
-  end function bisect
+    rq = .true.
+    do it = 1, 300
+      call twist(d, e2, n, x, pivmin, step, first, last)
+      xn = x + step
+      if (rq .and. abs(step) <= 0.5_dp * eps_dp * abs(x)) then
+        ! converged: certify that the j-th eigenvalue is within a few ulp
+        del = 4.0_dp * eps_dp * abs(xn) + tiny(1.0_dp)
+        if (sturm_count(d, e2, n, xn - del, pivmin) <= j) then
+          if (sturm_count(d, e2, n, xn + del, pivmin) > j) then
+            x = xn
+            return
+          end if
+        end if
+        rq = .false.     ! converged to a neighbour: bisection from here
+      end if
+      if (it > 12) rq = .false.
+      if (.not. rq .or. .not. (xn > lo .and. xn < hi)) xn = lo + 0.5_dp * (hi - lo)
+      if (xn <= lo .or. xn >= hi) exit       ! lo and hi adjacent floats
+      c = sturm_count(d, e2, n, xn, pivmin)
+      if (c > j) then
+        hi = xn
+      else
+        lo = xn
+      end if
+      x = xn
+      if (hi - lo <= 2.0_dp * eps_dp * max(abs(lo), abs(hi))) exit
+    end do
+    x = lo + 0.5_dp * (hi - lo)
+    call twist(d, e2, n, x, pivmin, step, first, last)
+  end subroutine eigenvalue
 
-  !> Normalised components at the two ends of the eigenvector of the
-  !> tridiagonal matrix for the eigenvalue x, from the twisted factorisation
-  !> (each component a product of ratios away from the twist, so tiny ones
-  !> keep their relative accuracy).
-  pure subroutine edge_components(d, e2, n, x, pivmin, first, last)
+  !> The twisted factorisation of T - x at the row r of the smallest
+  !> twist pivot gamma_r: the Rayleigh-quotient step gamma_r / ||z||^2 of its
+  !> vector z (z_r = 1, (T - x) z = gamma_r e_r), and z's normalised
+  !> components at the two ends (each a product of ratios away from the
+  !> twist, so tiny ones keep their relative accuracy).
+  pure subroutine twist(d, e2, n, x, pivmin, step, first, last)
     integer, intent(in) :: n
     real(dp), intent(in) :: d(n), e2(n), x, pivmin
-    real(dp), intent(out) :: first, last
+    real(dp), intent(out) :: step, first, last
     real(dp), allocatable :: dp_(:), dm(:), z(:)
-    real(dp) :: g, gbest, e, nrm2, big
+    real(dp) :: g, gbest, gr, nrm2, big
     integer :: i, r
     if (n == 1) then
+      step = d(1) - x
       first = 1.0_dp
       last = 1.0_dp
       return
@@ -187,35 +234,34 @@ contains
     end do
     r = 1
     gbest = huge(1.0_dp)
+    gr = 0.0_dp
     do i = 1, n
-      g = abs(dp_(i) + dm(i) - (d(i) - x))
-      if (g < gbest) then
-        gbest = g
+      g = dp_(i) + dm(i) - (d(i) - x)
+      if (abs(g) < gbest) then
+        gbest = abs(g)
+        gr = g
         r = i
       end if
     end do
     z(r) = 1.0_dp
     big = 1.0_dp
     do i = r - 1, 1, -1
-      e = sqrt(e2(i))
-      z(i) = -(e / dp_(i)) * z(i + 1)
+      z(i) = -(sqrt(e2(i)) / dp_(i)) * z(i + 1)
       big = max(big, abs(z(i)))
     end do
     do i = r + 1, n
-      e = sqrt(e2(i - 1))
-      z(i) = -(e / dm(i)) * z(i - 1)
+      z(i) = -(sqrt(e2(i - 1)) / dm(i)) * z(i - 1)
       big = max(big, abs(z(i)))
     end do
-    ! normalise without overflow: the twist is the largest component up to
-    ! a modest factor, so scaling by the largest is safe
     nrm2 = 0.0_dp
     do i = 1, n
       nrm2 = nrm2 + (z(i) / big) ** 2
     end do
+    step = (gr / big) / (nrm2 * big)
     nrm2 = sqrt(nrm2)
     first = abs(z(1) / big) / nrm2
     last = abs(z(n) / big) / nrm2
-  end subroutine edge_components
+  end subroutine twist
 
   ! ------------------------------------------------------------------
   ! The solver: the eigenvalue of index mode, in the window, widened until
@@ -251,7 +297,7 @@ contains
     real(dp), intent(out) :: x, bound
     integer, intent(out) :: status, j, r0
     real(dp), allocatable, intent(out) :: d(:), e2(:)
-    real(dp) :: aq, lam_lo, lam_hi, p, rr, e, slo, shi, pivmin, f1, fn, c1, cn
+    real(dp) :: aq, lam_lo, lam_hi, p, rr, ehi, elo, slo, shi, pivmin, f1, fn, c1, cn
     integer :: r1, n, attempt
     logical :: cut
     aq = abs(q)
@@ -259,15 +305,19 @@ contains
     lam_lo = centre * centre - spread * aq
     p = sqrt(max(lam_hi + 2.0_dp * aq, 0.0_dp))
     rr = sqrt(max(lam_lo - 2.0_dp * aq, 0.0_dp))
-    e = 8.0_dp + 10.0_dp * log10(max(aq, 1.0_dp))
+    ! the tails: beyond the turning points the Fourier coefficients fall by
+    ! at most |q| / (s^2 - lambda) a row (two orders); rows are added until
+    ! that product is below the tolerance over |q|
+    call tail(aq, p, lam_hi, 1.0_dp, tol_rel, ehi)
+    call tail(aq, rr, lam_lo, -1.0_dp, tol_rel, elo)
     status = mathieu_no_convergence
     x = nan_dp
     bound = nan_dp
     j = 0
     r0 = 0
     do attempt = 1, 12
-      shi = p + e
-      slo = rr - e
+      shi = p + ehi
+      slo = rr - elo
       cut = (slo > 2.0_dp) .and. by_order .or. (slo > 2.0_dp .and. fam /= 0)
       call window_rows(fam, nu, slo, shi, cut, r0, r1)
       n = r1 - r0 + 1
@@ -277,13 +327,19 @@ contains
       call build(fam, nu, q, r0, r1, d, e2)
       j = window_index(fam, nu, m, by_order, r0)
       if (j < 0 .or. j >= n) then
-        e = 2.0_dp * e
+        ehi = 2.0_dp * ehi + 4.0_dp
+        elo = 2.0_dp * elo + 4.0_dp
         cycle
       end if
       pivmin = tiny(1.0_dp) * max(1.0_dp, maxval(e2))
-      x = bisect(d, e2, n, j, lam_lo - 1.0e-3_dp * abs(lam_lo) - 1.0_dp, &
-                 lam_hi + 1.0e-3_dp * abs(lam_hi) + 1.0_dp, pivmin)
-      call edge_components(d, e2, n, x, pivmin, f1, fn)
+      call eigenvalue(d, e2, n, j, lam_lo - 1.0e-3_dp * abs(lam_lo) - 1.0_dp, &
+                      lam_hi + 1.0e-3_dp * abs(lam_hi) + 1.0_dp, pivmin, x, f1, fn)
+      if (aq == 0.0_dp) then   ! the diagonal itself: snap to its entry
+        x = d(minloc(abs(d - x), 1))
+        bound = 0.0_dp
+        status = mathieu_ok
+        return
+      end if
       ! the couplings that the window cuts: below row r0 (none at row 0 of
       ! a one-sided family) and above row r1
       c1 = sqrt2 * aq
@@ -295,9 +351,33 @@ contains
         status = mathieu_ok
         return
       end if
-      e = 2.0_dp * e
+      ehi = 2.0_dp * ehi + 4.0_dp
+      elo = 2.0_dp * elo + 4.0_dp
     end do
   end subroutine solve
+
+  !> How far (in orders s) past the turning point s0 the window must reach
+  !> for the tail's decay to fall below tol_rel / |q| (dir +1: upwards from
+  !> s0 with s^2 above lam; -1: downwards with s^2 below lam).
+  pure subroutine tail(aq, s0, lam, dir, tol_rel, ext)
+    real(dp), intent(in) :: aq, s0, lam, dir, tol_rel
+    real(dp), intent(out) :: ext
+    real(dp) :: prod, s, gap, goal
+    integer :: k
+    ext = 4.0_dp
+    if (aq == 0.0_dp) return
+    goal = 1.0e-2_dp * tol_rel / max(aq, 1.0_dp)
+    prod = 1.0_dp
+    s = s0
+    do k = 1, max_rows
+      s = s + 2.0_dp * dir
+      if (dir < 0.0_dp .and. s <= 0.0_dp) exit
+      gap = dir * (s * s - lam)
+      if (gap > 0.0_dp) prod = prod * min(1.0_dp, aq / gap)
+      if (prod <= goal) exit
+    end do
+    ext = abs(s - s0) + 4.0_dp
+  end subroutine tail
 
   !> Characteristic value a_nu(q) (kind 1) or b_nu(q) (kind 2) of real order
   !> nu >= 0; for non-integer nu both are lambda_nu(q) (DLMF 28.12).  bound:

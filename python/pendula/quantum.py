@@ -1,0 +1,469 @@
+"""The quantum pendulum: Mathieu characteristic values and the transmon.
+
+Mathieu's equation y'' + (a - 2 q cos 2z) y = 0 has solutions of period
+pi or 2 pi only for the characteristic values a_n(q) (even solutions) and
+b_n(q) (odd ones), and Floquet solutions exp(i nu z) P(z) of any real order
+nu for lambda_nu(q) (DLMF 28.2, 28.12).  The same numbers are the spectrum of
+the quantum pendulum H = 4 E_C (n - n_g)^2 - E_J cos phi (the transmon,
+Koch et al. 2007) and the stability boundaries of the pendulum on a
+vibrating pivot (the Ince-Strutt chart).
+
+Every value is computed in the Fortran kernel as an eigenvalue of a
+symmetric tridiagonal Hill matrix, picked by its index with Sturm-sequence
+bisection (so no value jumps to a neighbouring order), with an a-posteriori
+bound on the truncation error.  Functions broadcast like numpy ufuncs and
+return NaN with a RuntimeWarning outside their domain.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from . import _kernel
+from ._checks import as_float, count, flat, real, shaped
+from ._optional import require
+
+__all__ = ["mathieu_a", "mathieu_b", "mathieu_exponent", "Transmon", "MATHIEU_MAX_Q"]
+
+#: the largest |q| served (the Hill matrix grows as sqrt(|q|): 2e5 rows here)
+MATHIEU_MAX_Q = 1.0e10
+#: the largest order served
+MATHIEU_MAX_ORDER = 1.0e8
+#: the largest |q| of the double-double levels (the charge dispersion)
+_DD_MAX_Q = 1.0e6
+
+_STATUS_TEXT = {1: "outside the domain", 2: "with the truncation bound not met"}
+
+
+def _warn_status(func: str, status: np.ndarray, stacklevel: int = 3) -> None:
+    for code, text in _STATUS_TEXT.items():
+        n = int(np.count_nonzero(status == code))
+        if n:
+            warnings.warn(f"{func}: {n} value(s) {text} gave NaN", RuntimeWarning, stacklevel=stacklevel + 1)
+
+
+def _char(kind: int, name: str, nu, q, bound: bool):
+    nu = as_float(nu, "nu")
+    q = as_float(q, "q")
+    shape, (nf, qf) = flat(nu, q)
+    if nf.size == 0:
+        empty = np.empty(shape)
+        return (empty, np.empty(shape)) if bound else empty
+    val, bnd, status = _kernel.mathieu_char_v(kind, nf, qf)
+    # NaN in gives NaN out without a warning (numpy's way)
+    _warn_status(name, np.where(np.isnan(nf) | np.isnan(qf), 0, status))
+    if bound:
+        return shaped(val, shape), shaped(bnd, shape)
+    return shaped(val, shape)
+
+
+def mathieu_a(nu: ArrayLike, q: ArrayLike, *, bound: bool = False):
+    """Characteristic value a_nu(q) of Mathieu's equation, any real order.
+
+    For integer nu = n, the value for which y'' + (a - 2 q cos 2z) y = 0 has
+    the even solution ce_n of period pi or 2 pi (DLMF 28.2(v)); for
+    non-integer nu, the value lambda_nu(q) of the Floquet solution of
+    exponent nu (DLMF 28.12), the same as :func:`mathieu_b`.
+
+    Parameters
+    ----------
+    nu : array_like
+        Order, 0 <= nu <= 1e8 (integer or not).  Negative orders are refused
+        (NaN with a RuntimeWarning): for non-integer nu, lambda_-nu =
+        lambda_nu, so pass abs(nu).
+    q : array_like
+        Parameter, any sign, abs(q) <= 1e10.  Broadcast against `nu`.
+    bound : bool, optional
+        Also return the a-posteriori bound on the truncation error of each
+        value (the residual of the truncated eigenvector in the infinite
+        Hill matrix); the rounding error, a few eps times max(|a|, |q|),
+        comes on top.
+
+    Returns
+    -------
+    a : ndarray or float
+        a_nu(q); NaN with a RuntimeWarning outside the domain.
+    bound : ndarray or float
+        Only with ``bound=True``.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> round(float(pendula.mathieu_a(5, 21)), 9)
+    37.462613226
+    >>> a = pendula.mathieu_a([0, 0.5, 1], 1.0)
+    >>> [round(float(x), 10) for x in a]
+    [-0.4551386041, -0.3072853506, 1.8591080725]
+    """
+    return _char(1, "mathieu_a", nu, q, bound)
+
+
+def mathieu_b(nu: ArrayLike, q: ArrayLike, *, bound: bool = False):
+    """Characteristic value b_nu(q) of Mathieu's equation, any real order.
+
+    For integer nu = n >= 1, the value for which Mathieu's equation has the
+    odd solution se_n of period pi or 2 pi (DLMF 28.2(v)); b_0 does not exist
+    (NaN with a RuntimeWarning).  For non-integer nu, lambda_nu(q), the same
+    as :func:`mathieu_a`.
+
+    Parameters
+    ----------
+    nu : array_like
+        Order, 0 < nu <= 1e8.  Negative orders are refused (NaN with a
+        RuntimeWarning).
+    q : array_like
+        Parameter, any sign, abs(q) <= 1e10.
+    bound : bool, optional
+        Also return the truncation bound (see :func:`mathieu_a`).
+
+    Returns
+    -------
+    b : ndarray or float
+        b_nu(q); NaN with a RuntimeWarning outside the domain.
+    bound : ndarray or float
+        Only with ``bound=True``.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> round(float(pendula.mathieu_b(1, 1.0)), 10)
+    -0.110248817
+    >>> # a_0 < b_1 < a_1 < b_2 < a_2 for q > 0
+    >>> import numpy as np
+    >>> edges = [pendula.mathieu_a(0, 5.0), pendula.mathieu_b(1, 5.0),
+    ...          pendula.mathieu_a(1, 5.0), pendula.mathieu_b(2, 5.0)]
+    >>> bool(np.all(np.diff(edges) > 0))
+    True
+    """
+    return _char(2, "mathieu_b", nu, q, bound)
+
+
+def mathieu_exponent(a: ArrayLike, q: ArrayLike) -> NDArray[np.float64] | np.float64:
+    """Characteristic exponent nu(a, q) of Mathieu's equation.
+
+    The inverse of lambda_nu(q): the order nu >= 0 whose Floquet solutions
+    exp(+-i nu z) P(z) solve y'' + (a - 2 q cos 2z) y = 0 (DLMF 28.2(iii)).
+    It is real exactly where every solution is bounded: in the bands
+    a_n(|q|) <= a <= b_n+1(|q|), where n <= nu <= n + 1.  Between the bands
+    (the instability tongues of the Ince-Strutt chart, and a < a_0) it is
+    complex, and NaN is returned there without a warning: NaN is the answer
+    "unstable", not an error.
+
+    Parameters
+    ----------
+    a : array_like
+        Characteristic value, abs(a) <= 1e16.
+    q : array_like
+        Parameter, any sign (nu depends on abs(q) only), abs(q) <= 1e10.
+
+    Returns
+    -------
+    nu : ndarray or float
+        The real exponent, or NaN where the solutions are unbounded; NaN
+        with a RuntimeWarning outside the domain.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> a = pendula.mathieu_a(0.3, 2.0)
+    >>> round(float(pendula.mathieu_exponent(a, 2.0)), 12)
+    0.3
+    >>> import numpy as np
+    >>> bool(np.isnan(pendula.mathieu_exponent(0.0, 1.0)))   # a tongue
+    True
+    """
+    a = as_float(a, "a")
+    q = as_float(q, "q")
+    shape, (af, qf) = flat(a, q)
+    if af.size == 0:
+        return np.empty(shape)
+    nu, status = _kernel.mathieu_nu_v(af, qf)
+    _warn_status("mathieu_exponent", np.where(np.isnan(af) | np.isnan(qf), 0, status))
+    return shaped(nu, shape)
+
+
+def _levels(nu: np.ndarray, q: np.ndarray, m: np.ndarray, name: str) -> np.ndarray:
+    """Hill levels in units of E_C, broadcast over nu, q, m (float64 out)."""
+    b = np.broadcast_arrays(nu, q, m)
+    shape = b[0].shape
+    nf = np.ascontiguousarray(b[0], dtype=np.float64).reshape(-1)
+    qf = np.ascontiguousarray(b[1], dtype=np.float64).reshape(-1)
+    mf = np.ascontiguousarray(b[2], dtype=np.int32).reshape(-1)
+    if nf.size == 0:
+        return np.empty(shape)
+    val, _, status = _kernel.mathieu_level_v(nf, qf, mf)
+    _warn_status(name, np.where(np.isnan(nf) | np.isnan(qf), 0, status), stacklevel=4)
+    return val.reshape(shape)
+
+
+class Transmon:
+    """The quantum pendulum H = 4 E_C (n - n_g)^2 - E_J cos phi.
+
+    The Cooper-pair box and the transmon (Koch et al. 2007): its levels are
+    E_m(n_g) = E_C lambda(q), the m-th eigenvalue of the Hill matrix of
+    offset 2 n_g with q = -E_J / (2 E_C), that is E_C a_r(q) with the order
+    r = 2 (n_g + k(m, n_g)) of Koch et al., section II.  Energies come in
+    the units of E_J and E_C.
+
+    Parameters
+    ----------
+    E_J : float
+        Josephson energy, E_J >= 0 (E_J = 0 is the free rotor).
+    E_C : float
+        Charging energy, E_C > 0.
+    n_g : float, optional
+        Offset charge (in Cooper pairs, periodic with period 1).
+
+    Examples
+    --------
+    >>> import pendula
+    >>> t = pendula.Transmon(E_J=50.0, E_C=1.0)
+    >>> t
+    Transmon(E_J=50, E_C=1, n_g=0)
+    >>> e = t.levels(3)                   # a_0, b_2, a_2 at q = -25
+    >>> e.shape
+    (3,)
+    >>> bool(abs(e[0] - pendula.mathieu_a(0, -25.0)) < 1e-13)
+    True
+    """
+
+    def __init__(self, E_J: float, E_C: float, n_g: float = 0.0):
+        self.E_J = real(E_J, "E_J", lo=0.0)
+        self.E_C = real(E_C, "E_C", lo=0.0, lo_open=True)
+        if not self.E_J / self.E_C / 2.0 <= MATHIEU_MAX_Q:
+            raise ValueError(f"E_J / E_C must be at most {2 * MATHIEU_MAX_Q:g}, got {self.E_J / self.E_C:g}")
+        self.n_g = real(n_g, "n_g")
+
+    def __repr__(self) -> str:
+        return f"Transmon(E_J={self.E_J:g}, E_C={self.E_C:g}, n_g={self.n_g:g})"
+
+    @property
+    def q(self) -> float:
+        """Mathieu's parameter q = -E_J / (2 E_C)."""
+        return -self.E_J / (2.0 * self.E_C)
+
+    def _ng(self, n_g) -> np.ndarray:
+        return np.asarray(self.n_g if n_g is None else as_float(n_g, "n_g"), dtype=np.float64)
+
+    def levels(self, count_: int = 5, n_g: ArrayLike | None = None) -> NDArray[np.float64]:
+        """The lowest levels E_0 < E_1 < ... at the offset charge(s) n_g.
+
+        Parameters
+        ----------
+        count_ : int, optional
+            How many levels (the first positional argument), at least 1.
+        n_g : array_like, optional
+            Offset charge(s); the transmon's own when omitted.
+
+        Returns
+        -------
+        E : ndarray
+            Shape ``np.shape(n_g) + (count_,)``: E_m(n_g) for m = 0 ..
+            count_ - 1, in the units of E_J and E_C.
+
+        Examples
+        --------
+        >>> import pendula
+        >>> rotor = pendula.Transmon(E_J=0.0, E_C=1.0, n_g=0.25)
+        >>> rotor.levels(3).tolist()      # 4 E_C (n - n_g)^2 sorted
+        [0.25, 2.25, 6.25]
+        """
+        c = count(count_, "count", 1, 10 ** 6)
+        ng = self._ng(n_g)
+        m = np.arange(c, dtype=np.int32)
+        lam = _levels(2.0 * ng[..., None], np.float64(self.q), m, "Transmon.levels")
+        return self.E_C * lam
+
+    def transition(self, m: int = 1, n_g: ArrayLike | None = None):
+        """The transition energy E_m - E_0 at n_g.
+
+        Parameters
+        ----------
+        m : int, optional
+            Upper level, at least 1.
+        n_g : array_like, optional
+            Offset charge(s); the transmon's own when omitted.
+
+        Returns
+        -------
+        E_m0 : ndarray or float
+
+        Examples
+        --------
+        >>> import pendula
+        >>> round(float(pendula.Transmon(50.0, 1.0).transition()), 6)
+        18.941919
+        """
+        m = count(m, "m", 1, 10 ** 6)
+        e = self.levels(m + 1, n_g)
+        out = e[..., m] - e[..., 0]
+        return out[()] if np.ndim(out) == 0 else out
+
+    def anharmonicity(self, n_g: ArrayLike | None = None):
+        """The anharmonicity alpha = E_12 - E_01 = E_2 - 2 E_1 + E_0.
+
+        Tends to -E_C as E_J / E_C grows (Koch et al., section IV).
+
+        Parameters
+        ----------
+        n_g : array_like, optional
+            Offset charge(s); the transmon's own when omitted.
+
+        Returns
+        -------
+        alpha : ndarray or float
+
+        Examples
+        --------
+        >>> import pendula
+        >>> t = pendula.Transmon(E_J=1000.0, E_C=1.0)
+        >>> round(float(t.anharmonicity()), 3)
+        -1.027
+        """
+        e = self.levels(3, n_g)
+        out = (e[..., 2] - e[..., 1]) - (e[..., 1] - e[..., 0])
+        return out[()] if np.ndim(out) == 0 else out
+
+    def charge_dispersion(self, m: ArrayLike = 0):
+        """The charge dispersion eps_m = E_m(n_g = 1/2) - E_m(n_g = 0).
+
+        The width of the m-th band with the sign of Koch et al., eq. (2.5):
+        positive for even m.  Both levels are computed to double-double
+        precision (about 1e-31 of |q|) in the kernel, so the difference
+        keeps full double precision even where it is 1e-15 of the levels.
+
+        Parameters
+        ----------
+        m : array_like of int, optional
+            Level index (or indices), m >= 0.
+
+        Returns
+        -------
+        eps : ndarray or float
+            In the units of E_J and E_C.
+
+        Raises
+        ------
+        ValueError
+            E_J / E_C above 2e6 (the double-double window's limit).
+
+        Examples
+        --------
+        >>> import pendula
+        >>> t = pendula.Transmon(E_J=50.0, E_C=1.0)
+        >>> f"{float(t.charge_dispersion(0)):.8e}"   # b_1(25) - a_0(25)
+        '5.61882628e-07'
+        """
+        mm = np.asarray(m)
+        if mm.dtype.kind not in "iu" or np.any(mm < 0):
+            raise TypeError("m must be a whole number >= 0 (or an array of them)")
+        if -self.q > _DD_MAX_Q:
+            raise ValueError(f"charge_dispersion: E_J / E_C must be at most {2 * _DD_MAX_Q:g}")
+        mf = np.ascontiguousarray(mm, dtype=np.int32).reshape(-1)
+        qf = np.full(mf.size, self.q)
+        h0, l0, _, s0 = _kernel.mathieu_level_dd_v(np.zeros(mf.size), qf, mf)
+        h1, l1, _, s1 = _kernel.mathieu_level_dd_v(np.ones(mf.size), qf, mf)
+        _warn_status("Transmon.charge_dispersion", np.maximum(s0, s1))
+        eps = self.E_C * ((h1 - h0) + (l1 - l0))
+        return shaped(eps, mm.shape)
+
+    def charge_dispersion_asymptotic(self, m: int = 0) -> float:
+        """Koch et al.'s asymptotic charge dispersion, eq. (2.5).
+
+        eps_m ~ (-1)^m E_C 2^(4m+5) / m! sqrt(2/pi) (E_J/(2 E_C))^(m/2+3/4)
+        exp(-sqrt(8 E_J/E_C)), valid for E_J >> E_C.
+
+        Parameters
+        ----------
+        m : int, optional
+            Level index, m >= 0.
+
+        Returns
+        -------
+        eps : float
+
+        Examples
+        --------
+        >>> import pendula
+        >>> t = pendula.Transmon(E_J=50.0, E_C=1.0)
+        >>> r = t.charge_dispersion_asymptotic(0) / t.charge_dispersion(0)
+        >>> round(float(r), 3)
+        1.047
+        """
+        m = count(m, "m", 0, 170)
+        r = self.E_J / self.E_C
+        return ((-1) ** m * self.E_C * 2.0 ** (4 * m + 5) / math.factorial(m) * math.sqrt(2.0 / math.pi)
+                * (r / 2.0) ** (m / 2.0 + 0.75) * math.exp(-math.sqrt(8.0 * r)))
+
+    def spectrum_vs_ng(self, n_g: ArrayLike, count_: int = 5):
+        """The levels against the offset charge, as an xarray DataArray.
+
+        Parameters
+        ----------
+        n_g : array_like
+            1-D offset charges.
+        count_ : int, optional
+            How many levels.
+
+        Returns
+        -------
+        E : xarray.DataArray
+            Dimensions ``("n_g", "level")``.
+
+        Examples
+        --------
+        >>> import pendula
+        >>> da = pendula.Transmon(1.0, 1.0).spectrum_vs_ng([0, 0.25, 0.5], 2)
+        >>> da.dims, da.shape
+        (('n_g', 'level'), (3, 2))
+        """
+        xr = require("xarray", "xarray", "Transmon.spectrum_vs_ng")
+        ng = as_float(n_g, "n_g")
+        if ng.ndim != 1:
+            raise ValueError("n_g must be one-dimensional")
+        e = self.levels(count_, ng)
+        return xr.DataArray(e, dims=("n_g", "level"),
+                            coords={"n_g": ng, "level": np.arange(e.shape[-1])},
+                            name="E", attrs={"E_J": self.E_J, "E_C": self.E_C})
+
+    def spectrum_vs_ratio(self, ratio: ArrayLike, count_: int = 5, n_g: float | None = None):
+        """The levels in units of E_C against E_J / E_C, as an xarray DataArray.
+
+        Parameters
+        ----------
+        ratio : array_like
+            1-D values of E_J / E_C (>= 0).
+        count_ : int, optional
+            How many levels.
+        n_g : float, optional
+            Offset charge; the transmon's own when omitted.
+
+        Returns
+        -------
+        E : xarray.DataArray
+            E_m / E_C with dimensions ``("EJ_over_EC", "level")``.
+
+        Examples
+        --------
+        >>> import pendula
+        >>> da = pendula.Transmon(1.0, 1.0).spectrum_vs_ratio([0, 1, 10], 3)
+        >>> da.sel(EJ_over_EC=0).values.tolist()
+        [0.0, 4.0, 4.0]
+        """
+        xr = require("xarray", "xarray", "Transmon.spectrum_vs_ratio")
+        r = as_float(ratio, "ratio")
+        if r.ndim != 1:
+            raise ValueError("ratio must be one-dimensional")
+        if np.any(~(r >= 0)):
+            raise ValueError("ratio (E_J / E_C) must be >= 0 and not NaN")
+        c = count(count_, "count", 1, 10 ** 6)
+        ng = self.n_g if n_g is None else real(n_g, "n_g")
+        lam = _levels(np.float64(2.0 * ng), (-r / 2.0)[:, None], np.arange(c, dtype=np.int32),
+                      "Transmon.spectrum_vs_ratio")
+        return xr.DataArray(lam, dims=("EJ_over_EC", "level"),
+                            coords={"EJ_over_EC": r, "level": np.arange(c)},
+                            name="E_over_EC", attrs={"n_g": ng})
