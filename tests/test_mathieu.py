@@ -14,7 +14,7 @@ import warnings
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 import pendula
@@ -213,6 +213,11 @@ def test_continuity_in_order_at_integers(q, n):
 @settings(max_examples=150, deadline=None)
 @given(q=st.floats(-1e3, 1e3), nu=st.floats(0.01, 20.0).filter(lambda x: abs(x - round(x)) > 1e-3))
 def test_exponent_inverts_the_characteristic_value(q, nu):
+    n = int(nu)
+    lo, hi = pendula.mathieu_a(n, abs(q)), pendula.mathieu_b(n + 1, abs(q))
+    # a band narrower than a's rounding (large |q|, low bands: exponentially
+    # narrow) cannot say which nu a double means: only resolvable bands count
+    assume(hi - lo > 1e-6 * max(1.0, abs(lo), abs(q)))
     a = pendula.mathieu_a(nu, q)
     back = pendula.mathieu_exponent(a, q)
     # d nu / d a is 1 / (d lambda / d nu): the inverse loses what the band's slope loses
@@ -261,6 +266,19 @@ def test_kapitza_threshold_against_integrated_multipliers():
         if abs(hi - lo) < 1e-13 * om:
             break
     assert abs(hi - om) <= 1e-10 * om, (hi, om)
+
+
+def test_chart_agrees_with_integrated_multipliers():
+    """Upright pendulum on a pivot: stable (both multipliers on the unit circle) exactly
+    where the characteristic exponent of a = -4 eps/Omega^2, q = 2 amp is real, over
+    several tongues."""
+    for amp in (0.3, 1.5, 2.7, 3.9, 5.1):
+        for om in (0.8, 2.0, 4.0):
+            sc = pendula.Scene(theta0=math.pi, pivot_amplitude=amp, pivot_frequency=om)
+            po = pendula.periodic_orbit(sc, guess=(math.pi, 0.0))
+            up = np.max(np.abs(po.multipliers)) < 1 + 1e-8
+            nu = pendula.mathieu_exponent(-4 / om ** 2, 2 * amp)
+            assert up == bool(np.isfinite(nu)), (amp, om, po.multipliers, nu)
 
 
 # --- bad input -------------------------------------------------------------------
@@ -321,3 +339,47 @@ def test_broadcasting_and_empty():
     v = pendula.mathieu_a(np.arange(3)[:, None], np.array([0.5, 1.0]))
     assert v.shape == (3, 2)
     assert pendula.mathieu_b(np.array([]), 1.0).shape == (0,)
+
+
+# --- eigenfunctions and matrix elements -------------------------------------------
+
+@pytest.mark.parametrize("ratio,ng", [(1.0, 0.3), (20.0, 0.0), (20.0, 1.3), (50.0, -0.7)])
+def test_matrix_elements_by_hellmann_feynman(ratio, ng):
+    """<m|n|m> = n_g - dE_m/dn_g / (8 E_C) and <m|cos phi|m> = -dE_m/dE_J: the
+    diagonal elements against central differences of the levels (tested above
+    to 1e-12); the difference's own error is about 1e-10."""
+    t = pendula.Transmon(ratio, 1.0, n_g=ng)
+    h = 1e-5
+    d_ng = (pendula.Transmon(ratio, 1.0, n_g=ng + h).levels(4)
+            - pendula.Transmon(ratio, 1.0, n_g=ng - h).levels(4)) / (2 * h)
+    d_ej = (pendula.Transmon(ratio + h, 1.0, n_g=ng).levels(4)
+            - pendula.Transmon(ratio - h, 1.0, n_g=ng).levels(4)) / (2 * h)
+    np.testing.assert_allclose(np.diag(t.matrix_elements("n", 4)), ng - d_ng / 8, atol=2e-9)
+    np.testing.assert_allclose(np.diag(t.matrix_elements("cos_phi", 4)), -d_ej, atol=2e-9)
+
+
+def test_wavefunctions_diagonalise_the_hamiltonian():
+    """H psi_m = E_m psi_m in the charge basis, the residual at rounding level."""
+    t = pendula.Transmon(30.0, 1.5, n_g=0.21)
+    n, psi = t.wavefunctions(5)
+    e = t.levels(5)
+    hpsi = 4 * 1.5 * (n - 0.21) ** 2 * psi
+    hpsi[:, 1:] -= 15.0 * psi[:, :-1]
+    hpsi[:, :-1] -= 15.0 * psi[:, 1:]
+    assert np.max(np.abs(hpsi - e[:, None] * psi)) < 1e-12 * 30
+    np.testing.assert_allclose(psi @ psi.T, np.eye(5), atol=1e-14)
+
+
+def test_free_rotor_wavefunctions_are_charge_states():
+    n, psi = pendula.Transmon(0.0, 1.0, n_g=0.2).wavefunctions(3)
+    assert [int(n[np.argmax(psi[m])]) for m in range(3)] == [0, 1, -1]
+
+
+def test_matrix_elements_unknown_operator():
+    with pytest.raises(ValueError, match="operator"):
+        pendula.Transmon(1.0, 1.0).matrix_elements("sin_phi")
+
+
+def test_wavefunctions_n_max_too_small():
+    with pytest.raises(ValueError, match="n_max"):
+        pendula.Transmon(100.0, 1.0).wavefunctions(3, n_max=2)

@@ -1029,3 +1029,21 @@ subroutine mathieu_nu_v(n, a, q, nu, status)
   end do
   !$omp end parallel do
 end subroutine mathieu_nu_v
+
+! the m(i)-th level at offset nu(i) and its eigenvector on the rows
+! kmin .. kmin + nk - 1 (one column a level); lost: the norm outside
+subroutine mathieu_level_vector_v(n, nk, nu, q, m, kmin, val, c, lost, status)
+  use pendula_mathieu, only: mathieu_level_vector
+  implicit none
+  !f2py threadsafe
+  integer, intent(in) :: n, nk, kmin
+  double precision, intent(in) :: nu(n), q(n)
+  integer, intent(in) :: m(n)
+  double precision, intent(out) :: val(n), c(nk, n), lost(n)
+  integer, intent(out) :: status(n)
+  !f2py intent(hide), depend(nu) :: n = len(nu)
+  integer :: i
+  do i = 1, n
+    call mathieu_level_vector(nu(i), q(i), m(i), kmin, nk, val(i), c(:, i), lost(i), status(i))
+  end do
+end subroutine mathieu_level_vector_v

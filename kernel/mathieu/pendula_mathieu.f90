@@ -28,7 +28,7 @@ module pendula_mathieu
   use pendula_dd, only: two_sum, two_prod, dd_add, dd_div, dd_mul
   implicit none
   private
-  public :: mathieu_char, mathieu_level, mathieu_level_dd, mathieu_nu
+  public :: mathieu_char, mathieu_level, mathieu_level_dd, mathieu_nu, mathieu_level_vector
   public :: mathieu_max_q, mathieu_max_order
   public :: mathieu_ok, mathieu_bad_input, mathieu_no_convergence
 
@@ -131,13 +131,32 @@ contains
   !> iteration stops only when the bracket holds the j-th eigenvalue alone
   !> and the step is below an ulp.  Returns the eigenvector's normalised
   !> components at the two ends too.
-  pure subroutine eigenvalue(d, e2, n, j, lo0, hi0, pivmin, x, first, last)
+  pure subroutine eigenvalue(d, e2, n, j, x0, lo0, hi0, pivmin, x, first, last, z)
     integer, intent(in) :: n, j
-    real(dp), intent(in) :: d(n), e2(n), lo0, hi0, pivmin
-    real(dp), intent(out) :: x, first, last
+    real(dp), intent(in) :: d(n), e2(n), x0, lo0, hi0, pivmin
+    real(dp), intent(out) :: x, first, last, z(n)
     real(dp) :: lo, hi, w, step, xn, del
     integer :: it, cl, ch, c
     logical :: rq
+    ! first, Rayleigh-quotient steps straight from the estimate x0: when
+    ! they converge to the j-th eigenvalue (two counts certify it), done
+    x = x0
+    do it = 1, 8
+      call twist(d, e2, n, x, pivmin, step, first, last, z)
+      if (.not. abs(step) <= huge(1.0_dp)) exit
+      xn = x + step
+      if (abs(step) <= 0.5_dp * eps_dp * abs(x)) then
+        del = 4.0_dp * eps_dp * abs(xn) + tiny(1.0_dp)
+        if (sturm_count(d, e2, n, xn - del, pivmin) <= j) then
+          if (sturm_count(d, e2, n, xn + del, pivmin) > j) then
+            x = xn
+            return
+          end if
+        end if
+        exit
+      end if
+      x = xn
+    end do
     lo = lo0
     hi = hi0
     w = max(hi - lo, 1.0_dp)
@@ -172,7 +191,7 @@ contains
     x = lo + 0.5_dp * (hi - lo)
     rq = .true.
     do it = 1, 300
-      call twist(d, e2, n, x, pivmin, step, first, last)
+      call twist(d, e2, n, x, pivmin, step, first, last, z)
       xn = x + step
       if (rq .and. abs(step) <= 0.5_dp * eps_dp * abs(x)) then
         ! converged: certify that the j-th eigenvalue is within a few ulp
@@ -198,7 +217,7 @@ contains
       if (hi - lo <= 2.0_dp * eps_dp * max(abs(lo), abs(hi))) exit
     end do
     x = lo + 0.5_dp * (hi - lo)
-    call twist(d, e2, n, x, pivmin, step, first, last)
+    call twist(d, e2, n, x, pivmin, step, first, last, z)
   end subroutine eigenvalue
 
   !> The twisted factorisation of T - x at the row r of the smallest
@@ -206,20 +225,21 @@ contains
   !> vector z (z_r = 1, (T - x) z = gamma_r e_r), and z's normalised
   !> components at the two ends (each a product of ratios away from the
   !> twist, so tiny ones keep their relative accuracy).
-  pure subroutine twist(d, e2, n, x, pivmin, step, first, last)
+  pure subroutine twist(d, e2, n, x, pivmin, step, first, last, z)
     integer, intent(in) :: n
     real(dp), intent(in) :: d(n), e2(n), x, pivmin
-    real(dp), intent(out) :: step, first, last
-    real(dp), allocatable :: dp_(:), dm(:), z(:)
+    real(dp), intent(out) :: step, first, last, z(n)
+    real(dp), allocatable :: dp_(:), dm(:)
     real(dp) :: g, gbest, gr, nrm2, big
     integer :: i, r
     if (n == 1) then
       step = d(1) - x
       first = 1.0_dp
       last = 1.0_dp
+      z(1) = 1.0_dp
       return
     end if
-    allocate(dp_(n), dm(n), z(n))
+    allocate(dp_(n), dm(n))
     dp_(1) = d(1) - x
     if (abs(dp_(1)) < pivmin) dp_(1) = -pivmin
     do i = 2, n
@@ -261,6 +281,7 @@ contains
     nrm2 = sqrt(nrm2)
     first = abs(z(1) / big) / nrm2
     last = abs(z(n) / big) / nrm2
+    z = z / big
   end subroutine twist
 
   ! ------------------------------------------------------------------
@@ -290,7 +311,7 @@ contains
   !> spread |q| of it (Weyl).  tol_rel: the truncation bound to meet,
   !> relative to max(1, |value|).  Also returns the window (d, e2 left
   !> allocated) so a refinement can reuse it.
-  pure subroutine solve(fam, nu, q, m, by_order, centre, spread, tol_rel, x, bound, status, d, e2, j, r0)
+  pure subroutine solve(fam, nu, q, m, by_order, centre, spread, tol_rel, x, bound, status, d, e2, j, r0, level)
     integer, intent(in) :: fam, m
     real(dp), intent(in) :: nu, q, centre, spread, tol_rel
     logical, intent(in) :: by_order
@@ -298,6 +319,9 @@ contains
     integer, intent(out) :: status, j, r0
     real(dp), allocatable, intent(out) :: d(:), e2(:)
     real(dp) :: aq, lam_lo, lam_hi, p, rr, ehi, elo, slo, shi, pivmin, f1, fn, c1, cn
+    integer, intent(in) :: level
+    real(dp), allocatable :: z(:)
+    real(dp) :: guess, sl, h
     integer :: r1, n, attempt
     logical :: cut
     aq = abs(q)
@@ -310,6 +334,16 @@ contains
     ! that product is below the tolerance over |q|
     call tail(aq, p, lam_hi, 1.0_dp, tol_rel, ehi)
     call tail(aq, rr, lam_lo, -1.0_dp, tol_rel, elo)
+    ! the starting estimate: q = 0's value, or for large |q| the harmonic
+    ! ladder of the level's band, -2|q| + 2 s sqrt|q| - (s^2 + 1)/8 - ...
+    ! with s = 2 level + 1 (DLMF 28.8.1)
+    guess = centre * centre
+    sl = real(2 * level + 1, dp)
+    if (aq > sl * sl) then
+      h = sqrt(aq)
+      guess = -2.0_dp * aq + 2.0_dp * sl * h - (sl * sl + 1.0_dp) / 8.0_dp &
+              - (sl ** 3 + 3.0_dp * sl) / (128.0_dp * h)
+    end if
     status = mathieu_no_convergence
     x = nan_dp
     bound = nan_dp
@@ -332,8 +366,11 @@ contains
         cycle
       end if
       pivmin = tiny(1.0_dp) * max(1.0_dp, maxval(e2))
-      call eigenvalue(d, e2, n, j, lam_lo - 1.0e-3_dp * abs(lam_lo) - 1.0_dp, &
-                      lam_hi + 1.0e-3_dp * abs(lam_hi) + 1.0_dp, pivmin, x, f1, fn)
+      if (allocated(z)) deallocate(z)
+      allocate(z(n))
+      call eigenvalue(d, e2, n, j, guess, lam_lo - 1.0e-3_dp * abs(lam_lo) - 1.0_dp, &
+                      lam_hi + 1.0e-3_dp * abs(lam_hi) + 1.0_dp, pivmin, x, f1, fn, z)
+      if (aq > 0.0_dp) x = polish(fam, nu, q, r0, n, x, z)
       if (aq == 0.0_dp) then   ! the diagonal itself: snap to its entry
         x = d(minloc(abs(d - x), 1))
         bound = 0.0_dp
@@ -355,6 +392,58 @@ contains
       elo = 2.0_dp * elo + 4.0_dp
     end do
   end subroutine solve
+
+  !> The Rayleigh quotient of the eigenvector z about x, with the residual
+  !> (T - x) z in double-double and the matrix's entries exact ((nu + 2k)^2
+  !> by two-sum and Dekker's product, 1 +- q, the coupling sqrt(2) q): x
+  !> plus z'(T - x)z / z'z.  The error of z is second order, so the value
+  !> is the eigenvalue of the exact matrix to about an ulp, free of the
+  !> few-ulp-of-|q| error of the Sturm count where |q| exceeds the value.
+  pure real(dp) function polish(fam, nu, q, r0, n, x, z) result(xp)
+    integer, intent(in) :: fam, r0, n
+    real(dp), intent(in) :: nu, q, x, z(n)
+    real(dp) :: sh, sl, dh, dl, rh, rl, th, tl, num, den, aq
+    real(dp), parameter :: sqrt2_lo = -9.6667966258595e-17_dp
+    integer :: i, r
+    aq = abs(q)
+    num = 0.0_dp
+    den = 0.0_dp
+    do i = 1, n
+      r = r0 + i - 1
+      if (fam == 0) then
+        call two_sum(nu, 2.0_dp * real(r, dp), sh, sl)
+      else
+        sh = real(fam_base(fam) + 2 * r, dp)
+        sl = 0.0_dp
+      end if
+      call dd_mul(sh, sl, sh, sl, dh, dl)
+      if (r == 0 .and. fam == 2) call dd_add(1.0_dp, 0.0_dp, q, 0.0_dp, dh, dl)
+      if (r == 0 .and. fam == 3) call dd_add(1.0_dp, 0.0_dp, -q, 0.0_dp, dh, dl)
+      call dd_add(dh, dl, -x, 0.0_dp, dh, dl)
+      call dd_mul(dh, dl, z(i), 0.0_dp, rh, rl)           ! (d_i - x) z_i
+      if (i > 1) then
+        if (r - 1 == 0 .and. fam == 1) then
+          call dd_mul(sqrt2, sqrt2_lo, aq, 0.0_dp, th, tl)
+          call dd_mul(th, tl, z(i - 1), 0.0_dp, th, tl)
+        else
+          call two_prod(aq, z(i - 1), th, tl)
+        end if
+        call dd_add(rh, rl, th, tl, rh, rl)
+      end if
+      if (i < n) then
+        if (r == 0 .and. fam == 1) then
+          call dd_mul(sqrt2, sqrt2_lo, aq, 0.0_dp, th, tl)
+          call dd_mul(th, tl, z(i + 1), 0.0_dp, th, tl)
+        else
+          call two_prod(aq, z(i + 1), th, tl)
+        end if
+        call dd_add(rh, rl, th, tl, rh, rl)
+      end if
+      num = num + z(i) * (rh + rl)
+      den = den + z(i) * z(i)
+    end do
+    xp = x + num / den
+  end function polish
 
   !> How far (in orders s) past the turning point s0 the window must reach
   !> for the tail's decay to fall below tol_rel / |q| (dir +1: upwards from
@@ -390,14 +479,15 @@ contains
     real(dp), intent(out) :: val, bound
     integer, intent(out) :: status
     real(dp), allocatable :: d(:), e2(:)
-    integer :: n, fam, m, j, r0
+    integer :: n, fam, m, j, r0, lev
     val = nan_dp
     bound = nan_dp
     status = mathieu_bad_input
     if (.not. (nu >= 0.0_dp .and. nu <= mathieu_max_order)) return
     if (.not. (abs(q) <= mathieu_max_q)) return
     if (nu /= aint(nu)) then
-      call solve(0, nu, q, 0, .true., nu, 2.0_dp, 0.25_dp * eps_dp, val, bound, status, d, e2, j, r0)
+      call solve(0, nu, q, 0, .true., nu, 2.0_dp, 0.25_dp * eps_dp, val, bound, status, d, e2, j, r0, &
+                 int(nu))
       return
     end if
     n = int(nu)
@@ -419,7 +509,12 @@ contains
         m = n / 2 - 1
       end if
     end if
-    call solve(fam, 0.0_dp, q, m, .false., nu, 3.0_dp, 0.25_dp * eps_dp, val, bound, status, d, e2, j, r0)
+    ! the band at large |q|: a_n and b_n+1 share the level n (q > 0); for
+    ! q < 0 the odd orders swap (a_2m+1(-q) = b_2m+1(q))
+    lev = n
+    if (kind == 2) lev = n - 1
+    if (q < 0.0_dp .and. mod(n, 2) == 1) lev = n - 1 + 2 * (kind - 1)
+    call solve(fam, 0.0_dp, q, m, .false., nu, 3.0_dp, 0.25_dp * eps_dp, val, bound, status, d, e2, j, r0, lev)
   end subroutine mathieu_char
 
   !> q = 0 value of the m-th level of the bi-infinite matrix of offset nu
@@ -467,8 +562,61 @@ contains
     nr = modulo(nu, 2.0_dp)
     if (nr >= 2.0_dp) nr = 0.0_dp
     call solve(0, nr, q, m, .false., level_order(nr, m), 2.0_dp, 0.25_dp * eps_dp, val, bound, &
-               status, d, e2, j, r0)
+               status, d, e2, j, r0, m)
   end subroutine mathieu_level
+
+  !> The m-th level of the bi-infinite matrix of offset nu (as
+  !> mathieu_level) and its eigenvector c_k, k = kmin .. kmin + nk - 1, of
+  !> the matrix with couplings q (its sign kept: for q < 0 the components
+  !> alternate relative to q > 0), unit norm, the largest component
+  !> positive.  Rows of the window outside the requested range are dropped;
+  !> lost is the norm they carried (the caller widens the range when it is
+  !> not negligible).  The row index k is that of nu reduced to [0, 2).
+  pure subroutine mathieu_level_vector(nu, q, m, kmin, nk, val, c, lost, status)
+    real(dp), intent(in) :: nu, q
+    integer, intent(in) :: m, kmin, nk
+    real(dp), intent(out) :: val, c(nk), lost
+    integer, intent(out) :: status
+    real(dp), allocatable :: d(:), e2(:), z(:)
+    real(dp) :: nr, bound, step, f1, fn, pivmin, nrm, big
+    integer :: j, r0, n, i, k, ib
+    c = 0.0_dp
+    lost = nan_dp
+    val = nan_dp
+    status = mathieu_bad_input
+    if (.not. (abs(nu) <= mathieu_max_order) .or. m < 0 .or. m > 100000000) return
+    if (.not. (abs(q) <= mathieu_max_q)) return
+    nr = modulo(nu, 2.0_dp)
+    if (nr >= 2.0_dp) nr = 0.0_dp
+    call solve(0, nr, q, m, .false., level_order(nr, m), 2.0_dp, 0.25_dp * eps_dp, val, bound, &
+               status, d, e2, j, r0, m)
+    if (status /= mathieu_ok) return
+    n = size(d)
+    allocate(z(n))
+    pivmin = tiny(1.0_dp) * max(1.0_dp, maxval(e2))
+    if (abs(q) > 0.0_dp) then
+      call twist(d, e2, n, val, pivmin, step, f1, fn, z)
+    else
+      z = 0.0_dp
+      z(minloc(abs(d - val), 1)) = 1.0_dp
+    end if
+    do i = 1, n     ! the couplings were |q|: back to q's sign
+      if (q < 0.0_dp .and. mod(r0 + i - 1, 2) /= 0) z(i) = -z(i)
+    end do
+    nrm = sqrt(sum(z * z))
+    ib = maxloc(abs(z), 1)
+    big = sign(1.0_dp, z(ib)) / nrm
+    lost = 0.0_dp
+    do i = 1, n
+      k = r0 + i - 1
+      if (k >= kmin .and. k < kmin + nk) then
+        c(k - kmin + 1) = z(i) * big
+      else
+        lost = lost + (z(i) * big) ** 2
+      end if
+    end do
+    lost = sqrt(lost)
+  end subroutine mathieu_level_vector
 
   !> Sturm count in double-double: the window's diagonal (nu + 2k)^2 is
   !> formed exactly (nu + 2k by two-sum, the square by Dekker's product).
@@ -519,7 +667,7 @@ contains
     nr = modulo(nu, 2.0_dp)
     if (nr >= 2.0_dp) nr = 0.0_dp
     call solve(0, nr, q, m, .false., level_order(nr, m), 2.0_dp, 1.0e-33_dp, x, bound, &
-               status, d, e2, j, r0)
+               status, d, e2, j, r0, m)
     if (status /= mathieu_ok) return
     n = size(d)
     ! bracket: the double value is exact for couplings a few ulp off

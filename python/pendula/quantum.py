@@ -151,7 +151,10 @@ def mathieu_exponent(a: ArrayLike, q: ArrayLike) -> NDArray[np.float64] | np.flo
     a_n(|q|) <= a <= b_n+1(|q|), where n <= nu <= n + 1.  Between the bands
     (the instability tongues of the Ince-Strutt chart, and a < a_0) it is
     complex, and NaN is returned there without a warning: NaN is the answer
-    "unstable", not an error.
+    "unstable", not an error.  Where a band is narrower than the rounding
+    of ``a`` (large |q|, low bands, whose width falls like exp(-4 sqrt(q))),
+    a double cannot say where in the band it lies; such an ``a`` counts as
+    an edge of the band, and NaN comes back.
 
     Parameters
     ----------
@@ -467,3 +470,90 @@ class Transmon:
         return xr.DataArray(lam, dims=("EJ_over_EC", "level"),
                             coords={"EJ_over_EC": r, "level": np.arange(c)},
                             name="E_over_EC", attrs={"n_g": ng})
+
+    def wavefunctions(self, count_: int = 5, n_g: float | None = None, n_max: int | None = None):
+        """The eigenfunctions in the charge basis: psi_m(n), n = -n_max .. n_max.
+
+        Real, unit norm, each with its largest component positive.
+
+        Parameters
+        ----------
+        count_ : int, optional
+            How many levels (m = 0 .. count_ - 1).
+        n_g : float, optional
+            Offset charge; the transmon's own when omitted.
+        n_max : int, optional
+            The largest charge |n| kept; by default grown until what lies
+            beyond carries less than 1e-15 of each function's norm.
+
+        Returns
+        -------
+        n : ndarray of int
+            The charges -n_max .. n_max.
+        psi : ndarray
+            Shape ``(count_, 2 n_max + 1)``: psi[m, i] = <n_i | m>.
+
+        Raises
+        ------
+        ValueError
+            A given n_max leaves more than 1e-15 of a function's norm out.
+
+        Examples
+        --------
+        >>> import numpy as np, pendula
+        >>> n, psi = pendula.Transmon(20.0, 1.0).wavefunctions(2)
+        >>> bool(np.allclose(psi @ psi.T, np.eye(2), atol=1e-14))
+        True
+        """
+        c = count(count_, "count", 1, 10 ** 5)
+        ng = self.n_g if n_g is None else real(n_g, "n_g")
+        grow = n_max is None
+        nm = count(n_max, "n_max", 1, 10 ** 7) if n_max is not None else \
+            int(2 * math.sqrt(self.E_J / self.E_C) + c + 16)
+        p = math.floor(ng)   # the kernel's row k holds the charge n = p - k
+        while True:
+            val, vec, lost, status = _kernel.mathieu_level_vector_v(
+                2 * nm + 1, np.full(c, 2.0 * ng), np.full(c, self.q), np.arange(c, dtype=np.int32), p - nm)
+            if np.any(status != 0):
+                raise ValueError("wavefunctions: the levels could not be computed for these parameters")
+            if np.all(lost <= 1e-15):
+                break
+            if not grow:
+                raise ValueError(f"n_max = {nm} leaves {float(lost.max()):.1e} of a wavefunction's norm out")
+            nm *= 2
+        # rows k = p - nm .. p + nm are the charges n = p - k: nm .. -nm
+        return np.arange(-nm, nm + 1), vec.T[:, ::-1].copy()
+
+    def matrix_elements(self, operator: str, count_: int = 5, n_g: float | None = None) -> NDArray[np.float64]:
+        """Matrix elements <i| A |j> between the lowest levels.
+
+        Parameters
+        ----------
+        operator : {"n", "cos_phi"}
+            The charge n (Cooper pairs) or cos phi.
+        count_ : int, optional
+            How many levels.
+        n_g : float, optional
+            Offset charge; the transmon's own when omitted.
+
+        Returns
+        -------
+        A : ndarray
+            Shape ``(count_, count_)``, real symmetric.
+
+        Examples
+        --------
+        >>> import pendula
+        >>> t = pendula.Transmon(50.0, 1.0)
+        >>> a = t.matrix_elements("n", 3)
+        >>> bool(abs(a[0, 2]) < 1e-3 * abs(a[0, 1]))   # nearly a ladder
+        True
+        """
+        if operator not in ("n", "cos_phi"):
+            raise ValueError(f"operator must be 'n' or 'cos_phi', got {operator!r}")
+        n, psi = self.wavefunctions(count_, n_g)
+        if operator == "n":
+            return (psi * n) @ psi.T
+        shifted = psi[:, 1:] @ psi[:, :-1].T
+        return 0.5 * (shifted + shifted.T)
+
