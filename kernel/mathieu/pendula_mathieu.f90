@@ -327,7 +327,17 @@ contains
     aq = abs(q)
     lam_hi = centre * centre + spread * aq
     lam_lo = centre * centre - spread * aq
+    guess = centre * centre
+    sl = real(2 * level + 1, dp)
+    if (aq > sl * sl) then
+      h = sqrt(aq)
+      guess = -2.0_dp * aq + 2.0_dp * sl * h - (sl * sl + 1.0_dp) / 8.0_dp &
+              - (sl ** 3 + 3.0_dp * sl) / (128.0_dp * h)
+    end if
+    ! the upper turning point: of the Weyl bound, or for large |q| of the
+    ! ladder's estimate plus a generous margin (the bound checks it)
     p = sqrt(max(lam_hi + 2.0_dp * aq, 0.0_dp))
+    if (aq > sl * sl) p = sqrt(max(guess + 4.0_dp * sl * h + 2.0_dp * aq, 0.0_dp))
     rr = sqrt(max(lam_lo - 2.0_dp * aq, 0.0_dp))
     ! the tails: beyond the turning points the Fourier coefficients fall by
     ! at most |q| / (s^2 - lambda) a row (two orders); rows are added until
@@ -337,13 +347,6 @@ contains
     ! the starting estimate: q = 0's value, or for large |q| the harmonic
     ! ladder of the level's band, -2|q| + 2 s sqrt|q| - (s^2 + 1)/8 - ...
     ! with s = 2 level + 1 (DLMF 28.8.1)
-    guess = centre * centre
-    sl = real(2 * level + 1, dp)
-    if (aq > sl * sl) then
-      h = sqrt(aq)
-      guess = -2.0_dp * aq + 2.0_dp * sl * h - (sl * sl + 1.0_dp) / 8.0_dp &
-              - (sl ** 3 + 3.0_dp * sl) / (128.0_dp * h)
-    end if
     status = mathieu_no_convergence
     x = nan_dp
     bound = nan_dp
