@@ -28,7 +28,8 @@ Transmon levels (40 digits): eigenvalues of H = 4 E_C (n - n_g)^2 - E_J
 cos phi in the charge basis n = -K..K by mp.eigsy, at E_J/E_C = 1, 5, 20,
 50, 100 and several n_g, K raised until the six lowest levels agree to 1e-35.
 
-Run: .venv/bin/python data/gen_mathieu_reference.py   (about ten minutes)
+Run: .venv/bin/python data/gen_mathieu_reference.py [mathieu] [transmon]
+(both by default; about ten minutes on a quiet machine)
 """
 
 from __future__ import annotations
@@ -254,7 +255,14 @@ def transmon_rows():
     return out
 
 
-def main():
+def main(parts=("mathieu", "transmon")):
+    if "mathieu" in parts:
+        write_mathieu()
+    if "transmon" in parts:
+        write_transmon()
+
+
+def write_mathieu():
     mp.mp.dps = 50
     rows_out = []
     for kind, nu, q, source, printed in mathieu_points():
@@ -266,6 +274,9 @@ def main():
         w = csv.DictWriter(f, fieldnames=list(rows_out[0]))
         w.writeheader()
         w.writerows(rows_out)
+
+
+def write_transmon():
     mp.mp.dps = 40
     tr = transmon_rows()
     with open(HERE / "transmon_reference.csv", "w", newline="") as f:
@@ -275,4 +286,6 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    import sys
+
+    main(tuple(sys.argv[1:]) or ("mathieu", "transmon"))
