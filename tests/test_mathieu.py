@@ -385,3 +385,17 @@ def test_matrix_elements_unknown_operator():
 def test_wavefunctions_n_max_too_small():
     with pytest.raises(ValueError, match="n_max"):
         pendula.Transmon(100.0, 1.0).wavefunctions(3, n_max=2)
+
+
+def test_dispersion_beyond_double_double_resolution_is_nan_with_warning():
+    """At E_J/E_C = 600, eps_0 ~ 1e-27 E_C is below the levels' double-double error:
+    NaN with a RuntimeWarning, never a difference of rounding errors."""
+    t = pendula.Transmon(600.0, 1.0)
+    with pytest.warns(RuntimeWarning, match="resolution"):
+        assert np.isnan(t.charge_dispersion(0))
+
+
+def test_exponent_at_huge_order():
+    """a near 1e16: the band edges are counted over the rows near a only."""
+    nu = pendula.mathieu_exponent(pendula.mathieu_a(5e7 + 0.3, 10.0), 10.0)
+    assert abs(nu - (5e7 + 0.3)) <= 4 * EPS * 5e7

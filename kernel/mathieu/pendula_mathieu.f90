@@ -652,7 +652,8 @@ contains
 
   !> mathieu_level to double-double precision (vh + vl, about 1e-31
   !> relative to |q|): the difference of two levels keeps its relative
-  !> accuracy down to 1e-15 of the levels (the charge dispersion).
+  !> accuracy down to 1e-15 of the levels (the charge dispersion).  bound:
+  !> the bound on the error of vh + vl (truncation, bracket, rounding).
   elemental subroutine mathieu_level_dd(nu, q, m, vh, vl, bound, status)
     real(dp), intent(in) :: nu, q
     integer, intent(in) :: m
@@ -705,6 +706,9 @@ contains
     end do
     call dd_add(hih, hil, -loh, -lol, th, tl)
     call dd_add(loh, lol, 0.5_dp * th, 0.5_dp * tl, vh, vl)
+    ! the error: the truncation, the bracket's width, and the Sturm count's
+    ! backward error (couplings a few units of 1e-32 off)
+    bound = bound + abs(th) + 8.0e-32_dp * (abs(q) + abs(vh))
     status = mathieu_ok
   end subroutine mathieu_level_dd
 
@@ -734,11 +738,14 @@ contains
     rr = sqrt(max(a - 4.0_dp * aq, 0.0_dp))
     e = 16.0_dp + 10.0_dp * log10(max(aq, 1.0_dp))
     shi = p + e
-    ! which band edges lie below a: the counts of the four families
+    ! which band edges lie below a: the counts of the four families, each
+    ! over the rows near a (the rows below the window, far below a, are
+    ! counted whole: their eigenvalues lie below a)
+    slo = rr - e
     na = 0
     nb = 0
     do fam = 1, 4
-      call window_rows(fam, 0.0_dp, 0.0_dp, shi, .false., r0, r1)
+      call window_rows(fam, 0.0_dp, slo, shi, slo > 2.0_dp, r0, r1)
       n = r1 - r0 + 1
       if (n > max_rows) then
         status = mathieu_no_convergence
@@ -749,9 +756,9 @@ contains
       call build(fam, 0.0_dp, aq, r0, r1, d, e2)
       pivmin = tiny(1.0_dp) * max(1.0_dp, maxval(e2))
       if (fam <= 2) then
-        na = na + sturm_count(d, e2, n, a, pivmin)
+        na = na + r0 + sturm_count(d, e2, n, a, pivmin)
       else
-        nb = nb + sturm_count(d, e2, n, a, pivmin)
+        nb = nb + r0 + sturm_count(d, e2, n, a, pivmin)
       end if
     end do
     if (na /= nb + 1) return     ! unstable: a <= a_0 or b_n <= a <= a_n
@@ -761,7 +768,6 @@ contains
     ! lambda_nu < a exactly when the window has more than j levels below a
     lo = nbnd
     hi = nbnd + 1.0_dp
-    slo = rr - e
     cut = slo > 2.0_dp
     do it = 1, 200
       mid = lo + 0.5_dp * (hi - lo)

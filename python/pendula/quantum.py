@@ -337,7 +337,10 @@ class Transmon:
         The width of the m-th band with the sign of Koch et al., eq. (2.5):
         positive for even m.  Both levels are computed to double-double
         precision (about 1e-31 of |q|) in the kernel, so the difference
-        keeps full double precision even where it is 1e-15 of the levels.
+        keeps full double precision even where it is 1e-15 of the levels,
+        and 1e-10 relative while it is above about 1e-22 of them (for m = 0
+        up to E_J/E_C of about 250); below that, NaN with a RuntimeWarning
+        (:meth:`charge_dispersion_asymptotic` is then within a few per cent).
 
         Parameters
         ----------
@@ -347,7 +350,8 @@ class Transmon:
         Returns
         -------
         eps : ndarray or float
-            In the units of E_J and E_C.
+            In the units of E_J and E_C; NaN (RuntimeWarning) where it is
+            not resolved to 1e-10.
 
         Raises
         ------
@@ -368,10 +372,18 @@ class Transmon:
             raise ValueError(f"charge_dispersion: E_J / E_C must be at most {2 * _DD_MAX_Q:g}")
         mf = np.ascontiguousarray(mm, dtype=np.int32).reshape(-1)
         qf = np.full(mf.size, self.q)
-        h0, l0, _, s0 = _kernel.mathieu_level_dd_v(np.zeros(mf.size), qf, mf)
-        h1, l1, _, s1 = _kernel.mathieu_level_dd_v(np.ones(mf.size), qf, mf)
+        h0, l0, b0, s0 = _kernel.mathieu_level_dd_v(np.zeros(mf.size), qf, mf)
+        h1, l1, b1, s1 = _kernel.mathieu_level_dd_v(np.ones(mf.size), qf, mf)
         _warn_status("Transmon.charge_dispersion", np.maximum(s0, s1))
-        eps = self.E_C * ((h1 - h0) + (l1 - l0))
+        eps = (h1 - h0) + (l1 - l0)
+        # a band narrower than the levels' double-double error is not
+        # resolved (m = 0 beyond E_J/E_C of about 250): NaN, not a wrong digit
+        blurred = (b0 + b1) > 1e-10 * np.abs(eps)
+        if np.any(blurred & (s0 == 0) & (s1 == 0)):
+            warnings.warn(f"Transmon.charge_dispersion: {int(np.count_nonzero(blurred))} value(s) below the "
+                          "resolution of the double-double levels (about 1e-22 of the level) gave NaN; "
+                          "see charge_dispersion_asymptotic", RuntimeWarning, stacklevel=2)
+        eps = np.where(blurred, np.nan, eps) * self.E_C
         return shaped(eps, mm.shape)
 
     def charge_dispersion_asymptotic(self, m: int = 0) -> float:
