@@ -405,7 +405,7 @@ contains
   pure real(dp) function polish(fam, nu, q, r0, n, x, z) result(xp)
     integer, intent(in) :: fam, r0, n
     real(dp), intent(in) :: nu, q, x, z(n)
-    real(dp) :: sh, sl, dh, dl, rh, rl, th, tl, num, den, aq
+    real(dp) :: sh, sl, dh, dl, rh, rl, th, tl, uh, ul, num, den, aq
     real(dp), parameter :: sqrt2_lo = -9.6667966258595e-17_dp
     integer :: i, r
     aq = abs(q)
@@ -422,25 +422,29 @@ contains
       call dd_mul(sh, sl, sh, sl, dh, dl)
       if (r == 0 .and. fam == 2) call dd_add(1.0_dp, 0.0_dp, q, 0.0_dp, dh, dl)
       if (r == 0 .and. fam == 3) call dd_add(1.0_dp, 0.0_dp, -q, 0.0_dp, dh, dl)
-      call dd_add(dh, dl, -x, 0.0_dp, dh, dl)
-      call dd_mul(dh, dl, z(i), 0.0_dp, rh, rl)           ! (d_i - x) z_i
+      call dd_add(dh, dl, -x, 0.0_dp, uh, ul)
+      call dd_mul(uh, ul, z(i), 0.0_dp, rh, rl)           ! (d_i - x) z_i
       if (i > 1) then
         if (r - 1 == 0 .and. fam == 1) then
-          call dd_mul(sqrt2, sqrt2_lo, aq, 0.0_dp, th, tl)
-          call dd_mul(th, tl, z(i - 1), 0.0_dp, th, tl)
+          call dd_mul(sqrt2, sqrt2_lo, aq, 0.0_dp, uh, ul)
+          call dd_mul(uh, ul, z(i - 1), 0.0_dp, th, tl)
         else
           call two_prod(aq, z(i - 1), th, tl)
         end if
-        call dd_add(rh, rl, th, tl, rh, rl)
+        call dd_add(rh, rl, th, tl, uh, ul)
+        rh = uh
+        rl = ul
       end if
       if (i < n) then
         if (r == 0 .and. fam == 1) then
-          call dd_mul(sqrt2, sqrt2_lo, aq, 0.0_dp, th, tl)
-          call dd_mul(th, tl, z(i + 1), 0.0_dp, th, tl)
+          call dd_mul(sqrt2, sqrt2_lo, aq, 0.0_dp, uh, ul)
+          call dd_mul(uh, ul, z(i + 1), 0.0_dp, th, tl)
         else
           call two_prod(aq, z(i + 1), th, tl)
         end if
-        call dd_add(rh, rl, th, tl, rh, rl)
+        call dd_add(rh, rl, th, tl, uh, ul)
+        rh = uh
+        rl = ul
       end if
       num = num + z(i) * (rh + rl)
       den = den + z(i) * z(i)
@@ -626,7 +630,7 @@ contains
   pure integer function sturm_count_dd(nu, q, r0, n, xh, xl) result(c)
     real(dp), intent(in) :: nu, q, xh, xl
     integer, intent(in) :: r0, n
-    real(dp) :: sh, sl, dh, dl, th, tl, uh, ul, e2h, e2l, pivmin
+    real(dp) :: sh, sl, dh, dl, ph, pl, th, tl, uh, ul, e2h, e2l, pivmin
     integer :: i
     call two_prod(q, q, e2h, e2l)
     pivmin = tiny(1.0_dp) * max(1.0_dp, e2h) * 1.0e20_dp
@@ -634,13 +638,13 @@ contains
     do i = 1, n
       call two_sum(nu, 2.0_dp * real(r0 + i - 1, dp), sh, sl)
       call dd_mul(sh, sl, sh, sl, dh, dl)
-      call dd_add(dh, dl, -xh, -xl, dh, dl)
+      call dd_add(dh, dl, -xh, -xl, ph, pl)
       if (i == 1) then
-        th = dh
-        tl = dl
+        th = ph
+        tl = pl
       else
         call dd_div(e2h, e2l, th, tl, uh, ul)
-        call dd_add(dh, dl, -uh, -ul, th, tl)
+        call dd_add(ph, pl, -uh, -ul, th, tl)
       end if
       if (abs(th) < pivmin) then
         th = -pivmin
