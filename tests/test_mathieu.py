@@ -399,3 +399,54 @@ def test_exponent_at_huge_order():
     """a near 1e16: the band edges are counted over the rows near a only."""
     nu = pendula.mathieu_exponent(pendula.mathieu_a(5e7 + 0.3, 10.0), 10.0)
     assert abs(nu - (5e7 + 0.3)) <= 4 * EPS * 5e7
+
+
+# --- the periodic Mathieu functions ---------------------------------------------------
+
+FUNCTIONS = _rows("mathieu_function_reference.csv")
+
+
+def test_mathieu_functions_against_reference():
+    """ce_n, se_n against 30-digit Fourier sums (data/mathieu_function_reference.csv).
+
+    Absolute: the coefficients have unit norm.  16 eps, not 4: each term's
+    cos((2m + p) z) carries the rounding of its argument, eps (2m + p) z, and the
+    series reaches orders of a few times max(n, sqrt|q|) (measured: 7.5 eps for the
+    values, 7.1 eps times max(1, n, sqrt|q|) for the derivatives)."""
+    for r in FUNCTIONS:
+        f = pendula.mathieu_ce if r["kind"] == "ce" else pendula.mathieu_se
+        n, q = int(r["n"]), float(r["q"])
+        v, dv = f(n, q, float(r["z"]))
+        assert abs(v - float(r["value"])) <= 16 * EPS, r
+        assert abs(dv - float(r["derivative"])) <= 16 * EPS * max(1, n, math.sqrt(abs(q))), r
+
+
+@settings(max_examples=40, deadline=None)
+@given(n=st.integers(0, 8), q=st.floats(-50, 50))
+def test_mathieu_function_normalisation_and_sign(n, q):
+    """The integral of ce_n^2 over [0, 2 pi] is pi (DLMF 28.2.30), ce_n(0) > 0, and
+    se_n'(0) > 0: by the trapezoidal rule, exact for these trigonometric polynomials."""
+    z = np.linspace(0, 2 * np.pi, 513)[:-1]
+    ce, _ = pendula.mathieu_ce(n, q, z)
+    assert abs(np.sum(ce ** 2) * 2 * np.pi / 512 - np.pi) < 1e-12
+    assert pendula.mathieu_ce(n, q, 0.0)[0] > 0
+    if n >= 1:
+        se, _ = pendula.mathieu_se(n, q, z)
+        assert abs(np.sum(se ** 2) * 2 * np.pi / 512 - np.pi) < 1e-12
+        assert pendula.mathieu_se(n, q, 0.0)[1] > 0
+
+
+def test_mathieu_function_solves_the_equation():
+    """y'' + (a - 2q cos 2z) y = 0, y'' by central differences of the derivative."""
+    z = np.linspace(0.1, 3.0, 30)
+    h = 1e-5
+    for n, q in ((2, 3.0), (3, -7.0)):
+        a = float(pendula.mathieu_a(n, q))
+        y, _ = pendula.mathieu_ce(n, q, z)
+        ypp = (pendula.mathieu_ce(n, q, z + h)[1] - pendula.mathieu_ce(n, q, z - h)[1]) / (2 * h)
+        assert np.max(np.abs(ypp + (a - 2 * q * np.cos(2 * z)) * y)) < 1e-8 * max(1.0, abs(a))
+
+
+def test_se_of_order_zero_does_not_exist():
+    with pytest.raises(ValueError, match="n"):
+        pendula.mathieu_se(0, 1.0, 0.5)

@@ -185,7 +185,7 @@ API_GROUPS = [
     ("Continuation and bifurcations", ["continue_orbit", "Branch", "Bifurcation", "continue_equilibria",
                                        "EquilibriumBranch", "ContinuationError"]),
     ("The Josephson junction", ["Junction", "SwitchingCurrents"]),
-    ("The quantum pendulum", ["Transmon", "mathieu_a", "mathieu_b", "mathieu_exponent"]),
+    ("The quantum pendulum", ["Transmon", "mathieu_a", "mathieu_b", "mathieu_exponent", "mathieu_ce", "mathieu_se"]),
 ]
 
 

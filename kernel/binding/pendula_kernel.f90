@@ -1047,3 +1047,16 @@ subroutine mathieu_level_vector_v(n, nk, nu, q, m, kmin, val, c, lost, status)
     call mathieu_level_vector(nu(i), q(i), m(i), kmin, nk, val(i), c(:, i), lost(i), status(i))
   end do
 end subroutine mathieu_level_vector_v
+
+! ce_n(z, q) (kind 1) or se_n(z, q) (kind 2) and the derivative at the points z
+subroutine mathieu_function_v(nz, kind, n, q, z, val, dval, status)
+  use pendula_mathieu, only: mathieu_function
+  implicit none
+  !f2py threadsafe
+  integer, intent(in) :: nz, kind, n
+  double precision, intent(in) :: q, z(nz)
+  double precision, intent(out) :: val(nz), dval(nz)
+  integer, intent(out) :: status
+  !f2py intent(hide), depend(z) :: nz = len(z)
+  call mathieu_function(kind, n, q, nz, z, val, dval, status)
+end subroutine mathieu_function_v

@@ -29,6 +29,7 @@ module pendula_mathieu
   implicit none
   private
   public :: mathieu_char, mathieu_level, mathieu_level_dd, mathieu_nu, mathieu_level_vector
+  public :: mathieu_function
   public :: mathieu_max_q, mathieu_max_order
   public :: mathieu_ok, mathieu_bad_input, mathieu_no_convergence
 
@@ -624,6 +625,85 @@ contains
     end do
     lost = sqrt(lost)
   end subroutine mathieu_level_vector
+
+  !> The periodic Mathieu function ce_n (kind 1) or se_n (kind 2) of integer
+  !> order n and its derivative at the points z, from the Fourier series of
+  !> DLMF 28.4 with the normalisation 28.4.9-12 (the integral of the square
+  !> over a period 2 pi is pi) and the signs of q = 0 carried by continuity,
+  !> which for real q is ce_n(0, q) > 0 and se_n'(0, q) > 0 (neither can
+  !> vanish: an even solution with y(0) = 0, or an odd one with y'(0) = 0,
+  !> is zero).  The coefficients are the eigenvector of the one-sided Hill
+  !> matrix; the values have an absolute error of a few eps (relative where
+  !> the function is not small: near z = 0 and pi/2 for large q the values
+  !> are exponentially small and only absolutely accurate).
+  pure subroutine mathieu_function(kind, n, q, nz, z, val, dval, status)
+    integer, intent(in) :: kind, n, nz
+    real(dp), intent(in) :: q, z(nz)
+    real(dp), intent(out) :: val(nz), dval(nz)
+    integer, intent(out) :: status
+    real(dp), allocatable :: d(:), e2(:), y(:)
+    real(dp) :: x, bound, step, f1, fn, pivmin, s, sgn, w
+    integer :: fam, m, j, r0, nr, i, k, base, lev
+    val = nan_dp
+    dval = nan_dp
+    status = mathieu_bad_input
+    if (n < 0 .or. (kind == 2 .and. n == 0) .or. n > 100000000) return
+    if (.not. (abs(q) <= mathieu_max_q)) return
+    if (kind == 1) then
+      fam = 1 + mod(n, 2)
+      m = n / 2
+    else
+      fam = 3 + (1 - mod(n, 2))
+      m = (n - 1) / 2
+    end if
+    lev = n
+    if (kind == 2) lev = n - 1
+    if (q < 0.0_dp .and. mod(n, 2) == 1) lev = n - 1 + 2 * (kind - 1)
+    call solve(fam, 0.0_dp, q, m, .false., real(n, dp), 3.0_dp, 0.25_dp * eps_dp, x, bound, status, &
+               d, e2, j, r0, lev)
+    if (status /= mathieu_ok) return
+    nr = size(d)
+    allocate(y(nr))
+    pivmin = tiny(1.0_dp) * max(1.0_dp, maxval(e2))
+    if (q /= 0.0_dp) then
+      call twist(d, e2, nr, x, pivmin, step, f1, fn, y)
+    else
+      y = 0.0_dp
+      y(j + 1) = 1.0_dp
+    end if
+    base = fam_base(fam)
+    ! the couplings were |q|: back to q's sign; A_0 = y_0 / sqrt(2)
+    do i = 1, nr
+      k = r0 + i - 1
+      if (q < 0.0_dp .and. mod(k, 2) /= 0) y(i) = -y(i)
+    end do
+    y = y / sqrt(sum(y * y))
+    if (fam == 1 .and. r0 == 0) y(1) = y(1) / sqrt2
+    ! the sign: ce_n(0) > 0, se_n'(0) > 0
+    s = 0.0_dp
+    do i = 1, nr
+      w = 1.0_dp
+      if (kind == 2) w = real(base + 2 * (r0 + i - 1), dp)
+      s = s + w * y(i)
+    end do
+    sgn = sign(1.0_dp, s)
+    do k = 1, nz
+      val(k) = 0.0_dp
+      dval(k) = 0.0_dp
+      do i = 1, nr
+        w = real(base + 2 * (r0 + i - 1), dp)
+        if (kind == 1) then
+          val(k) = val(k) + y(i) * cos(w * z(k))
+          dval(k) = dval(k) - w * y(i) * sin(w * z(k))
+        else
+          val(k) = val(k) + y(i) * sin(w * z(k))
+          dval(k) = dval(k) + w * y(i) * cos(w * z(k))
+        end if
+      end do
+      val(k) = sgn * val(k)
+      dval(k) = sgn * dval(k)
+    end do
+  end subroutine mathieu_function
 
   !> Sturm count in double-double: the window's diagonal (nu + 2k)^2 is
   !> formed exactly (nu + 2k by two-sum, the square by Dekker's product).

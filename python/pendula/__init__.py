@@ -54,7 +54,7 @@ from .dynamics import (Bifurcation, Branch, ContinuationError, EquilibriumBranch
                        continue_orbit)
 from .spectrum import precompute_wisdom, wisdom_path  # noqa: E402
 # the quantum pendulum: Mathieu characteristic values and the transmon
-from .quantum import Transmon, mathieu_a, mathieu_b, mathieu_exponent  # noqa: E402
+from .quantum import Transmon, mathieu_a, mathieu_b, mathieu_ce, mathieu_exponent, mathieu_se  # noqa: E402
 
 # the version of the installed metadata (written once, in meson.build)
 from ._version import __version__  # noqa: E402
@@ -73,4 +73,4 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Junction", "SwitchingCurrents", "attractor_continuation",
            "continue_orbit", "continue_equilibria", "Branch", "Bifurcation", "EquilibriumBranch",
            "ContinuationError",
-           "mathieu_a", "mathieu_b", "mathieu_exponent", "Transmon"]
+           "mathieu_a", "mathieu_b", "mathieu_exponent", "mathieu_ce", "mathieu_se", "Transmon"]

@@ -27,7 +27,7 @@ from . import _kernel
 from ._checks import as_float, count, flat, real, shaped
 from ._optional import require
 
-__all__ = ["mathieu_a", "mathieu_b", "mathieu_exponent", "Transmon", "MATHIEU_MAX_Q"]
+__all__ = ["mathieu_a", "mathieu_b", "mathieu_exponent", "mathieu_ce", "mathieu_se", "Transmon", "MATHIEU_MAX_Q"]
 
 #: the largest |q| served (the Hill matrix grows as sqrt(|q|): 2e5 rows here)
 MATHIEU_MAX_Q = 1.0e10
@@ -187,6 +187,83 @@ def mathieu_exponent(a: ArrayLike, q: ArrayLike) -> NDArray[np.float64] | np.flo
     nu, status = _kernel.mathieu_nu_v(af, qf)
     _warn_status("mathieu_exponent", np.where(np.isnan(af) | np.isnan(qf), 0, status))
     return shaped(nu, shape)
+
+
+def _function(kind: int, name: str, n, q, z):
+    n = count(n, "n", 1 if kind == 2 else 0, 10 ** 8)
+    q = real(q, "q")
+    z = as_float(z, "z")
+    zf = np.ascontiguousarray(z, dtype=np.float64).reshape(-1)
+    if zf.size == 0:
+        return np.empty(z.shape), np.empty(z.shape)
+    val, dval, status = _kernel.mathieu_function_v(kind, n, q, zf)
+    _warn_status(name, np.full(1, status))
+    return shaped(val, z.shape), shaped(dval, z.shape)
+
+
+def mathieu_ce(n: int, q: float, z: ArrayLike):
+    """The even periodic Mathieu function ce_n(z, q) and its derivative.
+
+    Normalised as in DLMF 28.2(vi) and 28.4(iii): the integral of ce_n^2
+    over a period 2 pi is pi, and ce_n(0, q) > 0 (the sign of q = 0, carried
+    by continuity).  z in radians.
+
+    Parameters
+    ----------
+    n : int
+        Order, n >= 0.
+    q : float
+        Parameter, any sign, abs(q) <= 1e10.
+    z : array_like
+        The points.
+
+    Returns
+    -------
+    ce, dce : ndarray or float
+        ce_n(z, q) and d ce_n / dz.  Absolutely accurate to a few eps (the
+        Fourier coefficients have unit norm); where the function is
+        exponentially small (near z = 0 or pi/2 for large |q|) that is not
+        a relative accuracy.
+
+    Examples
+    --------
+    >>> import math, pendula
+    >>> ce, dce = pendula.mathieu_ce(0, 0.0, 1.0)   # 1/sqrt(2) at q = 0
+    >>> round(float(ce), 12), float(dce)
+    (0.707106781187, 0.0)
+    """
+    return _function(1, "mathieu_ce", n, q, z)
+
+
+def mathieu_se(n: int, q: float, z: ArrayLike):
+    """The odd periodic Mathieu function se_n(z, q) and its derivative.
+
+    Normalised as in DLMF 28.2(vi) and 28.4(iii): the integral of se_n^2
+    over a period 2 pi is pi, and se_n'(0, q) > 0.  z in radians.
+
+    Parameters
+    ----------
+    n : int
+        Order, n >= 1.
+    q : float
+        Parameter, any sign, abs(q) <= 1e10.
+    z : array_like
+        The points.
+
+    Returns
+    -------
+    se, dse : ndarray or float
+        se_n(z, q) and d se_n / dz (absolutely accurate, see
+        :func:`mathieu_ce`).
+
+    Examples
+    --------
+    >>> import math, pendula
+    >>> se, dse = pendula.mathieu_se(2, 0.0, math.pi / 4)   # sin 2z at q = 0
+    >>> round(float(se), 15), round(float(dse), 15)
+    (1.0, 0.0)
+    """
+    return _function(2, "mathieu_se", n, q, z)
 
 
 def _levels(nu: np.ndarray, q: np.ndarray, m: np.ndarray, name: str) -> np.ndarray:
