@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -26,6 +27,9 @@ from numpy.typing import ArrayLike, NDArray
 from . import _kernel
 from ._checks import as_float, count, flat, real, shaped
 from ._optional import require
+
+if TYPE_CHECKING:   # xarray is optional: named in annotations only
+    import xarray
 
 __all__ = ["mathieu_a", "mathieu_b", "mathieu_exponent", "mathieu_ce", "mathieu_se", "Transmon", "MATHIEU_MAX_Q"]
 
@@ -61,7 +65,8 @@ def _char(kind: int, name: str, nu, q, bound: bool):
     return shaped(val, shape)
 
 
-def mathieu_a(nu: ArrayLike, q: ArrayLike, *, bound: bool = False):
+def mathieu_a(nu: ArrayLike, q: ArrayLike, *, bound: bool = False
+              ) -> NDArray[np.float64] | np.float64 | tuple[NDArray[np.float64] | np.float64, NDArray[np.float64] | np.float64]:
     """Characteristic value a_nu(q) of Mathieu's equation, any real order.
 
     For integer nu = n, the value for which y'' + (a - 2 q cos 2z) y = 0 has
@@ -90,6 +95,12 @@ def mathieu_a(nu: ArrayLike, q: ArrayLike, *, bound: bool = False):
     bound : ndarray or float
         Only with ``bound=True``.
 
+    See Also
+    --------
+    mathieu_b : the odd solutions' values.
+    mathieu_exponent : the inverse, nu(a, q).
+    Transmon : the quantum pendulum's levels.
+
     Examples
     --------
     >>> import pendula
@@ -102,7 +113,8 @@ def mathieu_a(nu: ArrayLike, q: ArrayLike, *, bound: bool = False):
     return _char(1, "mathieu_a", nu, q, bound)
 
 
-def mathieu_b(nu: ArrayLike, q: ArrayLike, *, bound: bool = False):
+def mathieu_b(nu: ArrayLike, q: ArrayLike, *, bound: bool = False
+              ) -> NDArray[np.float64] | np.float64 | tuple[NDArray[np.float64] | np.float64, NDArray[np.float64] | np.float64]:
     """Characteristic value b_nu(q) of Mathieu's equation, any real order.
 
     For integer nu = n >= 1, the value for which Mathieu's equation has the
@@ -126,6 +138,10 @@ def mathieu_b(nu: ArrayLike, q: ArrayLike, *, bound: bool = False):
         b_nu(q); NaN with a RuntimeWarning outside the domain.
     bound : ndarray or float
         Only with ``bound=True``.
+
+    See Also
+    --------
+    mathieu_a : the even solutions' values.
 
     Examples
     --------
@@ -169,6 +185,10 @@ def mathieu_exponent(a: ArrayLike, q: ArrayLike) -> NDArray[np.float64] | np.flo
         The real exponent, or NaN where the solutions are unbounded; NaN
         with a RuntimeWarning outside the domain.
 
+    See Also
+    --------
+    mathieu_a, mathieu_b : the band edges a_n(q), b_n(q).
+
     Examples
     --------
     >>> import pendula
@@ -201,7 +221,7 @@ def _function(kind: int, name: str, n, q, z):
     return shaped(val, z.shape), shaped(dval, z.shape)
 
 
-def mathieu_ce(n: int, q: float, z: ArrayLike):
+def mathieu_ce(n: int, q: float, z: ArrayLike) -> tuple[NDArray[np.float64] | np.float64, NDArray[np.float64] | np.float64]:
     """The even periodic Mathieu function ce_n(z, q) and its derivative.
 
     Normalised as in DLMF 28.2(vi) and 28.4(iii): the integral of ce_n^2
@@ -225,6 +245,11 @@ def mathieu_ce(n: int, q: float, z: ArrayLike):
         exponentially small (near z = 0 or pi/2 for large |q|) that is not
         a relative accuracy.
 
+    See Also
+    --------
+    mathieu_se : the odd functions.
+    mathieu_a : the characteristic value.
+
     Examples
     --------
     >>> import math, pendula
@@ -235,7 +260,7 @@ def mathieu_ce(n: int, q: float, z: ArrayLike):
     return _function(1, "mathieu_ce", n, q, z)
 
 
-def mathieu_se(n: int, q: float, z: ArrayLike):
+def mathieu_se(n: int, q: float, z: ArrayLike) -> tuple[NDArray[np.float64] | np.float64, NDArray[np.float64] | np.float64]:
     """The odd periodic Mathieu function se_n(z, q) and its derivative.
 
     Normalised as in DLMF 28.2(vi) and 28.4(iii): the integral of se_n^2
@@ -255,6 +280,11 @@ def mathieu_se(n: int, q: float, z: ArrayLike):
     se, dse : ndarray or float
         se_n(z, q) and d se_n / dz (absolutely accurate, see
         :func:`mathieu_ce`).
+
+    See Also
+    --------
+    mathieu_ce : the even functions.
+    mathieu_b : the characteristic value.
 
     Examples
     --------
@@ -298,6 +328,11 @@ class Transmon:
     n_g : float, optional
         Offset charge (in Cooper pairs, periodic with period 1).
 
+    See Also
+    --------
+    mathieu_a : the characteristic values behind the levels.
+    pendula.plot.levels : the levels against n_g.
+
     Examples
     --------
     >>> import pendula
@@ -311,7 +346,7 @@ class Transmon:
     True
     """
 
-    def __init__(self, E_J: float, E_C: float, n_g: float = 0.0):
+    def __init__(self, E_J: float, E_C: float, n_g: float = 0.0) -> None:
         self.E_J = real(E_J, "E_J", lo=0.0)
         self.E_C = real(E_C, "E_C", lo=0.0, lo_open=True)
         if not self.E_J / self.E_C / 2.0 <= MATHIEU_MAX_Q:
@@ -358,7 +393,7 @@ class Transmon:
         lam = _levels(2.0 * ng[..., None], np.float64(self.q), m, "Transmon.levels")
         return self.E_C * lam
 
-    def transition(self, m: int = 1, n_g: ArrayLike | None = None):
+    def transition(self, m: int = 1, n_g: ArrayLike | None = None) -> NDArray[np.float64] | np.float64:
         """The transition energy E_m - E_0 at n_g.
 
         Parameters
@@ -383,7 +418,7 @@ class Transmon:
         out = e[..., m] - e[..., 0]
         return out[()] if np.ndim(out) == 0 else out
 
-    def anharmonicity(self, n_g: ArrayLike | None = None):
+    def anharmonicity(self, n_g: ArrayLike | None = None) -> NDArray[np.float64] | np.float64:
         """The anharmonicity alpha = E_12 - E_01 = E_2 - 2 E_1 + E_0.
 
         Tends to -E_C as E_J / E_C grows (Koch et al., section IV).
@@ -408,7 +443,7 @@ class Transmon:
         out = (e[..., 2] - e[..., 1]) - (e[..., 1] - e[..., 0])
         return out[()] if np.ndim(out) == 0 else out
 
-    def charge_dispersion(self, m: ArrayLike = 0):
+    def charge_dispersion(self, m: ArrayLike = 0) -> NDArray[np.float64] | np.float64:
         """The charge dispersion eps_m = E_m(n_g = 1/2) - E_m(n_g = 0).
 
         The width of the m-th band with the sign of Koch et al., eq. (2.5):
@@ -491,7 +526,7 @@ class Transmon:
         return ((-1) ** m * self.E_C * 2.0 ** (4 * m + 5) / math.factorial(m) * math.sqrt(2.0 / math.pi)
                 * (r / 2.0) ** (m / 2.0 + 0.75) * math.exp(-math.sqrt(8.0 * r)))
 
-    def spectrum_vs_ng(self, n_g: ArrayLike, count_: int = 5):
+    def spectrum_vs_ng(self, n_g: ArrayLike, count_: int = 5) -> xarray.DataArray:
         """The levels against the offset charge, as an xarray DataArray.
 
         Parameters
@@ -522,7 +557,8 @@ class Transmon:
                             coords={"n_g": ng, "level": np.arange(e.shape[-1])},
                             name="E", attrs={"E_J": self.E_J, "E_C": self.E_C})
 
-    def spectrum_vs_ratio(self, ratio: ArrayLike, count_: int = 5, n_g: float | None = None):
+    def spectrum_vs_ratio(self, ratio: ArrayLike, count_: int = 5,
+                          n_g: float | None = None) -> xarray.DataArray:
         """The levels in units of E_C against E_J / E_C, as an xarray DataArray.
 
         Parameters
@@ -560,7 +596,8 @@ class Transmon:
                             coords={"EJ_over_EC": r, "level": np.arange(c)},
                             name="E_over_EC", attrs={"n_g": ng})
 
-    def wavefunctions(self, count_: int = 5, n_g: float | None = None, n_max: int | None = None):
+    def wavefunctions(self, count_: int = 5, n_g: float | None = None,
+                      n_max: int | None = None) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
         """The eigenfunctions in the charge basis: psi_m(n), n = -n_max .. n_max.
 
         Real, unit norm, each with its largest component positive.
