@@ -450,3 +450,18 @@ def test_mathieu_function_solves_the_equation():
 def test_se_of_order_zero_does_not_exist():
     with pytest.raises(ValueError, match="n"):
         pendula.mathieu_se(0, 1.0, 0.5)
+
+
+def test_plot_levels_draws_one_line_a_level():
+    pytest.importorskip("matplotlib")
+    import matplotlib
+    matplotlib.use("Agg")
+    import pendula.plot
+    t = pendula.Transmon(5.0, 1.0)
+    ax = pendula.plot.levels(t, count=4, n_g=np.linspace(-1, 1, 41))
+    lines = ax.get_lines()
+    assert len(lines) == 4
+    y0 = lines[0].get_ydata()
+    assert min(y0) == 0.0   # from the bottom of the ground band
+    # in units of the 0-1 transition at n_g = 1/2 (index 30 of the grid)
+    np.testing.assert_allclose(lines[1].get_ydata()[30] - lines[0].get_ydata()[30], 1.0, rtol=1e-12)
