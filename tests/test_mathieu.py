@@ -465,3 +465,35 @@ def test_plot_levels_draws_one_line_a_level():
     assert min(y0) == 0.0   # from the bottom of the ground band
     # in units of the 0-1 transition at n_g = 1/2 (index 30 of the grid)
     np.testing.assert_allclose(lines[1].get_ydata()[30] - lines[0].get_ydata()[30], 1.0, rtol=1e-12)
+
+
+def test_flux_tunable_transmon():
+    """E_J(flux) = E_J_max |cos(pi flux)| sqrt(1 + d^2 tan^2(pi flux)) (Koch et al., eq. 2.16):
+    E_J_max at zero flux, d E_J_max at half a flux quantum, periodic with period 1."""
+    for d in (0.0, 0.3):
+        assert pendula.Transmon.flux_tunable(30.0, 1.0, 0.0, d).E_J == 30.0
+        assert abs(pendula.Transmon.flux_tunable(30.0, 1.0, 0.5, d).E_J - 30.0 * d) < 1e-14
+        f = 0.37
+        ej = 30.0 * abs(math.cos(math.pi * f)) * math.sqrt(1 + d * d * math.tan(math.pi * f) ** 2)
+        assert abs(pendula.Transmon.flux_tunable(30.0, 1.0, f, d).E_J - ej) < 1e-13
+        assert abs(pendula.Transmon.flux_tunable(30.0, 1.0, f + 1, d).E_J - ej) < 1e-13
+
+
+def test_flux_tunable_asymmetry_out_of_range():
+    with pytest.raises(ValueError, match="asymmetry"):
+        pendula.Transmon.flux_tunable(30.0, 1.0, 0.1, asymmetry=1.5)
+
+
+def test_phase_wavefunctions_solve_the_equation():
+    """-4 E_C psi'' (with the offset charge's phase) - E_J cos(phi) psi = E psi, checked at
+    n_g = 0 by spectral differentiation: psi'' = sum -n^2 c_n exp(i n phi)."""
+    t = pendula.Transmon(10.0, 1.0)
+    phi = np.linspace(-np.pi, np.pi, 65)[:-1]
+    psi = t.wavefunctions_phase(phi, 3)
+    n, c = t.wavefunctions(3)
+    dd = (c * -(n ** 2.0)) @ np.exp(1j * np.outer(n, phi)) / math.sqrt(2 * math.pi)
+    e = t.levels(3)
+    resid = -4.0 * dd - 10.0 * np.cos(phi) * psi - e[:, None] * psi
+    assert np.max(np.abs(resid)) < 1e-11
+    norm = np.sum(np.abs(psi) ** 2, axis=1) * 2 * np.pi / 64
+    np.testing.assert_allclose(norm, 1.0, rtol=1e-13)

@@ -356,6 +356,50 @@ class Transmon:
     def __repr__(self) -> str:
         return f"Transmon(E_J={self.E_J:g}, E_C={self.E_C:g}, n_g={self.n_g:g})"
 
+    @classmethod
+    def flux_tunable(cls, E_J_max: float, E_C: float, flux: float, asymmetry: float = 0.0,
+                     n_g: float = 0.0) -> Transmon:
+        """The split transmon (a SQUID of two junctions) at an external flux.
+
+        E_J = E_J_max |cos(pi flux)| sqrt(1 + d^2 tan^2(pi flux)), with flux
+        in flux quanta and d = (E_J1 - E_J2)/(E_J1 + E_J2) the junctions'
+        asymmetry (Koch et al. 2007, eq. 2.16).
+
+        Parameters
+        ----------
+        E_J_max : float
+            E_J1 + E_J2, >= 0.
+        E_C : float
+            Charging energy, > 0.
+        flux : float
+            External flux in units of the flux quantum.
+        asymmetry : float, optional
+            d, 0 <= d <= 1 (default 0: equal junctions).
+        n_g : float, optional
+            Offset charge.
+
+        Returns
+        -------
+        Transmon
+
+        See Also
+        --------
+        Transmon : the fixed-E_J transmon it returns.
+
+        Examples
+        --------
+        >>> import pendula
+        >>> t = pendula.Transmon.flux_tunable(40.0, 1.0, 0.25, asymmetry=0.2)
+        >>> round(t.E_J, 10)         # 40 cos(pi/4) sqrt(1 + 0.04)
+        28.8444102037
+        """
+        e_max = real(E_J_max, "E_J_max", lo=0.0)
+        f = real(flux, "flux")
+        d = real(asymmetry, "asymmetry", lo=0.0, hi=1.0)
+        # |cos x| sqrt(1 + d^2 tan^2 x) = sqrt(cos^2 x + d^2 sin^2 x): no division at cos x = 0
+        c, s = math.cos(math.pi * f), math.sin(math.pi * f)
+        return cls(e_max * math.sqrt(c * c + d * d * s * s), E_C, n_g)
+
     @property
     def q(self) -> float:
         """Mathieu's parameter q = -E_J / (2 E_C)."""
@@ -649,6 +693,43 @@ class Transmon:
             nm *= 2
         # rows k = p - nm .. p + nm are the charges n = p - k: nm .. -nm
         return np.arange(-nm, nm + 1), vec.T[:, ::-1].copy()
+
+    def wavefunctions_phase(self, phi: ArrayLike, count_: int = 5,
+                            n_g: float | None = None) -> NDArray[np.complex128]:
+        """The eigenfunctions in the phase basis: psi_m(phi) = sum_n psi_m(n) exp(i n phi) / sqrt(2 pi).
+
+        Normalised on one period, |psi_m|^2 integrates to 1 over [-pi, pi].
+
+        Parameters
+        ----------
+        phi : array_like
+            The phases (radians).
+        count_ : int, optional
+            How many levels.
+        n_g : float, optional
+            Offset charge; the transmon's own when omitted.
+
+        Returns
+        -------
+        psi : ndarray of complex
+            Shape ``(count_,) + np.shape(phi)``.
+
+        See Also
+        --------
+        wavefunctions : the same in the charge basis.
+
+        Examples
+        --------
+        >>> import numpy as np, pendula
+        >>> phi = np.linspace(-np.pi, np.pi, 257)[:-1]
+        >>> psi = pendula.Transmon(20.0, 1.0).wavefunctions_phase(phi, 1)
+        >>> round(float(np.sum(abs(psi[0]) ** 2) * 2 * np.pi / 256), 12)
+        1.0
+        """
+        p = as_float(phi, "phi")
+        n, psi = self.wavefunctions(count_, n_g)
+        return (psi @ np.exp(1j * np.outer(n, p.reshape(-1)))).reshape((psi.shape[0],) + p.shape) \
+            / math.sqrt(2.0 * math.pi)
 
     def matrix_elements(self, operator: str, count_: int = 5, n_g: float | None = None) -> NDArray[np.float64]:
         """Matrix elements <i| A |j> between the lowest levels.
