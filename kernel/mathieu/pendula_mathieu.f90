@@ -232,7 +232,7 @@ contains
     real(dp), intent(out) :: step, first, last, z(n)
     real(dp), allocatable :: dp_(:), dm(:)
     real(dp) :: g, gbest, gr, nrm2, big
-    integer :: i, r
+    integer :: i, r, k
     if (n == 1) then
       step = d(1) - x
       first = 1.0_dp
@@ -243,15 +243,16 @@ contains
     allocate(dp_(n), dm(n))
     dp_(1) = d(1) - x
     if (abs(dp_(1)) < pivmin) dp_(1) = -pivmin
-    do i = 2, n
-      dp_(i) = (d(i) - x) - e2(i - 1) / dp_(i - 1)
-      if (abs(dp_(i)) < pivmin) dp_(i) = -pivmin
-    end do
     dm(n) = d(n) - x
     if (abs(dm(n)) < pivmin) dm(n) = -pivmin
-    do i = n - 1, 1, -1
-      dm(i) = (d(i) - x) - e2(i) / dm(i + 1)
-      if (abs(dm(i)) < pivmin) dm(i) = -pivmin
+    ! the two factorisations in one loop: their division chains are
+    ! independent, so the processor overlaps them
+    do i = 2, n
+      k = n + 1 - i
+      dp_(i) = (d(i) - x) - e2(i - 1) / dp_(i - 1)
+      if (abs(dp_(i)) < pivmin) dp_(i) = -pivmin
+      dm(k) = (d(k) - x) - e2(k) / dm(k + 1)
+      if (abs(dm(k)) < pivmin) dm(k) = -pivmin
     end do
     r = 1
     gbest = huge(1.0_dp)
@@ -406,52 +407,102 @@ contains
   pure real(dp) function polish(fam, nu, q, r0, n, x, z) result(xp)
     integer, intent(in) :: fam, r0, n
     real(dp), intent(in) :: nu, q, x, z(n)
-    real(dp) :: sh, sl, dh, dl, rh, rl, th, tl, uh, ul, num, den, aq
+    real(dp) :: sh, sl, dh, dl, uh, ul, rh, rl, th, tl, num, den, aq, e0, e0l, zl, zr
     real(dp), parameter :: sqrt2_lo = -9.6667966258595e-17_dp
     integer :: i, r
     aq = abs(q)
     num = 0.0_dp
     den = 0.0_dp
+    ! the coupling of rows 0 and 1 of a_2m's matrix, sqrt(2)|q| in double-double
+    call prod_dd(sqrt2, aq, e0, e0l)
+    e0l = e0l + sqrt2_lo * aq
     do i = 1, n
       r = r0 + i - 1
       if (fam == 0) then
-        call two_sum(nu, 2.0_dp * real(r, dp), sh, sl)
+        call sum_exact(nu, 2.0_dp * real(r, dp), sh, sl)
       else
         sh = real(fam_base(fam) + 2 * r, dp)
         sl = 0.0_dp
       end if
-      call dd_mul(sh, sl, sh, sl, dh, dl)
-      if (r == 0 .and. fam == 2) call dd_add(1.0_dp, 0.0_dp, q, 0.0_dp, dh, dl)
-      if (r == 0 .and. fam == 3) call dd_add(1.0_dp, 0.0_dp, -q, 0.0_dp, dh, dl)
-      call dd_add(dh, dl, -x, 0.0_dp, uh, ul)
-      call dd_mul(uh, ul, z(i), 0.0_dp, rh, rl)           ! (d_i - x) z_i
-      if (i > 1) then
-        if (r - 1 == 0 .and. fam == 1) then
-          call dd_mul(sqrt2, sqrt2_lo, aq, 0.0_dp, uh, ul)
-          call dd_mul(uh, ul, z(i - 1), 0.0_dp, th, tl)
-        else
-          call two_prod(aq, z(i - 1), th, tl)
-        end if
-        call dd_add(rh, rl, th, tl, uh, ul)
-        rh = uh
-        rl = ul
+      ! d = s^2 (Dekker's product, the low part's cross term)
+      call prod_dd(sh, sh, dh, dl)
+      dl = dl + 2.0_dp * sh * sl
+      if (r == 0 .and. fam == 2) then
+        call sum_exact(1.0_dp, q, dh, dl)
+      else if (r == 0 .and. fam == 3) then
+        call sum_exact(1.0_dp, -q, dh, dl)
       end if
-      if (i < n) then
-        if (r == 0 .and. fam == 1) then
-          call dd_mul(sqrt2, sqrt2_lo, aq, 0.0_dp, uh, ul)
-          call dd_mul(uh, ul, z(i + 1), 0.0_dp, th, tl)
-        else
-          call two_prod(aq, z(i + 1), th, tl)
-        end if
-        call dd_add(rh, rl, th, tl, uh, ul)
-        rh = uh
-        rl = ul
+      ! (d - x) z_i
+      call sum_exact(dh, -x, uh, ul)
+      ul = ul + dl
+      call prod_dd(uh, z(i), rh, rl)
+      rl = rl + ul * z(i)
+      ! + the couplings to the neighbours
+      zl = 0.0_dp
+      zr = 0.0_dp
+      if (i > 1) zl = z(i - 1)
+      if (i < n) zr = z(i + 1)
+      if (fam == 1 .and. r == 0) then
+        call prod_dd(e0, zr, th, tl)
+        tl = tl + e0l * zr
+        call add_dd(rh, rl, th, tl)
+        call prod_dd(aq, zl, th, tl)
+      else if (fam == 1 .and. r == 1) then
+        call prod_dd(e0, zl, th, tl)
+        tl = tl + e0l * zl
+        call add_dd(rh, rl, th, tl)
+        call prod_dd(aq, zr, th, tl)
+      else
+        call prod_dd(aq, zl, th, tl)
+        call add_dd(rh, rl, th, tl)
+        call prod_dd(aq, zr, th, tl)
       end if
+      call add_dd(rh, rl, th, tl)
       num = num + z(i) * (rh + rl)
       den = den + z(i) * z(i)
     end do
     xp = x + num / den
   end function polish
+
+  ! Error-free transformations for polish, here so that the compiler
+  ! inlines them into its loop (pendula_dd's are in another unit).
+
+  !> s + e = a + b exactly (Knuth).
+  pure subroutine sum_exact(a, b, s, e)
+    real(dp), intent(in) :: a, b
+    real(dp), intent(out) :: s, e
+    real(dp) :: bb
+    s = a + b
+    bb = s - a
+    e = (a - (s - bb)) + (b - bb)
+  end subroutine sum_exact
+
+  !> p + e = a * b exactly (Dekker's product with Veltkamp's splitting).
+  pure subroutine prod_dd(a, b, p, e)
+    real(dp), intent(in) :: a, b
+    real(dp), intent(out) :: p, e
+    real(dp), parameter :: splitter = 134217729.0_dp   ! 2**27 + 1
+    real(dp) :: t, ah, al, bh, bl
+    p = a * b
+    t = splitter * a
+    ah = t - (t - a)
+    al = a - ah
+    t = splitter * b
+    bh = t - (t - b)
+    bl = b - bh
+    e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
+  end subroutine prod_dd
+
+  !> (rh + rl) += (th + tl), to double-double accuracy.
+  pure subroutine add_dd(rh, rl, th, tl)
+    real(dp), intent(inout) :: rh, rl
+    real(dp), intent(in) :: th, tl
+    real(dp) :: s, e
+    call sum_exact(rh, th, s, e)
+    e = e + (rl + tl)
+    rh = s + e
+    rl = e - (rh - s)
+  end subroutine add_dd
 
   !> How far (in orders s) past the turning point s0 the window must reach
   !> for the tail's decay to fall below tol_rel / |q| (dir +1: upwards from
