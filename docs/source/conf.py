@@ -122,6 +122,7 @@ SECTIONS = {
               "guide/josephson", "guide/driven",
               "guide/cord", "guide/cycloid", "guide/gravity", "guide/density", "guide/dynamics", "guide/attractors",
               "guide/continuation",
+              "guide/quantum",
               "guide/sweeps",
               "sweeps_at_scale*", "guide/scenes", "scenes*", "vocabulary", "guide/architecture"],
     "reports": ["reports/accuracy", "accuracy*", "elliptic_edges*", "model_accuracy*", "reports/cost", "work_precision*", "reports/benchmarks",
@@ -187,6 +188,7 @@ API_GROUPS = [
     ("Continuation and bifurcations", ["continue_orbit", "Branch", "Bifurcation", "continue_equilibria",
                                        "EquilibriumBranch", "ContinuationError"]),
     ("The Josephson junction", ["Junction", "SwitchingCurrents"]),
+    ("The quantum pendulum", ["Transmon", "mathieu_a", "mathieu_b", "mathieu_exponent", "mathieu_ce", "mathieu_se"]),
 ]
 # the pendulum of the classroom (metres, seconds, degrees)
 API_GROUPS += [("The pendulum in laboratory units", ["Pendulum", "Swing"])]

@@ -993,3 +993,120 @@ subroutine verner_interpolant_v(method, nx, params, theta0, v0, h, x, theta, v)
   call verner_one_step_dense(m, method, theta0, v0, h, x, theta, v)
 end subroutine verner_interpolant_v
 
+
+
+! ---------------------------------------------------------------------------
+! Mathieu characteristic values (kernel/mathieu): elementwise over arrays,
+! OpenMP over the elements.  status per element: 0 ok, 1 outside the domain,
+! 2 the truncation bound was not met (the value is then NaN).
+! ---------------------------------------------------------------------------
+
+! a_nu(q) (kind 1) or b_nu(q) (kind 2) and the truncation bound of each
+subroutine mathieu_char_v(n, kind, nu, q, val, bound, status)
+  use pendula_mathieu, only: mathieu_char
+  use pendula_threads, only: thread_count
+  implicit none
+  !f2py threadsafe
+  integer, intent(in) :: n, kind
+  double precision, intent(in) :: nu(n), q(n)
+  double precision, intent(out) :: val(n), bound(n)
+  integer, intent(out) :: status(n)
+  !f2py intent(hide), depend(nu) :: n = len(nu)
+  integer :: i
+  !$omp parallel do schedule(dynamic, 8) num_threads(thread_count(0)) if (n >= 64)
+  do i = 1, n
+    call mathieu_char(kind, nu(i), q(i), val(i), bound(i), status(i))
+  end do
+  !$omp end parallel do
+end subroutine mathieu_char_v
+
+! the m-th level of the bi-infinite Hill matrix of offset nu (the quantum
+! pendulum's spectrum in units of E_C with nu = 2 n_g, q = -E_J/(2 E_C))
+subroutine mathieu_level_v(n, nu, q, m, val, bound, status)
+  use pendula_mathieu, only: mathieu_level
+  use pendula_threads, only: thread_count
+  implicit none
+  !f2py threadsafe
+  integer, intent(in) :: n
+  double precision, intent(in) :: nu(n), q(n)
+  integer, intent(in) :: m(n)
+  double precision, intent(out) :: val(n), bound(n)
+  integer, intent(out) :: status(n)
+  !f2py intent(hide), depend(nu) :: n = len(nu)
+  integer :: i
+  !$omp parallel do schedule(dynamic, 8) num_threads(thread_count(0)) if (n >= 64)
+  do i = 1, n
+    call mathieu_level(nu(i), q(i), m(i), val(i), bound(i), status(i))
+  end do
+  !$omp end parallel do
+end subroutine mathieu_level_v
+
+! the same levels to double-double precision (hi + lo)
+subroutine mathieu_level_dd_v(n, nu, q, m, vh, vl, bound, status)
+  use pendula_mathieu, only: mathieu_level_dd
+  use pendula_threads, only: thread_count
+  implicit none
+  !f2py threadsafe
+  integer, intent(in) :: n
+  double precision, intent(in) :: nu(n), q(n)
+  integer, intent(in) :: m(n)
+  double precision, intent(out) :: vh(n), vl(n), bound(n)
+  integer, intent(out) :: status(n)
+  !f2py intent(hide), depend(nu) :: n = len(nu)
+  integer :: i
+  !$omp parallel do schedule(dynamic, 4) num_threads(thread_count(0)) if (n >= 16)
+  do i = 1, n
+    call mathieu_level_dd(nu(i), q(i), m(i), vh(i), vl(i), bound(i), status(i))
+  end do
+  !$omp end parallel do
+end subroutine mathieu_level_dd_v
+
+! the characteristic exponent nu(a, q): NaN (status 0) where unstable
+subroutine mathieu_nu_v(n, a, q, nu, status)
+  use pendula_mathieu, only: mathieu_nu
+  use pendula_threads, only: thread_count
+  implicit none
+  !f2py threadsafe
+  integer, intent(in) :: n
+  double precision, intent(in) :: a(n), q(n)
+  double precision, intent(out) :: nu(n)
+  integer, intent(out) :: status(n)
+  !f2py intent(hide), depend(a) :: n = len(a)
+  integer :: i
+  !$omp parallel do schedule(dynamic, 8) num_threads(thread_count(0)) if (n >= 64)
+  do i = 1, n
+    call mathieu_nu(a(i), q(i), nu(i), status(i))
+  end do
+  !$omp end parallel do
+end subroutine mathieu_nu_v
+
+! the m(i)-th level at offset nu(i) and its eigenvector on the rows
+! kmin .. kmin + nk - 1 (one column a level); lost: the norm outside
+subroutine mathieu_level_vector_v(n, nk, nu, q, m, kmin, val, c, lost, status)
+  use pendula_mathieu, only: mathieu_level_vector
+  implicit none
+  !f2py threadsafe
+  integer, intent(in) :: n, nk, kmin
+  double precision, intent(in) :: nu(n), q(n)
+  integer, intent(in) :: m(n)
+  double precision, intent(out) :: val(n), c(nk, n), lost(n)
+  integer, intent(out) :: status(n)
+  !f2py intent(hide), depend(nu) :: n = len(nu)
+  integer :: i
+  do i = 1, n
+    call mathieu_level_vector(nu(i), q(i), m(i), kmin, nk, val(i), c(:, i), lost(i), status(i))
+  end do
+end subroutine mathieu_level_vector_v
+
+! ce_n(z, q) (kind 1) or se_n(z, q) (kind 2) and the derivative at the points z
+subroutine mathieu_function_v(nz, kind, n, q, z, val, dval, status)
+  use pendula_mathieu, only: mathieu_function
+  implicit none
+  !f2py threadsafe
+  integer, intent(in) :: nz, kind, n
+  double precision, intent(in) :: q, z(nz)
+  double precision, intent(out) :: val(nz), dval(nz)
+  integer, intent(out) :: status
+  !f2py intent(hide), depend(z) :: nz = len(z)
+  call mathieu_function(kind, n, q, nz, z, val, dval, status)
+end subroutine mathieu_function_v

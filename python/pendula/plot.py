@@ -799,3 +799,49 @@ def _cf_label(ds, name: str) -> str:
     text = str(attrs.get("long_name", name))
     units = str(attrs.get("units", "1"))
     return text if units in ("1", "") else f"{text} ({units})"
+
+
+def levels(transmon, ax: matplotlib.axes.Axes | None = None, *, count: int = 5,
+           n_g: Any = None, relative: bool = True) -> matplotlib.axes.Axes:
+    """A transmon's levels against the offset charge (Koch et al. 2007, Fig. 2).
+
+    Parameters
+    ----------
+    transmon : pendula.Transmon
+        The quantum pendulum.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw (default: a new figure).
+    count : int, optional
+        How many levels (default 5).
+    n_g : array_like, optional
+        The offset charges (default 401 points over [-1, 1]).
+    relative : bool, optional
+        Energies from the bottom of the ground band in units of the 0-1
+        transition at n_g = 1/2, as Koch et al. draw them (default); else in
+        the units of E_J, E_C.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Examples
+    --------
+    >>> import pendula, pendula.plot
+    >>> ax = pendula.plot.levels(pendula.Transmon(5.0, 1.0), count=3)
+    >>> len(ax.get_lines()), ax.get_xlabel()
+    (3, 'n_g')
+    """
+    ng = np.linspace(-1.0, 1.0, 401) if n_g is None else np.asarray(n_g, dtype=float)
+    e = transmon.levels(count, ng)
+    ylabel = "E_m"
+    if relative:
+        e = (e - e[:, 0].min()) / float(transmon.transition(1, 0.5))
+        ylabel = "E_m / E_01 (n_g = 1/2)"
+    ax = _ax(ax)
+    colours = _categorical(e.shape[1])
+    for m in range(e.shape[1]):
+        ax.plot(ng, e[:, m], color=colours[m], label=f"m = {m}")
+    ax.set_xlabel("n_g")
+    ax.set_ylabel(ylabel)
+    ax.set_title(f"E_J / E_C = {transmon.E_J / transmon.E_C:g}")
+    return ax

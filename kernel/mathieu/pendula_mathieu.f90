@@ -1,0 +1,926 @@
+!> Characteristic values of Mathieu's equation y'' + (a - 2 q cos 2z) y = 0.
+!>
+!> Every value is an eigenvalue of a symmetric tridiagonal (Hill) matrix:
+!> the Floquet solution sum_k c_k exp(i (nu + 2k) z) gives the bi-infinite
+!> matrix with diagonal (nu + 2k)^2 and couplings q (DLMF 28.12), and the
+!> solutions of period pi or 2 pi of integer order give the four classic
+!> one-sided matrices of DLMF 28.4 (a_2m, a_2m+1, b_2m+1, b_2m+2).
+!>
+!> The wanted eigenvalue is picked by its index with Sturm-sequence
+!> bisection, so a value never jumps to a neighbouring order: within one
+!> matrix the eigenvalues are simple for every q, and the index says which.
+!> The matrix is the window of rows whose order s lies where the eigenvector
+!> lives (s^2 within a few |q| of the value, plus the decaying tail).  The
+!> eigenvector's components at the window's edges (from a twisted
+!> factorisation, accurate even when they are 1e-100) give the residual of
+!> the truncated eigenvector in the infinite operator: |q| times the edge
+!> components, an a-posteriori bound on the truncation error that the
+!> window is widened until it meets.  The value from the bisection is the
+!> exact eigenvalue of a matrix whose couplings differ from q by a few ulp
+!> (Kahan's backward error of the Sturm count), so the absolute error is a
+!> few eps times |q| plus the truncation bound.
+!>
+!> Negative q: a_2m(-q) = a_2m(q), b_2m+2(-q) = b_2m+2(q), a_2m+1(-q) =
+!> b_2m+1(q) (DLMF 28.2.26), and the non-integer lambda_nu depends on |q|
+!> only; the matrices below are written for q of either sign.
+module pendula_mathieu
+  use pendula_kinds, only: dp, nan_dp, eps_dp
+  use pendula_dd, only: two_sum, two_prod, dd_add, dd_div, dd_mul
+  implicit none
+  private
+  public :: mathieu_char, mathieu_level, mathieu_level_dd, mathieu_nu, mathieu_level_vector
+  public :: mathieu_function
+  public :: mathieu_max_q, mathieu_max_order
+  public :: mathieu_ok, mathieu_bad_input, mathieu_no_convergence
+
+  !> the largest |q| and order served (the window grows as sqrt(|q|))
+  real(dp), parameter :: mathieu_max_q = 1.0e10_dp
+  real(dp), parameter :: mathieu_max_order = 1.0e8_dp
+  integer, parameter :: mathieu_ok = 0, mathieu_bad_input = 1, mathieu_no_convergence = 2
+  !> the most rows of a window (|q| = 1e10 needs about 2e5)
+  integer, parameter :: max_rows = 4000000
+  real(dp), parameter :: sqrt2 = 1.4142135623730950488_dp
+
+contains
+
+  ! ------------------------------------------------------------------
+  ! Families of matrices.  fam 0: bi-infinite, row k has order s = nu + 2k.
+  ! fam 1..4: the one-sided matrices of a_2m, a_2m+1, b_2m+1, b_2m+2, row
+  ! i >= 0 of order s = base + 2i with base 0, 1, 1, 2.
+  ! ------------------------------------------------------------------
+
+  pure integer function fam_base(fam)
+    integer, intent(in) :: fam
+    select case (fam)
+    case (1); fam_base = 0
+    case (2, 3); fam_base = 1
+    case default; fam_base = 2
+    end select
+  end function fam_base
+
+  !> First and last row index of the window of orders [slo, shi] (cut = no
+  !> lower cut: the window reaches the natural start, row 0 of a one-sided
+  !> family or s = -shi of the bi-infinite one).
+  pure subroutine window_rows(fam, nu, slo, shi, cut, r0, r1)
+    integer, intent(in) :: fam
+    real(dp), intent(in) :: nu, slo, shi
+    logical, intent(in) :: cut
+    integer, intent(out) :: r0, r1
+    real(dp) :: b
+    if (fam == 0) then
+      r1 = floor((shi - nu) / 2.0_dp)
+      if (cut) then
+        r0 = ceiling((slo - nu) / 2.0_dp)
+      else
+        r0 = ceiling((-shi - nu) / 2.0_dp)
+      end if
+    else
+      b = real(fam_base(fam), dp)
+      r1 = max(0, floor((shi - b) / 2.0_dp))
+      r0 = 0
+      if (cut) r0 = max(0, ceiling((slo - b) / 2.0_dp))
+    end if
+    r0 = min(r0, r1)
+  end subroutine window_rows
+
+  !> Diagonal d and squared couplings e2 (e2(i) couples rows i and i+1) of
+  !> the rows r0..r1 of a family.
+  pure subroutine build(fam, nu, q, r0, r1, d, e2)
+    integer, intent(in) :: fam, r0, r1
+    real(dp), intent(in) :: nu, q
+    real(dp), intent(out) :: d(:), e2(:)
+    integer :: r, i
+    real(dp) :: s
+    do r = r0, r1
+      i = r - r0 + 1
+      if (fam == 0) then
+        s = nu + 2.0_dp * real(r, dp)
+      else
+        s = real(fam_base(fam) + 2 * r, dp)
+      end if
+      d(i) = s * s
+      e2(i) = q * q
+    end do
+    if (r0 == 0) then
+      if (fam == 1) e2(1) = 2.0_dp * q * q
+      if (fam == 2) d(1) = 1.0_dp + q
+      if (fam == 3) d(1) = 1.0_dp - q
+    end if
+  end subroutine build
+
+  !> Number of eigenvalues below x (Sturm sequence of the LDL^T pivots).
+  pure integer function sturm_count(d, e2, n, x, pivmin) result(c)
+    integer, intent(in) :: n
+    real(dp), intent(in) :: d(n), e2(n), x, pivmin
+    real(dp) :: t
+    integer :: i
+    c = 0
+    t = d(1) - x
+    if (abs(t) < pivmin) t = -pivmin
+    if (t < 0.0_dp) c = 1
+    do i = 2, n
+      t = (d(i) - x) - e2(i - 1) / t
+      if (abs(t) < pivmin) t = -pivmin
+      if (t < 0.0_dp) c = c + 1
+    end do
+  end function sturm_count
+
+  !> The j-th (0-based) eigenvalue: Rayleigh-quotient steps from the
+  !> twisted factorisation (cubic convergence), each checked by a Sturm
+  !> count that keeps a bracket [lo, hi] with count(lo) <= j < count(hi);
+  !> a step that leaves the bracket is replaced by bisection, and the
+  !> iteration stops only when the bracket holds the j-th eigenvalue alone
+  !> and the step is below an ulp.  Returns the eigenvector's normalised
+  !> components at the two ends too.
+  pure subroutine eigenvalue(d, e2, n, j, x0, lo0, hi0, pivmin, x, first, last, z)
+    integer, intent(in) :: n, j
+    real(dp), intent(in) :: d(n), e2(n), x0, lo0, hi0, pivmin
+    real(dp), intent(out) :: x, first, last, z(n)
+    real(dp) :: lo, hi, w, step, xn, del
+    integer :: it, cl, ch, c
+    logical :: rq
+    ! first, Rayleigh-quotient steps straight from the estimate x0: when
+    ! they converge to the j-th eigenvalue (two counts certify it), done
+    x = x0
+    do it = 1, 8
+      call twist(d, e2, n, x, pivmin, step, first, last, z)
+      if (.not. abs(step) <= huge(1.0_dp)) exit
+      xn = x + step
+      if (abs(step) <= 0.5_dp * eps_dp * abs(x)) then
+        del = 4.0_dp * eps_dp * abs(xn) + tiny(1.0_dp)
+        if (sturm_count(d, e2, n, xn - del, pivmin) <= j) then
+          if (sturm_count(d, e2, n, xn + del, pivmin) > j) then
+            x = xn
+            return
+          end if
+        end if
+        exit
+      end if
+      x = xn
+    end do
+    lo = lo0
+    hi = hi0
+    w = max(hi - lo, 1.0_dp)
+    do it = 1, 60   ! widen until the bracket holds it (the bounds are Weyl's)
+      cl = sturm_count(d, e2, n, lo, pivmin)
+      if (cl <= j) exit
+      lo = lo - w
+      w = 2.0_dp * w
+    end do
+    w = max(hi - lo, 1.0_dp)
+    do it = 1, 60
+      ch = sturm_count(d, e2, n, hi, pivmin)
+      if (ch > j) exit
+      hi = hi + w
+      w = 2.0_dp * w
+    end do
+    ! bisection until the bracket holds the j-th eigenvalue alone: the
+    ! Rayleigh-quotient steps then stay with it or leave the bracket
+    do it = 1, 200
+      if (cl == j .and. ch == j + 1) exit
+      xn = lo + 0.5_dp * (hi - lo)
+      if (xn <= lo .or. xn >= hi) exit
+      c = sturm_count(d, e2, n, xn, pivmin)
+      if (c > j) then
+        hi = xn
+        ch = c
+      else
+        lo = xn
+        cl = c
+      end if
+    end do
+    x = lo + 0.5_dp * (hi - lo)
+    rq = .true.
+    do it = 1, 300
+      call twist(d, e2, n, x, pivmin, step, first, last, z)
+      xn = x + step
+      if (rq .and. abs(step) <= 0.5_dp * eps_dp * abs(x)) then
+        ! converged: certify that the j-th eigenvalue is within a few ulp
+        del = 4.0_dp * eps_dp * abs(xn) + tiny(1.0_dp)
+        if (sturm_count(d, e2, n, xn - del, pivmin) <= j) then
+          if (sturm_count(d, e2, n, xn + del, pivmin) > j) then
+            x = xn
+            return
+          end if
+        end if
+        rq = .false.     ! converged to a neighbour: bisection from here
+      end if
+      if (it > 12) rq = .false.
+      if (.not. rq .or. .not. (xn > lo .and. xn < hi)) xn = lo + 0.5_dp * (hi - lo)
+      if (xn <= lo .or. xn >= hi) exit       ! lo and hi adjacent floats
+      c = sturm_count(d, e2, n, xn, pivmin)
+      if (c > j) then
+        hi = xn
+      else
+        lo = xn
+      end if
+      x = xn
+      if (hi - lo <= 2.0_dp * eps_dp * max(abs(lo), abs(hi))) exit
+    end do
+    x = lo + 0.5_dp * (hi - lo)
+    call twist(d, e2, n, x, pivmin, step, first, last, z)
+  end subroutine eigenvalue
+
+  !> The twisted factorisation of T - x at the row r of the smallest
+  !> twist pivot gamma_r: the Rayleigh-quotient step gamma_r / ||z||^2 of its
+  !> vector z (z_r = 1, (T - x) z = gamma_r e_r), and z's normalised
+  !> components at the two ends (each a product of ratios away from the
+  !> twist, so tiny ones keep their relative accuracy).
+  pure subroutine twist(d, e2, n, x, pivmin, step, first, last, z)
+    integer, intent(in) :: n
+    real(dp), intent(in) :: d(n), e2(n), x, pivmin
+    real(dp), intent(out) :: step, first, last, z(n)
+    real(dp), allocatable :: dp_(:), dm(:)
+    real(dp) :: g, gbest, gr, nrm2, big
+    integer :: i, r, k
+    if (n == 1) then
+      step = d(1) - x
+      first = 1.0_dp
+      last = 1.0_dp
+      z(1) = 1.0_dp
+      return
+    end if
+    allocate(dp_(n), dm(n))
+    dp_(1) = d(1) - x
+    if (abs(dp_(1)) < pivmin) dp_(1) = -pivmin
+    dm(n) = d(n) - x
+    if (abs(dm(n)) < pivmin) dm(n) = -pivmin
+    ! the two factorisations in one loop: their division chains are
+    ! independent, so the processor overlaps them
+    do i = 2, n
+      k = n + 1 - i
+      dp_(i) = (d(i) - x) - e2(i - 1) / dp_(i - 1)
+      if (abs(dp_(i)) < pivmin) dp_(i) = -pivmin
+      dm(k) = (d(k) - x) - e2(k) / dm(k + 1)
+      if (abs(dm(k)) < pivmin) dm(k) = -pivmin
+    end do
+    r = 1
+    gbest = huge(1.0_dp)
+    gr = 0.0_dp
+    do i = 1, n
+      g = dp_(i) + dm(i) - (d(i) - x)
+      if (abs(g) < gbest) then
+        gbest = abs(g)
+        gr = g
+        r = i
+      end if
+    end do
+    z(r) = 1.0_dp
+    big = 1.0_dp
+    do i = r - 1, 1, -1
+      z(i) = -(sqrt(e2(i)) / dp_(i)) * z(i + 1)
+      big = max(big, abs(z(i)))
+    end do
+    do i = r + 1, n
+      z(i) = -(sqrt(e2(i - 1)) / dm(i)) * z(i - 1)
+      big = max(big, abs(z(i)))
+    end do
+    nrm2 = 0.0_dp
+    do i = 1, n
+      nrm2 = nrm2 + (z(i) / big) ** 2
+    end do
+    step = (gr / big) / (nrm2 * big)
+    nrm2 = sqrt(nrm2)
+    first = abs(z(1) / big) / nrm2
+    last = abs(z(n) / big) / nrm2
+    z = z / big
+  end subroutine twist
+
+  ! ------------------------------------------------------------------
+  ! The solver: the eigenvalue of index mode, in the window, widened until
+  ! the truncation bound meets the tolerance.
+  ! ------------------------------------------------------------------
+
+  !> Index of the wanted eigenvalue within the window rows r0..r1.
+  !> fam 0, order nu (not an integer): the number of rows of order
+  !> |nu + 2k| < nu, i.e. -nu < k < 0.  fam 0, global index m (window from
+  !> -shi): m itself.  fam 1..4: m - r0.
+  pure integer function window_index(fam, nu, m, by_order, r0) result(j)
+    integer, intent(in) :: fam, m, r0
+    real(dp), intent(in) :: nu
+    logical, intent(in) :: by_order
+    if (fam == 0 .and. by_order) then
+      j = max(0, -max(r0, 1 - ceiling(nu)))
+    else if (fam == 0) then
+      j = m
+    else
+      j = m - r0
+    end if
+  end function window_index
+
+  !> Eigenvalue of family fam: by_order (fam 0) the one continuing nu^2,
+  !> else the m-th; centre^2 is the q = 0 value, the value lies within
+  !> spread |q| of it (Weyl).  tol_rel: the truncation bound to meet,
+  !> relative to max(1, |value|).  Also returns the window (d, e2 left
+  !> allocated) so a refinement can reuse it.
+  pure subroutine solve(fam, nu, q, m, by_order, centre, spread, tol_rel, x, bound, status, d, e2, j, r0, level)
+    integer, intent(in) :: fam, m
+    real(dp), intent(in) :: nu, q, centre, spread, tol_rel
+    logical, intent(in) :: by_order
+    real(dp), intent(out) :: x, bound
+    integer, intent(out) :: status, j, r0
+    real(dp), allocatable, intent(out) :: d(:), e2(:)
+    real(dp) :: aq, lam_lo, lam_hi, p, rr, ehi, elo, slo, shi, pivmin, f1, fn, c1, cn
+    integer, intent(in) :: level
+    real(dp), allocatable :: z(:)
+    real(dp) :: guess, sl, h
+    integer :: r1, n, attempt
+    logical :: cut
+    aq = abs(q)
+    lam_hi = centre * centre + spread * aq
+    lam_lo = centre * centre - spread * aq
+    guess = centre * centre
+    sl = real(2 * level + 1, dp)
+    if (aq > sl * sl) then
+      h = sqrt(aq)
+      guess = -2.0_dp * aq + 2.0_dp * sl * h - (sl * sl + 1.0_dp) / 8.0_dp &
+              - (sl ** 3 + 3.0_dp * sl) / (128.0_dp * h)
+    end if
+    ! the upper turning point: of the Weyl bound, or for large |q| of the
+    ! ladder's estimate plus a generous margin (the bound checks it)
+    p = sqrt(max(lam_hi + 2.0_dp * aq, 0.0_dp))
+    if (aq > sl * sl) p = sqrt(max(guess + 4.0_dp * sl * h + 2.0_dp * aq, 0.0_dp))
+    rr = sqrt(max(lam_lo - 2.0_dp * aq, 0.0_dp))
+    ! the tails: beyond the turning points the Fourier coefficients fall by
+    ! at most |q| / (s^2 - lambda) a row (two orders); rows are added until
+    ! that product is below the tolerance over |q|
+    call tail(aq, p, lam_hi, 1.0_dp, tol_rel, ehi)
+    call tail(aq, rr, lam_lo, -1.0_dp, tol_rel, elo)
+    ! the starting estimate: q = 0's value, or for large |q| the harmonic
+    ! ladder of the level's band, -2|q| + 2 s sqrt|q| - (s^2 + 1)/8 - ...
+    ! with s = 2 level + 1 (DLMF 28.8.1)
+    status = mathieu_no_convergence
+    x = nan_dp
+    bound = nan_dp
+    j = 0
+    r0 = 0
+    do attempt = 1, 12
+      shi = p + ehi
+      slo = rr - elo
+      cut = (slo > 2.0_dp) .and. by_order .or. (slo > 2.0_dp .and. fam /= 0)
+      call window_rows(fam, nu, slo, shi, cut, r0, r1)
+      n = r1 - r0 + 1
+      if (n > max_rows) return
+      if (allocated(d)) deallocate(d, e2)
+      allocate(d(n), e2(n))
+      call build(fam, nu, q, r0, r1, d, e2)
+      j = window_index(fam, nu, m, by_order, r0)
+      if (j < 0 .or. j >= n) then
+        ehi = 2.0_dp * ehi + 4.0_dp
+        elo = 2.0_dp * elo + 4.0_dp
+        cycle
+      end if
+      pivmin = tiny(1.0_dp) * max(1.0_dp, maxval(e2))
+      if (allocated(z)) deallocate(z)
+      allocate(z(n))
+      call eigenvalue(d, e2, n, j, guess, lam_lo - 1.0e-3_dp * abs(lam_lo) - 1.0_dp, &
+                      lam_hi + 1.0e-3_dp * abs(lam_hi) + 1.0_dp, pivmin, x, f1, fn, z)
+      if (aq > 0.0_dp) x = polish(fam, nu, q, r0, n, x, z)
+      if (aq == 0.0_dp) then   ! the diagonal itself: snap to its entry
+        x = d(minloc(abs(d - x), 1))
+        bound = 0.0_dp
+        status = mathieu_ok
+        return
+      end if
+      ! the couplings that the window cuts: below row r0 (none at row 0 of
+      ! a one-sided family) and above row r1
+      c1 = sqrt2 * aq
+      if (fam /= 0 .and. r0 == 0) c1 = 0.0_dp
+      cn = aq
+      bound = sqrt((c1 * f1) ** 2 + (cn * fn) ** 2)
+      if (n == 1 .and. aq > 0.0_dp) bound = (c1 + cn)   ! a single row says nothing
+      if (bound <= tol_rel * max(1.0_dp, abs(x))) then
+        status = mathieu_ok
+        return
+      end if
+      ehi = 2.0_dp * ehi + 4.0_dp
+      elo = 2.0_dp * elo + 4.0_dp
+    end do
+  end subroutine solve
+
+  !> The Rayleigh quotient of the eigenvector z about x, with the residual
+  !> (T - x) z in double-double and the matrix's entries exact ((nu + 2k)^2
+  !> by two-sum and Dekker's product, 1 +- q, the coupling sqrt(2) q): x
+  !> plus z'(T - x)z / z'z.  The error of z is second order, so the value
+  !> is the eigenvalue of the exact matrix to about an ulp, free of the
+  !> few-ulp-of-|q| error of the Sturm count where |q| exceeds the value.
+  pure real(dp) function polish(fam, nu, q, r0, n, x, z) result(xp)
+    integer, intent(in) :: fam, r0, n
+    real(dp), intent(in) :: nu, q, x, z(n)
+    real(dp) :: sh, sl, dh, dl, uh, ul, rh, rl, th, tl, num, den, aq, e0, e0l, zl, zr
+    real(dp), parameter :: sqrt2_lo = -9.6667966258595e-17_dp
+    integer :: i, r
+    aq = abs(q)
+    num = 0.0_dp
+    den = 0.0_dp
+    ! the coupling of rows 0 and 1 of a_2m's matrix, sqrt(2)|q| in double-double
+    call prod_dd(sqrt2, aq, e0, e0l)
+    e0l = e0l + sqrt2_lo * aq
+    do i = 1, n
+      r = r0 + i - 1
+      if (fam == 0) then
+        call sum_exact(nu, 2.0_dp * real(r, dp), sh, sl)
+      else
+        sh = real(fam_base(fam) + 2 * r, dp)
+        sl = 0.0_dp
+      end if
+      ! d = s^2 (Dekker's product, the low part's cross term)
+      call prod_dd(sh, sh, dh, dl)
+      dl = dl + 2.0_dp * sh * sl
+      if (r == 0 .and. fam == 2) then
+        call sum_exact(1.0_dp, q, dh, dl)
+      else if (r == 0 .and. fam == 3) then
+        call sum_exact(1.0_dp, -q, dh, dl)
+      end if
+      ! (d - x) z_i
+      call sum_exact(dh, -x, uh, ul)
+      ul = ul + dl
+      call prod_dd(uh, z(i), rh, rl)
+      rl = rl + ul * z(i)
+      ! + the couplings to the neighbours
+      zl = 0.0_dp
+      zr = 0.0_dp
+      if (i > 1) zl = z(i - 1)
+      if (i < n) zr = z(i + 1)
+      if (fam == 1 .and. r == 0) then
+        call prod_dd(e0, zr, th, tl)
+        tl = tl + e0l * zr
+        call add_dd(rh, rl, th, tl)
+        call prod_dd(aq, zl, th, tl)
+      else if (fam == 1 .and. r == 1) then
+        call prod_dd(e0, zl, th, tl)
+        tl = tl + e0l * zl
+        call add_dd(rh, rl, th, tl)
+        call prod_dd(aq, zr, th, tl)
+      else
+        call prod_dd(aq, zl, th, tl)
+        call add_dd(rh, rl, th, tl)
+        call prod_dd(aq, zr, th, tl)
+      end if
+      call add_dd(rh, rl, th, tl)
+      num = num + z(i) * (rh + rl)
+      den = den + z(i) * z(i)
+    end do
+    xp = x + num / den
+  end function polish
+
+  ! Error-free transformations for polish, here so that the compiler
+  ! inlines them into its loop (pendula_dd's are in another unit).
+
+  !> s + e = a + b exactly (Knuth).
+  pure subroutine sum_exact(a, b, s, e)
+    real(dp), intent(in) :: a, b
+    real(dp), intent(out) :: s, e
+    real(dp) :: bb
+    s = a + b
+    bb = s - a
+    e = (a - (s - bb)) + (b - bb)
+  end subroutine sum_exact
+
+  !> p + e = a * b exactly (Dekker's product with Veltkamp's splitting).
+  pure subroutine prod_dd(a, b, p, e)
+    real(dp), intent(in) :: a, b
+    real(dp), intent(out) :: p, e
+    real(dp), parameter :: splitter = 134217729.0_dp   ! 2**27 + 1
+    real(dp) :: t, ah, al, bh, bl
+    p = a * b
+    t = splitter * a
+    ah = t - (t - a)
+    al = a - ah
+    t = splitter * b
+    bh = t - (t - b)
+    bl = b - bh
+    e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
+  end subroutine prod_dd
+
+  !> (rh + rl) += (th + tl), to double-double accuracy.
+  pure subroutine add_dd(rh, rl, th, tl)
+    real(dp), intent(inout) :: rh, rl
+    real(dp), intent(in) :: th, tl
+    real(dp) :: s, e
+    call sum_exact(rh, th, s, e)
+    e = e + (rl + tl)
+    rh = s + e
+    rl = e - (rh - s)
+  end subroutine add_dd
+
+  !> How far (in orders s) past the turning point s0 the window must reach
+  !> for the tail's decay to fall below tol_rel / |q| (dir +1: upwards from
+  !> s0 with s^2 above lam; -1: downwards with s^2 below lam).
+  pure subroutine tail(aq, s0, lam, dir, tol_rel, ext)
+    real(dp), intent(in) :: aq, s0, lam, dir, tol_rel
+    real(dp), intent(out) :: ext
+    real(dp) :: prod, s, gap, goal
+    integer :: k
+    ext = 4.0_dp
+    if (aq == 0.0_dp) return
+    goal = 1.0e-2_dp * tol_rel / max(aq, 1.0_dp)
+    prod = 1.0_dp
+    s = s0
+    do k = 1, max_rows
+      s = s + 2.0_dp * dir
+      if (dir < 0.0_dp .and. s <= 0.0_dp) exit
+      gap = dir * (s * s - lam)
+      if (gap > 0.0_dp) prod = prod * min(1.0_dp, aq / gap)
+      if (prod <= goal) exit
+    end do
+    ext = abs(s - s0) + 4.0_dp
+  end subroutine tail
+
+  !> Characteristic value a_nu(q) (kind 1) or b_nu(q) (kind 2) of real order
+  !> nu >= 0; for non-integer nu both are lambda_nu(q) (DLMF 28.12).  bound:
+  !> the a-posteriori bound on the truncation error.  b_0 does not exist
+  !> (NaN, bad input); so do negative or non-finite orders and |q| beyond
+  !> mathieu_max_q.
+  elemental subroutine mathieu_char(kind, nu, q, val, bound, status)
+    integer, intent(in) :: kind
+    real(dp), intent(in) :: nu, q
+    real(dp), intent(out) :: val, bound
+    integer, intent(out) :: status
+    real(dp), allocatable :: d(:), e2(:)
+    integer :: n, fam, m, j, r0, lev
+    val = nan_dp
+    bound = nan_dp
+    status = mathieu_bad_input
+    if (.not. (nu >= 0.0_dp .and. nu <= mathieu_max_order)) return
+    if (.not. (abs(q) <= mathieu_max_q)) return
+    if (nu /= aint(nu)) then
+      call solve(0, nu, q, 0, .true., nu, 2.0_dp, 0.25_dp * eps_dp, val, bound, status, d, e2, j, r0, &
+                 int(nu))
+      return
+    end if
+    n = int(nu)
+    if (kind == 2 .and. n == 0) return
+    if (kind == 1) then
+      if (mod(n, 2) == 0) then
+        fam = 1
+        m = n / 2
+      else
+        fam = 2
+        m = (n - 1) / 2
+      end if
+    else
+      if (mod(n, 2) == 1) then
+        fam = 3
+        m = (n - 1) / 2
+      else
+        fam = 4
+        m = n / 2 - 1
+      end if
+    end if
+    ! the band at large |q|: a_n and b_n+1 share the level n (q > 0); for
+    ! q < 0 the odd orders swap (a_2m+1(-q) = b_2m+1(q))
+    lev = n
+    if (kind == 2) lev = n - 1
+    if (q < 0.0_dp .and. mod(n, 2) == 1) lev = n - 1 + 2 * (kind - 1)
+    call solve(fam, 0.0_dp, q, m, .false., nu, 3.0_dp, 0.25_dp * eps_dp, val, bound, status, d, e2, j, r0, lev)
+  end subroutine mathieu_char
+
+  !> q = 0 value of the m-th level of the bi-infinite matrix of offset nu
+  !> (0 <= nu < 2): the m-th smallest |nu + 2k|.
+  pure real(dp) function level_order(nu, m) result(s)
+    real(dp), intent(in) :: nu
+    integer, intent(in) :: m
+    integer :: c, k
+    ! orders nu, 2 - nu, 2 + nu, 4 - nu, ... interleave as the sorted
+    ! |nu + 2k|: for nu <= 1 the k = 0, -1, 1, -2, ... order, else -1, 0, ...
+    c = m / 2
+    if (nu <= 1.0_dp) then
+      if (mod(m, 2) == 0) then
+        k = c
+        s = nu + 2.0_dp * real(k, dp)
+      else
+        s = 2.0_dp * real(c + 1, dp) - nu
+      end if
+    else
+      if (mod(m, 2) == 0) then
+        s = 2.0_dp * real(c + 1, dp) - nu
+      else
+        s = nu + 2.0_dp * real(c, dp)
+      end if
+    end if
+  end function level_order
+
+  !> The m-th (0-based) eigenvalue of the bi-infinite matrix of offset nu
+  !> (reduced to [0, 2): the matrix only shifts its rows), q of either sign:
+  !> the levels of the quantum pendulum H = 4 E_C (n - n_g)^2 - E_J cos phi
+  !> are E_C times these with nu = 2 n_g, q = -E_J / (2 E_C).
+  elemental subroutine mathieu_level(nu, q, m, val, bound, status)
+    real(dp), intent(in) :: nu, q
+    integer, intent(in) :: m
+    real(dp), intent(out) :: val, bound
+    integer, intent(out) :: status
+    real(dp), allocatable :: d(:), e2(:)
+    real(dp) :: nr
+    integer :: j, r0
+    val = nan_dp
+    bound = nan_dp
+    status = mathieu_bad_input
+    if (.not. (abs(nu) <= mathieu_max_order) .or. m < 0 .or. m > 100000000) return
+    if (.not. (abs(q) <= mathieu_max_q)) return
+    nr = modulo(nu, 2.0_dp)
+    if (nr >= 2.0_dp) nr = 0.0_dp
+    call solve(0, nr, q, m, .false., level_order(nr, m), 2.0_dp, 0.25_dp * eps_dp, val, bound, &
+               status, d, e2, j, r0, m)
+  end subroutine mathieu_level
+
+  !> The m-th level of the bi-infinite matrix of offset nu (as
+  !> mathieu_level) and its eigenvector c_k, k = kmin .. kmin + nk - 1, of
+  !> the matrix with couplings q (its sign kept: for q < 0 the components
+  !> alternate relative to q > 0), unit norm, the largest component
+  !> positive.  Rows of the window outside the requested range are dropped;
+  !> lost is the norm they carried (the caller widens the range when it is
+  !> not negligible).  The row index k is that of nu reduced to [0, 2).
+  pure subroutine mathieu_level_vector(nu, q, m, kmin, nk, val, c, lost, status)
+    real(dp), intent(in) :: nu, q
+    integer, intent(in) :: m, kmin, nk
+    real(dp), intent(out) :: val, c(nk), lost
+    integer, intent(out) :: status
+    real(dp), allocatable :: d(:), e2(:), z(:)
+    real(dp) :: nr, bound, step, f1, fn, pivmin, nrm, big
+    integer :: j, r0, n, i, k, ib
+    c = 0.0_dp
+    lost = nan_dp
+    val = nan_dp
+    status = mathieu_bad_input
+    if (.not. (abs(nu) <= mathieu_max_order) .or. m < 0 .or. m > 100000000) return
+    if (.not. (abs(q) <= mathieu_max_q)) return
+    nr = modulo(nu, 2.0_dp)
+    if (nr >= 2.0_dp) nr = 0.0_dp
+    call solve(0, nr, q, m, .false., level_order(nr, m), 2.0_dp, 0.25_dp * eps_dp, val, bound, &
+               status, d, e2, j, r0, m)
+    if (status /= mathieu_ok) return
+    n = size(d)
+    allocate(z(n))
+    pivmin = tiny(1.0_dp) * max(1.0_dp, maxval(e2))
+    if (abs(q) > 0.0_dp) then
+      call twist(d, e2, n, val, pivmin, step, f1, fn, z)
+    else
+      z = 0.0_dp
+      z(minloc(abs(d - val), 1)) = 1.0_dp
+    end if
+    do i = 1, n     ! the couplings were |q|: back to q's sign
+      if (q < 0.0_dp .and. mod(r0 + i - 1, 2) /= 0) z(i) = -z(i)
+    end do
+    nrm = sqrt(sum(z * z))
+    ib = maxloc(abs(z), 1)
+    big = sign(1.0_dp, z(ib)) / nrm
+    lost = 0.0_dp
+    do i = 1, n
+      k = r0 + i - 1
+      if (k >= kmin .and. k < kmin + nk) then
+        c(k - kmin + 1) = z(i) * big
+      else
+        lost = lost + (z(i) * big) ** 2
+      end if
+    end do
+    lost = sqrt(lost)
+  end subroutine mathieu_level_vector
+
+  !> The periodic Mathieu function ce_n (kind 1) or se_n (kind 2) of integer
+  !> order n and its derivative at the points z, from the Fourier series of
+  !> DLMF 28.4 with the normalisation 28.4.9-12 (the integral of the square
+  !> over a period 2 pi is pi) and the signs of q = 0 carried by continuity,
+  !> which for real q is ce_n(0, q) > 0 and se_n'(0, q) > 0 (neither can
+  !> vanish: an even solution with y(0) = 0, or an odd one with y'(0) = 0,
+  !> is zero).  The coefficients are the eigenvector of the one-sided Hill
+  !> matrix; the values have an absolute error of a few eps (relative where
+  !> the function is not small: near z = 0 and pi/2 for large q the values
+  !> are exponentially small and only absolutely accurate).
+  pure subroutine mathieu_function(kind, n, q, nz, z, val, dval, status)
+    integer, intent(in) :: kind, n, nz
+    real(dp), intent(in) :: q, z(nz)
+    real(dp), intent(out) :: val(nz), dval(nz)
+    integer, intent(out) :: status
+    real(dp), allocatable :: d(:), e2(:), y(:)
+    real(dp) :: x, bound, step, f1, fn, pivmin, s, sgn, w
+    integer :: fam, m, j, r0, nr, i, k, base, lev
+    val = nan_dp
+    dval = nan_dp
+    status = mathieu_bad_input
+    if (n < 0 .or. (kind == 2 .and. n == 0) .or. n > 100000000) return
+    if (.not. (abs(q) <= mathieu_max_q)) return
+    if (kind == 1) then
+      fam = 1 + mod(n, 2)
+      m = n / 2
+    else
+      fam = 3 + (1 - mod(n, 2))
+      m = (n - 1) / 2
+    end if
+    lev = n
+    if (kind == 2) lev = n - 1
+    if (q < 0.0_dp .and. mod(n, 2) == 1) lev = n - 1 + 2 * (kind - 1)
+    call solve(fam, 0.0_dp, q, m, .false., real(n, dp), 3.0_dp, 0.25_dp * eps_dp, x, bound, status, &
+               d, e2, j, r0, lev)
+    if (status /= mathieu_ok) return
+    nr = size(d)
+    allocate(y(nr))
+    pivmin = tiny(1.0_dp) * max(1.0_dp, maxval(e2))
+    if (q /= 0.0_dp) then
+      call twist(d, e2, nr, x, pivmin, step, f1, fn, y)
+    else
+      y = 0.0_dp
+      y(j + 1) = 1.0_dp
+    end if
+    base = fam_base(fam)
+    ! the couplings were |q|: back to q's sign; A_0 = y_0 / sqrt(2)
+    do i = 1, nr
+      k = r0 + i - 1
+      if (q < 0.0_dp .and. mod(k, 2) /= 0) y(i) = -y(i)
+    end do
+    y = y / sqrt(sum(y * y))
+    if (fam == 1 .and. r0 == 0) y(1) = y(1) / sqrt2
+    ! the sign: ce_n(0) > 0, se_n'(0) > 0
+    s = 0.0_dp
+    do i = 1, nr
+      w = 1.0_dp
+      if (kind == 2) w = real(base + 2 * (r0 + i - 1), dp)
+      s = s + w * y(i)
+    end do
+    sgn = sign(1.0_dp, s)
+    do k = 1, nz
+      val(k) = 0.0_dp
+      dval(k) = 0.0_dp
+      do i = 1, nr
+        w = real(base + 2 * (r0 + i - 1), dp)
+        if (kind == 1) then
+          val(k) = val(k) + y(i) * cos(w * z(k))
+          dval(k) = dval(k) - w * y(i) * sin(w * z(k))
+        else
+          val(k) = val(k) + y(i) * sin(w * z(k))
+          dval(k) = dval(k) + w * y(i) * cos(w * z(k))
+        end if
+      end do
+      val(k) = sgn * val(k)
+      dval(k) = sgn * dval(k)
+    end do
+  end subroutine mathieu_function
+
+  !> Sturm count in double-double: the window's diagonal (nu + 2k)^2 is
+  !> formed exactly (nu + 2k by two-sum, the square by Dekker's product).
+  pure integer function sturm_count_dd(nu, q, r0, n, xh, xl) result(c)
+    real(dp), intent(in) :: nu, q, xh, xl
+    integer, intent(in) :: r0, n
+    real(dp) :: sh, sl, dh, dl, ph, pl, th, tl, uh, ul, e2h, e2l, pivmin
+    integer :: i
+    call two_prod(q, q, e2h, e2l)
+    pivmin = tiny(1.0_dp) * max(1.0_dp, e2h) * 1.0e20_dp
+    c = 0
+    do i = 1, n
+      call two_sum(nu, 2.0_dp * real(r0 + i - 1, dp), sh, sl)
+      call dd_mul(sh, sl, sh, sl, dh, dl)
+      call dd_add(dh, dl, -xh, -xl, ph, pl)
+      if (i == 1) then
+        th = ph
+        tl = pl
+      else
+        call dd_div(e2h, e2l, th, tl, uh, ul)
+        call dd_add(ph, pl, -uh, -ul, th, tl)
+      end if
+      if (abs(th) < pivmin) then
+        th = -pivmin
+        tl = 0.0_dp
+      end if
+      if (th < 0.0_dp) c = c + 1
+    end do
+  end function sturm_count_dd
+
+  !> mathieu_level to double-double precision (vh + vl, about 1e-31
+  !> relative to |q|): the difference of two levels keeps its relative
+  !> accuracy down to 1e-15 of the levels (the charge dispersion).  bound:
+  !> the bound on the error of vh + vl (truncation, bracket, rounding).
+  elemental subroutine mathieu_level_dd(nu, q, m, vh, vl, bound, status)
+    real(dp), intent(in) :: nu, q
+    integer, intent(in) :: m
+    real(dp), intent(out) :: vh, vl, bound
+    integer, intent(out) :: status
+    real(dp), allocatable :: d(:), e2(:)
+    real(dp) :: nr, x, w, loh, lol, hih, hil, mh, ml, th, tl
+    integer :: j, n, r0, it
+    vh = nan_dp
+    vl = nan_dp
+    bound = nan_dp
+    status = mathieu_bad_input
+    if (.not. (abs(nu) <= mathieu_max_order) .or. m < 0 .or. m > 100000000) return
+    if (.not. (abs(q) <= 1.0e6_dp)) return
+    nr = modulo(nu, 2.0_dp)
+    if (nr >= 2.0_dp) nr = 0.0_dp
+    call solve(0, nr, q, m, .false., level_order(nr, m), 2.0_dp, 1.0e-33_dp, x, bound, &
+               status, d, e2, j, r0, m)
+    if (status /= mathieu_ok) return
+    n = size(d)
+    ! bracket: the double value is exact for couplings a few ulp off
+    w = 64.0_dp * eps_dp * (abs(q) + abs(x)) + tiny(1.0_dp)
+    loh = x - w
+    lol = 0.0_dp
+    hih = x + w
+    hil = 0.0_dp
+    do it = 1, 40
+      if (sturm_count_dd(nr, q, r0, n, loh, lol) <= j) exit
+      loh = loh - w
+      w = 2.0_dp * w
+    end do
+    w = 64.0_dp * eps_dp * (abs(q) + abs(x)) + tiny(1.0_dp)
+    do it = 1, 40
+      if (sturm_count_dd(nr, q, r0, n, hih, hil) > j) exit
+      hih = hih + w
+      w = 2.0_dp * w
+    end do
+    do it = 1, 200
+      call dd_add(hih, hil, -loh, -lol, th, tl)
+      if (abs(th) <= 4.0e-32_dp * max(1.0_dp, abs(hih))) exit
+      call dd_add(loh, lol, 0.5_dp * th, 0.5_dp * tl, mh, ml)
+      if ((mh == loh .and. ml == lol) .or. (mh == hih .and. ml == hil)) exit
+      if (sturm_count_dd(nr, q, r0, n, mh, ml) > j) then
+        hih = mh
+        hil = ml
+      else
+        loh = mh
+        lol = ml
+      end if
+    end do
+    call dd_add(hih, hil, -loh, -lol, th, tl)
+    call dd_add(loh, lol, 0.5_dp * th, 0.5_dp * tl, vh, vl)
+    ! the error: the truncation, the bracket's width, and the Sturm count's
+    ! backward error (couplings a few units of 1e-32 off)
+    bound = bound + abs(th) + 8.0e-32_dp * (abs(q) + abs(vh))
+    status = mathieu_ok
+  end subroutine mathieu_level_dd
+
+  !> The characteristic exponent nu(a, q) >= 0: the order whose
+  !> characteristic value is a (DLMF 28.2(iii)), real where the solutions
+  !> are bounded (a in a band [a_n, b_n+1] of |q|).  NaN with status
+  !> mathieu_ok where they are not (an instability tongue, or a < a_0).
+  elemental subroutine mathieu_nu(a, q, nu, status)
+    real(dp), intent(in) :: a, q
+    real(dp), intent(out) :: nu
+    integer, intent(out) :: status
+    real(dp), allocatable :: d(:), e2(:)
+    real(dp) :: aq, p, rr, e, shi, slo, lo, hi, mid, pivmin, nbnd
+    integer :: fam, r0, r1, n, na, nb, band, it, j
+    logical :: cut
+    nu = nan_dp
+    status = mathieu_bad_input
+    if (.not. (abs(q) <= mathieu_max_q)) return
+    if (.not. (abs(a) <= mathieu_max_order ** 2)) return
+    status = mathieu_ok
+    aq = abs(q)
+    if (aq == 0.0_dp) then
+      if (a >= 0.0_dp) nu = sqrt(a)
+      return
+    end if
+    p = sqrt(max(a + 4.0_dp * aq, 0.0_dp))
+    rr = sqrt(max(a - 4.0_dp * aq, 0.0_dp))
+    e = 16.0_dp + 10.0_dp * log10(max(aq, 1.0_dp))
+    shi = p + e
+    ! which band edges lie below a: the counts of the four families, each
+    ! over the rows near a (the rows below the window, far below a, are
+    ! counted whole: their eigenvalues lie below a)
+    slo = rr - e
+    na = 0
+    nb = 0
+    do fam = 1, 4
+      call window_rows(fam, 0.0_dp, slo, shi, slo > 2.0_dp, r0, r1)
+      n = r1 - r0 + 1
+      if (n > max_rows) then
+        status = mathieu_no_convergence
+        return
+      end if
+      if (allocated(d)) deallocate(d, e2)
+      allocate(d(n), e2(n))
+      call build(fam, 0.0_dp, aq, r0, r1, d, e2)
+      pivmin = tiny(1.0_dp) * max(1.0_dp, maxval(e2))
+      if (fam <= 2) then
+        na = na + r0 + sturm_count(d, e2, n, a, pivmin)
+      else
+        nb = nb + r0 + sturm_count(d, e2, n, a, pivmin)
+      end if
+    end do
+    if (na /= nb + 1) return     ! unstable: a <= a_0 or b_n <= a <= a_n
+    band = na - 1                ! a_band < a <= b_band+1: nu in (band, band+1]
+    nbnd = real(band, dp)
+    ! bisection in nu: lambda_nu(q) increases with nu in the band, and
+    ! lambda_nu < a exactly when the window has more than j levels below a
+    lo = nbnd
+    hi = nbnd + 1.0_dp
+    cut = slo > 2.0_dp
+    do it = 1, 200
+      mid = lo + 0.5_dp * (hi - lo)
+      if (mid <= lo .or. mid >= hi) exit
+      call window_rows(0, mid, slo, shi, cut, r0, r1)
+      n = r1 - r0 + 1
+      if (allocated(d)) deallocate(d, e2)
+      allocate(d(n), e2(n))
+      call build(0, mid, aq, r0, r1, d, e2)
+      pivmin = tiny(1.0_dp) * max(1.0_dp, maxval(e2))
+      j = window_index(0, mid, 0, .true., r0)
+      if (sturm_count(d, e2, n, a, pivmin) > j) then
+        lo = mid
+      else
+        hi = mid
+      end if
+    end do
+    nu = lo + 0.5_dp * (hi - lo)
+  end subroutine mathieu_nu
+
+end module pendula_mathieu
