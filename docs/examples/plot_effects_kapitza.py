@@ -9,7 +9,7 @@ up and wobbles about θ = π (top, animated); without the vibration it falls.
 Below: the stability of the inverted state over (a, Ω), from the Floquet
 multipliers of the orbit θ = π (:func:`pendula.periodic_orbit`; stable when
 both lie on the unit circle), with the boundaries of the Mathieu equation's
-stability tongues (scipy's characteristic values a₀(q) and b₁(q), with
+stability tongues (pendula's characteristic values a₀(q) and b₁(q), with
 δ = −4ε/Ω², q = 2a) and Kapitza's limit aΩ = √2.
 """
 
@@ -18,7 +18,6 @@ import math
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.animation import FuncAnimation
-from scipy.special import mathieu_a, mathieu_b
 
 import pendula
 
@@ -90,8 +89,8 @@ ax.contourf(
 fine = np.linspace(amps[0], amps[-1], 4000)
 q = 2 * fine
 for curve, label, style in (
-    (mathieu_a(0, q), "δ = a₀(q)", "-"),
-    (mathieu_b(1, q), "δ = b₁(q)", "--"),
+    (pendula.mathieu_a(0, q), "δ = a₀(q)", "-"),
+    (pendula.mathieu_b(1, q), "δ = b₁(q)", "--"),
 ):
     with np.errstate(invalid="ignore", divide="ignore"):
         w = np.where(curve < 0, np.sqrt(-4.0 / curve), np.nan)
