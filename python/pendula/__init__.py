@@ -60,12 +60,9 @@ from .dynamics import Equilibrium, PeriodicOrbit, attractor_continuation, attrac
 from .dynamics import (Bifurcation, Branch, ContinuationError, EquilibriumBranch, continue_equilibria,  # noqa: E402
                        continue_orbit)
 from .spectrum import precompute_wisdom, wisdom_path  # noqa: E402
-<<<<<<< HEAD
 from .laboratory import Pendulum, Swing  # noqa: E402
-=======
 # the quantum pendulum: Mathieu characteristic values and the transmon
 from .quantum import Transmon, mathieu_a, mathieu_b, mathieu_ce, mathieu_exponent, mathieu_se  # noqa: E402
->>>>>>> quantum
 
 # the version of the installed metadata (written once, in meson.build)
 from ._version import __version__  # noqa: E402
@@ -84,11 +81,8 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Junction", "SwitchingCurrents", "attractor_continuation",
            "continue_orbit", "continue_equilibria", "Branch", "Bifurcation", "EquilibriumBranch",
            "ContinuationError"]
-<<<<<<< HEAD
 
 # the pendulum of the classroom in metres, seconds and degrees
 __all__ += ["Pendulum", "Swing"]
-=======
 # the quantum pendulum
 __all__ += ["mathieu_a", "mathieu_b", "mathieu_exponent", "mathieu_ce", "mathieu_se", "Transmon"]
->>>>>>> quantum
