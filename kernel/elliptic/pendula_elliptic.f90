@@ -488,15 +488,26 @@ contains
   !> unbounded there (up to 4e6 eps in F), and E(phi|m) was given a real
   !> value 4.8e-17 beyond the edge.  Only here: the double-double sine and
   !> cosine cost about a microsecond.
+  !>
+  !> mc s^2 is formed as (mc 2^-2k)(s 2^k)^2, exact scalings by powers of two
+  !> with k = 256 when |mc| > 2^900: Dekker's product splits each factor
+  !> by multiplying it by 2^27 + 1, which overflows for |mc| > 1.3e300 (the
+  !> split was Inf - Inf = NaN, and F and E NaN inside the domain), and
+  !> s^2 <= 1/m there lies near the subnormal range, where its low part
+  !> loses its digits.
   elemental subroutine edge_terms(phi, mc, s, c, c2, d2, inside)
     real(dp), intent(in) :: phi, mc
     real(dp), intent(out) :: s, c, c2, d2
     logical, intent(out) :: inside
-    real(dp) :: j, sh, sl, ch, cl, ah, al, bh, bl, dh, dl
+    real(dp) :: j, sh, sl, ch, cl, ah, al, bh, bl, dh, dl, ss, ms
     call reduce_pi_dd(phi, j, sh, sl, ch, cl)
     call dd_mul(ch, cl, ch, cl, ah, al)
-    call dd_mul(sh, sl, sh, sl, bh, bl)
-    call dd_mul(bh, bl, mc, 0.0_dp, dh, dl)
+    ss = 1.0_dp; ms = 1.0_dp
+    if (abs(mc) > 2.0_dp**900) then
+      ss = 2.0_dp**256; ms = 2.0_dp**(-512)
+    end if
+    call dd_mul(ss * sh, ss * sl, ss * sh, ss * sl, bh, bl)
+    call dd_mul(bh, bl, ms * mc, 0.0_dp, dh, dl)
     call dd_add(ah, al, dh, dl, bh, bl)
     inside = bh >= 0.0_dp
     s = sh + sl
@@ -595,6 +606,9 @@ contains
       ev = nan_dp; return
     end if
     as = abs(s)
+    ! for |m| > 1 the s^3 terms are m s^2 / 3 times s, m s^2 of order one or
+    ! less where they matter: formed in that order, since s^3 alone
+    ! underflows (to 0 for s < 5e-109, m ~ 1e250, losing a tenth of E)
     s3 = as * as * as
     if (m >= 0.0_dp .and. mc > 0.0_dp) then
       ! E = mc F + (m mc / 3) s^3 R_D(c^2, 1, D^2) + m s c / D: positive terms
@@ -608,9 +622,9 @@ contains
       ! sign of mc, not by m: for 0 < -mc < 1.1e-16 m rounds to 1 and the
       ! form below subtracted two terms of ~ln(4/c) next to pi/2 (16 eps at
       ! phi = -1.5707963257, mc = -1.6e-180)
-      ev = (-mc / 3.0_dp) * s3 * carlson_rd(d2, 1.0_dp, c2) + as * sqrt(d2) / c
+      ev = (((-mc * as) * as) / 3.0_dp) * as * carlson_rd(d2, 1.0_dp, c2) + as * sqrt(d2) / c
     else
-      ev = as * carlson_rf(c2, d2, 1.0_dp) - (m / 3.0_dp) * s3 * carlson_rd(c2, d2, 1.0_dp)
+      ev = as * carlson_rf(c2, d2, 1.0_dp) - (((m * as) * as) / 3.0_dp) * as * carlson_rd(c2, d2, 1.0_dp)
     end if
     ev = sign(ev, s)
   end function einc_reduced

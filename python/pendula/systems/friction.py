@@ -24,8 +24,12 @@ __all__ = ["FrictionTurningPoints", "friction_turning_points"]
 
 #: the most turning points returned (each half swing loses about 2 mu / eps of amplitude)
 MAX_TURNING_POINTS = 1_000_000
-_STATUS = {1: "the scene's numbers are out of range", 2: "the bob never stops: the torque keeps it turning "
-           "(no turning point within 2e4 rad)", 4: "GSL's root finder or quadrature failed"}
+_STATUS = {1: "the scene's numbers are out of range",
+           2: "the bob never stops: the torque (at least friction) keeps it turning (no turning point in a "
+              "whole turn, so none ever)",
+           4: "GSL's root finder or quadrature failed",
+           5: "the next turning point lies beyond 2e4 rad of travel (the bob does stop, but so long a "
+              "stretch, thousands of turns, is not computed): a smaller speed or more friction"}
 
 
 @dataclass(frozen=True)
@@ -81,8 +85,9 @@ def friction_turning_points(scene: Scene, max_points: int = MAX_TURNING_POINTS) 
     TypeError
         If `scene` is not a :class:`Scene`.
     ValueError
-        If the scene has no friction, names another effect or model, or the
-        bob never stops (a torque above friction).
+        If the scene has no friction, names another effect or model, the
+        bob never stops (a torque at least as large as friction), or a
+        turning point lies beyond 2e4 rad of travel.
 
     See Also
     --------
