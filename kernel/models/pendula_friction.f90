@@ -27,10 +27,11 @@
 !>   end:   x = x_b - y^2, K = y^2 (-D_b), dx/sqrt(2K) = 2 dy / sqrt(-2 D_b),
 !>          D_b the divided difference of K between x and x_b;
 !>   start from rest: x = y^2, dx/sqrt(2K) = 2 dy / sqrt(2 g);
-!>   start moving, accelerated (g0 = g(0) > 0): x = y (y + 2 a)/(2 g0), a = |v_a|,
-!>          which makes v_a^2 + 2 g0 x = (y + a)^2 exactly, so the near
-!>          singularity at x = -a^2/(2 g0) behind the start is removed:
-!>          dx/sqrt(2K) = (y + a) dy / (g0 sqrt(2K));
+!>   start moving, accelerated (g0 = g(0) > 0): 1/sqrt(2K) has a near singularity at
+!>          x = -x0, x0 = v_a^2/(2 g0), behind the start (1.8e-11 behind it at v_a = 2.7e-6),
+!>          so the first half is integrated in pieces graded at x0 4^k, each at least a
+!>          third of its length away from it (a substitution v_a^2 + 2 g0 x = (y + a)^2
+!>          leaves complex branch points of the exact K at a distance |v_a| from y = 0);
 !>   start moving, decelerated: K >= about v_a^2/4 on the first half, smooth as it is.
 !> No module state.
 module pendula_friction
@@ -131,8 +132,8 @@ contains
 
     !> From st%tha (speed st%va) to the next turning point: th, and t advanced by the stretch's time.
     subroutine one_stretch()
-      real(dp) :: lo, hi, ghi, root, res, err, half, c, a2, xfirst, xlast, ym
-      integer :: k, k0, k1, s1, s2, s3
+      real(dp) :: lo, hi, ghi, root, res, err, half, c, a2, xfirst, xlast, xa, xe, piece
+      integer :: k, k0, k1, s1, s2, s3, s4
       ! where the root can be (see the module's notes)
       c = st%s * st%tau - st%mu
       a2 = 0.5_dp * st%va**2
@@ -177,12 +178,22 @@ contains
       if (st%va == 0.0_dp) then
         s2 = gsl_qaws(c_funloc(start_rest), c_loc(st), 0.0_dp, sqrt(half), 0.0_dp, 0.0_dp, quad_rel, res, err)
       else if (st%g0 > 0.0_dp) then
-        ym = 2.0_dp * st%g0 * half / (sqrt(st%va**2 + 2.0_dp * st%g0 * half) + abs(st%va))
-        s2 = gsl_qaws(c_funloc(start_fast), c_loc(st), 0.0_dp, ym, 0.0_dp, 0.0_dp, quad_rel, res, err)
+        ! graded at x0 4^k, x0 = v_a^2 / (2 g0): each piece at least a third of its length
+        ! from the near singularity at -x0
+        res = 0.0_dp; s2 = 0
+        xa = 0.0_dp; xe = 0.5_dp * st%va**2 / st%g0
+        do while (s2 == 0)
+          xe = min(xe, half)
+          s4 = gsl_qaws(c_funloc(speed_inverse), c_loc(st), xa, xe, 0.0_dp, 0.0_dp, quad_rel, piece, err)
+          s2 = accept(s4, piece, err)
+          res = res + piece
+          if (xe >= half) exit
+          xa = xe; xe = 4.0_dp * xe
+        end do
       else
-        s2 = gsl_qaws(c_funloc(start_slow), c_loc(st), 0.0_dp, half, 0.0_dp, 0.0_dp, quad_rel, res, err)
+        s2 = gsl_qaws(c_funloc(speed_inverse), c_loc(st), 0.0_dp, half, 0.0_dp, 0.0_dp, quad_rel, res, err)
+        s2 = accept(s2, res, err)
       end if
-      s2 = accept(s2, res, err)
       t = t + res
       s3 = gsl_qaws(c_funloc(end_half), c_loc(st), 0.0_dp, sqrt(root - half), 0.0_dp, 0.0_dp, quad_rel, res, err)
       s3 = accept(s3, res, err)
@@ -266,27 +277,15 @@ contains
     f = 2.0_dp / sqrt(2.0_dp * g_of(st, y * y))
   end function start_rest
 
-  !> Moving and accelerated, x = y (y + 2a)/(2 g0): (y + a) / (g0 sqrt(2K)).
-  function start_fast(y, ctx) bind(C) result(f)
-    real(c_double), value, intent(in) :: y
-    type(c_ptr), value, intent(in) :: ctx
-    real(c_double) :: f, a, x
-    type(stretch_t), pointer :: st
-    call c_f_pointer(ctx, st)
-    a = abs(st%va)
-    x = y * (y + 2.0_dp * a) / (2.0_dp * st%g0)
-    f = (y + a) / (st%g0 * sqrt(st%va**2 + 2.0_dp * x * g_of(st, x)))
-  end function start_fast
-
-  !> Moving and decelerated: 1 / sqrt(2K(x)) as it is.
-  function start_slow(x, ctx) bind(C) result(f)
+  !> With a starting speed: 1 / sqrt(2K(x)) as it is.
+  function speed_inverse(x, ctx) bind(C) result(f)
     real(c_double), value, intent(in) :: x
     type(c_ptr), value, intent(in) :: ctx
     real(c_double) :: f
     type(stretch_t), pointer :: st
     call c_f_pointer(ctx, st)
     f = 1.0_dp / sqrt(st%va**2 + 2.0_dp * x * g_of(st, x))
-  end function start_slow
+  end function speed_inverse
 
   !> Towards the turning point, x = x_b - y^2: 2 / sqrt(-2 D_b(x)).
   function end_half(y, ctx) bind(C) result(f)
