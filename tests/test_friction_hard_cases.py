@@ -153,3 +153,17 @@ def test_friction_runaway_only_with_a_torque_at_least_friction():
     travel = tp.angles[0] - 0.0
     assert abs(0.5 * 10.0**2 + (math.cos(tp.angles[0]) - 1.0) - 0.05 * travel) < 1e-10 * travel
     assert tp.stuck
+
+
+def test_friction_turning_point_inside_a_dip_between_search_steps():
+    """Started 1.7e-6 rad/s downhill next to the top where friction just exceeds gravity's pull
+    (theta0 = 2.998, mu = 0.44 against eps sin theta0 = 0.426): the bob stops 9e-11 rad on, and
+    K dips below zero there and rises again well within the search's step of pi/64; the fixed
+    steps passed over it, a later root was taken and the quadrature failed through K < 0.  Now
+    the steps are bounded by where K could reach zero (|K''| <= eps).  The time within 8 eps
+    relative of mpmath, the angle within 4 eps, and the bob stuck there."""
+    sc = (2.9981238546234383, -1.6571581854485232e-06, 2.971693689177179, 0.4396117733943705)
+    e_t, e_a = errors(*sc)
+    assert e_t <= 8 and e_a <= 4
+    tp = pendula.friction_turning_points(pendula.Scene(theta0=sc[0], v0=sc[1], eps=sc[2], friction=sc[3]))
+    assert tp.stuck and len(tp.angles) == 1 and abs(tp.angles[0] - sc[0]) < 1e-9

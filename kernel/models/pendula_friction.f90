@@ -20,10 +20,11 @@
 !> first turn never ends (the torque keeps the bob turning).
 !>
 !> The time of a stretch, the integral of dx / sqrt(2 K), is split at x_b/2,
-!> and each half is made smooth by a substitution before GSL's quadrature
-!> (the square-root singularity of 1/v at a turning point, and its near
-!> singularity behind a slow start, are what an adaptive rule cannot resolve
-!> to full accuracy):
+!> and each half is given to GSL's quadrature (QAWS without weights) with its
+!> singularity taken out (the square-root singularity of 1/v at a turning
+!> point, and its near singularity behind a slow start, are what an adaptive
+!> rule could not resolve: QAWS with the turning points' weights failed on 43
+!> of 54 slow starts and was 3e5 eps off from moving ones):
 !>   end:   x = x_b - y^2, K = y^2 (-D_b), dx/sqrt(2K) = 2 dy / sqrt(-2 D_b),
 !>          D_b the divided difference of K between x and x_b;
 !>   start from rest: x = y^2, dx/sqrt(2K) = 2 dy / sqrt(2 g);
@@ -74,8 +75,8 @@ module pendula_friction
     real(dp) :: tha = 0.0_dp, va = 0.0_dp, xb = 0.0_dp, g0 = 0.0_dp
   end type stretch_t
 
-  !> angular step of the search for the next turning point (a root of K between two samples
-  !> is bracketed; two roots closer than this, a grazing pass near the top, would be missed)
+  !> the longest step of the search for the next turning point (shorter where K could reach
+  !> zero within it: see one_stretch)
   real(dp), parameter :: search_step = pi / 64.0_dp
   !> the longest stretch computed (radians): beyond it the bob does stop, but the time of
   !> so long a stretch (thousands of swings over the top) is not computed
@@ -132,8 +133,9 @@ contains
 
     !> From st%tha (speed st%va) to the next turning point: th, and t advanced by the stretch's time.
     subroutine one_stretch()
-      real(dp) :: lo, hi, ghi, root, res, err, half, c, a2, xfirst, xlast, xa, xe, piece
-      integer :: k, k0, k1, s1, s2, s3, s4
+      real(dp) :: lo, hi, ghi, root, res, err, half, c, a2, xfirst, xlast, xa, xe, piece, kx, kp, disc
+      integer :: k, s1, s2, s3, s4
+      logical :: found
       ! where the root can be (see the module's notes)
       c = st%s * st%tau - st%mu
       a2 = 0.5_dp * st%va**2
@@ -148,19 +150,43 @@ contains
         xfirst = 0.0_dp
         xlast = 2.0_dp * pi + search_step
       end if
-      ! bracket: g (or K when v_a /= 0) turns from > 0 to <= 0
-      k0 = max(0, floor(xfirst / search_step) - 1)
-      k1 = ceiling(xlast / search_step) + 1
-      lo = search_step * k0
+      ! bracket: g (or K when v_a /= 0) turns from > 0 to <= 0, in steps that cannot pass
+      ! over a root (a dip of K between two samples, a grazing pass next to the start or the
+      ! top, was missed with fixed steps and a later root taken): |K''| = |eps cos theta|
+      ! <= eps, so from x with K > 0 and slope K' there is no root before the positive root
+      ! of K + K' h - eps h^2/2, and surely one before the first root of K + K' h + eps h^2/2
+      lo = max(0.0_dp, search_step * (floor(xfirst / search_step) - 1))
+      kx = a2 + lo * g_of(st, lo)
       ghi = 1.0_dp
-      do k = k0 + 1, k1
-        hi = search_step * k
+      found = .false.
+      do k = 1, 8 * ceiling(xlast / search_step) + 10000
+        if (lo > xlast) exit
+        kp = -st%s * st%eps * sin(st%tha + st%s * lo) + c
+        disc = kp * kp - 2.0_dp * st%eps * kx
+        if (kp < 0.0_dp .and. disc >= 0.0_dp) then
+          hi = lo + 2.0_dp * kx / (sqrt(disc) - kp)
+          ghi = h_of(st, hi)
+          if (ghi <= 0.0_dp) then
+            found = .true.; exit
+          end if
+        end if
+        if (kp < 0.0_dp) then
+          hi = lo + min(search_step, 2.0_dp * kx / (sqrt(kp * kp + 2.0_dp * st%eps * kx) - kp))
+        else
+          hi = lo + min(search_step, (kp + sqrt(kp * kp + 2.0_dp * st%eps * kx)) / st%eps)
+        end if
+        if (.not. (hi > lo)) exit              ! a grazing touch below the resolution of x
         ghi = h_of(st, hi)
-        if (ghi <= 0.0_dp) exit
+        if (ghi <= 0.0_dp) then
+          found = .true.; exit
+        end if
         lo = hi
+        kx = a2 + lo * g_of(st, lo)
       end do
-      if (ghi > 0.0_dp) then
-        if (c < 0.0_dp) then
+      if (.not. found) then
+        if (lo <= xlast) then
+          status = fr_gsl_failed            ! a grazing touch, or too many steps
+        else if (c < 0.0_dp) then
           status = fr_too_far
         else
           status = fr_runs_away

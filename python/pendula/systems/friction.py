@@ -4,9 +4,11 @@ Between two turning points the work of gravity, the torque and friction
 balances: eps (cos theta_b - cos theta_a) + (tau - mu s)(theta_b - theta_a) = 0
 (s the sign of the velocity on the stretch; without torque
 eps (cos theta_b - cos theta_a) = mu |theta_b - theta_a|), so each turning angle
-is a root (GSL's Brent method) and the time between two is the quadrature of
-dtheta / |v| (GSL's QAWS, with the turning points' inverse square roots as its
-weights); the bob sticks at the first turning point where
+is a root (GSL's Brent method, in the distance travelled) and the time between
+two is the quadrature of dtheta / |v| (GSL's QAWS, on the integrand with its
+turning point's inverse square root taken out by a substitution, and a slow
+start's near singularity by geometric grading); the bob sticks at the first
+turning point where
 |eps sin theta - tau| <= mu.  The kernel's pendula_friction module computes
 them; the integrated path (simulate) must pass through them.
 """
