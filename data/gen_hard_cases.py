@@ -14,6 +14,12 @@ double inputs that showed it) and a set of fresh random points of its own (seede
 - ``separatrix_long_time``: exact_motion just above the separatrix (k^2 - 1 from 1e-15 to
   1e-3, any theta0) at times up to 1e3 turns; error in units of the velocity scale
   2 k sqrt(eps) (v), and of max(1, |theta|) (theta).
+- ``ellip_huge_m_edge``: F(phi|m) and E(phi|m) for m from 1e270 to 1.7e308 with m sin^2 phi in
+  (1/2, 1], next to the edge of the real domain (relative to |ref|).
+- ``ellip_tiny_phi_huge_m``: F and E(phi|m) for |m| from 1e200 to 1.7e308 (both signs) and phi
+  with |m| phi^2 from 1e-6 to 1 (m > 0) or to 1e6 (m < 0) (relative to |ref|).
+- ``jacobi_m_far_below_zero``: sn, cn, dn(u|m) for m from -2 to -1e300 and u from 1e3 to 3e13
+  quarter periods (sn and cn relative to max(1, |ref|), dn relative to |ref| >= 1).
 - ``periodic_exact``: every periodic input reduced exactly: angle_density and angle_cdf of a
   rotation at |theta| up to 2^52, energy at |theta| up to 2^52, gravity_orbit at |theta0| up to
   2^52 (three fields), ellipf and ellipeinc at |phi| up to 2^52.
@@ -23,9 +29,10 @@ above the digits the parameter needs); a row is kept only when the two agree to 
 relative.  The angle density and the non-uniform fields use the integrals of
 data/gen_model_grids.py (route A).
 
-Run:  python data/gen_hard_cases.py   (a few minutes on one core; writes
+Run:  python data/gen_hard_cases.py [CLASS ...]   (a few minutes on one core; writes
 data/hard_cases.csv.gz beside this script, read by the tests through tests/conftest.py's
-hard_cases()).
+hard_cases(); with class names, e.g. ``huge-m-edge tiny-phi jacobi-far``, only those are
+drawn again and replace their rows, the others kept).
 """
 
 from __future__ import annotations
@@ -267,7 +274,71 @@ def add_einc(rows, set_, cls, phi, mc):
     rows.add(set_, cls, "ellip", [phi, mc], ref, {"ellipeinc": 1.0, "ellipf": 1.0})
 
 
+def add_ellip_m(rows, set_, cls, phi, m):
+    """F(phi|m) and E(phi|m) at the exact doubles phi and m (given to pendula as m), relative."""
+    digits = 40 + int(math.log10(abs(m) + 1)) // 4
+
+    def f():
+        out = {"ellipeinc": mp.ellipe(mp.mpf(phi), mp.mpf(m)), "ellipf": mp.ellipf(mp.mpf(phi), mp.mpf(m))}
+        if any(mp.im(x) != 0 for x in out.values()):
+            return None
+        return {q: mp.re(x) for q, x in out.items()}
+    with mp.workdps(digits):
+        if f() is None:
+            return
+    ref = twice(f, digits)
+    if ref is None:
+        return
+    rows.add(set_, cls, "ellip_m", [phi, m], ref, {"ellipeinc": TINY, "ellipf": TINY})
+
+
+def add_jacobi(rows, set_, cls, u, m):
+    """sn, cn, dn(u|m) at the exact doubles u and m < 0 by mpmath's ellipfun, with digits for
+    1 - m and for u's multiple of the period."""
+    mo = 1.0 - m
+    digits = 40 + int(math.log10(mo)) + int(max(0.0, math.log10(abs(u) * math.sqrt(mo) + 1.0)))
+
+    def f():
+        vals = [mp.ellipfun(n, mp.mpf(u), mp.mpf(m)) for n in ("sn", "cn", "dn")]
+        return {n: mp.re(v) for n, v in zip(("sn", "cn", "dn"), vals)}
+    ref = twice(f, digits)
+    if ref is None:
+        return
+    rows.add(set_, cls, "ellipj", [u, m], ref, {"sn": 1.0, "cn": 1.0, "dn": 1.0})
+
+
 # ------------------------------------------------------------ the classes
+
+def gen_huge_m_edge(rng, rows, n):
+    cls = "ellip_huge_m_edge"
+    add_ellip_m(rows, "reproducer", cls, 3e-154, 1e307)
+    for _ in range(n):
+        m = loguni(rng, 1e270, 1.7e308)
+        r = float(rng.uniform(0.5, 1.0))
+        with mp.workdps(40):
+            phi = float(mp.asin(mp.sqrt(r / mp.mpf(m))))
+        add_ellip_m(rows, "hunt", cls, phi, m)
+
+
+def gen_tiny_phi(rng, rows, n):
+    cls = "ellip_tiny_phi_huge_m"
+    add_ellip_m(rows, "reproducer", cls, 5e-126, 1e250)
+    for _ in range(n):
+        m = float(rng.choice([-1, 1])) * loguni(rng, 1e200, 1.7e308)
+        r = loguni(rng, 1e-6, 1.0) if m > 0 else loguni(rng, 1e-6, 1e6)
+        add_ellip_m(rows, "hunt", cls, math.sqrt(r / abs(m)), m)
+
+
+def gen_jacobi_far(rng, rows, n):
+    cls = "jacobi_m_far_below_zero"
+    add_jacobi(rows, "reproducer", cls, 2.582159487283872e-114, -3.974831433674558e+258)
+    for _ in range(n):
+        m = -loguni(rng, 2.0, 1e300)
+        with mp.workdps(40):
+            q = float(mp.ellipk(mp.mpf(m)))
+        u = float(rng.choice([-1, 1])) * q * loguni(rng, 1e3, 3e13)
+        add_jacobi(rows, "hunt", cls, u, m)
+
 
 def gen_tiny(rng, rows, n):
     cls = "tiny"
@@ -393,19 +464,42 @@ def gen_periodic(rng, rows, n):
             add_einc(rows, "hunt", cls, big, mc)
 
 
+GENERATORS = (("tiny", gen_tiny), ("einc", gen_einc), ("inverse-square", gen_inverse_square),
+              ("separatrix", gen_separatrix), ("periodic", gen_periodic),
+              ("huge-m-edge", gen_huge_m_edge), ("tiny-phi", gen_tiny_phi), ("jacobi-far", gen_jacobi_far))
+
+
 def main():
+    """All classes; or, with class names as arguments (e.g. ``jacobi-far``), only those, their rows
+    replacing that class's rows in the stored file and the others kept as they are (each class
+    draws from its own stream, so the result is the same as a whole run)."""
+    only = sys.argv[1:]
+    unknown = set(only) - {name for name, _ in GENERATORS}
+    if unknown:
+        sys.exit(f"unknown classes {sorted(unknown)}; known: {[name for name, _ in GENERATORS]}")
     rows = Rows()
     n = int(os.environ.get("HARD_CASES_N", "300"))
-    for k, (name, gen) in enumerate((("tiny", gen_tiny), ("einc", gen_einc), ("inverse-square", gen_inverse_square),
-                                     ("separatrix", gen_separatrix), ("periodic", gen_periodic))):
+    made = set()
+    for k, (name, gen) in enumerate(GENERATORS):
+        if only and name not in only:
+            continue
         rng = np.random.default_rng([SEED, k])     # each class its own stream
         before = len(rows.rows)
         gen(rng, rows, n if name not in ("inverse-square",) else n // 3)
+        made |= {r[1] for r in rows.rows[before:]}
         print(f"{name}: {len(rows.rows) - before} rows", file=sys.stderr)
+    out = rows.rows
+    if only:
+        with gzip.open(OUT, "rt", newline="") as fh:
+            kept = [r for r in list(csv.reader(fh))[1:] if r[1] not in made]
+        cls_rank = {}
+        for r in kept + out:
+            cls_rank.setdefault(r[1], len(cls_rank))
+        out = sorted(kept + out, key=lambda r: cls_rank[r[1]])   # stable: the rows' own order kept
     with gzip.open(OUT, "wt", newline="") as fh:
         w = csv.writer(fh)
         w.writerow(COLUMNS)
-        w.writerows(rows.rows)
+        w.writerows(out)
     print(f"{len(rows.rows)} rows -> {OUT}", file=sys.stderr)
 
 

@@ -266,3 +266,57 @@ def test_einc_next_to_odd_half_pi_just_above_m_one_hunted():
     from conftest import assert_hard_cases
 
     assert_hard_cases("einc_above_one", "hunt")
+
+
+def rel_eps(got, ref):
+    return abs(float(got) - float(ref)) / abs(float(ref)) / EPS
+
+
+def test_ellipf_ellipeinc_huge_m_next_to_the_edge():
+    """F(phi|m) and E(phi|m) at phi = 3e-154, m = 1e307 (m sin^2 phi = 0.9): NaN, though inside
+    the domain, because Dekker's product split m by multiplying it by 2^27 + 1, which overflows
+    for m > 1.3e300.  Now m s^2 is formed with exact power-of-two scalings.  Within 4 eps
+    relative of mpmath (E and F are well conditioned in phi and m there), here and on the fresh
+    points of the region (m from 1e270 to 1.7e308, m sin^2 phi in (1/2, 1])."""
+    from conftest import assert_hard_cases
+
+    with mp.workdps(60):
+        f_ref = mp.ellipf(mp.mpf(3e-154), mp.mpf(1e307))
+        e_ref = mp.ellipe(mp.mpf(3e-154), mp.mpf(1e307))
+    assert rel_eps(pendula.ellipf(3e-154, 1e307), f_ref) <= 4
+    assert rel_eps(pendula.ellipeinc(3e-154, 1e307), e_ref) <= 4
+    assert_hard_cases("ellip_huge_m_edge", "reproducer")
+    assert_hard_cases("ellip_huge_m_edge", "hunt")
+
+
+def test_ellipeinc_tiny_phi_huge_m():
+    """E(5e-126 | 1e250) was 4.3301e-126 against 4.78306e-126 (10 % off): the term
+    (m - 1)/3 s^3 R_D of E for m > 1 (and m/3 s^3 R_D for m < 0) formed s^3 first, which
+    underflows for s < 5e-109 while (m s^2/3) s is of the order of E.  Now formed in that
+    order.  Within 4 eps relative of mpmath, here and on fresh points of the region
+    (|m| from 1e200 to 1.7e308, both signs, |m| phi^2 from 1e-6 to 1e6)."""
+    from conftest import assert_hard_cases
+
+    with mp.workdps(60):
+        ref = mp.ellipe(mp.mpf(5e-126), mp.mpf(1e250))
+    assert rel_eps(pendula.ellipeinc(5e-126, 1e250), ref) <= 4
+    assert_hard_cases("ellip_tiny_phi_huge_m", "reproducer")
+    assert_hard_cases("ellip_tiny_phi_huge_m", "hunt")
+
+
+def test_ellipj_dn_m_far_below_zero_does_not_grow_with_u():
+    """dn(u|m) at m = -3.97e258, u = 2.58e-114 (x = sqrt(1 - m) u = 1e13 quarter periods of the
+    core): 994 eps, growing linearly with u (173 eps at 1e12 quarter periods, 1.7 at 1e10).  K of
+    the core was good to 4e-29 only: the AGM was closed at t = c/A <= 2^-10 with the series' tail
+    (2^-43 of A) in double.  Now closed at 2^-14, and the core's k' given as 1/sqrt(1 - m) (its
+    complement's low part was subnormal for m < -5e291).  Within 4 eps here and on the fresh
+    points of the region (m from -2 to -1e300, 1e3 to 3e13 quarter periods), with no
+    allowance for the argument's condition: u is an exact double."""
+    from conftest import assert_hard_cases
+
+    u, m = 2.582159487283872e-114, -3.974831433674558e+258
+    with mp.workdps(360):
+        ref = mp.re(mp.ellipfun("dn", mp.mpf(u), mp.mpf(m)))
+    assert rel_eps(pendula.ellipj(u, m)[2], ref) <= 4
+    assert_hard_cases("jacobi_m_far_below_zero", "reproducer")
+    assert_hard_cases("jacobi_m_far_below_zero", "hunt")

@@ -6,9 +6,11 @@ libration and rotation (no damping, torque or drive; below or above the separatr
 only), torqued (a constant torque, with or without damping) and driven (a periodic drive, with
 anything else).  For each class and each rtol = atol = 10^-k of the study (k = 3 ... 14) the
 pick is pendula.studies.workprecision.auto_picks's (the one rule, which the study's figures draw
-too): the fastest of pendula's adaptive pairs with an interpolant as a scene runs them (dopri5,
-dop853, vern9, vern8: outputs interpolated, steps not landed) whose largest error over the outputs
-is no larger than DOP853's at the same rtol (the method 'auto' meant before) or than 10 rtol.  Scenes outside the five classes (friction,
+too): of pendula's adaptive pairs with an interpolant as a scene runs them (dopri5, dop853, vern9,
+vern8: outputs interpolated, steps not landed) whose largest error over the outputs is no larger
+than DOP853's at the same rtol (the method 'auto' meant before) or than 10 rtol, the fastest; or,
+when others are within the study's own timing noise of it (auto_noise: the median spread of the
+candidates' best three rounds), the most accurate of those.  Scenes outside the five classes (friction,
 drag, a vibrating pivot, non-uniform gravity, a user's force, events) keep DOP853: the study did not
 measure them, and events need its dense output.
 
@@ -60,8 +62,11 @@ def include_text(record, table):
              "! The integrator method='auto' picks for an integrated scene: auto_methods(k, class) for",
              "! rtol = 10^-k (k = 3 ... 14, the nearest decade, clamped) and the problem class",
              "! (1 libration, 2 rotation, 3 damped, 4 torqued, 5 driven: pendula_simulate's auto_class).",
-             "! Per cell the fastest of dopri5, dop853, vern9 and vern8 whose largest error over the",
-             "! study's outputs is no larger than dop853's at that rtol or than 10 rtol:"]
+             "! Per cell: of dopri5, dop853, vern9 and vern8, the fastest, or the most accurate of those",
+             f"! within the study's timing noise of it ({wp.auto_noise(record['rows']):.1%}, the median spread "
+             "of its best three rounds),",
+             "! among the pairs whose largest error over the study's outputs is no larger than dop853's",
+             "! at that rtol or than 10 rtol:"]
     for cls in CLASSES:
         lines.append(f"!   {cls:9s} " + " ".join(f"{k}:{table[cls, k][0]}" for k in DECADES))
     lines.append(f"integer, parameter :: auto_first_decade = {DECADES[0]}, auto_last_decade = {DECADES[-1]}")

@@ -403,6 +403,12 @@ HARD_CASES = {
     "inverse_square_near_one": ("gravity_orbit, inverse-square field, d - 1 from 0.3 to 1e-4", 4.0),
     "separatrix_long_time": ("exact_motion 1e-15 to 1e-3 above the separatrix, up to 1e3 turns "
                              "(v relative to 2 k sqrt(eps))", 4.0),
+    "ellip_huge_m_edge": ("F(phi|m), E(phi|m) for m from 1e270 to 1.7e308 next to the edge "
+                          "(m sin^2 phi in (1/2, 1]), relative", 4.0),
+    "ellip_tiny_phi_huge_m": ("F(phi|m), E(phi|m) for |m| from 1e200 to 1.7e308 and tiny phi "
+                              "(|m| phi^2 from 1e-6 to 1e6), relative", 4.0),
+    "jacobi_m_far_below_zero": ("sn, cn, dn(u|m) for m from -2 to -1e300 at 1e3 to 3e13 quarter "
+                                "periods (dn relative)", 4.0),
     "periodic_exact": ("periodic inputs up to 2^52: angle density and CDF of a rotation, energy, "
                        "gravity_orbit's theta0, F and E(phi)'s phi", 4.0),
 }
@@ -414,14 +420,15 @@ def hard_case_values(func: str, args: list) -> dict:
     import warnings
 
     from ..density import angle_cdf, angle_density
-    from ..elliptic import ellipeinc, ellipf
+    from ..elliptic import ellipeinc, ellipf, ellipj
     from ..scene import Scene
     from ..systems.gravity import gravity_orbit
     from ..systems.rigid import energy, exact_motion, orbit
 
     pendula = types.SimpleNamespace(orbit=orbit, exact_motion=exact_motion, energy=energy,
                                     gravity_orbit=gravity_orbit, angle_density=angle_density,
-                                    angle_cdf=angle_cdf, ellipeinc=ellipeinc, ellipf=ellipf)
+                                    angle_cdf=angle_cdf, ellipeinc=ellipeinc, ellipf=ellipf,
+                                    ellipj=ellipj)
 
     def scene(kind, par, eps, theta0, v0):
         kw = {"gravity_distance": par} if kind == "inverse-square" else \
@@ -445,6 +452,12 @@ def hard_case_values(func: str, args: list) -> dict:
             return {"density": float(pendula.angle_density(scene(*args[:5]), args[5]))}
         if func == "angle_cdf":
             return {"cdf": float(pendula.angle_cdf(scene(*args[:5]), args[5]))}
+        if func == "ellip_m":
+            phi, m = args
+            return {"ellipeinc": float(pendula.ellipeinc(phi, m)), "ellipf": float(pendula.ellipf(phi, m))}
+        if func == "ellipj":
+            sn, cn, dn = pendula.ellipj(args[0], args[1])[:3]
+            return {"sn": float(sn), "cn": float(cn), "dn": float(dn)}
         if func == "ellip":
             phi, mc = args
             return {"ellipeinc": float(pendula.ellipeinc(phi, None, mc=mc)),

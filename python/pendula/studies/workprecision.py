@@ -23,7 +23,7 @@ N_OUT = 100
 # ---- end of problem definitions
 
 __all__ = ["PROBLEMS", "N_OUT", "TARGETS", "load_reference", "errors", "best_time", "run_study", "answer_table",
-           "auto_picks", "AUTO_CANDIDATES", "AUTO_DECADES",
+           "auto_picks", "auto_noise", "AUTO_CANDIDATES", "AUTO_DECADES",
            "answer_rst", "write_figures", "merge_records", "study_main", "regenerate_docs"]
 
 import datetime
@@ -938,8 +938,11 @@ def auto_picks(rows: list[dict]) -> dict:
 
     For each of the study's problems (a class of scenes) and each rtol = atol = 10^-k, k = 3 ... 14,
     the fastest of pendula's pairs with an interpolant (AUTO_CANDIDATES) whose largest error over
-    the outputs is no larger than DOP853's at that rtol or than 10 rtol.  The one rule:
-    data/bench/gen_auto_methods.py writes it into the kernel's dispatcher, the figures draw it.
+    the outputs is no larger than DOP853's at that rtol or than 10 rtol, within the study's noise
+    (:func:`auto_noise`): the qualifying pairs whose time is within that of the fastest are tied,
+    and the tie goes to the smallest error (a time the study cannot tell apart is not a reason to
+    give up accuracy).  The one rule: data/bench/gen_auto_methods.py writes it into the kernel's
+    dispatcher, the figures draw it.
 
     Parameters
     ----------
@@ -961,6 +964,7 @@ def auto_picks(rows: list[dict]) -> dict:
     """
     cand = [r for r in rows if r["package"] == "pendula" and r["method"] in AUTO_CANDIDATES
             and r.get("error_max") is not None and r.get("rtol")]
+    noise = auto_noise(rows)
     out = {}
     for pname in dict.fromkeys(r["problem"] for r in rows):
         for k in AUTO_DECADES:
@@ -969,8 +973,45 @@ def auto_picks(rows: list[dict]) -> dict:
             base = at.get("dop853")
             bound = max(AUTO_SLACK * rtol, base["error_max"] if base else 0.0)
             ok = [r for r in at.values() if r["error_max"] <= bound]
-            out[pname, k] = min(ok, key=lambda r: r["seconds"]) if ok else base
+            if not ok:
+                out[pname, k] = base
+                continue
+            fastest = min(r["seconds"] for r in ok)
+            tied = [r for r in ok if r["seconds"] <= (1.0 + noise) * fastest]
+            out[pname, k] = min(tied, key=lambda r: (r["error_max"], r["seconds"]))
     return out
+
+
+def auto_noise(rows: list[dict]) -> float:
+    """The study's own timing noise among the candidates of ``method='auto'``: the median over
+    their rows of the spread of the best three rounds ((third - best) / best, the rows'
+    ``spread``); 0 when the rows carry none.
+
+    Parameters
+    ----------
+    rows : list of dict
+        The rows of a record of :func:`run_study`.
+
+    Returns
+    -------
+    float
+        The relative difference in time below which two candidates count as equally fast.
+
+    Examples
+    --------
+    >>> from pendula.studies.workprecision import auto_noise
+    >>> rows = [dict(package="pendula", method="vern9", rtol=1e-6, error_max=1e-6, spread=s)
+    ...         for s in (0.05, 0.1, 0.2)]
+    >>> auto_noise(rows)
+    0.1
+    """
+    sp = sorted(float(r["spread"]) for r in rows if r.get("package") == "pendula"
+                and r.get("method") in AUTO_CANDIDATES and r.get("rtol") and r.get("error_max") is not None
+                and r.get("spread") is not None and math.isfinite(float(r["spread"])))
+    if not sp:
+        return 0.0
+    n = len(sp)
+    return sp[n // 2] if n % 2 else 0.5 * (sp[n // 2 - 1] + sp[n // 2])
 
 
 def best_of_families(rows: list[dict]) -> list[tuple[str, str, str]]:

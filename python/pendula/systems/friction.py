@@ -4,9 +4,11 @@ Between two turning points the work of gravity, the torque and friction
 balances: eps (cos theta_b - cos theta_a) + (tau - mu s)(theta_b - theta_a) = 0
 (s the sign of the velocity on the stretch; without torque
 eps (cos theta_b - cos theta_a) = mu |theta_b - theta_a|), so each turning angle
-is a root (GSL's Brent method) and the time between two is the quadrature of
-dtheta / |v| (GSL's QAWS, with the turning points' inverse square roots as its
-weights); the bob sticks at the first turning point where
+is a root (GSL's Brent method, in the distance travelled) and the time between
+two is the quadrature of dtheta / |v| (GSL's QAWS, on the integrand with its
+turning point's inverse square root taken out by a substitution, and a slow
+start's near singularity by geometric grading); the bob sticks at the first
+turning point where
 |eps sin theta - tau| <= mu.  The kernel's pendula_friction module computes
 them; the integrated path (simulate) must pass through them.
 """
@@ -25,8 +27,12 @@ __all__ = ["FrictionTurningPoints", "friction_turning_points"]
 
 #: the most turning points returned (each half swing loses about 2 mu / eps of amplitude)
 MAX_TURNING_POINTS = 1_000_000
-_STATUS = {1: "the scene's numbers are out of range", 2: "the bob never stops: the torque keeps it turning "
-           "(no turning point within 2e4 rad)", 4: "GSL's root finder or quadrature failed"}
+_STATUS = {1: "the scene's numbers are out of range",
+           2: "the bob never stops: the torque (at least friction) keeps it turning (no turning point in a "
+              "whole turn, so none ever)",
+           4: "GSL's root finder or quadrature failed",
+           5: "the next turning point lies beyond 2e4 rad of travel (the bob does stop, but so long a "
+              "stretch, thousands of turns, is not computed): a smaller speed or more friction"}
 
 
 @dataclass(frozen=True)
@@ -87,8 +93,9 @@ def friction_turning_points(scene: Scene, max_points: int = MAX_TURNING_POINTS) 
     TypeError
         If `scene` is not a :class:`Scene`.
     ValueError
-        If the scene has no friction, names another effect or model, or the
-        bob never stops (a torque above friction).
+        If the scene has no friction, names another effect or model, the
+        bob never stops (a torque at least as large as friction), or a
+        turning point lies beyond 2e4 rad of travel.
 
     See Also
     --------
