@@ -53,6 +53,8 @@ from .dynamics import Equilibrium, PeriodicOrbit, equilibria, periodic_orbit  # 
 from .dynamics import (Bifurcation, Branch, ContinuationError, EquilibriumBranch, continue_equilibria,  # noqa: E402
                        continue_orbit)
 from .spectrum import precompute_wisdom, wisdom_path  # noqa: E402
+# networks of pendula: coupled phases, chains, arrays of junctions
+from .systems.network import Network, NetworkEquilibrium, NormalModes  # noqa: E402
 
 # the version of the installed metadata (written once, in meson.build)
 from ._version import __version__  # noqa: E402
@@ -70,4 +72,5 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "friction_turning_points", "FrictionTurningPoints",
            "Junction", "SwitchingCurrents", "attractor_continuation",
            "continue_orbit", "continue_equilibria", "Branch", "Bifurcation", "EquilibriumBranch",
-           "ContinuationError"]
+           "ContinuationError",
+           "Network", "NetworkEquilibrium", "NormalModes"]
