@@ -96,8 +96,9 @@ class NetworkEquilibrium:
     eigenvalues : numpy.ndarray
         The 2N eigenvalues of the linearisation (complex), largest real part first.
     stable : bool
-        True when no eigenvalue has a positive real part and the potential's
-        Hessian is positive definite (a minimum of the energy).
+        True when the rest point is a strict minimum of the potential energy
+        (its Hessian positive definite): the energy, which damping only
+        removes, keeps the motion near it.
     residual : float
         The largest force left on an element (how well Newton converged).
 
@@ -240,6 +241,8 @@ class Network:
         self.coupling = k
         self.offset = d
         ei, ej = np.nonzero(np.triu(k, 1))
+        if ei.size == 0:   # no springs: one of stiffness 0 (it adds exact zeros), as f2py takes no empty arrays
+            ei, ej = np.array([0]), np.array([min(1, n - 1)])
         self._ei = (ei + 1).astype(np.int32)
         self._ej = (ej + 1).astype(np.int32)
         self._ek = np.ascontiguousarray(k[ei, ej])
@@ -522,8 +525,10 @@ class Network:
         a[self.n:, self.n:] = -np.diag(self.damping / self.mass)
         lam = np.linalg.eigvals(a)
         lam = lam[np.lexsort((-lam.imag, -lam.real))]
-        hess_ok = bool(np.all(np.linalg.eigvalsh(-jac) > 0))
-        stable = hess_ok and bool(np.all(lam.real <= 0))
+        # the energy is a Lyapunov function (damping >= 0 only removes it): a strict minimum of the
+        # potential is stable, a direction of descent unstable; the eigenvalues' real parts of an undamped
+        # network are zero only up to rounding, so the Hessian decides
+        stable = bool(np.all(np.linalg.eigvalsh(-jac) > 0))
         en = self.energy(q, np.zeros(self.n))
         return NetworkEquilibrium(q, float(en), lam, stable, res)
 
