@@ -263,14 +263,14 @@ def test_noisy_paths_are_bit_identical_across_thread_counts_and_chunks():
 
 
 def test_element_streams_do_not_depend_on_the_other_elements():
-    """Element i's noise is keyed by (seed, path, i): with the couplings and the sine off (free Brownian
-    phases: no vectorised sine whose lanes could round differently), element 0's path is the same in a
-    network of 2 and of 5."""
+    """Element i's noise is keyed by (seed, path, i): with the couplings off, element 0's path is the same
+    whether the other elements are noisy or not, and whatever their temperatures."""
     t = np.arange(0, 10.0 + 0.01, 1.0)
-    kw = dict(dt=0.1, temperature=1.0, seed=3)
-    a = pendula.Network(2, coupling=np.zeros((2, 2)), eps=0.0, damping=1.0).simulate(t, **kw)
-    b = pendula.Network(5, coupling=np.zeros((5, 5)), eps=0.0, damping=1.0).simulate(t, **kw)
+    net = pendula.Network(5, coupling=np.zeros((5, 5)), damping=1.0)
+    a = net.simulate(t, dt=0.1, temperature=[1.0, 0.0, 0.0, 0.0, 0.0], seed=3)
+    b = net.simulate(t, dt=0.1, temperature=[1.0, 0.3, 2.0, 0.1, 0.5], seed=3)
     assert np.array_equal(a.phi.values[0, :, 0], b.phi.values[0, :, 0])
+    assert np.all(a.phi.values[0, :, 1:] == 0.0) and not np.array_equal(a.phi.values, b.phi.values)
 
 
 # ---------------------------------------------------------------- hard cases and bad input

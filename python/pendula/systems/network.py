@@ -102,6 +102,10 @@ class NetworkEquilibrium:
     residual : float
         The largest force left on an element (how well Newton converged).
 
+    See Also
+    --------
+    Network.equilibrium : makes them.
+
     Examples
     --------
     >>> import pendula
@@ -130,6 +134,10 @@ class NormalModes:
     shapes : numpy.ndarray
         The mode shapes, column k for omega2[k], normalised so that
         shapesᵀ C shapes = 1 (C the diagonal of masses).
+
+    See Also
+    --------
+    Network.normal_modes : makes them.
 
     Examples
     --------
@@ -188,6 +196,10 @@ class Network:
         Naming the field: N = 0, a coupling not symmetric or of the wrong
         shape, a negative spring, a mass <= 0, a negative damping, an offset
         not antisymmetric.
+
+    See Also
+    --------
+    Network.simulate, Network.equilibrium, Network.normal_modes, Network.energy
 
     Examples
     --------
@@ -579,7 +591,7 @@ def beat_period(strength: float, eps: float = 1.0, mass: float = 1.0) -> float:
     Examples
     --------
     >>> round(beat_period(0.05), 9)
-    64.021212591
+    128.73045652
     """
     k = _checks.real(strength, "strength", 0.0, lo_open=True)
     e = _checks.real(eps, "eps", 0.0, lo_open=True)
