@@ -184,7 +184,7 @@ API_GROUPS = [
     ("Continuation and bifurcations", ["continue_orbit", "Branch", "Bifurcation", "continue_equilibria",
                                        "EquilibriumBranch", "ContinuationError"]),
     ("The Josephson junction", ["Junction", "SwitchingCurrents"]),
-    ("Circuits and chains", ["Network", "NetworkEquilibrium", "NormalModes"]),
+    ("Circuits and chains", ["Network", "NetworkEquilibrium", "NormalModes", "DCSquid"]),
 ]
 
 

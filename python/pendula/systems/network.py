@@ -444,13 +444,22 @@ class Network:
                 raise ValueError(f"t must lie on the step grid of dt={h!r} (multiples of dt)")
             counts = np.diff(np.concatenate([[0.0], counts])).astype(np.int64)
         cancel = _interrupt.cancel_flag()
+        span = float(tt[-1]) if tt.size else 0.0
+        npath = _checks.count(paths, "paths", 1) if method == "baoab" else 1
+        if method == "dop853":
+            # a rough count of element-evaluations: short runs skip the interruptible thread's start
+            rate = max(1.0, float(np.max(np.sqrt(np.abs(self.eps) + 4 * self.coupling.sum(axis=1)) / self.mass)),
+                       float(np.max(np.abs(self.drive_frequency))))
+            long = self.n * span * rate * 100 > 1e6
+        else:
+            long = self.n * span / h * (npath if method == "baoab" else 10) > 1e6
         if method == "baoab":
-            npath = _checks.count(paths, "paths", 1)
             seed = _checks.count(seed, "seed", 0, 2**63 - 1)
             first = _checks.count(first_path, "first_path", 0, 2**63 - 1)
             y0s = np.asfortranarray(np.repeat(y0[:, None], npath, axis=1))
             yout, status = _interrupt.call(_kernel.network_langevin_v, *self._edges(), temp, seed, first, h,
-                                           y0s, counts, _checks.threads(threads), cancel, cancel=cancel)
+                                           y0s, counts, _checks.threads(threads), cancel, cancel=cancel,
+                                           long=long)
             bad = status[status != 0]
             if bad.size:
                 raise ValueError(f"baoab: {_STATUS.get(int(bad[0]), f'kernel status {bad[0]}')}")
@@ -469,7 +478,7 @@ class Network:
             h = 0.0
         yout, stats, status = _interrupt.call(
             _kernel.network_simulate_v, *self._edges(), _METHOD_CODE[method], y0, tt, counts,
-            float(rtol), float(atol), h, cancel, cancel=cancel)
+            float(rtol), float(atol), h, cancel, cancel=cancel, long=long)
         if status != 0:
             raise ValueError(f"{method}: {_STATUS.get(int(status), f'kernel status {status}')}")
         phi, v = yout[:self.n].T, yout[self.n:].T
