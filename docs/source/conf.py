@@ -122,6 +122,7 @@ SECTIONS = {
               "guide/josephson", "guide/driven",
               "guide/cord", "guide/cycloid", "guide/gravity", "guide/density", "guide/dynamics", "guide/attractors",
               "guide/continuation",
+              "guide/circuits",
               "guide/sweeps",
               "sweeps_at_scale*", "guide/scenes", "scenes*", "vocabulary", "guide/architecture"],
     "reports": ["reports/accuracy", "accuracy*", "elliptic_edges*", "model_accuracy*", "reports/cost", "work_precision*", "reports/benchmarks",
