@@ -497,7 +497,8 @@ class Network:
             The starting phases (one number for all, or N).
         tol : float, optional
             Newton stops when a step moves no phase by more than
-            tol (1 + |φ|) (default 1e-14).
+            tol (1 + |φ|) (default 1e-14).  Steps longer than 1 rad are
+            shortened to 1 rad (a start far from a rest point).
         maxit : int, optional
             The most Newton steps (default 50).
 
@@ -532,6 +533,9 @@ class Network:
             except np.linalg.LinAlgError:
                 raise ValueError("phi: Newton met a singular Jacobian (a fold of the rest points); "
                                  "start elsewhere") from None
+            big = float(np.max(np.abs(d)))
+            if big > 1.0:   # far from a rest point: no phase moves more than 1 rad a step
+                d = d / big
             q = q + d
             if np.all(np.abs(d) <= tol * (1.0 + np.abs(q))):
                 break
