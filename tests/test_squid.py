@@ -79,3 +79,18 @@ def test_negative_inductance_is_refused():
         DCSquid(10e-6, 2.0, 1e-13, -1e-10)
     with pytest.raises(ValueError, match="beta_l must be > 0"):
         squid_critical_current(0.0, 0.1)
+
+
+def test_static_critical_current_separates_rest_from_running():
+    """The SQUID as a network with its damping (β = 9, overdamped): biased 2 % below Ic(Φ) it stays
+    trapped and settles, 2 % above it runs (its phases slip turn after turn, slowly: the passage by the
+    fold's ghost takes a few hundred time units): the fold is where the dynamics says it is."""
+    sq = DCSquid(10e-6, 2.0, 1e-13, 103.4e-12)
+    flux = 0.25
+    ic = sq.critical_current(flux)
+    t = np.linspace(0, 3000, 7)
+    below = sq.network(0.98 * ic, flux).simulate(t, rtol=1e-9, atol=1e-11)
+    above = sq.network(1.02 * ic, flux).simulate(t, rtol=1e-9, atol=1e-11)
+    assert np.max(np.abs(below.phi.values)) < np.pi            # no phase slip: trapped
+    assert np.max(np.abs(below.v.values[-1])) < 1e-3           # and settling (slowly, next to the fold)
+    assert np.min(above.phi.values[-1]) > 2 * np.pi * 2        # running: turn after turn
