@@ -354,6 +354,14 @@ def test_times_off_the_step_grid_or_descending_are_refused():
         net.simulate([1.0, 0.5])
 
 
+def test_span_beyond_the_work_limit_is_refused_before_any_work():
+    net = pendula.Network(2, topology="pair")
+    with pytest.raises(ValueError, match="work limit"):
+        net.simulate([0.0, 1e300], method="gauss6", dt=0.1)
+    with pytest.raises(ValueError, match="work limit"):
+        pendula.Network(2, topology="pair", damping=1.0).simulate([0.0, 1e300], dt=0.1, temperature=0.1)
+
+
 def test_topologies_refuse_sizes_they_cannot_have():
     with pytest.raises(ValueError, match="'pair' has 2 elements"):
         pendula.Network(3, topology="pair")

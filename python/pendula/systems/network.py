@@ -439,6 +439,8 @@ class Network:
             if tt.size and not (np.all(np.diff(tt) >= 0) and tt[0] >= 0):
                 raise ValueError("t must be ascending and >= 0")
             steps = tt / h
+            if steps.size and not steps[-1] <= 2e9:   # the kernel's fixed-step work limit (max_fixed_steps)
+                raise ValueError(f"t, dt: {_STATUS[7]}")
             counts = np.rint(steps)
             if np.any(np.abs(steps - counts) > 1e-9 * np.maximum(1.0, steps)):
                 raise ValueError(f"t must lie on the step grid of dt={h!r} (multiples of dt)")
