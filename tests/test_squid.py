@@ -15,7 +15,7 @@ import pytest
 from scipy.optimize import minimize_scalar
 
 import pendula
-from pendula.systems.squid import DCSquid, squid_critical_current
+from pendula.squid import DCSquid, squid_critical_current
 
 
 def _reference(beta_l, flux):

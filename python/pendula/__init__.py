@@ -55,7 +55,7 @@ from .dynamics import (Bifurcation, Branch, ContinuationError, EquilibriumBranch
 from .spectrum import precompute_wisdom, wisdom_path  # noqa: E402
 # networks of pendula: coupled phases, chains, arrays of junctions
 from .systems.network import Network, NetworkEquilibrium, NormalModes  # noqa: E402
-from .systems.squid import DCSquid  # noqa: E402
+from .squid import DCSquid  # noqa: E402
 
 # the version of the installed metadata (written once, in meson.build)
 from ._version import __version__  # noqa: E402

@@ -22,9 +22,9 @@ import math
 
 import numpy as np
 
-from .. import _checks
-from ..junction import FLUX_QUANTUM, Junction
-from .network import Network
+from . import _checks
+from .junction import FLUX_QUANTUM, Junction
+from .systems.network import Network
 
 __all__ = ["DCSquid", "squid_critical_current"]
 
