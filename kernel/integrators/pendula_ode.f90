@@ -37,11 +37,11 @@ module pendula_ode
   use pendula_integrators, only: run_stats, dop853_error_norm, max_steps, max_fixed_steps, &
     st_ok, st_bad_step, st_bad_tol, st_bad_method, st_step_underflow, st_nonfinite, st_too_many_steps, &
     st_cancelled
+  use pendula_rk_coefficients, only: d8_a, d8_b, d8_c, d8_d, d8_e3, d8_e5, g2_mu, g2_b, g2_c, g3_mu, g3_b, g3_c
   implicit none
   private
   public :: ode_system, mechanical_system, ode_dop853, ode_gauss, ode_baoab, ode_noise_key
 
-  include 'pendula_rk_tables.inc'
   !> DOP853's A and dense-output D transposed: each stage's weights contiguous
   real(dp), parameter :: d8_at(0:15, 0:15) = transpose(d8_a), d8_dt(0:15, 0:3) = transpose(d8_d)
 
