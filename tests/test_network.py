@@ -419,3 +419,35 @@ def test_energy_of_random_conservative_networks_is_conserved(case):
                        atol=1e-14)
     e = run.energy.values
     assert abs(e[1] - e[0]) <= 1e-9 * max(abs(e[0]), 1.0)
+
+
+def test_a_set_cancel_flag_stops_every_kernel_path():
+    """The kernel reads the cancel flag as the one-phase integrators do: set before the call, DOP853,
+    Gauss-Legendre and every Langevin path stop with the cancelled status (8), their outputs NaN."""
+    from pendula import _kernel
+    net = pendula.Network(3, topology="chain", damping=0.5)
+    p, ei, ej, ek, eo = net._edges()
+    y0 = np.array([0.1, 0.2, 0.3, 0.0, 0.0, 0.0])
+    for method, counts in ((1, np.zeros(2, np.int64)), (3, np.array([0, 10], np.int64))):
+        yout, stats, status = _kernel.network_simulate_v(p, ei, ej, ek, eo, method, y0, np.array([0.0, 1.0]),
+                                                         counts, 1e-8, 1e-10, 0.1, np.ones(1, np.int32))
+        assert status == 8 and np.all(np.isnan(yout[:, -1]))
+    yout, status = _kernel.network_langevin_v(p, ei, ej, ek, eo, np.full(3, 0.1), 1, 0, 0.1,
+                                              np.asfortranarray(np.repeat(y0[:, None], 4, axis=1)),
+                                              np.array([0, 10], np.int64), 1, np.ones(1, np.int32))
+    assert np.all(status == 8)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 4), st.integers(0, 5),
+       st.lists(st.sampled_from([0.0, 1.0, -1.0, 0.5, np.nan, np.inf, 1e308]), min_size=0, max_size=25))
+def test_malformed_networks_raise_a_named_error_never_anything_else(n, m, vals):
+    """Random coupling matrices of random shapes and values (NaN, inf, negative, asymmetric): either a
+    network, or a ValueError/TypeError naming the field."""
+    k = np.resize(np.array(vals + [0.0]), (m, m)) if m else np.zeros((0, 0))
+    try:
+        net = pendula.Network(n, coupling=k)
+    except (ValueError, TypeError) as exc:
+        assert any(f in str(exc) for f in ("n must", "coupling"))
+    else:
+        assert np.all(np.isfinite(net.coupling)) and np.array_equal(net.coupling, net.coupling.T)
