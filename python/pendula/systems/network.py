@@ -59,28 +59,26 @@ def _per_element(x, name: str, n: int, lo: float | None = None, lo_open: bool = 
     return a
 
 
-def _topology(name: str, n: int, strength: float) -> np.ndarray:
-    k = np.zeros((n, n))
+def _topology(name: str, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """The springs (i < j, 0-based) of a named topology: a list, never an N x N matrix (a chain of 10⁴)."""
     if name == "pair":
         if n != 2:
             raise ValueError(f"topology 'pair' has 2 elements, got n={n}")
-        k[0, 1] = strength
-    elif name in ("chain", "ring"):
+        return np.array([0]), np.array([1])
+    if name in ("chain", "ring"):
         i = np.arange(n - 1)
-        k[i, i + 1] = strength
+        ei, ej = i, i + 1
         if name == "ring":
             if n < 3:
                 raise ValueError(f"topology 'ring' needs n >= 3, got n={n}")
-            k[0, n - 1] = strength
-    else:  # ladder: two rails of n/2 joined by rungs
-        if n < 4 or n % 2:
-            raise ValueError(f"topology 'ladder' needs an even n >= 4 (two rails), got n={n}")
-        m = n // 2
-        i = np.arange(m - 1)
-        k[i, i + 1] = strength
-        k[m + i, m + i + 1] = strength
-        k[np.arange(m), m + np.arange(m)] = strength
-    return k + k.T
+            ei, ej = np.append(ei, 0), np.append(ej, n - 1)
+        return ei, ej
+    # ladder: two rails of n/2 joined by rungs
+    if n < 4 or n % 2:
+        raise ValueError(f"topology 'ladder' needs an even n >= 4 (two rails), got n={n}")
+    m = n // 2
+    i, r = np.arange(m - 1), np.arange(m)
+    return np.concatenate([i, m + i, r]), np.concatenate([i + 1, m + i + 1, m + r])
 
 
 @dataclass(frozen=True)
@@ -188,7 +186,16 @@ class Network:
         The spring constant of the named topology (>= 0; default 1).
     offset : array_like, optional
         The N x N antisymmetric matrix δ of the springs' rest offsets
-        (default 0): spring i-j is relaxed at φ_j − φ_i = δ_ij.
+        (default 0): spring i-j is relaxed at φ_j − φ_i = δ_ij.  Entries
+        where there is no spring have no effect.
+
+    Attributes
+    ----------
+    springs : tuple of numpy.ndarray
+        The springs as the kernel stores them: their ends i < j (0-based),
+        stiffness and offset.  A named topology is built as this list, so a
+        chain of 10⁴ never forms an N x N matrix; ``coupling`` and
+        ``offset`` give the dense matrices on request.
 
     Raises
     ------
@@ -226,7 +233,8 @@ class Network:
             raise ValueError("give exactly one of coupling (a matrix) and topology (a name)")
         if topology is not None:
             topology = _checks.choice(topology, "topology", TOPOLOGIES)
-            k = _topology(topology, n, _checks.real(strength, "strength", 0.0))
+            ei, ej = _topology(topology, n)
+            ek = np.full(ei.size, _checks.real(strength, "strength", 0.0))
         else:
             k = _checks.as_float(coupling, "coupling")
             if k.shape != (n, n):
@@ -242,29 +250,51 @@ class Network:
             if np.any(k < 0):
                 i, j = np.argwhere(k < 0)[0]
                 raise ValueError(f"coupling must be >= 0 (a spring, an inductance): K[{i},{j}] = {k[i, j]!r}")
+            ei, ej = np.nonzero(np.triu(k, 1))
+            ek = k[ei, ej]
         self.topology = topology
-        d = np.zeros((n, n)) if offset is None else _checks.as_float(offset, "offset")
-        if d.shape != (n, n):
-            raise ValueError(f"offset must be an {n} x {n} matrix (n={n}), got shape {d.shape}")
-        if not np.all(np.isfinite(d)):
-            raise ValueError("offset must be finite")
-        if not np.array_equal(d, -d.T):
-            raise ValueError("offset must be antisymmetric (offset[j, i] = -offset[i, j])")
-        self.coupling = k
-        self.offset = d
-        ei, ej = np.nonzero(np.triu(k, 1))
+        if offset is None:
+            eoff = np.zeros(ei.size)
+        else:
+            d = _checks.as_float(offset, "offset")
+            if d.shape != (n, n):
+                raise ValueError(f"offset must be an {n} x {n} matrix (n={n}), got shape {d.shape}")
+            if not np.all(np.isfinite(d)):
+                raise ValueError("offset must be finite")
+            if not np.array_equal(d, -d.T):
+                raise ValueError("offset must be antisymmetric (offset[j, i] = -offset[i, j])")
+            eoff = d[ei, ej]
+        #: the springs as a list: 0-based ends i < j, stiffness, offset (what the kernel stores)
+        self.springs = (ei.astype(np.int64), ej.astype(np.int64), np.array(ek, dtype=np.float64),
+                        np.array(eoff, dtype=np.float64))
         if ei.size == 0:   # no springs: one of stiffness 0 (it adds exact zeros), as f2py takes no empty arrays
-            ei, ej = np.array([0]), np.array([min(1, n - 1)])
+            ei, ej, ek, eoff = np.array([0]), np.array([min(1, n - 1)]), np.zeros(1), np.zeros(1)
         self._ei = (ei + 1).astype(np.int32)
         self._ej = (ej + 1).astype(np.int32)
-        self._ek = np.ascontiguousarray(k[ei, ej])
-        self._eoff = np.ascontiguousarray(d[ei, ej])
+        self._ek = np.ascontiguousarray(ek, dtype=np.float64)
+        self._eoff = np.ascontiguousarray(eoff, dtype=np.float64)
         self._p = np.asfortranarray(np.stack([self.mass, self.damping, self.eps, self.bias,
                                               self.drive_amplitude, self.drive_frequency, self.drive_phase]))
 
     def __repr__(self) -> str:
-        what = f"topology={self.topology!r}" if self.topology else f"{self._ek.size} springs"
+        what = f"topology={self.topology!r}" if self.topology else f"{self.springs[0].size} springs"
         return f"Network(n={self.n}, {what})"
+
+    @property
+    def coupling(self) -> np.ndarray:
+        """The spring constants K as a dense N x N matrix (built on request: for a small network)."""
+        ei, ej, ek, _ = self.springs
+        k = np.zeros((self.n, self.n))
+        k[ei, ej] = ek
+        return k + k.T
+
+    @property
+    def offset(self) -> np.ndarray:
+        """The springs' offsets δ as a dense antisymmetric N x N matrix (built on request)."""
+        ei, ej, _, eoff = self.springs
+        d = np.zeros((self.n, self.n))
+        d[ei, ej] = eoff
+        return d - d.T
 
     def _edges(self):
         return self._p, self._ei, self._ej, self._ek, self._eoff
@@ -450,7 +480,9 @@ class Network:
         npath = _checks.count(paths, "paths", 1) if method == "baoab" else 1
         if method == "dop853":
             # a rough count of element-evaluations: short runs skip the interruptible thread's start
-            rate = max(1.0, float(np.max(np.sqrt(np.abs(self.eps) + 4 * self.coupling.sum(axis=1)) / self.mass)),
+            ei, ej, ek, _ = self.springs
+            ksum = np.bincount(ei, ek, self.n) + np.bincount(ej, ek, self.n)
+            rate = max(1.0, float(np.max(np.sqrt(np.abs(self.eps) + 4 * ksum) / self.mass)),
                        float(np.max(np.abs(self.drive_frequency))))
             long = self.n * span * rate * 100 > 1e6
         else:
