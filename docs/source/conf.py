@@ -123,6 +123,7 @@ SECTIONS = {
               "guide/cord", "guide/cycloid", "guide/gravity", "guide/density", "guide/dynamics", "guide/attractors",
               "guide/continuation",
               "guide/quantum",
+              "guide/circuits",
               "guide/sweeps",
               "sweeps_at_scale*", "guide/scenes", "scenes*", "vocabulary", "guide/architecture"],
     "reports": ["reports/accuracy", "accuracy*", "elliptic_edges*", "model_accuracy*", "reports/cost", "work_precision*", "reports/benchmarks",
@@ -189,6 +190,7 @@ API_GROUPS = [
                                        "EquilibriumBranch", "ContinuationError"]),
     ("The Josephson junction", ["Junction", "SwitchingCurrents"]),
     ("The quantum pendulum", ["Transmon", "mathieu_a", "mathieu_b", "mathieu_exponent", "mathieu_ce", "mathieu_se"]),
+    ("Circuits and chains", ["Network", "NetworkEquilibrium", "NormalModes", "DCSquid"]),
 ]
 # the pendulum of the classroom (metres, seconds, degrees)
 API_GROUPS += [("The pendulum in laboratory units", ["Pendulum", "Swing"])]

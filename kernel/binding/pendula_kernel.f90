@@ -1110,3 +1110,106 @@ subroutine mathieu_function_v(nz, kind, n, q, z, val, dval, status)
   !f2py intent(hide), depend(z) :: nz = len(z)
   call mathieu_function(kind, n, q, nz, z, val, dval, status)
 end subroutine mathieu_function_v
+! ---------------------------------------------------------------------
+! Networks of pendula (kernel/models/pendula_network.f90 and
+! kernel/dispatch/pendula_network_run.f90).  p(7, nel): the rows C, beta,
+! eps, tau, A, Omega, phase of each element; the couplings as edges
+! (ei < ej, 1-based) with stiffness ek and offset eoff.
+! ---------------------------------------------------------------------
+
+! The network from y0 = (phi, phi') at t = 0: method 1 DOP853 (rtol, atol;
+! outputs at tout), 2 or 3 Gauss-Legendre of order 4 or 6 (step dt; output k
+! after counts(k) more steps).  stats: steps, accepted, rejected, evaluations.
+subroutine network_simulate_v(nel, ne, p, ei, ej, ek, eoff, method, y0, nout, tout, counts, rtol, atol, dt, &
+                              cancel, yout, stats, status)
+  use pendula_kinds, only: dp
+  use pendula_integrators, only: run_stats
+  use pendula_network, only: network, make_network
+  use pendula_network_run, only: network_simulate
+  implicit none
+  integer, intent(in) :: nel, ne, method, nout
+  double precision, intent(in) :: p(7, nel), ek(ne), eoff(ne), y0(2 * nel), tout(nout), rtol, atol, dt
+  integer, intent(in) :: ei(ne), ej(ne)
+  integer(8), intent(in) :: counts(nout)
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: yout(2 * nel, nout)
+  integer(8), intent(out) :: stats(4)
+  integer, intent(out) :: status
+  !f2py threadsafe
+  !f2py intent(hide), depend(p) :: nel = shape(p, 1)
+  !f2py intent(hide), depend(ei) :: ne = len(ei)
+  !f2py intent(hide), depend(tout) :: nout = len(tout)
+  type(network) :: net
+  type(run_stats) :: st
+  net = make_network(p, ei, ej, ek, eoff)
+  call network_simulate(net, method, y0, tout, counts, rtol, atol, dt, yout, st, status, cancel(1))
+  stats = [st%nsteps, st%naccept, st%nreject, st%nfev]
+end subroutine network_simulate_v
+
+! npath Langevin paths (BAOAB, step h) of the network at temperatures temp;
+! path k from y0(:, k) on the noise streams of point first + k - 1 of seed;
+! yout(:, j, k) after counts(j) more steps; status(k) each path's status.
+subroutine network_langevin_v(nel, ne, p, ei, ej, ek, eoff, temp, seed, first, h, npath, y0, nout, counts, &
+                              nthreads, cancel, yout, status)
+  use pendula_network, only: network, make_network
+  use pendula_network_run, only: network_langevin
+  implicit none
+  integer, intent(in) :: nel, ne, npath, nout, nthreads
+  double precision, intent(in) :: p(7, nel), ek(ne), eoff(ne), temp(nel), h, y0(2 * nel, npath)
+  integer, intent(in) :: ei(ne), ej(ne)
+  integer(8), intent(in) :: seed, first, counts(nout)
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: yout(2 * nel, nout, npath)
+  integer, intent(out) :: status(npath)
+  !f2py threadsafe
+  !f2py intent(hide), depend(p) :: nel = shape(p, 1)
+  !f2py intent(hide), depend(ei) :: ne = len(ei)
+  !f2py intent(hide), depend(y0) :: npath = shape(y0, 1)
+  !f2py intent(hide), depend(counts) :: nout = len(counts)
+  type(network) :: net
+  net = make_network(p, ei, ej, ek, eoff)
+  call network_langevin(net, temp, seed, first, h, y0, counts, nthreads, yout, status, cancel(1))
+end subroutine network_langevin_v
+
+! The force on each element at time t for nq sets of phases q(:, k), and its
+! Jacobian in the phases at the first set (dense, nel x nel).
+subroutine network_force_v(nel, ne, p, ei, ej, ek, eoff, t, nq, q, f, jac)
+  use pendula_network, only: network, make_network, network_force, network_jacobian
+  implicit none
+  integer, intent(in) :: nel, ne, nq
+  double precision, intent(in) :: p(7, nel), ek(ne), eoff(ne), t, q(nel, nq)
+  integer, intent(in) :: ei(ne), ej(ne)
+  double precision, intent(out) :: f(nel, nq), jac(nel, nel)
+  !f2py threadsafe
+  !f2py intent(hide), depend(p) :: nel = shape(p, 1)
+  !f2py intent(hide), depend(ei) :: ne = len(ei)
+  !f2py intent(hide), depend(q) :: nq = shape(q, 1)
+  type(network) :: net
+  integer :: k
+  net = make_network(p, ei, ej, ek, eoff)
+  do k = 1, nq
+    call network_force(net, t, q(:, k), f(:, k))
+  end do
+  jac = 0.0d0
+  if (nq > 0) call network_jacobian(net, q(:, 1), jac)
+end subroutine network_force_v
+
+! The energy of each of ns states y(:, k) = (phi, phi').
+subroutine network_energy_v(nel, ne, p, ei, ej, ek, eoff, ns, y, en)
+  use pendula_network, only: network, make_network, network_energy
+  implicit none
+  integer, intent(in) :: nel, ne, ns
+  double precision, intent(in) :: p(7, nel), ek(ne), eoff(ne), y(2 * nel, ns)
+  integer, intent(in) :: ei(ne), ej(ne)
+  double precision, intent(out) :: en(ns)
+  !f2py threadsafe
+  !f2py intent(hide), depend(p) :: nel = shape(p, 1)
+  !f2py intent(hide), depend(ei) :: ne = len(ei)
+  !f2py intent(hide), depend(y) :: ns = shape(y, 1)
+  type(network) :: net
+  integer :: k
+  net = make_network(p, ei, ej, ek, eoff)
+  do k = 1, ns
+    en(k) = network_energy(net, y(1:nel, k), y(nel + 1:2 * nel, k))
+  end do
+end subroutine network_energy_v

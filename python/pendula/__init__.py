@@ -63,6 +63,9 @@ from .spectrum import precompute_wisdom, wisdom_path  # noqa: E402
 from .laboratory import Pendulum, Swing  # noqa: E402
 # the quantum pendulum: Mathieu characteristic values and the transmon
 from .quantum import Transmon, mathieu_a, mathieu_b, mathieu_ce, mathieu_exponent, mathieu_se  # noqa: E402
+# networks of pendula: coupled phases, chains, arrays of junctions
+from .systems.network import Network, NetworkEquilibrium, NormalModes  # noqa: E402
+from .squid import DCSquid  # noqa: E402
 
 # the version of the installed metadata (written once, in meson.build)
 from ._version import __version__  # noqa: E402
@@ -86,3 +89,5 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
 __all__ += ["Pendulum", "Swing"]
 # the quantum pendulum
 __all__ += ["mathieu_a", "mathieu_b", "mathieu_exponent", "mathieu_ce", "mathieu_se", "Transmon"]
+# networks of pendula
+__all__ += ["Network", "NetworkEquilibrium", "NormalModes", "DCSquid"]
