@@ -54,7 +54,9 @@ def _decided(ds, names):
 
 
 def _sweep_attractors(ds):
-    return _arr([np.r_[a["theta"], a["v"]] for a in json.loads(ds.attrs["attractors"])][0])
+    """The points' status, then the first attractor's samples (none while every point is still settling)."""
+    atts = json.loads(ds.attrs["attractors"])
+    return _arr(np.r_[ds.status.values, np.r_[atts[0]["theta"], atts[0]["v"]] if atts else []])
 
 
 #: tool -> (call(scene, force) returning an array, the base fields the tool needs)

@@ -81,7 +81,7 @@ module pendula_system
 
   character(len=*), parameter :: all8 = 'damping torque drive friction drag pivot noise force', &
     deterministic = 'damping torque drive friction drag pivot force', &
-    conservative = 'it is a fact of the conservative orbit (use pendula.simulate for the motion with effects)', &
+    conservative = 'a fact of the conservative orbit (its motion with effects: simulate; periods by events: numerical_period)', &
     smooth = 'its Newton and monodromy need a smooth deterministic flow (dry friction jumps at v = 0; noise is random)', &
     density_note = 'the density of the angle is a property of a periodic conservative orbit', &
     sweep_note = 'the measure asks a deterministic question of the flow (noise: measure ''mean_velocity'')'

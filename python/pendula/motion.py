@@ -106,7 +106,7 @@ def simulate(scene: Scene, t: ArrayLike | None = None, method: str | None = None
     >>> import pendula
     >>> tr = pendula.simulate(pendula.Scene(v0=1.0, damping=0.1), [0.0, 1.0], rtol=1e-12, atol=1e-14)
     >>> tr.method                        # 'auto': the work-precision study's pick for damped, rtol 1e-12
-    'vern9'
+    'vern8'
     >>> pendula.simulate(pendula.Scene(v0=1.9), [0.0, 1.0]).method     # conservative: exact
     'exact'
     >>> landed = pendula.simulate(pendula.Scene(v0=1.0, damping=0.1), [0.0, 0.5, 1.0], method="vern9",

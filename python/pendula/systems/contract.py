@@ -146,6 +146,10 @@ class TimeScales:
     langevin_dt : float
         The Langevin integrator's default step for this scene.
 
+    See Also
+    --------
+    time_scales : computes them for a scene.
+
     Examples
     --------
     >>> import pendula
@@ -178,6 +182,15 @@ def time_scales(scene: Scene) -> TimeScales:
     TimeScales
         The rates of every scale, the fastest, the forcing frequency and the
         Langevin default step.
+
+    Raises
+    ------
+    SceneError
+        The kernel refuses the scene's fields (a scene made by ``Scene`` never is).
+
+    See Also
+    --------
+    capabilities : which tool honours which effect.
 
     Examples
     --------

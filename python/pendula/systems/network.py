@@ -119,6 +119,11 @@ class NetworkEquilibrium:
     stable: bool
     residual: float
 
+    def __repr__(self) -> str:
+        lo, hi = (float(np.min(self.phi)), float(np.max(self.phi))) if self.phi.size else (math.nan, math.nan)
+        return (f"NetworkEquilibrium({self.phi.size} phases in [{lo:.6g}, {hi:.6g}], energy {self.energy:.10g}, "
+                f"stable={self.stable}, residual {self.residual:.2g}, {self.eigenvalues.size} eigenvalues)")
+
 
 @dataclass(frozen=True)
 class NormalModes:
@@ -147,6 +152,11 @@ class NormalModes:
 
     omega2: np.ndarray
     shapes: np.ndarray
+
+    def __repr__(self) -> str:
+        w2 = self.omega2
+        span = f"omega2 from {float(w2[0]):.10g} to {float(w2[-1]):.10g}" if w2.size else "no modes"
+        return f"NormalModes({w2.size} modes, {span}, {int(np.sum(w2 < 0))} unstable)"
 
     @property
     def frequencies(self) -> np.ndarray:
