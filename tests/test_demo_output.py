@@ -12,6 +12,7 @@ import pytest
 from pendula import cli
 from pendula.demos import sweeps as sweep_demos
 from pendula.studies import workprecision as wp
+from pendula.studies import workprecision_report as wpr
 
 RESULT = {
     "basins": {"points": 4000, "decided": 1.0, "uncertain": 0, "energy_balance_disagreement": 0.1387},
@@ -58,7 +59,7 @@ def _record():
 
 
 def test_work_precision_answer_is_plain_text_with_reasons():
-    text = wp.answer_text(_record())
+    text = wpr.answer_text(_record())
     assert ".. list-table" not in text and "* -" not in text
     assert "not reached: tightest rtol run 1e-09" in text           # 1e-09 and 1e-12: the run stopped at 1e-9
     assert len(text.splitlines()) == 1 + 4
@@ -67,7 +68,7 @@ def test_work_precision_answer_is_plain_text_with_reasons():
 def test_work_precision_target_below_the_floor_says_so():
     rec = _record()
     rec["floors"]["damped"]["floor_error_max"] = 4.4e-12
-    assert "not reached: below the floor 4e-12" in wp.answer_text(rec)
+    assert "not reached: below the floor 4e-12" in wpr.answer_text(rec)
 
 
 def test_gallery_sources_are_named_by_author_and_title():

@@ -12,6 +12,7 @@ import pytest
 import pendula
 from pendula import _kernel
 from pendula.studies import workprecision as wp
+from pendula.studies import workprecision_report as wpr
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 RECORD = ROOT / "data" / "bench" / "work_precision.json"
@@ -124,8 +125,8 @@ def test_short_study_records_every_field(reference):
 
 def test_report_page_tables_are_the_ones_generated_from_the_recorded_run(record):
     text = (ROOT / "docs" / "source" / "work_precision.rst").read_text()
-    for key, body in wp.generated_parts(record).items():
-        assert wp.page_part(text, key) == body, key
+    for key, body in wpr.generated_parts(record).items():
+        assert wpr.page_part(text, key) == body, key
 
 
 def test_record_has_every_problem_and_package(record):
@@ -138,7 +139,7 @@ def test_auto_picks_what_the_recorded_table_says(record):
     """'auto' integrates a non-conservative scene by the recorded study's pick for its class and rtol
     (auto_picks, read from the stored record, not timed here; the whole table in
     tests/test_integrators_auto.py), and answers a conservative one by the exact path."""
-    picks = wp.auto_picks(record["rows"])
+    picks = wpr.auto_picks(record["rows"])
     scene = pendula.Scene(v0=2.3, damping=0.1, rtol=1e-9, atol=1e-9)
     assert pendula.simulate(scene, [0.0, 1.0]).method == picks["damped", 9]["method"]
     assert pendula.simulate(pendula.Scene(v0=2.5), [0.0, 1.0]).method == "exact"

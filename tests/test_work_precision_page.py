@@ -8,6 +8,7 @@ import re
 import pytest
 
 from pendula.studies import workprecision as wp
+from pendula.studies import workprecision_report as wpr
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 PAGE = ROOT / "docs" / "source" / "work_precision.rst"
@@ -20,7 +21,7 @@ def record():
 
 @pytest.mark.parametrize("problem", sorted(wp.PROBLEMS))
 def test_each_figure_draws_at_most_eight_curves_one_per_family(record, problem):
-    curves = wp.best_of_families([r for r in record["rows"] if r["problem"] == problem])
+    curves = wpr.best_of_families([r for r in record["rows"] if r["problem"] == problem])
     assert len(curves) + 1 <= 8                     # and the exact path's star
     families = [f for f, _, _ in curves if "auto" not in f]
     assert len(families) == len(set(families))
@@ -30,7 +31,7 @@ def test_best_of_a_family_is_the_fastest_at_most_levels():
     rows = [dict(package="pendula", method=m, error_max=e, seconds=s)
             for m, e, s in (("dopri5", 1e-6, 3.0), ("dopri5", 1e-9, 9.0), ("vern9", 1e-6, 1.0), ("vern9", 1e-9, 2.0),
                             ("dop853", 1e-6, 2.0), ("dop853", 1e-9, 4.0), ("auto", 1e-6, 1.0))]
-    assert wp.best_of_families(rows) == [("pendula, adaptive", "pendula", "vern9"),
+    assert wpr.best_of_families(rows) == [("pendula, adaptive", "pendula", "vern9"),
                                          ("pendula, method='auto'", "pendula", "auto")]
 
 
@@ -41,7 +42,7 @@ def test_answer_comes_before_the_method_notes():
 
 
 def test_answer_tables_have_four_columns_and_no_lone_dash(record):
-    rst = wp.answer_rst(record)
+    rst = wpr.answer_rst(record)
     for table in rst.split(".. list-table::")[1:]:
         first_row = table.split("   * - ")[1]
         assert first_row.count("\n     - ") == 3

@@ -5,7 +5,7 @@ The classes are the study's five problems (pendula.studies.workprecision.PROBLEM
 libration and rotation (no damping, torque or drive; below or above the separatrix), damped (damping
 only), torqued (a constant torque, with or without damping) and driven (a periodic drive, with
 anything else).  For each class and each rtol = atol = 10^-k of the study (k = 3 ... 14) the
-pick is pendula.studies.workprecision.auto_picks's (the one rule, which the study's figures draw
+pick is pendula.studies.workprecision_report.auto_picks's (the one rule, which the study's figures draw
 too): of pendula's adaptive pairs with an interpolant as a scene runs them (dopri5, dop853, vern9,
 vern8: outputs interpolated, steps not landed) whose largest error over the outputs is no larger
 than DOP853's at the same rtol (the method 'auto' meant before) or than 10 rtol, the fastest; or,
@@ -28,6 +28,7 @@ import pathlib
 import sys
 
 from pendula.studies import workprecision as wp
+from pendula.studies import workprecision_report as wpr
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 RECORD = ROOT / "data" / "bench" / "work_precision.json"
@@ -35,15 +36,15 @@ OUT = ROOT / "kernel" / "dispatch" / "pendula_auto_methods.inc"
 DISPATCHER = ROOT / "kernel" / "dispatch" / "pendula_simulate.f90"
 #: the classes in the kernel's order (pendula_simulate: auto_class) and the study's problem for each
 CLASSES = ("libration", "rotation", "damped", "torqued", "driven")
-DECADES = wp.AUTO_DECADES
-CANDIDATES = wp.AUTO_CANDIDATES
+DECADES = wpr.AUTO_DECADES
+CANDIDATES = wpr.AUTO_CANDIDATES
 #: the kernel's names of their method codes (pendula_integrators)
 CODE_NAMES = {"dopri5": "m_dopri5", "dop853": "m_dop853", "vern9": "m_vern9", "vern8": "m_vern8"}
 
 
 def picks(record):
     """{(class, k): (method, row of the pick, row of dop853)} from the record's rows."""
-    best = wp.auto_picks(record["rows"])
+    best = wpr.auto_picks(record["rows"])
     rows = record["rows"]
     out = {}
     for cls in CLASSES:
@@ -63,7 +64,7 @@ def include_text(record, table):
              "! rtol = 10^-k (k = 3 ... 14, the nearest decade, clamped) and the problem class",
              "! (1 libration, 2 rotation, 3 damped, 4 torqued, 5 driven: pendula_simulate's auto_class).",
              "! Per cell: of dopri5, dop853, vern9 and vern8, the fastest, or the most accurate of those",
-             f"! within the study's timing noise of it ({wp.auto_noise(record['rows']):.1%}, the median spread "
+             f"! within the study's timing noise of it ({wpr.auto_noise(record['rows']):.1%}, the median spread "
              "of its best three rounds),",
              "! among the pairs whose largest error over the study's outputs is no larger than dop853's",
              "! at that rtol or than 10 rtol:"]

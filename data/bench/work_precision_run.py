@@ -26,6 +26,7 @@ import os
 import pathlib
 
 from pendula.studies import workprecision as wp
+from pendula.studies import workprecision_report as wpr
 
 RECORD = pathlib.Path(__file__).resolve().parent / "work_precision.json"
 #: the packages re-run side by side by default: pendula and the compiled peers (not called through Python)
@@ -36,7 +37,7 @@ def cells(record):
     """Per problem and target: pendula's fastest, the fastest compiled peer, SciPy's fastest, the ratios."""
     out = []
     name = lambda r: None if r is None else f"{r['package']}:{r['method']} {r['setting']}"  # noqa: E731
-    for a in wp.answer_table(record):
+    for a in wpr.answer_table(record):
         out.append({"problem": a["problem"], "target": a["target"], "pendula": name(a["pendula"]),
                      "pendula_seconds": a["pendula"]["seconds"] if a["pendula"] else None,
                      "compiled_peer": name(a["compiled"]), "compiled_ratio": a["compiled_ratio"],
@@ -56,7 +57,7 @@ def rerun(problems, rounds, out, packages, tols=None):
 def merge(parts):
     old = json.loads(RECORD.read_text())
     recs = [json.loads(pathlib.Path(p).read_text()) for p in parts]
-    rec = wp.merge_records(recs)
+    rec = wpr.merge_records(recs)
     again = {(r["problem"], r["package"], r["method"]) for r in rec["rows"]}
     kept = sorted({r["package"] for r in old["rows"] if (r["problem"], r["package"], r["method"]) not in again})
     rec["rows"] += [dict(r, kept_from=r.get("kept_from", old["date"])) for r in old["rows"]
@@ -73,7 +74,7 @@ def merge(parts):
     print(f"wrote {RECORD}")
     for c in rec["cells"]:
         print(c)
-    wp.regenerate_docs(RECORD)
+    wpr.regenerate_docs(RECORD)
 
 
 def main():

@@ -152,7 +152,7 @@ def work_precision(outdir, quick: bool = False, progress: bool = True, record_to
     """The work-precision study of the integrators against the peers (pendula.studies.workprecision):
     the record work_precision.json and one figure per problem into outdir; quick: the short form
     of ``make demo`` (one problem, four tolerances)."""
-    from .workprecision import study_main
+    from .workprecision_report import study_main
 
     return study_main(outdir, quick=quick, progress=progress, record_to=record_to, problems=problems)
 

@@ -1,6 +1,6 @@
 """The work-precision answer in sentences, for a person at a terminal (``pendula demo``).
 
-:func:`pendula.studies.workprecision.answer_text` is the table for someone
+:func:`pendula.studies.workprecision_report.answer_text` is the table for someone
 who knows its columns; :func:`work_precision_sentences` says the same figures
 in words, one line per problem and target error: what was timed, to what
 error, how long each took, and which is faster by how much.
@@ -8,7 +8,8 @@ error, how long each took, and which is faster by how much.
 
 from __future__ import annotations
 
-from .workprecision import TARGETS, _ms, _problem_text, _why_not, answer_table
+from .workprecision import TARGETS
+from .workprecision_report import _ms, _problem_text, _why_not, answer_table
 
 __all__ = ["work_precision_sentences"]
 
