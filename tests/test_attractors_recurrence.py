@@ -359,7 +359,7 @@ def test_thin_chaotic_set_after_the_cascade_is_found_not_left_undecided():
 
 def test_sweep_figure_of_an_attractor_map_is_drawn(tmp_path):
     pytest.importorskip("matplotlib")
-    from pendula.plot import plot_sweep
+    from pendula.demos.sweeps import plot_sweep
     ds = pendula.sweep(scene(1.35), {"theta0": np.linspace(-3, 3, 5), "v0": np.linspace(-3, 3, 4)}, "attractor",
                        transient=100.0, samples=8)
     assert plot_sweep(ds, tmp_path / "map.png").stat().st_size > 0

@@ -382,7 +382,7 @@ def sweep_main(args) -> int:
     from ._checks import count, path, threads as check_threads
     from ._files import atomic_path
     from ._store import StoreBusyError
-    from .plot import plot_sweep
+    from .demos.sweeps import plot_sweep
     from .scene import Scene, SceneError
     from .sweeps import sweep
 

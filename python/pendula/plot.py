@@ -33,7 +33,6 @@ from __future__ import annotations
 
 import json
 import math
-import pathlib
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -742,63 +741,6 @@ def fractions(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None) -> mat
     ax.set_ylabel("fraction of initial states")
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     return ax
-
-
-def plot_sweep(ds, path) -> pathlib.Path:
-    """A figure of a sweep: a map (2 axes; discrete colours for wells), a curve
-    (1 axis), or a bifurcation diagram (poincare over 1 axis)."""
-    matplotlib = require("matplotlib", "plot", "pendula.plot.plot_sweep (figures)")
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    path = pathlib.Path(path)
-    measure = ds.attrs["measure"]
-    dims = [d for d in ds.dims if d != "sample"]
-    var = {"final_well": "well", "locked": "locked", "mean_velocity": "mean_velocity", "poincare": "theta",
-           "lyapunov": "lyapunov", "attractor": "attractor"}[measure]
-    fig, ax = plt.subplots(figsize=(6.4, 4.8))
-    if measure == "poincare":
-        x = np.repeat(ds[dims[0]].values, ds.sizes["sample"])
-        th = ds.theta.values.reshape(-1) if len(dims) == 1 else ds.theta.isel({d: 0 for d in dims[1:]}).values.ravel()
-        ax.plot(x, th, ".k", markersize=1.5, alpha=0.6)
-        ax.set_xlabel(_cf_label(ds, dims[0])); ax.set_ylabel("θ once per drive period, modulo 2π (rad)")
-    elif len(dims) == 1:
-        ax.plot(ds[dims[0]].values, ds[var].values, ".-")
-        ax.set_xlabel(_cf_label(ds, dims[0])); ax.set_ylabel(_cf_label(ds, var))
-    else:
-        z = ds[var]
-        if len(dims) > 2:
-            z = z.isel({d: 0 for d in dims[2:]})
-        z = z.transpose(dims[0], dims[1]).values
-        x, y = ds[dims[0]].values, ds[dims[1]].values
-        if measure in ("final_well", "locked", "attractor"):
-            lo, hi = np.nanmin(z), np.nanmax(z)
-            lo, hi = (0, 1) if not np.isfinite(lo) else (int(lo), int(hi))
-            cmap = plt.get_cmap("tab20", hi - lo + 1)
-            im = ax.imshow(z.T, origin="lower", aspect="auto", cmap=cmap, vmin=lo - 0.5, vmax=hi + 0.5,
-                           extent=[x[0], x[-1], y[0], y[-1]], interpolation="nearest")
-            fig.colorbar(im, ax=ax, ticks=range(lo, hi + 1), label=_cf_label(ds, var))
-        else:
-            im = ax.imshow(z.T, origin="lower", aspect="auto", extent=[x[0], x[-1], y[0], y[-1]])
-            fig.colorbar(im, ax=ax, label=_cf_label(ds, var))
-        ax.set_xlabel(_cf_label(ds, dims[0])); ax.set_ylabel(_cf_label(ds, dims[1]))
-    from ._sweep_engine import MEASURE_TABLE
-    words = MEASURE_TABLE[measure].words if measure in MEASURE_TABLE else "the attractor of each start"
-    ax.set_title(words[:1].upper() + words[1:])
-    fig.tight_layout()
-    try:
-        save_figure(fig, path, dpi=120)     # whole under its name, or absent
-    finally:
-        plt.close(fig)
-    return path
-
-
-def _cf_label(ds, name: str) -> str:
-    """An axis label from a dataset's CF attributes: the long name and its units (none for '1')."""
-    attrs = ds[name].attrs if name in ds.variables else {}
-    text = str(attrs.get("long_name", name))
-    units = str(attrs.get("units", "1"))
-    return text if units in ("1", "") else f"{text} ({units})"
 
 
 def levels(transmon, ax: matplotlib.axes.Axes | None = None, *, count: int = 5,
