@@ -71,3 +71,10 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Junction", "SwitchingCurrents", "attractor_continuation",
            "continue_orbit", "continue_equilibria", "Branch", "Bifurcation", "EquilibriumBranch",
            "ContinuationError"]
+
+# the spherical pendulum exactly; the double pendulum's exact parts (normal modes, the forbidden flip region)
+from .systems.spherical import SphericalOrbit, SphericalPath, spherical_orbit  # noqa: E402
+from .systems.double import NormalModes, double_pendulum_modes, flip_forbidden  # noqa: E402
+
+__all__ += ["spherical_orbit", "SphericalOrbit", "SphericalPath",
+            "double_pendulum_modes", "NormalModes", "flip_forbidden"]
