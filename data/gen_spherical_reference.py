@@ -86,20 +86,20 @@ class Orbit:
         y = (2 - self.xb) + self.d * mp.cos(psi) ** 2
         return self.L * (1 / x + 1 / y) / 2 * self.dtau(psi)
 
-    def _pieces(self, a, b):
-        n = max(1, int(mp.ceil(abs(b - a) / (mp.pi / 4))))
-        return [a + (b - a) * k / n for k in range(n + 1)]
-
-    def _tau(self, a, b):
-        return mp.quad(self.dtau, self._pieces(a, b))
-
-    def _phi(self, a, b):
-        # the peaks of 1/x at psi = 0 (mod pi) and of 1/(2 - x) at pi/2 (mod pi) are pieces' ends
+    def _quad(self, f, a, b):
+        """The integral of f from a to b on pieces ending at the multiples of pi/2 (where
+        the integrands peak: 1/x at psi = 0 mod pi, 1/(2 - x) and d tau / d psi at pi/2)."""
         lo, hi = min(a, b), max(a, b)
         k0, k1 = int(mp.floor(lo / (mp.pi / 2))), int(mp.ceil(hi / (mp.pi / 2)))
         inner = [mp.pi / 2 * k for k in range(k0, k1 + 1) if lo < mp.pi / 2 * k < hi]
-        val = mp.quad(self.dphi, [lo] + inner + [hi])
+        val = mp.quad(f, [lo] + inner + [hi])
         return val if b >= a else -val
+
+    def _tau(self, a, b):
+        return self._quad(self.dtau, a, b)
+
+    def _phi(self, a, b):
+        return self._quad(self.dphi, a, b)
 
     def tau_of(self, psi):
         """tau(psi) - tau(psi0), whole half turns counted exactly."""
@@ -113,14 +113,28 @@ class Orbit:
         return n * self.half_phi + self._phi(0, r) - self._phi(0, self.psi0)
 
     def psi_at(self, t):
+        """psi with tau(psi) - tau(psi0) = sqrt(eps) t: Newton's method kept inside a
+        bracket of one half turn (bisection where a step would leave it)."""
         target = mp.mpf(t) * self.sq
-        psi = self.psi0 + target / self.half_tau * mp.pi
-        for _ in range(100):
+        n = mp.floor((target + self._tau(0, self.psi0)) / self.half_tau)
+        lo, hi = n * mp.pi, (n + 1) * mp.pi
+        psi = (lo + hi) / 2
+        for _ in range(400):
             f = self.tau_of(psi) - target
-            step = f / self.dtau(psi)
-            psi -= step
-            if abs(step) < mp.mpf(10) ** (-DPS + 8) * max(1, abs(psi)):
+            if f > 0:
+                hi = psi
+            else:
+                lo = psi
+            new = psi - f / self.dtau(psi)
+            if not lo < new < hi:
+                new = (lo + hi) / 2
+            if abs(new - psi) < mp.mpf(10) ** (-DPS + 6) * max(1, abs(psi)):
+                psi = new
                 break
+            psi = new
+        else:
+            raise RuntimeError(f"no convergence for t = {t}")
+        assert abs(self.tau_of(psi) - target) < mp.mpf(10) ** (-DPS + 10) * max(1, abs(target))
         return psi
 
     def state(self, t):

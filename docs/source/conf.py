@@ -122,6 +122,7 @@ SECTIONS = {
               "guide/josephson", "guide/driven",
               "guide/cord", "guide/cycloid", "guide/gravity", "guide/density", "guide/dynamics", "guide/attractors",
               "guide/continuation",
+              "guide/spherical",
               "guide/sweeps",
               "sweeps_at_scale*", "guide/scenes", "scenes*", "vocabulary", "guide/architecture"],
     "reports": ["reports/accuracy", "accuracy*", "elliptic_edges*", "model_accuracy*", "reports/cost", "work_precision*", "reports/benchmarks",
@@ -184,6 +185,8 @@ API_GROUPS = [
     ("Continuation and bifurcations", ["continue_orbit", "Branch", "Bifurcation", "continue_equilibria",
                                        "EquilibriumBranch", "ContinuationError"]),
     ("The Josephson junction", ["Junction", "SwitchingCurrents"]),
+    ("The spherical and the double pendulum", ["spherical_orbit", "SphericalOrbit", "SphericalPath",
+                                               "double_pendulum_modes", "NormalModes", "flip_forbidden"]),
 ]
 
 

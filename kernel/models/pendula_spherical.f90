@@ -99,8 +99,8 @@ contains
     type(spherical_orbit), intent(out) :: o
     integer, intent(out) :: status
     real(qp) :: sq, w, p, x0, y0, s, lq, kin, q0, q1, q2, ha, hb, xa, xb, xc, ya, yb, d, xcb, xca
-    real(qp) :: om, m, mc, sn0, cn0
-    real(dp) :: a(1), b(1), fh, fl, rjn2, ah, al
+    real(qp) :: om, m, mc, sn0, cn0, kq, rj1q, rjn2q, xc2
+    real(dp) :: a(1), b(1), fh, fl, ah, al
 
     status = sph_ok
     if (.not. (eps > 0.0_dp .and. eps <= 1.0e300_dp)) then
@@ -154,6 +154,11 @@ contains
     xc = (kin - hb) + y0 - ha        ! the sum of the roots, every term >= 0
     xa = lq * lq / (2.0_qp * xb * xc)
     ya = 2.0_qp - xa
+    ! 2 - xb and xc - 2 multiply to L^2 / (2 ya) (the roots in 2 - x): each is a
+    ! difference, good to 1e-34 absolute, so the smaller one is taken from the
+    ! larger (2 - xb of 1e-22, over the top with a tiny L, kept 12 digits only)
+    xc2 = (kin - hb) - xa
+    if (xc2 > yb) yb = lq * lq / (2.0_qp * ya * xc2)
     xcb = (kin - hb) + yb - xa       ! xc - xb
     xca = xcb + d
     m = d / xca
@@ -167,11 +172,14 @@ contains
     o%nm = real(d * mc / xb, dp); o%one_n = real(xa * mc / xb, dp)
     o%plan = jacobi_prepare_dd(o%m, o%mc, real(mc - real(mc, dp), dp))
     o%kh = o%plan%kh; o%kl = o%plan%kl
-    ! the complete integrals of the azimuth
-    o%rj1 = rj(0.0_dp, o%mc, 1.0_dp, o%one_n)
-    rjn2 = rj(0.0_dp, o%mc, 1.0_dp, o%one_n2)
-    o%delta = 2.0_dp * o%cphi * ((o%kh + (o%n2 / 3.0_dp) * rjn2) / o%ya &
-                                 + (o%kh + (o%nm / 3.0_dp) * o%rj1) / o%xb)
+    ! the complete integrals of the azimuth, in quadruple precision (the advance per
+    ! period is multiplied by the number of periods)
+    kq = real(o%kh, qp) + real(o%kl, qp)
+    rj1q = rj_qp(0.0_qp, mc, 1.0_qp, xa * mc / xb)
+    rjn2q = rj_qp(0.0_qp, mc, 1.0_qp, yb / ya)
+    o%rj1 = real(rj1q, dp)
+    o%delta = real(2.0_qp * (lq / (2.0_qp * om)) * ((kq + (d / ya / 3.0_qp) * rjn2q) / ya &
+                                                    + (kq + (d * mc / xb / 3.0_qp) * rj1q) / xb), dp)
     if (.not. (abs(o%delta) <= huge(1.0_dp) .and. abs(o%kh) <= huge(1.0_dp))) then
       status = sph_tiny_lz; return
     end if
@@ -380,5 +388,54 @@ contains
     f = [per, o%delta, 0.5_dp * o%delta, (o%delta - sign(pi, o%lz)) / per, tmin, tmax, o%energy, o%lz, &
          o%m, o%mc, 0.0_dp, 2.0_dp * pi / per]
   end function spherical_facts
+
+  !> Carlson's R_J(x, y, z, p) in quadruple precision (x, y, z >= 0, at most one
+  !> zero, p > 0), for the complete integrals of the azimuth: the advance per
+  !> polar period multiplies the number of periods, so it is formed to about
+  !> 1e-33 (GSL's double R_J is good to a few eps).  Carlson's duplication with
+  !> the R_C terms in closed form (Carlson 1995, section 2; DLMF 19.36.2),
+  !> run until the arguments agree to 1e-7 (the degree-5 series then
+  !> truncates below 1e-35).
+  pure function rj_qp(x0, y0, z0, p0) result(r)
+    real(qp), intent(in) :: x0, y0, z0, p0
+    real(qp) :: r, x, y, z, p, sx, sy, sz, sp, lam, a, a0, dl, dm, em, s, f, q, xx, yy, zz, pp
+    real(qp) :: e2, e3, e4, e5, rc
+    integer :: k
+    x = x0; y = y0; z = z0; p = p0
+    a0 = (x + y + z + 2.0_qp * p) / 5.0_qp
+    a = a0
+    dl = (p - x) * (p - y) * (p - z)
+    s = 0.0_qp
+    f = 1.0_qp                          ! 4^-k
+    q = 1.0_qp                          ! 4^-3k
+    do k = 1, 200
+      if (max(abs(a - x), abs(a - y), abs(a - z), abs(a - p)) < 1.0e-7_qp * a) exit
+      sx = sqrt(x); sy = sqrt(y); sz = sqrt(z); sp = sqrt(p)
+      lam = sx * sy + sx * sz + sy * sz
+      dm = (sp + sx) * (sp + sy) * (sp + sz)
+      em = q * dl / (dm * dm)
+      ! R_C(1, 1 + em)
+      if (em > 0.0_qp) then
+        rc = atan(sqrt(em)) / sqrt(em)
+      else if (em < 0.0_qp) then
+        rc = atanh(sqrt(-em)) / sqrt(-em)
+      else
+        rc = 1.0_qp
+      end if
+      s = s + f / dm * rc
+      x = 0.25_qp * (x + lam); y = 0.25_qp * (y + lam); z = 0.25_qp * (z + lam); p = 0.25_qp * (p + lam)
+      a = 0.25_qp * (a + lam)
+      f = 0.25_qp * f; q = q / 64.0_qp
+    end do
+    xx = (a - x) / a; yy = (a - y) / a; zz = (a - z) / a
+    pp = -(xx + yy + zz) / 2.0_qp
+    e2 = xx * yy + xx * zz + yy * zz - 3.0_qp * pp * pp
+    e3 = xx * yy * zz + 2.0_qp * e2 * pp + 4.0_qp * pp**3
+    e4 = (2.0_qp * xx * yy * zz + e2 * pp + 3.0_qp * pp**3) * pp
+    e5 = xx * yy * zz * pp * pp
+    r = f / (a * sqrt(a)) * (1.0_qp - 3.0_qp * e2 / 14.0_qp + e3 / 6.0_qp + 9.0_qp * e2 * e2 / 88.0_qp &
+                             - 3.0_qp * e4 / 22.0_qp - 9.0_qp * e2 * e3 / 52.0_qp + 3.0_qp * e5 / 26.0_qp) &
+        + 6.0_qp * s
+  end function rj_qp
 
 end module pendula_spherical

@@ -114,7 +114,8 @@ def double_pendulum_modes(m1: float = 1.0, m2: float = 1.0, l1: float = 1.0, l2:
     Notes
     -----
     det(K - omega^2 M) = 0 is the quadratic a w^2 + b w + c = 0 in
-    w = omega^2, a = det M, b = -(K11 M22 + K22 M11), c = det K, solved
+    w = omega^2, a = det M (m1 m2 l1^2 l2^2 for point masses, m2 l1^2 l2^2
+    (m1/9 + m2/12) for rods: no cancellation), b = -(K11 M22 + K22 M11), c = det K, solved
     without cancellation (the root of larger size first, the other as c over
     it).  For equal point masses and lengths, omega^2 = (2 -+ sqrt 2) g / l,
     shapes theta2 / theta1 = +-sqrt 2.
@@ -129,8 +130,9 @@ def double_pendulum_modes(m1: float = 1.0, m2: float = 1.0, l1: float = 1.0, l2:
     >>> [round(float(w), 12) for w in nm.omega ** 2]     # 3 -+ 6/sqrt(7)
     [0.732213161945, 5.267786838055]
     """
-    _, mm, kk = _arms(m1, m2, l1, l2, g, rods)
-    a = mm[0, 0] * mm[1, 1] - mm[0, 1] * mm[1, 0]
+    (m1, m2, l1, l2, g, rods), mm, kk = _arms(m1, m2, l1, l2, g, rods)
+    # det M in closed form, a sum of positive terms (as M11 M22 - M12^2 it cancels for m1 << m2)
+    a = m2 * (l1 * l2) ** 2 * (m1 / 9 + m2 / 12 if rods else m1)
     b = -(kk[0, 0] * mm[1, 1] + kk[1, 1] * mm[0, 0])
     c = kk[0, 0] * kk[1, 1]
     disc = b * b - 4.0 * a * c
