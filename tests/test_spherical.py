@@ -287,3 +287,28 @@ def test_infinite_time_gives_nan_and_a_warning():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         assert np.isnan(o.path([math.nan]).theta[0])
+
+
+wild = st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.sampled_from(
+    [0.0, -0.0, 5e-324, 1e-310, 1e308, -1e308, 1.0, math.pi, np.pi, 2.0, 1e-101, 1e101]))
+
+
+@settings(max_examples=150, deadline=None, derandomize=True)
+@given(wild, wild, wild, wild, wild)
+def test_fuzz_any_floats_give_a_path_or_a_named_error(th0, td0, pd0, eps, t):
+    """Never a crash, a hang or a silently wrong number: a finite path (or NaN with a
+    warning at an infinite time), or a ValueError naming a field."""
+    try:
+        o = pendula.spherical_orbit(th0, td0, pd0, eps)
+    except ValueError as exc:
+        assert any(f in str(exc) for f in ("theta0", "theta_dot0", "phi_dot0", "eps"))
+        return
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter("always")
+        p = o.path([0.0, t])
+    assert p.theta[0] == pytest.approx(th0, rel=8 * EPS, abs=1e-300) or (o.planar and th0 == 0.0)
+    values = np.array([p.theta, p.phi, p.theta_dot, p.phi_dot])
+    if not np.all(np.isfinite(values)):
+        # NaN only at t = 1: an infinite time or beyond 2**48 half periods, with a warning
+        assert np.all(np.isfinite(values[:, 0])) and np.all(np.isnan(values[:, 1]))
+        assert math.isnan(t) or any(x.category is RuntimeWarning for x in w)

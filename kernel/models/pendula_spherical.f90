@@ -326,8 +326,9 @@ contains
     integer :: i, i0, nb
     if (o%planar) then
       call orbit_eval(o%po, t, theta, theta_dot)
-      phi = o%phi0
-      phi_dot = 0.0_dp
+      ! (NaN where the planar path gives NaN: an infinite time, beyond 2^48 half periods)
+      phi = merge(nan_dp, o%phi0, theta /= theta)
+      phi_dot = merge(nan_dp, 0.0_dp, theta /= theta)
       return
     end if
     do i0 = 1, size(t), blk
