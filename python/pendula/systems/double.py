@@ -68,6 +68,10 @@ class NormalModes:
         The matrices M and K of T = q' M q' / 2, V = q K q / 2, q = (theta1,
         theta2).
 
+    See Also
+    --------
+    double_pendulum_modes : makes it.
+
     Examples
     --------
     >>> import pendula
@@ -110,6 +114,11 @@ def double_pendulum_modes(m1: float = 1.0, m2: float = 1.0, l1: float = 1.0, l2:
         Naming the parameter that is not positive and finite.
     TypeError
         For a string or array parameter, or a rods that is not a bool.
+
+    See Also
+    --------
+    flip_forbidden : the region from which no arm can flip.
+    spherical_orbit : the spherical pendulum, exactly.
 
     Notes
     -----
@@ -174,6 +183,10 @@ def flip_forbidden(theta1: ArrayLike, theta2: ArrayLike, m1: float = 1.0, m2: fl
         Naming a parameter that is not positive and finite.
     TypeError
         For a string, complex or object angle.
+
+    See Also
+    --------
+    double_pendulum_modes : the normal modes near the bottom.
 
     Examples
     --------

@@ -57,6 +57,10 @@ class SphericalPath:
     eps : float
         g / l.
 
+    See Also
+    --------
+    SphericalOrbit.path : makes it.
+
     Examples
     --------
     >>> import pendula
