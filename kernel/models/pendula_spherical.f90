@@ -24,7 +24,10 @@
 !>   1/x from u = K (the shift sn(w + K) = cd(w)):
 !>     ((m/N) w + (1 - m/N) Pi(N; w)) / xb, N - m = d mc / xb, 1 - N = xa mc / xb,
 !> with Pi(n; am r) = r + (n/3) s^3 R_J(c^2, dn^2, 1, 1 - n s^2) (DLMF 19.25.14)
-!> and 1 - n s^2 = c^2 + (1 - n) s^2.  R_J is GSL's gsl_sf_ellint_RJ_e.
+!> and 1 - n s^2 = c^2 + (1 - n) s^2.  Per sample R_J is GSL's
+!> gsl_sf_ellint_RJ; the complete integrals, whose sum is the azimuth advance
+!> per polar period (multiplied by the number of periods), are formed once in
+!> quadruple precision (rj_qp).
 !>
 !> The phase u is carried in double-double and reduced by whole polar
 !> periods 2K exactly (K in double-double): u = 2 K j + r, |r| <= K; theta and
@@ -34,7 +37,10 @@
 !> are computed once per orbit in quadruple precision (gfortran's real(16)),
 !> from the state: Q(x0 + h) = w0^2 S + Q1 h + Q2 h^2 + 2 h^3, the roots
 !> ha <= 0 <= hb bracketed and bisected; xa = L^2 / (2 xb xc) (Vieta), so
-!> that a small xa (L small) keeps its relative accuracy.
+!> that a small xa (L small) keeps its relative accuracy, and 2 - xb likewise
+!> from (2 - xb)(xc - 2) = L^2 / (2 (2 - xa)) where it is the smaller factor.
+!> (2 - xb and xc - 2 both small, within about 1e-9 rad of the top at the
+!> separatrix, keep fewer digits.)
 !>
 !> L = 0 is the planar pendulum: the motion stays in the plane phi = phi0 and
 !> is answered by the planar exact path (pendula_exact), theta then signed and
