@@ -87,7 +87,8 @@ def test_no_import_circle():
 
 @pytest.mark.parametrize("low", ["pendula.elliptic", "pendula.series", "pendula.scene", "pendula.trajectory",
                                  "pendula.systems.rigid", "pendula._checks", "pendula._files",
-                                 "pendula.quantum", "pendula.systems.network"])
+                                 "pendula.quantum", "pendula.systems.network",
+                                 "pendula.systems.spherical", "pendula.systems.double"])
 def test_lower_layers_do_not_import_the_user_facing_ones(low):
     top = {"pendula", "pendula.motion", "pendula.run", "pendula.cli", "pendula.plot", "pendula.studies", "pendula.studies.accuracy", "pendula.studies.bench", "pendula.studies.workprecision"}
     # the classroom pendulum and the animation writer sit beside pendula.motion and pendula.plot

@@ -124,6 +124,7 @@ SECTIONS = {
               "guide/continuation",
               "guide/quantum",
               "guide/circuits",
+              "guide/spherical",
               "guide/sweeps",
               "sweeps_at_scale*", "guide/scenes", "scenes*", "vocabulary", "guide/architecture"],
     "reports": ["reports/accuracy", "accuracy*", "elliptic_edges*", "model_accuracy*", "reports/cost", "work_precision*", "reports/benchmarks",
@@ -191,6 +192,8 @@ API_GROUPS = [
     ("The Josephson junction", ["Junction", "SwitchingCurrents"]),
     ("The quantum pendulum", ["Transmon", "mathieu_a", "mathieu_b", "mathieu_exponent", "mathieu_ce", "mathieu_se"]),
     ("Circuits and chains", ["Network", "NetworkEquilibrium", "NormalModes", "DCSquid"]),
+    ("The spherical and the double pendulum", ["spherical_orbit", "SphericalOrbit", "SphericalPath",
+                                               "double_pendulum_modes", "DoublePendulumModes", "flip_forbidden"]),
 ]
 # the pendulum of the classroom (metres, seconds, degrees)
 API_GROUPS += [("The pendulum in laboratory units", ["Pendulum", "Swing"])]

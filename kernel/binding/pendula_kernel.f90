@@ -1213,3 +1213,38 @@ subroutine network_energy_v(nel, ne, p, ei, ej, ek, eoff, ns, y, en)
     en(k) = network_energy(net, y(1:nel, k), y(nel + 1:2 * nel, k))
   end do
 end subroutine network_energy_v
+! ---------------------------------------------------------------- the spherical pendulum
+! The exact path of the spherical pendulum (pendula_spherical) from the state
+! (theta0, theta_dot0, phi_dot0) and azimuth phi0 at t = 0, g / l = eps: theta,
+! phi and their rates at the times t; status as pendula_spherical's sph_*.
+subroutine spherical_path_v(n, theta0, theta_dot0, phi_dot0, phi0, eps, t, theta, phi, theta_dot, phi_dot, status)
+  use pendula_spherical, only: spherical_orbit, spherical_setup, spherical_eval
+  implicit none
+  !f2py threadsafe
+  integer, intent(in) :: n
+  double precision, intent(in) :: theta0, theta_dot0, phi_dot0, phi0, eps, t(n)
+  double precision, intent(out) :: theta(n), phi(n), theta_dot(n), phi_dot(n)
+  integer, intent(out) :: status
+  !f2py intent(hide), depend(t) :: n = len(t)
+  type(spherical_orbit) :: o
+  theta = 0.0d0; phi = 0.0d0; theta_dot = 0.0d0; phi_dot = 0.0d0
+  call spherical_setup(theta0, theta_dot0, phi_dot0, phi0, eps, o, status)
+  if (status /= 0) return
+  call spherical_eval(o, t, theta, phi, theta_dot, phi_dot)
+end subroutine spherical_path_v
+
+! The spherical orbit's facts (pendula_spherical%spherical_facts): period, azimuth
+! advance, apsidal angle, precession rate, theta_min, theta_max, energy, L, m, mc,
+! planar, polar frequency.
+subroutine spherical_facts_v(theta0, theta_dot0, phi_dot0, eps, facts, status)
+  use pendula_spherical, only: spherical_orbit, spherical_setup, spherical_facts
+  implicit none
+  double precision, intent(in) :: theta0, theta_dot0, phi_dot0, eps
+  double precision, intent(out) :: facts(12)
+  integer, intent(out) :: status
+  type(spherical_orbit) :: o
+  facts = 0.0d0
+  call spherical_setup(theta0, theta_dot0, phi_dot0, 0.0d0, eps, o, status)
+  if (status /= 0) return
+  facts = spherical_facts(o)
+end subroutine spherical_facts_v

@@ -91,3 +91,9 @@ __all__ += ["Pendulum", "Swing"]
 __all__ += ["mathieu_a", "mathieu_b", "mathieu_exponent", "mathieu_ce", "mathieu_se", "Transmon"]
 # networks of pendula
 __all__ += ["Network", "NetworkEquilibrium", "NormalModes", "DCSquid"]
+# the spherical pendulum exactly; the double pendulum's exact parts (normal modes, the forbidden flip region)
+from .systems.spherical import SphericalOrbit, SphericalPath, spherical_orbit  # noqa: E402
+from .systems.double import DoublePendulumModes, double_pendulum_modes, flip_forbidden  # noqa: E402
+
+__all__ += ["spherical_orbit", "SphericalOrbit", "SphericalPath",
+            "double_pendulum_modes", "DoublePendulumModes", "flip_forbidden"]
