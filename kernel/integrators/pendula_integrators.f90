@@ -44,7 +44,7 @@ module pendula_integrators
   use pendula_time_scales, only: n_scales, time_rates, fastest_rate
   implicit none
   private
-  public :: pendulum_model, make_model, add_effects, model_rates, user_force_fn, free_accel, &
+  public :: pendulum_model, make_model, add_effects, model_rates, kahan_add, user_force_fn, free_accel, &
     event_spec, run_stats, integrate, accel, accel_jacobian, &
     dop853_error_norm, dop853_step_2, dop853_step_6, system_rhs, verner_one_step_dense
 

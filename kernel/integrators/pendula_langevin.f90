@@ -24,6 +24,7 @@
 !> No module variables: every path works on its own locals (OpenMP-safe).
 module pendula_langevin
   use, intrinsic :: iso_c_binding, only: c_int64_t, c_int32_t, c_double
+  use pendula_rng_iface, only: pendula_rng_key, pendula_rng_normals
   use, intrinsic :: iso_fortran_env, only: int64
   use pendula_kinds, only: dp, two_pi, pi, nan_dp
   use pendula_threads, only: thread_count
@@ -51,19 +52,6 @@ module pendula_langevin
     integer :: pos = nbuf + 1
   end type langevin_stream
 
-  interface
-    function pendula_rng_key(seed, index) bind(C, name="pendula_rng_key") result(key)
-      import :: c_int64_t
-      integer(c_int64_t), value, intent(in) :: seed, index
-      integer(c_int64_t) :: key
-    end function pendula_rng_key
-    subroutine pendula_rng_normals(key, first, n, z) bind(C, name="pendula_rng_normals")
-      import :: c_int64_t, c_int32_t, c_double
-      integer(c_int64_t), value, intent(in) :: key, first
-      integer(c_int32_t), value, intent(in) :: n
-      real(c_double), intent(out) :: z(*)
-    end subroutine pendula_rng_normals
-  end interface
 
 contains
 

@@ -33,8 +33,9 @@
 !> No module variables: every call works on its own locals (OpenMP-safe).
 module pendula_ode
   use, intrinsic :: iso_c_binding, only: c_int64_t, c_int32_t, c_double
+  use pendula_rng_iface, only: pendula_rng_key, pendula_rng_normals
   use pendula_kinds, only: dp, i8, nan_dp
-  use pendula_integrators, only: run_stats, dop853_error_norm, max_steps, max_fixed_steps, &
+  use pendula_integrators, only: kahan_add, run_stats, dop853_error_norm, max_steps, max_fixed_steps, &
     st_ok, st_bad_step, st_bad_tol, st_bad_method, st_step_underflow, st_nonfinite, st_too_many_steps, &
     st_cancelled
   use pendula_rk_coefficients, only: d8_a, d8_b, d8_c, d8_d, d8_e3, d8_e5, g2_mu, g2_b, g2_c, g3_mu, g3_b, g3_c
@@ -89,19 +90,6 @@ module pendula_ode
     end subroutine accel_fn
   end interface
 
-  interface
-    function pendula_rng_key(seed, index) bind(C, name="pendula_rng_key") result(key)
-      import :: c_int64_t
-      integer(c_int64_t), value, intent(in) :: seed, index
-      integer(c_int64_t) :: key
-    end function pendula_rng_key
-    subroutine pendula_rng_normals(key, first, n, z) bind(C, name="pendula_rng_normals")
-      import :: c_int64_t, c_int32_t, c_double
-      integer(c_int64_t), value, intent(in) :: key, first
-      integer(c_int32_t), value, intent(in) :: n
-      real(c_double), intent(out) :: z(*)
-    end subroutine pendula_rng_normals
-  end interface
 
 contains
 
@@ -432,17 +420,6 @@ contains
       yout(:, kout) = y
     end do
   end subroutine ode_gauss
-
-  !> y + e += d with compensation (Kahan): e carries what y could not hold.
-  elemental subroutine kahan_add(y, e, d)
-    real(dp), intent(inout) :: y, e
-    real(dp), intent(in) :: d
-    real(dp) :: dd, s
-    dd = d + e
-    s = y + dd
-    e = dd - (s - y)
-    y = s
-  end subroutine kahan_add
 
   ! ====================================================================
   ! BAOAB: Langevin dynamics of a mechanical system
