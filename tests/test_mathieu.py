@@ -333,7 +333,7 @@ def test_transmon_negative_E_J():
 
 
 def test_transmon_level_count_must_be_whole():
-    with pytest.raises(TypeError, match="count"):
+    with pytest.raises(TypeError, match="n_levels"):
         pendula.Transmon(1.0, 1.0).levels(2.0)
 
 

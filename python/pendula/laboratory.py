@@ -52,7 +52,7 @@ class Swing:
     trajectory : Trajectory
         The same motion in the library's units (radians, rad/s, seconds):
         what :func:`pendula.simulate` returned, for the figures of
-        :mod:`pendula.plot` and :meth:`Trajectory.spectrum`.
+        ``pendula.plot`` and :meth:`Trajectory.spectrum`.
 
     See Also
     --------

@@ -3,7 +3,7 @@
 Mathieu's equation y'' + (a - 2 q cos 2z) y = 0 has solutions of period
 pi or 2 pi only for the characteristic values a_n(q) (even solutions) and
 b_n(q) (odd ones), and Floquet solutions exp(i nu z) P(z) of any real order
-nu for lambda_nu(q) (DLMF 28.2, 28.12).  The same numbers are the spectrum of
+nu for λ_ν(q) (DLMF 28.2, 28.12).  The same numbers are the spectrum of
 the quantum pendulum H = 4 E_C (n - n_g)^2 - E_J cos phi (the transmon,
 Koch et al. 2007) and the stability boundaries of the pendulum on a
 vibrating pivot (the Ince-Strutt chart).
@@ -71,21 +71,21 @@ def mathieu_a(nu: ArrayLike, q: ArrayLike, *, bound: bool = False
 
     For integer nu = n, the value for which y'' + (a - 2 q cos 2z) y = 0 has
     the even solution ce_n of period pi or 2 pi (DLMF 28.2(v)); for
-    non-integer nu, the value lambda_nu(q) of the Floquet solution of
+    non-integer nu, the value λ_ν(q) of the Floquet solution of
     exponent nu (DLMF 28.12), the same as :func:`mathieu_b`.
 
     Parameters
     ----------
     nu : array_like
         Order, 0 <= nu <= 1e8 (integer or not).  Negative orders are refused
-        (NaN with a RuntimeWarning): for non-integer nu, lambda_-nu =
-        lambda_nu, so pass abs(nu).
+        (NaN with a RuntimeWarning): for non-integer nu, the value of -nu is
+        the value of nu, so pass abs(nu).
     q : array_like
         Parameter, any sign, abs(q) <= 1e10.  Broadcast against `nu`.
     bound : bool, optional
         Also return the a-posteriori bound on the truncation error of each
         value (the residual of the truncated eigenvector in the infinite
-        Hill matrix); the rounding error, a few eps times max(|a|, |q|),
+        Hill matrix); the rounding error, a few eps times max(abs(a), abs(q)),
         comes on top.
 
     Returns
@@ -119,7 +119,7 @@ def mathieu_b(nu: ArrayLike, q: ArrayLike, *, bound: bool = False
 
     For integer nu = n >= 1, the value for which Mathieu's equation has the
     odd solution se_n of period pi or 2 pi (DLMF 28.2(v)); b_0 does not exist
-    (NaN with a RuntimeWarning).  For non-integer nu, lambda_nu(q), the same
+    (NaN with a RuntimeWarning).  For non-integer nu, λ_ν(q), the same
     as :func:`mathieu_a`.
 
     Parameters
@@ -161,14 +161,14 @@ def mathieu_b(nu: ArrayLike, q: ArrayLike, *, bound: bool = False
 def mathieu_exponent(a: ArrayLike, q: ArrayLike) -> NDArray[np.float64] | np.float64:
     """Characteristic exponent nu(a, q) of Mathieu's equation.
 
-    The inverse of lambda_nu(q): the order nu >= 0 whose Floquet solutions
+    The inverse of λ_ν(q): the order nu >= 0 whose Floquet solutions
     exp(+-i nu z) P(z) solve y'' + (a - 2 q cos 2z) y = 0 (DLMF 28.2(iii)).
     It is real exactly where every solution is bounded: in the bands
-    a_n(|q|) <= a <= b_n+1(|q|), where n <= nu <= n + 1.  Between the bands
+    a_n(abs(q)) <= a <= b_n+1(abs(q)), where n <= nu <= n + 1.  Between the bands
     (the instability tongues of the Ince-Strutt chart, and a < a_0) it is
     complex, and NaN is returned there without a warning: NaN is the answer
     "unstable", not an error.  Where a band is narrower than the rounding
-    of ``a`` (large |q|, low bands, whose width falls like exp(-4 sqrt(q))),
+    of ``a`` (large abs(q), low bands, whose width falls like exp(-4 sqrt(q))),
     a double cannot say where in the band it lies; such an ``a`` counts as
     an edge of the band, and NaN comes back.
 
@@ -242,7 +242,7 @@ def mathieu_ce(n: int, q: float, z: ArrayLike) -> tuple[NDArray[np.float64] | np
     ce, dce : ndarray or float
         ce_n(z, q) and d ce_n / dz.  Absolutely accurate to a few eps (the
         Fourier coefficients have unit norm); where the function is
-        exponentially small (near z = 0 or pi/2 for large |q|) that is not
+        exponentially small (near z = 0 or pi/2 for large abs(q)) that is not
         a relative accuracy.
 
     See Also
@@ -330,8 +330,8 @@ class Transmon:
 
     See Also
     --------
-    mathieu_a : the characteristic values behind the levels.
-    pendula.plot.levels : the levels against n_g.
+    mathieu_a : the characteristic values behind the levels
+        (``pendula.plot.levels`` draws them against n_g).
 
     Examples
     --------
@@ -361,7 +361,7 @@ class Transmon:
                      n_g: float = 0.0) -> Transmon:
         """The split transmon (a SQUID of two junctions) at an external flux.
 
-        E_J = E_J_max |cos(pi flux)| sqrt(1 + d^2 tan^2(pi flux)), with flux
+        E_J = E_J_max abs(cos(pi flux)) sqrt(1 + d^2 tan^2(pi flux)), with flux
         in flux quanta and d = (E_J1 - E_J2)/(E_J1 + E_J2) the junctions'
         asymmetry (Koch et al. 2007, eq. 2.16).
 
@@ -408,12 +408,12 @@ class Transmon:
     def _ng(self, n_g) -> np.ndarray:
         return np.asarray(self.n_g if n_g is None else as_float(n_g, "n_g"), dtype=np.float64)
 
-    def levels(self, count_: int = 5, n_g: ArrayLike | None = None) -> NDArray[np.float64]:
+    def levels(self, n_levels: int = 5, n_g: ArrayLike | None = None) -> NDArray[np.float64]:
         """The lowest levels E_0 < E_1 < ... at the offset charge(s) n_g.
 
         Parameters
         ----------
-        count_ : int, optional
+        n_levels : int, optional
             How many levels (the first positional argument), at least 1.
         n_g : array_like, optional
             Offset charge(s); the transmon's own when omitted.
@@ -421,8 +421,8 @@ class Transmon:
         Returns
         -------
         E : ndarray
-            Shape ``np.shape(n_g) + (count_,)``: E_m(n_g) for m = 0 ..
-            count_ - 1, in the units of E_J and E_C.
+            Shape ``np.shape(n_g) + (n_levels,)``: E_m(n_g) for m = 0 ..
+            n_levels - 1, in the units of E_J and E_C.
 
         Examples
         --------
@@ -431,7 +431,7 @@ class Transmon:
         >>> rotor.levels(3).tolist()      # 4 E_C (n - n_g)^2 sorted
         [0.25, 2.25, 6.25]
         """
-        c = count(count_, "count", 1, 10 ** 6)
+        c = count(n_levels, "n_levels", 1, 10 ** 6)
         ng = self._ng(n_g)
         m = np.arange(c, dtype=np.int32)
         lam = _levels(2.0 * ng[..., None], np.float64(self.q), m, "Transmon.levels")
@@ -492,7 +492,7 @@ class Transmon:
 
         The width of the m-th band with the sign of Koch et al., eq. (2.5):
         positive for even m.  Both levels are computed to double-double
-        precision (about 1e-31 of |q|) in the kernel, so the difference
+        precision (about 1e-31 of abs(q)) in the kernel, so the difference
         keeps full double precision even where it is 1e-15 of the levels,
         and 1e-10 relative while it is above about 1e-22 of them (for m = 0
         up to E_J/E_C of about 250); below that, NaN with a RuntimeWarning
@@ -570,14 +570,14 @@ class Transmon:
         return ((-1) ** m * self.E_C * 2.0 ** (4 * m + 5) / math.factorial(m) * math.sqrt(2.0 / math.pi)
                 * (r / 2.0) ** (m / 2.0 + 0.75) * math.exp(-math.sqrt(8.0 * r)))
 
-    def spectrum_vs_ng(self, n_g: ArrayLike, count_: int = 5) -> xarray.DataArray:
+    def spectrum_vs_ng(self, n_g: ArrayLike, n_levels: int = 5) -> xarray.DataArray:
         """The levels against the offset charge, as an xarray DataArray.
 
         Parameters
         ----------
         n_g : array_like
             1-D offset charges.
-        count_ : int, optional
+        n_levels : int, optional
             How many levels.
 
         Returns
@@ -596,12 +596,12 @@ class Transmon:
         ng = as_float(n_g, "n_g")
         if ng.ndim != 1:
             raise ValueError("n_g must be one-dimensional")
-        e = self.levels(count_, ng)
+        e = self.levels(n_levels, ng)
         return xr.DataArray(e, dims=("n_g", "level"),
                             coords={"n_g": ng, "level": np.arange(e.shape[-1])},
                             name="E", attrs={"E_J": self.E_J, "E_C": self.E_C})
 
-    def spectrum_vs_ratio(self, ratio: ArrayLike, count_: int = 5,
+    def spectrum_vs_ratio(self, ratio: ArrayLike, n_levels: int = 5,
                           n_g: float | None = None) -> xarray.DataArray:
         """The levels in units of E_C against E_J / E_C, as an xarray DataArray.
 
@@ -609,7 +609,7 @@ class Transmon:
         ----------
         ratio : array_like
             1-D values of E_J / E_C (>= 0).
-        count_ : int, optional
+        n_levels : int, optional
             How many levels.
         n_g : float, optional
             Offset charge; the transmon's own when omitted.
@@ -632,7 +632,7 @@ class Transmon:
             raise ValueError("ratio must be one-dimensional")
         if np.any(~(r >= 0)):
             raise ValueError("ratio (E_J / E_C) must be >= 0 and not NaN")
-        c = count(count_, "count", 1, 10 ** 6)
+        c = count(n_levels, "n_levels", 1, 10 ** 6)
         ng = self.n_g if n_g is None else real(n_g, "n_g")
         lam = _levels(np.float64(2.0 * ng), (-r / 2.0)[:, None], np.arange(c, dtype=np.int32),
                       "Transmon.spectrum_vs_ratio")
@@ -640,7 +640,7 @@ class Transmon:
                             coords={"EJ_over_EC": r, "level": np.arange(c)},
                             name="E_over_EC", attrs={"n_g": ng})
 
-    def wavefunctions(self, count_: int = 5, n_g: float | None = None,
+    def wavefunctions(self, n_levels: int = 5, n_g: float | None = None,
                       n_max: int | None = None) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
         """The eigenfunctions in the charge basis: psi_m(n), n = -n_max .. n_max.
 
@@ -648,12 +648,12 @@ class Transmon:
 
         Parameters
         ----------
-        count_ : int, optional
-            How many levels (m = 0 .. count_ - 1).
+        n_levels : int, optional
+            How many levels (m = 0 .. n_levels - 1).
         n_g : float, optional
             Offset charge; the transmon's own when omitted.
         n_max : int, optional
-            The largest charge |n| kept; by default grown until what lies
+            The largest charge abs(n) kept; by default grown until what lies
             beyond carries less than 1e-15 of each function's norm.
 
         Returns
@@ -661,7 +661,7 @@ class Transmon:
         n : ndarray of int
             The charges -n_max .. n_max.
         psi : ndarray
-            Shape ``(count_, 2 n_max + 1)``: psi[m, i] = <n_i | m>.
+            Shape ``(n_levels, 2 n_max + 1)``: psi[m, i], the amplitude of charge n_i in level m.
 
         Raises
         ------
@@ -675,7 +675,7 @@ class Transmon:
         >>> bool(np.allclose(psi @ psi.T, np.eye(2), atol=1e-14))
         True
         """
-        c = count(count_, "count", 1, 10 ** 5)
+        c = count(n_levels, "n_levels", 1, 10 ** 5)
         ng = self.n_g if n_g is None else real(n_g, "n_g")
         grow = n_max is None
         nm = count(n_max, "n_max", 1, 10 ** 7) if n_max is not None else \
@@ -694,17 +694,17 @@ class Transmon:
         # rows k = p - nm .. p + nm are the charges n = p - k: nm .. -nm
         return np.arange(-nm, nm + 1), vec.T[:, ::-1].copy()
 
-    def wavefunctions_phase(self, phi: ArrayLike, count_: int = 5,
+    def wavefunctions_phase(self, phi: ArrayLike, n_levels: int = 5,
                             n_g: float | None = None) -> NDArray[np.complex128]:
         """The eigenfunctions in the phase basis: psi_m(phi) = sum_n psi_m(n) exp(i n phi) / sqrt(2 pi).
 
-        Normalised on one period, |psi_m|^2 integrates to 1 over [-pi, pi].
+        Normalised on one period, abs(psi_m)^2 integrates to 1 over [-pi, pi].
 
         Parameters
         ----------
         phi : array_like
             The phases (radians).
-        count_ : int, optional
+        n_levels : int, optional
             How many levels.
         n_g : float, optional
             Offset charge; the transmon's own when omitted.
@@ -712,7 +712,7 @@ class Transmon:
         Returns
         -------
         psi : ndarray of complex
-            Shape ``(count_,) + np.shape(phi)``.
+            Shape ``(n_levels,) + np.shape(phi)``.
 
         See Also
         --------
@@ -727,18 +727,18 @@ class Transmon:
         1.0
         """
         p = as_float(phi, "phi")
-        n, psi = self.wavefunctions(count_, n_g)
+        n, psi = self.wavefunctions(n_levels, n_g)
         return (psi @ np.exp(1j * np.outer(n, p.reshape(-1)))).reshape((psi.shape[0],) + p.shape) \
             / math.sqrt(2.0 * math.pi)
 
-    def matrix_elements(self, operator: str, count_: int = 5, n_g: float | None = None) -> NDArray[np.float64]:
-        """Matrix elements <i| A |j> between the lowest levels.
+    def matrix_elements(self, operator: str, n_levels: int = 5, n_g: float | None = None) -> NDArray[np.float64]:
+        """Matrix elements A_ij = (i, A j) between the lowest levels.
 
         Parameters
         ----------
         operator : {"n", "cos_phi"}
             The charge n (Cooper pairs) or cos phi.
-        count_ : int, optional
+        n_levels : int, optional
             How many levels.
         n_g : float, optional
             Offset charge; the transmon's own when omitted.
@@ -746,7 +746,7 @@ class Transmon:
         Returns
         -------
         A : ndarray
-            Shape ``(count_, count_)``, real symmetric.
+            Shape ``(n_levels, n_levels)``, real symmetric.
 
         Examples
         --------
@@ -758,7 +758,7 @@ class Transmon:
         """
         if operator not in ("n", "cos_phi"):
             raise ValueError(f"operator must be 'n' or 'cos_phi', got {operator!r}")
-        n, psi = self.wavefunctions(count_, n_g)
+        n, psi = self.wavefunctions(n_levels, n_g)
         if operator == "n":
             return (psi * n) @ psi.T
         shifted = psi[:, 1:] @ psi[:, :-1].T

@@ -171,7 +171,8 @@ class DCSquid:
 
     See Also
     --------
-    squid_critical_current : Ic(Φ)/I₀ in reduced units.
+    Junction : the single junction whose constants it builds on
+        (``pendula.squid.squid_critical_current`` gives Ic(Φ)/I₀ in reduced units).
 
     Examples
     --------

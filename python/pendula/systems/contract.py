@@ -138,7 +138,7 @@ class TimeScales:
         Each scale's rate (1 / time, 0 where the field is absent): 'oscillation'
         (sqrt of eps times the field's stiffness), 'damping' (beta), 'drive' and
         'pivot' (their angular frequencies), 'pivot_force' (sqrt(a) Omega_p),
-        'torque' (sqrt |tau|), 'friction', 'drag', 'rotation' (|v0|).
+        'torque' (sqrt(abs(tau))), 'friction', 'drag', 'rotation' (abs(v0)).
     fastest : float
         The fastest rate: it bounds every method's step.
     forcing_frequency : float

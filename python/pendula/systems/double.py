@@ -15,7 +15,7 @@ and has no closed form; these two facts have one:
   mass).  To flip the first arm over the top it must pass theta1 = pi, where V
   is at least g (A - B); the second arm needs g (B - A).  From rest at
   (theta1, theta2) the energy is V(theta1, theta2), so neither arm can ever
-  flip where A cos theta1 + B cos theta2 > |A - B| (for equal point masses and
+  flip where A cos theta1 + B cos theta2 > abs(A - B) (for equal point masses and
   lengths: 2 cos theta1 + cos theta2 > 1).
 """
 
@@ -173,7 +173,7 @@ def flip_forbidden(theta1: ArrayLike, theta2: ArrayLike, m1: float = 1.0, m2: fl
     ndarray of bool
         True where the energy from rest lies below the least energy with
         which either arm can pass over the top: A cos theta1 + B cos theta2 >
-        |A - B|.  The mask of a flip-time map: there the flip time is
+        abs(A - B).  The mask of a flip-time map: there the flip time is
         infinite without any integration.  (Decided in double precision:
         points within a few eps of the boundary may fall either way.)
 

@@ -541,7 +541,7 @@ class Network:
             The starting phases (one number for all, or N).
         tol : float, optional
             Newton stops when a step moves no phase by more than
-            tol (1 + |φ|) (default 1e-14).  Steps longer than 1 rad are
+            tol (1 + abs(φ)) (default 1e-14).  Steps longer than 1 rad are
             shortened to 1 rad (a start far from a rest point).
         maxit : int, optional
             The most Newton steps (default 50).

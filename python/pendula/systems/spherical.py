@@ -276,7 +276,7 @@ def spherical_orbit(theta0: float, theta_dot0: float, phi_dot0: float, eps: floa
     ValueError
         Naming the field: eps not in (0, 1e300]; theta0 outside [0, pi];
         a non-finite rate; an azimuthal rate at the pole (undefined there);
-        rates beyond 1e100 sqrt(eps); 0 < |L_z| < 1e-100 sqrt(eps).
+        rates beyond 1e100 sqrt(eps); 0 < abs(L_z) < 1e-100 sqrt(eps).
 
     See Also
     --------
