@@ -54,6 +54,11 @@ from .dynamics import (Bifurcation, Branch, ContinuationError, EquilibriumBranch
                        continue_orbit)
 from .spectrum import precompute_wisdom, wisdom_path  # noqa: E402
 
+# the junction in the laboratory: escape and switching at any ramp rate, rf as the source states it
+from .escape import (SwitchingDistribution, crossover_temperature, escape_rate, quantum_rate,  # noqa: E402
+                     switching_distribution, thermal_rate)
+from .rf import rf_current  # noqa: E402
+
 # the version of the installed metadata (written once, in meson.build)
 from ._version import __version__  # noqa: E402
 
@@ -71,3 +76,5 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Junction", "SwitchingCurrents", "attractor_continuation",
            "continue_orbit", "continue_equilibria", "Branch", "Bifurcation", "EquilibriumBranch",
            "ContinuationError"]
+__all__ += ["thermal_rate", "quantum_rate", "escape_rate", "crossover_temperature", "switching_distribution",
+            "SwitchingDistribution", "rf_current"]
