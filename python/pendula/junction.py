@@ -595,8 +595,8 @@ class Junction:
         """
         from .overdamped import dc_velocity
         self._overdamped("the closed-form dc I-V")
-        i = _checks.as_float(bias, "parameter 'bias'") / self.critical_current
-        return dc_velocity(i) * (self.critical_current * self.resistance)
+        b = _checks.as_float(bias, "parameter 'bias'")
+        return dc_velocity(b, self.critical_current) * (self.critical_current * self.resistance)
 
     def shapiro_steps(self, rf_current: float, rf_frequency: float, orders: ArrayLike = (0, 1, 2, 3), *,
                       threads: int = 0) -> dict[str, np.ndarray]:
@@ -677,7 +677,7 @@ class Junction:
                              "without a frequency is a dc bias: add it to the bias)")
         i = currents / self.critical_current
         if a == 0:
-            vm, err = dc_velocity(i), np.zeros_like(i)
+            vm, err = dc_velocity(currents, self.critical_current), np.zeros_like(i)
             step, st = np.full_like(i, np.nan), np.zeros(i.shape, dtype=np.int32)
         else:
             tm = 2000.0 / f if t_max is None else _checks.real(t_max, "parameter 't_max'", 0.0, lo_open=True)

@@ -37,15 +37,16 @@ __all__ = ["dc_velocity", "mean_velocity", "step_edges"]
 RTOL = 1e-12
 
 
-def dc_velocity(i: np.ndarray) -> np.ndarray:
-    """<phi'> of the undriven RSJ junction at reduced bias i: sign(i) sqrt(i² - 1)
-    above 1 (as sqrt((|i| - 1)(|i| + 1)): no cancellation near the critical
-    current), 0 below (the phase at rest in its well)."""
-    i = np.asarray(i, dtype=float)
-    a = np.abs(i)
-    with np.errstate(invalid="ignore"):
-        v = np.where(a > 1.0, np.sqrt(np.maximum(a - 1.0, 0.0) * (a + 1.0)), 0.0)
-    return np.copysign(v, i) * (a > 1.0)
+def dc_velocity(bias: np.ndarray, critical_current: float) -> np.ndarray:
+    """<phi'> of the undriven RSJ junction at the bias currents (A): sign(I)
+    sqrt(I² - I_c²) / I_c above I_c, 0 below (the phase at rest in its well).
+    Computed as sqrt((|I| - I_c)(|I| + I_c)) in amperes: |I| - I_c is exact
+    next to I_c (Sterbenz), so there is no cancellation there."""
+    b = np.asarray(bias, dtype=float)
+    a = np.abs(b)
+    above = a > critical_current
+    v = np.sqrt(np.where(above, (a - critical_current) * (a + critical_current), 0.0)) / critical_current
+    return np.copysign(v, b) * above
 
 
 def mean_velocity(i: np.ndarray, a: float, omega: float, periods: int = 2000, threads: int = 0):

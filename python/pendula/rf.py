@@ -58,6 +58,10 @@ def rf_current(*, current: float | None = None, voltage: float | None = None,
         (or either impedance without its quantity), or a value out of range,
         naming the parameter.
 
+    See Also
+    --------
+    pendula.Junction.iv_curve : takes the rf current it gives.
+
     Examples
     --------
     >>> from pendula.rf import rf_current
