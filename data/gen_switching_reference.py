@@ -21,12 +21,14 @@ Gamma / (di/dt), the mean is E[i] = int_0^1 S and the variance
 (a - m)^2 + int_a^c 2 (i - m) S(i) di (S = 1 to 1e-17 below a, S < e^-300
 above c), both by composite 24-point Gauss-Legendre (mpmath's nodes) on
 120 equal panels of [a, c], Phi at each node by the same rule from its
-panel's edge.  The thermal rate's slowly varying prefactor is a Chebyshev fit (mpmath.chebyfit, degree 24,
-its error stored) on [a, c], the exponent exact; at 20 mK the thermal rate
-is below e^-300 of the tunnelling one on [a, c] and is left out (checked).
+panel's edge.  The thermal rate's slowly varying prefactor is a Chebyshev
+fit (mpmath.chebyfit, degree 39, fitted and evaluated at 60 digits: its
+monomial form needs them; its error stored) on [a, c], the exponent exact;
+at 20 mK the thermal rate is below e^-300 of the tunnelling one on [a, c]
+and is left out (checked).
 Done at 20 digits on 120 panels and again on 180: the spread is stored.
 
-Run: python data/gen_switching_reference.py   (a few minutes)
+Run: python data/gen_switching_reference.py   (about a CPU minute a case)
 """
 
 import json
@@ -100,7 +102,9 @@ class Case:
         q = self.quantum_log(i)
         if self.fit is None:
             return q + self.shift
-        return max(mp.polyval(self.fit, i) - self.du(i) / self.temp, q) + self.shift
+        with mp.workdps(60):              # the monomial form of the fit needs the digits
+            pref = +mp.polyval(self.fit, i)
+        return max(pref - self.du(i) / self.temp, q) + self.shift
 
     @staticmethod
     def bisect(above, lo, hi):
@@ -133,7 +137,8 @@ class Case:
             self.thermal_prefactor_log(x) - self.du(x) / self.temp > self.quantum_log(x) - 300
             for x in (a, (a + c) / 2, c))
         if thermal_matters:
-            self.fit, err = mp.chebyfit(self.thermal_prefactor_log, [a, c], 25, error=True)
+            with mp.workdps(60):
+                self.fit, err = mp.chebyfit(self.thermal_prefactor_log, [a, c], 40, error=True)
             check["chebyfit_error"] = float(err)
         else:
             check["thermal_left_out"] = "below e^-300 of the tunnelling rate at a, (a + c) / 2 and c"

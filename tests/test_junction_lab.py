@@ -108,6 +108,27 @@ def test_rsj_every_bias_on_a_step_is_reported_locked():
     assert np.all(np.abs(v[off] / (f * PHI0) - np.round(v[off] / (f * PHI0))) > 0)
 
 
+def test_rsj_off_step_voltage_within_its_bound_of_scipy():
+    # off the steps the rotation number of the circle map is F^K(0) / (2 pi K) within 1 / K: the library's
+    # K = 2000 periods against SciPy's DOP853 (rtol 1e-11) over 400 periods, each with its bound
+    from scipy.integrate import solve_ivp
+    ic, r = 10e-6, 30.0
+    j = Junction(ic, r, 0.0)
+    a, omega = 1.0, 1.0
+    f = omega * j.characteristic_frequency / (2 * math.pi)
+    k = 400
+    for i in (0.9, 1.8):
+        iv = j.iv_curve([i * ic], rf_current=a * ic, rf_frequency=f)
+        assert iv.status.values[0][0] == 0
+        v = iv.voltage.values[0][0] / (ic * r)                   # <phi'> in units of omega_c
+        bound = iv.voltage_err.values[0][0] / (ic * r)
+        assert bound == pytest.approx(omega / 2000, rel=1e-12)
+        sol = solve_ivp(lambda t, y: i + a * np.cos(omega * t) - np.sin(y), (0, k * 2 * np.pi / omega), [0.0],
+                        method="DOP853", rtol=1e-11, atol=1e-11)
+        ref = sol.y[0, -1] / (k * 2 * np.pi / omega)
+        assert abs(v - ref) <= bound + omega / k, (i, v, ref)
+
+
 def test_rsj_refuses_what_needs_a_plasma_frequency_naming_capacitance():
     j = Junction(10e-6, 30.0, 0.0)
     hot = Junction(10e-6, 30.0, 0.0, temperature=1.0)
