@@ -5,7 +5,7 @@ load average is recorded before and after):
 
 * at a laboratory ramp (the 10 uA, 1 pF, 30 ohm junction at 4.2 K and 20 mK, 1 A/s and 1 mA/s): the cost
   of ``pendula.switching_distribution`` (mean, width and the density on 401 currents).  Direct Langevin
-  ramps cannot run there (a ramp of 1 A/s is 6e-7 I_c per plasma period: about 1e8 steps a ramp);
+  ramps cannot run there (a ramp of 1 A/s is 6e-7 I_c per 1 / omega_p: about 2e7 steps a ramp);
   their cost is estimated from the measured cost per step below.
 * at a ramp where both run (beta = 1, k_B T = 0.2 E_J, 2e-4 I_c per 1 / omega_p, dt = 0.1): the
   integral against ``Junction.switching_currents`` with ``--n`` ramps (1,000 by default), the ratio of
