@@ -71,8 +71,9 @@ def test_ohmic_line_far_above_the_critical_current():
 
 
 def test_zero_capacitance_names_the_overdamped_model():
+    # C = 0 is the overdamped junction (tests/test_junction_lab.py); the pendulum's scene refuses it
     with pytest.raises(ValueError, match="'capacitance'.*overdamped"):
-        Junction(1e-6, 10.0, 0.0)
+        Junction(1e-6, 10.0, 0.0).scene(0.5e-6)
 
 
 @pytest.mark.parametrize("kw, name", [(dict(temperature=-1.0), "temperature"), (dict(resistance=0.0), "resistance"),

@@ -88,7 +88,9 @@ def test_no_import_circle():
 @pytest.mark.parametrize("low", ["pendula.elliptic", "pendula.series", "pendula.scene", "pendula.trajectory",
                                  "pendula.systems.rigid", "pendula._checks", "pendula._files",
                                  "pendula.quantum", "pendula.systems.network",
-                                 "pendula.systems.spherical", "pendula.systems.double"])
+                                 "pendula.systems.spherical", "pendula.systems.double",
+                                 # the junction's layer (with junction.py): escape, the RSJ junction, rf
+                                 "pendula.escape", "pendula.overdamped", "pendula.rf"])
 def test_lower_layers_do_not_import_the_user_facing_ones(low):
     top = {"pendula", "pendula.motion", "pendula.run", "pendula.cli", "pendula.plot", "pendula.studies", "pendula.studies.accuracy", "pendula.studies.bench", "pendula.studies.workprecision"}
     # the classroom pendulum and the animation writer sit beside pendula.motion and pendula.plot
@@ -125,3 +127,12 @@ def test_dynamics_is_one_subpackage():
     g = _graph()
     for name in ("pendula.dynamics.equilibria", "pendula.dynamics.periodic", "pendula.dynamics.attractors"):
         assert name in g, f"{name} is not a module of the package"
+
+
+def test_the_junction_modules_sit_beside_the_junction():
+    """escape builds on junction (its constants and Junction); junction runs the overdamped junction through
+    overdamped; neither overdamped nor rf imports junction (no circle)."""
+    g = _graph()
+    assert "pendula.junction" in g["pendula.escape"]
+    assert "pendula.overdamped" in g["pendula.junction"]
+    assert "pendula.junction" not in g["pendula.overdamped"] and "pendula.junction" not in g["pendula.rf"]

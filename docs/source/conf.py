@@ -194,6 +194,9 @@ API_GROUPS = [
     ("Circuits and chains", ["Network", "NetworkEquilibrium", "NormalModes", "DCSquid"]),
     ("The spherical and the double pendulum", ["spherical_orbit", "SphericalOrbit", "SphericalPath",
                                                "double_pendulum_modes", "DoublePendulumModes", "flip_forbidden"]),
+    ("Escape, switching at any ramp rate, rf", ["escape_rate", "thermal_rate", "quantum_rate",
+                                                "crossover_temperature", "switching_distribution",
+                                                "SwitchingDistribution", "rf_current"]),
 ]
 # the pendulum of the classroom (metres, seconds, degrees)
 API_GROUPS += [("The pendulum in laboratory units", ["Pendulum", "Swing"])]

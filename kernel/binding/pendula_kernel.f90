@@ -1248,3 +1248,33 @@ subroutine spherical_facts_v(theta0, theta_dot0, phi_dot0, eps, facts, status)
   if (status /= 0) return
   facts = spherical_facts(o)
 end subroutine spherical_facts_v
+! ---------------------------------------------------------------- the overdamped (RSJ) junction
+! Mean phase velocity <phi'> of phi' = i + a cos(omega t) - sin(phi) at each bias (units of omega_c):
+! vm, its error bound err (0 when locked), the Shapiro step where locked (else NaN), status 0 decided,
+! 6 locked, 1 the integration failed, 5 cancelled (pendula_rsj).
+subroutine rsj_mean_velocity_v(n, bias, a, omega, rtol, atol, periods, nthreads, cancel, vm, err, step, status)
+  use pendula_rsj, only: rsj_mean_velocity
+  implicit none
+  integer, intent(in) :: n, nthreads
+  double precision, intent(in) :: bias(n), a, omega, rtol, atol
+  integer(8), intent(in) :: periods
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: vm(n), err(n), step(n)
+  integer, intent(out) :: status(n)
+  !f2py threadsafe
+  !f2py intent(hide), depend(bias) :: n = len(bias)
+  call rsj_mean_velocity(n, bias, a, omega, rtol, atol, periods, vm, err, step, status, nthreads, cancel(1))
+end subroutine rsj_mean_velocity_v
+
+! The extrema of g(x) = F(x) - x of the RSJ stroboscopic map at each bias (pendula_rsj).
+subroutine rsj_gap_ranges_v(n, bias, a, omega, rtol, atol, nthreads, gmin, gmax, status)
+  use pendula_rsj, only: rsj_gap_ranges
+  implicit none
+  integer, intent(in) :: n, nthreads
+  double precision, intent(in) :: bias(n), a, omega, rtol, atol
+  double precision, intent(out) :: gmin(n), gmax(n)
+  integer, intent(out) :: status(n)
+  !f2py threadsafe
+  !f2py intent(hide), depend(bias) :: n = len(bias)
+  call rsj_gap_ranges(n, bias, a, omega, rtol, atol, gmin, gmax, status, nthreads)
+end subroutine rsj_gap_ranges_v

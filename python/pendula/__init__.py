@@ -67,6 +67,11 @@ from .quantum import Transmon, mathieu_a, mathieu_b, mathieu_ce, mathieu_exponen
 from .systems.network import Network, NetworkEquilibrium, NormalModes  # noqa: E402
 from .squid import DCSquid  # noqa: E402
 
+# the junction in the laboratory: escape and switching at any ramp rate, rf as the source states it
+from .escape import (SwitchingDistribution, crossover_temperature, escape_rate, quantum_rate,  # noqa: E402
+                     switching_distribution, thermal_rate)
+from .rf import rf_current  # noqa: E402
+
 # the version of the installed metadata (written once, in meson.build)
 from ._version import __version__  # noqa: E402
 
@@ -97,3 +102,5 @@ from .systems.double import DoublePendulumModes, double_pendulum_modes, flip_for
 
 __all__ += ["spherical_orbit", "SphericalOrbit", "SphericalPath",
             "double_pendulum_modes", "DoublePendulumModes", "flip_forbidden"]
+__all__ += ["thermal_rate", "quantum_rate", "escape_rate", "crossover_temperature", "switching_distribution",
+            "SwitchingDistribution", "rf_current"]

@@ -111,8 +111,12 @@ class Junction:
     resistance : float
         The shunt resistance R, ohms (> 0).
     capacitance : float
-        The capacitance C, farads (> 0; C = 0 is the overdamped RSJ model, a
-        first-order equation that is not a pendulum: not run by pendula).
+        The capacitance C, farads (>= 0).  C = 0 is the overdamped junction
+        (the RSJ model, a first-order equation, :mod:`pendula.overdamped`):
+        its exact dc I-V, its Shapiro steps and their edges
+        (:meth:`iv_curve`, :meth:`dc_voltage`, :meth:`shapiro_steps`);
+        what needs a plasma frequency (the pendulum's scene, escape,
+        switching) refuses it, naming the field.
     temperature : float
         T, kelvin (>= 0): thermal noise of the resistor (Johnson-Nyquist),
         the pendulum's Langevin force.
@@ -122,8 +126,7 @@ class Junction:
     TypeError
         A parameter that is not a real number.
     ValueError
-        A parameter out of range, naming it (zero capacitance says that the
-        overdamped limit is another model).
+        A parameter out of range, naming it.
 
     See Also
     --------
@@ -144,13 +147,7 @@ class Junction:
                  temperature: float = 0.0) -> None:
         self.critical_current = _checks.real(critical_current, "parameter 'critical_current'", 0.0, lo_open=True)
         self.resistance = _checks.real(resistance, "parameter 'resistance'", 0.0, lo_open=True)
-        c = _checks.real(capacitance, "parameter 'capacitance'")
-        if not c > 0:
-            raise ValueError(f"parameter 'capacitance' must be > 0 farads, got {c!r}: at C = 0 the junction is "
-                             "overdamped (the RSJ model, theta' + sin(theta) = I / I_c: a first-order equation, "
-                             "another model than the pendulum, which pendula does not run); a small capacitance "
-                             "(Stewart-McCumber parameter << 1) approaches that limit")
-        self.capacitance = c
+        self.capacitance = _checks.real(capacitance, "parameter 'capacitance'", 0.0)
         self.temperature = _checks.real(temperature, "parameter 'temperature'", 0.0)
 
     def __repr__(self) -> str:
@@ -166,6 +163,10 @@ class Junction:
     @property
     def plasma_frequency(self) -> float:
         """omega_p = sqrt(2 pi I_c / (Phi_0 C)), rad / s (the pendulum's time unit is 1 / omega_p)."""
+        if not self.capacitance > 0:
+            raise ValueError("field 'capacitance' is 0: the overdamped (RSJ) junction has no plasma frequency "
+                             "and is not the pendulum; at C = 0 pendula gives iv_curve (the exact dc I-V and "
+                             "Shapiro steps), dc_voltage and shapiro_steps (give C > 0 for the rest)")
         return math.sqrt(2.0 * math.pi * self.critical_current / (FLUX_QUANTUM * self.capacitance))
 
     @property
@@ -289,10 +290,22 @@ class Junction:
         With an rf drive the curve has Shapiro steps at V = n h f / 2e: a
         phase-locked bias reports its step voltage exactly (status 'locked').
 
+        At C = 0 (the overdamped RSJ junction) the curve is the first-order
+        equation's (:mod:`pendula.overdamped`): exact without rf (V = R
+        sqrt(I² - I_c²)); with rf, a bias on a step reports n f Phi_0
+        exactly and off the steps the mean voltage over ``t_max`` (default
+        2000 rf periods) within the bound ``voltage_err``; no hysteresis
+        (both branches are the same curve) and no transient (``transient``
+        is not used: the result does not depend on the initial phase).
+
         Parameters
         ----------
         currents : array_like
-            Bias currents, A, ascending.
+            Bias currents, A, ascending (non-decreasing): the up branch runs
+            them in this order and the down branch in reverse.  Currents in
+            another order are refused (a ValueError naming ``currents``)
+            rather than reordered: ramped in the order given they would be
+            another branch than the one named.
         rf_current, rf_frequency : float
             The rf drive (A, Hz), both or neither.
         direction : {'up', 'down', 'both'}
@@ -315,7 +328,11 @@ class Junction:
         Raises
         ------
         ValueError
-            Bad currents, an rf frequency without a current, bad times.
+            Bad currents (or currents not in ascending order), an rf
+            frequency without a current, bad times.
+        NotImplementedError
+            At C = 0 with a temperature > 0 (thermal noise of the overdamped
+            junction).
 
         Examples
         --------
@@ -328,6 +345,14 @@ class Junction:
         """
         from .ivcurve import iv_curve
         currents = _checks.grid_values(currents, "parameter 'currents'")
+        if not isinstance(direction, str) or direction not in ("up", "down", "both"):
+            raise ValueError(f"parameter 'direction' must be 'up', 'down' or 'both'; got {direction!r}")
+        if np.any(np.diff(currents) < 0):
+            raise ValueError("parameter 'currents' must be in ascending order: direction='up' ramps them as "
+                             "given and 'down' in reverse, so currents in another order would be a branch "
+                             f"mislabelled {direction!r}; give np.sort(currents)")
+        if self.capacitance == 0:
+            return self._rsj_iv_curve(currents, rf_current, rf_frequency, direction, t_max)
         wp = self.plasma_frequency
         tr = 200.0 if transient is None else _checks.real(transient, "parameter 'transient'", 0.0) * wp
         tm = 400.0 if t_max is None else _checks.real(t_max, "parameter 't_max'", 0.0, lo_open=True) * wp
@@ -531,6 +556,164 @@ class Junction:
         counts, edges = np.histogram(samples[np.isfinite(samples)], bins=bins)
         return SwitchingCurrents(samples, counts, edges, rate, self.temperature)
 
+
+    # ------------------------------------------------------------- the overdamped (RSJ) junction, C = 0
+    @property
+    def characteristic_frequency(self) -> float:
+        """omega_c = 2 pi I_c R / Phi_0, rad / s (the RSJ equation's time unit; V = I_c R at <phi'> = omega_c)."""
+        return 2.0 * math.pi * self.critical_current * self.resistance / FLUX_QUANTUM
+
+    def _overdamped(self, what: str) -> None:
+        if self.capacitance != 0:
+            raise ValueError(f"field 'capacitance' is {self.capacitance!r} F: {what} is the overdamped junction's "
+                             "(the RSJ model, C = 0); with a capacitance use iv_curve")
+
+    def dc_voltage(self, bias: ArrayLike) -> np.ndarray:
+        """The exact dc I-V of the overdamped junction: V = R sqrt(I² - I_c²) above I_c.
+
+        The RSJ junction (C = 0) without rf or noise: V = sign(I) R
+        sqrt(I² - I_c²) for |I| > I_c, 0 below (Stewart 1968; Likharev 1986,
+        section 4.1); computed as R sqrt((|I| - I_c)(|I| + I_c)), without
+        cancellation next to I_c.
+
+        Parameters
+        ----------
+        bias : array_like
+            Bias currents, A.
+
+        Returns
+        -------
+        numpy.ndarray
+            Volts.
+
+        Raises
+        ------
+        ValueError
+            A junction with a capacitance (naming the field).
+        TypeError
+            A bias that is not numbers.
+
+        Examples
+        --------
+        >>> import pendula
+        >>> j = pendula.Junction(10e-6, 30.0, 0.0)
+        >>> round(float(j.dc_voltage(20e-6) / (30.0 * 3 ** 0.5 * 10e-6)), 14)    # R sqrt(4 - 1) I_c
+        1.0
+        """
+        from .overdamped import dc_velocity
+        self._overdamped("the closed-form dc I-V")
+        b = _checks.as_float(bias, "parameter 'bias'")
+        return dc_velocity(b, self.critical_current) * (self.critical_current * self.resistance)
+
+    def shapiro_steps(self, rf_current: float, rf_frequency: float, orders: ArrayLike = (0, 1, 2, 3), *,
+                      threads: int = 0) -> dict[str, np.ndarray]:
+        """The Shapiro steps of the overdamped junction: each step's voltage, edges and width.
+
+        The step n of the RSJ junction (C = 0) under I_rf cos(2 pi f t) is
+        the range of bias where the phase is locked n turns per rf period,
+        V = n f Phi_0 exactly; its edges are where the stroboscopic map
+        F(x) = phi(1 / f; phi(0) = x) gains or loses its fixed point
+        n turns on: max (F(x) - x) = 2 pi n (lower edge), min (F(x) - x) =
+        2 pi n (upper edge), bisected to 1e-11 I_c (:mod:`pendula.overdamped`;
+        the map by GSL's rk8pd to 1e-12).  In the limit of a large rf
+        frequency the widths approach the Bessel law 2 I_c |J_n(I_rf / (I_c
+        Omega))|.
+
+        Parameters
+        ----------
+        rf_current, rf_frequency : float
+            The rf drive: amplitude (A, > 0) and frequency (Hz, > 0).
+        orders : array_like of int
+            The steps n asked (n >= 0; the negative ones mirror them).
+        threads : int
+            OpenMP threads (0: all cores).
+
+        Returns
+        -------
+        dict
+            ``order``, ``voltage`` (V), ``lower`` and ``upper`` (the edges,
+            A; NaN for a step of zero width) and ``width`` (A).
+
+        Raises
+        ------
+        ValueError
+            A junction with a capacitance, an rf current or frequency that
+            is not > 0, or orders that are not whole numbers >= 0, naming the
+            parameter.
+
+        Examples
+        --------
+        >>> import pendula
+        >>> j = pendula.Junction(10e-6, 30.0, 0.0)
+        >>> s = j.shapiro_steps(10e-6, 100e9, orders=[1])
+        >>> round(float(s["voltage"][0] * 1e6), 3)                 # uV: f Phi_0
+        206.783
+        >>> bool(0 < s["width"][0] < 2 * 10e-6)
+        True
+        """
+        from .overdamped import step_edges
+        self._overdamped("the step edges")
+        a = _checks.real(rf_current, "parameter 'rf_current'", 0.0, lo_open=True)
+        f = _checks.real(rf_frequency, "parameter 'rf_frequency'", 0.0, lo_open=True)
+        n = _checks.grid_values(orders, "parameter 'orders'")
+        if np.any(n < 0) or np.any(n != np.round(n)):
+            raise ValueError(f"parameter 'orders' must be whole numbers >= 0, got {n.tolist()!r}")
+        omega = 2.0 * math.pi * f / self.characteristic_frequency
+        lo, hi = step_edges(n, a / self.critical_current, omega, threads)
+        ic = self.critical_current
+        return {"order": n.astype(int), "voltage": n * f * FLUX_QUANTUM, "lower": lo * ic, "upper": hi * ic,
+                "width": np.where(np.isfinite(lo), (hi - lo) * ic, 0.0)}
+
+    def _rsj_iv_curve(self, currents, rf_current, rf_frequency, direction, t_max):
+        """Junction.iv_curve at C = 0 (pendula.overdamped): the same dataset."""
+        from ._optional import require
+        from .overdamped import dc_velocity, mean_velocity
+        xr = require("xarray", "sweep", "pendula.Junction.iv_curve")
+        if self.temperature > 0:
+            raise NotImplementedError("field 'temperature' must be 0 at capacitance 0: thermal noise in the "
+                                      "overdamped junction (the Ambegaokar-Halperin phase-diffusion I-V) is not "
+                                      "implemented")
+        wc = self.characteristic_frequency
+        a = _checks.real(rf_current, "parameter 'rf_current'")
+        f = _checks.real(rf_frequency, "parameter 'rf_frequency'", 0.0)
+        if f > 0 and a == 0:
+            raise ValueError(f"parameter 'rf_current' is 0 but rf_frequency = {f!r} Hz: an rf drive needs a "
+                             "current (give rf_current, or no rf_frequency)")
+        if a != 0 and not f > 0:
+            raise ValueError(f"parameter 'rf_frequency' must be > 0 Hz with rf_current = {a!r} A (a current "
+                             "without a frequency is a dc bias: add it to the bias)")
+        i = currents / self.critical_current
+        if a == 0:
+            vm, err = dc_velocity(currents, self.critical_current), np.zeros_like(i)
+            step, st = np.full_like(i, np.nan), np.zeros(i.shape, dtype=np.int32)
+        else:
+            tm = 2000.0 / f if t_max is None else _checks.real(t_max, "parameter 't_max'", 0.0, lo_open=True)
+            vm, err, step, st = mean_velocity(i, a / self.critical_current, 2.0 * math.pi * f / wc,
+                                              max(1, round(tm * f)))
+        dirs = ["up", "down"] if direction == "both" else [direction]
+        volt = self.critical_current * self.resistance
+        dims = ("direction", "current")
+
+        def rows(x):
+            return np.stack([x] * len(dirs))
+        r = xr.Dataset(
+            {"voltage": (dims, rows(vm * volt), {"long_name": "dc voltage I_c R <phi'> / omega_c", "units": "V"}),
+             "voltage_err": (dims, rows(err * volt), {"long_name": "error bound of the dc voltage", "units": "V"}),
+             "step": (dims, rows(step), {"long_name": "Shapiro step n of a locked bias", "units": "1"}),
+             "status": (dims, rows(st), {"long_name": "0 decided, 6 locked (exactly n f Phi_0)"}),
+             "mean_velocity": (dims, rows(vm), {"long_name": "mean phase velocity <phi'> / omega_c (reduced "
+                                                             "voltage of the RSJ junction)", "units": "1"}),
+             "mean_velocity_err": (dims, rows(err), {"units": "1"})},
+            coords={"direction": ("direction", dirs, {"long_name": "branch of the ramp (the same curve: no "
+                                                                    "hysteresis at C = 0)"}),
+                    "current": ("current", currents, {"long_name": "bias current", "units": "A"}),
+                    "torque": ("current", i, {"long_name": "bias current / critical current", "units": "1"})},
+            attrs={"critical_current": self.critical_current, "resistance": self.resistance,
+                   "capacitance": 0.0, "temperature": self.temperature, "rf_current": a, "rf_frequency": f,
+                   "characteristic_frequency": wc, "model": "RSJ (overdamped): phi' = i + a cos(Omega t) - sin phi",
+                   "constants": "CODATA 2018 (exact): h = 6.62607015e-34 J s, e = 1.602176634e-19 C, "
+                                "k_B = 1.380649e-23 J/K"})
+        return r
 
 def _escape_rate(i, beta, temp, regime):
     """The thermal escape rate of the tilted washboard (eps = 1, reduced
