@@ -155,3 +155,12 @@ def test_both_programs_refuse_a_seed_beyond_two_to_the_53(tmp_path):
         pendula.Scene.from_file(scene)
     scene.write_text("&scene\n damping = 0.5, noise = 0.1, seed = 9007199254740992, t_end = 1.0\n/\n")
     assert pendula.Scene.from_file(scene).seed == 2**53
+
+
+def test_iv_curve_refuses_torques_out_of_order():
+    # descending torques ramped 'up' in the order given were a down ramp labelled 'up'
+    sc = pendula.Scene(damping=0.5)
+    with pytest.raises(ValueError, match="torques"):
+        pendula.iv_curve(sc, [1.2, 0.8, 0.4], direction="up", transient=10.0, t_max=20.0)
+    with pytest.raises(ValueError, match="torques"):
+        pendula.iv_curve(sc, [0.4, 0.4, 0.8], direction="both", transient=10.0, t_max=20.0)

@@ -431,6 +431,10 @@ class SwitchingDistribution:
     ramp_rate: float
     temperature: float
 
+    def __repr__(self) -> str:
+        return (f"SwitchingDistribution(mean {self.mean:.6g} A, width {self.width:.4g} A at {self.ramp_rate:.3g} A/s "
+                f"and {self.temperature:.4g} K; {self.currents.size} currents, {self.at_critical:.3g} at I_c)")
+
 
 def _panels(log_g, a, b, max_dlog=0.5, min_panels=64):
     """Panel edges on [a, b] with ln g changing by at most max_dlog across each."""

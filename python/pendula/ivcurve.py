@@ -146,6 +146,10 @@ def iv_curve(scene: Scene | str | os.PathLike[str], torques: ArrayLike,
     tau = _checks.grid_values(torques, "parameter 'torques'")
     if tau.size > 10 ** 6:
         raise ValueError(f"parameter 'torques': at most 1e6 values, got {tau.size}")
+    if tau.size > 1 and not np.all(np.diff(tau) > 0):
+        # 'up' ramps them in the order given: descending torques ramped down would be labelled 'up'
+        raise ValueError("parameter 'torques' must be strictly ascending ('up' ramps them in this order, 'down' "
+                         "in reverse); sort them first")
     transient = _checks.duration(transient, "transient", positive=False)
     t_avg = _checks.duration(t_max, t_name)
     _checks.window(transient, t_avg, t_name)
