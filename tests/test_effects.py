@@ -398,7 +398,9 @@ def test_poincare_sweep_with_effect_matches_simulate(effect):
     assert np.max(np.abs(pc.v.values[0] - ref.v)) < 1e-8
 
 
-def test_lyapunov_sweep_with_friction_does_not_apply():
-    ly = pendula.sweep(pendula.Scene(friction=0.05, drive_amplitude=1.2, drive_frequency=0.7), over={"v0": [0.0]},
-                       measure="lyapunov", transient=10.0, t_max=50.0)
-    assert ly.status.values[0] == 2
+def test_lyapunov_sweep_with_friction_refused_by_name():
+    # dry friction sticks: no variational flow (the capability table refuses it at the door, where every point
+    # used to say 'does not apply')
+    with pytest.raises(ValueError, match="friction"):
+        pendula.sweep(pendula.Scene(friction=0.05, drive_amplitude=1.2, drive_frequency=0.7), over={"v0": [0.0]},
+                      measure="lyapunov", transient=10.0, t_max=50.0)

@@ -174,10 +174,11 @@ def test_sweep_with_force_reproduces_damping(clib):
         assert np.allclose(a[var].values, b[var].values, rtol=0, atol=1e-6)
 
 
-def test_sweep_force_final_well_does_not_apply(clib):
-    ds = pendula.sweep(pendula.Scene(damping=0.1), over={"v0": [1.0, 2.0]}, measure="final_well",
-                       force=clib.linear_damping, force_params=[0.0])
-    assert np.all(ds.status.values == 2)
+def test_sweep_force_final_well_refused_by_name(clib):
+    # the final well is judged by the undriven pendulum's energy: a user force is refused at the door
+    with pytest.raises(ValueError, match="force"):
+        pendula.sweep(pendula.Scene(damping=0.1), over={"v0": [1.0, 2.0]}, measure="final_well",
+                      force=clib.linear_damping, force_params=[0.0])
 
 
 def test_sweep_force_refused_with_a_store(clib, tmp_path):

@@ -183,7 +183,7 @@ class DCSquid:
     2.0
     """
 
-    def __init__(self, critical_current: float, resistance: float, capacitance: float, inductance: float):
+    def __init__(self, critical_current: float, resistance: float, capacitance: float, inductance: float) -> None:
         self.junction = Junction(critical_current, resistance, capacitance)
         self.inductance = _checks.real(inductance, "inductance", 0.0, lo_open=True)
 

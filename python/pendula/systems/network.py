@@ -19,11 +19,16 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .. import _checks, _interrupt, _kernel
 from .._optional import require
+
+if TYPE_CHECKING:   # xarray is optional: named in annotations only
+    import xarray
 
 __all__ = ["Network", "NetworkEquilibrium", "NormalModes", "TOPOLOGIES", "METHODS", "beat_period"]
 
@@ -227,9 +232,10 @@ class Network:
     (('time', 'element'), (3, 2))
     """
 
-    def __init__(self, n, *, eps=1.0, damping=0.0, mass=1.0, bias=0.0, drive_amplitude=0.0,
-                 drive_frequency=0.0, drive_phase=0.0, coupling=None, topology=None, strength=1.0,
-                 offset=None):
+    def __init__(self, n: int, *, eps: ArrayLike = 1.0, damping: ArrayLike = 0.0, mass: ArrayLike = 1.0,
+                 bias: ArrayLike = 0.0, drive_amplitude: ArrayLike = 0.0, drive_frequency: ArrayLike = 0.0,
+                 drive_phase: ArrayLike = 0.0, coupling: ArrayLike | None = None, topology: str | None = None,
+                 strength: float = 1.0, offset: ArrayLike | None = None) -> None:
         n = _checks.count(n, "n", 1, 10**8)
         self.n = n
         self.mass = _per_element(mass, "mass", n, 0.0, lo_open=True)
@@ -313,7 +319,7 @@ class Network:
         return _per_element(x, name, self.n)
 
     # ------------------------------------------------------------------ the force law
-    def force(self, phi, t: float = 0.0) -> np.ndarray:
+    def force(self, phi: ArrayLike, t: float = 0.0) -> np.ndarray:
         """The force on each element: everything but inertia and damping.
 
         Parameters
@@ -342,7 +348,7 @@ class Network:
         f, _ = _kernel.network_force_v(*self._edges(), _checks.real(t, "t"), q2)
         return f.T.reshape(shape)
 
-    def jacobian(self, phi) -> np.ndarray:
+    def jacobian(self, phi: ArrayLike) -> np.ndarray:
         """The Jacobian of :meth:`force` in the phases, N x N (symmetric).
 
         Parameters
@@ -366,7 +372,7 @@ class Network:
         _, jac = _kernel.network_force_v(*self._edges(), 0.0, q)
         return jac
 
-    def energy(self, phi, v) -> np.ndarray:
+    def energy(self, phi: ArrayLike, v: ArrayLike) -> np.ndarray:
         """The energy Σ C_i v_i²/2 + Σ [ε_i (1 − cos φ_i) − τ_i φ_i] + Σ_{i<j} K_ij (φ_j − φ_i − δ_ij)²/2.
 
         Conserved when there is no damping, drive or noise.
@@ -398,9 +404,9 @@ class Network:
         return en.reshape(q.shape[:-1]) if q.ndim > 1 else float(en[0])
 
     # ------------------------------------------------------------------ time evolution
-    def simulate(self, t, phi0=0.0, v0=0.0, *, method: str = "dop853", rtol: float = 1e-10,
-                 atol: float = 1e-12, dt: float | None = None, temperature=0.0, seed: int = 0,
-                 paths: int = 1, first_path: int = 0, threads: int = 0):
+    def simulate(self, t: ArrayLike, phi0: ArrayLike = 0.0, v0: ArrayLike = 0.0, *, method: str = "dop853",
+                 rtol: float = 1e-10, atol: float = 1e-12, dt: float | None = None, temperature: ArrayLike = 0.0,
+                 seed: int = 0, paths: int = 1, first_path: int = 0, threads: int = 0) -> xarray.Dataset:
         """The motion of the network at the times t, as an xarray Dataset.
 
         Parameters
@@ -532,7 +538,7 @@ class Network:
                           attrs={"method": method, "steps": int(stats[0]), "rhs_evaluations": int(stats[3])})
 
     # ------------------------------------------------------------------ rest points and modes
-    def equilibrium(self, phi, *, tol: float = 1e-14, maxit: int = 50) -> NetworkEquilibrium:
+    def equilibrium(self, phi: ArrayLike, *, tol: float = 1e-14, maxit: int = 50) -> NetworkEquilibrium:
         """The rest point Newton's method reaches from the phases phi.
 
         Parameters
@@ -601,7 +607,7 @@ class Network:
         en = self.energy(q, np.zeros(self.n))
         return NetworkEquilibrium(q, float(en), lam, stable, res)
 
-    def normal_modes(self, phi=None) -> NormalModes:
+    def normal_modes(self, phi: ArrayLike | None = None) -> NormalModes:
         """The normal modes of the undamped network linearised about a rest point.
 
         Parameters
