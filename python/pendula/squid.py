@@ -143,10 +143,16 @@ def squid_critical_current(beta_l: float, flux: float) -> float:
                 i, phi = i + step, eq.phi
             else:
                 step /= 2
+        if i == 0.0:
+            # a flux state at the edge of its stability (its Hessian next to singular): no bias of 1e-12 keeps
+            # it at rest, so its critical current is below every other state's and it is passed over
+            continue
         ic, _ = _fold(_network(beta_l, flux), phi, i)
         if not i <= ic <= i + 4 * step:
             raise ArithmeticError(f"the fold of the stable branch was lost (bias {i!r}, fold at {ic!r})")
         best = max(best, ic)
+    if best == -math.inf:
+        raise ArithmeticError(f"no flux state of beta_l = {beta_l!r}, flux = {flux!r} stays at rest under a bias")
     return best
 
 
