@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .. import _checks, _interrupt, _kernel
-from ..scene import Scene
+from ..scene import Scene, SceneError
 
 __all__ = ["PeriodicOrbit", "periodic_orbit"]
 
@@ -202,7 +202,10 @@ class OrbitProblem:
             return self.base
         if self._cache is not None and self._cache[0] == p:
             return self._cache[1]
-        sc = self.base.replace(**{self.param: float(p)})
+        try:
+            sc = self.base.replace(**{self.param: float(p)})
+        except SceneError as exc:     # a corrector's trial beyond the field's range: a failed evaluation
+            raise FlowError(f"{self.param} = {float(p)!r} is outside the field's range ({exc})") from None
         self._cache = (p, sc)
         return sc
 
@@ -234,7 +237,11 @@ class OrbitProblem:
     def dFdp(self, u, p: float, F) -> np.ndarray:
         """dF/dp by a forward difference (it steers Newton and the tangent; the roots do not depend on it)."""
         dp = 1e-7 * max(1.0, abs(p))
-        ev = self.evaluate(u, p + dp)
+        try:
+            ev = self.evaluate(u, p + dp)
+        except FlowError:             # at the upper edge of the field's range: the backward difference
+            dp = -dp
+            ev = self.evaluate(u, p + dp)
         return (ev.F - F) / dp
 
 
