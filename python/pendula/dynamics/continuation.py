@@ -7,7 +7,8 @@ unknowns, the third equation fixes the arclength along the tangent, so the
 branch is followed through turning points.  Bifurcations are found by the
 sign of test functions of the monodromy ``M`` (``det(M - I)``, ``det(M + I)``,
 ``det M - 1`` for a complex pair, the tangent's parameter component at a
-fold) and located by solving the test function's root along the branch
+fold), counted only where the sign is decided beyond the test function's
+error, and located by solving the test function's root along the branch
 (Illinois regula falsi, each evaluation a corrected point of the branch), not
 by the step size.  The pendulum's symmetry (theta, v, t) -> (-theta, -v,
 t + T/2) of an untorqued drive is used exactly: a symmetric orbit is followed
@@ -747,11 +748,18 @@ def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: f
     and damping, no drive) is a running orbit on the section ``theta = guess[0]``
     with its period as an unknown.  Along the branch the Floquet multipliers
     are watched; each bifurcation is located by solving its test function's
-    root along the branch (to about 1e-12 in the parameter), not by the step:
+    root along the branch (to about 1e-12 in the parameter), not by the step,
+    and only where the test function's sign is decided on both sides (beyond
+    its error, about 1e-10 (1 + |M|)^2: a change below it, as of the
+    multipliers 1 +- 1e-8 i of a very fast drive, is no bifurcation).  The
+    branch ends at ``stop`` exactly (never stepping past it: a field's edge,
+    such as ``damping = 0``, may lie there):
 
     * ``'fold'``: a multiplier through +1 where the branch turns;
     * ``'pitchfork'``: through +1 where the symmetric orbit of an untorqued drive,
-      ``(theta, v, t) -> (-theta, -v, t + T/2)``, breaks its symmetry;
+      ``(theta, v, t) -> (-theta, -v, t + T/2)``, breaks its symmetry (met from
+      the asymmetric orbit, where the branch turns with no multiplier through
+      +1, it is solved on the symmetric orbit);
     * ``'period-doubling'``: through -1;
     * ``'neimark-sacker'``: a complex pair through the unit circle;
     * ``'homoclinic'``: the period of an autonomous running orbit diverges where
@@ -783,7 +791,8 @@ def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: f
     follow : {'branch', 'stable'}, optional
         Follow the one branch through everything (default), or the attracting orbit.
     step : float, optional
-        The first arclength step (default ``min(0.05, |stop - start| / 20)``); steps adapt.
+        The first arclength step (default ``min(0.05, |stop - start| / 20)``); steps adapt,
+        between the parameter's resolution ``1e-10 max(1, |start|, |stop|)`` and 4 ``step``.
 
     Returns
     -------
@@ -796,9 +805,12 @@ def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: f
         If ``param`` is not a string or an argument is not of its kind.
     ValueError
         If ``param`` is not a numeric scene field or does not change the orbit,
-        ``stop`` equals the start or lies beyond 0 of the drive, the guess does
-        not converge (the message says where Newton got), or ``follow='stable'``
-        starts on an unstable orbit.
+        ``stop`` equals the start, lies within the parameter's resolution of it
+        (1e-10 of its size) or beyond 0 of the drive, ``step`` is below that
+        resolution or too short to reach ``stop`` within the work limit of
+        20000 points, the scene has dry friction (its monodromy jumps where
+        v = 0), the guess does not converge (the message says where Newton
+        got), or ``follow='stable'`` starts on an unstable orbit.
     ContinuationError
         A ValueError: the branch cannot be continued (a step shrank to nothing,
         say at a fold it cannot pass); its ``branch`` holds the part traced.

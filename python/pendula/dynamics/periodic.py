@@ -462,7 +462,8 @@ def periodic_orbit(scene: Scene, guess: tuple[float, float] | None = None, k: in
     later; a periodic orbit is a root of ``P(x) - x - (2 pi winding, 0)``.  The
     flow and its monodromy matrix (the variational equations) come from GSL's
     rk8pd, the root from Newton's method with that exact Jacobian ``M - I``
-    (steps longer than 1 shortened to 1).
+    in a trust region (Powell's dogleg, as MINPACK's hybrd), so that a rough
+    guess slides down the residual rather than jumping about the phase space.
     The Floquet multipliers are the eigenvalues of the monodromy; their
     product is ``exp(-damping * period)`` (Liouville), and ``log|mu| / period``
     are the orbit's Lyapunov exponents, the ones a ``lyapunov`` sweep measures
