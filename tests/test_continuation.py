@@ -72,7 +72,10 @@ def test_feigenbaum_ratio_of_the_doubling_intervals(cascade_branch):
 def test_multipliers_along_a_branch_equal_periodic_orbits(cascade_branch):
     br = cascade_branch
     rng = np.random.default_rng(7)
-    for i in rng.choice(len(br), size=6, replace=False):
+    # isolated orbits only: at a located bifurcation a multiplier is 1 or -1 and the orbit of the k-fold
+    # map is determined only to about the square root of Newton's tolerance along its null vector
+    isolated = np.flatnonzero(~np.isin(br.values, [b.value for b in br.bifurcations]))
+    for i in rng.choice(isolated, size=6, replace=False):
         sc = CASCADE.replace(drive_amplitude=float(br.values[i]))
         po = pendula.periodic_orbit(sc, guess=(br.theta[i], br.v[i]), k=int(br.period[i]))
         assert abs(po.theta - br.theta[i]) < 1e-8 and abs(po.v - br.v[i]) < 1e-8
@@ -272,7 +275,7 @@ def test_ctrl_c_stops_a_long_continuation():
         sc = pendula.Scene(damping=0.5, drive_amplitude=1.0, drive_frequency=2/3)
         print("ready", flush=True)
         try:
-            pendula.continue_orbit(sc, (0.1, 1.9), "drive_amplitude", 1.08, step=1e-6)
+            pendula.continue_orbit(sc, (0.1, 1.9), "drive_amplitude", 1.08, step=2e-6)
         except KeyboardInterrupt:
             print("interrupted", time.monotonic(), flush=True)
             sys.exit(0)

@@ -345,13 +345,18 @@ def force(f, params, name: str = "force") -> Force:
             raise TypeError(f"{name}: a ctypes function must have restype c_double and argtypes (c_double, "
                             "c_double, c_double, POINTER(c_double)): double f(double t, double theta, "
                             "double v, const double *params)")
-        return Force(ctypes.cast(f, ctypes.c_void_p).value, arr, (f,), errors)
+        address = ctypes.cast(f, ctypes.c_void_p).value
+        if not address:
+            raise ValueError(f"{name}: a NULL ctypes function pointer (no function to call)")
+        return Force(address, arr, (f,), errors)
     address = getattr(f, "address", None)
     if isinstance(address, (int, np.integer)) and not isinstance(address, bool) and hasattr(f, "ctypes"):
         return force(f.ctypes, params, name)       # a numba cfunc: its ctypes wrapper carries the signature
     if isinstance(f, (int, np.integer)) and not isinstance(f, bool):
-        if not 0 < int(f) < 2**64:
-            raise ValueError(f"{name}: an address must be a positive integer, got {f}")
+        # the kernel takes the address as a C intptr_t: 0 < address < 2^63 (user space on every
+        # 64-bit system lies far below it)
+        if not 0 < int(f) < 2**63:
+            raise ValueError(f"{name}: an address must be a positive integer below 2**63, got {f}")
         return Force(int(f), arr, (), errors)
     if not callable(f):
         raise TypeError(f"{name} must be a C function pointer (ctypes, numba cfunc, address) or a callable, "
@@ -361,7 +366,12 @@ def force(f, params, name: str = "force") -> Force:
 
     def slow(t, theta, v, _p):
         try:
-            return float(f(t, theta, v, view))
+            out = f(t, theta, v, view)
+            # a real number only: a string, a bool, None or an array (even of one element, as
+            # ``-p * v`` with p the params) is refused, never converted
+            if isinstance(out, (bool, np.bool_)) or not isinstance(out, (int, float, np.integer, np.floating)):
+                raise TypeError(f"{name} must return a real number (float), returned {_kind(out)} {out!r:.40}")
+            return float(out)
         except BaseException as exc:  # noqa: BLE001 - re-raised by the caller after the run
             if not errors:
                 errors.append(exc)

@@ -348,6 +348,7 @@ class SweepStore:
             self._rebuild(bad)
             return
         self._group = g
+        self._check_commits(g)
         self._check_consolidated(g)
         for name, (vals, _) in self.layout.coords.items():
             try:
@@ -400,6 +401,22 @@ class SweepStore:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 zarr.consolidate_metadata(self.path)
+
+    def _check_commits(self, g) -> None:
+        """The folder of completion records: when it is missing, or something else lies under its name,
+        it is built again, empty (the data files are kept, but no chunk can be shown complete without
+        its record: each is computed again, and the warning says so)."""
+        path = self.path / COMMITS
+        if path.is_dir() and not path.is_symlink() and (path / "zarr.json").is_file():
+            return
+        what = "is missing" if not os.path.lexists(path) else "is not a folder of records"
+        self._warn(f"its folder of completion records '{COMMITS}' {what}; it is built again, and the chunks "
+                   "it recorded cannot be shown complete: every chunk is computed again", stacklevel=6)
+        if path.is_dir() and not path.is_symlink():
+            shutil.rmtree(path)
+        elif os.path.lexists(path):
+            path.unlink()
+        g.create_group(COMMITS, attributes={"about": "one completion record per finished chunk"})
 
     def _check_arrays(self, g) -> str | None:
         lay = self.layout

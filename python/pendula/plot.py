@@ -36,6 +36,7 @@ import math
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from . import _checks
 from ._optional import require
 from ._files import save_figure  # the one writer: regular files only, whole or absent
 from .animation import animate  # noqa: F401  (pendula.plot.animate: GIF or MP4 through matplotlib's writers)
@@ -240,10 +241,22 @@ def spectra_figure(scene, specs, labels, path=None, *, ax=None):
 # ------------------------------------------------------------- one result, one Axes
 
 def _ax(ax, figsize=(7, 4)):
-    """The caller's axes, or the axes of a new figure."""
+    """The caller's axes (checked: a matplotlib Axes), or the axes of a new figure."""
     if ax is not None:
-        return ax
+        from matplotlib.axes import Axes
+        return _checks.instance(ax, "ax", Axes, "a matplotlib Axes or None")
     return _plt().subplots(figsize=figsize, layout="constrained")[1]
+
+
+def _result(x, name: str, cls, what: str):
+    """A result of the library as one of the plot functions takes it; a TypeError naming ``name``."""
+    return _checks.instance(x, name, cls, what)
+
+
+def _dataset(x, name: str):
+    """An xarray Dataset (what the sweeps return); a TypeError naming ``name``."""
+    xr = require("xarray", "plot", "pendula.plot")
+    return _checks.instance(x, name, xr.Dataset, "an xarray.Dataset")
 
 
 def _categorical(n: int) -> list:
@@ -308,8 +321,9 @@ def trajectory(tr: Trajectory, ax: matplotlib.axes.Axes | None = None, *, which:
     >>> ax.get_ylabel()
     'v (rad per time unit 1/ω₀, ε = 1)'
     """
-    if which not in ("theta", "v", "energy"):
-        raise ValueError(f"which must be 'theta', 'v' or 'energy', got {which!r}")
+    from .trajectory import Trajectory
+    _result(tr, "tr", Trajectory, "a pendula.Trajectory (what pendula.simulate returns)")
+    _checks.choice(which, "which", ("theta", "v", "energy"))
     ax = _ax(ax)
     kwargs.setdefault("lw", 1.0)
     ax.plot(tr.t, getattr(tr, which), **kwargs)
@@ -351,6 +365,9 @@ def phase(tr: Trajectory, ax: matplotlib.axes.Axes | None = None, *, separatrix:
     >>> [float(x) for x in ax.get_xlim()]
     [-3.141592653589793, 3.141592653589793]
     """
+    from .trajectory import Trajectory
+    _result(tr, "tr", Trajectory, "a pendula.Trajectory (what pendula.simulate returns)")
+    separatrix = _checks.flag(separatrix, "separatrix")
     ax = _ax(ax, figsize=(6, 4.5))
     w, v = _wrapped(tr.theta, tr.v)
     kwargs.setdefault("lw", 1.0)
@@ -399,6 +416,9 @@ def spectrum(sp: Spectrum, ax: matplotlib.axes.Axes | None = None, *, harmonics:
     """
     import warnings
 
+    from .spectrum import Spectrum
+    _result(sp, "sp", Spectrum, "a pendula.Spectrum (what pendula.spectrum returns)")
+    harmonics = _checks.count(harmonics, "harmonics", 1)
     ax = _ax(ax)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
@@ -462,6 +482,9 @@ def bifurcation(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None, *,
     >>> pendula.plot.bifurcation(ds).get_xlabel()
     'drive_amplitude'
     """
+    _dataset(ds, "ds")
+    if lyapunov is not None:
+        _dataset(lyapunov, "lyapunov")
     if "theta" not in ds or "sample" not in ds.theta.dims:
         raise ValueError("bifurcation needs a 'poincare' sweep (theta on the dimensions (parameter, sample))")
     p = _one_axis(ds, "bifurcation")
@@ -576,6 +599,10 @@ def basins(am: AttractorMap | xarray.Dataset, ax: matplotlib.axes.Axes | None = 
     from matplotlib.colors import BoundaryNorm, ListedColormap
     from matplotlib.patches import Patch
 
+    from .dynamics.attractors import AttractorMap
+    if not isinstance(am, AttractorMap):
+        _dataset(am, "am")
+    draw_attractors = _checks.flag(draw_attractors, "draw_attractors")
     ds, var, cats = _categories(am)
     lab = ds[var]
     if lab.ndim != 2:
@@ -646,6 +673,7 @@ def iv(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None) -> matplotlib
     >>> [t.get_text() for t in ax.get_legend().get_texts()]
     ['torque up', 'torque down']
     """
+    _dataset(ds, "ds")
     if "mean_velocity" not in ds or "torque" not in ds.mean_velocity.dims:
         raise ValueError("iv needs an I-V curve: 'mean_velocity' over 'torque' (pendula.iv_curve)")
     ax = _ax(ax)
@@ -716,6 +744,7 @@ def fractions(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None) -> mat
     >>> [t.get_text() for t in ax.get_legend().get_texts()]
     ['attractor 0', 'attractor 1']
     """
+    _dataset(ds, "ds")
     if "fraction" not in ds or "attractor" not in ds.fraction.dims or ds.fraction.ndim != 2:
         raise ValueError("fractions needs a variable 'fraction' on the dimensions (parameter, 'attractor')")
     p = next(d for d in ds.fraction.dims if d != "attractor")

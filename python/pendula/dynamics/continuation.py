@@ -7,7 +7,8 @@ unknowns, the third equation fixes the arclength along the tangent, so the
 branch is followed through turning points.  Bifurcations are found by the
 sign of test functions of the monodromy ``M`` (``det(M - I)``, ``det(M + I)``,
 ``det M - 1`` for a complex pair, the tangent's parameter component at a
-fold) and located by solving the test function's root along the branch
+fold), counted only where the sign is decided beyond the test function's
+error, and located by solving the test function's root along the branch
 (Illinois regula falsi, each evaluation a corrected point of the branch), not
 by the step size.  The pendulum's symmetry (theta, v, t) -> (-theta, -v,
 t + T/2) of an untorqued drive is used exactly: a symmetric orbit is followed
@@ -30,8 +31,8 @@ from .. import _checks
 from ..scene import Scene, SceneError, _NUMBERS, _WHOLE
 from .equilibria import equilibria
 from ..systems.contract import require, time_scales
-from .periodic import (FlowError, NewtonError, OrbitProblem, check_guess, drive_period, flow, multipliers_of,
-                       newton, reduce_angle)
+from .periodic import (FlowError, NewtonError, OrbitProblem, check_guess, drive_period, flow, max_time,
+                       multipliers_of, newton, reduce_angle)
 
 if TYPE_CHECKING:   # xarray is optional: named in annotations only
     import xarray
@@ -280,9 +281,10 @@ def _stable(mode: str, ev) -> bool:
 
 def _root(g, a: float, ga: float, b: float, gb: float, xtol: float, maxit: int = 80):
     """The root of g in [a, b] (ga, gb of opposite signs) by Illinois regula falsi, bisecting when a
-    value is not finite; g returns (value, payload).  Returns (x, payload) of the last evaluation."""
+    value is not finite; g returns (value, payload).  Returns (x, payload, g(x), the last bracket's
+    width) of the last evaluation: a solved root has g(x) within its error or a width within xtol."""
     side = 0
-    x, payload = b, None
+    x, payload, gx = b, None, gb
     for _ in range(maxit):
         if math.isfinite(ga) and math.isfinite(gb) and gb != ga:
             x = (a * gb - b * ga) / (gb - ga)
@@ -305,7 +307,54 @@ def _root(g, a: float, ga: float, b: float, gb: float, xtol: float, maxit: int =
             side = 1
         if abs(b - a) <= xtol:
             break
-    return x, payload
+    return x, payload, gx, abs(b - a)
+
+
+#: The error of a test function of the monodromy, in units of rtol (1 + |X|)^2 (X the matrix it is made
+#: of): the flow's error moves tr X and det X by about rtol |X| and rtol |X|^2; measured on 40 random
+#: orbits (flows at rtol 1e-12 against 1e-15) below 0.22 of it, so 100 leaves a margin of 450.
+_TEST_ERROR = 100.0
+
+
+def _test_errors(mode: str, ev, rtol: float) -> dict:
+    """The error of each test function at one point (below it, its sign is not decided)."""
+    nM = float(np.linalg.norm(ev.M))
+    eM = _TEST_ERROR * rtol * (1.0 + nM) ** 2
+    out = {"fold": _TEST_ERROR * rtol * (1.0 + float(np.linalg.norm(ev.J))) ** 2}
+    if mode == "section":
+        return out
+    out["period-doubling"] = out["neimark-sacker"] = out["plus"] = eM
+    if mode == "half":
+        out["pitchfork"] = _TEST_ERROR * rtol * (1.0 + float(np.linalg.norm(ev.DG))) ** 2
+    return out
+
+
+def _decided(mode: str, ev, tests: dict, rtol: float) -> dict:
+    """The sign of each test function where it exceeds its error, 0 where it does not (undecided)."""
+    err = _test_errors(mode, ev, rtol)
+    return {k: (0 if not math.isfinite(v) or abs(v) <= err[k] else (1 if v > 0 else -1)) for k, v in tests.items()}
+
+
+def resolution(p0: float, stop: float) -> float:
+    """The smallest step a continuation takes from p0 towards stop: 1e-10 of the parameter's size (at
+    least 1e-10): the corrector resolves a point to about 1e-11, so a shorter step moves by noise."""
+    return 1e-10 * max(1.0, abs(p0), abs(stop))
+
+
+def _check_steps(param: str, p0: float, stop: float, step: float | None) -> None:
+    """Work the steps cannot do is refused before it starts: a stop or a first step within the
+    parameter's resolution (nothing would move), or a step too short to reach the stop in MAX_POINTS."""
+    res = resolution(p0, stop)
+    if abs(stop - p0) < res:
+        raise ValueError(f"stop: {stop!r} lies within the resolution {res:.1e} of the scene's {param} = {p0!r}; "
+                         "a continuation cannot move by less")
+    if step is not None:
+        if step < res:
+            raise ValueError(f"step: {step!r} is below the resolution {res:.1e} of {param} near {p0!r} "
+                             "(the corrector resolves a point to about 1e-11: a shorter step does not move)")
+        if abs(stop - p0) / (4 * step) > MAX_POINTS:
+            raise ValueError(f"step: {step!r} is too short to reach stop = {stop!r} from {param} = {p0!r} "
+                             f"within the work limit of {MAX_POINTS} points (steps grow to 4 x step)")
 
 
 class _Tracer:
@@ -316,7 +365,8 @@ class _Tracer:
         span = abs(stop - p0)
         self.h0 = step if step is not None else min(0.05, span / 20)
         self.hmax = max(self.h0, span / 10) if step is None else step * 4
-        self.hmin = 1e-10 * max(1.0, abs(p0), abs(stop))
+        self.hmin = resolution(p0, stop)
+        self.h0 = max(self.h0, self.hmin)
         self.rows: list = []          # (p, theta, v, period, mu0, mu1, stable, segment)
         self.bifs: list = []
         self.segment = 0
@@ -366,6 +416,7 @@ class _Tracer:
         h = self.h0
         lo, hi = sorted((self.p0, self.stop))
         tests = _tests(prob.mode, ev)
+        self.signs = _decided(prob.mode, ev, tests, prob.rtol)
         stable = _stable(prob.mode, ev)
         T_first = float(ev.T)
         while True:
@@ -373,6 +424,12 @@ class _Tracer:
                 self.end = f"work limit: {MAX_POINTS} points"
                 return None
             Upred = U + h * t
+            clipped = None
+            if not lo <= Upred[2] <= hi and t[2] != 0.0:
+                # never predict past the stop (or the start, after a turn): a field's edge may lie there
+                clipped = hi if Upred[2] > hi else lo
+                Upred = U + ((clipped - U[2]) / t[2]) * t
+                Upred[2] = clipped
             try:
                 Ub, evb, it = self.correct(prob, Upred, t, Upred)
                 tb, _ = self.tangent(prob, Ub, evb, t)
@@ -397,11 +454,16 @@ class _Tracer:
             # the stop, or the start side after a turn: the last point exactly there
             pb = Ub[2]
             final = None
-            if pb > hi or pb < lo:
-                edge = hi if pb > hi else lo
+            if pb > hi or pb < lo or clipped is not None:
+                edge = clipped if clipped is not None else hi if pb > hi else lo
                 n = np.array([0.0, 0.0, 1.0])
-                frac = (edge - U[2]) / (pb - U[2])
-                Ue, eve, _ = self.correct(prob, U + frac * (Ub - U), n, np.array([0.0, 0.0, edge]), maxit=20)
+                frac = (edge - U[2]) / (pb - U[2]) if pb != U[2] else 1.0
+                Ustart = U + frac * (Ub - U)
+                Ustart[2] = edge                  # exactly (rounding could put it past a field's edge)
+                try:
+                    Ue, eve, _ = self.correct(prob, Ustart, n, np.array([0.0, 0.0, edge]), maxit=20)
+                except (NewtonError, FlowError) as exc:
+                    self.fail(f"the branch could not be corrected at {self.param} = {float(edge)!r}: {exc}")
                 Ub, evb = Ue, eve
                 tb, _ = self.tangent(prob, Ub, evb, t)
                 testsb = _tests(prob.mode, evb)
@@ -410,6 +472,11 @@ class _Tracer:
             events = self.events(prob, U, ev, t, tests, Ub, evb, tb, testsb)
             stableb = _stable(prob.mode, evb)
             for s, kind, Uc, evc in events:
+                if Uc is None:                # located on the symmetric orbit (the half-period map)
+                    Uh, evh = evc
+                    th, v = reduce_angle(Uh[0]), float(Uh[1])
+                    self.bifs.append(Bifurcation(kind, float(Uh[2]), float(prob.k), th, v, multipliers_of(evh.M)))
+                    continue
                 self.bifurcation(kind, prob, Uc, evc)
                 if self.follow == "stable" and stable:
                     if kind in ("pitchfork", "period-doubling"):
@@ -441,31 +508,107 @@ class _Tracer:
             U, ev, t, tests, stable = Ub, evb, tb, testsb, stableb
 
     def events(self, prob, Ua, eva, ta, tests_a, Ub, evb, tb, tests_b):
-        """The bifurcations between two points, located, in the order met."""
+        """The bifurcations between two points, located, in the order met.
+
+        A test function counts as changed only where its sign is decided on both sides (beyond its
+        error, :func:`_decided`; the last decided sign is carried over points where it is not), and a
+        bifurcation is reported only at a solved root of its test function: the located point's value
+        within its error, or a bracket of opposite decided signs shrunk to the resolution."""
         sb = float(np.dot(ta, Ub - Ua))
         found = []
         folded = (ta[2] > 0) != (tb[2] > 0)
+        signs_b = _decided(prob.mode, evb, tests_b, prob.rtol)
+        changed = {key for key, sgn in signs_b.items()
+                   if sgn and self.signs.get(key) and sgn != self.signs[key]}
+        for key, sgn in signs_b.items():
+            if sgn:
+                self.signs[key] = sgn
         cand = []
-        if folded:
+        if folded and "fold" in changed:
             cand.append(("fold", "fold"))
+        elif folded and prob.mode == "map":
+            # the branch turns with no multiplier through +1: a branch point met from its child (the
+            # asymmetric orbit comes down to the pitchfork of the symmetric one and goes back up)
+            pf = self.pitchfork_from_child(prob, Ua, Ub, ta)
+            if pf is not None:
+                found.append((0.5 * sb, "pitchfork", None, pf))
         for key in ("pitchfork", "period-doubling", "neimark-sacker"):
-            if key in tests_a and math.isfinite(tests_a[key]) and math.isfinite(tests_b[key]) \
-                    and (tests_a[key] > 0) != (tests_b[key] > 0):
+            if key in changed:
                 cand.append((key, key))
-        if "plus" in tests_a and (tests_a["plus"] > 0) != (tests_b["plus"] > 0) and not folded:
-            cand.append(("pitchfork", "plus"))
+        if "fold" in changed and not folded and prob.mode == "map":
+            cand.append(("pitchfork", "fold"))
         for kind, key in cand:
+            if not (tests_a[key] > 0) != (tests_b[key] > 0):
+                # the sign changed across points where it was below its error: the root lies there, at
+                # the resolution of the computation (the last such point)
+                found.append((0.0, kind, Ua, eva))
+                continue
+
             def g(s, key=key):
                 Upred = Ua + (s / sb) * (Ub - Ua) if sb else Ua
                 Uc, evc, _ = self.correct(prob, Upred, ta, Ua + s * ta, maxit=20)
                 return _tests(prob.mode, evc)[key], (Uc, evc)
             try:
-                s, (Uc, evc) = _root(g, 0.0, tests_a[key], sb, tests_b[key], xtol=1e-13 * (1 + abs(sb)))
+                s, (Uc, evc), gx, width = _root(g, 0.0, tests_a[key], sb, tests_b[key], xtol=1e-13 * (1 + abs(sb)))
             except (NewtonError, FlowError) as exc:
                 self.fail(f"the {kind} between {self.param} = {float(Ua[2])!r} and {float(Ub[2])!r} could not be located: {exc}")
+            if not (abs(gx) <= _test_errors(prob.mode, evc, prob.rtol)[key] or width <= 1e-13 * (1 + abs(sb))):
+                self.fail(f"the {kind} between {self.param} = {float(Ua[2])!r} and {float(Ub[2])!r} could not be "
+                          f"solved: its test function is {gx:.3g} at the last point")
             found.append((s, kind, Uc, evc))
         found.sort(key=lambda e: e[0])
         return found
+
+    def pitchfork_from_child(self, prob, Ua, Ub, ta):
+        """The symmetry-breaking pitchfork met from its asymmetric child, located on the symmetric orbit
+        (the half-period map's test function 1 + tr DG + det DG, solved in the parameter); None when
+        the scene has no such symmetry or no symmetric orbit lies next to the turn.  Returns
+        (U, Evaluation) of the symmetric orbit at the pitchfork."""
+        sc = prob.base
+        if prob.winding != 0 or prob.k % 2 == 0 or sc.torque != 0.0 or self.param == "torque" \
+                or sc.pivot_amplitude != 0.0:
+            return None
+        try:
+            T = drive_period(prob.scene(float(Ua[2])), prob.k)
+            end, _, _ = flow(prob.scene(float(Ua[2])), Ua[:2], [0.5 * T], prob.rtol, prob.atol)
+        except (ValueError, FlowError):
+            return None
+        m = round((end[0, 0] + Ua[0]) / (2 * math.pi))
+        half = OrbitProblem(sc, "half", prob.k, 0, self.param, prob.rtol, prob.atol, m=m)
+        state = {"u": np.array(Ua[:2], dtype=float)}
+
+        def g(p):
+            u, _, ev, _ = newton(half, state["u"], p, _TOL, 30)
+            state["u"] = u
+            val = _tests("half", ev)["pitchfork"]
+            err = _test_errors("half", ev, prob.rtol)["pitchfork"]
+            return (val if abs(val) > err else 0.0), (np.append(u, p), ev)
+        # the turn, and the pitchfork with it, lies beyond the two points in the direction the branch went
+        up = ta[2] > 0
+        pa, pb = float(Ua[2]), float(Ub[2])
+        near = max(pa, pb) if up else min(pa, pb)
+        lo_edge, hi_edge = sorted((self.p0, self.stop))
+        try:
+            ga, _ = g(near)
+            if ga == 0.0:
+                return None
+            delta = abs(pa - pb) + self.hmin
+            for _ in range(40):
+                far = near + delta if up else near - delta
+                if not lo_edge <= far <= hi_edge:
+                    return None
+                gb, _ = g(far)
+                if gb != 0.0 and (gb > 0) != (ga > 0):
+                    break
+                delta *= 2.0
+            else:
+                return None
+            p, payload, gx, width = _root(g, near, ga, far, gb, xtol=1e-13 * max(1.0, abs(near)))
+        except (NewtonError, FlowError):
+            return None
+        if not (gx == 0.0 or width <= 1e-13 * max(1.0, abs(near))):
+            return None
+        return payload
 
     # -- branch switching at a pitchfork or a period doubling
     def switch(self, kind, prob, Us, evs, t_parent):
@@ -534,7 +677,7 @@ class _Tracer:
         def g(x):
             d = _splitting(prob.scene(x), prob.winding, prob.rtol, prob.atol)
             return (-1.0 if d is None else d), None
-        ph, _ = _root(g, p, d0, q, -1.0 if dq is None else dq, xtol=1e-14 * max(1.0, abs(p)))
+        ph, _, _, _ = _root(g, p, d0, q, -1.0 if dq is None else dq, xtol=1e-14 * max(1.0, abs(p)))
         sc = prob.scene(ph)
         sad = [e for e in equilibria(sc) if e.kind == "saddle"]
         theta = sad[0].theta if sad else math.nan
@@ -617,11 +760,18 @@ def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: f
     and damping, no drive) is a running orbit on the section ``theta = guess[0]``
     with its period as an unknown.  Along the branch the Floquet multipliers
     are watched; each bifurcation is located by solving its test function's
-    root along the branch (to about 1e-12 in the parameter), not by the step:
+    root along the branch (to about 1e-12 in the parameter), not by the step,
+    and only where the test function's sign is decided on both sides (beyond
+    its error, about 1e-10 (1 + |M|)^2: a change below it, as of the
+    multipliers 1 +- 1e-8 i of a very fast drive, is no bifurcation).  The
+    branch ends at ``stop`` exactly (never stepping past it: a field's edge,
+    such as ``damping = 0``, may lie there):
 
     * ``'fold'``: a multiplier through +1 where the branch turns;
     * ``'pitchfork'``: through +1 where the symmetric orbit of an untorqued drive,
-      ``(theta, v, t) -> (-theta, -v, t + T/2)``, breaks its symmetry;
+      ``(theta, v, t) -> (-theta, -v, t + T/2)``, breaks its symmetry (met from
+      the asymmetric orbit, where the branch turns with no multiplier through
+      +1, it is solved on the symmetric orbit);
     * ``'period-doubling'``: through -1;
     * ``'neimark-sacker'``: a complex pair through the unit circle;
     * ``'homoclinic'``: the period of an autonomous running orbit diverges where
@@ -653,7 +803,8 @@ def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: f
     follow : {'branch', 'stable'}, optional
         Follow the one branch through everything (default), or the attracting orbit.
     step : float, optional
-        The first arclength step (default ``min(0.05, |stop - start| / 20)``); steps adapt.
+        The first arclength step (default ``min(0.05, |stop - start| / 20)``); steps adapt,
+        between the parameter's resolution ``1e-10 max(1, |start|, |stop|)`` and 4 ``step``.
 
     Returns
     -------
@@ -666,9 +817,12 @@ def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: f
         If ``param`` is not a string or an argument is not of its kind.
     ValueError
         If ``param`` is not a numeric scene field or does not change the orbit,
-        ``stop`` equals the start or lies beyond 0 of the drive, the guess does
-        not converge (the message says where Newton got), or ``follow='stable'``
-        starts on an unstable orbit.
+        ``stop`` equals the start, lies within the parameter's resolution of it
+        (1e-10 of its size) or beyond 0 of the drive, ``step`` is below that
+        resolution or too short to reach ``stop`` within the work limit of
+        20000 points, the scene has dry friction (its monodromy jumps where
+        v = 0), the guess does not converge (the message says where Newton
+        got), or ``follow='stable'`` starts on an unstable orbit.
     ContinuationError
         A ValueError: the branch cannot be continued (a step shrank to nothing,
         say at a fold it cannot pass); its ``branch`` holds the part traced.
@@ -699,6 +853,7 @@ def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: f
         raise ValueError(f"follow must be 'branch' or 'stable', got {follow!r:.40}")
     if step is not None:
         step = _checks.real(step, "step", 0.0, lo_open=True)
+    _check_steps(param, p0, stop, step)
     x0 = check_guess(guess, scene)
     # the one definition of a periodically forced scene (a drive, a vibrating pivot, or both at one frequency)
     driven = time_scales(scene).forcing_status != 1
@@ -764,7 +919,12 @@ def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: f
 
 def _first_return(scene: Scene, x0, w: int, rtol: float, atol: float) -> float:
     """The time the orbit from x0 takes to advance one turn (the guess of an autonomous period)."""
-    horizon = 40 * math.pi / abs(x0[1])
+    # twenty turns at the guess's speed, or twenty small oscillations when that is slower: a running
+    # orbit's speed never stays far below both (a guess of v = 1e-300 is not a horizon of 1e302)
+    horizon = 40 * math.pi / max(abs(x0[1]), math.sqrt(scene.eps))
+    if not horizon <= max_time():
+        raise ValueError(f"guess: a first turn from {tuple(x0.tolist())} would take beyond the time limit "
+                         f"{max_time():.0e}")
     times = horizon * np.arange(1, 801) / 800
     try:
         ends, _, _ = flow(scene, x0, times, rtol, atol)

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .. import _checks, _interrupt, _kernel
-from ..scene import Scene
+from ..scene import Scene, SceneError
 from ..systems import contract
 
 __all__ = ["PeriodicOrbit", "periodic_orbit"]
@@ -195,7 +195,10 @@ class OrbitProblem:
             return self.base
         if self._cache is not None and self._cache[0] == p:
             return self._cache[1]
-        sc = self.base.replace(**{self.param: float(p)})
+        try:
+            sc = self.base.replace(**{self.param: float(p)})
+        except SceneError as exc:     # a corrector's trial beyond the field's range: a failed evaluation
+            raise FlowError(f"{self.param} = {float(p)!r} is outside the field's range ({exc})") from None
         self._cache = (p, sc)
         return sc
 
@@ -227,59 +230,181 @@ class OrbitProblem:
     def dFdp(self, u, p: float, F) -> np.ndarray:
         """dF/dp by a forward difference (it steers Newton and the tangent; the roots do not depend on it)."""
         dp = 1e-7 * max(1.0, abs(p))
-        ev = self.evaluate(u, p + dp)
+        try:
+            ev = self.evaluate(u, p + dp)
+        except FlowError:             # at the upper edge of the field's range: the backward difference
+            dp = -dp
+            ev = self.evaluate(u, p + dp)
         return (ev.F - F) / dp
 
 
+#: The trust region's first radius (a step of the state longer than this is shortened: a guess far from
+#: an orbit), and its floor relative to the state (below it the iteration is stuck: no step lowers |F|).
+_RADIUS0 = 1.0
+_RADIUS_FLOOR = 1e-13
+#: Steps of the trust region that must halve |F|^2 before it counts as stuck in a valley of |F|.
+_STALL_STEPS = 5
+
+
+def dogleg(A, F, radius: float, weights) -> tuple[np.ndarray, float]:
+    """Powell's dogleg step for A d = -F inside ``|weights * d| <= radius`` (as MINPACK's hybrd; Nocedal
+    & Wright, section 4.1): Newton's step when it fits, else the steepest descent of |F|^2 to its
+    minimum along the gradient (the Cauchy point), then towards Newton's step up to the boundary.
+    A singular or non-finite Newton step leaves the gradient's leg alone.  Returns the step and the
+    decrease of |F + A d|^2 it predicts."""
+    D = np.asarray(weights, dtype=np.float64)
+    As = A / D                                 # the problem in the scaled unknowns y = D d
+    try:
+        yn = np.linalg.solve(As, -F)
+        if not np.all(np.isfinite(yn)):
+            yn = None
+    except np.linalg.LinAlgError:
+        yn = None
+    if yn is not None and np.linalg.norm(yn) <= radius:
+        y = yn
+    else:
+        g = As.T @ F                           # the gradient of |F|^2 / 2 in y
+        gn = float(np.linalg.norm(g))
+        Ag = float(np.linalg.norm(As @ g))
+        if gn == 0.0 or Ag == 0.0:
+            y = np.zeros_like(F) if yn is None else yn * (radius / np.linalg.norm(yn))
+        else:
+            yc = -(gn * gn / (Ag * Ag)) * g    # the Cauchy point
+            cn = float(np.linalg.norm(yc))
+            if cn >= radius or yn is None:
+                y = yc * (min(radius, cn) / cn)
+            else:                              # yc + s (yn - yc) on the boundary, 0 <= s <= 1
+                dd = yn - yc
+                a, b, c = float(dd @ dd), float(2 * yc @ dd), cn * cn - radius * radius
+                s = (-b + math.sqrt(b * b - 4 * a * c)) / (2 * a)
+                y = yc + s * dd
+    d = y / D
+    r = F + A @ d
+    return d, float(F @ F - r @ r)
+
+
+def _newton_step(A, F, cap: float = 1.0):
+    """Newton's step for A d = -F, its state part shortened to ``cap`` (max norm); None when singular."""
+    try:
+        d = np.linalg.solve(A, -F)
+    except np.linalg.LinAlgError:
+        return None
+    big = float(np.max(np.abs(d[:2])))
+    if not math.isfinite(big):
+        return None
+    return d * (cap / big) if big > cap else d
+
+
 def newton(problem: OrbitProblem, u, p, tol: float, maxit: int, plane=None):
-    """Newton's iteration on F(u; p) = 0: the one corrector of the dynamics.
+    """Newton's iteration on F(u; p) = 0 in a trust region: the one corrector of the dynamics.
 
     plane None: p fixed, u the unknowns (a periodic orbit at one parameter).  plane = (n, U0): the
     parameter is a third unknown and the third equation is n . ((u, p) - U0) = 0 (the pseudo-arclength
-    condition of a continuation step, or a branch switch).  Converged when the residual and the last step
-    are below tol; steps longer than 1 in the state are shortened to 1 (a guess far from an orbit).
-    Returns (u, p, Evaluation at the root, iterations); NewtonError (with how far it got) otherwise."""
+    condition of a continuation step, or a branch switch).
+
+    Each step is Powell's dogleg (:func:`dogleg`, as MINPACK's hybrd, with the exact Jacobian) in a
+    trust region, first of radius 1 (the parameter scaled by its size), moved as hybrd moves it: a
+    step is taken when |F|^2 falls by a fair share of what the linear model predicts, else the region
+    shrinks and the step is tried again, so a rough guess slides down |F|^2 instead of jumping about
+    the phase space; near the root the steps are Newton's.  The stroboscopic map of a long drive
+    period makes |F|^2 a landscape of narrow valleys and minima that are not roots: where the region
+    cannot lower it, or five steps have not halved it, one Newton step (its state part shortened to
+    1) is taken whatever it gives, and the descent goes on from there.  Converged when the residual
+    and the last step are below tol.  ``maxit`` bounds the evaluations of F (each is one flow).
+    Returns (u, p, Evaluation at the root, evaluations); NewtonError (with how far it got) otherwise."""
     u = np.array(u, dtype=np.float64)
     p = None if p is None else float(p)
-    last = math.inf
-    res = prev = math.inf
-    for it in range(1, maxit + 2):
-        try:
-            ev = problem.evaluate(u, p)
-        except FlowError as exc:
-            raise NewtonError(f"{exc} at iteration {it}", it, res, (u, p)) from None
-        res = float(np.max(np.abs(ev.F)))
-        if not math.isfinite(res):
-            raise NewtonError(f"the residual is not finite at iteration {it}", it, res, (u, p))
+    weights = np.ones(2) if plane is None else np.array([1.0, 1.0, 1.0 / max(1.0, abs(p))])
+    radius = _RADIUS0
+    successes = 0
+    last = prev = math.inf
+    try:
+        ev = problem.evaluate(u, p)
+    except FlowError as exc:
+        raise NewtonError(f"{exc} at the guess", 1, math.inf, (u, p)) from None
+    res = float(np.max(np.abs(ev.F)))
+    if not math.isfinite(res):
+        raise NewtonError("the residual is not finite at the guess", 1, res, (u, p))
+    evals = 1
+    why = f"no convergence in {maxit} iterations"
+    descent: list = []                 # |F|^2 along the current descent
+    while True:
         scale = 1.0 + float(np.max(np.abs(u)))
         # converged: the residual below tol and the last step small, or the residual below tol twice
         # running (a nearly singular Jacobian, as at a multiplier next to 1, turns rounding-level
         # residuals into steps that never shrink: the state is as determined as it can be)
         if res <= tol * scale and (last <= math.sqrt(tol) * scale * 1e-2 or prev <= tol * scale) or res == 0.0:
-            return u, p, ev, it
-        prev = res
-        if it > maxit:
+            return u, p, ev, evals
+        if evals > maxit:
             break
         if plane is None:
-            A, rhs = ev.J, -ev.F
+            A, F = ev.J, ev.F
         else:
             n, U0 = plane
             Fp = problem.dFdp(u, p, ev.F)
             A = np.zeros((3, 3))
             A[:2, :2], A[:2, 2], A[2] = ev.J, Fp, n
-            rhs = -np.append(ev.F, np.dot(n, np.append(u, p) - U0))
-        try:
-            d = np.linalg.solve(A, rhs)
-        except np.linalg.LinAlgError:
-            raise NewtonError(f"the Jacobian is singular at iteration {it}", it, res, (u, p)) from None
-        big = float(np.max(np.abs(d[:2])))
-        if big > 1.0:
-            d = d / big
+            F = np.append(ev.F, np.dot(n, np.append(u, p) - U0))
+        if not np.all(np.isfinite(A)):
+            raise NewtonError(f"the Jacobian is not finite at iteration {evals}", evals, res, (u, p))
+        f2 = float(F @ F)
+        descent.append(f2)
+        stuck = len(descent) > _STALL_STEPS and f2 > 0.5 * descent[-1 - _STALL_STEPS]
+        ok = False
+        while not stuck:                       # shrink the region until a step lowers |F|
+            d, predicted = dogleg(A, F, radius, weights)
+            size = float(np.linalg.norm(d * weights))
+            if predicted <= 0.0 or size == 0.0:
+                break
+            ut = u + d[:2]
+            pt = p if plane is None else p + float(d[2])
+            evals += 1
+            try:
+                evt = problem.evaluate(ut, pt)
+                Ft = evt.F if plane is None else np.append(evt.F, np.dot(n, np.append(ut, pt) - U0))
+                f2t = float(Ft @ Ft)
+            except FlowError:
+                evt, f2t = None, math.inf
+            rest = float(np.max(np.abs(evt.F))) if evt is not None else math.inf
+            rho = (f2 - f2t) / predicted if math.isfinite(f2t) else -math.inf
+            # a step within tolerance is taken whatever the model said (at the root |F| is rounding)
+            ok = rho >= 1e-4 or (math.isfinite(rest) and rest <= tol * (1.0 + float(np.max(np.abs(ut)))))
+            # the radius as hybrd moves it (More, Garbow & Hillstrom, MINPACK-1, hybrd)
+            if rho < 0.1:
+                radius, successes = 0.5 * radius, 0
+            else:
+                successes += 1
+                if rho >= 0.5 or successes > 1:
+                    radius = max(radius, 2.0 * size)
+                if abs(rho - 1.0) <= 0.1:
+                    radius = 2.0 * size
+            if ok or radius <= _RADIUS_FLOOR * scale or evals > maxit:
+                break
+        if not ok and evals <= maxit:
+            # stuck in a valley or at a minimum of |F| that is not a root: one shortened Newton step
+            d = _newton_step(A, F)
+            if d is None:
+                why = f"the Jacobian is singular at iteration {evals}"
+                break
+            ut = u + d[:2]
+            pt = p if plane is None else p + float(d[2])
+            evals += 1
+            try:
+                evt = problem.evaluate(ut, pt)
+            except FlowError as exc:
+                why = f"{exc} at iteration {evals}"
+                break
+            rest = float(np.max(np.abs(evt.F)))
+            if not math.isfinite(rest):
+                why = f"the residual is not finite at iteration {evals}"
+                break
+            descent, radius, ok = [], _RADIUS0, True
+        if not ok:
+            break
+        prev = res
         last = float(np.max(np.abs(d)))
-        u = u + d[:2]
-        if plane is not None:
-            p = p + float(d[2])
-    raise NewtonError(f"no convergence in {maxit} iterations", maxit, res, (u, p))
+        u, p, ev, res = ut, pt, evt, rest
+    raise NewtonError(why, evals, res, (u, p))
 
 
 def multipliers_of(M) -> np.ndarray:
@@ -313,7 +438,8 @@ def periodic_orbit(scene: Scene, guess: tuple[float, float] | None = None, k: in
     later; a periodic orbit is a root of ``P(x) - x - (2 pi winding, 0)``.  The
     flow and its monodromy matrix (the variational equations) come from GSL's
     rk8pd, the root from Newton's method with that exact Jacobian ``M - I``
-    (steps longer than 1 shortened to 1).
+    in a trust region (Powell's dogleg, as MINPACK's hybrd), so that a rough
+    guess slides down the residual rather than jumping about the phase space.
     The Floquet multipliers are the eigenvalues of the monodromy; their
     product is ``exp(-damping * period)`` (Liouville), and ``log|mu| / period``
     are the orbit's Lyapunov exponents, the ones a ``lyapunov`` sweep measures
