@@ -189,7 +189,8 @@ def test_fractions_refuses_a_dataset_without_fraction():
 def test_the_figures_of_pendula_run_still_return_a_figure(libration):
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        fig = pp.time_series(libration.scene, [(1.9, libration)])
+        from pendula import run_figures
+        fig = run_figures.time_series(libration.scene, [(1.9, libration)])
     assert isinstance(fig, matplotlib.figure.Figure)
 
 

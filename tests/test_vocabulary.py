@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import pendula
-from pendula import Scene, plot
+from pendula import Scene, run_figures
 
 
 def _cf(ds):
@@ -71,9 +71,9 @@ def test_plot_functions_take_ax_and_return_the_figure(tmp_path):
     sc = Scene(v0=1.5, t_end=10.0, n_samples=101)
     runs = [(1.5, pendula.simulate(sc))]
     fig, ax = plt.subplots()
-    out = plot.phase_portrait(sc, runs, ax=ax)
+    out = run_figures.phase_portrait(sc, runs, ax=ax)
     assert out is fig and ax.lines
-    f2 = plot.time_series(sc, runs, tmp_path / "t.png", which="v")
+    f2 = run_figures.time_series(sc, runs, tmp_path / "t.png", which="v")
     assert isinstance(f2, Figure) and (tmp_path / "t.png").stat().st_size > 0
     plt.close("all")
 

@@ -17,7 +17,7 @@ import warnings
 
 import numpy as np
 
-from . import _checks, plot
+from . import _checks, run_figures
 from ._files import staging, write_csv
 from ._optional import MissingExtraError
 from ._progress import Progress
@@ -37,7 +37,7 @@ class FiguresNotDrawn(UserWarning):
 
 
 def _png(path, draw, *args, **kw):
-    """Draw a figure with a pendula.plot function, save it to path, and answer with the path;
+    """Draw a figure with a figure function of pendula.run_figures, save it to path, and answer with the path;
     None (and a :class:`FiguresNotDrawn` warning) when matplotlib is not installed: the tables
     need only numpy, so they are written all the same."""
     try:
@@ -91,13 +91,13 @@ def _outputs(scene: Scene, outdir: pathlib.Path, stem: str | None, progress: boo
                               if scene.sweep else tr.as_array() for value, tr in runs])
             files.append(write_csv(outdir / f"{stem}.csv", scene, cols, rows))
         if "theta_t" in wanted:
-            files.append(_png(outdir / f"{stem}_theta_t.png", plot.time_series, scene, runs, which="theta"))
+            files.append(_png(outdir / f"{stem}_theta_t.png", run_figures.time_series, scene, runs, which="theta"))
         if "v_t" in wanted:
-            files.append(_png(outdir / f"{stem}_v_t.png", plot.time_series, scene, runs, which="v"))
+            files.append(_png(outdir / f"{stem}_v_t.png", run_figures.time_series, scene, runs, which="v"))
         if "phase" in wanted:
-            files.append(_png(outdir / f"{stem}_phase.png", plot.phase_portrait, scene, runs))
+            files.append(_png(outdir / f"{stem}_phase.png", run_figures.phase_portrait, scene, runs))
         if "energy" in wanted:
-            files.append(_png(outdir / f"{stem}_energy.png", plot.energy_drift, scene, runs))
+            files.append(_png(outdir / f"{stem}_energy.png", run_figures.energy_drift, scene, runs))
 
     if wanted & ORBIT_OUTPUTS:
         table = {"period": [], "omega": [], "theta_max": [], "regime": [], "k": []}
@@ -115,10 +115,10 @@ def _outputs(scene: Scene, outdir: pathlib.Path, stem: str | None, progress: boo
         files.append(write_csv(outdir / f"{stem}_orbits.csv", scene, cols, rows))
         if scene.sweep:
             shown = {k: table[k] for k in ("omega", "theta_max", "period") if k in wanted}
-            files.append(_png(outdir / f"{stem}_orbits.png", plot.orbit_curves, scene, values, shown))
+            files.append(_png(outdir / f"{stem}_orbits.png", run_figures.orbit_curves, scene, values, shown))
             v = np.asarray(values) / math.sqrt(scene.eps)
             if scene.sweep == "v0" and "omega" in wanted and np.all(np.abs(v - 2) < 0.5) and np.any(v != 2):
-                files.append(_png(outdir / f"{stem}_critical.png", plot.critical_omega, scene, values,
+                files.append(_png(outdir / f"{stem}_critical.png", run_figures.critical_omega, scene, values,
                                   table["omega"]))
 
     if "series" in wanted:
@@ -140,7 +140,7 @@ def _series_outputs(scene, members, values, outdir, stem):
     rows = [[theta0[i], exact[i]] + [approx[n][i] for n in orders] for i in range(len(theta0))]
     cols = ["theta0", "T_exact"] + [f"T_series_{2 * n}" for n in orders]
     return [write_csv(outdir / f"{stem}_series.csv", scene, cols, rows),
-            _png(outdir / f"{stem}_series.png", plot.period_series_figure, theta0, exact, approx)]
+            _png(outdir / f"{stem}_series.png", run_figures.period_series_figure, theta0, exact, approx)]
 
 
 def _lindstedt_outputs(scene, members, values, outdir, stem, progress):
@@ -158,7 +158,7 @@ def _lindstedt_outputs(scene, members, values, outdir, stem, progress):
     rows = [[values[i]] + [errors[o][i] for o in orders] for i in range(len(values))]
     cols = ["amplitude"] + [f"max_error_order_{o}" for o in orders]
     return [write_csv(outdir / f"{stem}_lindstedt.csv", scene, cols, rows),
-            _png(outdir / f"{stem}_lindstedt.png", plot.lindstedt_figure, np.asarray(values), errors)]
+            _png(outdir / f"{stem}_lindstedt.png", run_figures.lindstedt_figure, np.asarray(values), errors)]
 
 
 def _spectrum_outputs(scene, members, values, outdir, stem, progress=True):
@@ -192,7 +192,7 @@ def _spectrum_outputs(scene, members, values, outdir, stem, progress=True):
               notes=("harmonics above 1e-6 of the fundamental's power: "
                      + "; ".join(f"{lab or 'run'}: {h}" for lab, h in zip(labels, notes)),))
     files = [outdir / f"{stem}_spectrum.csv",
-             _png(outdir / f"{stem}_spectrum.png", plot.spectra_figure, scene, specs, labels)]   # None: not drawn
+             _png(outdir / f"{stem}_spectrum.png", run_figures.spectra_figure, scene, specs, labels)]   # None: not drawn
     for lab, h in zip(labels, notes):
         print(f"    {stem}: {lab or 'run'}: odd harmonics above 1e-6 of the fundamental's power: "
               f"{', '.join(str(x) for x in h)}")

@@ -4,8 +4,9 @@
 - :mod:`.periodic`: periodic orbits of a driven scene, by Newton on the stroboscopic
   map with its monodromy (the Floquet multipliers); the one Newton/monodromy core
   the rest of this package builds on;
-- :mod:`.continuation`: periodic orbits and equilibria followed in a parameter, with their
-  bifurcations (on the same core);
+- :mod:`.continuation`: periodic orbits followed in a parameter, with their bifurcations (on the
+  same core; the records in :mod:`.branches`, the homoclinic end in :mod:`.homoclinic`), and
+  :mod:`.equilibrium_continuation` the rest points followed likewise;
 - :mod:`.attractors`: the attractors of the stroboscopic map and their basins (the records and the
   measures of a basin map); :mod:`.attractor_maps` computes the maps (on the sweep engine),
   :mod:`.attractor_continuation` follows them over a parameter.
@@ -16,8 +17,9 @@ The public names are importable from :mod:`pendula` as well.
 from .attractors import Attractor, AttractorMap
 from .attractor_maps import attractor_map
 from .attractor_continuation import attractor_continuation
-from .continuation import (BIFURCATION_KINDS, Bifurcation, Branch, ContinuationError, EquilibriumBranch,
-                           continue_equilibria, continue_orbit)
+from .branches import BIFURCATION_KINDS, Bifurcation, Branch, ContinuationError
+from .continuation import continue_orbit
+from .equilibrium_continuation import EquilibriumBranch, continue_equilibria
 from .equilibria import EQUILIBRIUM_KINDS, Equilibrium, equilibria
 from .periodic import PeriodicOrbit, periodic_orbit
 
