@@ -78,11 +78,11 @@ def test_plot_functions_take_ax_and_return_the_figure(tmp_path):
     plt.close("all")
 
 
-def test_every_plot_function_has_path_and_ax():
+def test_every_run_figure_has_path_and_ax():
     names = ["time_series", "phase_portrait", "energy_drift", "orbit_curves", "critical_omega",
              "period_series_figure", "lindstedt_figure", "spectra_figure"]
     for n in names:
-        sig = inspect.signature(getattr(plot, n))
+        sig = inspect.signature(getattr(run_figures, n))
         assert sig.parameters["path"].default is None, n
         assert sig.parameters["ax"].kind is inspect.Parameter.KEYWORD_ONLY, n
 
