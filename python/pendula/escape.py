@@ -218,7 +218,7 @@ def thermal_rate(junction: Junction, bias: ArrayLike, temperature: float | None 
     Returns
     -------
     numpy.ndarray
-        Gamma, 1 / s (0 at T = 0, inf at |I| >= I_c).
+        Gamma, 1 / s (0 at T = 0, inf at abs(I) >= I_c).
 
     Raises
     ------
@@ -273,7 +273,7 @@ def quantum_rate(junction: Junction, bias: ArrayLike) -> np.ndarray:
     Returns
     -------
     numpy.ndarray
-        Gamma_q, 1 / s (inf at |I| >= I_c).
+        Gamma_q, 1 / s (inf at abs(I) >= I_c).
 
     Raises
     ------
@@ -322,7 +322,7 @@ def escape_rate(junction: Junction, bias: ArrayLike, temperature: float | None =
     Returns
     -------
     numpy.ndarray
-        Gamma, 1 / s (inf at |I| >= I_c).
+        Gamma, 1 / s (inf at abs(I) >= I_c).
 
     Raises
     ------
@@ -361,7 +361,7 @@ def crossover_temperature(junction: Junction, bias: ArrayLike) -> np.ndarray:
     junction : Junction
         The junction (C > 0).
     bias : array_like
-        Bias currents, A (|I| < I_c; 0 at |I| >= I_c).
+        Bias currents, A (abs(I) < I_c; 0 at abs(I) >= I_c).
 
     Returns
     -------

@@ -112,7 +112,7 @@ class Junction:
         The shunt resistance R, ohms (> 0).
     capacitance : float
         The capacitance C, farads (>= 0).  C = 0 is the overdamped junction
-        (the RSJ model, a first-order equation, :mod:`pendula.overdamped`):
+        (the RSJ model, a first-order equation, ``pendula.overdamped``):
         its exact dc I-V, its Shapiro steps and their edges
         (:meth:`iv_curve`, :meth:`dc_voltage`, :meth:`shapiro_steps`);
         what needs a plasma frequency (the pendulum's scene, escape,
@@ -291,7 +291,7 @@ class Junction:
         phase-locked bias reports its step voltage exactly (status 'locked').
 
         At C = 0 (the overdamped RSJ junction) the curve is the first-order
-        equation's (:mod:`pendula.overdamped`): exact without rf (V = R
+        equation's (``pendula.overdamped``): exact without rf (V = R
         sqrt(I² - I_c²)); with rf, a bias on a step reports n f Phi_0
         exactly and off the steps the mean voltage over ``t_max`` (default
         2000 rf periods) within the bound ``voltage_err``; no hysteresis
@@ -572,8 +572,8 @@ class Junction:
         """The exact dc I-V of the overdamped junction: V = R sqrt(I² - I_c²) above I_c.
 
         The RSJ junction (C = 0) without rf or noise: V = sign(I) R
-        sqrt(I² - I_c²) for |I| > I_c, 0 below (Stewart 1968; Likharev 1986,
-        section 4.1); computed as R sqrt((|I| - I_c)(|I| + I_c)), without
+        sqrt(I² - I_c²) for abs(I) > I_c, 0 below (Stewart 1968; Likharev 1986,
+        section 4.1); computed as R sqrt((abs(I) - I_c)(abs(I) + I_c)), without
         cancellation next to I_c.
 
         Parameters
@@ -614,10 +614,10 @@ class Junction:
         V = n f Phi_0 exactly; its edges are where the stroboscopic map
         F(x) = phi(1 / f; phi(0) = x) gains or loses its fixed point
         n turns on: max (F(x) - x) = 2 pi n (lower edge), min (F(x) - x) =
-        2 pi n (upper edge), bisected to 1e-11 I_c (:mod:`pendula.overdamped`;
+        2 pi n (upper edge), bisected to 1e-11 I_c (``pendula.overdamped``;
         the map by GSL's rk8pd to 1e-12).  In the limit of a large rf
-        frequency the widths approach the Bessel law 2 I_c |J_n(I_rf / (I_c
-        Omega))|.
+        frequency the widths approach the Bessel law 2 I_c abs(J_n(I_rf / (I_c
+        Omega))).
 
         Parameters
         ----------

@@ -524,7 +524,7 @@ def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: f
     are watched; each bifurcation is located by solving its test function's
     root along the branch (to about 1e-12 in the parameter), not by the step,
     and only where the test function's sign is decided on both sides (beyond
-    its error, about 1e-10 (1 + |M|)^2: a change below it, as of the
+    its error, about 1e-10 (1 + norm(M))^2: a change below it, as of the
     multipliers 1 +- 1e-8 i of a very fast drive, is no bifurcation).  The
     branch ends at ``stop`` exactly (never stepping past it: a field's edge,
     such as ``damping = 0``, may lie there):
