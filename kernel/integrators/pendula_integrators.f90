@@ -44,7 +44,7 @@ module pendula_integrators
   use pendula_time_scales, only: n_scales, time_rates, fastest_rate
   implicit none
   private
-  public :: pendulum_model, make_model, add_effects, model_rates, kahan_add, user_force_fn, free_accel, &
+  public :: pendulum_model, make_model, add_effects, model_rates, kahan_add, step_guard, user_force_fn, free_accel, &
     event_spec, run_stats, integrate, accel, accel_jacobian, &
     dop853_error_norm, dop853_step_2, dop853_step_6, system_rhs, verner_one_step_dense
 
@@ -347,6 +347,24 @@ contains
       facc1 = 5.0_dp; facc2 = 0.1_dp; safe = 0.9_dp
     end select
   end subroutine pi_controller
+
+  !> The adaptive drivers' guard before each step, one rule for all of them: st_step_underflow when the
+  !> step no longer moves t (Hairer's test, relative to t, so that a span of 1e-15 from t = 0 is not an
+  !> underflow), st_too_many_steps at the work limit, st_cancelled when another thread set the cancel flag
+  !> (read every poll_every steps); st_ok to go on.
+  pure integer function step_guard(h, t, nsteps, cancel) result(st)
+    real(dp), intent(in) :: h, t
+    integer(i8), intent(in) :: nsteps
+    integer, intent(in) :: cancel
+    st = st_ok
+    if (abs(h) <= 16.0_dp * epsilon(1.0_dp) * abs(t) .or. h == 0.0_dp) then
+      st = st_step_underflow
+    else if (nsteps >= max_steps) then
+      st = st_too_many_steps
+    else if (mod(nsteps, poll_every) == 0) then
+      if (cancel /= 0) st = st_cancelled
+    end if
+  end function step_guard
 
   !> y + e += d with compensation (Kahan): e carries what y could not hold.
   elemental subroutine kahan_add(y, e, d)
@@ -721,17 +739,8 @@ contains
     h = dir * min(h, abs(ts(size(ts))))
     reject = .false.
     do
-      if (abs(h) <= 16.0_dp * epsilon(1.0_dp) * abs(t) .or. h == 0.0_dp) then
-        status = st_step_underflow; return
-      end if
-      if (stats%nsteps >= max_steps) then
-        status = st_too_many_steps; return
-      end if
-      if (mod(stats%nsteps, poll_every) == 0) then
-        if (cancel /= 0) then
-          status = st_cancelled; return
-        end if
-      end if
+      status = step_guard(h, t, stats%nsteps, cancel)
+      if (status /= st_ok) return
       target = ts(kout)
       hit = dir * (t + h - target) >= 0.0_dp
       hs = h
@@ -899,17 +908,8 @@ contains
     h = dir * min(h, abs(ts(size(ts))))
     reject = .false.
     do
-      if (abs(h) <= 16.0_dp * epsilon(1.0_dp) * abs(t) .or. h == 0.0_dp) then
-        status = st_step_underflow; return
-      end if
-      if (stats%nsteps >= max_steps) then
-        status = st_too_many_steps; return
-      end if
-      if (mod(stats%nsteps, poll_every) == 0) then
-        if (cancel /= 0) then
-          status = st_cancelled; return
-        end if
-      end if
+      status = step_guard(h, t, stats%nsteps, cancel)
+      if (status /= st_ok) return
       if (land) then
         target = ts(kout)
       else
@@ -1032,19 +1032,8 @@ contains
     reject = .false.
     last = .false.
     do
-      ! Hairer's test: the step no longer moves t (relative to t, so that a
-      ! span of 1e-15 from t = 0 is not an "underflow")
-      if (abs(h) <= 16.0_dp * epsilon(1.0_dp) * abs(t) .or. h == 0.0_dp) then
-        status = st_step_underflow; return
-      end if
-      if (stats%nsteps >= max_steps) then
-        status = st_too_many_steps; return
-      end if
-      if (mod(stats%nsteps, poll_every) == 0) then
-        if (cancel /= 0) then
-          status = st_cancelled; return
-        end if
-      end if
+      status = step_guard(h, t, stats%nsteps, cancel)
+      if (status /= st_ok) return
       ! the step ends on the last output time (land: on the next one) rather than pass it
       target = tend
       if (land) target = ts(kout)

@@ -35,7 +35,7 @@ module pendula_ode
   use, intrinsic :: iso_c_binding, only: c_int64_t, c_int32_t, c_double
   use pendula_rng_iface, only: pendula_rng_key, pendula_rng_normals
   use pendula_kinds, only: dp, i8, nan_dp
-  use pendula_integrators, only: kahan_add, run_stats, dop853_error_norm, max_steps, max_fixed_steps, &
+  use pendula_integrators, only: kahan_add, step_guard, run_stats, dop853_error_norm, max_steps, max_fixed_steps, &
     st_ok, st_bad_step, st_bad_tol, st_bad_method, st_step_underflow, st_nonfinite, st_too_many_steps, &
     st_cancelled
   use pendula_rk_coefficients, only: d8_a, d8_b, d8_c, d8_d, d8_e3, d8_e5, g2_mu, g2_b, g2_c, g3_mu, g3_b, g3_c
@@ -202,17 +202,8 @@ contains
     reject = .false.
     last = .false.
     do
-      if (abs(h) <= 16.0_dp * epsilon(1.0_dp) * abs(t) .or. h == 0.0_dp) then
-        status = st_step_underflow; exit
-      end if
-      if (stats%nsteps >= max_steps) then
-        status = st_too_many_steps; exit
-      end if
-      if (mod(stats%nsteps, poll_every) == 0) then
-        if (cancel /= 0) then
-          status = st_cancelled; exit
-        end if
-      end if
+      status = step_guard(h, t, stats%nsteps, cancel)
+      if (status /= st_ok) exit
       if (t + h >= tend) then
         h = tend - t
         last = .true.
