@@ -46,7 +46,8 @@ module pendula_integrators
   private
   public :: pendulum_model, make_model, add_effects, model_rates, kahan_add, step_guard, user_force_fn, free_accel, &
     event_spec, run_stats, integrate, accel, accel_jacobian, &
-    dop853_error_norm, dop853_step_2, dop853_step_6, system_rhs, verner_one_step_dense
+    dop853_error_norm, dop853_step_2, dop853_step_6, system_rhs, verner_one_step_dense, &
+    start_step_euler, start_step_refined
 
   include 'pendula_rk_tables.inc'
   !> DOP853's A transposed, so that each stage's weights are contiguous
@@ -365,6 +366,58 @@ contains
       if (cancel /= 0) st = st_cancelled
     end if
   end function step_guard
+
+  !> Hairer's starting step, its first part (Hairer, Norsett & Wanner, Solving ODEs I, section II.4):
+  !> 0.01 sqrt(dny / dnf) from the squared scaled norms of the state (dny) and of its slope (dnf),
+  !> 1e-6 when either is negligible; at most hmax.
+  pure function start_step_euler(dny, dnf, hmax) result(h0)
+    real(dp), intent(in) :: dny, dnf, hmax
+    real(dp) :: h0
+    if (dnf <= 1.0e-10_dp .or. dny <= 1.0e-10_dp) then
+      h0 = 1.0e-6_dp
+    else
+      h0 = sqrt(dny / dnf) * 0.01_dp
+    end if
+    h0 = min(h0, hmax)
+  end function start_step_euler
+
+  !> Hairer's starting step, its second part: der2 is the scaled change of the slope over the
+  !> explicit Euler step h0, divided by h0; expo = 1/(order + 1) of the method's error estimate.
+  !> At most 100 h0 and hmax.
+  pure function start_step_refined(h0, der2, dnf, expo, hmax) result(h)
+    real(dp), intent(in) :: h0, der2, dnf, expo, hmax
+    real(dp) :: h, der12, h1
+    der12 = max(abs(der2), sqrt(dnf))
+    if (der12 <= 1.0e-15_dp) then
+      h1 = max(1.0e-6_dp, abs(h0) * 1.0e-3_dp)
+    else
+      h1 = (0.01_dp / der12)**expo
+    end if
+    h = min(100.0_dp * abs(h0), h1, hmax)
+  end function start_step_refined
+
+  !> Hairer's one-evaluation first guess of the explicit pairs: 0.01 sqrt(dny / dnf), at least 1e-6,
+  !> at most hmax (the span).
+  pure function start_step_guess(dny, dnf, hmax) result(h)
+    real(dp), intent(in) :: dny, dnf, hmax
+    real(dp) :: h
+    h = 0.01_dp * sqrt(dny / max(1.0e-10_dp, dnf))
+    if (.not. (h > 1.0e-6_dp)) h = 1.0e-6_dp
+    h = min(h, hmax)
+  end function start_step_guess
+
+  !> The outputs that fall on t itself (ts(kout), ts(kout + 1), ... equal to t) take the state (th, v);
+  !> kout moves past them.
+  pure subroutine outputs_at(t, th, v, ts, kout, ths, vs)
+    real(dp), intent(in) :: t, th, v, ts(:)
+    integer, intent(inout) :: kout
+    real(dp), intent(inout) :: ths(:), vs(:)
+    do while (kout <= size(ts))
+      if (ts(kout) /= t) exit
+      ths(kout) = th; vs(kout) = v
+      kout = kout + 1
+    end do
+  end subroutine outputs_at
 
   !> y + e += d with compensation (Kahan): e carries what y could not hold.
   elemental subroutine kahan_add(y, e, d)
@@ -724,19 +777,13 @@ contains
     if (size(ts) == 0) return
     t = 0.0_dp; th = theta0; v = v0
     kout = 1
-    do while (kout <= size(ts))
-      if (ts(kout) /= 0.0_dp) exit
-      ths(kout) = th; vs(kout) = v
-      kout = kout + 1
-    end do
+    call outputs_at(t, th, v, ts, kout, ths, vs)
     if (kout > size(ts)) return
     f(0) = force(m, t, th)
     stats%nfev = stats%nfev + 1
     ! starting step: the velocity and force scales against the tolerance (Hairer's first guess)
     sk1 = atol + rtol * abs(th); sk2 = atol + rtol * abs(v)
-    h = 0.01_dp * sqrt(((th / sk1)**2 + (v / sk2)**2) / max(1.0e-10_dp, (v / sk1)**2 + (f(0) / sk2)**2))
-    if (.not. (h > 1.0e-6_dp)) h = 1.0e-6_dp
-    h = dir * min(h, abs(ts(size(ts))))
+    h = dir * start_step_guess((th / sk1)**2 + (v / sk2)**2, (v / sk1)**2 + (f(0) / sk2)**2, abs(ts(size(ts))))
     reject = .false.
     do
       status = step_guard(h, t, stats%nsteps, cancel)
@@ -771,11 +818,7 @@ contains
         if (hit) t = target
         th = th1; v = v1
         f(0) = f(5)
-        do while (kout <= size(ts))
-          if (ts(kout) /= t) exit
-          ths(kout) = th; vs(kout) = v
-          kout = kout + 1
-        end do
+        call outputs_at(t, th, v, ts, kout, ths, vs)
         if (kout > size(ts)) exit
         ! a step shortened to land on an output does not shrink the next one
         if (hit) hnew = sign(max(abs(hnew), abs(h)), h)
@@ -892,20 +935,14 @@ contains
     facold = 1.0e-4_dp
     t = 0.0_dp; y = [theta0, v0]
     kout = 1
-    do while (kout <= size(ts))
-      if (ts(kout) /= 0.0_dp) exit
-      ths(kout) = y(1); vs(kout) = y(2)
-      kout = kout + 1
-    end do
+    call outputs_at(t, y(1), y(2), ts, kout, ths, vs)
     if (kout > size(ts)) return
     k = 0.0_dp
     k(0, 1) = y(2); k(0, 2) = accel(m, t, y(1), y(2))
     stats%nfev = stats%nfev + 1
     ! starting step: Hairer's first guess from the state and slope scales (order 9)
     sk = atol + rtol * abs(y)
-    h = 0.01_dp * sqrt(sum((y / sk)**2) / max(1.0e-10_dp, sum((k(0, :) / sk)**2)))
-    if (.not. (h > 1.0e-6_dp)) h = 1.0e-6_dp
-    h = dir * min(h, abs(ts(size(ts))))
+    h = dir * start_step_guess(sum((y / sk)**2), sum((k(0, :) / sk)**2), abs(ts(size(ts))))
     reject = .false.
     do
       status = step_guard(h, t, stats%nsteps, cancel)
@@ -964,11 +1001,7 @@ contains
         if (hit) t = target
         y = ynew
         k(0, :) = k(inew, :)
-        do while (kout <= size(ts))
-          if (ts(kout) /= t) exit
-          ths(kout) = y(1); vs(kout) = y(2)
-          kout = kout + 1
-        end do
+        call outputs_at(t, y(1), y(2), ts, kout, ths, vs)
         if (kout > size(ts)) exit
         ! a step shortened to land on an output does not shrink the next one
         if (hit) hnew = sign(max(abs(hnew), abs(h)), h)
@@ -1021,11 +1054,7 @@ contains
     f0 = rhs(t, y)
     stats%nfev = stats%nfev + 1
     kout = 1
-    do while (kout <= size(ts))
-      if (ts(kout) /= 0.0_dp) exit
-      ths(kout) = y(1); vs(kout) = y(2)
-      kout = kout + 1
-    end do
+    call outputs_at(t, y(1), y(2), ts, kout, ths, vs)
     if (kout > size(ts)) return
     gprev = gfun(y)
     h = dir * initial_step()
@@ -1119,27 +1148,15 @@ contains
 
     !> Hairer's starting step: balance an explicit Euler step against f's change.
     function initial_step() result(h0)
-      real(dp) :: h0, sk(2), dnf, dny, der2, der12, h1, y1(2), f1(2)
+      real(dp) :: h0, sk(2), dnf, der2, y1(2), f1(2)
       sk = atol + rtol * abs(y)
       dnf = sum((f0 / sk)**2)
-      dny = sum((y / sk)**2)
-      if (dnf <= 1.0e-10_dp .or. dny <= 1.0e-10_dp) then
-        h0 = 1.0e-6_dp
-      else
-        h0 = sqrt(dny / dnf) * 0.01_dp
-      end if
-      h0 = min(h0, abs(tend))
+      h0 = start_step_euler(sum((y / sk)**2), dnf, abs(tend))
       y1 = y + dir * h0 * f0
       f1 = rhs(dir * h0, y1)
       stats%nfev = stats%nfev + 1
       der2 = sqrt(sum(((f1 - f0) / sk)**2)) / h0
-      der12 = max(abs(der2), sqrt(dnf))
-      if (der12 <= 1.0e-15_dp) then
-        h1 = max(1.0e-6_dp, abs(h0) * 1.0e-3_dp)
-      else
-        h1 = (0.01_dp / der12)**(1.0_dp / order)
-      end if
-      h0 = min(100.0_dp * abs(h0), h1, abs(tend))
+      h0 = start_step_refined(h0, der2, dnf, 1.0_dp / order, abs(tend))
     end function initial_step
 
     subroutine step5(errn)

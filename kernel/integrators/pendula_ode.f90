@@ -37,7 +37,7 @@ module pendula_ode
   use pendula_kinds, only: dp, i8, nan_dp
   use pendula_integrators, only: kahan_add, step_guard, run_stats, dop853_error_norm, max_steps, max_fixed_steps, &
     st_ok, st_bad_step, st_bad_tol, st_bad_method, st_step_underflow, st_nonfinite, st_too_many_steps, &
-    st_cancelled
+    st_cancelled, start_step_euler, start_step_refined
   use pendula_rk_coefficients, only: d8_a, d8_b, d8_c, d8_d, d8_e3, d8_e5, g2_mu, g2_b, g2_c, g3_mu, g3_b, g3_c
   implicit none
   private
@@ -255,27 +255,15 @@ contains
 
     !> Hairer's starting step: balance an explicit Euler step against f's change.
     function initial_step() result(h0)
-      real(dp) :: h0, dnf, dny, der2, der12, h1
+      real(dp) :: h0, dnf, der2
       sk = atol + rtol * abs(y)
       dnf = sum((f0 / sk)**2)
-      dny = sum((y / sk)**2)
-      if (dnf <= 1.0e-10_dp .or. dny <= 1.0e-10_dp) then
-        h0 = 1.0e-6_dp
-      else
-        h0 = sqrt(dny / dnf) * 0.01_dp
-      end if
-      h0 = min(h0, tend - t0)
+      h0 = start_step_euler(sum((y / sk)**2), dnf, tend - t0)
       ys = y + h0 * f0
       call sys%rhs(t0 + h0, ys, fnew)
       stats%nfev = stats%nfev + 1
       der2 = sqrt(sum(((fnew - f0) / sk)**2)) / h0
-      der12 = max(abs(der2), sqrt(dnf))
-      if (der12 <= 1.0e-15_dp) then
-        h1 = max(1.0e-6_dp, abs(h0) * 1.0e-3_dp)
-      else
-        h1 = (0.01_dp / der12)**(1.0_dp / 8.0_dp)
-      end if
-      h0 = min(100.0_dp * abs(h0), h1, tend - t0)
+      h0 = start_step_refined(h0, der2, dnf, 1.0_dp / 8.0_dp, tend - t0)
     end function initial_step
 
     !> One step of size h: the stages, ynew, fnew, the error estimates and scale.

@@ -98,6 +98,26 @@ contains
     write(s, '(i0)') i
   end function int_text
 
+  !> The position of the quote that closes the string opening at s(i:i) (a
+  !> doubled quote inside stands for the quote itself); len(s) + 1 when the
+  !> string is not closed.
+  pure integer function quoted_end(s, i) result(e)
+    character(len=*), intent(in) :: s
+    integer, intent(in) :: i
+    e = i + 1
+    do while (e <= len(s))
+      if (s(e:e) == s(i:i)) then
+        if (e < len(s)) then
+          if (s(e + 1:e + 1) == s(i:i)) then
+            e = e + 2; cycle
+          end if
+        end if
+        exit
+      end if
+      e = e + 1
+    end do
+  end function quoted_end
+
   !> The position of the first value in s that is not of the kind wanted
   !> ('r' a number, 'i' a whole number, 's' a quoted string), 0 if none.
   !> s holds values bad_value_token accepts.
@@ -105,7 +125,7 @@ contains
     character(len=*), intent(in) :: s
     character(len=1), intent(in) :: kind
     integer :: i, e
-    character(len=1) :: q, got
+    character(len=1) :: got
     character(len=*), parameter :: seps = ' ,' // achar(9) // achar(10) // achar(13)
     at = 0
     i = 1
@@ -115,19 +135,7 @@ contains
         cycle
       end if
       if (s(i:i) == '''' .or. s(i:i) == '"') then
-        q = s(i:i)
-        e = i + 1
-        do while (e <= len(s))
-          if (s(e:e) == q) then
-            if (e < len(s)) then
-              if (s(e + 1:e + 1) == q) then
-                e = e + 2; cycle
-              end if
-            end if
-            exit
-          end if
-          e = e + 1
-        end do
+        e = quoted_end(s, i)
         got = 's'
       else
         e = i
@@ -164,7 +172,6 @@ contains
     logical, intent(out) :: nulls
     integer :: i, e, r
     logical :: value_since_comma
-    character(len=1) :: q
     character(len=*), parameter :: blanks = ' ' // achar(9) // achar(10) // achar(13)
     n = 0
     nulls = .false.
@@ -178,19 +185,7 @@ contains
         value_since_comma = .false.
         i = i + 1
       else if (s(i:i) == '''' .or. s(i:i) == '"') then
-        q = s(i:i)
-        e = i + 1
-        do while (e <= len(s))
-          if (s(e:e) == q) then
-            if (e < len(s)) then
-              if (s(e + 1:e + 1) == q) then
-                e = e + 2; cycle
-              end if
-            end if
-            exit
-          end if
-          e = e + 1
-        end do
+        e = quoted_end(s, i)
         n = n + 1
         value_since_comma = .true.
         i = e + 1
@@ -239,22 +234,10 @@ contains
       case (' ', ',', achar(9), achar(10), achar(13))
         i = i + 1
       case ('''', '"')
-        q = s(i:i)
-        e = i + 1
-        do
-          if (e > n) then
-            at = i; return
-          end if
-          if (s(e:e) == q) then
-            if (e < n) then
-              if (s(e + 1:e + 1) == q) then
-                e = e + 2; cycle
-              end if
-            end if
-            exit
-          end if
-          e = e + 1
-        end do
+        e = quoted_end(s, i)
+        if (e > n) then
+          at = i; return
+        end if
         i = e + 1
         if (.not. separated(i)) then
           at = i; return

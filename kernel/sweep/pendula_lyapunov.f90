@@ -32,7 +32,7 @@
 module pendula_lyapunov
   use pendula_kinds, only: dp, i8, two_pi, nan_dp
   use pendula_integrators, only: pendulum_model, make_model, add_effects, dop853_step_6, dop853_error_norm, system_rhs, max_steps, &
-    st_ok, st_step_underflow, st_nonfinite, st_too_many_steps
+    st_ok, st_step_underflow, st_nonfinite, st_too_many_steps, start_step_euler, start_step_refined
   implicit none
   private
   public :: lyapunov_point, lyapunov_intervals, ly_nblock, point_model
@@ -283,25 +283,13 @@ contains
   pure function initial_step(md, p, y, f0, hr, rtol, atol) result(h0)
     type(pendulum_model), intent(in) :: md
     real(dp), intent(in) :: p(12), y(6), f0(6), hr, rtol, atol
-    real(dp) :: h0, sk(6), dnf, dny, h1, der2, der12, f1(6)
+    real(dp) :: h0, sk(6), dnf, der2, f1(6)
     sk = max(atol + rtol * abs(y), tiny(1.0_dp))
     dnf = sum((f0 / sk)**2) / 6.0_dp
-    dny = sum((y / sk)**2) / 6.0_dp
-    if (dnf <= 1.0e-10_dp .or. dny <= 1.0e-10_dp) then
-      h0 = 1.0e-6_dp
-    else
-      h0 = 0.01_dp * sqrt(dny / dnf)
-    end if
-    h0 = min(h0, hr)
+    h0 = start_step_euler(sum((y / sk)**2) / 6.0_dp, dnf, hr)
     f1 = rhs(md, p, h0, y + h0 * f0)
     der2 = sqrt(sum(((f1 - f0) / sk)**2) / 6.0_dp) / h0
-    der12 = max(abs(der2), sqrt(dnf))
-    if (der12 <= 1.0e-15_dp) then
-      h1 = max(1.0e-6_dp, abs(h0) * 1.0e-3_dp)
-    else
-      h1 = (0.01_dp / der12)**(1.0_dp / 8.0_dp)
-    end if
-    h0 = min(100.0_dp * abs(h0), h1, hr)
+    h0 = start_step_refined(h0, der2, dnf, 1.0_dp / 8.0_dp, hr)
   end function initial_step
 
 end module pendula_lyapunov
