@@ -121,11 +121,19 @@ docs: $(VENV)/.installed $(VENV)/.docs-deps $(DOCS_STAMP)
 docs-clean:
 	rm -rf docs/_build docs/source/gallery docs/source/generated docs/source/_toc docs/source/_api_generated.rst
 
+# the browser check's Chromium and its driver (tests/docs_browser_check.py: /usr/bin/chromium and
+# /usr/bin/chromedriver): installed with apt-get as root or through sudo, or else named, and make stops
 docs-browser:
-	@dpkg -s $(DOCS_APT_PKGS) >/dev/null 2>&1 || { \
-	  echo "installing system packages: $(DOCS_APT_PKGS)"; \
-	  $(SUDO) apt-get update -qq && \
-	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $(DOCS_APT_PKGS); }
+	@[ -x /usr/bin/chromium ] && [ -x /usr/bin/chromedriver ] || { \
+	  if command -v apt-get >/dev/null && { [ "$$(id -u)" = 0 ] || command -v sudo >/dev/null; }; then \
+	    echo "installing system packages: $(DOCS_APT_PKGS)"; \
+	    $(SUDO) apt-get update -qq && \
+	    DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $(DOCS_APT_PKGS); \
+	  else \
+	    echo "the docs' browser check needs Chromium and its driver at /usr/bin/chromium and /usr/bin/chromedriver;" >&2; \
+	    echo "install them (as an administrator), then run make again:  sudo apt-get install $(DOCS_APT_PKGS)" >&2; \
+	    exit 1; \
+	  fi; }
 
 docs-check: docs docs-browser
 	$(PY) -m pytest -q tests/test_docs.py
