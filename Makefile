@@ -16,7 +16,7 @@ SOURCES := $(shell find kernel python data/scenes -type f \( -name "*.f90" -o -n
            data/elliptic_reference.csv data/reference_grids.csv.gz data/reference_grids_edges.csv.gz \
            data/model_grids.csv.gz
 
-.PHONY: demo test test-debug bench bench-peers system-deps clean wheel sdist test-wheel docs docs-check docs-deps docs-browser
+.PHONY: demo test test-debug bench bench-peers system-deps clean wheel sdist test-wheel docs docs-clean docs-check docs-deps docs-browser
 
 demo: $(VENV)/.installed
 	$(PY) -m pendula demo
@@ -89,7 +89,8 @@ test-wheel: wheel sdist
 	    $(PY) -m pytest -q tests/test_packaging.py
 
 # ---- the documentation site (separate from `make test`: it runs every gallery script) ----
-# make docs         build docs/_build/html with warnings as errors
+# make docs         build docs/_build/html with warnings as errors (incremental)
+# make docs-clean   remove the built site and the gallery's outputs
 # make docs-check   also run the docstring examples and open every page in headless Chromium
 DOCS_PY_PKGS := "sphinx>=7" "pydata-sphinx-theme>=0.15" "numpydoc>=1.6" "sphinx-gallery>=0.16" \
     "myst-parser>=2" "selenium>=4.10"
@@ -101,16 +102,38 @@ $(VENV)/.docs-deps: $(VENV)/.deps
 	$(PY) -m pip install -q $(DOCS_PY_PKGS)
 	@touch $@
 
-# from scratch every time: every gallery script runs, and no page of an old name survives
-docs: $(VENV)/.installed $(VENV)/.docs-deps
-	rm -rf docs/_build docs/source/gallery docs/source/generated docs/source/_toc docs/source/_api_generated.rst
-	cd docs && MPLBACKEND=agg ../$(PY) -m sphinx -W --keep-going -n -b html -j 1 source _build/html
+# incremental: Sphinx reads again the pages whose sources changed, and sphinx-gallery runs again
+# only the scripts whose text changed (it keeps each script's checksum beside its outputs in
+# docs/source/gallery).  Everything is drawn again when the installed package is newer than the
+# last build (the figures show what the package computes), and after a failed build (Sphinx
+# would not warn again about a page it has read, so the next build reads them all).
+# make docs-clean removes every output: the next build starts from scratch.
+DOCS_STAMP := docs/_build/.built-against-installed
 
+$(DOCS_STAMP): $(VENV)/.installed
+	rm -rf docs/_build docs/source/gallery
+	@mkdir -p docs/_build && touch $@
+
+docs: $(VENV)/.installed $(VENV)/.docs-deps $(DOCS_STAMP)
+	cd docs && MPLBACKEND=agg ../$(PY) -m sphinx -W --keep-going -n -b html -j 1 source _build/html \
+	    || { rm -rf _build/doctrees _build/html; exit 1; }
+
+docs-clean:
+	rm -rf docs/_build docs/source/gallery docs/source/generated docs/source/_toc docs/source/_api_generated.rst
+
+# the browser check's Chromium and its driver (tests/docs_browser_check.py: /usr/bin/chromium and
+# /usr/bin/chromedriver): installed with apt-get as root or through sudo, or else named, and make stops
 docs-browser:
-	@dpkg -s $(DOCS_APT_PKGS) >/dev/null 2>&1 || { \
-	  echo "installing system packages: $(DOCS_APT_PKGS)"; \
-	  $(SUDO) apt-get update -qq && \
-	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $(DOCS_APT_PKGS); }
+	@[ -x /usr/bin/chromium ] && [ -x /usr/bin/chromedriver ] || { \
+	  if command -v apt-get >/dev/null && { [ "$$(id -u)" = 0 ] || command -v sudo >/dev/null; }; then \
+	    echo "installing system packages: $(DOCS_APT_PKGS)"; \
+	    $(SUDO) apt-get update -qq && \
+	    DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $(DOCS_APT_PKGS); \
+	  else \
+	    echo "the docs' browser check needs Chromium and its driver at /usr/bin/chromium and /usr/bin/chromedriver;" >&2; \
+	    echo "install them (as an administrator), then run make again:  sudo apt-get install $(DOCS_APT_PKGS)" >&2; \
+	    exit 1; \
+	  fi; }
 
 docs-check: docs docs-browser
 	$(PY) -m pytest -q tests/test_docs.py

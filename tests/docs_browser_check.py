@@ -119,22 +119,6 @@ return out;
 MIN_TEXT_PX = 9.0
 #: the PNG text chunk docs/tools/figure_text.py writes
 TEXT_KEY = "pendula-min-text-px"
-#: figures laid out before the 9 px rule whose layout is still to be redone (their smallest text is shown
-#: under 9 px at the column's width): named here so that every other figure, and every new one, is held
-#: to the rule; each is printed as a known failure until it is drawn again
-SMALL_TEXT_KNOWN = frozenset({
-    "quantum-1.png",
-    "quantum-figure.png",
-    "spherical-figure.png",
-    "sphx_glr_plot_01_theta_t_001.png",
-    "sphx_glr_plot_08_damping_josephson_001.png",
-    "sphx_glr_plot_09_driven_chaos_001.png",
-    "sphx_glr_plot_10_cord_001.png",
-    "sphx_glr_plot_11_huygens_gravity_001.png",
-    "sphx_glr_plot_basins_001.png",
-    "sphx_glr_plot_continuation_001.png",
-    "sphx_glr_plot_junction_escape_001.png",
-})
 
 
 def png_min_text_px(path: pathlib.Path) -> float | None:
@@ -162,9 +146,7 @@ def figure_failures(page: str, figures: list[dict], site: pathlib.Path) -> tuple
             unmeasured += 1
             continue
         shown = px * f["shown"] / f["natural"]
-        if shown < MIN_TEXT_PX and pathlib.PurePosixPath(rel).name in SMALL_TEXT_KNOWN:
-            print(f"known: {page}: figure {rel}: its smallest text is {shown:.1f} px as shown")
-        elif shown < MIN_TEXT_PX:
+        if shown < MIN_TEXT_PX:
             failures.append(f"{page}: figure {rel}: its smallest text is {shown:.1f} px as shown "
                             f"({px:.1f} px in the image, shown at {f['shown']:.0f} of {f['natural']} px wide); "
                             f"at least {MIN_TEXT_PX:g} px")

@@ -21,14 +21,15 @@ groups = {
     "near the separatrix": [1.99, 1.9999, 2.0, 2.0001, 2.01],
     "rotation": [2.1, 2.5, 3.0],
 }
-fig, axes = plt.subplots(1, 3, figsize=(12, 3.6), sharex=True)
+# one panel a row, so that the figure fits the page's column at full size
+fig, axes = plt.subplots(3, 1, figsize=(7, 8.4), sharex=True,
+                         layout="constrained")
 for ax, (title, v0s) in zip(axes, groups.items()):
     for v0 in v0s:
         tr = pendula.simulate(pendula.Scene(v0=v0), t)
         ax.plot(tr.t, tr.theta, label=f"v0 = {v0:g}")
     ax.set_title(f"{title} ({tr.method})")
-    ax.set_xlabel("t")
-    ax.legend(fontsize=7)
-axes[0].set_ylabel("θ (rad)")
-fig.tight_layout()
+    ax.set_ylabel("θ (rad)")
+    ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))
+axes[-1].set_xlabel("t (units of 1/√ε)")
 plt.show()

@@ -2,11 +2,11 @@
 Damping, torque and the Josephson junction
 ==========================================
 
-Suzuki & Suzuki, sections 7 and 8.  Left: the well θ = 2πn a damped
+Suzuki & Suzuki, sections 7 and 8.  Top: the well θ = 2πn a damped
 pendulum (θ0 = 0) settles in, over a grid of starting velocities v0 and
 damping β, by :func:`pendula.sweep` with the measure ``final_well`` (a
 small version of the ``make demo`` map; each point stops as soon as its
-energy is below the barrier of its well).  Right: with a constant torque τ
+energy is below the barrier of its well).  Bottom: with a constant torque τ
 the mean velocity ⟨v⟩ against τ is the I–V curve of a Josephson junction
 (RCSJ model): locked (⟨v⟩ = 0) up to τ = ε, running above, and on the way
 down running until the retrapping torque near 4β/π: a hysteresis loop.
@@ -25,7 +25,8 @@ ds = pendula.sweep(s,
                    measure="final_well")
 print(ds)
 
-fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.3))
+# the two panels one above the other, so that the figure fits the page's column
+fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 9.5), layout="constrained")
 # one colour per well n (θ → 2πn), one tick each
 pendula.plot.basins(ds, ax=ax1)
 ax1.set(xlabel="v0", ylabel="damping β", title="basins of the damped pendulum")
@@ -46,5 +47,4 @@ ax2.set(xlabel="torque τ (bias current)", ylabel="⟨v⟩ (voltage)",
         ylim=(-0.5, 14),
         title=f"I–V loop, β = {beta}, ε = 1")
 ax2.legend(fontsize=8)
-fig.tight_layout()
 plt.show()

@@ -3,9 +3,9 @@ The driven pendulum: period doubling and chaos
 ===============================================
 
 θ'' + β θ' + sin θ = A cos(Ωt) with β = 0.5, Ω = 2/3 (gallery scenes
-``data/scenes/sweeps/driven_*``).  Left: the bifurcation diagram, the
+``data/scenes/sweeps/driven_*``).  Top: the bifurcation diagram, the
 velocity once per drive period after a transient, against the drive
-amplitude A (:func:`pendula.sweep`, measure ``poincare``).  Right: the
+amplitude A (:func:`pendula.sweep`, measure ``poincare``).  Bottom: the
 largest Lyapunov exponent (measure ``lyapunov``): positive in the chaotic
 bands, −β/2 where the orbit is a stable cycle with complex Floquet
 multipliers.  Below, one chaotic orbit, animated.
@@ -27,7 +27,8 @@ lya = pendula.sweep(drive, over={"drive_amplitude": amps[::2]},
                     measure="lyapunov", transient=200.0,
                     t_max=800.0)
 
-fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
+# the two panels one above the other, so that the figure fits the page's column
+fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 7.6), layout="constrained")
 ax1.plot(np.repeat(amps, bif.sizes["sample"]), bif.v.values.ravel(), ".k",
          ms=2)
 ax1.set(xlabel="drive amplitude A", ylabel="v at t = 2πk/Ω",
@@ -38,7 +39,6 @@ ax2.axhline(-0.25, color="0.6", lw=0.8, ls=":", label="−β/2")
 ax2.set(xlabel="drive amplitude A", ylabel="λ1",
         title="largest Lyapunov exponent")
 ax2.legend(fontsize=8)
-fig.tight_layout()
 plt.show()
 
 # %%

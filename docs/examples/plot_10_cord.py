@@ -33,7 +33,8 @@ for xi in xs:
         tr = pendula.simulate(pendula.Scene(cord="flexible", v0=v0, t_end=12,
                                             n_samples=3, max_flips=1))
     after.append(tr.flips["xi_after"][0])
-fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.5))
+# the two panels one above the other, so that the figure fits the page's column
+fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(6.5, 10), layout="constrained")
 xx = np.linspace(0, 1, 400)
 ax1.plot(xx, pendula.flip_map(xx), color="0.3",
          label="f(ξ), Garfinkel's closed form")
@@ -54,7 +55,6 @@ ax2.plot(np.where(fly, tr.x, np.nan), np.where(fly, tr.y, np.nan), "r--",
 ax2.set(aspect="equal", xlabel="x / l", ylabel="y / l",
         title=f"ξ(0) = 0.777: {tr.stats['flips']} flips by t = 40")
 ax2.legend(fontsize=8, loc="lower right")
-fig.tight_layout()
 plt.show()
 
 # %%

@@ -3,12 +3,12 @@ Huygens' cycloid and non-uniform gravity
 ========================================
 
 Prusa & Tuma, section 4 and task 4 (gallery scenes ``huygens_cycloid``,
-``gravity_inverse_square`` and ``gravity_linear``).  Left: Huygens' clock.
+``gravity_inverse_square`` and ``gravity_linear``).  Top: Huygens' clock.
 A cord of length 4R wraps on two cycloidal cheeks, so the bob moves on a
 cycloid, and its motion is harmonic at every amplitude up to the cusps:
 the period 4π√(R/g) does not depend on the amplitude (the tautochrone).
 Middle: that period measured from the closed-form motion against the rigid
-pendulum's.  Right: the period in a non-uniform field (a point mass at
+pendulum's.  Bottom: the period in a non-uniform field (a point mass at
 distance D below the pivot, or a linear fall-off), by exact quadrature.
 """
 
@@ -18,7 +18,9 @@ import numpy as np
 import pendula
 
 g = pendula.cycloid_geometry(0.25)
-fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(13, 4.2))
+# one panel a row, so that the figure fits the page's column at full size
+fig, (ax1, ax2, ax3) = plt.subplots(3, 1, figsize=(7, 12.5),
+                                    layout="constrained")
 ax1.plot(*g.cheek_left, "k", lw=2.5)
 ax1.plot(*g.cheek_right, "k", lw=2.5, label="cheeks (cycloids)")
 ax1.plot(*g.path, color="tab:blue", label="bob's path (cycloid)")
@@ -31,8 +33,8 @@ for th in np.linspace(-1.2, 1.2, 7):
              lw=1)
     ax1.plot(*bob, "o", color="tab:green", ms=5)
 ax1.set(aspect="equal", title="Huygens' clock, R = l/4", xlabel="x / l",
-        ylabel="y / l")
-ax1.legend(fontsize=7, loc="upper center")
+        ylabel="y / l", ylim=(-0.05, 1.25))
+ax1.legend(fontsize=8, loc="upper center", ncols=3)
 
 amps = np.linspace(0.05, 1.5, 30)
 Tc = [pendula.period(pendula.Scene(guide="cycloid", theta0=a)) for a in amps]
@@ -58,6 +60,5 @@ for label, kw in fields:
                  label=label)
 ax3.set(xlabel="θ0", ylabel="period",
         title="non-uniform gravity (exact quadrature)")
-ax3.legend(fontsize=7)
-fig.tight_layout()
+ax3.legend(fontsize=8)
 plt.show()

@@ -2,7 +2,7 @@
 Attractors, their basins, and basin fractions over the drive
 =============================================================
 
-The driven damped pendulum (β = 0.5, Ω = 2/3).  Left and middle: each
+The driven damped pendulum (β = 0.5, Ω = 2/3).  Top and middle: each
 initial state (θ0, v0) coloured by the attractor of the stroboscopic map its
 orbit ends on (:func:`pendula.attractor_map`: orbits followed by recurrence
 and stopped as soon as they are decided; periodic attractors confirmed by
@@ -10,7 +10,7 @@ Newton); the attractors' points are drawn on the map.  At A = 1.07 two
 period-2 oscillations, mirror images of each other, share the plane with
 intertwined basins; at A = 1.35 two period-1 rotations, one each way.  The
 titles give the basin entropy and the uncertainty exponent α (α < 1: a
-fractal boundary, as Grebogi, Ott and Yorke found on this system).  Right:
+fractal boundary, as Grebogi, Ott and Yorke found on this system).  Bottom:
 the fraction of the plane in each attractor's basin as the amplitude moves
 (:func:`pendula.attractor_continuation`, attractors matched from one
 amplitude to the next), stacked; what is left white is undecided.
@@ -25,7 +25,8 @@ import pendula.plot
 n = 60
 grid = {"theta0": np.linspace(-np.pi, np.pi, n),
         "v0": np.linspace(-3.0, 3.0, n)}
-fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
+# one panel a row, so that the figure fits the page's column at full size
+fig, axes = plt.subplots(3, 1, figsize=(7, 15), layout="constrained")
 for ax, amp in zip(axes, (1.07, 1.35)):
     sc = pendula.Scene(damping=0.5, drive_amplitude=amp,
                        drive_frequency=2 / 3)
@@ -41,5 +42,4 @@ ds = pendula.attractor_continuation(
     "drive_amplitude", np.linspace(1.0, 1.5, 21))
 pendula.plot.fractions(ds, ax=axes[2])
 axes[2].set_title("basin fractions, attractors continued")
-fig.tight_layout()
 plt.show()

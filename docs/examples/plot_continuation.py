@@ -11,10 +11,10 @@ unstable (``follow='branch'``); dots: the bifurcations, each located by
 solving its test function.  Grey: the brute-force orbit diagram, the
 stroboscopic points after a transient (:func:`pendula.sweep`, measure
 ``poincare``).  Each orbit of period k is drawn with its k points on the
-section.
+section (top; enlarged below it).
 
-Middle: the ratios of successive doubling intervals against Feigenbaum's
-δ = 4.6692.  Right: the retrapping torque of the undriven pendulum (the
+Third: the ratios of successive doubling intervals against Feigenbaum's
+δ = 4.6692.  Bottom: the retrapping torque of the undriven pendulum (the
 homoclinic end of the running orbit, continued in the torque) against the
 damping, with Stewart-McCumber's 4β/π for small damping and the lowest
 running torque of :func:`pendula.iv_curve`'s down branch beside it.
@@ -88,8 +88,9 @@ curves = [
     for br in [route] + left
 ]
 
-fig, axs = plt.subplots(2, 2, figsize=(12, 9))
-(ax, axz), (axr, axh) = axs
+# one panel a row, so that the figure fits the page's column at full size
+fig, (ax, axz, axr, axh) = plt.subplots(4, 1, figsize=(7, 17),
+                                        layout="constrained")
 v = diagram.v.values
 for a, lo, title in (
     (ax, 1.0, "attracting route (solid), left behind (dashed)"),
@@ -129,7 +130,7 @@ for b in route.bifurcations[:2]:
     ax.annotate(
         f"{b.kind}\nA = {b.value:.8f}",
         (b.value, b.v),
-        fontsize=7,
+        fontsize=8,
         xytext=(4, -22),
         textcoords="offset points",
     )
@@ -190,5 +191,4 @@ axh.set_xlabel("damping β")
 axh.set_ylabel("retrapping torque")
 axh.legend()
 axh.set_title("retrapping torque")
-fig.tight_layout()
 plt.show()

@@ -2,14 +2,14 @@
 Switching in the lab, and the overdamped junction
 =================================================
 
-A 10 µA, 1 pF, 30 Ω junction as the laboratory measures it.  Left: its
+A 10 µA, 1 pF, 30 Ω junction as the laboratory measures it.  Top: its
 switching-current distributions at 1 A/s and 1 mA/s, at 4.2 K (thermal
 activation) and at 20 mK (macroscopic quantum tunnelling), from the
 Fulton-Dunkleberger integral of the escape rate
 (:func:`pendula.switching_distribution`).  Middle: the width of the
 distribution against temperature; below the crossover temperature
 (:func:`pendula.crossover_temperature`, marked) tunnelling takes over and the
-width stops shrinking.  Right: the same junction without its capacitance (the
+width stops shrinking.  Bottom: the same junction without its capacitance (the
 overdamped RSJ junction): the exact I-V V = R √(I² − I_c²), and under a
 100 GHz drive of −56 dBm at 50 Ω its Shapiro steps, exactly n f Φ₀.
 """
@@ -21,7 +21,9 @@ import pendula
 from pendula.junction import FLUX_QUANTUM
 
 j = pendula.Junction(critical_current=10e-6, resistance=30.0, capacitance=1e-12)
-fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(15, 4.6))
+# one panel a row, so that the figure fits the page's column at full size
+fig, (ax1, ax2, ax3) = plt.subplots(3, 1, figsize=(7, 13),
+                                    layout="constrained")
 
 for temp, color in ((4.2, "C3"), (0.02, "C0")):
     for rate, ls in ((1.0, "-"), (1e-3, "--")):
@@ -35,7 +37,7 @@ for temp, color in ((4.2, "C3"), (0.02, "C0")):
         )
 ax1.set(xlabel="switching current (µA)", ylabel="density (1/µA)",
         title="switching at laboratory ramps")
-ax1.legend(fontsize=7)
+ax1.legend(fontsize=8)
 
 temps = np.geomspace(4e-3, 6.0, 36)
 widths = [pendula.switching_distribution(j, 1.0, temperature=t).width
@@ -69,6 +71,5 @@ for n in range(1, 6):
     ax3.axhline(n * f * FLUX_QUANTUM * 1e6, color="C3", lw=0.4, ls=":")
 ax3.set(xlabel="bias current (µA)", ylabel="dc voltage (µV)",
         title="the overdamped junction (C = 0)")
-ax3.legend(fontsize=7)
-fig.tight_layout()
+ax3.legend(fontsize=8)
 plt.show()

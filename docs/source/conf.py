@@ -126,10 +126,12 @@ SECTIONS = {
               "guide/circuits",
               "guide/spherical",
               "guide/sweeps",
-              "sweeps_at_scale*", "guide/scenes", "scenes*", "vocabulary", "guide/architecture"],
+              "sweeps_at_scale*", "guide/scenes"],
     "reports": ["reports/accuracy", "accuracy*", "elliptic_edges*", "model_accuracy*", "reports/cost", "work_precision*", "reports/benchmarks",
                 "reports/limits"],
-    "about": ["bad_input*", "slips", "changelog", "license*", "develop"],
+    "about": ["bad_input*", "slips", "changelog", "license*"],
+    # how pendula is built and checked: for those who change it, apart from the user's guide
+    "developer": ["guide/architecture", "scenes*", "vocabulary", "develop"],
 }
 # the classroom pendulum (metres, seconds, degrees) right after the exact pendulum
 SECTIONS["guide"].insert(SECTIONS["guide"].index("guide/exact") + 1, "guide/laboratory")
@@ -159,7 +161,7 @@ def _write_tocs() -> None:
         if not path.exists() or path.read_text() != text:
             path.write_text(text)
     # top-level pages nobody placed (written elsewhere and new to this list): an 'other' section
-    known = taken | {"index", "api", "getting_started", "about"}
+    known = taken | {"index", "api", "getting_started", "about", "developer"}
     rest = sorted({p.stem for p in HERE.iterdir() if p.suffix in (".rst", ".md") and not p.stem.startswith("_")} - known)
     text = (".. toctree::\n   :maxdepth: 1\n\n" + "".join(f"   /{e}\n" for e in rest)) if rest else ""
     path = toc / "other.rst.inc"
