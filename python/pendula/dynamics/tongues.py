@@ -158,7 +158,7 @@ def shapiro_tongue(scene: Scene, n: int, stop: float, *, guess: tuple[float, flo
     See Also
     --------
     continue_bifurcation : the fold curves.
-    Junction.shapiro_steps : the overdamped junction's steps at one rf amplitude.
+    pendula.Junction.shapiro_steps : the overdamped junction's steps at one rf amplitude.
 
     Examples
     --------
