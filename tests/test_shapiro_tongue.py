@@ -88,3 +88,19 @@ def test_bad_arguments_name_the_argument():
         pendula.shapiro_tongue(sc.replace(damping=0.0), 1, 1.2)
     with pytest.raises(TypeError, match="scene"):
         pendula.shapiro_tongue("junction", 1, 1.2)
+
+
+def test_junction_tongue_in_amperes_is_the_reduced_tongue_times_the_critical_current():
+    j = pendula.Junction(2e-6, 10.0, 1e-11)
+    t = j.shapiro_tongue(1, 2e-6, 20e9, 2.4e-6)
+    sc = j.scene(0.0, 2e-6, 20e9)
+    ref = pendula.shapiro_tongue(sc, 1, 1.2)
+    e = t.lab_edges()
+    for key, curve in (("lower", ref.lower), ("upper", ref.upper)):
+        np.testing.assert_allclose(e[f"{key}_bias"], 2e-6 * curve.first, rtol=1e-13)
+        np.testing.assert_allclose(e[f"{key}_rf"], 2e-6 * curve.second, rtol=1e-13)
+    assert e["lower_rf"][-1] == pytest.approx(2.4e-6, rel=1e-15)
+    with pytest.raises(ValueError, match="critical_current"):
+        ref.lab_edges()
+    with pytest.raises(ValueError, match="capacitance"):
+        pendula.Junction(2e-6, 10.0, 0.0).shapiro_tongue(1, 2e-6, 20e9, 2.4e-6)

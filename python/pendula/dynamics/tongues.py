@@ -14,7 +14,7 @@ rf amplitude by :func:`.bifurcation_curves.continue_bifurcation`.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -41,6 +41,9 @@ class ShapiroTongue:
     lower, upper : BifurcationCurve
         The lower and upper edges: fold curves of the locked orbit in (``torque``, ``drive_amplitude``),
         ``first`` the torque and ``second`` the rf amplitude at each point.
+    critical_current : float or None
+        The junction's I_c (A) when made by :meth:`pendula.Junction.shapiro_tongue`: ``lab_edges`` gives
+        amperes.
 
     See Also
     --------
@@ -60,6 +63,34 @@ class ShapiroTongue:
     n: int
     lower: BifurcationCurve
     upper: BifurcationCurve
+    critical_current: float | None = field(default=None, repr=False)
+
+    def lab_edges(self) -> dict[str, np.ndarray]:
+        """The edges in amperes: the bias (torque times I_c) and the rf current (amplitude times I_c).
+
+        Returns
+        -------
+        dict
+            ``lower_bias``, ``lower_rf``, ``upper_bias``, ``upper_rf`` (A), point by point along each edge.
+
+        Raises
+        ------
+        ValueError
+            A tongue in reduced units only (not made by :meth:`pendula.Junction.shapiro_tongue`).
+
+        Examples
+        --------
+        >>> import pendula
+        >>> t = pendula.Junction(1e-6, 10.0, 1e-11).shapiro_tongue(1, 1e-6, 20e9, 1.1e-6)
+        >>> sorted(t.lab_edges())
+        ['lower_bias', 'lower_rf', 'upper_bias', 'upper_rf']
+        """
+        ic = self.critical_current
+        if ic is None:
+            raise ValueError("critical_current: this tongue is in reduced units (make it with "
+                             "Junction.shapiro_tongue for amperes)")
+        return {"lower_bias": self.lower.first * ic, "lower_rf": self.lower.second * ic,
+                "upper_bias": self.upper.first * ic, "upper_rf": self.upper.second * ic}
 
     def edges(self) -> tuple[np.ndarray, np.ndarray]:
         """The torques of the lower and upper edges at their points (each curve's ``first``).
