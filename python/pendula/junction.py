@@ -28,12 +28,11 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _checks, _interrupt
+from .dynamics.tongues import ShapiroTongue, shapiro_tongue
 from .scene import Scene
 
 if TYPE_CHECKING:   # xarray is optional: named in annotations only
     import xarray
-
-    from .dynamics.tongues import ShapiroTongue
 
 __all__ = ["Junction", "SwitchingCurrents", "PLANCK", "ELEMENTARY_CHARGE", "BOLTZMANN", "FLUX_QUANTUM"]
 
@@ -318,7 +317,6 @@ class Junction:
         >>> bool(e["lower_bias"][-1] < e["upper_bias"][-1]), round(float(e["upper_rf"][-1]) * 1e6, 9)
         (True, 1.2)
         """
-        from .dynamics.tongues import shapiro_tongue
         if self.capacitance == 0:
             raise ValueError("field 'capacitance' is 0: the overdamped junction's steps come from shapiro_steps")
         amp, omega = self._rf(rf_current, rf_frequency)
