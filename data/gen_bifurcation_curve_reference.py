@@ -14,7 +14,11 @@ stroboscopic map, and brentq (a safeguarded bisection, xtol 1e-14) on the multip
    branch is parametrised by the coordinate s along the last fold's critical eigenvector q (tangent to
    the branch at the fold, so regular through it): at each s Newton in (w, A) solves P(x; A) = x for
    x = x0 + s q + w q', and brentq solves det(M - I) = 0 in s.
-3. The overdamped-limit check of the Shapiro steps is a closed form (Bessel functions): not here.
+3. Pitchfork of the symmetric period-1 orbit (A = 1.0043 at omega = 2/3): the symmetric orbit as a
+   fixed point of the half-period map G (Newton), A by brentq on 1 + tr DG + det DG (DG's eigenvalue -1
+   is the monodromy DG^2's +1 where the symmetry breaks), omega = 0.6 to 0.7.
+   (`python data/gen_bifurcation_curve_reference.py pitchfork` recomputes this part alone.)
+4. The overdamped-limit check of the Shapiro steps is a closed form (Bessel functions): not here.
    The steps' edges at finite frequency (item 3 of the output) are folds of the locked orbit (winding n
    per drive period) in the torque at fixed A and omega: parametrised by theta as in 2, with the
    torque as the unknown instead of A.
@@ -27,6 +31,7 @@ from __future__ import annotations
 
 import json
 import math
+import sys
 import time
 from pathlib import Path
 
@@ -98,6 +103,74 @@ def pd_point(A0, x0, omega, beta):
     A = brentq(g, lo, hi, xtol=1e-14, rtol=4 * np.finfo(float).eps, maxiter=200)
     x, M = orbit(state["x"], A, omega, beta)
     return A, x, np.linalg.eigvals(M)
+
+
+def half_orbit(x, A, omega, beta):
+    """Newton on the half-period map G(x) = (2 pi m - theta(T/2), -v(T/2)) at fixed A: the symmetric orbit.
+    Returns (x, DG)."""
+    T = 2 * math.pi / omega
+    x = np.array(x, dtype=float)
+
+    def half(x):
+        s = solve_ivp(rhs, (0.0, T / 2), [x[0], x[1], 1, 0, 0, 1, 0, 0], method="DOP853", rtol=RTOL, atol=ATOL,
+                      args=(A, omega, beta, 0.0, "A"))
+        y = s.y[:, -1]
+        return y[:2], -np.array([[y[2], y[4]], [y[3], y[5]]])
+    y, _ = half(x)
+    m = round((y[0] + x[0]) / (2 * math.pi))
+    for _ in range(40):
+        y, DG = half(x)
+        r = np.array([2 * math.pi * m - y[0] - x[0], -y[1] - x[1]])
+        dx = np.linalg.solve(DG - np.eye(2), -r)
+        x = x + dx
+        if np.max(np.abs(dx)) < 1e-13 * (1 + np.max(np.abs(x))) or (
+                np.max(np.abs(r)) < 1e-12 and np.max(np.abs(dx)) < 1e-10):
+            break
+    else:
+        raise RuntimeError("Newton did not converge")
+    return x, half(x)[1]
+
+
+def pitchfork_point(A0, x0, omega, beta):
+    """A on the pitchfork curve at omega: brentq on 1 + tr DG + det DG (DG's eigenvalue -1, M = DG^2's +1)."""
+    state = {"x": np.array(x0, dtype=float)}
+
+    def g(A):
+        x, DG = half_orbit(state["x"], A, omega, beta)
+        state["x"] = x
+        return 1.0 + np.trace(DG) + np.linalg.det(DG)
+    width = 0.005
+    for _ in range(8):
+        state["x"] = np.array(x0, dtype=float)
+        lo, hi = A0 - width, A0 + width
+        glo, ghi = g(lo), g(hi)
+        if glo * ghi < 0:
+            break
+        width *= 2
+    else:
+        raise RuntimeError(f"no sign change of 1 + tr DG + det DG near A = {A0} at omega = {omega}")
+    A = brentq(g, lo, hi, xtol=1e-14, rtol=4 * np.finfo(float).eps, maxiter=200)
+    x, DG = half_orbit(state["x"], A, omega, beta)
+    return A, x, np.linalg.eigvals(DG @ DG)
+
+
+def pitchforks(beta, t0):
+    """The pitchfork curve from A = 1.004319 at omega = 2/3 (the symmetric orbit theta -1.07195, v 1.89723)."""
+    out = []
+    for omegas in ([2 / 3] + [round(2 / 3 - i * 0.01 / 3, 12) for i in range(1, 21)],
+                   [round(2 / 3 + i * 0.01 / 3, 12) for i in range(1, 11)]):
+        x, A = np.array([-1.07195, 1.89723]), 1.0043195
+        last = []
+        for omega in omegas:
+            guess = A if len(last) < 2 else last[-1][1] + (omega - last[-1][0]) * (
+                (last[-1][1] - last[-2][1]) / (last[-1][0] - last[-2][0]))
+            A, x, mu = pitchfork_point(guess, x, omega, beta)
+            last.append((omega, A))
+            if min(abs(omega - w) for w in (2 / 3, 0.64, 0.6, 0.7)) < 1e-9:
+                out.append({"omega": float(omega), "A": A, "theta": x[0], "v": x[1],
+                            "multipliers": sorted(np.real(mu).tolist())})
+                print("pitchfork", omega, A, time.time() - t0)
+    return out
 
 
 def branch_at(s, w, p, omega, beta, fixed, which, winding=0, c=(0.0, 0.0), e=(1.0, 0.0)):
@@ -175,6 +248,12 @@ def fold_point(x0, p0, q, omega, beta, fixed=0.0, which="A", winding=0, ds=0.005
 def main():
     t0 = time.time()
     beta = 0.5
+    path = Path(__file__).with_name("bifurcation_curve_reference.json")
+    if sys.argv[1:] == ["pitchfork"]:       # only the pitchfork curve, into the existing file
+        out = json.loads(path.read_text())
+        out["pitchfork"] = pitchforks(beta, t0)
+        path.write_text(json.dumps(out, indent=1))
+        return
     out = {"beta": beta, "rtol": RTOL, "method": "scipy DOP853 + Newton on the map + brentq (xtol 1e-14)"}
     # 1. period doubling of the asymmetric orbit, from A = 1.066373 at omega = 2/3 (theta -0.2215, v 1.9597);
     # the orbit is followed from omega to omega by reusing the last state
@@ -209,6 +288,7 @@ def main():
                              "multipliers": sorted(np.real(mu).tolist())})
                 print("fold", name, omega, A, time.time() - t0)
     out["fold"] = fold
+    out["pitchfork"] = pitchforks(beta, t0)
     Path(__file__).with_name("bifurcation_curve_reference.json").write_text(json.dumps(out, indent=1))
     print(f"{time.time() - t0:.0f} s")
 

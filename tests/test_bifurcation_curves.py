@@ -159,13 +159,40 @@ def test_bad_arguments_name_the_argument(period_doubling):
         pendula.continue_bifurcation(bare, "drive_frequency", 0.7)
 
 
-def test_a_pitchfork_is_refused_by_name():
+@pytest.fixture(scope="module")
+def pitchfork():
     sc = Scene(damping=BETA, drive_amplitude=1.0, drive_frequency=2 / 3)
-    br = pendula.continue_orbit(sc, (0.1, 1.9), "drive_amplitude", 1.01)
-    pf = br.bifurcations[0]
+    pf = pendula.continue_orbit(sc, (0.1, 1.9), "drive_amplitude", 1.01).bifurcations[0]
     assert pf.kind == "pitchfork"
-    with pytest.raises(NotImplementedError, match="point: a pitchfork"):
-        pendula.continue_bifurcation(pf, "drive_frequency", 0.7)
+    return pf
+
+
+def test_pitchfork_curve_against_scipy(pitchfork):
+    # the symmetric orbit's pitchfork, followed as the flip of the half-period map; the reference solves
+    # 1 + tr DG + det DG = 0 by brentq on scipy's half-period map (1e-8 as for the other curves)
+    for p in REF["pitchfork"]:
+        if abs(p["omega"] - 2 / 3) < 1e-12:
+            assert abs(pitchfork.value - p["A"]) < 1e-8
+            continue
+        curve = pendula.continue_bifurcation(pitchfork, "drive_frequency", p["omega"])
+        assert curve.kind == "pitchfork" and curve.end == "stop"
+        assert abs(curve.first[-1] - p["A"]) < 1e-8, (p, curve.first[-1])
+        assert abs(curve.theta[-1] - p["theta"]) < 1e-7 and abs(curve.v[-1] - p["v"]) < 1e-7
+        # the whole orbit's multipliers: +1 and exp(-beta T) / 1
+        assert np.min(np.abs(curve.multipliers[-1] - 1)) < 1e-8
+        assert curve.coefficient[-1] > 0          # supercritical, as continue_orbit's follow='stable' meets it
+
+
+def test_a_pitchfork_in_the_torque_is_refused_by_name(pitchfork):
+    with pytest.raises(ValueError, match="second_param: 'torque' breaks the symmetry"):
+        pendula.continue_bifurcation(pitchfork, "torque", 0.1)
+
+
+def test_a_neimark_sacker_point_is_refused_by_name():
+    sc = Scene(damping=BETA, drive_amplitude=1.0, drive_frequency=2 / 3)
+    ns = pendula.Bifurcation("neimark-sacker", 1.0, 1.0, 0.0, 0.0, np.array([1.0, 1.0]), sc, "drive_amplitude")
+    with pytest.raises(NotImplementedError, match="point: a neimark-sacker"):
+        pendula.continue_bifurcation(ns, "drive_frequency", 0.7)
 
 
 def test_a_field_the_orbit_does_not_depend_on_is_refused(period_doubling):

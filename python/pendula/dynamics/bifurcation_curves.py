@@ -51,7 +51,7 @@ from .periodic import FlowError, drive_period, flow, multipliers_of, reduce_angl
 __all__ = ["BifurcationCurve", "CodimTwoPoint", "continue_bifurcation", "CURVE_KINDS"]
 
 #: The bifurcations a curve can follow, and the multiplier each is defined by.
-CURVE_KINDS = {"fold": 1.0, "period-doubling": -1.0}
+CURVE_KINDS = {"fold": 1.0, "period-doubling": -1.0, "pitchfork": 1.0}
 #: The most points of one curve (the work limit).
 MAX_POINTS = 5_000
 _TOL = 1e-11           # the residual a corrected point meets (the flow's own accuracy is about 1e-12)
@@ -110,7 +110,9 @@ class BifurcationCurve:
     scene : Scene
         The scene the curve started from (the bifurcation's).
     kind : str
-        ``'fold'`` (a multiplier +1) or ``'period-doubling'`` (-1).
+        ``'fold'`` (a multiplier +1), ``'period-doubling'`` (-1) or ``'pitchfork'`` (+1 where the symmetric
+        orbit of an untorqued drive breaks its symmetry: followed as the flip of the half-period map, its
+        ``coefficient`` that flip's, positive where the pitchfork is supercritical).
     params : tuple of str
         The two fields: the one the bifurcation was found in, and the second.
     first, second : numpy.ndarray
@@ -194,8 +196,11 @@ class _Point:
 class _System:
     """The augmented system of one curve: the scene family in two fields, the multiplier, the borders."""
 
-    def __init__(self, scene: Scene, p1: str, p2: str, lam: float, k: int, winding: int):
+    def __init__(self, scene: Scene, p1: str, p2: str, lam: float, k: int, winding: int, half_m: int | None = None):
         self.base, self.p1, self.p2, self.lam, self.k, self.winding = scene, p1, p2, lam, k, winding
+        # a pitchfork: the symmetric orbit as a fixed point of the half-period map
+        # G(x) = (2 pi m - theta(T/2), -v(T/2)) (G o G = P), where the pitchfork of P is G's flip
+        self.half_m = half_m
         self.b = self.c = self.q = None
         self._cache: tuple | None = None
 
@@ -210,12 +215,16 @@ class _System:
         return sc
 
     def map(self, x, a: float, b: float):
-        """(F, M, the state after the period) at the section point x."""
+        """(F, M) at the section point x: the residual and the monodromy of the map (of G: DG, for a pitchfork)."""
         sc = self.scene(a, b)
         try:
             T = drive_period(sc, self.k)
         except ValueError as exc:
             raise FlowError(str(exc)) from None
+        if self.half_m is not None:
+            end, mono, _ = flow(sc, x, [0.5 * T], _RTOL, _ATOL)
+            F = np.array([2 * math.pi * self.half_m - end[0, 0] - x[0], -end[0, 1] - x[1]])
+            return F, -mono[0]
         end, mono, _ = flow(sc, x, [T], _RTOL, _ATOL)
         F = end[0] - np.asarray(x, dtype=float) - np.array([2 * math.pi * self.winding, 0.0])
         return F, mono[0]
@@ -362,6 +371,11 @@ def _test_errors(sys_: _System, pt: _Point) -> dict:
     return {"generalized period-doubling": 1e-4 * nM ** 3, "fold-flip": em, "1:2 resonance": em}
 
 
+#: The codimension-two points of G's flip curve, named as points of the pitchfork curve of P.
+_HALF_NAMES = {"generalized period-doubling": "degenerate pitchfork", "fold-flip": "fold-pitchfork",
+               "1:2 resonance": "1:1 resonance"}
+
+
 def _signs(values: dict, errors: dict) -> dict:
     return {k: (0 if not math.isfinite(v) or abs(v) <= errors[k] else (1 if v > 0 else -1))
             for k, v in values.items()}
@@ -403,7 +417,7 @@ class _Curve:
         self.end = ""
 
     def record(self, pt: _Point, coefficient: float) -> None:
-        mu = multipliers_of(pt.M)
+        mu = multipliers_of(pt.M if self.sys.half_m is None else pt.M @ pt.M)
         self.rows.append((float(pt.z[2]), float(pt.z[3]), reduce_angle(pt.z[0]), float(pt.z[1]), mu[0], mu[1],
                           coefficient))
 
@@ -512,9 +526,32 @@ class _Curve:
             except FlowError:
                 s, pc = 0.0, pa
             found.append((s, key, pc, None))
+        half = sys_.half_m is not None
         for _, key, pc, _ in sorted(found, key=lambda e: e[0]):
-            self.points.append(CodimTwoPoint(key, (float(pc.z[2]), float(pc.z[3])), reduce_angle(pc.z[0]),
-                                             float(pc.z[1]), multipliers_of(pc.M)))
+            self.points.append(CodimTwoPoint(_HALF_NAMES.get(key, key) if half else key,
+                                             (float(pc.z[2]), float(pc.z[3])), reduce_angle(pc.z[0]),
+                                             float(pc.z[1]), multipliers_of(pc.M @ pc.M if half else pc.M)))
+
+
+def _symmetric(point: Bifurcation, scene: Scene, k: int, p2: str) -> int:
+    """The m of the half-period map G whose fixed point is the pitchfork's symmetric orbit; errors where the
+    scene or the second field breaks the drive's symmetry (theta, v, t) -> (-theta, -v, t + T/2)."""
+    if p2 in ("torque", "pivot_amplitude"):
+        raise ValueError(f"second_param: {p2!r} breaks the symmetry (theta, v, t) -> (-theta, -v, t + T/2) of "
+                         "the pitchfork; in it the pitchfork unfolds and is no curve")
+    if scene.torque != 0.0 or scene.pivot_amplitude != 0.0 or point.winding != 0 or k % 2 == 0:
+        raise NotImplementedError("point: a pitchfork without the drive's symmetry (a torque, a vibrating "
+                                  "pivot, a running or even-period orbit) is not followed in two fields yet")
+    x = np.array([point.theta, point.v])
+    try:
+        end, _, _ = flow(scene, x, [0.5 * drive_period(scene, k)], _RTOL, _ATOL)
+    except (ValueError, FlowError) as exc:
+        raise ContinuationError(f"point: the flow fails at the pitchfork: {exc}") from None
+    m = round((end[0, 0] + x[0]) / (2 * math.pi))
+    if max(abs(2 * math.pi * m - end[0, 0] - x[0]), abs(end[0, 1] + x[1])) > 1e-6:
+        raise NotImplementedError("point: this pitchfork's orbit is not symmetric (a branch point without the "
+                                  "drive's symmetry); it is not followed in two fields yet")
+    return m
 
 
 def continue_bifurcation(point: Bifurcation, second_param: str, stop: float, *,
@@ -541,8 +578,11 @@ def continue_bifurcation(point: Bifurcation, second_param: str, stop: float, *,
     Parameters
     ----------
     point : Bifurcation
-        A ``'fold'`` or ``'period-doubling'`` of a driven scene from
-        :func:`continue_orbit`.
+        A ``'fold'``, ``'period-doubling'`` or ``'pitchfork'`` of a driven scene
+        from :func:`continue_orbit` (a pitchfork of the symmetric orbit of an
+        untorqued drive: followed as the flip of the half-period map ``G``,
+        ``G o G = P``, where it is regular; its codimension-two points are
+        named ``'degenerate pitchfork'``, ``'fold-pitchfork'``, ``'1:1 resonance'``).
     second_param : str
         The second numeric scene field (``'drive_frequency'``, ``'damping'``,
         ``'torque'``, ...), not the field the point was found in.
@@ -566,10 +606,12 @@ def continue_bifurcation(point: Bifurcation, second_param: str, stop: float, *,
         If ``second_param`` is not a numeric scene field, is the point's own
         field or does not change the orbit; if ``stop`` equals the start or
         lies outside the field's range; if ``point`` is of a kind that cannot
-        be continued or carries no scene.
+        be continued or carries no scene, or breaks the symmetry of a
+        pitchfork (``torque``).
     NotImplementedError
-        For a pitchfork, a Neimark-Sacker point, a homoclinic or an
-        equilibrium's saddle-node (not followed in two fields yet).
+        For a Neimark-Sacker point, a homoclinic, an equilibrium's
+        saddle-node or a pitchfork without the drive's symmetry (not followed
+        in two fields yet).
     ContinuationError
         The start does not lie on a curve (Newton fails there).
 
@@ -592,9 +634,9 @@ def continue_bifurcation(point: Bifurcation, second_param: str, stop: float, *,
     """
     if not isinstance(point, Bifurcation):
         raise TypeError(f"point must be a Bifurcation from continue_orbit, not {type(point).__name__}")
-    if point.kind in ("pitchfork", "neimark-sacker", "homoclinic", "saddle-node"):
+    if point.kind in ("neimark-sacker", "homoclinic", "saddle-node"):
         raise NotImplementedError(f"point: a {point.kind} is not followed in two fields yet (only "
-                                  f"{' and '.join(CURVE_KINDS)} curves)")
+                                  f"{', '.join(CURVE_KINDS)} curves)")
     if point.kind not in CURVE_KINDS:
         raise ValueError(f"point: a {point.kind!r} cannot be continued (only {' and '.join(CURVE_KINDS)})")
     if point.scene is None or point.param is None:
@@ -631,7 +673,8 @@ def continue_bifurcation(point: Bifurcation, second_param: str, stop: float, *,
                              f"{MAX_POINTS} points")
     k = int(round(point.period))
     lam = CURVE_KINDS[point.kind]
-    sys_ = _System(scene, p1, p2, lam, k, int(point.winding))
+    half_m = _symmetric(point, scene, k, p2) if point.kind == "pitchfork" else None
+    sys_ = _System(scene, p1, p2, -1.0 if half_m is not None else lam, k, int(point.winding), half_m)
     z0 = np.array([point.theta, point.v, float(getattr(scene, p1)), p2_start])
     try:
         pt = sys_.evaluate(z0)
