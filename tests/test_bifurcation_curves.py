@@ -198,3 +198,20 @@ def test_a_neimark_sacker_point_is_refused_by_name():
 def test_a_field_the_orbit_does_not_depend_on_is_refused(period_doubling):
     with pytest.raises(ValueError, match="second_param"):
         pendula.continue_bifurcation(period_doubling, "theta0", 0.5)
+
+
+def test_retrapping_curve_against_scipy():
+    # the homoclinic (retrapping) torque followed in the damping: the reference bisects, at each damping,
+    # on whether scipy's unstable manifold of the saddle passes the next saddle (1e-8 as in
+    # tests/test_continuation.py; measured 4e-15..1e-14)
+    ref = json.loads((Path(__file__).resolve().parents[1] / "data" / "continuation_reference.json").read_text())
+    rows = ref["retrapping"]
+    br = pendula.continue_orbit(Scene(damping=rows[0]["damping"], torque=1.5), (0.0, 5.0), "torque", 0.0)
+    hom = br.bifurcations[0]
+    assert hom.kind == "homoclinic" and abs(hom.value - rows[0]["torque"]) < 1e-8
+    for r in rows[1:]:
+        curve = pendula.continue_bifurcation(hom, "damping", r["damping"])
+        assert curve.kind == "homoclinic" and curve.end == "stop" and curve.second[-1] == r["damping"]
+        assert abs(curve.first[-1] - r["torque"]) < 1e-8, (r, curve.first[-1])
+    # McCumber and Stewart: 4 damping / pi for small damping (the first points, within O(damping^2))
+    assert abs(curve.first[0] - 4 * 0.1 / math.pi) < 0.01

@@ -46,6 +46,7 @@ from ..scene import Scene, SceneError
 from ..systems.contract import require, time_scales
 from .branches import Bifurcation, ContinuationError
 from .continuation import _param_value, _root
+from .homoclinic_curves import homoclinic_rows
 from .periodic import FlowError, drive_period, flow, multipliers_of, reduce_angle
 
 __all__ = ["BifurcationCurve", "CodimTwoPoint", "continue_bifurcation", "CURVE_KINDS"]
@@ -112,7 +113,9 @@ class BifurcationCurve:
     kind : str
         ``'fold'`` (a multiplier +1), ``'period-doubling'`` (-1) or ``'pitchfork'`` (+1 where the symmetric
         orbit of an untorqued drive breaks its symmetry: followed as the flip of the half-period map, its
-        ``coefficient`` that flip's, positive where the pitchfork is supercritical).
+        ``coefficient`` that flip's, positive where the pitchfork is supercritical), or ``'homoclinic'``
+        (the retrapping point of a running autonomous orbit: ``theta`` the saddle's angle, ``v`` 0, the
+        multipliers and coefficient NaN).
     params : tuple of str
         The two fields: the one the bifurcation was found in, and the second.
     first, second : numpy.ndarray
@@ -582,7 +585,12 @@ def continue_bifurcation(point: Bifurcation, second_param: str, stop: float, *,
         from :func:`continue_orbit` (a pitchfork of the symmetric orbit of an
         untorqued drive: followed as the flip of the half-period map ``G``,
         ``G o G = P``, where it is regular; its codimension-two points are
-        named ``'degenerate pitchfork'``, ``'fold-pitchfork'``, ``'1:1 resonance'``).
+        named ``'degenerate pitchfork'``, ``'fold-pitchfork'``, ``'1:1 resonance'``),
+        or a ``'homoclinic'`` of an autonomous running orbit (the retrapping
+        torque: at each value of ``second_param`` the first field is solved
+        for the zero of the splitting of the saddle's manifolds, as
+        :func:`continue_orbit` locates it; the curve ends where the homoclinic
+        orbit ceases, at the saddle-node on the circle).
     second_param : str
         The second numeric scene field (``'drive_frequency'``, ``'damping'``,
         ``'torque'``, ...), not the field the point was found in.
@@ -609,7 +617,7 @@ def continue_bifurcation(point: Bifurcation, second_param: str, stop: float, *,
         be continued or carries no scene, or breaks the symmetry of a
         pitchfork (``torque``).
     NotImplementedError
-        For a Neimark-Sacker point, a homoclinic, an equilibrium's
+        For a Neimark-Sacker point, an equilibrium's
         saddle-node or a pitchfork without the drive's symmetry (not followed
         in two fields yet).
     ContinuationError
@@ -634,10 +642,10 @@ def continue_bifurcation(point: Bifurcation, second_param: str, stop: float, *,
     """
     if not isinstance(point, Bifurcation):
         raise TypeError(f"point must be a Bifurcation from continue_orbit, not {type(point).__name__}")
-    if point.kind in ("neimark-sacker", "homoclinic", "saddle-node"):
+    if point.kind in ("neimark-sacker", "saddle-node"):
         raise NotImplementedError(f"point: a {point.kind} is not followed in two fields yet (only "
                                   f"{', '.join(CURVE_KINDS)} curves)")
-    if point.kind not in CURVE_KINDS:
+    if point.kind not in CURVE_KINDS and point.kind != "homoclinic":
         raise ValueError(f"point: a {point.kind!r} cannot be continued (only {' and '.join(CURVE_KINDS)})")
     if point.scene is None or point.param is None:
         raise ValueError("point: it carries no scene; pass a bifurcation as continue_orbit reports it")
@@ -650,7 +658,10 @@ def continue_bifurcation(point: Bifurcation, second_param: str, stop: float, *,
     if p2 == p1:
         raise ValueError(f"second_param: {p2!r} is the field the bifurcation was found in; give another field")
     require(scene, "continue_orbit", over=(p1, p2))
-    if time_scales(scene).forcing_status == 1:
+    autonomous = time_scales(scene).forcing_status == 1
+    if point.kind == "homoclinic" and not autonomous:
+        raise ValueError("point: a homoclinic point of a driven scene is not a continue_orbit result")
+    if autonomous and point.kind != "homoclinic":
         raise ValueError(f"point: the {point.kind} of an autonomous orbit is not a bifurcation of a driven scene's "
                          "map; only driven scenes' folds and period doublings are followed")
     stop = _checks.real(stop, "stop")
@@ -671,6 +682,13 @@ def continue_bifurcation(point: Bifurcation, second_param: str, stop: float, *,
         if abs(stop - p2_start) / (4 * step) > MAX_POINTS:
             raise ValueError(f"step: {step!r} is too short to reach stop = {stop!r} within the work limit of "
                              f"{MAX_POINTS} points")
+    if point.kind == "homoclinic":
+        first, second, theta, end = homoclinic_rows(scene, p1, p2, point.value, p2_start, stop, step,
+                                                    int(point.winding) or 1, MAX_POINTS)
+        n = len(first)
+        nan = np.full(n, math.nan)
+        return BifurcationCurve(scene, "homoclinic", (p1, p2), first, second, theta, np.zeros(n), 0,
+                                int(point.winding), np.full((n, 2), math.nan, dtype=complex), nan, (), end)
     k = int(round(point.period))
     lam = CURVE_KINDS[point.kind]
     half_m = _symmetric(point, scene, k, p2) if point.kind == "pitchfork" else None

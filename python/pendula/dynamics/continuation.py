@@ -515,8 +515,8 @@ class _Tracer:
         sc = prob.scene(ph)
         sad = [e for e in equilibria(sc) if e.kind == "saddle"]
         theta = sad[0].theta if sad else math.nan
-        self.bifs.append(Bifurcation("homoclinic", float(ph), math.inf, theta, 0.0, np.array([1.0, 0.0],
-                                                                                              dtype=complex)))
+        self.bifs.append(Bifurcation("homoclinic", float(ph), math.inf, theta, 0.0, np.array([1.0, 0.0], dtype=complex),
+                                     *self._where(prob, ph)))
         self.end = f"homoclinic at {self.param} = {float(ph)!r}: the period diverges"
         return True
 
