@@ -104,3 +104,25 @@ def test_junction_tongue_in_amperes_is_the_reduced_tongue_times_the_critical_cur
         ref.lab_edges()
     with pytest.raises(ValueError, match="capacitance"):
         pendula.Junction(2e-6, 10.0, 0.0).shapiro_tongue(1, 2e-6, 20e9, 2.4e-6)
+
+
+def test_fractional_step_edges_satisfy_the_fold_conditions_by_scipy():
+    # the step 1/2 (one turn in two drive periods) of a junction with damping 1 and rf frequency 1: at the
+    # last point of each edge scipy's two-period map advances the state by one turn, and det(M - I) = 0
+    # (a point off the edge by d torque shows det(M - I) of about |d det / d torque| d, here above 1 d)
+    from scipy.integrate import solve_ivp
+    sc = Scene(damping=1.0, drive_amplitude=1.0, drive_frequency=1.0)
+    tongue = pendula.shapiro_tongue(sc, 1, 1.2, q=2)
+    assert tongue.q == 2 and "n=1/2" in repr(tongue)
+    for edge in (tongue.lower, tongue.upper):
+        tau, a, th, v = edge.first[-1], edge.second[-1], edge.theta[-1], edge.v[-1]
+
+        def rhs(t, y):
+            s = -math.cos(y[0])
+            return [y[1], -y[1] - math.sin(y[0]) + a * math.cos(t) + tau, y[3], s * y[2] - y[3], y[5],
+                    s * y[4] - y[5]]
+        y = solve_ivp(rhs, (0.0, 4 * math.pi), [th, v, 1, 0, 0, 1], method="DOP853", rtol=1e-12, atol=1e-12).y[:, -1]
+        assert abs(y[0] - th - 2 * math.pi) < 1e-9 and abs(y[1] - v) < 1e-9
+        M = np.array([[y[2], y[4]], [y[3], y[5]]])
+        assert abs(np.linalg.det(M - np.eye(2))) < 1e-8
+    assert tongue.lower.first[-1] < tongue.upper.first[-1]

@@ -37,7 +37,10 @@ class ShapiroTongue:
     scene : Scene
         The scene the tongue started from (its damping and drive frequency hold along the tongue).
     n : int
-        The step: the locked orbit advances n turns per drive period (mean velocity n drive_frequency).
+        The step: the locked orbit advances n turns per ``q`` drive periods (mean velocity
+        n drive_frequency / q).
+    q : int
+        The drive periods of the locked orbit (1 for an integer step).
     lower, upper : BifurcationCurve
         The lower and upper edges: fold curves of the locked orbit in (``torque``, ``drive_amplitude``),
         ``first`` the torque and ``second`` the rf amplitude at each point.
@@ -63,6 +66,7 @@ class ShapiroTongue:
     n: int
     lower: BifurcationCurve
     upper: BifurcationCurve
+    q: int = 1
     critical_current: float | None = field(default=None, repr=False)
 
     def lab_edges(self) -> dict[str, np.ndarray]:
@@ -115,19 +119,20 @@ class ShapiroTongue:
             if not len(c):
                 return "[]"
             return f"[{c.first[0]:.6g} at a={c.second[0]:.6g} .. {c.first[-1]:.6g} at a={c.second[-1]:.6g}]"
-        return (f"ShapiroTongue(n={self.n}, damping={self.scene.damping:.6g}, "
+        step = f"{self.n}" if self.q == 1 else f"{self.n}/{self.q}"
+        return (f"ShapiroTongue(n={step}, damping={self.scene.damping:.6g}, "
                 f"drive_frequency={self.scene.drive_frequency:.6g}, lower={side(self.lower)}, "
                 f"upper={side(self.upper)}, ends=({self.lower.end!r}, {self.upper.end!r}))")
 
 
-def _locked_orbit(scene: Scene, n: int, guess) -> tuple[float, np.ndarray]:
+def _locked_orbit(scene: Scene, n: int, guess, q: int = 1) -> tuple[float, np.ndarray]:
     """A locked orbit of winding n and its torque: for a section phase theta0 the torque is an unknown
     and theta = theta0 the extra equation (every phase is a fixed point of the map at some torque on the
     step's closed branch), by the one Newton core; eight phases are tried, or the guess."""
     omega = scene.drive_frequency
-    starts = [tuple(guess)] if guess is not None else [(th, n * omega) for th in
+    starts = [tuple(guess)] if guess is not None else [(th, n * omega / q) for th in
                                                        np.linspace(-math.pi, math.pi, 8, endpoint=False)]
-    prob = OrbitProblem(scene, "map", 1, n, "torque")
+    prob = OrbitProblem(scene, "map", q, n, "torque")
     last = None
     for th, v in starts:
         plane = (np.array([1.0, 0.0, 0.0]), np.array([th, 0.0, 0.0]))
@@ -136,12 +141,12 @@ def _locked_orbit(scene: Scene, n: int, guess) -> tuple[float, np.ndarray]:
             return float(tau), u
         except NewtonError as exc:
             last = exc
-    raise ValueError(f"scene: no orbit locked to step {n} (winding {n} per drive period) found near torque = "
+    raise ValueError(f"scene: no orbit locked to step {n}/{q} (winding {n} per {q} drive periods) found near torque = "
                      f"{scene.torque!r} from {'the guess' if guess is not None else 'eight phases'} ({last}); "
                      "give a guess (theta, v) on the locked orbit")
 
 
-def shapiro_tongue(scene: Scene, n: int, stop: float, *, guess: tuple[float, float] | None = None,
+def shapiro_tongue(scene: Scene, n: int, stop: float, *, q: int = 1, guess: tuple[float, float] | None = None,
                    step: float | None = None) -> ShapiroTongue:
     """The edges of Shapiro step n in the (bias torque, rf amplitude) plane, as curves.
 
@@ -155,16 +160,22 @@ def shapiro_tongue(scene: Scene, n: int, stop: float, *, guess: tuple[float, flo
     the high-frequency limit, when the scene's torque is 0) both folds are
     found along the torque (:func:`continue_orbit`) and followed in the rf
     amplitude to ``stop`` (:func:`continue_bifurcation`), each to 1e-11 in the
-    torque at every point.
+    torque at every point.  The edges bound where the locked orbit exists;
+    next to each edge it attracts (its other multiplier is exp(-damping T) <
+    1), but where it loses stability inside the step (a period doubling, as
+    at small damping) the step seen on an I-V curve has a hole there.
 
     Parameters
     ----------
     scene : Scene
         A driven pendulum (``drive_amplitude`` and ``drive_frequency`` > 0) with damping.
     n : int
-        The step, n >= 1.
+        The step, n >= 1 (with ``q``: the fractional step n/q).
     stop : float
         The rf amplitude (``drive_amplitude``) to follow the edges to (> 0).
+    q : int, optional
+        The drive periods of the locked orbit (default 1): ``q > 1`` asks for the fractional
+        (subharmonic) step n/q, n turns in q drive periods, dc voltage (n/q) h f / 2e.
     guess : (float, float), optional
         A state ``(theta, v)`` near the locked orbit; default eight phases at ``v = n drive_frequency``.
     step : float, optional
@@ -202,6 +213,7 @@ def shapiro_tongue(scene: Scene, n: int, stop: float, *, guess: tuple[float, flo
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a pendula.Scene, got {type(scene).__name__}")
     n = _checks.count(n, "n", 1, 10**6)
+    q = _checks.count(q, "q", 1, 10**3)
     stop = _checks.real(stop, "stop")
     if not scene.drive_amplitude > 0 or not scene.drive_frequency > 0:
         raise ValueError("scene: a Shapiro step needs an rf drive (drive_amplitude and drive_frequency > 0)")
@@ -211,16 +223,16 @@ def shapiro_tongue(scene: Scene, n: int, stop: float, *, guess: tuple[float, flo
         raise ValueError(f"stop: the rf amplitude must be > 0, got {stop!r} (at 0 the scene is no longer driven)")
     if stop == scene.drive_amplitude:
         raise ValueError(f"stop: equals the scene's drive_amplitude = {stop!r}; give the amplitude to follow to")
-    sc = scene if scene.torque != 0 else scene.replace(torque=scene.damping * n * scene.drive_frequency)
-    tau, u = _locked_orbit(sc, n, guess)
+    sc = scene if scene.torque != 0 else scene.replace(torque=scene.damping * n * scene.drive_frequency / q)
+    tau, u = _locked_orbit(sc, n, guess, q)
     sc = sc.replace(torque=tau)
     span = 2.0 + abs(scene.drive_amplitude)       # the step lies within |torque - tau| < 1 + rf amplitude
     curves = []
     for side, target in (("lower", tau - span), ("upper", tau + span)):
-        br = continue_orbit(sc, (float(u[0]), float(u[1])), "torque", target, winding=n)
+        br = continue_orbit(sc, (float(u[0]), float(u[1])), "torque", target, k=q, winding=n)
         folds = [b for b in br.bifurcations if b.kind == "fold"]
         if not folds:
             raise ContinuationError(f"torque: the locked orbit of step {n} has no {side} fold between "
                                     f"{tau!r} and {target!r} ({br.end})", br)
         curves.append(continue_bifurcation(folds[0], "drive_amplitude", stop, step=step))
-    return ShapiroTongue(scene, n, curves[0], curves[1])
+    return ShapiroTongue(scene, n, curves[0], curves[1], q)
