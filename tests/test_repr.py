@@ -26,6 +26,13 @@ def _driven():
     return pendula.Scene(damping=0.5, drive_amplitude=1.0, drive_frequency=2 / 3)
 
 
+def _fold_curve():
+    """The fold curve of the resonance (from the upper fold through the cusp back to the lower one)."""
+    br = pendula.continue_orbit(pendula.Scene(damping=0.5, drive_amplitude=0.2, drive_frequency=0.5), (0.0, 0.0),
+                                "drive_amplitude", 1.0)
+    return pendula.continue_bifurcation(br.bifurcations[0], "drive_frequency", 0.7)
+
+
 def _switching():
     j = pendula.Junction(1e-7, 100.0, 1e-12, temperature=0.05)
     return j.switching_currents(ramp_rate=1e-3 * 1e-7 * j.plasma_frequency, n=40, seed=1)
@@ -63,6 +70,10 @@ CASES = {
     "PeriodicOrbit": lambda: pendula.periodic_orbit(_driven(), (0.1, 1.9)),
     "Branch": lambda: pendula.continue_orbit(_driven(), (0.1, 1.9), "drive_amplitude", 1.07),
     "Bifurcation": lambda: pendula.continue_orbit(_driven(), (0.1, 1.9), "drive_amplitude", 1.07).bifurcations[0],
+    "BifurcationCurve": lambda: _fold_curve(),
+    "CodimTwoPoint": lambda: _fold_curve().points[0],
+    "ShapiroTongue": lambda: pendula.shapiro_tongue(
+        pendula.Scene(damping=1.0, drive_amplitude=1.0, drive_frequency=2.0), 1, 1.5),
     "EquilibriumBranch": lambda: pendula.continue_equilibria(pendula.Scene(damping=0.2), "torque", 1.5),
     "Junction": lambda: pendula.Junction(1e-6, 10.0, 1e-12, temperature=0.1),
     "SwitchingCurrents": _switching,

@@ -19,6 +19,7 @@ kernel/integrators/pendula_langevin.f90).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Literal
@@ -27,6 +28,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _checks, _interrupt
+from .dynamics.tongues import ShapiroTongue, shapiro_tongue
 from .scene import Scene
 
 if TYPE_CHECKING:   # xarray is optional: named in annotations only
@@ -280,6 +282,47 @@ class Junction:
         amp, omega = self._rf(rf_current, rf_frequency)
         return Scene(eps=1.0, damping=self.damping, torque=tau, drive_amplitude=amp, drive_frequency=omega,
                      noise=self.noise, seed=_checks.count(seed, "parameter 'seed'", 0, 2 ** 53))
+
+    def shapiro_tongue(self, n: int, rf_current: float, rf_frequency: float, stop: float) -> ShapiroTongue:
+        """The edges of Shapiro step n from ``rf_current`` to ``stop`` (A), as :func:`pendula.shapiro_tongue`.
+
+        The noise-free edges (thermal noise blurs them; the edges are the locked orbit's saddle-nodes),
+        in reduced units on the curves and in amperes by ``ShapiroTongue.lab_edges()``.
+
+        Parameters
+        ----------
+        n : int
+            The step (voltage n h f / 2e), n >= 1.
+        rf_current, rf_frequency : float
+            The rf drive where the edges start: amplitude (A, > 0) and frequency (Hz, > 0).
+        stop : float
+            The rf amplitude (A, > 0) to follow the edges to.
+
+        Returns
+        -------
+        ShapiroTongue
+            With ``critical_current`` set, so that ``lab_edges()`` gives amperes.
+
+        Raises
+        ------
+        ValueError
+            A junction without capacitance (use :meth:`shapiro_steps`), or an argument out of range.
+
+        Examples
+        --------
+        >>> import pendula
+        >>> j = pendula.Junction(1e-6, 10.0, 1e-11)
+        >>> t = j.shapiro_tongue(1, 1e-6, 20e9, 1.2e-6)
+        >>> e = t.lab_edges()
+        >>> bool(e["lower_bias"][-1] < e["upper_bias"][-1]), round(float(e["upper_rf"][-1]) * 1e6, 9)
+        (True, 1.2)
+        """
+        if self.capacitance == 0:
+            raise ValueError("field 'capacitance' is 0: the overdamped junction's steps come from shapiro_steps")
+        amp, omega = self._rf(rf_current, rf_frequency)
+        stop_r = _checks.real(stop, "parameter 'stop'") / self.critical_current
+        sc = Scene(eps=1.0, damping=self.damping, drive_amplitude=amp, drive_frequency=omega)
+        return dataclasses.replace(shapiro_tongue(sc, n, stop_r), critical_current=self.critical_current)
 
     def iv_curve(self, currents: ArrayLike, rf_current: float = 0.0, rf_frequency: float = 0.0,
                  direction: Literal["up", "down", "both"] = "up", *, transient: float | None = None,

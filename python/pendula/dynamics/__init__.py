@@ -6,7 +6,8 @@
   the rest of this package builds on;
 - :mod:`.continuation`: periodic orbits followed in a parameter, with their bifurcations (on the
   same core; the records in :mod:`.branches`, the homoclinic end in :mod:`.homoclinic`), and
-  :mod:`.equilibrium_continuation` the rest points followed likewise;
+  :mod:`.equilibrium_continuation` the rest points followed likewise; :mod:`.bifurcation_curves`
+  follows a fold or a period doubling in two fields, :mod:`.tongues` the Shapiro steps' edges as such curves;
 - :mod:`.attractors`: the attractors of the stroboscopic map and their basins (the records and the
   measures of a basin map); :mod:`.attractor_maps` computes the maps (on the sweep engine),
   :mod:`.attractor_continuation` follows them over a parameter.
@@ -17,12 +18,15 @@ The public names are importable from :mod:`pendula` as well.
 from .attractors import Attractor, AttractorMap
 from .attractor_maps import attractor_map
 from .attractor_continuation import attractor_continuation
+from .bifurcation_curves import BifurcationCurve, CodimTwoPoint, continue_bifurcation
 from .branches import BIFURCATION_KINDS, Bifurcation, Branch, ContinuationError
 from .continuation import continue_orbit
 from .equilibrium_continuation import EquilibriumBranch, continue_equilibria
 from .equilibria import EQUILIBRIUM_KINDS, Equilibrium, equilibria
 from .periodic import PeriodicOrbit, periodic_orbit
+from .tongues import ShapiroTongue, shapiro_tongue
 
 __all__ = ["Equilibrium", "equilibria", "EQUILIBRIUM_KINDS", "PeriodicOrbit", "periodic_orbit",
            "Attractor", "AttractorMap", "continue_orbit", "continue_equilibria", "Branch", "Bifurcation",
-           "EquilibriumBranch", "ContinuationError", "BIFURCATION_KINDS", "attractor_map", "attractor_continuation"]
+           "EquilibriumBranch", "ContinuationError", "BIFURCATION_KINDS", "attractor_map", "attractor_continuation",
+           "continue_bifurcation", "BifurcationCurve", "CodimTwoPoint", "shapiro_tongue", "ShapiroTongue"]

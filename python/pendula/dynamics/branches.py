@@ -4,7 +4,7 @@ bifurcations, and the error that keeps what a continuation traced.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -68,10 +68,18 @@ class Bifurcation:
         The orbit's state on its section (the saddle, for a homoclinic; the rest point, for a saddle-node).
     multipliers : numpy.ndarray
         The Floquet multipliers there (eigenvalues, for an equilibrium).
+    scene : Scene or None
+        The scene at the bifurcation (its field ``param`` set to ``value``), as
+        :func:`continue_bifurcation` starts from it.
+    param : str or None
+        The field the branch was continued in.
+    winding : int
+        Turns per period of the orbit (0 for an oscillation).
 
     See Also
     --------
     continue_orbit, continue_equilibria : find them.
+    continue_bifurcation : follows one in a second field.
 
     Examples
     --------
@@ -88,6 +96,9 @@ class Bifurcation:
     theta: float
     v: float
     multipliers: np.ndarray
+    scene: Scene | None = field(default=None, repr=False, compare=False)
+    param: str | None = field(default=None, repr=False, compare=False)
+    winding: int = field(default=0, repr=False, compare=False)
 
     def __repr__(self) -> str:
         mods = ", ".join(f"{abs(complex(m)):.4g}" for m in np.ravel(self.multipliers))

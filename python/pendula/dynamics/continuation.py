@@ -213,7 +213,16 @@ class _Tracer:
 
     def bifurcation(self, kind, prob, U, ev):
         th, v = self._state(prob, U[:2])
-        self.bifs.append(Bifurcation(kind, float(U[2]), self._period(prob, ev), th, v, multipliers_of(ev.M)))
+        self.bifs.append(Bifurcation(kind, float(U[2]), self._period(prob, ev), th, v, multipliers_of(ev.M),
+                                     *self._where(prob, U[2])))
+
+    def _where(self, prob, p) -> tuple:
+        """(scene at p, param, winding) of a bifurcation record: where continue_bifurcation starts."""
+        try:
+            sc = self.scene.replace(**{self.param: float(p)})
+        except SceneError:
+            sc = None
+        return sc, self.param, int(prob.winding)
 
     def branch(self) -> Branch:
         r = self.rows
@@ -299,7 +308,8 @@ class _Tracer:
                 if Uc is None:                # located on the symmetric orbit (the half-period map)
                     Uh, evh = evc
                     th, v = reduce_angle(Uh[0]), float(Uh[1])
-                    self.bifs.append(Bifurcation(kind, float(Uh[2]), float(prob.k), th, v, multipliers_of(evh.M)))
+                    self.bifs.append(Bifurcation(kind, float(Uh[2]), float(prob.k), th, v, multipliers_of(evh.M),
+                                                 *self._where(prob, Uh[2])))
                     continue
                 self.bifurcation(kind, prob, Uc, evc)
                 if self.follow == "stable" and stable:
@@ -505,8 +515,8 @@ class _Tracer:
         sc = prob.scene(ph)
         sad = [e for e in equilibria(sc) if e.kind == "saddle"]
         theta = sad[0].theta if sad else math.nan
-        self.bifs.append(Bifurcation("homoclinic", float(ph), math.inf, theta, 0.0, np.array([1.0, 0.0],
-                                                                                              dtype=complex)))
+        self.bifs.append(Bifurcation("homoclinic", float(ph), math.inf, theta, 0.0, np.array([1.0, 0.0], dtype=complex),
+                                     *self._where(prob, ph)))
         self.end = f"homoclinic at {self.param} = {float(ph)!r}: the period diverges"
         return True
 
