@@ -64,6 +64,7 @@ CASES = {
     "Branch": lambda: pendula.continue_orbit(_driven(), (0.1, 1.9), "drive_amplitude", 1.07),
     "Bifurcation": lambda: pendula.continue_orbit(_driven(), (0.1, 1.9), "drive_amplitude", 1.07).bifurcations[0],
     "EquilibriumBranch": lambda: pendula.continue_equilibria(pendula.Scene(damping=0.2), "torque", 1.5),
+    "BranchTree": lambda: pendula.bifurcation_tree(_driven(), (0.1, 1.9), "drive_amplitude", 1.0805, depth=3),
     "Junction": lambda: pendula.Junction(1e-6, 10.0, 1e-12, temperature=0.1),
     "SwitchingCurrents": _switching,
     "Pendulum": lambda: pendula.Pendulum(1.0, amplitude_deg=30.0),

@@ -31,8 +31,8 @@ from .equilibria import equilibria
 from ..systems.contract import require, time_scales
 from .branches import BIFURCATION_KINDS, Bifurcation, Branch, ContinuationError  # noqa: F401 (re-exported)
 from .homoclinic import _first_return, _splitting
-from .periodic import (FlowError, NewtonError, OrbitProblem, check_guess, drive_period, flow, multipliers_of,
-                       newton, reduce_angle)
+from .periodic import (FlowError, NewtonError, OrbitProblem, check_guess, drive_period, flow, liouville_residual,
+                       multipliers_of, newton, reduce_angle)
 
 __all__ = ["Bifurcation", "Branch", "ContinuationError", "continue_orbit", "BIFURCATION_KINDS"]
 
@@ -67,6 +67,33 @@ def _stop_value(scene: Scene, param: str, p0: float, stop) -> float:
     except SceneError as exc:
         raise SceneError(f"stop: {exc}") from None
     return stop
+
+
+def _cycle(prob, U) -> np.ndarray:
+    """The orbit's k section points (theta, v), one drive period apart (one point on an autonomous
+    orbit's section), theta in [-pi, pi]."""
+    if prob.mode == "section":
+        return np.array([[reduce_angle(prob.theta_s), float(U[0])]])
+    pts = np.empty((prob.k, 2))
+    pts[0] = U[:2]
+    if prob.k > 1:
+        sc = prob.scene(float(U[2]))
+        td = drive_period(sc, 1)
+        end, _, _ = flow(sc, U[:2], [j * td for j in range(1, prob.k)], prob.rtol, prob.atol, prob.force)
+        pts[1:] = end
+    pts[:, 0] = [reduce_angle(x) for x in pts[:, 0]]
+    return pts
+
+
+def _residuals(prob, U, ev) -> tuple[float, float]:
+    """The certificates of a point's multipliers: |det M - exp(-damping T)| (Liouville; NaN with drag
+    or a user's force, whose divergence is not constant) and, on an autonomous orbit, the distance
+    of the trivial multiplier from 1 (NaN on a driven one)."""
+    sc = prob.scene(float(U[2]))
+    T = float(ev.T) if prob.mode == "section" else drive_period(sc, prob.k)
+    det = liouville_residual(sc, ev.M, T, prob.force)
+    trivial = float(np.min(np.abs(multipliers_of(ev.M) - 1.0))) if prob.mode == "section" else math.nan
+    return det, trivial
 
 
 # ---------------------------------------------------------------- the branch tracer
@@ -193,6 +220,7 @@ class _Tracer:
         self.h0 = max(self.h0, self.hmin)
         self.rows: list = []          # (p, theta, v, period, mu0, mu1, stable, segment)
         self.bifs: list = []
+        self.spawns: list = []        # (index in bifs, kind, problem, U, Evaluation, tangent): the branch points
         self.segment = 0
         self.end = ""
 
@@ -209,18 +237,23 @@ class _Tracer:
         th, v = self._state(prob, U[:2])
         mu = multipliers_of(ev.M)
         self.rows.append((float(U[2]), th, v, self._period(prob, ev), mu[0], mu[1], _stable(prob.mode, ev),
-                          self.segment))
+                          self.segment, _cycle(prob, U)) + _residuals(prob, U, ev))
 
     def bifurcation(self, kind, prob, U, ev):
         th, v = self._state(prob, U[:2])
-        self.bifs.append(Bifurcation(kind, float(U[2]), self._period(prob, ev), th, v, multipliers_of(ev.M)))
+        self.bifs.append(Bifurcation(kind, float(U[2]), self._period(prob, ev), th, v, multipliers_of(ev.M),
+                                     *_residuals(prob, U, ev), cycle=_cycle(prob, U)))
 
     def branch(self) -> Branch:
         r = self.rows
         col = (lambda i, dt=float: np.array([x[i] for x in r], dtype=dt))
         mus = np.array([[x[4], x[5]] for x in r], dtype=complex).reshape(-1, 2)
+        K = max((len(x[8]) for x in r), default=1)
+        cyc = np.full((len(r), K, 2), np.nan)
+        for i, x in enumerate(r):
+            cyc[i, :len(x[8])] = x[8]
         return Branch(self.scene, self.param, col(0), col(1), col(2), col(3), mus, col(6, bool), col(7, int),
-                      tuple(self.bifs), self.end)
+                      tuple(self.bifs), self.end, cycle=cyc, det_residual=col(9), trivial_residual=col(10))
 
     def fail(self, message):
         self.end = "error"
@@ -299,9 +332,12 @@ class _Tracer:
                 if Uc is None:                # located on the symmetric orbit (the half-period map)
                     Uh, evh = evc
                     th, v = reduce_angle(Uh[0]), float(Uh[1])
-                    self.bifs.append(Bifurcation(kind, float(Uh[2]), float(prob.k), th, v, multipliers_of(evh.M)))
+                    self.bifs.append(Bifurcation(kind, float(Uh[2]), float(prob.k), th, v, multipliers_of(evh.M),
+                                                 *_residuals(prob, Uh, evh), cycle=_cycle(prob, Uh)))
                     continue
                 self.bifurcation(kind, prob, Uc, evc)
+                if kind in ("pitchfork", "period-doubling"):
+                    self.spawns.append((len(self.bifs) - 1, kind, prob, Uc, evc, t))
                 if self.follow == "stable" and stable:
                     if kind in ("pitchfork", "period-doubling"):
                         # the stable side of the point: follow the child if this branch lost stability
@@ -435,11 +471,14 @@ class _Tracer:
         return payload
 
     # -- branch switching at a pitchfork or a period doubling
-    def switch(self, kind, prob, Us, evs, t_parent):
+    def child_start(self, kind, prob, Us, evs, t_parent, sign: int = 1):
+        """The first point of the child branch at a pitchfork or a period doubling, on the side ``sign``
+        of the critical eigenvector (at a pitchfork the two sides are the two children; at a period
+        doubling both give the one child of period 2k): (problem, U, Evaluation, tangent pointing away
+        from the branch point), or a string saying why there is none."""
         k2, w2 = (prob.k, prob.winding) if kind == "pitchfork" else (2 * prob.k, 2 * prob.winding)
         if k2 > 10**4:
-            self.end = f"{kind} at {self.param} = {float(Us[2])!r}: the child's period exceeds 10000 drive periods"
-            return None
+            return f"{kind} at {self.param} = {float(Us[2])!r}: the child's period exceeds 10000 drive periods"
         child = OrbitProblem(prob.base, "map", k2, w2, self.param, prob.rtol, prob.atol)
         parent_map = OrbitProblem(prob.base, "map", prob.k, prob.winding, self.param, prob.rtol, prob.atol)
         target = 1.0 if kind == "pitchfork" else -1.0
@@ -449,7 +488,7 @@ class _Tracer:
         e = e / np.linalg.norm(e)
         if e[0] < 0 or (e[0] == 0 and e[1] < 0):
             e = -e
-        E = np.append(e, 0.0)
+        E = sign * np.append(e, 0.0)
         n = E - np.dot(E, t_parent) * t_parent
         n = n / np.linalg.norm(n)
         # the child next to the branch point (close: the next doubling of a cascade may be near)
@@ -464,17 +503,25 @@ class _Tracer:
             if off > 0.1 * hb and abs(U1[2] - Us[2]) > 1e-9 * max(1.0, abs(Us[2])):
                 break
         else:
-            self.end = f"{kind} at {self.param} = {float(Us[2])!r}: no child branch found next to it"
+            return f"{kind} at {self.param} = {float(Us[2])!r}: no child branch found next to it"
+        t1, _ = self.tangent(child, U1, ev1)
+        if np.dot(t1, U1 - Us) < 0:
+            t1 = -t1
+        return child, U1, ev1, t1
+
+    # -- branch switching at a pitchfork or a period doubling
+    def switch(self, kind, prob, Us, evs, t_parent):
+        first = self.child_start(kind, prob, Us, evs, t_parent)
+        if isinstance(first, str):
+            self.end = first
             return None
+        child, U1, ev1, t1 = first
         # supercritical (the child on the far side, attracting: its multiplier 1 - O(hb^2) inside the
         # circle) or subcritical (on the near side, repelling)
         if (U1[2] - Us[2]) * (self.stop - Us[2]) < 0:
             self.end = (f"{kind} at {self.param} = {float(Us[2])!r} is subcritical: no attracting child branch "
                         "(the motion jumps to another attractor)")
             return None
-        t1, _ = self.tangent(child, U1, ev1)
-        if np.dot(t1, U1 - Us) < 0:
-            t1 = -t1
         self.segment += 1
         self.record(child, U1, ev1)
         return child, U1, ev1, t1
@@ -606,13 +653,29 @@ def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: f
     >>> [(b.kind, b.period, round(b.value, 8)) for b in br.bifurcations]
     [('pitchfork', 1.0, 1.00431948), ('period-doubling', 1.0, 1.06637286)]
     """
+    if follow not in ("branch", "stable"):
+        raise ValueError(f"follow must be 'branch' or 'stable', got {follow!r:.40}")
+    tracer, prob, U, ev, t = start(scene, guess, param, stop, k, winding, follow, step)
+    while True:
+        out = tracer.run_segment(prob, U, ev, t)
+        if out is None:
+            break
+        _, kind, prob_s, Us, evs, ts = out
+        sw = tracer.switch(kind, prob_s, Us, evs, ts)
+        if sw is None:
+            break
+        prob, U, ev, t = sw
+    return tracer.branch()
+
+
+def start(scene: Scene, guess, param, stop, k, winding, follow: str, step):
+    """The arguments checked and the first point of a continuation: (tracer, problem, U, Evaluation,
+    tangent towards stop), the point recorded."""
     require(scene, "continue_orbit", over=(param,))      # the capability table: noise and dry friction refused by name
     p0 = _param_value(scene, param)
     stop = _stop_value(scene, param, p0, stop)
     k = _checks.count(k, "k", 1, 10**4)
     winding = _checks.count(winding, "winding", -10**9, 10**9)
-    if follow not in ("branch", "stable"):
-        raise ValueError(f"follow must be 'branch' or 'stable', got {follow!r:.40}")
     if step is not None:
         step = _checks.real(step, "step", 0.0, lo_open=True)
     _check_steps(param, p0, stop, step)
@@ -667,13 +730,4 @@ def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: f
     if follow == "stable" and not _stable(prob.mode, ev):
         raise ValueError("follow: the orbit at guess is unstable; follow='stable' starts from an attracting orbit")
     tracer.record(prob, U, ev)
-    while True:
-        out = tracer.run_segment(prob, U, ev, t)
-        if out is None:
-            break
-        _, kind, prob_s, Us, evs, ts = out
-        sw = tracer.switch(kind, prob_s, Us, evs, ts)
-        if sw is None:
-            break
-        prob, U, ev, t = sw
-    return tracer.branch()
+    return tracer, prob, U, ev, t

@@ -49,6 +49,10 @@ class PeriodicOrbit:
         True when every multiplier lies inside the unit circle.
     residual : float
         ``max |P(x) - x - (2 pi winding, 0)|`` at the returned state.
+    det_residual : float
+        The certificate of the multipliers: ``abs(det M - exp(-damping period))`` (Liouville's formula:
+        the flow shrinks areas at the rate ``damping``), about the integrator's tolerance times
+        ``(1 + norm(M))^2``; NaN with drag or a user's force (their rate is not constant).
 
     See Also
     --------
@@ -73,6 +77,7 @@ class PeriodicOrbit:
     monodromy: np.ndarray
     winding: int
     residual: float
+    det_residual: float = math.nan
 
     @property
     def stable(self) -> bool:
@@ -407,6 +412,15 @@ def newton(problem: OrbitProblem, u, p, tol: float, maxit: int, plane=None):
     raise NewtonError(why, evals, res, (u, p))
 
 
+def liouville_residual(scene: Scene, M, T: float, force=None) -> float:
+    """|det M - exp(-damping T)|: the certificate of a monodromy over the time T (Liouville's formula:
+    the pendulum's flow shrinks areas at the constant rate ``damping``); NaN where the rate is not
+    constant (quadratic drag, a user's force)."""
+    if scene.drag != 0.0 or force is not None:
+        return math.nan
+    return float(abs(np.linalg.det(M) - math.exp(-scene.damping * T)))
+
+
 def multipliers_of(M) -> np.ndarray:
     """The eigenvalues of a monodromy, complex, largest modulus first."""
     mu = np.linalg.eigvals(M).astype(complex)
@@ -531,4 +545,4 @@ def periodic_orbit(scene: Scene, guess: tuple[float, float] | None = None, k: in
     m = ev.M.copy()
     mu = multipliers_of(m)
     return PeriodicOrbit(reduce_angle(x[0]), float(x[1]), period, mu, np.log(np.abs(mu)) / period, m,
-                         int(winding), float(np.max(np.abs(ev.F))))
+                         int(winding), float(np.max(np.abs(ev.F))), liouville_residual(scene, m, period, uf))
