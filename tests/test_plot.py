@@ -323,3 +323,16 @@ def test_branches_refuses_what_it_cannot_draw():
     br = pendula.continue_orbit(sc, (0.1, 1.9), "drive_amplitude", 1.001)
     with pytest.raises(ValueError, match="which"):
         pp.branches(br, which="energy")
+
+
+def test_bifurcation_of_an_adiabatic_sweep_draws_both_ways():
+    sc = pendula.Scene(damping=0.5, drive_frequency=2 / 3, drive_amplitude=1.02, theta0=-1.3, v0=1.8)
+    A = np.array([1.02, 1.03, 1.04])
+    ds = pendula.sweep(sc, {"drive_amplitude": A}, "poincare", transient=100.0, samples=4, follow=True)
+    ax = pp.bifurcation(ds)
+    lines = ax.get_lines()
+    assert [ln.get_label() for ln in lines] == ["drive_amplitude up", "drive_amplitude down"]
+    for ln, d in zip(lines, ("up", "down")):
+        np.testing.assert_array_equal(np.asarray(ln.get_ydata()), ds.theta.sel(direction=d).values.ravel())
+    assert lines[0].get_color() != lines[1].get_color()
+    assert ax.get_xlabel() == "drive_amplitude"

@@ -267,7 +267,7 @@ def spectrum(sp: Spectrum, ax: matplotlib.axes.Axes | None = None, *, harmonics:
 
 
 def _one_axis(ds, what: str) -> str:
-    dims = [d for d in ds.theta.dims if d != "sample"] if "theta" in ds else list(ds.dims)
+    dims = [d for d in ds.theta.dims if d not in ("sample", "direction")] if "theta" in ds else list(ds.dims)
     if len(dims) != 1:
         raise ValueError(f"{what} needs a sweep over one parameter, got the axes {dims}")
     return dims[0]
@@ -281,7 +281,9 @@ def bifurcation(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None, *,
     ----------
     ds : xarray.Dataset
         What ``pendula.sweep(scene, {name: values}, measure='poincare')``
-        returns (``theta`` on the parameter and ``sample``).
+        returns (``theta`` on the parameter and ``sample``); with ``follow=True``
+        (the dimension ``direction``) the way up and the way down are drawn in
+        two colours, so that hysteresis shows where they part.
     ax : matplotlib.axes.Axes, optional
         Where to draw (default: a new figure).
     lyapunov : xarray.Dataset, optional
@@ -316,12 +318,19 @@ def bifurcation(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None, *,
         raise ValueError("bifurcation needs a 'poincare' sweep (theta on the dimensions (parameter, sample))")
     p = _one_axis(ds, "bifurcation")
     ax = _ax(ax, figsize=(7, 4.5))
-    th = ds.theta.transpose(p, "sample").values
-    x = np.repeat(ds[p].values, th.shape[1])
     kwargs.setdefault("ms", 1.0)
     kwargs.setdefault("alpha", 0.6)
-    kwargs.setdefault("color", "k")
-    ax.plot(x, th.ravel(), ".", **kwargs)
+    if "direction" in ds.theta.dims:
+        # an adiabatic sweep (follow=True): the way up and the way down, apart where they differ (hysteresis)
+        for d, colour, mark in zip(ds["direction"].values, ("C0", "C3"), (".", "x")):
+            th = ds.theta.sel(direction=d).transpose(p, "sample").values
+            kw = dict(kwargs, color=kwargs.get("color", colour))
+            ax.plot(np.repeat(ds[p].values, th.shape[1]), th.ravel(), mark, label=f"{p} {d}", **kw)
+        ax.legend(fontsize=9, loc="best", markerscale=6)
+    else:
+        th = ds.theta.transpose(p, "sample").values
+        kwargs.setdefault("color", "k")
+        ax.plot(np.repeat(ds[p].values, th.shape[1]), th.ravel(), ".", **kwargs)
     ax.set_xlabel(p)
     ax.set_ylabel("theta at t = 2 pi n / Omega (rad)")
     ax.set_ylim(-math.pi, math.pi)
@@ -372,7 +381,8 @@ def branches(tree: Any, ax: matplotlib.axes.Axes | None = None, *, which: str = 
     Every point of each branch's k-cycle is drawn against the parameter (a
     period-4 branch draws four curves), one colour per period; the
     bifurcations are marked and labelled in words (``pitchfork``, ``period
-    doubling``, ``fold`` ...), each value once.
+    doubling``, ``fold`` ...), a kind once where its points crowd together (within 3 % of
+    the parameter's span).
 
     Parameters
     ----------
@@ -430,15 +440,17 @@ def branches(tree: Any, ax: matplotlib.axes.Axes | None = None, *, which: str = 
             label = _period_words(k) if k not in named else None
             named.add(k)
             ax.plot(x, y, ls=style, color=colours.get(k, "k"), label=label or "_nolegend_", **kwargs)
-    labelled: set = set()
+    # each kind named once per place: not again within 3 % of the parameter's span (a cascade's
+    # doublings crowd together; their marks stay)
+    span = max((float(np.ptp(b.values)) for b in brs if len(b)), default=0.0)
+    labelled: list = []
     for b in brs:
         for bif in b.bifurcations:
             marker, word = _BIFURCATION_MARKS.get(bif.kind, ("x", bif.kind))
             y = bif.theta if col == 0 else bif.v
             ax.plot([bif.value], [y], marker, color="k", ms=5, mfc="white", label="_marks")
-            key = (bif.kind, round(bif.value, 6))
-            if key not in labelled:
-                labelled.add(key)
+            if not any(kind == bif.kind and abs(value - bif.value) <= 0.03 * span for kind, value in labelled):
+                labelled.append((bif.kind, bif.value))
                 ax.annotate(word, (bif.value, y), xytext=(4, 6), textcoords="offset points", fontsize=9)
     ax.set_xlabel(brs[0].param)
     ax.set_ylabel("theta on the section (rad)" if col == 0 else "v on the section (rad per time unit)")
