@@ -144,6 +144,11 @@ class Branch:
     trivial_residual : numpy.ndarray
         For an autonomous orbit, the distance of the multiplier nearest 1 (the flow's direction) from 1;
         NaN for a driven orbit.
+    certified : numpy.ndarray
+        True where the point's stability verdict is decided beyond the monodromy's error (as
+        ``PeriodicOrbit.certified``: the Jury conditions, or ``1 - abs(det M)`` for an autonomous orbit,
+        beyond ``100 rtol (1 + norm(M))^2``, and the Liouville residual within it); False next to a
+        bifurcation.
 
     See Also
     --------
@@ -173,6 +178,7 @@ class Branch:
     cycle: np.ndarray
     det_residual: np.ndarray
     trivial_residual: np.ndarray
+    certified: np.ndarray
 
     def __repr__(self) -> str:
         n = len(self.values)
@@ -190,9 +196,9 @@ class Branch:
         -------
         xarray.Dataset
             Variables: the parameter (named for the field), ``theta``, ``v``, ``period``,
-            ``multipliers`` (complex), ``stable``, ``segment``, the certificates ``det_residual`` and
-            ``trivial_residual``, and the k-cycles ``cycle_theta`` and ``cycle_v`` (dims ``point``,
-            ``cycle``); the bifurcations in the attribute ``bifurcations`` as text.
+            ``multipliers`` (complex), ``stable``, ``segment``, the certificates ``det_residual``,
+            ``trivial_residual`` and ``certified``, and the k-cycles ``cycle_theta`` and ``cycle_v``
+            (dims ``point``, ``cycle``); the bifurcations in the attribute ``bifurcations`` as text.
 
         Examples
         --------
@@ -209,7 +215,9 @@ class Branch:
              "period": ("point", self.period), "multipliers": (("point", "multiplier"), self.multipliers),
              "stable": ("point", self.stable), "segment": ("point", self.segment),
              "det_residual": ("point", self.det_residual), "trivial_residual": ("point", self.trivial_residual),
-             "cycle_theta": (("point", "cycle"), self.cycle[:, :, 0]), "cycle_v": (("point", "cycle"), self.cycle[:, :, 1])},
+             "certified": ("point", self.certified),
+             "cycle_theta": (("point", "cycle"), self.cycle[:, :, 0]),
+             "cycle_v": (("point", "cycle"), self.cycle[:, :, 1])},
             coords={"point": np.arange(n), "multiplier": np.arange(2), "cycle": np.arange(self.cycle.shape[1])},
             attrs={"param": self.param, "end": self.end,
                    "bifurcations": "; ".join(f"{b.kind} at {self.param}={b.value!r}" for b in self.bifurcations)})

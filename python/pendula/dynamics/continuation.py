@@ -31,8 +31,8 @@ from .equilibria import equilibria
 from ..systems.contract import require, time_scales
 from .branches import BIFURCATION_KINDS, Bifurcation, Branch, ContinuationError  # noqa: F401 (re-exported)
 from .homoclinic import _first_return, _splitting
-from .periodic import (FlowError, NewtonError, OrbitProblem, check_guess, drive_period, flow, liouville_residual,
-                       multipliers_of, newton, reduce_angle)
+from .periodic import (MONODROMY_ERROR, FlowError, NewtonError, OrbitProblem, check_guess, drive_period, flow,
+                       liouville_residual, multipliers_of, newton, reduce_angle, stability_certificate)
 
 __all__ = ["Bifurcation", "Branch", "ContinuationError", "continue_orbit", "BIFURCATION_KINDS"]
 
@@ -94,6 +94,13 @@ def _residuals(prob, U, ev) -> tuple[float, float]:
     det = liouville_residual(sc, ev.M, T, prob.force)
     trivial = float(np.min(np.abs(multipliers_of(ev.M) - 1.0))) if prob.mode == "section" else math.nan
     return det, trivial
+
+
+def _certified(prob, U, ev) -> bool:
+    """The point's stability verdict decided beyond the monodromy's error, its Liouville residual within it."""
+    _, decided, err = stability_certificate(ev.M, prob.rtol, prob.mode == "section")
+    det, _ = _residuals(prob, U, ev)
+    return bool(decided and not det > err)
 
 
 # ---------------------------------------------------------------- the branch tracer
@@ -161,10 +168,8 @@ def _root(g, a: float, ga: float, b: float, gb: float, xtol: float, maxit: int =
     return x, payload, gx, abs(b - a)
 
 
-#: The error of a test function of the monodromy, in units of rtol (1 + |X|)^2 (X the matrix it is made
-#: of): the flow's error moves tr X and det X by about rtol |X| and rtol |X|^2; measured on 40 random
-#: orbits (flows at rtol 1e-12 against 1e-15) below 0.22 of it, so 100 leaves a margin of 450.
-_TEST_ERROR = 100.0
+#: The error of a test function of the monodromy, in units of rtol (1 + |X|)^2 (periodic.MONODROMY_ERROR).
+_TEST_ERROR = MONODROMY_ERROR
 
 
 def _test_errors(mode: str, ev, rtol: float) -> dict:
@@ -237,7 +242,7 @@ class _Tracer:
         th, v = self._state(prob, U[:2])
         mu = multipliers_of(ev.M)
         self.rows.append((float(U[2]), th, v, self._period(prob, ev), mu[0], mu[1], _stable(prob.mode, ev),
-                          self.segment, _cycle(prob, U)) + _residuals(prob, U, ev))
+                          self.segment, _cycle(prob, U)) + _residuals(prob, U, ev) + (_certified(prob, U, ev),))
 
     def bifurcation(self, kind, prob, U, ev):
         th, v = self._state(prob, U[:2])
@@ -253,7 +258,8 @@ class _Tracer:
         for i, x in enumerate(r):
             cyc[i, :len(x[8])] = x[8]
         return Branch(self.scene, self.param, col(0), col(1), col(2), col(3), mus, col(6, bool), col(7, int),
-                      tuple(self.bifs), self.end, cycle=cyc, det_residual=col(9), trivial_residual=col(10))
+                      tuple(self.bifs), self.end, cycle=cyc, det_residual=col(9), trivial_residual=col(10),
+                      certified=col(11, bool))
 
     def fail(self, message):
         self.end = "error"
