@@ -381,7 +381,7 @@ def branches(tree: Any, ax: matplotlib.axes.Axes | None = None, *, which: str = 
     Every point of each branch's k-cycle is drawn against the parameter (a
     period-4 branch draws four curves), one colour per period; the
     bifurcations are marked and labelled in words (``pitchfork``, ``period
-    doubling``, ``fold`` ...), a kind once where its points crowd together (within 3 % of
+    doubling``, ``fold`` ...), a kind once where its points crowd together (within 20 % of
     the parameter's span).
 
     Parameters
@@ -440,7 +440,7 @@ def branches(tree: Any, ax: matplotlib.axes.Axes | None = None, *, which: str = 
             label = _period_words(k) if k not in named else None
             named.add(k)
             ax.plot(x, y, ls=style, color=colours.get(k, "k"), label=label or "_nolegend_", **kwargs)
-    # each kind named once per place: not again within 3 % of the parameter's span (a cascade's
+    # each kind named once per place: not again within 20 % of the parameter's span (a cascade's
     # doublings crowd together; their marks stay)
     span = max((float(np.ptp(b.values)) for b in brs if len(b)), default=0.0)
     labelled: list = []
@@ -449,11 +449,12 @@ def branches(tree: Any, ax: matplotlib.axes.Axes | None = None, *, which: str = 
             marker, word = _BIFURCATION_MARKS.get(bif.kind, ("x", bif.kind))
             y = bif.theta if col == 0 else bif.v
             ax.plot([bif.value], [y], marker, color="k", ms=5, mfc="white", label="_marks")
-            if not any(kind == bif.kind and abs(value - bif.value) <= 0.03 * span for kind, value in labelled):
+            if not any(kind == bif.kind and abs(value - bif.value) <= 0.2 * span for kind, value in labelled):
                 labelled.append((bif.kind, bif.value))
                 ax.annotate(word, (bif.value, y), xytext=(4, 6), textcoords="offset points", fontsize=9)
     ax.set_xlabel(brs[0].param)
     ax.set_ylabel("theta on the section (rad)" if col == 0 else "v on the section (rad per time unit)")
+    ax.margins(y=0.1)            # room for the names above the top branch
     ax.plot([], [], "k-", label="stable")
     ax.plot([], [], "k--", label="unstable")
     ax.legend(fontsize=9, loc="best")
