@@ -140,9 +140,10 @@ def test_fold_is_passed_and_satisfies_its_defining_condition():
     assert abs(np.linalg.det(M - np.eye(2))) < 1e-8
 
 
-def test_to_xarray_has_point_and_multiplier_dims(cascade_branch):
+def test_to_xarray_has_point_multiplier_and_cycle_dims(cascade_branch):
     ds = cascade_branch.to_xarray()
-    assert dict(ds.sizes) == {"point": len(cascade_branch), "multiplier": 2}
+    # the cycle dimension: the longest k-cycle on the attracting route (period 16 after the fourth doubling)
+    assert dict(ds.sizes) == {"point": len(cascade_branch), "multiplier": 2, "cycle": 16}
     np.testing.assert_array_equal(ds["drive_amplitude"].values, cascade_branch.values)
     assert ds["multipliers"].dtype.kind == "c"
 

@@ -253,3 +253,86 @@ def test_velocity_label_is_in_reduced_units_when_eps_is_1(libration):
     assert pp.trajectory(libration, which="v").get_ylabel() == "v (rad per time unit 1/ω₀, ε = 1)"
     lab = pendula.Pendulum(1.0, amplitude_deg=20).motion().trajectory
     assert pp.phase(lab).get_ylabel() == "v (rad per unit of t)"
+
+
+# ---------------------------------------------------------------- branches (bifurcation_tree, continue_orbit)
+
+@pytest.fixture(scope="module")
+def small_tree():
+    sc = pendula.Scene(damping=0.5, drive_amplitude=1.0, drive_frequency=2 / 3)
+    # the symmetric orbit, its two asymmetric children (pitchfork at 1.00432) and their period-2 children
+    # (doubling at 1.06637)
+    return pendula.bifurcation_tree(sc, (0.1, 1.9), "drive_amplitude", 1.072, depth=2)
+
+
+def _branch_lines(ax):
+    return [ln for ln in ax.get_lines() if ln.get_label() not in ("_marks", "stable", "unstable")]
+
+
+def test_branches_draws_stable_solid_and_unstable_dashed(small_tree):
+    ax = pp.branches(small_tree)
+    lines = _branch_lines(ax)
+    brs = small_tree.branches()
+    # a solid line per branch with a stable part, a dashed one per branch with an unstable part
+    want = sum(bool(np.any(b.stable)) for b in brs) + sum(bool(np.any(~b.stable)) for b in brs)
+    assert len(lines) == want == 8          # root: both; children: both; grandchildren: stable only
+    solid = [ln for ln in lines if ln.get_linestyle() == "-"]
+    dashed = [ln for ln in lines if ln.get_linestyle() == "--"]
+    assert len(solid) == 5 and len(dashed) == 3
+    # the solid lines hold the stable points: every point of the root's solid line lies before the pitchfork
+    # (and the one next to it), every point of its dashed line from the pitchfork on
+    pf = small_tree.branch.bifurcations[0].value
+    root_solid, root_dashed = solid[0], dashed[0]
+    xs = np.asarray(root_solid.get_xdata(), float)
+    assert np.nanmax(xs) <= small_tree.branch.values[np.searchsorted(small_tree.branch.values, pf)] + 1e-12
+    assert np.nanmin(np.asarray(root_dashed.get_xdata(), float)) >= pf - 0.01
+    # a period-2 branch draws both points of its 2-cycle: twice its points, plus the breaks
+    grand = small_tree.children[0].children[0].branch
+    gl = [ln for ln in solid if ln.get_color() != solid[0].get_color()][0]
+    assert np.sum(np.isfinite(np.asarray(gl.get_ydata(), float))) == 2 * int(np.sum(grand.stable))
+
+
+def test_branches_marks_and_names_the_bifurcations_in_words(small_tree):
+    ax = pp.branches(small_tree)
+    marks = [ln for ln in ax.get_lines() if ln.get_label() == "_marks"]
+    assert len(marks) == sum(len(b.bifurcations) for b in small_tree.branches()) == 3
+    words = sorted(t.get_text() for t in ax.texts)
+    # each value labelled once: the pitchfork, and the two children's doublings at one amplitude
+    assert words == ["period doubling", "pitchfork"]
+    assert ax.get_xlabel() == "drive_amplitude"
+    assert "theta" in ax.get_ylabel()
+    legend = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert {"stable", "unstable", "one drive period", "two drive periods"} <= set(legend)
+
+
+def test_branches_takes_a_branch_and_draws_v():
+    sc = pendula.Scene(damping=0.5, drive_amplitude=1.0, drive_frequency=2 / 3)
+    br = pendula.continue_orbit(sc, (0.1, 1.9), "drive_amplitude", 1.01)
+    ax = pp.branches(br, which="v")
+    lines = _branch_lines(ax)
+    assert sorted(ln.get_linestyle() for ln in lines) == ["-", "--"]
+    ys = np.concatenate([np.asarray(ln.get_ydata(), float) for ln in lines])
+    assert set(np.round(ys[np.isfinite(ys)], 12)) == set(np.round(br.v, 12))
+    assert ax.get_ylabel().startswith("v")
+
+
+def test_branches_refuses_what_it_cannot_draw():
+    with pytest.raises(TypeError, match="tree"):
+        pp.branches([1, 2, 3])
+    sc = pendula.Scene(damping=0.5, drive_amplitude=1.0, drive_frequency=2 / 3)
+    br = pendula.continue_orbit(sc, (0.1, 1.9), "drive_amplitude", 1.001)
+    with pytest.raises(ValueError, match="which"):
+        pp.branches(br, which="energy")
+
+
+def test_bifurcation_of_an_adiabatic_sweep_draws_both_ways():
+    sc = pendula.Scene(damping=0.5, drive_frequency=2 / 3, drive_amplitude=1.02, theta0=-1.3, v0=1.8)
+    A = np.array([1.02, 1.03, 1.04])
+    ds = pendula.sweep(sc, {"drive_amplitude": A}, "poincare", transient=100.0, samples=4, follow=True)
+    ax = pp.bifurcation(ds)
+    lines = ax.get_lines()
+    assert [ln.get_label() for ln in lines] == ["drive_amplitude up", "drive_amplitude down"]
+    for ln, d in zip(lines, ("up", "down")):
+        np.testing.assert_array_equal(np.asarray(ln.get_ydata()), ds.theta.sel(direction=d).values.ravel())
+    assert lines[0].get_color() != lines[1].get_color()
+    assert ax.get_xlabel() == "drive_amplitude"

@@ -75,6 +75,7 @@ CASES = {
     "ShapiroTongue": lambda: pendula.shapiro_tongue(
         pendula.Scene(damping=1.0, drive_amplitude=1.0, drive_frequency=2.0), 1, 1.5),
     "EquilibriumBranch": lambda: pendula.continue_equilibria(pendula.Scene(damping=0.2), "torque", 1.5),
+    "BranchTree": lambda: pendula.bifurcation_tree(_driven(), (0.1, 1.9), "drive_amplitude", 1.0805, depth=3),
     "Junction": lambda: pendula.Junction(1e-6, 10.0, 1e-12, temperature=0.1),
     "SwitchingCurrents": _switching,
     "Pendulum": lambda: pendula.Pendulum(1.0, amplitude_deg=30.0),

@@ -57,8 +57,8 @@ from .ivcurve import iv_curve  # noqa: E402
 # the Josephson junction in laboratory units (RCSJ on the pendulum)
 from .junction import Junction, SwitchingCurrents  # noqa: E402
 from .dynamics import Equilibrium, PeriodicOrbit, attractor_continuation, attractor_map, equilibria, periodic_orbit  # noqa: E402,E501
-from .dynamics import (Bifurcation, Branch, ContinuationError, EquilibriumBranch, continue_equilibria,  # noqa: E402
-                       continue_orbit)
+from .dynamics import (Bifurcation, Branch, BranchTree, ContinuationError, EquilibriumBranch,  # noqa: E402
+                       bifurcation_tree, continue_equilibria, continue_orbit)
 from .dynamics import BifurcationCurve, CodimTwoPoint, ShapiroTongue, continue_bifurcation, shapiro_tongue  # noqa: E402,E501
 from .spectrum import precompute_wisdom, wisdom_path  # noqa: E402
 from .laboratory import Pendulum, Swing  # noqa: E402
@@ -90,7 +90,7 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Junction", "SwitchingCurrents", "attractor_continuation",
            "continue_orbit", "continue_equilibria", "Branch", "Bifurcation", "EquilibriumBranch",
            "ContinuationError", "continue_bifurcation", "BifurcationCurve", "CodimTwoPoint",
-           "shapiro_tongue", "ShapiroTongue"]
+           "shapiro_tongue", "ShapiroTongue", "bifurcation_tree", "BranchTree"]
 
 # the pendulum of the classroom in metres, seconds and degrees
 __all__ += ["Pendulum", "Swing"]

@@ -9,6 +9,8 @@ One function per result, each taking what the library returns and an optional
 - :func:`spectrum` -- a :class:`~pendula.Spectrum`, the fundamental marked;
 - :func:`bifurcation` -- a ``poincare`` sweep over one parameter (optionally
   with the Lyapunov exponent of a ``lyapunov`` sweep beside it);
+- :func:`branches` -- continued branches (a :class:`~pendula.BranchTree` or a :class:`~pendula.Branch`),
+  stable solid, unstable dashed, the bifurcations marked;
 - :func:`basins` -- an attractor map, one colour per attractor, the attractors drawn;
 - :func:`iv` -- an I-V curve, both directions, the Shapiro steps labelled;
 - :func:`fractions` -- basin fractions over a parameter, as stacked areas;
@@ -265,7 +267,7 @@ def spectrum(sp: Spectrum, ax: matplotlib.axes.Axes | None = None, *, harmonics:
 
 
 def _one_axis(ds, what: str) -> str:
-    dims = [d for d in ds.theta.dims if d != "sample"] if "theta" in ds else list(ds.dims)
+    dims = [d for d in ds.theta.dims if d not in ("sample", "direction")] if "theta" in ds else list(ds.dims)
     if len(dims) != 1:
         raise ValueError(f"{what} needs a sweep over one parameter, got the axes {dims}")
     return dims[0]
@@ -279,7 +281,9 @@ def bifurcation(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None, *,
     ----------
     ds : xarray.Dataset
         What ``pendula.sweep(scene, {name: values}, measure='poincare')``
-        returns (``theta`` on the parameter and ``sample``).
+        returns (``theta`` on the parameter and ``sample``); with ``follow=True``
+        (the dimension ``direction``) the way up and the way down are drawn in
+        two colours, so that hysteresis shows where they part.
     ax : matplotlib.axes.Axes, optional
         Where to draw (default: a new figure).
     lyapunov : xarray.Dataset, optional
@@ -314,12 +318,19 @@ def bifurcation(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None, *,
         raise ValueError("bifurcation needs a 'poincare' sweep (theta on the dimensions (parameter, sample))")
     p = _one_axis(ds, "bifurcation")
     ax = _ax(ax, figsize=(7, 4.5))
-    th = ds.theta.transpose(p, "sample").values
-    x = np.repeat(ds[p].values, th.shape[1])
     kwargs.setdefault("ms", 1.0)
     kwargs.setdefault("alpha", 0.6)
-    kwargs.setdefault("color", "k")
-    ax.plot(x, th.ravel(), ".", **kwargs)
+    if "direction" in ds.theta.dims:
+        # an adiabatic sweep (follow=True): the way up and the way down, apart where they differ (hysteresis)
+        for d, colour, mark in zip(ds["direction"].values, ("C0", "C3"), (".", "x")):
+            th = ds.theta.sel(direction=d).transpose(p, "sample").values
+            kw = dict(kwargs, color=kwargs.get("color", colour))
+            ax.plot(np.repeat(ds[p].values, th.shape[1]), th.ravel(), mark, label=f"{p} {d}", **kw)
+        ax.legend(fontsize=9, loc="best", markerscale=6)
+    else:
+        th = ds.theta.transpose(p, "sample").values
+        kwargs.setdefault("color", "k")
+        ax.plot(np.repeat(ds[p].values, th.shape[1]), th.ravel(), ".", **kwargs)
     ax.set_xlabel(p)
     ax.set_ylabel("theta at t = 2 pi n / Omega (rad)")
     ax.set_ylim(-math.pi, math.pi)
@@ -331,6 +342,122 @@ def bifurcation(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None, *,
         tw.set_ylabel("largest Lyapunov exponent", color="C3")
         tw.tick_params(axis="y", colors="C3")
         ax.lyapunov_axes = tw
+    ax.grid(True, alpha=0.3)
+    return ax
+
+
+#: markers of the bifurcations on a branch diagram, and their names in words
+_BIFURCATION_MARKS = {"pitchfork": ("s", "pitchfork"), "period-doubling": ("o", "period doubling"),
+                      "fold": ("^", "fold"), "neimark-sacker": ("D", "Neimark-Sacker"),
+                      "homoclinic": ("X", "homoclinic"), "saddle-node": ("v", "saddle-node")}
+
+
+def _branch_lines(b, column: int, stable: bool):
+    """x, y of one branch's k-cycle points where its stability is ``stable``: each point of the cycle
+    one run, joined across the points next to a change of stability, broken (NaN) at a change of
+    segment and where the angle wraps."""
+    keep = b.stable if stable else ~b.stable
+    near = keep.copy()
+    near[1:] |= keep[:-1]
+    near[:-1] |= keep[1:]
+    xs, ys = [], []
+    for j in range(b.cycle.shape[1]):
+        y = np.where(near, b.cycle[:, j, column], np.nan)
+        x = np.where(near, np.asarray(b.values, dtype=float), np.nan)
+        cut = np.zeros(len(y), dtype=bool)
+        cut[1:] = (np.diff(b.segment) != 0) | ((np.abs(np.diff(y)) > np.pi) if column == 0 else False)
+        idx = np.nonzero(cut)[0]
+        xs.append(np.insert(x, idx, np.nan))
+        ys.append(np.insert(y, idx, np.nan))
+        xs.append([np.nan])
+        ys.append([np.nan])
+    return np.concatenate(xs), np.concatenate(ys)
+
+
+def branches(tree: Any, ax: matplotlib.axes.Axes | None = None, *, which: str = "theta",
+             **kwargs: Any) -> matplotlib.axes.Axes:
+    """A bifurcation diagram of continued branches: stable solid, unstable dashed, the bifurcations marked.
+
+    Every point of each branch's k-cycle is drawn against the parameter (a
+    period-4 branch draws four curves), one colour per period; the
+    bifurcations are marked and labelled in words (``pitchfork``, ``period
+    doubling``, ``fold`` ...), a kind once where its points crowd together (within 20 % of
+    the parameter's span).
+
+    Parameters
+    ----------
+    tree : BranchTree or Branch
+        What :func:`pendula.bifurcation_tree` or :func:`pendula.continue_orbit` returns.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw (default: a new figure).
+    which : {'theta', 'v'}, optional
+        The coordinate of the section points drawn (default the angle).
+    **kwargs
+        Passed to matplotlib's ``Axes.plot`` for the branches.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The diagram's axes: per branch one solid line (its stable part) and one dashed (its
+        unstable part), where it has one.
+
+    Raises
+    ------
+    TypeError
+        When ``tree`` is neither a BranchTree nor a Branch.
+    ValueError
+        When ``which`` is neither 'theta' nor 'v'.
+
+    Examples
+    --------
+    >>> import pendula, pendula.plot
+    >>> sc = pendula.Scene(damping=0.5, drive_amplitude=1.0, drive_frequency=2/3)
+    >>> tree = pendula.bifurcation_tree(sc, (0.1, 1.9), "drive_amplitude", 1.07, depth=1)
+    >>> ax = pendula.plot.branches(tree)
+    >>> ax.get_xlabel(), sorted({line.get_linestyle() for line in ax.get_lines() if line.get_label() != "_marks"})
+    ('drive_amplitude', ['-', '--'])
+    """
+    from .dynamics.branch_tree import BranchTree
+    from .dynamics.branches import Branch
+    _result(tree, "tree", (BranchTree, Branch), "a BranchTree or a Branch")
+    if which not in ("theta", "v"):
+        raise ValueError(f"which must be 'theta' or 'v', got {which!r:.40}")
+    col = 0 if which == "theta" else 1
+    brs = tree.branches() if isinstance(tree, BranchTree) else [tree]
+    ax = _ax(ax, figsize=(7, 4.5))
+    periods = sorted({int(p) for b in brs for p in np.unique(b.period)})
+    colours = dict(zip(periods, _categorical(len(periods))))
+    named: set = set()
+    kwargs.setdefault("lw", 1.2)
+    for b in brs:
+        if not len(b):
+            continue
+        k = int(b.period[0])
+        for stable, style in ((True, "-"), (False, "--")):
+            if not np.any(b.stable if stable else ~b.stable):
+                continue
+            x, y = _branch_lines(b, col, stable)
+            label = _period_words(k) if k not in named else None
+            named.add(k)
+            ax.plot(x, y, ls=style, color=colours.get(k, "k"), label=label or "_nolegend_", **kwargs)
+    # each kind named once per place: not again within 20 % of the parameter's span (a cascade's
+    # doublings crowd together; their marks stay)
+    span = max((float(np.ptp(b.values)) for b in brs if len(b)), default=0.0)
+    labelled: list = []
+    for b in brs:
+        for bif in b.bifurcations:
+            marker, word = _BIFURCATION_MARKS.get(bif.kind, ("x", bif.kind))
+            y = bif.theta if col == 0 else bif.v
+            ax.plot([bif.value], [y], marker, color="k", ms=5, mfc="white", label="_marks")
+            if not any(kind == bif.kind and abs(value - bif.value) <= 0.2 * span for kind, value in labelled):
+                labelled.append((bif.kind, bif.value))
+                ax.annotate(word, (bif.value, y), xytext=(4, 6), textcoords="offset points", fontsize=9)
+    ax.set_xlabel(brs[0].param)
+    ax.set_ylabel("theta on the section (rad)" if col == 0 else "v on the section (rad per time unit)")
+    ax.margins(y=0.1)            # room for the names above the top branch
+    ax.plot([], [], "k-", label="stable")
+    ax.plot([], [], "k--", label="unstable")
+    ax.legend(fontsize=9, loc="best")
     ax.grid(True, alpha=0.3)
     return ax
 

@@ -66,6 +66,7 @@ from numpy.typing import ArrayLike
 from . import _checks
 from ._optional import require
 from ._sweep_engine import MEASURE_CODES, STATUS, check_driven, check_over, grid_of, run_measure
+from ._sweep_follow import check_follow, follow_sweep
 from ._store import StoreBusyError, SweepStoreWarning  # noqa: F401 - raised and warned by sweep(out=...)
 from .scene import MEASURES, Scene
 from .systems import contract
@@ -83,7 +84,8 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
           | None = None, *, rtol: float | None = None, atol: float | None = None, t_max: float | None = None,
           transient: float | None = None, samples: int | None = None, out: str | os.PathLike[str] | None = None,
           chunk_points: int = 20000, client: distributed.Client | None = None, threads: int = 0,
-          progress: bool = False, force: object = None, force_params: ArrayLike | None = None) -> xarray.Dataset:
+          progress: bool = False, force: object = None, force_params: ArrayLike | None = None,
+          follow: bool = False) -> xarray.Dataset:
     """Evaluate a measure over a grid of one scene's fields.
 
     Parameters
@@ -135,11 +137,24 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
         2).  Friction, drag and a vibrating pivot are in the sweeps too (the
         pivot's period is the stroboscopic map's when there is no drive; no
         Lyapunov exponents with friction, which sticks).
+    follow : bool
+        An adiabatic sweep over one field (default False): each value starts
+        from the end state of the value before (the last stroboscopic sample
+        of a ``poincare`` point, else the state after its transient and
+        window, in whole forcing periods), up the values from the scene's
+        ``(theta0, v0)`` at the lowest, then down from the end of the way up
+        at the highest.  An orbit diagram then follows one attractor until it
+        disappears instead of jumping between coexisting ones, and where two
+        coexist the two ways differ (hysteresis).  The result gains the
+        dimension ``direction`` ('up', 'down').  One point after another in
+        this process: not with ``out``, ``client``, a user's force, thermal
+        noise or the ``attractor`` measure.
 
     Returns
     -------
     xarray.Dataset
-        Lazy (dask-backed, read from the Zarr store) when ``out`` is given.
+        Lazy (dask-backed, read from the Zarr store) when ``out`` is given; with ``follow``, the
+        dimension ``direction`` ('up', 'down') first.
         Coordinates = the axes (with CF ``units`` and ``long_name``); variables per measure plus ``status``
         (0 decided, 1 not settled by the limit, 2 measure does not apply,
         4 uncertain: a basin-boundary point -- a grid neighbour along any axis,
@@ -186,6 +201,15 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
     [False, True]
     >>> bool(abs(ly.lyapunov[0] + ly.lyapunov2[0] + 0.5) < 1e-8)     # lambda_1 + lambda_2 = -beta
     True
+
+    Followed up and down, the damped pendulum under a torque stays at rest up to the torque 1 and
+    runs down to the retrapping torque (about 4 damping / pi): the I-V hysteresis of a junction:
+
+    >>> j = pendula.Scene(damping=0.2)
+    >>> iv = pendula.sweep(j, {"torque": [0.1, 0.5, 1.2]}, "mean_velocity", transient=100.0, t_max=300.0,
+    ...                    follow=True)
+    >>> (iv.mean_velocity.round(2).values > 0).tolist()
+    [[False, False, True], [False, True, True]]
     """
     # in memory xarray alone does (pendula[xarray]); a store or a cluster needs the sweep extra
     require("xarray", "xarray" if out is None and client is None else "sweep", "pendula.sweep")
@@ -228,6 +252,13 @@ def sweep(scene: Scene | str | os.PathLike[str], over: dict[str, ArrayLike] | No
     samples = _checks.count(scene.sweep_samples if samples is None else samples, "samples", 1, 100000)
     chunk_points = _checks.count(chunk_points, "chunk_points", 1)
     threads = _checks.threads(threads)
+    if _checks.flag(follow, "follow"):
+        if measure == "mean_velocity":
+            _checks.window(transient, t_max, "t_max")
+        name, values = check_follow(scene, over, measure, out, client, uf)
+        if measure == "poincare":
+            check_driven(scene, over, "measure 'poincare'")
+        return follow_sweep(scene, name, values, measure, rtol, atol, t_max, transient, samples, threads)
     if measure == "attractor":
         # the attractor map read from the kernel's poincare samples (method 'samples' of pendula.attractor_map)
         return attractor_map(scene, over, method="samples", transient=transient, samples=samples, rtol=rtol,

@@ -4,6 +4,7 @@ bifurcations, and the error that keeps what a continuation traced.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -75,6 +76,14 @@ class Bifurcation:
         The field the branch was continued in.
     winding : int
         Turns per period of the orbit (0 for an oscillation).
+    det_residual : float
+        The certificate of the multipliers: ``abs(det M - exp(-damping T))`` (Liouville's formula,
+        T the time period), NaN where it does not apply (drag, an equilibrium, a homoclinic).
+    trivial_residual : float
+        For an autonomous orbit, the trivial multiplier's distance from 1; NaN for a driven one.
+    cycle : numpy.ndarray
+        The orbit's k section points ``(theta, v)`` one drive period apart, shape (k, 2) (one point for
+        an autonomous orbit or an equilibrium).
 
     See Also
     --------
@@ -99,6 +108,9 @@ class Bifurcation:
     scene: Scene | None = field(default=None, repr=False, compare=False)
     param: str | None = field(default=None, repr=False, compare=False)
     winding: int = field(default=0, repr=False, compare=False)
+    det_residual: float = math.nan
+    trivial_residual: float = math.nan
+    cycle: np.ndarray | None = None
 
     def __repr__(self) -> str:
         mods = ", ".join(f"{abs(complex(m)):.4g}" for m in np.ravel(self.multipliers))
@@ -133,6 +145,21 @@ class Branch:
         In the order met.
     end : str
         Why the branch ends (``'stop'`` when it reached ``stop``).
+    cycle : numpy.ndarray
+        The whole k-cycle at each point: the k section points ``(theta, v)`` one drive period apart,
+        shape (points, K, 2) with K the longest period on the branch (NaN past a shorter point's k;
+        K = 1 for an autonomous orbit, its point on the section).
+    det_residual : numpy.ndarray
+        The certificate of each point's multipliers: ``abs(det M - exp(-damping T))`` (Liouville's
+        formula: the flow of the pendulum shrinks areas at the rate ``damping``), NaN with drag.
+    trivial_residual : numpy.ndarray
+        For an autonomous orbit, the distance of the multiplier nearest 1 (the flow's direction) from 1;
+        NaN for a driven orbit.
+    certified : numpy.ndarray
+        True where the point's stability verdict is decided beyond the monodromy's error (as
+        ``PeriodicOrbit.certified``: the Jury conditions, or ``1 - abs(det M)`` for an autonomous orbit,
+        beyond ``100 rtol (1 + norm(M))^2``, and the Liouville residual within it); False next to a
+        bifurcation.
 
     See Also
     --------
@@ -159,6 +186,10 @@ class Branch:
     segment: np.ndarray
     bifurcations: tuple
     end: str
+    cycle: np.ndarray
+    det_residual: np.ndarray
+    trivial_residual: np.ndarray
+    certified: np.ndarray
 
     def __repr__(self) -> str:
         n = len(self.values)
@@ -176,8 +207,9 @@ class Branch:
         -------
         xarray.Dataset
             Variables: the parameter (named for the field), ``theta``, ``v``, ``period``,
-            ``multipliers`` (complex), ``stable``, ``segment``; the bifurcations in the attribute
-            ``bifurcations`` as text.
+            ``multipliers`` (complex), ``stable``, ``segment``, the certificates ``det_residual``,
+            ``trivial_residual`` and ``certified``, and the k-cycles ``cycle_theta`` and ``cycle_v``
+            (dims ``point``, ``cycle``); the bifurcations in the attribute ``bifurcations`` as text.
 
         Examples
         --------
@@ -192,8 +224,12 @@ class Branch:
         return xr.Dataset(
             {self.param: ("point", self.values), "theta": ("point", self.theta), "v": ("point", self.v),
              "period": ("point", self.period), "multipliers": (("point", "multiplier"), self.multipliers),
-             "stable": ("point", self.stable), "segment": ("point", self.segment)},
-            coords={"point": np.arange(n), "multiplier": np.arange(2)},
+             "stable": ("point", self.stable), "segment": ("point", self.segment),
+             "det_residual": ("point", self.det_residual), "trivial_residual": ("point", self.trivial_residual),
+             "certified": ("point", self.certified),
+             "cycle_theta": (("point", "cycle"), self.cycle[:, :, 0]),
+             "cycle_v": (("point", "cycle"), self.cycle[:, :, 1])},
+            coords={"point": np.arange(n), "multiplier": np.arange(2), "cycle": np.arange(self.cycle.shape[1])},
             attrs={"param": self.param, "end": self.end,
                    "bifurcations": "; ".join(f"{b.kind} at {self.param}={b.value!r}" for b in self.bifurcations)})
 

@@ -31,8 +31,8 @@ from .equilibria import equilibria
 from ..systems.contract import require, time_scales
 from .branches import BIFURCATION_KINDS, Bifurcation, Branch, ContinuationError  # noqa: F401 (re-exported)
 from .homoclinic import _first_return, _splitting
-from .periodic import (FlowError, NewtonError, OrbitProblem, check_guess, drive_period, flow, multipliers_of,
-                       newton, reduce_angle)
+from .periodic import (MONODROMY_ERROR, FlowError, NewtonError, OrbitProblem, check_guess, drive_period, flow,
+                       liouville_residual, multipliers_of, newton, reduce_angle, stability_certificate)
 
 __all__ = ["Bifurcation", "Branch", "ContinuationError", "continue_orbit", "BIFURCATION_KINDS"]
 
@@ -67,6 +67,40 @@ def _stop_value(scene: Scene, param: str, p0: float, stop) -> float:
     except SceneError as exc:
         raise SceneError(f"stop: {exc}") from None
     return stop
+
+
+def _cycle(prob, U) -> np.ndarray:
+    """The orbit's k section points (theta, v), one drive period apart (one point on an autonomous
+    orbit's section), theta in [-pi, pi]."""
+    if prob.mode == "section":
+        return np.array([[reduce_angle(prob.theta_s), float(U[0])]])
+    pts = np.empty((prob.k, 2))
+    pts[0] = U[:2]
+    if prob.k > 1:
+        sc = prob.scene(float(U[2]))
+        td = drive_period(sc, 1)
+        end, _, _ = flow(sc, U[:2], [j * td for j in range(1, prob.k)], prob.rtol, prob.atol, prob.force)
+        pts[1:] = end
+    pts[:, 0] = [reduce_angle(x) for x in pts[:, 0]]
+    return pts
+
+
+def _residuals(prob, U, ev) -> tuple[float, float]:
+    """The certificates of a point's multipliers: |det M - exp(-damping T)| (Liouville; NaN with drag
+    or a user's force, whose divergence is not constant) and, on an autonomous orbit, the distance
+    of the trivial multiplier from 1 (NaN on a driven one)."""
+    sc = prob.scene(float(U[2]))
+    T = float(ev.T) if prob.mode == "section" else drive_period(sc, prob.k)
+    det = liouville_residual(sc, ev.M, T, prob.force)
+    trivial = float(np.min(np.abs(multipliers_of(ev.M) - 1.0))) if prob.mode == "section" else math.nan
+    return det, trivial
+
+
+def _certified(prob, U, ev) -> bool:
+    """The point's stability verdict decided beyond the monodromy's error, its Liouville residual within it."""
+    _, decided, err = stability_certificate(ev.M, prob.rtol, prob.mode == "section")
+    det, _ = _residuals(prob, U, ev)
+    return bool(decided and not det > err)
 
 
 # ---------------------------------------------------------------- the branch tracer
@@ -134,10 +168,8 @@ def _root(g, a: float, ga: float, b: float, gb: float, xtol: float, maxit: int =
     return x, payload, gx, abs(b - a)
 
 
-#: The error of a test function of the monodromy, in units of rtol (1 + |X|)^2 (X the matrix it is made
-#: of): the flow's error moves tr X and det X by about rtol |X| and rtol |X|^2; measured on 40 random
-#: orbits (flows at rtol 1e-12 against 1e-15) below 0.22 of it, so 100 leaves a margin of 450.
-_TEST_ERROR = 100.0
+#: The error of a test function of the monodromy, in units of rtol (1 + |X|)^2 (periodic.MONODROMY_ERROR).
+_TEST_ERROR = MONODROMY_ERROR
 
 
 def _test_errors(mode: str, ev, rtol: float) -> dict:
@@ -193,6 +225,7 @@ class _Tracer:
         self.h0 = max(self.h0, self.hmin)
         self.rows: list = []          # (p, theta, v, period, mu0, mu1, stable, segment)
         self.bifs: list = []
+        self.spawns: list = []        # (index in bifs, kind, problem, U, Evaluation, tangent): the branch points
         self.segment = 0
         self.end = ""
 
@@ -209,12 +242,12 @@ class _Tracer:
         th, v = self._state(prob, U[:2])
         mu = multipliers_of(ev.M)
         self.rows.append((float(U[2]), th, v, self._period(prob, ev), mu[0], mu[1], _stable(prob.mode, ev),
-                          self.segment))
+                          self.segment, _cycle(prob, U)) + _residuals(prob, U, ev) + (_certified(prob, U, ev),))
 
     def bifurcation(self, kind, prob, U, ev):
         th, v = self._state(prob, U[:2])
         self.bifs.append(Bifurcation(kind, float(U[2]), self._period(prob, ev), th, v, multipliers_of(ev.M),
-                                     *self._where(prob, U[2])))
+                                     *self._where(prob, U[2]), *_residuals(prob, U, ev), cycle=_cycle(prob, U)))
 
     def _where(self, prob, p) -> tuple:
         """(scene at p, param, winding) of a bifurcation record: where continue_bifurcation starts."""
@@ -228,8 +261,13 @@ class _Tracer:
         r = self.rows
         col = (lambda i, dt=float: np.array([x[i] for x in r], dtype=dt))
         mus = np.array([[x[4], x[5]] for x in r], dtype=complex).reshape(-1, 2)
+        K = max((len(x[8]) for x in r), default=1)
+        cyc = np.full((len(r), K, 2), np.nan)
+        for i, x in enumerate(r):
+            cyc[i, :len(x[8])] = x[8]
         return Branch(self.scene, self.param, col(0), col(1), col(2), col(3), mus, col(6, bool), col(7, int),
-                      tuple(self.bifs), self.end)
+                      tuple(self.bifs), self.end, cycle=cyc, det_residual=col(9), trivial_residual=col(10),
+                      certified=col(11, bool))
 
     def fail(self, message):
         self.end = "error"
@@ -309,9 +347,12 @@ class _Tracer:
                     Uh, evh = evc
                     th, v = reduce_angle(Uh[0]), float(Uh[1])
                     self.bifs.append(Bifurcation(kind, float(Uh[2]), float(prob.k), th, v, multipliers_of(evh.M),
-                                                 *self._where(prob, Uh[2])))
+                                                 *self._where(prob, Uh[2]), *_residuals(prob, Uh, evh),
+                                                 cycle=_cycle(prob, Uh)))
                     continue
                 self.bifurcation(kind, prob, Uc, evc)
+                if kind in ("pitchfork", "period-doubling"):
+                    self.spawns.append((len(self.bifs) - 1, kind, prob, Uc, evc, t))
                 if self.follow == "stable" and stable:
                     if kind in ("pitchfork", "period-doubling"):
                         # the stable side of the point: follow the child if this branch lost stability
@@ -445,11 +486,14 @@ class _Tracer:
         return payload
 
     # -- branch switching at a pitchfork or a period doubling
-    def switch(self, kind, prob, Us, evs, t_parent):
+    def child_start(self, kind, prob, Us, evs, t_parent, sign: int = 1):
+        """The first point of the child branch at a pitchfork or a period doubling, on the side ``sign``
+        of the critical eigenvector (at a pitchfork the two sides are the two children; at a period
+        doubling both give the one child of period 2k): (problem, U, Evaluation, tangent pointing away
+        from the branch point), or a string saying why there is none."""
         k2, w2 = (prob.k, prob.winding) if kind == "pitchfork" else (2 * prob.k, 2 * prob.winding)
         if k2 > 10**4:
-            self.end = f"{kind} at {self.param} = {float(Us[2])!r}: the child's period exceeds 10000 drive periods"
-            return None
+            return f"{kind} at {self.param} = {float(Us[2])!r}: the child's period exceeds 10000 drive periods"
         child = OrbitProblem(prob.base, "map", k2, w2, self.param, prob.rtol, prob.atol)
         parent_map = OrbitProblem(prob.base, "map", prob.k, prob.winding, self.param, prob.rtol, prob.atol)
         target = 1.0 if kind == "pitchfork" else -1.0
@@ -459,7 +503,7 @@ class _Tracer:
         e = e / np.linalg.norm(e)
         if e[0] < 0 or (e[0] == 0 and e[1] < 0):
             e = -e
-        E = np.append(e, 0.0)
+        E = sign * np.append(e, 0.0)
         n = E - np.dot(E, t_parent) * t_parent
         n = n / np.linalg.norm(n)
         # the child next to the branch point (close: the next doubling of a cascade may be near)
@@ -474,17 +518,25 @@ class _Tracer:
             if off > 0.1 * hb and abs(U1[2] - Us[2]) > 1e-9 * max(1.0, abs(Us[2])):
                 break
         else:
-            self.end = f"{kind} at {self.param} = {float(Us[2])!r}: no child branch found next to it"
+            return f"{kind} at {self.param} = {float(Us[2])!r}: no child branch found next to it"
+        t1, _ = self.tangent(child, U1, ev1)
+        if np.dot(t1, U1 - Us) < 0:
+            t1 = -t1
+        return child, U1, ev1, t1
+
+    # -- branch switching at a pitchfork or a period doubling
+    def switch(self, kind, prob, Us, evs, t_parent):
+        first = self.child_start(kind, prob, Us, evs, t_parent)
+        if isinstance(first, str):
+            self.end = first
             return None
+        child, U1, ev1, t1 = first
         # supercritical (the child on the far side, attracting: its multiplier 1 - O(hb^2) inside the
         # circle) or subcritical (on the near side, repelling)
         if (U1[2] - Us[2]) * (self.stop - Us[2]) < 0:
             self.end = (f"{kind} at {self.param} = {float(Us[2])!r} is subcritical: no attracting child branch "
                         "(the motion jumps to another attractor)")
             return None
-        t1, _ = self.tangent(child, U1, ev1)
-        if np.dot(t1, U1 - Us) < 0:
-            t1 = -t1
         self.segment += 1
         self.record(child, U1, ev1)
         return child, U1, ev1, t1
@@ -616,13 +668,29 @@ def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: f
     >>> [(b.kind, b.period, round(b.value, 8)) for b in br.bifurcations]
     [('pitchfork', 1.0, 1.00431948), ('period-doubling', 1.0, 1.06637286)]
     """
+    if follow not in ("branch", "stable"):
+        raise ValueError(f"follow must be 'branch' or 'stable', got {follow!r:.40}")
+    tracer, prob, U, ev, t = start(scene, guess, param, stop, k, winding, follow, step)
+    while True:
+        out = tracer.run_segment(prob, U, ev, t)
+        if out is None:
+            break
+        _, kind, prob_s, Us, evs, ts = out
+        sw = tracer.switch(kind, prob_s, Us, evs, ts)
+        if sw is None:
+            break
+        prob, U, ev, t = sw
+    return tracer.branch()
+
+
+def start(scene: Scene, guess, param, stop, k, winding, follow: str, step):
+    """The arguments checked and the first point of a continuation: (tracer, problem, U, Evaluation,
+    tangent towards stop), the point recorded."""
     require(scene, "continue_orbit", over=(param,))      # the capability table: noise and dry friction refused by name
     p0 = _param_value(scene, param)
     stop = _stop_value(scene, param, p0, stop)
     k = _checks.count(k, "k", 1, 10**4)
     winding = _checks.count(winding, "winding", -10**9, 10**9)
-    if follow not in ("branch", "stable"):
-        raise ValueError(f"follow must be 'branch' or 'stable', got {follow!r:.40}")
     if step is not None:
         step = _checks.real(step, "step", 0.0, lo_open=True)
     _check_steps(param, p0, stop, step)
@@ -677,13 +745,4 @@ def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: f
     if follow == "stable" and not _stable(prob.mode, ev):
         raise ValueError("follow: the orbit at guess is unstable; follow='stable' starts from an attracting orbit")
     tracer.record(prob, U, ev)
-    while True:
-        out = tracer.run_segment(prob, U, ev, t)
-        if out is None:
-            break
-        _, kind, prob_s, Us, evs, ts = out
-        sw = tracer.switch(kind, prob_s, Us, evs, ts)
-        if sw is None:
-            break
-        prob, U, ev, t = sw
-    return tracer.branch()
+    return tracer, prob, U, ev, t

@@ -144,5 +144,6 @@ def continue_equilibria(scene: Scene, param: str, stop: float, points: int = 101
             sn = [e for e in merged if e.kind == "saddle-node"] or merged
             e = min(sn, key=lambda e: abs(e.eigenvalues).min()) if sn else None
             bifs.append(Bifurcation("saddle-node", more, 0.0, e.theta if e else math.nan, 0.0,
-                                    e.eigenvalues if e else np.array([math.nan, math.nan], dtype=complex)))
+                                    e.eigenvalues if e else np.array([math.nan, math.nan], dtype=complex),
+                                    cycle=np.array([[e.theta if e else math.nan, 0.0]])))
     return EquilibriumBranch(param, values, tuple(eqs), tuple(bifs))

@@ -49,6 +49,18 @@ class PeriodicOrbit:
         True when every multiplier lies inside the unit circle.
     residual : float
         ``max |P(x) - x - (2 pi winding, 0)|`` at the returned state.
+    det_residual : float
+        The certificate of the multipliers: ``abs(det M - exp(-damping period))`` (Liouville's formula:
+        the flow shrinks areas at the rate ``damping``), about the integrator's tolerance times
+        ``(1 + norm(M))^2``; NaN with drag or a user's force (their rate is not constant).
+    multiplier_error : float
+        The bound on the error of ``tr M`` and ``det M`` from the flow's tolerance,
+        ``100 rtol (1 + norm(M))^2`` (measured below 0.22 of it on random orbits against flows at 1e-15).
+    certified : bool
+        True when the stability verdict is decided beyond that error (by the Jury conditions
+        ``1 - tr M + det M``, ``1 + tr M + det M``, ``1 - det M``: all above it for a stable orbit, one
+        below minus it for an unstable one) and the Liouville residual lies within it: the verdict
+        then does not depend on the integrator's tolerance.  False next to a bifurcation.
 
     See Also
     --------
@@ -73,6 +85,9 @@ class PeriodicOrbit:
     monodromy: np.ndarray
     winding: int
     residual: float
+    det_residual: float = math.nan
+    multiplier_error: float = math.nan
+    certified: bool = False
 
     @property
     def stable(self) -> bool:
@@ -407,6 +422,38 @@ def newton(problem: OrbitProblem, u, p, tol: float, maxit: int, plane=None):
     raise NewtonError(why, evals, res, (u, p))
 
 
+#: The error of a function of the monodromy, in units of rtol (1 + |X|)^2 (X the matrix it is made of): the
+#: flow's error moves tr X and det X by about rtol |X| and rtol |X|^2; measured on 40 random orbits (flows
+#: at rtol 1e-12 against 1e-15) below 0.22 of it, so 100 leaves a margin of 450.
+MONODROMY_ERROR = 100.0
+
+
+def monodromy_error(X, rtol: float) -> float:
+    """The bound on the error of tr X and det X (X a monodromy or its half) for a flow at rtol."""
+    return MONODROMY_ERROR * rtol * (1.0 + float(np.linalg.norm(X))) ** 2
+
+
+def stability_certificate(M, rtol: float, autonomous: bool = False) -> tuple[bool, bool, float]:
+    """(stable, certified, error): the verdict from the Jury conditions of a real 2 x 2 monodromy (every
+    multiplier inside the unit circle iff 1 - tr + det, 1 + tr + det and 1 - det are all positive), and
+    whether it is decided beyond the conditions' error (stable: all three above it; unstable: one below
+    minus it).  An autonomous orbit's trivial multiplier 1 is left out: its verdict is 1 - |det M|."""
+    tr, det = float(np.trace(M)), float(np.linalg.det(M))
+    err = monodromy_error(M, rtol)
+    jury = (1.0 - abs(det),) if autonomous else (1.0 - tr + det, 1.0 + tr + det, 1.0 - det)
+    stable = min(jury) > 0.0
+    return stable, (min(jury) > err if stable else min(jury) < -err), err
+
+
+def liouville_residual(scene: Scene, M, T: float, force=None) -> float:
+    """|det M - exp(-damping T)|: the certificate of a monodromy over the time T (Liouville's formula:
+    the pendulum's flow shrinks areas at the constant rate ``damping``); NaN where the rate is not
+    constant (quadratic drag, a user's force)."""
+    if scene.drag != 0.0 or force is not None:
+        return math.nan
+    return float(abs(np.linalg.det(M) - math.exp(-scene.damping * T)))
+
+
 def multipliers_of(M) -> np.ndarray:
     """The eigenvalues of a monodromy, complex, largest modulus first."""
     mu = np.linalg.eigvals(M).astype(complex)
@@ -530,5 +577,8 @@ def periodic_orbit(scene: Scene, guess: tuple[float, float] | None = None, k: in
         uf.reraise()
     m = ev.M.copy()
     mu = multipliers_of(m)
+    det_res = liouville_residual(scene, m, period, uf)
+    _, decided, err = stability_certificate(m, rtol)
     return PeriodicOrbit(reduce_angle(x[0]), float(x[1]), period, mu, np.log(np.abs(mu)) / period, m,
-                         int(winding), float(np.max(np.abs(ev.F))))
+                         int(winding), float(np.max(np.abs(ev.F))), det_res, err,
+                         bool(decided and not det_res > err))
