@@ -59,6 +59,7 @@ from .junction import Junction, SwitchingCurrents  # noqa: E402
 from .dynamics import Equilibrium, PeriodicOrbit, attractor_continuation, attractor_map, equilibria, periodic_orbit  # noqa: E402,E501
 from .dynamics import (Bifurcation, Branch, ContinuationError, EquilibriumBranch, continue_equilibria,  # noqa: E402
                        continue_orbit)
+from .dynamics import WadaTest, kaplan_yorke_dimension, wada_test  # noqa: E402
 from .spectrum import precompute_wisdom, wisdom_path  # noqa: E402
 from .laboratory import Pendulum, Swing  # noqa: E402
 # the quantum pendulum: Mathieu characteristic values and the transmon
@@ -88,7 +89,7 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "friction_turning_points", "FrictionTurningPoints",
            "Junction", "SwitchingCurrents", "attractor_continuation",
            "continue_orbit", "continue_equilibria", "Branch", "Bifurcation", "EquilibriumBranch",
-           "ContinuationError"]
+           "ContinuationError", "wada_test", "WadaTest", "kaplan_yorke_dimension"]
 
 # the pendulum of the classroom in metres, seconds and degrees
 __all__ += ["Pendulum", "Swing"]

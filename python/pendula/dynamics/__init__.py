@@ -9,7 +9,8 @@
   :mod:`.equilibrium_continuation` the rest points followed likewise;
 - :mod:`.attractors`: the attractors of the stroboscopic map and their basins (the records and the
   measures of a basin map); :mod:`.attractor_maps` computes the maps (on the sweep engine),
-  :mod:`.attractor_continuation` follows them over a parameter.
+  :mod:`.attractor_continuation` follows them over a parameter, :mod:`.boundary_measures` tests
+  their boundaries for the Wada property.
 
 The public names are importable from :mod:`pendula` as well.
 """
@@ -17,6 +18,8 @@ The public names are importable from :mod:`pendula` as well.
 from .attractors import Attractor, AttractorMap
 from .attractor_maps import attractor_map
 from .attractor_continuation import attractor_continuation
+from .attractors import kaplan_yorke_dimension
+from .boundary_measures import WadaTest, wada_test
 from .branches import BIFURCATION_KINDS, Bifurcation, Branch, ContinuationError
 from .continuation import continue_orbit
 from .equilibrium_continuation import EquilibriumBranch, continue_equilibria
@@ -25,4 +28,5 @@ from .periodic import PeriodicOrbit, periodic_orbit
 
 __all__ = ["Equilibrium", "equilibria", "EQUILIBRIUM_KINDS", "PeriodicOrbit", "periodic_orbit",
            "Attractor", "AttractorMap", "continue_orbit", "continue_equilibria", "Branch", "Bifurcation",
-           "EquilibriumBranch", "ContinuationError", "BIFURCATION_KINDS", "attractor_map", "attractor_continuation"]
+           "EquilibriumBranch", "ContinuationError", "BIFURCATION_KINDS", "attractor_map", "attractor_continuation",
+           "wada_test", "WadaTest", "kaplan_yorke_dimension"]
