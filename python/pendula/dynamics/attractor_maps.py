@@ -84,12 +84,12 @@ def _attractor_block(plan: _AttractorPlan, p: np.ndarray, table, rtol: float, at
                      threads: int):
     """One kernel call of the recurrence finder (pendula_attractors) that Ctrl-C stops."""
     from .. import _kernel
-    kcell, klab, need = table
+    kcell, klab, need, cth, cv, catt, crad = table
     bth, bv, blab = plan.basin
     cancel = _interrupt.cancel_flag()
     out, cells, ncell, st = _interrupt.call(_kernel.attractor_block, np.asfortranarray(p), rtol, atol, plan.cfg,
-                                            kcell, klab, need, bth, bv, blab, plan.nout, maxc, int(threads),
-                                            cancel, cancel=cancel)
+                                            kcell, klab, need, cth, cv, catt, crad, bth, bv, blab, plan.nout, maxc,
+                                            int(threads), cancel, cancel=cancel)
     if cancel[0]:
         raise KeyboardInterrupt
     return out, cells, ncell, st

@@ -47,6 +47,10 @@ __all__ = ["Attractor", "AttractorMap", "AttractorSet", "label_attractors", "bas
            "classify_aperiodic", "APERIODIC_PERIODS"]
 
 TWO_PI = 2 * math.pi
+#: a periodic attractor closer than this many cells to another is confirmed by distance as well as by its
+#: cells (AttractorSet.confirm_radius): a cell's 8 neighbours label too, so two attractors fewer than about
+#: four cells apart have labelling regions that touch or overlap
+_CLOSE_CELLS = 4
 
 
 @dataclass(frozen=True)
@@ -626,12 +630,16 @@ class AttractorSet:
                            "point": (float(point[0]), float(point[1]))})
         return len(self.items) - 1
 
-    def table(self, kinds: tuple = ("periodic", "chaotic")) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(kcell sorted, klab, need): the kernel's table of the attractors of these kinds; ValueError when
-        the cell width cannot tell two attractors apart (every cell of one is claimed by another)."""
+    def table(self, kinds: tuple = ("periodic", "chaotic")) -> tuple:
+        """(kcell sorted, klab, need, cth, cv, catt, crad): the kernel's table of the attractors of these
+        kinds, with the periodic attractors' cycle points and confirmation radii (:meth:`confirm_radius`);
+        ValueError when the cell width cannot tell two attractors apart (every cell of one is claimed by
+        another)."""
+        cth, cv, catt, crad = self._cycle_table(kinds)
         if not any(a["kind"] in kinds for a in self.items):
-            return np.array([-2**62], np.int64), np.array([-1], np.int32), np.ones(max(1, len(self.items)),
-                                                                                    np.int32)
+            return (np.array([-2**62], np.int64), np.array([-1], np.int32), np.ones(max(1, len(self.items)),
+                                                                                     np.int32), cth, cv, catt,
+                    crad)
         ids, labs = [], []
         for idx, a in enumerate(self.items):
             if a["kind"] not in kinds:
@@ -655,7 +663,50 @@ class AttractorSet:
                                  f"({a['kind']}) from attractor(s) {other}: every cell of it is another's too; "
                                  "use a smaller cell")
         need = np.array([self.need.get(a["kind"], self.need["chaotic"]) for a in self.items], dtype=np.int32)
-        return np.ascontiguousarray(kcell, np.int64), np.ascontiguousarray(klab, np.int32), need
+        return np.ascontiguousarray(kcell, np.int64), np.ascontiguousarray(klab, np.int32), need, cth, cv, catt, crad
+
+    def confirm_radius(self, idx: int) -> float:
+        """The confirmation radius of periodic attractor idx: 0 (none: its cells alone label an orbit) when
+        every other attractor lies at least _CLOSE_CELLS cells away from it; else a quarter of that distance
+        (to the nearest point of another periodic attractor, or cell of a non-periodic one, max-norm, angle
+        modulo 2 pi): an orbit in its cells is labelled only once it comes that close to one of its cycle
+        points, well inside the half-way line to the other attractor, where cells of this width (whose
+        neighbours label too) reach past it."""
+        a = self.items[idx]
+        if a["kind"] != "periodic":
+            return 0.0
+        sep = math.inf
+        ni = math.ceil(TWO_PI / self.cell)
+        for j, b in enumerate(self.items):
+            if j == idx:
+                continue
+            if b["kind"] == "periodic":
+                bth, bv, pad = b["theta"], b["v"], 0.0
+            else:
+                jj, ii = np.divmod(b["cells"], ni)
+                bth, bv, pad = (ii + 0.5) * self.cell - math.pi, (jj + 0.5) * self.cell, 0.5 * self.cell
+            d = _dist(a["theta"][:, None], a["v"][:, None], np.asarray(bth)[None, :], np.asarray(bv)[None, :])
+            sep = min(sep, float(d.min()) - pad)
+        if sep >= _CLOSE_CELLS * self.cell:
+            return 0.0
+        return max(sep, 0.0) / 4
+
+    def _cycle_table(self, kinds: tuple):
+        """(cth, cv, catt, crad): the cycle points of the periodic attractors among ``kinds`` that have a
+        confirmation radius, their attractor, and each attractor's radius (0: none)."""
+        crad = np.zeros(max(1, len(self.items)))
+        th, v, att = [], [], []
+        for idx, a in enumerate(self.items):
+            if a["kind"] == "periodic" and a["kind"] in kinds:
+                crad[idx] = self.confirm_radius(idx)
+                if crad[idx] > 0:
+                    th.append(a["theta"])
+                    v.append(a["v"])
+                    att.append(np.full(a["theta"].size, idx))
+        if not th:
+            return np.zeros(1), np.zeros(1), np.full(1, -1, np.int32), crad
+        return (np.ascontiguousarray(np.concatenate(th), float), np.ascontiguousarray(np.concatenate(v), float),
+                np.ascontiguousarray(np.concatenate(att), np.int32), crad)
 
     def attractors(self, counts: np.ndarray, npts: int) -> tuple[list, np.ndarray]:
         """The attractors with points in their basins, numbered by the rule on the attractors alone

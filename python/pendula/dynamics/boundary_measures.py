@@ -88,6 +88,7 @@ def _labeller(amap: AttractorMap, threads: int):
     found = AttractorSet(opts["cell"], opts["merge_tol"], opts["consecutive"], opts["consecutive_chaotic"])
     for a in amap.attractors:           # in label order: index in the set = label
         found.items.append({"kind": a.kind, "period": a.period, "winding": a.winding,
+                            "theta": np.asarray(a.theta, float), "v": np.asarray(a.v, float),
                             "cells": np.unique(cell_ids(a.theta, a.v, opts["cell"]))})
     zero = np.zeros(1)
     plan = _AttractorPlan(scene, {"theta0": zero, "v0": zero.copy()}, opts, 20000)
