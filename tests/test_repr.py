@@ -38,6 +38,12 @@ def _switching():
     return j.switching_currents(ramp_rate=1e-3 * 1e-7 * j.plasma_frequency, n=40, seed=1)
 
 
+def _wada_test():
+    sc = pendula.Scene(damping=0.2, drive_amplitude=1.66, drive_frequency=1.0)
+    am = pendula.attractor_map(sc, {"theta0": np.linspace(-3, 3, 12), "v0": np.linspace(-4, 4, 12)})
+    return pendula.wada_test(am, max_steps=1)
+
+
 def _attractor_map():
     sc = pendula.Scene(damping=0.5, drive_amplitude=1.35, drive_frequency=2 / 3)
     return pendula.attractor_map(sc, {"theta0": np.linspace(-3, 3, 7), "v0": np.linspace(-3, 3, 7)},
@@ -83,6 +89,7 @@ CASES = {
     # not named in pendula.__all__ but returned by public functions
     "FlipLog": lambda: pendula.simulate(pendula.Scene(cord="flexible", v0=2.2, t_end=200.0, n_samples=50)).flips,
     "AttractorMap": _attractor_map,
+    "WadaTest": _wada_test,
     "Attractor": lambda: _attractor_map().attractors[0],
     "GravityOrbit": lambda: pendula.gravity_orbit(pendula.Scene(theta0=1.0, gravity="linear",
                                                                 gravity_gradient=0.1)),

@@ -953,14 +953,15 @@ end subroutine junction_switching_v
 ! Attractors of the stroboscopic map by recurrence (pendula_attractors%attractor_points): label npts points
 ! against a table of known attractors' cells (kcell sorted, klab their attractor, need the consecutive samples
 ! per attractor) or find a new attractor; cfg as pendula_attractors documents (at_ncfg entries).
-subroutine attractor_block(npts, params, rtol, atol, cfg, nk, kcell, klab, natt, need, nbt, nbv, bth, bv, blab, &
-                           nout, maxc, nthreads, cancel, out, cells, ncell, pstat)
+subroutine attractor_block(npts, params, rtol, atol, cfg, nk, kcell, klab, natt, need, ncp, cth, cv, catt, crad, &
+                           nbt, nbv, bth, bv, blab, nout, maxc, nthreads, cancel, out, cells, ncell, pstat)
   use pendula_attractors, only: attractor_points
   implicit none
-  integer, intent(in) :: npts, nk, natt, nbt, nbv, nout, maxc, nthreads
+  integer, intent(in) :: npts, nk, natt, ncp, nbt, nbv, nout, maxc, nthreads
   double precision, intent(in) :: params(12, npts), rtol, atol, cfg(12), bth(nbt), bv(nbv)
+  double precision, intent(in) :: cth(ncp), cv(ncp), crad(natt)
   integer(kind=8), intent(in) :: kcell(nk)
-  integer, intent(in) :: klab(nk), need(natt), blab(nbt, nbv)
+  integer, intent(in) :: klab(nk), need(natt), catt(ncp), blab(nbt, nbv)
   integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: out(nout, npts)
   integer(kind=8), intent(out) :: cells(maxc, npts)
@@ -969,10 +970,11 @@ subroutine attractor_block(npts, params, rtol, atol, cfg, nk, kcell, klab, natt,
   !f2py intent(hide), depend(params) :: npts = shape(params, 1)
   !f2py intent(hide), depend(kcell) :: nk = len(kcell)
   !f2py intent(hide), depend(need) :: natt = len(need)
+  !f2py intent(hide), depend(cth) :: ncp = len(cth)
   !f2py intent(hide), depend(bth) :: nbt = len(bth)
   !f2py intent(hide), depend(bv) :: nbv = len(bv)
-  call attractor_points(npts, params, rtol, atol, cfg, nk, kcell, klab, natt, need, nbt, nbv, bth, bv, blab, &
-                        nout, out, maxc, cells, ncell, pstat, nthreads, cancel(1))
+  call attractor_points(npts, params, rtol, atol, cfg, nk, kcell, klab, natt, need, ncp, cth, cv, catt, crad, &
+                        nbt, nbv, bth, bv, blab, nout, out, maxc, cells, ncell, pstat, nthreads, cancel(1))
 end subroutine attractor_block
 
 

@@ -8,7 +8,10 @@
 !>
 !>  1. labelled: its samples lie in the cells of one known attractor (a table of
 !>     sorted cell ids and attractor indices, made by the caller) for need(j)
-!>     consecutive samples;
+!>     consecutive samples, and, for an attractor given a confirmation radius
+!>     crad(j) > 0 (a periodic attractor close to another, whose cells cannot
+!>     tell the two apart at the cells' resolution), the last sample lies within
+!>     crad(j) of one of its cycle points (cth, cv with catt = j - 1);
 !>  2. a new periodic attractor: the samples recur after k periods (k <= kmax)
 !>     to within `near` for `nconf` consecutive samples; the recurrence is then
 !>     refined by Newton on the stroboscopic map (GSL's hybrid Newton with the
@@ -81,7 +84,9 @@ contains
   !> Label or classify npts points.  params(:, i) = eps, beta, tau, amp, omega,
   !> phase, theta0, v0.  cfg: see at_ncfg.  The table of known attractors:
   !> kcell(nk) sorted cell ids (width cfg(1)), klab(nk) their attractor
-  !> (0 .. natt-1), need(natt) the consecutive samples that label a point.
+  !> (0 .. natt-1), need(natt) the consecutive samples that label a point;
+  !> cth(ncp), cv(ncp) the cycle points of the periodic attractors, catt(ncp)
+  !> their attractor (0 .. natt-1), crad(natt) the confirmation radius (<= 0: none).
   !> The coarser basin map: bth(nbt), bv(nbv) increasing, blab(nbt, nbv) the
   !> attractor of each of its points (< 0: none; nbt or nbv < 2: no map).
   !> out(nout, i), nout >= at_nfixed + 2: (1) outcome 0 known / 1 new periodic /
@@ -93,12 +98,13 @@ contains
   !> attractor's cells (ncell(i) of them, at most maxc).  pstat: 0 decided,
   !> 1 undecided by max_periods, 2 not driven, 5 cancelled, 100 + s the
   !> integrator failed.
-  subroutine attractor_points(npts, params, rtol, atol, cfg, nk, kcell, klab, natt, need, nbt, nbv, bth, bv, &
-                              blab, nout, out, maxc, cells, ncell, pstat, nthreads, cancel)
-    integer, intent(in) :: npts, nk, natt, nbt, nbv, nout, maxc, nthreads
+  subroutine attractor_points(npts, params, rtol, atol, cfg, nk, kcell, klab, natt, need, ncp, cth, cv, catt, crad, &
+                              nbt, nbv, bth, bv, blab, nout, out, maxc, cells, ncell, pstat, nthreads, cancel)
+    integer, intent(in) :: npts, nk, natt, ncp, nbt, nbv, nout, maxc, nthreads
     real(dp), intent(in) :: params(np_params, npts), rtol, atol, cfg(at_ncfg), bth(nbt), bv(nbv)
+    real(dp), intent(in) :: cth(ncp), cv(ncp), crad(natt)
     integer(int64), intent(in) :: kcell(nk)
-    integer, intent(in) :: klab(nk), need(natt), blab(nbt, nbv)
+    integer, intent(in) :: klab(nk), need(natt), catt(ncp), blab(nbt, nbv)
     real(dp), intent(out) :: out(nout, npts)
     integer(int64), intent(out) :: cells(maxc, npts)
     integer, intent(out) :: ncell(npts), pstat(npts)
@@ -106,23 +112,24 @@ contains
     integer :: i, nt
     nt = thread_count(nthreads)
     !$omp parallel do schedule(dynamic, 4) default(none) num_threads(nt) &
-    !$omp   shared(npts, params, rtol, atol, cfg, nk, kcell, klab, natt, need, nbt, nbv, bth, bv, blab, nout, &
-    !$omp          out, maxc, cells, ncell, pstat, cancel)
+    !$omp   shared(npts, params, rtol, atol, cfg, nk, kcell, klab, natt, need, ncp, cth, cv, catt, crad, nbt, nbv, &
+    !$omp          bth, bv, blab, nout, out, maxc, cells, ncell, pstat, cancel)
     do i = 1, npts
       if (cancel /= 0) then
         out(:, i) = nan_dp; pstat(i) = ps_cancelled; ncell(i) = 0; cells(:, i) = 0
       else
-        call one_point(params(:, i), rtol, atol, cfg, kcell, klab, need, bth, bv, blab, out(:, i), cells(:, i), &
-                       ncell(i), pstat(i), cancel)
+        call one_point(params(:, i), rtol, atol, cfg, kcell, klab, need, cth, cv, catt, crad, bth, bv, blab, &
+                       out(:, i), cells(:, i), ncell(i), pstat(i), cancel)
       end if
     end do
     !$omp end parallel do
   end subroutine attractor_points
 
-  subroutine one_point(p, rtol, atol, cfg, kcell, klab, need, bth, bv, blab, o, cl, ncl, st, cancel)
-    real(dp), intent(in) :: p(np_params), rtol, atol, cfg(at_ncfg), bth(:), bv(:)
+  subroutine one_point(p, rtol, atol, cfg, kcell, klab, need, cth, cv, catt, crad, bth, bv, blab, o, cl, ncl, st, &
+                       cancel)
+    real(dp), intent(in) :: p(np_params), rtol, atol, cfg(at_ncfg), bth(:), bv(:), cth(:), cv(:), crad(:)
     integer(int64), intent(in) :: kcell(:)
-    integer, intent(in) :: klab(:), need(:), blab(:, :)
+    integer, intent(in) :: klab(:), need(:), catt(:), blab(:, :)
     real(dp), intent(out) :: o(:)
     integer(int64), intent(out) :: cl(:)
     integer, intent(out) :: ncl, st
@@ -187,7 +194,7 @@ contains
         end if
         prev = lab
         if (lab >= 0) then
-          if (cnt >= need(lab + 1)) then
+          if (cnt >= need(lab + 1) .and. confirmed(lab, th, v, cth, cv, catt, crad)) then
             o(1) = oc_known; o(2) = real(lab, dp); o(3) = 0.0_dp; o(4) = 0.0_dp; o(5) = real(n, dp)
             o(12) = 1.0_dp; o(13) = th; o(14) = v
             return
@@ -197,8 +204,9 @@ contains
       ! 2. a periodic recurrence, confirmed by Newton
       q = mod(n, h)
       hth(q) = th; hv(q) = v; hturn(q) = turns
-      ! (not while the orbit sits in a known attractor's cells: it is about to be labelled)
-      if (n > retry .and. prev < 0) then
+      ! (not while the orbit sits in a known attractor's cells: it is about to be labelled, unless it waits
+      ! there for a confirmation that may never come: a cycle of its own inside those cells)
+      if (n > retry .and. (prev < 0 .or. cnt >= nconf + kmax)) then
         do k = 1, min(kmax, n - nconf)
           ok = .true.
           dlast = huge(1.0_dp)
@@ -372,6 +380,23 @@ contains
     a = a - two_pi * anint(a / two_pi)
     d = max(abs(a), abs(v1 - v2))
   end function sdist
+
+  !> Whether a sample in attractor lab's cells confirms it: no confirmation radius, or the sample
+  !> within it of one of the attractor's cycle points.
+  pure logical function confirmed(lab, th, v, cth, cv, catt, crad) result(ok)
+    integer, intent(in) :: lab, catt(:)
+    real(dp), intent(in) :: th, v, cth(:), cv(:), crad(:)
+    integer :: j
+    ok = .not. (crad(lab + 1) > 0.0_dp)
+    if (ok) return
+    do j = 1, size(catt)
+      if (catt(j) == lab) then
+        if (sdist(th, v, cth(j), cv(j)) < crad(lab + 1)) then
+          ok = .true.; return
+        end if
+      end if
+    end do
+  end function confirmed
 
   !> The largest modulus of the eigenvalues of a row-major 2 x 2 matrix.
   pure real(dp) function max_multiplier(mono) result(r)

@@ -60,6 +60,7 @@ from .dynamics import Equilibrium, PeriodicOrbit, attractor_continuation, attrac
 from .dynamics import (Bifurcation, Branch, BranchTree, ContinuationError, EquilibriumBranch,  # noqa: E402
                        bifurcation_tree, continue_equilibria, continue_orbit)
 from .dynamics import BifurcationCurve, CodimTwoPoint, ShapiroTongue, continue_bifurcation, shapiro_tongue  # noqa: E402,E501
+from .dynamics import WadaTest, kaplan_yorke_dimension, wada_test  # noqa: E402
 from .spectrum import precompute_wisdom, wisdom_path  # noqa: E402
 from .laboratory import Pendulum, Swing  # noqa: E402
 # the quantum pendulum: Mathieu characteristic values and the transmon
@@ -90,7 +91,8 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Junction", "SwitchingCurrents", "attractor_continuation",
            "continue_orbit", "continue_equilibria", "Branch", "Bifurcation", "EquilibriumBranch",
            "ContinuationError", "continue_bifurcation", "BifurcationCurve", "CodimTwoPoint",
-           "shapiro_tongue", "ShapiroTongue", "bifurcation_tree", "BranchTree"]
+           "shapiro_tongue", "ShapiroTongue", "bifurcation_tree", "BranchTree",
+           "wada_test", "WadaTest", "kaplan_yorke_dimension"]
 
 # the pendulum of the classroom in metres, seconds and degrees
 __all__ += ["Pendulum", "Swing"]

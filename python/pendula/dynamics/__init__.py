@@ -11,7 +11,8 @@
   follows a fold or a period doubling in two fields, :mod:`.tongues` the Shapiro steps' edges as such curves;
 - :mod:`.attractors`: the attractors of the stroboscopic map and their basins (the records and the
   measures of a basin map); :mod:`.attractor_maps` computes the maps (on the sweep engine),
-  :mod:`.attractor_continuation` follows them over a parameter.
+  :mod:`.attractor_continuation` follows them over a parameter, :mod:`.boundary_measures` tests
+  their boundaries for the Wada property.
 
 The public names are importable from :mod:`pendula` as well.
 """
@@ -20,6 +21,8 @@ from .attractors import Attractor, AttractorMap
 from .attractor_maps import attractor_map
 from .attractor_continuation import attractor_continuation
 from .bifurcation_curves import BifurcationCurve, CodimTwoPoint, continue_bifurcation
+from .attractors import kaplan_yorke_dimension
+from .boundary_measures import WadaTest, wada_test
 from .branches import BIFURCATION_KINDS, Bifurcation, Branch, ContinuationError
 from .continuation import continue_orbit
 from .branch_tree import BranchTree, bifurcation_tree
@@ -32,4 +35,5 @@ __all__ = ["Equilibrium", "equilibria", "EQUILIBRIUM_KINDS", "PeriodicOrbit", "p
            "Attractor", "AttractorMap", "continue_orbit", "continue_equilibria", "Branch", "Bifurcation",
            "EquilibriumBranch", "ContinuationError", "BIFURCATION_KINDS", "attractor_map", "attractor_continuation",
            "continue_bifurcation", "BifurcationCurve", "CodimTwoPoint", "shapiro_tongue", "ShapiroTongue",
-           "BranchTree", "bifurcation_tree"]
+           "BranchTree", "bifurcation_tree",
+           "wada_test", "WadaTest", "kaplan_yorke_dimension"]

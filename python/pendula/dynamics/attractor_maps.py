@@ -84,12 +84,12 @@ def _attractor_block(plan: _AttractorPlan, p: np.ndarray, table, rtol: float, at
                      threads: int):
     """One kernel call of the recurrence finder (pendula_attractors) that Ctrl-C stops."""
     from .. import _kernel
-    kcell, klab, need = table
+    kcell, klab, need, cth, cv, catt, crad = table
     bth, bv, blab = plan.basin
     cancel = _interrupt.cancel_flag()
     out, cells, ncell, st = _interrupt.call(_kernel.attractor_block, np.asfortranarray(p), rtol, atol, plan.cfg,
-                                            kcell, klab, need, bth, bv, blab, plan.nout, maxc, int(threads),
-                                            cancel, cancel=cancel)
+                                            kcell, klab, need, cth, cv, catt, crad, bth, bv, blab, plan.nout, maxc,
+                                            int(threads), cancel, cancel=cancel)
     if cancel[0]:
         raise KeyboardInterrupt
     return out, cells, ncell, st
@@ -246,7 +246,7 @@ def _discover(plan: _AttractorPlan, p: np.ndarray, found, threads: int, rtol: fl
                 labels[g] = found.add_periodic(int(out[2, j]), int(out[3, j]), out[_AT_NFIXED:_AT_NFIXED + 2 * k:2, j],
                                                out[_AT_NFIXED + 1:_AT_NFIXED + 2 * k:2, j], out[5:9, j])
             else:
-                labels[g] = found.add_chaotic(cells[:ncell[j], j])
+                labels[g] = found.add_chaotic(cells[:ncell[j], j], (out[_AT_NFIXED, j], out[_AT_NFIXED + 1, j]))
     return labels, status, periods
 
 
@@ -314,8 +314,12 @@ def attractor_map(scene: Scene, over: dict, *, method: Literal["recurrence", "sa
     * an orbit that falls ``recurrences`` samples in a row in cells
       (``recurrence_cell`` wide) it has visited before, over more than
       2 ``max_period`` distinct cells (or over fewer, when a second such streak
-      shows no cycle closing in: a thin chaotic set), is a new chaotic
+      shows no cycle closing in: a thin chaotic set), is a new non-periodic
       attractor, whose cells are collected over ``collect`` more samples;
+      once the map is made it is called 'chaotic' or 'quasi-periodic' by
+      its largest Lyapunov exponent where that is resolved from 0
+      (``pendula.dynamics.attractors.classify_aperiodic``), and its points
+      are undecided where it is not;
     * an orbit decided by none of these within ``max_periods`` drive periods
       is **undecided** (label -1, status 1): counted and reported, never called
       chaotic.
@@ -514,7 +518,7 @@ def _basin(over: dict, labels: np.ndarray):
 def _attractor_map_recurrence(scene, over, opts, threads, out, client, progress, chunk_points) -> AttractorMap:
     import warnings
 
-    from .attractors import AttractorSet
+    from .attractors import AttractorSet, classify_aperiodic
     xr = require("xarray", "sweep", "pendula.attractor_map")
     fine = _AttractorPlan(scene, over, opts, chunk_points)
     npts = math.prod(fine.shape)
@@ -573,6 +577,18 @@ def _attractor_map_recurrence(scene, over, opts, threads, out, client, progress,
                 given[k][::2, ::2] = vals.reshape(plan.shape)
             basin = _basin(plan.over, labels.reshape(plan.shape))
     counts = np.bincount(labels[labels >= 0], minlength=len(found.items))
+    # 4. each non-periodic attractor: chaotic or quasi-periodic where its largest Lyapunov exponent is resolved,
+    #    else its points are undecided (status 1)
+    for i, a in enumerate(found.items):
+        if a["kind"] != "periodic" and counts[i] > 0:
+            a["classified"] = classify_aperiodic(scene, *a["point"], opts["recheck_rtol"], opts["recheck_atol"],
+                                                 threads)
+            if a["classified"]["kind"] is None:
+                status[labels == i] = 1
+                labels[labels == i] = -1
+                counts[i] = 0
+            else:
+                a["kind"] = a["classified"]["kind"]
     atts, remap = found.attractors(counts, npts)
     labels = remap[labels].reshape(fine.shape)     # remap[-1] = -1: undecided stays -1
     status = status.reshape(fine.shape)
@@ -612,9 +628,10 @@ def _finish_map(ds, labels, atts, scene, extra: dict) -> AttractorMap:
         "long_name": "attractor of the stroboscopic map the orbit ends on (-1 undecided)",
         "flag_values": np.arange(-1, len(atts), dtype=np.int32),
         "flag_meanings": " ".join(["undecided"] + [f"{a.kind}_period_{a.period}_{a.label}" if a.period
-                                                   else f"chaotic_{a.label}" for a in atts])})
+                                                   else f"{a.kind.replace('-', '_')}_{a.label}" for a in atts])})
     ds["period"] = (dims, per.astype(np.int32), {"long_name": "period of the attractor in drive periods "
-                                                              "(0 chaotic, -1 undecided)", "units": "1"})
+                                                              "(0 quasi-periodic or chaotic, -1 undecided)",
+                                                 "units": "1"})
     bf = boundary_fraction(labels)
     sb, sbb = basin_entropy(labels) if labels.ndim == 2 and min(labels.shape) >= 5 else (math.nan, math.nan)
     alpha = uncertainty_exponent(labels)[0] if len(atts) > 1 else math.nan
@@ -626,7 +643,10 @@ def _finish_map(ds, labels, atts, scene, extra: dict) -> AttractorMap:
                      "attractors": json.dumps([{"label": x.label, "kind": x.kind, "period": x.period,
                                                 "winding": x.winding, "theta": x.theta.tolist(),
                                                 "v": x.v.tolist(), "fraction": x.fraction,
-                                                "multipliers_abs": np.abs(x.multipliers).tolist()}
+                                                "multipliers_abs": np.abs(x.multipliers).tolist(),
+                                                "lyapunov": list(x.lyapunov),
+                                                "rotation_number": x.rotation_number,
+                                                "dimension": x.dimension}
                                                for x in atts])})
     ds.attrs.update(extra)
     return AttractorMap(ds, atts, bf, sb, sbb, alpha, undecided=int(extra.get("undecided", (labels < 0).sum())),

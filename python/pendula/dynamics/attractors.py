@@ -33,16 +33,24 @@ fractal one), fitted over e = 1, 2, 4, ... grid steps.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .._sweep_engine import edge_mask
+from ..scene import Scene
 
 __all__ = ["Attractor", "AttractorMap", "AttractorSet", "label_attractors", "basin_entropy",
-           "uncertainty_exponent", "boundary_fraction", "cell_ids", "edge_mask"]
+           "uncertainty_exponent", "boundary_fraction", "cell_ids", "edge_mask", "kaplan_yorke_dimension",
+           "classify_aperiodic", "APERIODIC_PERIODS"]
 
 TWO_PI = 2 * math.pi
+#: a periodic attractor closer than this many cells to another is confirmed by distance as well as by its
+#: cells (AttractorSet.confirm_radius): a cell's 8 neighbours label too, so two attractors fewer than about
+#: four cells apart have labelling regions that touch or overlap
+_CLOSE_CELLS = 4
 
 
 @dataclass(frozen=True)
@@ -54,7 +62,8 @@ class Attractor:
     label : int
         Its label in the map (0, 1, ...).
     kind : str
-        'periodic' or 'chaotic'.
+        'periodic', 'quasi-periodic' or 'chaotic' (the recurrence method tells the last two apart by the
+        largest Lyapunov exponent, only where it is resolved: :func:`classify_aperiodic`).
     period : int
         Drive periods of the cycle (0 for a chaotic attractor).
     theta, v : numpy.ndarray
@@ -69,6 +78,15 @@ class Attractor:
         unit circle); empty for a chaotic attractor or a map read from samples.
     winding : int
         Turns per period of a periodic attractor (0 for an oscillation or a chaotic one).
+    lyapunov : tuple of float
+        A quasi-periodic or chaotic attractor's Lyapunov spectrum of the flow's (theta, v) part,
+        (lambda_1, lambda_2) per unit time, and the standard error of lambda_1 (recurrence method;
+        empty otherwise).
+    rotation_number : float
+        A quasi-periodic or chaotic attractor's mean turns per drive period (NaN otherwise).
+    dimension : float
+        A chaotic attractor's Kaplan-Yorke dimension on the stroboscopic section, 1 + lambda_1 /
+        abs(lambda_2) (:func:`kaplan_yorke_dimension`; NaN otherwise).
     """
 
     label: int
@@ -79,6 +97,9 @@ class Attractor:
     fraction: float
     multipliers: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=complex))
     winding: int = 0
+    lyapunov: tuple = ()
+    rotation_number: float = math.nan
+    dimension: float = math.nan
 
     def __repr__(self) -> str:
         what = f"period={self.period}" if self.kind == "periodic" else f"{np.size(self.theta)} samples"
@@ -231,6 +252,145 @@ def label_attractors(theta, v, *, tol=1e-6, merge_tol=1e-3, max_period=None, cel
             rth, rv = np.roll(rth, -q), np.roll(rv, -q)
         atts.append(Attractor(lab, kind, k, rth, rv, members.size / max(n, 1)))
     return labels.reshape(shape), atts
+
+
+def kaplan_yorke_dimension(exponents: ArrayLike) -> float:
+    """The Kaplan-Yorke (Lyapunov) dimension of an attractor from its Lyapunov spectrum.
+
+    With the exponents sorted decreasingly, lambda_1 >= lambda_2 >= ..., and
+    j the largest index whose partial sum lambda_1 + ... + lambda_j is not
+    negative, D = j + (lambda_1 + ... + lambda_j) / abs(lambda_{j + 1})
+    (Kaplan & Yorke 1979); 0 when lambda_1 < 0 (a stable fixed point), the
+    number of exponents when no partial sum is negative (no volume
+    contraction).
+
+    Parameters
+    ----------
+    exponents : array_like of float
+        The Lyapunov spectrum, in any order, in any one unit (per time or per
+        drive period: D does not depend on it).  The flow of a driven
+        pendulum has three (one of them 0, along the drive's phase); its
+        stroboscopic map has two.
+
+    Returns
+    -------
+    float
+        The dimension; NaN with a RuntimeWarning when an exponent is not finite.
+
+    Raises
+    ------
+    ValueError
+        If ``exponents`` is empty or not one-dimensional.
+
+    See Also
+    --------
+    attractor_map : a chaotic attractor's ``dimension`` is this, from its exponents on the section.
+    wada_test : the Wada property of a basin boundary.
+
+    Examples
+    --------
+    >>> from pendula.dynamics.attractors import kaplan_yorke_dimension
+    >>> round(kaplan_yorke_dimension([0.1, -0.3]), 12)        # a chaotic attractor of a 2-D map: 1 + 0.1 / 0.3
+    1.333333333333
+    >>> round(kaplan_yorke_dimension([0.1, 0.0, -0.3]), 12)   # the same as a flow: one more dimension
+    2.333333333333
+    """
+    lam = np.asarray(exponents, dtype=float)
+    if lam.ndim != 1 or lam.size == 0:
+        raise ValueError(f"parameter 'exponents' must be a non-empty 1-D sequence; got shape {lam.shape}")
+    if not np.all(np.isfinite(lam)):
+        warnings.warn("kaplan_yorke_dimension: an exponent is not finite", RuntimeWarning, stacklevel=2)
+        return math.nan
+    lam = np.sort(lam)[::-1]
+    partial = np.cumsum(lam)
+    if partial[0] < 0:
+        return 0.0
+    if partial[-1] >= 0:
+        return float(lam.size)
+    j = int(np.flatnonzero(partial >= 0)[-1])          # 0-based: j + 1 exponents in the sum
+    return float(j + 1 + partial[j] / abs(lam[j + 1]))
+
+
+
+#: drive periods over which a non-periodic attractor's Lyapunov exponents and rotation number are averaged
+APERIODIC_PERIODS = 2000
+#: a tangent vector's growth (or decay) by less than this factor over the whole window is not resolved from
+#: none: the finite-time exponent of a quasi-periodic orbit is of order log(distortion) / window, with the
+#: distortion of its invariant circle a bounded factor
+_GROWTH_RESOLVED = 1e3
+
+
+def classify_aperiodic(scene: Scene, theta: float, v: float, rtol: float, atol: float, threads: int = 0,
+                       periods: int = APERIODIC_PERIODS) -> dict:
+    """Tell a quasi-periodic attractor from a chaotic one by its largest Lyapunov exponent, resolved or not.
+
+    From (theta, v) on the attractor's section, the Lyapunov exponents
+    lambda_1 >= lambda_2 (the sweep measure ``lyapunov``: Benettin's method,
+    standard error ``err`` from 8 blocks) and the mean velocity are averaged
+    over ``periods`` drive periods (window ``t``).  The resolution is
+    ``r = max(3 err, log(1e3) / t)``: an exponent within r of 0 is not told
+    from 0.  The attractor is
+
+    * 'chaotic' when lambda_1 > r;
+    * 'quasi-periodic' when abs(lambda_1) <= r and lambda_2 < -r (an
+      attracting invariant circle: neutral along it, contracting across);
+    * undecided (None) otherwise: lambda_1 < -r (a periodic orbit that no
+      recurrence confirmed: a long period or slow convergence), lambda_2 not
+      resolved, or the integration failed.
+
+    Parameters
+    ----------
+    scene : Scene
+        The driven scene.
+    theta, v : float
+        A point of the attractor on the section (the state at a whole number of drive periods).
+    rtol, atol : float
+        The integration's tolerances.
+    threads : int, optional
+        OpenMP threads.
+    periods : int, optional
+        Drive periods of the window (default APERIODIC_PERIODS).
+
+    Returns
+    -------
+    dict
+        ``kind`` ('chaotic', 'quasi-periodic' or None), ``lyapunov`` (lambda_1, lambda_2, err) per unit
+        time, ``resolution`` r, ``rotation_number`` (mean turns per drive period) and ``dimension`` (the
+        Kaplan-Yorke dimension on the section for a chaotic attractor, else NaN).
+
+    See Also
+    --------
+    pendula.sweep : the ``lyapunov`` measure computes the exponents.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> from pendula.dynamics.attractors import classify_aperiodic
+    >>> sc = pendula.Scene(damping=0.5, drive_amplitude=1.2, drive_frequency=2/3)
+    >>> classify_aperiodic(sc, 0.3, 0.0, 1e-10, 1e-12, periods=500)["kind"]
+    'chaotic'
+    """
+    from .._sweep_engine import PARAM_ORDER, block
+    from .periodic import forcing_frequency
+    tp = TWO_PI / forcing_frequency(scene)
+    p = np.empty((len(PARAM_ORDER), 1), order="F")
+    for j, f in enumerate(PARAM_ORDER):
+        p[j] = getattr(scene, f)
+    p[PARAM_ORDER.index("theta0")], p[PARAM_ORDER.index("v0")] = theta, v
+    t = periods * tp
+    ly, st = block(5, p, rtol, atol, 0.0, t, 3, threads)
+    mv, st2 = block(2, p, rtol, atol, 0.0, t, 3, threads)
+    lam1, err, lam2 = (float(x) for x in ly[:, 0])
+    res = max(3.0 * err, math.log(_GROWTH_RESOLVED) / t)
+    kind = None
+    if st[0] == 0 and st2[0] == 0 and all(math.isfinite(x) for x in (lam1, err, lam2)):
+        if lam1 > res:
+            kind = "chaotic"
+        elif abs(lam1) <= res and lam2 < -res:
+            kind = "quasi-periodic"
+    return {"kind": kind, "lyapunov": (lam1, lam2, err), "resolution": res,
+            "rotation_number": float(mv[0, 0]) * tp / TWO_PI if st2[0] == 0 else math.nan,
+            "dimension": kaplan_yorke_dimension([lam1, lam2]) if kind == "chaotic" else math.nan}
 
 
 def boundary_fraction(labels) -> float:
@@ -456,23 +616,30 @@ class AttractorSet:
                            "cells": np.unique(cell_ids(theta, v, self.cell))})
         return len(self.items) - 1
 
-    def add_chaotic(self, cells) -> int:
+    def add_chaotic(self, cells, point: tuple[float, float] = (math.nan, math.nan)) -> int:
+        """A non-periodic attractor by its cells (kind 'chaotic' until :func:`classify_aperiodic` says
+        more) and a point of it on the section."""
         cells = np.unique(np.asarray(cells, dtype=np.int64))
         for idx, a in enumerate(self.items):
-            if a["kind"] == "chaotic":
+            if a["kind"] != "periodic":
                 shared = np.intersect1d(a["cells"], cells, assume_unique=True).size
                 if shared > 0 and 10 * shared >= min(a["cells"].size, cells.size):
                     a["cells"] = np.union1d(a["cells"], cells)
                     return idx
-        self.items.append({"kind": "chaotic", "period": 0, "winding": 0, "cells": cells})
+        self.items.append({"kind": "chaotic", "period": 0, "winding": 0, "cells": cells,
+                           "point": (float(point[0]), float(point[1]))})
         return len(self.items) - 1
 
-    def table(self, kinds: tuple = ("periodic", "chaotic")) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(kcell sorted, klab, need): the kernel's table of the attractors of these kinds; ValueError when
-        the cell width cannot tell two attractors apart (every cell of one is claimed by another)."""
+    def table(self, kinds: tuple = ("periodic", "chaotic")) -> tuple:
+        """(kcell sorted, klab, need, cth, cv, catt, crad): the kernel's table of the attractors of these
+        kinds, with the periodic attractors' cycle points and confirmation radii (:meth:`confirm_radius`);
+        ValueError when the cell width cannot tell two attractors apart (every cell of one is claimed by
+        another)."""
+        cth, cv, catt, crad = self._cycle_table(kinds)
         if not any(a["kind"] in kinds for a in self.items):
-            return np.array([-2**62], np.int64), np.array([-1], np.int32), np.ones(max(1, len(self.items)),
-                                                                                    np.int32)
+            return (np.array([-2**62], np.int64), np.array([-1], np.int32), np.ones(max(1, len(self.items)),
+                                                                                     np.int32), cth, cv, catt,
+                    crad)
         ids, labs = [], []
         for idx, a in enumerate(self.items):
             if a["kind"] not in kinds:
@@ -495,8 +662,51 @@ class AttractorSet:
                 raise ValueError(f"parameter 'cell': cells {self.cell:g} wide cannot tell attractor {idx} "
                                  f"({a['kind']}) from attractor(s) {other}: every cell of it is another's too; "
                                  "use a smaller cell")
-        need = np.array([self.need[a["kind"]] for a in self.items], dtype=np.int32)
-        return np.ascontiguousarray(kcell, np.int64), np.ascontiguousarray(klab, np.int32), need
+        need = np.array([self.need.get(a["kind"], self.need["chaotic"]) for a in self.items], dtype=np.int32)
+        return np.ascontiguousarray(kcell, np.int64), np.ascontiguousarray(klab, np.int32), need, cth, cv, catt, crad
+
+    def confirm_radius(self, idx: int) -> float:
+        """The confirmation radius of periodic attractor idx: 0 (none: its cells alone label an orbit) when
+        every other attractor lies at least _CLOSE_CELLS cells away from it; else a quarter of that distance
+        (to the nearest point of another periodic attractor, or cell of a non-periodic one, max-norm, angle
+        modulo 2 pi): an orbit in its cells is labelled only once it comes that close to one of its cycle
+        points, well inside the half-way line to the other attractor, where cells of this width (whose
+        neighbours label too) reach past it."""
+        a = self.items[idx]
+        if a["kind"] != "periodic":
+            return 0.0
+        sep = math.inf
+        ni = math.ceil(TWO_PI / self.cell)
+        for j, b in enumerate(self.items):
+            if j == idx:
+                continue
+            if b["kind"] == "periodic":
+                bth, bv, pad = b["theta"], b["v"], 0.0
+            else:
+                jj, ii = np.divmod(b["cells"], ni)
+                bth, bv, pad = (ii + 0.5) * self.cell - math.pi, (jj + 0.5) * self.cell, 0.5 * self.cell
+            d = _dist(a["theta"][:, None], a["v"][:, None], np.asarray(bth)[None, :], np.asarray(bv)[None, :])
+            sep = min(sep, float(d.min()) - pad)
+        if sep >= _CLOSE_CELLS * self.cell:
+            return 0.0
+        return max(sep, 0.0) / 4
+
+    def _cycle_table(self, kinds: tuple):
+        """(cth, cv, catt, crad): the cycle points of the periodic attractors among ``kinds`` that have a
+        confirmation radius, their attractor, and each attractor's radius (0: none)."""
+        crad = np.zeros(max(1, len(self.items)))
+        th, v, att = [], [], []
+        for idx, a in enumerate(self.items):
+            if a["kind"] == "periodic" and a["kind"] in kinds:
+                crad[idx] = self.confirm_radius(idx)
+                if crad[idx] > 0:
+                    th.append(a["theta"])
+                    v.append(a["v"])
+                    att.append(np.full(a["theta"].size, idx))
+        if not th:
+            return np.zeros(1), np.zeros(1), np.full(1, -1, np.int32), crad
+        return (np.ascontiguousarray(np.concatenate(th), float), np.ascontiguousarray(np.concatenate(v), float),
+                np.ascontiguousarray(np.concatenate(att), np.int32), crad)
 
     def attractors(self, counts: np.ndarray, npts: int) -> tuple[list, np.ndarray]:
         """The attractors with points in their basins, numbered by the rule on the attractors alone
@@ -524,6 +734,9 @@ class AttractorSet:
                                      counts[i] / max(npts, 1), mu, a["winding"]))
             else:
                 j, ii = np.divmod(a["cells"], ni)
-                out.append(Attractor(lab, "chaotic", 0, (ii + 0.5) * self.cell - math.pi, (j + 0.5) * self.cell,
-                                     counts[i] / max(npts, 1)))
+                info = a.get("classified", {})
+                out.append(Attractor(lab, a["kind"], 0, (ii + 0.5) * self.cell - math.pi, (j + 0.5) * self.cell,
+                                     counts[i] / max(npts, 1), lyapunov=tuple(info.get("lyapunov", ())),
+                                     rotation_number=info.get("rotation_number", math.nan),
+                                     dimension=info.get("dimension", math.nan)))
         return out, remap
