@@ -251,3 +251,59 @@ def test_bad_input_names_the_field():
         pendula.DoublePendulum().simulate([1.0, 0.5], 1.0)
     with pytest.raises(ValueError, match="step grid"):
         pendula.DoublePendulum().simulate([0.0, 0.013], 1.0, method="gauss6", dt=0.01)
+
+
+def test_poincare_section_against_scipy_events_and_on_the_energy_shell():
+    # SciPy's DOP853 at 1e-13 with the event theta1 = 0 (increasing) from the same start: the first crossings'
+    # (theta2, p2) agree to 1e-8 (regular orbit, gauss6 with 400 steps per fast period); every point's energy
+    # equals the asked energy to 1e-9 of the energy with both arms up
+    kw = CASES["unequal_point_masses"]
+    dp = pendula.DoublePendulum(**kw)
+    a, b, c, ga, gb, _ = _coefficients(**kw)
+    e = 0.3 * float(dp.energy(math.pi, math.pi))
+    dt = float(dp.modes().period[1]) / 400
+    sec = dp.poincare(e, [0.3, -0.2], [0.1, 0.0], t_max=30.0, dt=dt)
+    assert np.all(sec["count"].values >= 5)
+    assert np.nanmax(sec.energy_error.values) < 1e-9
+    for k, (t20, p20) in enumerate([(0.3, 0.1), (-0.2, 0.0)]):
+        # the start: p1 from the energy, then (w1, w2) = M^-1 p
+        cd = math.cos(t20)
+        det = a * c - (b * cd) ** 2
+        v = gb * (1 - math.cos(t20))
+        p1 = (b * cd * p20 + math.sqrt((b * cd * p20) ** 2 - c * (a * p20 ** 2 - 2 * det * (e - v)))) / c
+        w = np.linalg.solve([[a, b * cd], [b * cd, c]], [p1, p20])
+        assert abs(_energy(kw, 0.0, t20, *w) - e) < 1e-12 * e
+
+        def up(t, y):
+            return y[0]      # theta1 = 0 from below (the orbit librates: below the flip energy of arm 1)
+        up.direction = 1
+        sol = solve_ivp(_lagrange_rhs(kw), (0, 30.0), [0.0, t20, *w], method="DOP853", rtol=1e-13, atol=1e-13,
+                        events=up)
+        ys = sol.y_events[0]
+        ys = ys[sol.t_events[0] > 0][:5]     # drop the start itself
+        p2 = b * np.cos(ys[:, 0] - ys[:, 1]) * ys[:, 2] + c * ys[:, 3]
+        t2 = np.mod(ys[:, 1] + np.pi, 2 * np.pi) - np.pi
+        assert np.max(np.abs(sec.theta2.values[k, :5] - t2)) < 1e-8
+        assert np.max(np.abs(sec.p2.values[k, :5] - p2)) < 1e-8
+
+
+def test_poincare_start_outside_the_energy_shell_is_nan_with_a_warning():
+    dp = pendula.DoublePendulum()
+    with pytest.warns(RuntimeWarning, match="outside the energy shell"):
+        sec = dp.poincare(0.1, [0.0, 3.0], [0.0, 0.0], t_max=20.0)
+    assert sec["count"].values[0] > 0 and sec["count"].values[1] == 0
+    assert np.all(np.isnan(sec.theta2.values[1]))
+
+
+def test_flip_map_plot_marks_the_three_kinds_of_pixel():
+    pytest.importorskip("matplotlib")
+    import matplotlib
+    matplotlib.use("Agg")
+    import pendula.plot
+    th = np.linspace(-3, 3, 9)
+    fm = pendula.DoublePendulum().flip_map(th, th, t_max=10.0)
+    ax = pendula.plot.flip_map(fm)
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == [
+        "cannot flip (energy)", "no flip by t = 10", "unresolved"]
+    with pytest.raises(TypeError, match="fm"):
+        pendula.plot.flip_map(fm.time)

@@ -1363,3 +1363,20 @@ subroutine double_lyapunov_v(p, method, y0, h, every, nren, rtol, atol, cancel, 
   !f2py threadsafe
   call double_lyapunov(make_double(p), method, y0, h, every, nren, rtol, atol, lam, yend, status, cancel(1))
 end subroutine double_lyapunov_v
+
+! The Poincare section theta1 = 0 (mod 2 pi), theta1 increasing, of norb
+! orbits from y0s(:, k) up to tmax: pts(:, 1:npts(k), k) the crossings (see
+! double_section); method 3 Gauss-Legendre of order 6 with step hg, 1 DOP853.
+subroutine double_section_v(p, method, norb, y0s, tmax, hg, rtol, atol, maxpts, nthreads, cancel, pts, npts, status)
+  use pendula_double, only: make_double
+  use pendula_double_run, only: double_section
+  implicit none
+  integer, intent(in) :: method, norb, maxpts, nthreads
+  double precision, intent(in) :: p(8), y0s(4, norb), tmax, hg, rtol, atol
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: pts(4, maxpts, norb)
+  integer, intent(out) :: npts(norb), status(norb)
+  !f2py threadsafe
+  !f2py intent(hide), depend(y0s) :: norb = shape(y0s, 1)
+  call double_section(make_double(p), method, y0s, tmax, hg, rtol, atol, nthreads, pts, npts, status, cancel(1))
+end subroutine double_section_v

@@ -4,14 +4,14 @@
 !> the variational equations with QR re-orthonormalisation (Benettin,
 !> Galgani, Giorgilli and Strelcyn, Meccanica 15 (1980) 9).
 module pendula_double_run
-  use pendula_kinds, only: dp, i8, pi, nan_dp, inf_dp
+  use pendula_kinds, only: dp, i8, pi, two_pi, nan_dp, inf_dp
   use pendula_threads, only: thread_count
-  use pendula_integrators, only: run_stats, st_ok, st_bad_method, st_bad_step, st_cancelled
+  use pendula_integrators, only: run_stats, st_ok, st_bad_method, st_bad_step, st_cancelled, st_nonfinite
   use pendula_ode, only: ode_system, ode_dop853, ode_gauss, ode_gauss4, ode_gauss6
   use pendula_double, only: double_pendulum, double_rhs, double_jacobian, double_velocities
   implicit none
   private
-  public :: double_simulate, double_flip_map, double_lyapunov
+  public :: double_simulate, double_flip_map, double_lyapunov, double_section
 
   !> the methods of double_simulate and double_lyapunov
   integer, parameter, public :: dm_dop853 = 1, dm_gauss4 = 2, dm_gauss6 = 3
@@ -276,5 +276,148 @@ contains
     lam = sumlog / (span * real(nren, dp))
     yend = y(1:4)
   end subroutine double_lyapunov
+
+  !> The cubic Hermite interpolant at u in [0, 1] of (x0, v0) and (x1, v1)
+  !> over an interval of length h.
+  pure elemental function hermite(x0, v0, x1, v1, h, u) result(x)
+    real(dp), intent(in) :: x0, v0, x1, v1, h, u
+    real(dp) :: x
+    x = (1.0_dp + 2.0_dp * u) * (1.0_dp - u)**2 * x0 + u * (1.0_dp - u)**2 * h * v0 &
+        + u * u * (3.0_dp - 2.0_dp * u) * x1 + u * u * (u - 1.0_dp) * h * v1
+  end function hermite
+
+  !> The Poincare section theta1 = 0 (mod 2 pi) crossed upwards (theta1
+  !> increasing) of norb orbits from y0s(:, k): the states at the first
+  !> maxpts crossings before tmax into pts(:, 1:npts(k), k) (theta1 set to
+  !> the multiple of 2 pi it crossed, theta2 as integrated).  The path is
+  !> output every hg, by Gauss-Legendre of order 6 with step hg
+  !> (method dm_gauss6: the energy stays bounded, the section's points stay
+  !> on their energy shell) or by DOP853 at (rtol, atol) (dm_dop853); the
+  !> crossing is the root of the cubic Hermite interpolant of theta1 on the
+  !> grid interval, the other components interpolated there the same way.
+  !> Orbits run on nthreads OpenMP threads.
+  subroutine double_section(dpd, method, y0s, tmax, hg, rtol, atol, nthreads, pts, npts, status, cancel)
+    type(double_pendulum), intent(in) :: dpd
+    integer, intent(in) :: method, nthreads
+    real(dp), intent(in) :: y0s(:, :), tmax, hg, rtol, atol
+    real(dp), intent(out) :: pts(:, :, :)
+    integer, intent(out) :: npts(:), status(:)
+    integer, intent(inout), volatile :: cancel
+    type(double_ode) :: sys
+    integer :: k, nt
+    sys%n = 4
+    sys%dpd = dpd
+    pts = nan_dp
+    npts = 0
+    status = st_cancelled
+    if (.not. (hg > 0.0_dp)) then
+      status = st_bad_step
+      return
+    end if
+    nt = thread_count(nthreads)
+    !$omp parallel do schedule(dynamic, 1) default(none) num_threads(nt) &
+    !$omp   shared(sys, method, y0s, tmax, hg, rtol, atol, pts, npts, status, cancel)
+    do k = 1, size(y0s, 2)
+      if (cancel == 0) call section_one(sys, method, y0s(:, k), tmax, hg, rtol, atol, pts(:, :, k), npts(k), &
+                                        status(k), cancel)
+    end do
+    !$omp end parallel do
+  end subroutine double_section
+
+  subroutine section_one(sys, method, y0, tmax, hg, rtol, atol, pts, npts, status, cancel)
+    type(double_ode), intent(in) :: sys
+    integer, intent(in) :: method
+    real(dp), intent(in) :: y0(4), tmax, hg, rtol, atol
+    real(dp), intent(inout) :: pts(:, :)
+    integer, intent(out) :: npts, status
+    integer, intent(inout), volatile :: cancel
+    real(dp) :: y(4), tout(flip_chunk), yout(4, flip_chunk), t0, ya(4), fa(4), fb(4), lev, lo, hi, mid
+    real(dp) :: tc, yc(4), fc(4)
+    integer(i8) :: cnt(flip_chunk)
+    type(run_stats) :: st
+    integer :: k, nk, it
+    npts = 0
+    status = st_ok
+    y = y0
+    t0 = 0.0_dp
+    cnt = 1_i8
+    do while (t0 < tmax .and. npts < size(pts, 2))
+      nk = int(min(real(flip_chunk, dp), real(ceiling((tmax - t0) / hg), dp)))
+      nk = max(nk, 1)
+      do k = 1, nk
+        tout(k) = real(k, dp) * hg
+      end do
+      select case (method)
+      case (dm_dop853)
+        call ode_dop853(sys, 0.0_dp, y, tout(1:nk), rtol, atol, yout(:, 1:nk), st, status, cancel)
+      case (dm_gauss6)
+        call ode_gauss(sys, ode_gauss6, 0.0_dp, y, hg, cnt(1:nk), yout(:, 1:nk), st, status, cancel)
+      case default
+        status = st_bad_method
+      end select
+      if (status /= st_ok) return
+      ya = y
+      call double_rhs(sys%dpd, ya, fa)
+      do k = 1, nk
+        call double_rhs(sys%dpd, yout(:, k), fb)
+        if (floor(yout(1, k) / two_pi) > floor(ya(1) / two_pi)) then
+          ! an upward crossing of lev = 2 pi n, ya(1) < lev <= yout(1, k)
+          lev = two_pi * real(floor(yout(1, k) / two_pi), dp)
+          lo = 0.0_dp; hi = 1.0_dp
+          do it = 1, 60
+            mid = 0.5_dp * (lo + hi)
+            if (hermite(ya(1), fa(1), yout(1, k), fb(1), hg, mid) >= lev) then
+              hi = mid
+            else
+              lo = mid
+            end if
+          end do
+          ! polish: integrate from ya over the interpolated time, then Newton on theta1 (its rate
+          ! theta1' = w1) twice, so that the point is on the integrated path, not on the interpolant
+          tc = hi * hg
+          do it = 1, 3
+            call advance(ya, tc, yc)
+            if (status /= st_ok) return
+            call double_rhs(sys%dpd, yc, fc)
+            if (.not. (fc(1) > 0.0_dp)) exit
+            tc = tc - (yc(1) - lev) / fc(1)
+          end do
+          npts = npts + 1
+          pts(:, npts) = yc
+          if (npts >= size(pts, 2)) return
+        end if
+        ya = yout(:, k)
+        fa = fb
+      end do
+      if (.not. all(abs(yout(:, nk)) <= huge(1.0_dp))) then
+        status = st_nonfinite
+        return
+      end if
+      y = yout(:, nk)
+      t0 = t0 + real(nk, dp) * hg
+    end do
+
+  contains
+
+    !> the state a time tau after y0 by the run's method (one Gauss-Legendre step of size tau)
+    subroutine advance(y0, tau, y1)
+      real(dp), intent(in) :: y0(4), tau
+      real(dp), intent(out) :: y1(4)
+      real(dp) :: yy(4, 1), tt(1)
+      integer(i8) :: one(1)
+      type(run_stats) :: st1
+      y1 = y0
+      if (tau <= 0.0_dp) return
+      tt(1) = tau
+      one(1) = 1_i8
+      if (method == dm_dop853) then
+        call ode_dop853(sys, 0.0_dp, y0, tt, rtol, atol, yy, st1, status, cancel)
+      else
+        call ode_gauss(sys, ode_gauss6, 0.0_dp, y0, tau, one, yy, st1, status, cancel)
+      end if
+      y1 = yy(:, 1)
+    end subroutine advance
+
+  end subroutine section_one
 
 end module pendula_double_run
