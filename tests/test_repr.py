@@ -59,6 +59,8 @@ CASES = {
     "DoublePendulum": lambda: pendula.DoublePendulum(m1=2.0, rods=True, damping=0.1),
     "FlipMap": lambda: pendula.DoublePendulum().flip_map(np.linspace(-3, 3, 8), np.linspace(-3, 3, 8), t_max=10.0),
     "LyapunovSpectrum": lambda: pendula.DoublePendulum().lyapunov(2.0, 2.5, t=100.0),
+    "FoucaultPendulum": lambda: pendula.FoucaultPendulum(latitude=48.85),
+    "FoucaultPrecession": lambda: pendula.FoucaultPendulum(latitude=48.85).precession(0.05, swings=20),
     "TimeScales": lambda: pendula.time_scales(pendula.Scene(damping=0.1, pivot_amplitude=0.1, pivot_frequency=9.0)),
     "CycloidGeometry": lambda: pendula.cycloid_geometry(0.25),
     "FrictionTurningPoints": lambda: pendula.friction_turning_points(pendula.Scene(theta0=3.0, friction=0.01)),

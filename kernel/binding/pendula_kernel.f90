@@ -1380,3 +1380,32 @@ subroutine double_section_v(p, method, norb, y0s, tmax, hg, rtol, atol, maxpts, 
   !f2py intent(hide), depend(y0s) :: norb = shape(y0s, 1)
   call double_section(make_double(p), method, y0s, tmax, hg, rtol, atol, nthreads, pts, npts, status, cancel(1))
 end subroutine double_section_v
+! ---------------------------------------------------------------- the Foucault pendulum
+! The Foucault pendulum (kernel/models/pendula_foucault.f90): p = (g, l,
+! Omega_E, latitude in degrees, gamma); y = (r, v) in local axes (x east,
+! y north, z up), the path at tout by DOP853.  pstatus the parameters'
+! status (pendula_foucault's fst_*), status the integrator's.
+subroutine foucault_simulate_v(p, y0, nout, tout, rtol, atol, cancel, yout, stats, pstatus, status)
+  use pendula_kinds, only: nan_dp
+  use pendula_integrators, only: run_stats
+  use pendula_foucault, only: foucault, make_foucault
+  use pendula_foucault_run, only: foucault_simulate
+  implicit none
+  integer, intent(in) :: nout
+  double precision, intent(in) :: p(5), y0(6), tout(nout), rtol, atol
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: yout(6, nout)
+  integer(8), intent(out) :: stats(4)
+  integer, intent(out) :: pstatus, status
+  !f2py threadsafe
+  !f2py intent(hide), depend(tout) :: nout = len(tout)
+  type(foucault) :: fc
+  type(run_stats) :: st
+  yout = nan_dp
+  stats = 0
+  status = 0
+  call make_foucault(p, fc, pstatus)
+  if (pstatus /= 0) return
+  call foucault_simulate(fc, y0, tout, rtol, atol, yout, st, status, cancel(1))
+  stats = [st%nsteps, st%naccept, st%nreject, st%nfev]
+end subroutine foucault_simulate_v
