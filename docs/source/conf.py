@@ -124,7 +124,7 @@ SECTIONS = {
               "guide/continuation",
               "guide/quantum",
               "guide/circuits",
-              "guide/spherical",
+              "guide/spherical", "guide/double",
               "guide/sweeps",
               "sweeps_at_scale*", "guide/scenes", "scenes*", "vocabulary", "guide/architecture"],
     "reports": ["reports/accuracy", "accuracy*", "elliptic_edges*", "model_accuracy*", "reports/cost", "work_precision*", "reports/benchmarks",
