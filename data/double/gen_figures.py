@@ -4,7 +4,10 @@
   gen_flip_map.py), drawn by pendula.plot.flip_map;
 * foucault_precession.png: a 67 m Foucault pendulum's measured precession
   against latitude, released from rest and opened into an ellipse, beside the
-  Coriolis rate -Omega_E sin(latitude) (FoucaultPendulum.precession; seconds).
+  Coriolis rate -Omega_E sin(latitude) (FoucaultPendulum.precession; seconds);
+* foucault_budget.png: a builder's budget, the exact Airy precession
+  (spherical_orbit) over the amplitude and the ellipse's axis ratio b/a, in
+  percent of the Coriolis rate at the Pantheon's latitude.
 
 Run: python data/double/gen_figures.py
 """
@@ -73,7 +76,30 @@ def foucault_figure() -> None:
     fig.savefig(FIG / "foucault_precession.png", dpi=100)
 
 
+def budget_figure(length: float = 67.0, g: float = 9.81, latitude: float = 48.85) -> None:
+    w = np.sqrt(g / length)
+    amp = np.linspace(0.5, 10.0, 60)                 # degrees
+    ratio = np.logspace(-4, -1, 61)                  # b / a
+    # a small ellipse x = a cos(wt), y = b sin(wt): from the far end with the azimuthal rate w b / a
+    airy = np.array([[pendula.spherical_orbit(np.radians(a), 0.0, w * r, g / length).precession_rate
+                      for a in amp] for r in ratio])
+    cor = pendula.systems.foucault.EARTH_RATE * np.sin(np.radians(latitude))
+    pct = 100.0 * np.abs(airy) / cor
+    fig, ax = plt.subplots(figsize=(6.4, 4.4), layout="constrained")
+    levels = [0.3, 1, 3, 10, 30, 100]
+    cs = ax.contour(amp, ratio, pct, levels=levels, colors="k", linewidths=1)
+    ax.clabel(cs, fmt=lambda v: f"{v:g} %", fontsize=9)
+    ax.contourf(amp, ratio, pct, levels=[100, 1e9], colors=["0.8"])
+    ax.set_yscale("log")
+    ax.set_xlabel("amplitude (degrees)", fontsize=10)
+    ax.set_ylabel("ellipse axis ratio b / a", fontsize=10)
+    ax.set_title(f"Airy precession in % of the Coriolis rate ({length:g} m, latitude {latitude:g})", fontsize=10)
+    ax.tick_params(labelsize=10)
+    fig.savefig(FIG / "foucault_budget.png", dpi=100)
+
+
 if __name__ == "__main__":
+    budget_figure()
     foucault_figure()
     if (HERE / "flip_map.npz").exists():
         flip_map_figure()
