@@ -235,10 +235,13 @@ contains
       status = st_bad_step
       return
     end if
+    ! the frame (e1, e2, e4, e3) in y = (theta1, theta2, p1, p2): its last vector is -J times its first
+    ! (J the symplectic unit) and its first three span the symplectic complement of the first.  A
+    ! symplectic map keeps both properties, and Gram-Schmidt keeps them (the first k vectors span the
+    ! map's image of the first k), so R(4, 4) = 1 / R(1, 1) at every step: lambda1 + lambda4 = 0 to
+    ! rounding at any t for a symplectic method, not only in the limit.
     q = 0.0_dp
-    do i = 1, 4
-      q(i, i) = 1.0_dp
-    end do
+    q(1, 1) = 1.0_dp; q(2, 2) = 1.0_dp; q(4, 3) = 1.0_dp; q(3, 4) = 1.0_dp
     y(1:4) = y0
     y(5:20) = reshape(q, [16])
     sumlog = 0.0_dp

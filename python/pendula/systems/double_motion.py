@@ -113,8 +113,8 @@ class LyapunovSpectrum:
     pairing : numpy.ndarray
         (lambda1 + lambda4, lambda2 + lambda3): both zero for a Hamiltonian
         system (the exponents come in pairs +-lambda; Arnold, "Mathematical
-        Methods of Classical Mechanics", section 41); with damping they
-        need not vanish.
+        Methods of Classical Mechanics", section 41), to rounding with a
+        symplectic method; with damping they need not vanish.
     time : float
         The span averaged over.
     method : str
@@ -485,7 +485,7 @@ class DoublePendulum:
             Steps between re-orthonormalisations (default 10).
         method : {'auto', 'gauss6', 'gauss4', 'dop853'}, optional
             'auto': gauss6 without damping (symplectic: the exponents pair to
-            rounding plus the finite-time bias), dop853 with it.
+            rounding), dop853 with it.
         rtol, atol : float, optional
             DOP853's tolerances.
 
@@ -504,11 +504,16 @@ class DoublePendulum:
         closed form in the kernel) beside the path, re-orthonormalised by
         Gram-Schmidt (Benettin, Galgani, Giorgilli and Strelcyn, Meccanica 15
         (1980) 9); the exponents are the mean logarithmic growth of the
-        Gram-Schmidt norms.  The sum is exact to rounding for a symplectic
-        method (its linearised map has determinant one); the pairing
-        lambda1 + lambda4 = -(lambda2 + lambda3) converges as 1/t (the two
-        neutral directions, along the flow and across the energy shell, grow
-        only boundedly).
+        Gram-Schmidt norms.  The frame starts as (e1, e2, e4, e3) in
+        (theta1, theta2, p1, p2): its last vector is J times its first (J
+        the symplectic unit) and its first three span the symplectic
+        complement of the first.  A symplectic step keeps both, and so does
+        Gram-Schmidt, so the last norm is the inverse of the first at every
+        step: with Gauss-Legendre the pairs lambda1 + lambda4 and lambda2 +
+        lambda3 vanish to rounding at any span, not only as t grows, and the
+        sum too (the linearised step has determinant one).  The exponents
+        themselves converge as 1/t (the neutral pair, along the flow and
+        across the energy shell, tends to zero so).
 
         Examples
         --------
