@@ -313,3 +313,14 @@ def test_flip_map_plot_marks_the_three_kinds_of_pixel():
         "cannot flip (energy)", "no flip by t = 10", "unresolved"]
     with pytest.raises(TypeError, match="fm"):
         pendula.plot.flip_map(fm.time)
+
+
+def test_empty_times_and_axes_are_refused_by_name():
+    dp = pendula.DoublePendulum()
+    with pytest.raises(ValueError, match="t must hold"):
+        dp.simulate([], 1.0)
+    with pytest.raises(ValueError, match="theta1 must hold"):
+        dp.flip_map([], [0.5])
+    with pytest.raises(ValueError, match="t must hold"):
+        pendula.FoucaultPendulum(latitude=10.0).simulate([], 0.1)
+

@@ -332,6 +332,8 @@ class DoublePendulum:
         """
         xr = require("xarray", "xarray", "DoublePendulum.simulate")
         tt = _checks.as_float(t, "t").ravel()
+        if tt.size == 0:
+            raise ValueError("t must hold at least one time")
         if not np.all(np.isfinite(tt)):
             raise ValueError("t must be finite")
         if tt.size and not (np.all(np.diff(tt) >= 0) and tt[0] >= 0):
@@ -443,6 +445,8 @@ class DoublePendulum:
         a1 = _checks.as_float(theta1, "theta1").ravel()
         a2 = _checks.as_float(theta2, "theta2").ravel()
         for arr, name in ((a1, "theta1"), (a2, "theta2")):
+            if arr.size == 0:
+                raise ValueError(f"{name} must hold at least one angle")
             if not np.all(np.abs(arr) <= math.pi):
                 raise ValueError(f"{name} must lie in [-pi, pi] (the map starts each arm below or at the top)")
         t_max = _checks.real(t_max, "t_max", 0.0, lo_open=True)

@@ -214,6 +214,8 @@ class FoucaultPendulum:
         """
         xr = require("xarray", "xarray", "FoucaultPendulum.simulate")
         tt = _checks.as_float(t, "t").ravel()
+        if tt.size == 0:
+            raise ValueError("t must hold at least one time")
         y0, *_ = self._start(theta0, azimuth, theta_dot0, phi_dot0)
         rtol, atol = _checks.tolerances(rtol, rtol * self.length if atol is None else atol)
         yout, stats = self._run(y0, tt, rtol, atol)
