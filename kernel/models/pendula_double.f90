@@ -70,20 +70,28 @@ contains
     real(dp), intent(in) :: y(4)
     real(dp), intent(out) :: w(2)
     real(dp) :: cd, sd, det
+    call velocities(dpd, y, cd, sd, det, w)
+  end subroutine double_velocities
+
+  !> w = M^-1 p, with cos d, sin d and det M on the way (each formed once).
+  pure subroutine velocities(dpd, y, cd, sd, det, w)
+    type(double_pendulum), intent(in) :: dpd
+    real(dp), intent(in) :: y(4)
+    real(dp), intent(out) :: cd, sd, det, w(2)
     cd = cos(y(1) - y(2)); sd = sin(y(1) - y(2))
     det = dpd%d0 + (dpd%b * sd)**2
     w(1) = (dpd%c * y(3) - dpd%b * cd * y(4)) / det
     w(2) = (dpd%a * y(4) - dpd%b * cd * y(3)) / det
-  end subroutine double_velocities
+  end subroutine velocities
 
   !> The right-hand side y' of Hamilton's equations.
   pure subroutine double_rhs(dpd, y, f)
     type(double_pendulum), intent(in) :: dpd
     real(dp), intent(in) :: y(4)
     real(dp), intent(out) :: f(4)
-    real(dp) :: w(2), s
-    call double_velocities(dpd, y, w)
-    s = dpd%b * sin(y(1) - y(2)) * w(1) * w(2)
+    real(dp) :: w(2), s, cd, sd, det
+    call velocities(dpd, y, cd, sd, det, w)
+    s = dpd%b * sd * w(1) * w(2)
     f(1:2) = w
     f(3) = -s - dpd%ga * sin(y(1)) - dpd%k1 * w(1)
     f(4) = s - dpd%gb * sin(y(2)) - dpd%k2 * w(2)
@@ -95,9 +103,7 @@ contains
     real(dp), intent(in) :: y(4)
     real(dp), intent(out) :: jac(4, 4)
     real(dp) :: cd, sd, det, w(2), wd(2), wp(2, 2), sdd, sp(2)
-    cd = cos(y(1) - y(2)); sd = sin(y(1) - y(2))
-    det = dpd%d0 + (dpd%b * sd)**2
-    call double_velocities(dpd, y, w)
+    call velocities(dpd, y, cd, sd, det, w)
     ! dw/dd at fixed p, and dw/dp = M^-1
     wd(1) = (dpd%b * sd * y(4) - w(1) * 2.0_dp * dpd%b**2 * sd * cd) / det
     wd(2) = (dpd%b * sd * y(3) - w(2) * 2.0_dp * dpd%b**2 * sd * cd) / det
