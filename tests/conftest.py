@@ -28,6 +28,7 @@ def pytest_configure(config):
 #: than decorated in place so that the list is one place; tests/test_full_marker.py checks each exists.
 FULL = (
     "test_attractor_agreement.py::test_default_map_agrees_with_scipy_long_runs_on_995_permille_of_stable_points",
+    "test_double_motion.py::test_energy_bounded_over_1e5_swings",
     "test_attractors_recurrence.py::test_coarse_to_fine_map_matches_the_long_transient_run_on_995_permille_of_stable_points",
     "test_attractors_recurrence.py::test_grid_of_levels_gives_the_same_labels_whatever_the_threads_chunking_or_resume",
     "test_continuation.py::test_homoclinic_retrapping_torque_against_scipy_manifold",

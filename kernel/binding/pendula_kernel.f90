@@ -1280,3 +1280,134 @@ subroutine rsj_gap_ranges_v(n, bias, a, omega, rtol, atol, nthreads, gmin, gmax,
   !f2py intent(hide), depend(bias) :: n = len(bias)
   call rsj_gap_ranges(n, bias, a, omega, rtol, atol, gmin, gmax, status, nthreads)
 end subroutine rsj_gap_ranges_v
+! ---------------------------------------------------------------- the double pendulum
+! The double pendulum (kernel/models/pendula_double.f90 and
+! kernel/dispatch/pendula_double_run.f90).  p(8) = (m1, m2, l1, l2, g, rods,
+! k1, k2); states y = (theta1, theta2, p1, p2), p the canonical momenta.
+
+! The path from y0 at t = 0: method 1 DOP853 (rtol, atol; outputs at tout),
+! 2 or 3 Gauss-Legendre of order 4 or 6 (step dt; output k after counts(k)
+! more steps).  stats: steps, accepted, rejected, evaluations.
+subroutine double_simulate_v(p, method, y0, nout, tout, counts, rtol, atol, dt, cancel, yout, stats, status)
+  use pendula_integrators, only: run_stats
+  use pendula_double, only: make_double
+  use pendula_double_run, only: double_simulate
+  implicit none
+  integer, intent(in) :: method, nout
+  double precision, intent(in) :: p(8), y0(4), tout(nout), rtol, atol, dt
+  integer(8), intent(in) :: counts(nout)
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: yout(4, nout)
+  integer(8), intent(out) :: stats(4)
+  integer, intent(out) :: status
+  !f2py threadsafe
+  !f2py intent(hide), depend(tout) :: nout = len(tout)
+  type(run_stats) :: st
+  call double_simulate(make_double(p), method, y0, tout, counts, rtol, atol, dt, yout, st, status, cancel(1))
+  stats = [st%nsteps, st%naccept, st%nreject, st%nfev]
+end subroutine double_simulate_v
+
+! For ns states y(:, k): the energy, the angular velocities w(:, k) and the
+! right-hand side f(:, k); jac the Jacobian of the right-hand side at y(:, 1).
+subroutine double_state_v(p, ns, y, en, w, f, jac)
+  use pendula_double, only: double_pendulum, make_double, double_energy, double_velocities, double_rhs, &
+    double_jacobian
+  implicit none
+  integer, intent(in) :: ns
+  double precision, intent(in) :: p(8), y(4, ns)
+  double precision, intent(out) :: en(ns), w(2, ns), f(4, ns), jac(4, 4)
+  !f2py threadsafe
+  !f2py intent(hide), depend(y) :: ns = shape(y, 1)
+  type(double_pendulum) :: dpd
+  integer :: k
+  dpd = make_double(p)
+  do k = 1, ns
+    en(k) = double_energy(dpd, y(:, k))
+    call double_velocities(dpd, y(:, k), w(:, k))
+    call double_rhs(dpd, y(:, k), f(:, k))
+  end do
+  jac = 0.0d0
+  if (ns > 0) call double_jacobian(dpd, y(:, 1), jac)
+end subroutine double_state_v
+
+! The flip-time map from rest at (th1(k), th2(k)); skip(k) /= 0: cannot flip
+! (inf); tflip at (rtol, atol), tcheck at a tenth of both; the search up to
+! tmax on an output grid of spacing hg; on nthreads threads.
+subroutine double_flip_map_v(p, n, th1, th2, skip, tmax, hg, rtol, atol, nthreads, cancel, tflip, tcheck, status)
+  use pendula_double, only: make_double
+  use pendula_double_run, only: double_flip_map
+  implicit none
+  integer, intent(in) :: n, nthreads
+  double precision, intent(in) :: p(8), th1(n), th2(n), tmax, hg, rtol, atol
+  integer, intent(in) :: skip(n)
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: tflip(n), tcheck(n)
+  integer, intent(out) :: status(n)
+  !f2py threadsafe
+  !f2py intent(hide), depend(th1) :: n = len(th1)
+  call double_flip_map(make_double(p), th1, th2, skip, tmax, hg, rtol, atol, nthreads, tflip, tcheck, status, &
+                       cancel(1))
+end subroutine double_flip_map_v
+
+! The Lyapunov spectrum from y0 (see double_lyapunov): nren
+! re-orthonormalisations, each after `every` steps of h (Gauss-Legendre,
+! method 2 or 3) or a span h * every of DOP853 (method 1, rtol, atol).
+subroutine double_lyapunov_v(p, method, y0, h, every, nren, rtol, atol, cancel, lam, yend, status)
+  use pendula_double, only: make_double
+  use pendula_double_run, only: double_lyapunov
+  implicit none
+  integer, intent(in) :: method
+  double precision, intent(in) :: p(8), y0(4), h, rtol, atol
+  integer(8), intent(in) :: every, nren
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: lam(4), yend(4)
+  integer, intent(out) :: status
+  !f2py threadsafe
+  call double_lyapunov(make_double(p), method, y0, h, every, nren, rtol, atol, lam, yend, status, cancel(1))
+end subroutine double_lyapunov_v
+
+! The Poincare section theta1 = 0 (mod 2 pi), theta1 increasing, of norb
+! orbits from y0s(:, k) up to tmax: pts(:, 1:npts(k), k) the crossings (see
+! double_section); method 3 Gauss-Legendre of order 6 with step hg, 1 DOP853.
+subroutine double_section_v(p, method, norb, y0s, tmax, hg, rtol, atol, maxpts, nthreads, cancel, pts, npts, status)
+  use pendula_double, only: make_double
+  use pendula_double_run, only: double_section
+  implicit none
+  integer, intent(in) :: method, norb, maxpts, nthreads
+  double precision, intent(in) :: p(8), y0s(4, norb), tmax, hg, rtol, atol
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: pts(4, maxpts, norb)
+  integer, intent(out) :: npts(norb), status(norb)
+  !f2py threadsafe
+  !f2py intent(hide), depend(y0s) :: norb = shape(y0s, 1)
+  call double_section(make_double(p), method, y0s, tmax, hg, rtol, atol, nthreads, pts, npts, status, cancel(1))
+end subroutine double_section_v
+! ---------------------------------------------------------------- the Foucault pendulum
+! The Foucault pendulum (kernel/models/pendula_foucault.f90): p = (g, l,
+! Omega_E, latitude in degrees, gamma); y = (r, v) in local axes (x east,
+! y north, z up), the path at tout by DOP853.  pstatus the parameters'
+! status (pendula_foucault's fst_*), status the integrator's.
+subroutine foucault_simulate_v(p, y0, nout, tout, rtol, atol, cancel, yout, stats, pstatus, status)
+  use pendula_kinds, only: nan_dp
+  use pendula_integrators, only: run_stats
+  use pendula_foucault, only: foucault, make_foucault
+  use pendula_foucault_run, only: foucault_simulate
+  implicit none
+  integer, intent(in) :: nout
+  double precision, intent(in) :: p(5), y0(6), tout(nout), rtol, atol
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: yout(6, nout)
+  integer(8), intent(out) :: stats(4)
+  integer, intent(out) :: pstatus, status
+  !f2py threadsafe
+  !f2py intent(hide), depend(tout) :: nout = len(tout)
+  type(foucault) :: fc
+  type(run_stats) :: st
+  yout = nan_dp
+  stats = 0
+  status = 0
+  call make_foucault(p, fc, pstatus)
+  if (pstatus /= 0) return
+  call foucault_simulate(fc, y0, tout, rtol, atol, yout, st, status, cancel(1))
+  stats = [st%nsteps, st%naccept, st%nreject, st%nfev]
+end subroutine foucault_simulate_v

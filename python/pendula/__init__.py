@@ -103,8 +103,13 @@ __all__ += ["Network", "NetworkEquilibrium", "NormalModes", "DCSquid"]
 # the spherical pendulum exactly; the double pendulum's exact parts (normal modes, the forbidden flip region)
 from .systems.spherical import SphericalOrbit, SphericalPath, spherical_orbit  # noqa: E402
 from .systems.double import DoublePendulumModes, double_pendulum_modes, flip_forbidden  # noqa: E402
+# the double pendulum integrated: its path and energy error, the flip-time map, the Lyapunov spectrum
+from .systems.double_motion import DoublePendulum, FlipMap, LyapunovSpectrum  # noqa: E402
+# the Foucault pendulum: the spherical pendulum in the Earth's frame, its precession split
+from .systems.foucault import FoucaultPendulum, FoucaultPrecession  # noqa: E402
 
 __all__ += ["spherical_orbit", "SphericalOrbit", "SphericalPath",
-            "double_pendulum_modes", "DoublePendulumModes", "flip_forbidden"]
+            "double_pendulum_modes", "DoublePendulumModes", "flip_forbidden",
+            "DoublePendulum", "FlipMap", "LyapunovSpectrum", "FoucaultPendulum", "FoucaultPrecession"]
 __all__ += ["thermal_rate", "quantum_rate", "escape_rate", "crossover_temperature", "switching_distribution",
             "SwitchingDistribution", "rf_current"]

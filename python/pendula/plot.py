@@ -14,6 +14,7 @@ One function per result, each taking what the library returns and an optional
 - :func:`basins` -- an attractor map, one colour per attractor, the attractors drawn;
 - :func:`iv` -- an I-V curve, both directions, the Shapiro steps labelled;
 - :func:`fractions` -- basin fractions over a parameter, as stacked areas;
+- :func:`flip_map` -- a double pendulum's flip-time map, forbidden and unresolved pixels marked;
 - :func:`animate` -- the pendulum swinging, written as a GIF (Pillow's
   writer, nothing else needed) or an MP4 (FFmpeg's writer: ``ffmpeg`` on the PATH).
 
@@ -48,6 +49,7 @@ if TYPE_CHECKING:   # matplotlib and xarray are optional: named in annotations o
 
     from .dynamics.attractors import AttractorMap
     from .spectrum import Spectrum
+    from .systems.double_motion import FlipMap
     from .trajectory import Trajectory
 
 
@@ -767,4 +769,63 @@ def levels(transmon, ax: matplotlib.axes.Axes | None = None, *, count: int = 5,
     ax.set_xlabel("n_g")
     ax.set_ylabel(ylabel)
     ax.set_title(f"E_J / E_C = {transmon.E_J / transmon.E_C:g}")
+    return ax
+
+
+def flip_map(fm: FlipMap, ax: matplotlib.axes.Axes | None = None, *,
+             colorbar: bool = True) -> matplotlib.axes.Axes:
+    """A double pendulum's flip-time map: log10 of the flip time over the initial angles.
+
+    Parameters
+    ----------
+    fm : FlipMap
+        What :meth:`pendula.DoublePendulum.flip_map` returns.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw (default: a new figure).
+    colorbar : bool
+        Draw a colour bar of log10(flip time) (default True).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The map: the energy-forbidden region white, the pixels with no flip
+        by t_max black, the unresolved pixels (their answer moved when the
+        tolerance was tightened tenfold) grey.
+
+    Examples
+    --------
+    >>> import numpy as np, pendula, pendula.plot
+    >>> th = np.linspace(-3, 3, 9)
+    >>> ax = pendula.plot.flip_map(pendula.DoublePendulum().flip_map(th, th, t_max=10.0))
+    >>> ax.get_xlabel()
+    'theta1 (rad)'
+    """
+    from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
+
+    from .systems.double_motion import FlipMap
+    fm = _result(fm, "fm", FlipMap, "a FlipMap (DoublePendulum.flip_map)")
+    colorbar = _checks.flag(colorbar, "colorbar")
+    ax = _ax(ax, figsize=(6.0, 5.0))
+    with np.errstate(divide="ignore"):
+        z = np.log10(np.where(np.isfinite(fm.time), fm.time, np.nan)).T
+    x, y = fm.theta1, fm.theta2
+    # the pixels with no answer first: black (no flip by t_max), white (forbidden), grey (unresolved)
+    cls = np.where(fm.forbidden, 1.0, np.where(np.isinf(fm.time), 0.0, np.nan)).T
+    ax.pcolormesh(x, y, cls, cmap=ListedColormap(["black", "white"]), vmin=0, vmax=1, shading="nearest",
+                  rasterized=True)
+    mesh = ax.pcolormesh(x, y, np.where(fm.unresolved.T, np.nan, z), cmap="viridis", shading="nearest",
+                         rasterized=True)
+    grey = np.where(fm.unresolved.T, 1.0, np.nan)
+    ax.pcolormesh(x, y, grey, cmap=ListedColormap([(0.6, 0.6, 0.6)]), shading="nearest", rasterized=True)
+    if colorbar:
+        bar = ax.figure.colorbar(mesh, ax=ax)
+        bar.set_label("log10 flip time", fontsize=10)
+    ax.legend(handles=[Patch(facecolor="white", edgecolor="k", label="cannot flip (energy)"),
+                       Patch(color="black", label=f"no flip by t = {fm.t_max:g}"),
+                       Patch(color=(0.6, 0.6, 0.6), label="unresolved")],
+              fontsize=9, loc="lower left", framealpha=0.85)
+    ax.set_xlabel("theta1 (rad)")
+    ax.set_ylabel("theta2 (rad)")
+    ax.set_aspect("equal")
     return ax
