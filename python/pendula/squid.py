@@ -284,7 +284,10 @@ class DCSquid:
         temp = self.junction.noise
         if temp == 0:
             return 0.0, 0.0, 1, 0, 0
-        h = min(0.02, 0.05 * math.sqrt(self.beta_c)) if dt is None else \
+        # the step resolves the velocity's relaxation time β_c (the drift's error is of first order in
+        # dt/β_c) and the loop's oscillation (frequency √((1 + 2K)/β_c), K = 1/(πβ_L))
+        bc, k = self.beta_c, 1 / (math.pi * self.beta_l)
+        h = 0.05 * min(0.4, bc, math.sqrt(bc / (1 + 2 * k))) if dt is None else \
             _checks.real(dt, "dt", 0.0, lo_open=True) * self.characteristic_frequency
         return (temp, h, _checks.count(paths, "paths", 2), _checks.count(seed, "seed", 0, 2**63 - 1),
                 _checks.threads(threads))
@@ -347,7 +350,9 @@ class DCSquid:
         rtol : float, optional
             The integrator's relative tolerance without noise (default 1e-10).
         dt : float, optional
-            The step (s) of the noisy paths (default min(0.02, 0.05 √β_c)/ω_c).
+            The step (s) of the noisy paths (default 0.05 min(0.4, β_c,
+            √(β_c/(1 + 2/(πβ_L))))/ω_c: the drift's error is of first order
+            in the step over β_c).
         paths : int, optional
             Noisy paths at each current (>= 2; default 4).
         seed : int, optional
