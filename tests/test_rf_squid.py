@@ -115,6 +115,10 @@ def test_bad_input_is_named():
         pendula.RFSquid(I0, -1e-12)
     with pytest.raises(ValueError, match="critical_current"):
         pendula.RFSquid(0.0, 1e-12)
+    with pytest.raises(ValueError, match="resistance"):
+        pendula.RFSquid(I0, 1e-12, resistance=-1.0)
+    with pytest.raises(ValueError, match="capacitance"):
+        pendula.RFSquid(I0, 1e-12, capacitance=-1e-15)
     with pytest.raises(ValueError, match="external_flux"):
         _squid(2.0).flux_states(float("nan"))
     with pytest.raises(ValueError, match="external_fluxes"):

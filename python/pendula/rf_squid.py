@@ -23,7 +23,7 @@ from numpy.typing import ArrayLike
 
 from . import _checks
 from ._optional import require
-from .junction import FLUX_QUANTUM, Junction
+from .junction import FLUX_QUANTUM
 
 if TYPE_CHECKING:   # xarray is optional: named in annotations only
     import xarray
@@ -104,11 +104,11 @@ class RFSquid:
     inductance : float
         The loop's inductance L (H), > 0 (a negative inductance is refused).
     resistance : float, optional
-        The junction's shunt resistance (Ω), > 0 (default 1; the static
-        flux states do not depend on it).
+        The junction's shunt resistance (Ω), > 0, kept in ``resistance``
+        (the static flux states do not depend on it; default None).
     capacitance : float, optional
-        The junction's capacitance (F), >= 0 (default 0; the static flux
-        states do not depend on it).
+        The junction's capacitance (F), >= 0, kept in ``capacitance``
+        (the static flux states do not depend on it; default None).
 
     Raises
     ------
@@ -127,18 +127,21 @@ class RFSquid:
     (1.5193, True)
     """
 
-    def __init__(self, critical_current: float, inductance: float, resistance: float = 1.0,
-                 capacitance: float = 0.0) -> None:
-        self.junction = Junction(critical_current, resistance, capacitance)
+    def __init__(self, critical_current: float, inductance: float, resistance: float | None = None,
+                 capacitance: float | None = None) -> None:
+        self.critical_current = _checks.real(critical_current, "critical_current", 0.0, lo_open=True)
         self.inductance = _checks.real(inductance, "inductance", 0.0, lo_open=True)
+        self.resistance = None if resistance is None else \
+            _checks.real(resistance, "resistance", 0.0, lo_open=True)
+        self.capacitance = None if capacitance is None else _checks.real(capacitance, "capacitance", 0.0)
 
     def __repr__(self) -> str:
-        return f"RFSquid(I0={self.junction.critical_current!r} A, beta_l={self.beta_l:.6g})"
+        return f"RFSquid(I0={self.critical_current!r} A, beta_l={self.beta_l:.6g})"
 
     @property
     def beta_l(self) -> float:
         """The screening parameter β_L = 2πLI₀/Φ₀ (the rf SQUID's convention)."""
-        return _TWO_PI * self.inductance * self.junction.critical_current / FLUX_QUANTUM
+        return _TWO_PI * self.inductance * self.critical_current / FLUX_QUANTUM
 
     @property
     def hysteretic(self) -> bool:
@@ -192,9 +195,9 @@ class RFSquid:
         """
         xr = require("xarray", "xarray", "RFSquid.flux_states")
         fe = _checks.real(external_flux, "external_flux")
-        b, i0 = self.beta_l, self.junction.critical_current
+        b, i0 = self.beta_l, self.critical_current
         phi, stable = flux_states(b, fe)
-        ej = self.junction.josephson_energy
+        ej = FLUX_QUANTUM * i0 / _TWO_PI         # the Josephson energy
         energy = ej * ((phi - _TWO_PI * fe) ** 2 / (2 * b) - np.cos(phi))
         return xr.Dataset(
             {"flux": ("state", phi / _TWO_PI, {"long_name": "flux in the loop / flux quantum", "units": "Phi0"}),
@@ -271,7 +274,7 @@ class RFSquid:
                         jump[d, j] = True
                     phi = nxt
                 phi_out[d, j] = phi
-        i0 = self.junction.critical_current
+        i0 = self.critical_current
         dims = ("direction", "external_flux")
         return xr.Dataset(
             {"flux": (dims, phi_out / _TWO_PI, {"long_name": "flux in the loop / flux quantum", "units": "Phi0"}),
