@@ -191,3 +191,19 @@ def test_noisy_transfer_function_agrees_with_the_deterministic_one_far_above_the
     err = float(a.transfer_err[0])
     assert 0 < err < 0.5 * abs(det)
     assert abs(float(a.transfer[0]) - det) < 4 * err
+
+
+def test_shapiro_steps_of_the_squid_lock_at_multiples_of_f_times_the_flux_quantum():
+    """An rf current 1.5 I₀ at f = ω_c/2π (β_L = 1, β_c = 0.5, Φ = Φ₀/4): on its steps the SQUID's
+    voltage is locked to the drive, V = (n/m) h f/2e exactly (the Josephson relation, with CODATA's exact
+    h and e written here): the first step (n = 1) at 2.5 and 2.7 I₀ and the half step at 1.7 and 1.8 I₀
+    (two junctions in a loop lock at fractions too), within pendula's error plus 1e-10 relative."""
+    sq = _squid(1.0, 0.5)
+    f = sq.characteristic_frequency / (2 * math.pi)
+    h_over_2e = 6.62607015e-34 / (2 * 1.602176634e-19)
+    currents = np.array([1.7, 1.8, 2.5, 2.7]) * I0
+    r = sq.iv_curve(currents, flux=0.25, rf_current=1.5 * I0, rf_frequency=f)
+    for v, e, n in zip(r.voltage.values[0], r.voltage_err.values[0], (0.5, 0.5, 1.0, 1.0)):
+        assert abs(v - n * f * h_over_2e) <= e + 1e-10 * n * f * h_over_2e, (v / (f * h_over_2e), e)
+    with pytest.raises(ValueError, match="rf_current"):
+        sq.iv_curve(currents, rf_frequency=f)

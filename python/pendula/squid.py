@@ -36,6 +36,8 @@ if TYPE_CHECKING:   # xarray is optional: named in annotations only
 
 __all__ = ["DCSquid", "squid_critical_current"]
 
+_TWO_PI = 2.0 * math.pi
+
 
 def _network(beta_l: float, flux: float, bias: float = 0.0, damping: float = 0.0) -> Network:
     off = np.array([[0.0, -2 * math.pi * flux], [2 * math.pi * flux, 0.0]])
@@ -292,9 +294,9 @@ class DCSquid:
         return (temp, h, _checks.count(paths, "paths", 2), _checks.count(seed, "seed", 0, 2**63 - 1),
                 _checks.threads(threads))
 
-    def _velocity(self, bias: float, flux: float, phi, v, tr, tm, rtol, noise):
+    def _velocity(self, bias: float, flux: float, phi, v, tr, tm, rtol, noise, rf=(0.0, 0.0)):
         """⟨s'⟩ (in ω_c), its error, each path's drift (noise) and the final state, at the reduced bias."""
-        net = squid_network(self.beta_l, self.beta_c, flux, bias)
+        net = squid_network(self.beta_l, self.beta_c, flux, bias, *rf)
         temp, h, paths, seed, threads = noise
         if temp == 0:
             vel, err, phi, v = mean_velocity(net, phi, v, tr, tm, rtol)
@@ -321,8 +323,9 @@ class DCSquid:
 
     def iv_curve(self, currents: ArrayLike, flux: float = 0.0,
                  direction: Literal["up", "down", "both"] = "up", *, transient: float | None = None,
-                 t_max: float | None = None, rtol: float = 1e-10, dt: float | None = None, paths: int = 4,
-                 seed: int = 0, threads: int = 0) -> xarray.Dataset:
+                 t_max: float | None = None, rf_current: float = 0.0, rf_frequency: float = 0.0,
+                 rtol: float = 1e-10, dt: float | None = None, paths: int = 4, seed: int = 0,
+                 threads: int = 0) -> xarray.Dataset:
         """The SQUID's dynamic I-V curve at the flux Φ/Φ₀: the dc voltage at each bias current.
 
         The bias is ramped through ``currents`` (each current starts from the
@@ -334,7 +337,9 @@ class DCSquid:
         running state (exact for a periodic one); at a temperature > 0 it is
         the mean drift of ``paths`` noisy paths (BAOAB, one noise stream
         per junction keyed by (seed, path, junction): the same numbers on
-        any thread count).
+        any thread count).  An rf current I_rf cos(2πft) beside the bias
+        gives Shapiro steps, locked at V = (n/m) fΦ₀ (the SQUID also locks
+        at fractions of fΦ₀).
 
         Parameters
         ----------
@@ -347,6 +352,9 @@ class DCSquid:
         transient, t_max : float, optional
             Seconds skipped and averaged at each current (default 200
             max(1, β_c) and 1000 times 1/ω_c).
+        rf_current, rf_frequency : float, optional
+            The amplitude (A) and frequency (Hz, >= 0) of an rf current
+            shared by the two junctions like the bias (both or neither).
         rtol : float, optional
             The integrator's relative tolerance without noise (default 1e-10).
         dt : float, optional
@@ -397,6 +405,12 @@ class DCSquid:
         tr, tm = self._times(transient, t_max)
         noise = self._noise(dt, paths, seed, threads)
         i0 = self.junction.critical_current
+        a = _checks.real(rf_current, "rf_current")
+        f = _checks.real(rf_frequency, "rf_frequency", 0.0)
+        if (a != 0) != (f > 0):
+            raise ValueError(f"rf_current ({a!r} A) and rf_frequency ({f!r} Hz): an rf drive needs both, "
+                             "or give neither")
+        rf = (a / i0, _TWO_PI * f / self.characteristic_frequency)
         dirs = ["up", "down"] if direction == "both" else [direction]
         vel = np.full((len(dirs), cur.size), np.nan)
         err = np.full_like(vel, np.nan)
@@ -404,7 +418,8 @@ class DCSquid:
         for d, name in enumerate(dirs):
             order = range(cur.size) if name == "up" else range(cur.size - 1, -1, -1)
             for j in order:
-                vel[d, j], err[d, j], _, phi, v = self._velocity(cur[j] / i0, flux, phi, v, tr, tm, rtol, noise)
+                vel[d, j], err[d, j], _, phi, v = self._velocity(cur[j] / i0, flux, phi, v, tr, tm, rtol, noise,
+                                                                 rf)
         volt = i0 * self.junction.resistance
         ds = xr.Dataset(
             {"voltage": (("direction", "current"), vel * volt, {"long_name": "dc voltage", "units": "V"}),
@@ -414,7 +429,7 @@ class DCSquid:
                                {"long_name": "mean phase velocity / omega_c", "units": "1"})},
             coords={"direction": dirs, "current": ("current", cur, {"long_name": "bias current", "units": "A"}),
                     "bias": ("current", cur / i0, {"long_name": "bias current / I0", "units": "1"})},
-            attrs=self._attrs(noise, rtol, tr, tm) | {"flux": flux})
+            attrs=self._attrs(noise, rtol, tr, tm) | {"flux": flux, "rf_current": a, "rf_frequency": f})
         return ds
 
     def v_phi_curve(self, current: float, fluxes: ArrayLike, *, transient: float | None = None,

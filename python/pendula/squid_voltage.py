@@ -29,11 +29,14 @@ from .systems.network import Network
 _TWO_PI = 2.0 * math.pi
 
 
-def squid_network(beta_l: float, beta_c: float, flux: float, bias: float) -> Network:
-    """The symmetric dc SQUID in the time unit 1/ω_c: mass β_c, damping 1, bias i/2 on each junction."""
+def squid_network(beta_l: float, beta_c: float, flux: float, bias: float, rf: float = 0.0,
+                  omega: float = 0.0) -> Network:
+    """The symmetric dc SQUID in the time unit 1/ω_c: mass β_c, damping 1, bias i/2 on each junction, and
+    an rf current rf cos(ω t) shared by the two."""
     k = 1.0 / (math.pi * beta_l)
     off = np.array([[0.0, -_TWO_PI * flux], [_TWO_PI * flux, 0.0]])
-    return Network(2, coupling=[[0.0, k], [k, 0.0]], offset=off, bias=bias / 2, damping=1.0, mass=beta_c)
+    return Network(2, coupling=[[0.0, k], [k, 0.0]], offset=off, bias=bias / 2, damping=1.0, mass=beta_c,
+                   drive_amplitude=rf / 2, drive_frequency=omega)
 
 
 def _first_hits(t: np.ndarray, s: np.ndarray, sv: np.ndarray, levels: np.ndarray) -> np.ndarray:
@@ -68,7 +71,8 @@ def _first_hits(t: np.ndarray, s: np.ndarray, sv: np.ndarray, levels: np.ndarray
 def mean_velocity(net: Network, phi0: np.ndarray, v0: np.ndarray, transient: float, window: float,
                   rtol: float) -> tuple[float, float, np.ndarray, np.ndarray]:
     """The running state's mean velocity ⟨s'⟩ over whole turns, its error estimate, and the final state."""
-    vmax = max(1.0, float(np.max(np.abs(net.bias))) / float(np.min(net.damping)))
+    vmax = max(1.0, float(np.max(np.abs(net.bias))) / float(np.min(net.damping)),
+               float(np.max(np.abs(net.drive_frequency))))
     h = min(0.05, _TWO_PI / (64.0 * vmax))
     m = int(math.ceil(window / h))
     t = transient + h * np.arange(m + 1)
