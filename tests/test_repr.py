@@ -64,6 +64,7 @@ CASES = {
     "NetworkEquilibrium": lambda: pendula.Network(8, topology="ring", strength=0.5).equilibrium(np.zeros(8)),
     "NormalModes": lambda: pendula.Network(64, topology="chain", strength=0.5).normal_modes(np.zeros(64)),
     "DCSquid": lambda: pendula.DCSquid(10e-6, 30.0, 1e-12, 100e-12),
+    "RFSquid": lambda: pendula.RFSquid(1e-6, 500e-12),
     "SwitchingDistribution": lambda: pendula.switching_distribution(
         pendula.Junction(10e-6, 30.0, 1e-12, temperature=4.2), 1.0),
     "SphericalOrbit": lambda: pendula.spherical_orbit(0.8, 0.1, 0.9),

@@ -196,7 +196,7 @@ API_GROUPS = [
                                        "ShapiroTongue"]),
     ("The Josephson junction", ["Junction", "SwitchingCurrents"]),
     ("The quantum pendulum", ["Transmon", "mathieu_a", "mathieu_b", "mathieu_exponent", "mathieu_ce", "mathieu_se"]),
-    ("Circuits and chains", ["Network", "NetworkEquilibrium", "NormalModes", "DCSquid"]),
+    ("Circuits and chains", ["Network", "NetworkEquilibrium", "NormalModes", "DCSquid", "RFSquid"]),
     ("The spherical and the double pendulum", ["spherical_orbit", "SphericalOrbit", "SphericalPath",
                                                "double_pendulum_modes", "DoublePendulumModes", "flip_forbidden",
                                                "DoublePendulum", "FlipMap", "LyapunovSpectrum",

@@ -68,6 +68,7 @@ from .quantum import Transmon, mathieu_a, mathieu_b, mathieu_ce, mathieu_exponen
 # networks of pendula: coupled phases, chains, arrays of junctions
 from .systems.network import Network, NetworkEquilibrium, NormalModes  # noqa: E402
 from .squid import DCSquid  # noqa: E402
+from .rf_squid import RFSquid  # noqa: E402
 
 # the junction in the laboratory: escape and switching at any ramp rate, rf as the source states it
 from .escape import (SwitchingDistribution, crossover_temperature, escape_rate, quantum_rate,  # noqa: E402
@@ -99,7 +100,7 @@ __all__ += ["Pendulum", "Swing"]
 # the quantum pendulum
 __all__ += ["mathieu_a", "mathieu_b", "mathieu_exponent", "mathieu_ce", "mathieu_se", "Transmon"]
 # networks of pendula
-__all__ += ["Network", "NetworkEquilibrium", "NormalModes", "DCSquid"]
+__all__ += ["Network", "NetworkEquilibrium", "NormalModes", "DCSquid", "RFSquid"]
 # the spherical pendulum exactly; the double pendulum's exact parts (normal modes, the forbidden flip region)
 from .systems.spherical import SphericalOrbit, SphericalPath, spherical_orbit  # noqa: E402
 from .systems.double import DoublePendulumModes, double_pendulum_modes, flip_forbidden  # noqa: E402

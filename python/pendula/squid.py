@@ -21,12 +21,22 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
+
+from typing import TYPE_CHECKING, Literal
 
 from . import _checks
+from ._optional import require
 from .junction import FLUX_QUANTUM, Junction
+from .squid_voltage import mean_velocity, noisy_mean_velocity, squid_network, wrap
 from .systems.network import Network
 
+if TYPE_CHECKING:   # xarray is optional: named in annotations only
+    import xarray
+
 __all__ = ["DCSquid", "squid_critical_current"]
+
+_TWO_PI = 2.0 * math.pi
 
 
 def _network(beta_l: float, flux: float, bias: float = 0.0, damping: float = 0.0) -> Network:
@@ -169,6 +179,9 @@ class DCSquid:
         The capacitance of each junction (F), > 0.
     inductance : float
         The loop's inductance L (H), > 0 (a negative inductance is refused).
+    temperature : float, optional
+        T (K), >= 0: the Johnson noise of each shunt in the dynamic curves
+        (default 0).
 
     Raises
     ------
@@ -189,8 +202,12 @@ class DCSquid:
     2.0
     """
 
-    def __init__(self, critical_current: float, resistance: float, capacitance: float, inductance: float) -> None:
-        self.junction = Junction(critical_current, resistance, capacitance)
+    def __init__(self, critical_current: float, resistance: float, capacitance: float, inductance: float,
+                 temperature: float = 0.0) -> None:
+        self.junction = Junction(critical_current, resistance, capacitance, temperature)
+        if not self.junction.capacitance > 0:
+            raise ValueError("parameter 'capacitance' must be > 0 (the SQUID's junctions are pendula with "
+                             "inertia; a small capacitance gives the overdamped limit)")
         self.inductance = _checks.real(inductance, "inductance", 0.0, lo_open=True)
 
     def __repr__(self) -> str:
@@ -200,6 +217,16 @@ class DCSquid:
     def beta_l(self) -> float:
         """The screening parameter β_L = 2LI₀/Φ₀."""
         return 2 * self.inductance * self.junction.critical_current / FLUX_QUANTUM
+
+    @property
+    def beta_c(self) -> float:
+        """The Stewart-McCumber parameter β_c = 2πI₀R²C/Φ₀ of each junction."""
+        return self.junction.stewart_mccumber
+
+    @property
+    def characteristic_frequency(self) -> float:
+        """ω_c = 2πI₀R/Φ₀ (rad/s), the time unit of the dynamic curves."""
+        return self.junction.characteristic_frequency
 
     def critical_current(self, flux: float) -> float:
         """The static critical current Ic (A) at the applied flux Φ/Φ₀.
@@ -246,3 +273,307 @@ class DCSquid:
         """
         b = _checks.real(bias, "bias") / self.junction.critical_current
         return _network(self.beta_l, _checks.real(flux, "flux"), b, self.junction.damping)
+
+    # ------------------------------------------------------------------ the dynamic curves
+    def _times(self, transient, t_max) -> tuple[float, float]:
+        wc = self.characteristic_frequency
+        tr = 200.0 * max(1.0, self.beta_c) if transient is None else \
+            _checks.real(transient, "transient", 0.0) * wc
+        tm = 1000.0 if t_max is None else _checks.real(t_max, "t_max", 0.0, lo_open=True) * wc
+        return tr, tm
+
+    def _noise(self, dt, paths, seed, threads) -> tuple[float, float, int, int, int]:
+        temp = self.junction.noise
+        if temp == 0:
+            return 0.0, 0.0, 1, 0, 0
+        # the step resolves the velocity's relaxation time β_c (the drift's error is of first order in
+        # dt/β_c) and the loop's oscillation (frequency √((1 + 2K)/β_c), K = 1/(πβ_L))
+        bc, k = self.beta_c, 1 / (math.pi * self.beta_l)
+        h = 0.05 * min(0.4, bc, math.sqrt(bc / (1 + 2 * k))) if dt is None else \
+            _checks.real(dt, "dt", 0.0, lo_open=True) * self.characteristic_frequency
+        return (temp, h, _checks.count(paths, "paths", 2), _checks.count(seed, "seed", 0, 2**63 - 1),
+                _checks.threads(threads))
+
+    def _velocity(self, bias: float, flux: float, phi, v, tr, tm, rtol, noise, rf=(0.0, 0.0)):
+        """⟨s'⟩ (in ω_c), its error, each path's drift (noise) and the final state, at the reduced bias."""
+        net = squid_network(self.beta_l, self.beta_c, flux, bias, *rf)
+        temp, h, paths, seed, threads = noise
+        if temp == 0:
+            vel, err, phi, v = mean_velocity(net, phi, v, tr, tm, rtol)
+            return vel, err, None, wrap(phi), v
+        drift, phi, v = noisy_mean_velocity(net, phi, v, tr, tm, temp, h, paths, seed, threads)
+        return float(drift.mean()), float(drift.std(ddof=1) / math.sqrt(paths)), drift, wrap(phi), v
+
+    def _attrs(self, noise, rtol, tr, tm) -> dict:
+        wc = self.characteristic_frequency
+        a = {"critical_current": self.junction.critical_current, "resistance": self.junction.resistance,
+             "capacitance": self.junction.capacitance, "inductance": self.inductance,
+             "temperature": self.junction.temperature, "beta_l": self.beta_l, "beta_c": self.beta_c,
+             "characteristic_frequency": wc, "transient": tr / wc, "t_max": tm / wc,
+             "constants": "CODATA 2018 (exact): h = 6.62607015e-34 J s, e = 1.602176634e-19 C, "
+                          "k_B = 1.380649e-23 J/K"}
+        if noise[0] > 0:
+            a.update({"method": "baoab", "dt": noise[1] / wc, "paths": noise[2], "seed": noise[3],
+                      "voltage_err": "standard error of the paths' mean"})
+        else:
+            a.update({"method": "dop853", "rtol": rtol,
+                      "voltage_err": "half the difference of the means over the first and second halves of "
+                                     "the whole turns, not below rtol"})
+        return a
+
+    def iv_curve(self, currents: ArrayLike, flux: float = 0.0,
+                 direction: Literal["up", "down", "both"] = "up", *, transient: float | None = None,
+                 t_max: float | None = None, rf_current: float = 0.0, rf_frequency: float = 0.0,
+                 rtol: float = 1e-10, dt: float | None = None, paths: int = 4, seed: int = 0,
+                 threads: int = 0) -> xarray.Dataset:
+        """The SQUID's dynamic I-V curve at the flux Φ/Φ₀: the dc voltage at each bias current.
+
+        The bias is ramped through ``currents`` (each current starts from the
+        state the previous one ended in), so a hysteretic SQUID (β_c > 1)
+        shows its two branches with ``direction='both'``.  The junctions
+        obey the RCSJ equations (Tesche and Clarke 1977, section 2), run in
+        the time unit 1/ω_c; the voltage is I₀R⟨s'⟩, s the mean of the two
+        phases.  Without noise ⟨s'⟩ is measured over whole turns of the
+        running state (exact for a periodic one); at a temperature > 0 it is
+        the mean drift of ``paths`` noisy paths (BAOAB, one noise stream
+        per junction keyed by (seed, path, junction): the same numbers on
+        any thread count).  An rf current I_rf cos(2πft) beside the bias
+        gives Shapiro steps, locked at V = (n/m) fΦ₀ (the SQUID also locks
+        at fractions of fΦ₀).
+
+        Parameters
+        ----------
+        currents : array_like
+            Bias currents (A), ascending.
+        flux : float, optional
+            The applied flux Φ/Φ₀ (default 0).
+        direction : {'up', 'down', 'both'}, optional
+            The branches of the ramp (default 'up').
+        transient, t_max : float, optional
+            Seconds skipped and averaged at each current (default 200
+            max(1, β_c) and 1000 times 1/ω_c).
+        rf_current, rf_frequency : float, optional
+            The amplitude (A) and frequency (Hz, >= 0) of an rf current
+            shared by the two junctions like the bias (both or neither).
+        rtol : float, optional
+            The integrator's relative tolerance without noise (default 1e-10).
+        dt : float, optional
+            The step (s) of the noisy paths (default 0.05 min(0.4, β_c,
+            √(β_c/(1 + 2/(πβ_L))))/ω_c: the drift's error is of first order
+            in the step over β_c).
+        paths : int, optional
+            Noisy paths at each current (>= 2; default 4).
+        seed : int, optional
+            The seed of the noise (>= 0).
+        threads : int, optional
+            OpenMP threads for the noisy paths (0: OpenMP's default).
+
+        Returns
+        -------
+        xarray.Dataset
+            Over (``direction``, ``current``): ``voltage`` and ``voltage_err``
+            (V), ``mean_velocity`` (⟨s'⟩/ω_c); coordinates ``current`` (A)
+            and ``bias`` (I/I₀); CF ``units`` attributes; the SQUID's
+            constants and how the error was estimated in the attributes.
+
+        Raises
+        ------
+        ValueError
+            Currents not ascending, a bad time, flux, rtol or dt, naming it.
+
+        See Also
+        --------
+        v_phi_curve, transfer_function, critical_current
+
+        Examples
+        --------
+        >>> sq = DCSquid(10e-6, 10.0, 1.6e-13, 51.7e-12)      # beta_L = 0.5, beta_c = 0.49
+        >>> r = sq.iv_curve([10e-6, 40e-6], flux=0.25)
+        >>> r.voltage.dims, r.voltage.attrs["units"]
+        (('direction', 'current'), 'V')
+        >>> [round(float(v) * 1e6, 3) for v in r.voltage[0]]        # µV: at rest, then running
+        [0.0, 179.365]
+        """
+        xr = require("xarray", "xarray", "DCSquid.iv_curve")
+        cur = _checks.grid_values(currents, "currents")
+        if np.any(np.diff(cur) < 0):
+            raise ValueError("currents must be in ascending order: direction='up' ramps them as given and "
+                             "'down' in reverse; give np.sort(currents)")
+        direction = _checks.choice(direction, "direction", ("up", "down", "both"))
+        flux = _checks.real(flux, "flux")
+        rtol = _checks.real(rtol, "rtol", 0.0, lo_open=True)
+        tr, tm = self._times(transient, t_max)
+        noise = self._noise(dt, paths, seed, threads)
+        i0 = self.junction.critical_current
+        a = _checks.real(rf_current, "rf_current")
+        f = _checks.real(rf_frequency, "rf_frequency", 0.0)
+        if (a != 0) != (f > 0):
+            raise ValueError(f"rf_current ({a!r} A) and rf_frequency ({f!r} Hz): an rf drive needs both, "
+                             "or give neither")
+        rf = (a / i0, _TWO_PI * f / self.characteristic_frequency)
+        dirs = ["up", "down"] if direction == "both" else [direction]
+        vel = np.full((len(dirs), cur.size), np.nan)
+        err = np.full_like(vel, np.nan)
+        phi, v = np.array([math.pi * flux, -math.pi * flux]), np.zeros(2)
+        for d, name in enumerate(dirs):
+            order = range(cur.size) if name == "up" else range(cur.size - 1, -1, -1)
+            for j in order:
+                vel[d, j], err[d, j], _, phi, v = self._velocity(cur[j] / i0, flux, phi, v, tr, tm, rtol, noise,
+                                                                 rf)
+        volt = i0 * self.junction.resistance
+        ds = xr.Dataset(
+            {"voltage": (("direction", "current"), vel * volt, {"long_name": "dc voltage", "units": "V"}),
+             "voltage_err": (("direction", "current"), err * volt,
+                             {"long_name": "error of the dc voltage", "units": "V"}),
+             "mean_velocity": (("direction", "current"), vel,
+                               {"long_name": "mean phase velocity / omega_c", "units": "1"})},
+            coords={"direction": dirs, "current": ("current", cur, {"long_name": "bias current", "units": "A"}),
+                    "bias": ("current", cur / i0, {"long_name": "bias current / I0", "units": "1"})},
+            attrs=self._attrs(noise, rtol, tr, tm) | {"flux": flux, "rf_current": a, "rf_frequency": f})
+        return ds
+
+    def v_phi_curve(self, current: float, fluxes: ArrayLike, *, transient: float | None = None,
+                    t_max: float | None = None, rtol: float = 1e-10, dt: float | None = None, paths: int = 4,
+                    seed: int = 0, threads: int = 0) -> xarray.Dataset:
+        """The SQUID's V-Φ curve: the dc voltage at a fixed bias current over the applied flux.
+
+        The flux is swept through ``fluxes`` in the order given (each flux
+        starts from the state the previous one ended in), as in the
+        laboratory; the voltage is measured as in :meth:`iv_curve`.
+
+        Parameters
+        ----------
+        current : float
+            The bias current (A).
+        fluxes : array_like
+            Φ/Φ₀, swept in this order.
+        transient, t_max, rtol, dt, paths, seed, threads
+            As in :meth:`iv_curve`.
+
+        Returns
+        -------
+        xarray.Dataset
+            Over ``flux`` (units ``Phi0``): ``voltage``, ``voltage_err`` (V)
+            and ``mean_velocity``.
+
+        Raises
+        ------
+        ValueError
+            A bad current, flux, time, rtol or dt, naming it.
+
+        See Also
+        --------
+        iv_curve, transfer_function
+
+        Examples
+        --------
+        >>> sq = DCSquid(10e-6, 10.0, 1.6e-13, 51.7e-12)
+        >>> r = sq.v_phi_curve(20e-6, [0.0, 0.5])
+        >>> bool(r.voltage[0] < r.voltage[1]), r.flux.attrs["units"]
+        (True, 'Phi0')
+        """
+        xr = require("xarray", "xarray", "DCSquid.v_phi_curve")
+        cur = _checks.real(current, "current")
+        fl = _checks.as_float(fluxes, "fluxes").ravel()
+        if not np.all(np.isfinite(fl)):
+            raise ValueError("fluxes must be finite")
+        rtol = _checks.real(rtol, "rtol", 0.0, lo_open=True)
+        tr, tm = self._times(transient, t_max)
+        noise = self._noise(dt, paths, seed, threads)
+        i0 = self.junction.critical_current
+        vel, err = np.full(fl.size, np.nan), np.full(fl.size, np.nan)
+        phi = np.array([math.pi * fl[0], -math.pi * fl[0]]) if fl.size else np.zeros(2)
+        v = np.zeros(2)
+        for j, f in enumerate(fl):
+            vel[j], err[j], _, phi, v = self._velocity(cur / i0, float(f), phi, v, tr, tm, rtol, noise)
+        volt = i0 * self.junction.resistance
+        return xr.Dataset(
+            {"voltage": ("flux", vel * volt, {"long_name": "dc voltage", "units": "V"}),
+             "voltage_err": ("flux", err * volt, {"long_name": "error of the dc voltage", "units": "V"}),
+             "mean_velocity": ("flux", vel, {"long_name": "mean phase velocity / omega_c", "units": "1"})},
+            coords={"flux": ("flux", fl, {"long_name": "applied flux / flux quantum", "units": "Phi0"})},
+            attrs=self._attrs(noise, rtol, tr, tm) | {"current": cur})
+
+    def transfer_function(self, current: float, fluxes: ArrayLike, *, step: float | None = None,
+                          transient: float | None = None, t_max: float | None = None, rtol: float = 1e-10,
+                          dt: float | None = None, paths: int = 4, seed: int = 0,
+                          threads: int = 0) -> xarray.Dataset:
+        """The transfer function dV/dΦ at a fixed bias current: the SQUID's gain as a flux sensor.
+
+        At each flux the voltage is measured at Φ ± h and Φ ± 2h (h =
+        ``step``), swept in that order from the rest state.  Without noise
+        dV/dΦ is the central difference extrapolated (Richardson) to h → 0,
+        (4 D(h) − D(2h))/3, its error estimate abs(D(h) − D(2h))/3 plus the
+        voltages' errors over 2h.  With noise the paths at Φ − h and Φ + h
+        draw the same noise (the same seed: common random numbers), and the
+        error is the standard error of the paths' differences.
+
+        Parameters
+        ----------
+        current : float
+            The bias current (A).
+        fluxes : array_like
+            Φ/Φ₀.
+        step : float, optional
+            h in units of Φ₀ (default 1e-3, or 0.02 with noise).
+        transient, t_max, rtol, dt, paths, seed, threads
+            As in :meth:`iv_curve`.
+
+        Returns
+        -------
+        xarray.Dataset
+            Over ``flux``: ``transfer`` and ``transfer_err`` (V/Φ₀, units
+            ``V/Phi0``) and ``voltage`` (V) at the flux itself, the mean of
+            the two inner points.
+
+        Raises
+        ------
+        ValueError
+            A bad current, flux, step, time, rtol or dt, naming it.
+
+        See Also
+        --------
+        v_phi_curve
+
+        Examples
+        --------
+        >>> sq = DCSquid(10e-6, 10.0, 1.6e-13, 51.7e-12)
+        >>> r = sq.transfer_function(20e-6, [0.25])
+        >>> bool(r.transfer[0] > 0), r.transfer.attrs["units"]
+        (True, 'V/Phi0')
+        """
+        xr = require("xarray", "xarray", "DCSquid.transfer_function")
+        cur = _checks.real(current, "current")
+        fl = _checks.as_float(fluxes, "fluxes").ravel()
+        if not np.all(np.isfinite(fl)):
+            raise ValueError("fluxes must be finite")
+        rtol = _checks.real(rtol, "rtol", 0.0, lo_open=True)
+        tr, tm = self._times(transient, t_max)
+        noise = self._noise(dt, paths, seed, threads)
+        noisy = noise[0] > 0
+        h = (0.02 if noisy else 1e-3) if step is None else _checks.real(step, "step", 0.0, lo_open=True)
+        i0 = self.junction.critical_current
+        volt = i0 * self.junction.resistance
+        tf, tf_err, vmid = np.full(fl.size, np.nan), np.full(fl.size, np.nan), np.full(fl.size, np.nan)
+        for j, f in enumerate(fl):
+            f = float(f)
+            phi, v = np.array([math.pi * f, -math.pi * f]), np.zeros(2)
+            res = {}
+            for m in ((-1, 1) if noisy else (-2, -1, 1, 2)):
+                res[m] = self._velocity(cur / i0, f + m * h, phi, v, tr, tm, rtol, noise)
+                phi, v = res[m][3], res[m][4]
+            d1 = (res[1][0] - res[-1][0]) / (2 * h)
+            vmid[j] = 0.5 * (res[1][0] + res[-1][0])
+            if noisy:
+                diff = (res[1][2] - res[-1][2]) / (2 * h)
+                tf[j], tf_err[j] = d1, float(diff.std(ddof=1) / math.sqrt(diff.size))
+            else:
+                d2 = (res[2][0] - res[-2][0]) / (4 * h)
+                tf[j] = (4 * d1 - d2) / 3
+                tf_err[j] = abs(d1 - d2) / 3 + (res[1][1] + res[-1][1]) / (2 * h)
+        return xr.Dataset(
+            {"transfer": ("flux", tf * volt, {"long_name": "transfer function dV/dPhi", "units": "V/Phi0"}),
+             "transfer_err": ("flux", tf_err * volt, {"long_name": "error of dV/dPhi", "units": "V/Phi0"}),
+             "voltage": ("flux", vmid * volt, {"long_name": "dc voltage", "units": "V"})},
+            coords={"flux": ("flux", fl, {"long_name": "applied flux / flux quantum", "units": "Phi0"})},
+            attrs=self._attrs(noise, rtol, tr, tm) | {"current": cur, "step": h})
