@@ -90,7 +90,8 @@ def test_no_import_circle():
                                  "pendula.quantum", "pendula.systems.network",
                                  "pendula.systems.spherical", "pendula.systems.double",
                                  # the junction's layer (with junction.py): escape, the RSJ junction, rf
-                                 "pendula.escape", "pendula.overdamped", "pendula.rf"])
+                                 "pendula.escape", "pendula.overdamped", "pendula.rf",
+                                 "pendula.junction_lab"])
 def test_lower_layers_do_not_import_the_user_facing_ones(low):
     top = {"pendula", "pendula.motion", "pendula.run", "pendula.cli", "pendula.plot", "pendula.studies", "pendula.studies.accuracy", "pendula.studies.bench", "pendula.studies.workprecision"}
     # the classroom pendulum and the animation writer sit beside pendula.motion and pendula.plot
