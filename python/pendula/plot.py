@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import json
 import math
+from fractions import Fraction
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -549,8 +550,8 @@ def _label_steps(ax, ds, dirs, x="torque", y="mean_velocity", xs=1.0, ys=1.0) ->
                 continue
             done.add(k)
             mid = where[where.size // 2]
-            ax.annotate(f"n = {k:g}", (tau[mid], mv[mid]), xytext=(0, 6), textcoords="offset points",
-                        ha="center", fontsize=8)
+            ax.annotate(f"n = {Fraction(float(k)).limit_denominator(8)}", (tau[mid], mv[mid]), xytext=(0, 6),
+                        textcoords="offset points", ha="center", fontsize=8)
 
 
 def steps(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None, *, max_order: int = 8
