@@ -433,6 +433,15 @@ contains
   !> over the stroboscopic samples of the window / the window): a quasi-periodic
   !> orbit's discrepancy is bounded, and the window's mean is within that
   !> spread / window of its rotation number.
+  !> Locked means found: a window that ends unlocked but whose mean is within
+  !> its error bar of a step p Omega / q (q <= 8) with err <= Omega / (2 qmax^2)
+  !> (the window cannot tell the orbit from a locked one: a slow convergence,
+  !> next to a period doubling or a saddle-node, not finished) is followed by
+  !> a window twice as long from where it ended, the locking detection going
+  !> on, until the map locks, the error bar falls below the distance to the
+  !> nearest step (decided off the steps), or the windows reach 63 times the
+  !> first (ext_windows; then the last window's mean and error bar, status
+  !> decided).  vm and err are the last window's.
   subroutine mean_velocity_driven(p, rtol, atol, t_tr, t_avg, th0, v0, vm, err, step, th, v, st, cancel, uf)
     real(dp), intent(in) :: p(np_params), rtol, atol, t_tr, t_avg, th0, v0
     real(dp), intent(out) :: vm, err, step, th, v
@@ -442,9 +451,11 @@ contains
     type(pendulum_model), intent(in), optional :: uf
     integer, parameter :: qmax = 8, nkeep = 8192
     real(dp), parameter :: lock_tol = 1.0e-7_dp, max_periods = 1.0e9_dp
+    !> the longest the windows may run, in first windows (1 + 2 + ... + 32)
+    integer(int64), parameter :: ext_windows = 63
     real(dp) :: tp, ts(1), ths(1), vs(1), sth(0:qmax), sv(0:qmax), dprev(qmax), rprev(qmax), d, dth, r, x, &
                 tha, thh, rs(0:nkeep), lo, hi
-    integer(int64) :: sw(0:qmax), w, wa, wh, k, n_tr, n_avg, stride, turns
+    integer(int64) :: sw(0:qmax), w, wa, wh, k, n_tr, n_avg, stride, turns, n0, n_end, n_lim
     integer :: q, j, nr
     vm = nan_dp; err = nan_dp; step = nan_dp
     th = th0; v = v0; st = ps_decided
@@ -464,7 +475,10 @@ contains
       rs(0) = 0.0_dp
     end if
     ts(1) = tp
-    do k = 1, n_tr + n_avg
+    n0 = n_tr; n_end = n_tr + n_avg; n_lim = min(n_tr + ext_windows * n_avg, int(max_periods, int64))
+    k = 0
+    do
+      k = k + 1
       if (cancel /= 0) then
         st = ps_cancelled; return
       end if
@@ -498,25 +512,48 @@ contains
       end do
       j = int(mod(k, int(qmax + 1, int64)))
       sth(j) = th; sv(j) = v; sw(j) = w
-      if (k == n_tr) then
+      if (k == n0) then
         wa = w; tha = th; rs(0) = 0.0_dp
       end if
-      if (k == n_tr + n_avg / 2) then
+      if (k == n0 + n_avg / 2) then
         wh = w; thh = th
       end if
-      if (k > n_tr .and. mod(k - n_tr, stride) == 0) then
-        nr = int((k - n_tr) / stride)
+      if (k > n0 .and. mod(k - n0, stride) == 0) then
+        nr = int((k - n0) / stride)
         rs(nr) = two_pi * real(w - wa, dp) + (th - tha)
       end if
+      if (k < n_end) cycle
+      ! the window's mean and error bar
+      vm = (two_pi * real(w - wa, dp) + (th - tha)) / (real(n_avg, dp) * tp)
+      err = abs(vm - (two_pi * real(w - wh, dp) + (th - thh)) / (real(n_avg / 2, dp) * tp))
+      lo = 0.0_dp; hi = 0.0_dp
+      do j = 1, nr
+        x = rs(j) - vm * real(j, dp) * real(stride, dp) * tp
+        lo = min(lo, x); hi = max(hi, x)
+      end do
+      err = max(err, (hi - lo) / (real(n_avg, dp) * tp))
+      ! not locked yet: a longer window from here while the mean may be on a step
+      if (.not. (near_step(vm, err, p(5)) .and. n_end + 2_int64 * n_avg <= n_lim)) exit
+      n0 = k; n_avg = 2_int64 * n_avg; n_end = k + n_avg
+      stride = max(1_int64, (n_avg + nkeep - 1) / nkeep)
+      wa = w; tha = th; rs(0) = 0.0_dp; nr = 0
     end do
-    vm = (two_pi * real(w - wa, dp) + (th - tha)) / (real(n_avg, dp) * tp)
-    err = abs(vm - (two_pi * real(w - wh, dp) + (th - thh)) / (real(n_avg / 2, dp) * tp))
-    lo = 0.0_dp; hi = 0.0_dp
-    do j = 1, nr
-      x = rs(j) - vm * real(j, dp) * real(stride, dp) * tp
-      lo = min(lo, x); hi = max(hi, x)
-    end do
-    err = max(err, (hi - lo) / (real(n_avg, dp) * tp))
+  contains
+    !> Is the window's mean within its error bar of a step p Omega / q (q <= qmax), with an error bar
+    !> that resolves the steps of q <= qmax (err <= Omega / (2 qmax^2))?
+    pure logical function near_step(vm, err, omega)
+      real(dp), intent(in) :: vm, err, omega
+      real(dp) :: y
+      integer :: q
+      near_step = .false.
+      if (.not. (err <= omega / (2.0_dp * qmax * qmax))) return
+      do q = 1, qmax
+        y = vm * real(q, dp) / omega
+        if (abs(y - anint(y)) * omega / real(q, dp) <= err) then
+          near_step = .true.; return
+        end if
+      end do
+    end function near_step
   end subroutine mean_velocity_driven
 
   !> <v> of an orbit with thermal noise at temperature temp (stream s): BAOAB

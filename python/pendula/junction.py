@@ -395,7 +395,8 @@ class Junction:
                              "given and 'down' in reverse, so currents in another order would be a branch "
                              f"mislabelled {direction!r}; give np.sort(currents)")
         if self.capacitance == 0:
-            return self._rsj_iv_curve(currents, rf_current, rf_frequency, direction, t_max)
+            from .junction_lab import rsj_iv_curve
+            return rsj_iv_curve(self, currents, rf_current, rf_frequency, direction, t_max)
         wp = self.plasma_frequency
         tr = 200.0 if transient is None else _checks.real(transient, "parameter 'transient'", 0.0) * wp
         tm = 400.0 if t_max is None else _checks.real(t_max, "parameter 't_max'", 0.0, lo_open=True) * wp
@@ -420,6 +421,126 @@ class Junction:
                         "constants": "CODATA 2018 (exact): h = 6.62607015e-34 J s, e = 1.602176634e-19 C, "
                                      "k_B = 1.380649e-23 J/K"})
         return r
+
+    def steps(self, currents: ArrayLike, rf_current: float, rf_frequency: float,
+              direction: Literal["up", "down"] = "up", *, transient: float | None = None,
+              t_max: float | None = None) -> xarray.Dataset:
+        """Each Shapiro step of an I-V branch: its voltage, edges and width, in volts and amperes.
+
+        Runs :meth:`iv_curve` on the branch and reads its locked biases
+        (``pendula.junction_lab``): a run of neighbouring biases locked on
+        the same step p / q is a plateau at V = (p / q) f h / 2e; its
+        ``lower`` and ``upper`` are its outermost locked biases, each edge
+        known to the grid's resolution (the true edge lies within
+        ``lower_gap`` below and ``upper_gap`` above them).  A step met twice
+        (hysteresis, or chaos between) gives two plateaus.
+
+        Parameters
+        ----------
+        currents : array_like
+            Bias currents, A, ascending (as :meth:`iv_curve`).
+        rf_current, rf_frequency : float
+            The rf drive (A, Hz), both > 0.
+        direction : {'up', 'down'}
+            The branch.
+        transient, t_max : float, optional
+            As :meth:`iv_curve` (seconds).
+
+        Returns
+        -------
+        xarray.Dataset
+            Over ``plateau``: ``order``, ``voltage`` (V), ``lower``,
+            ``upper``, ``width``, ``lower_gap``, ``upper_gap`` (A) and
+            ``points``; CF units.
+
+        Raises
+        ------
+        ValueError
+            Bad currents, an rf current or frequency that is not > 0, or an
+            unknown `direction`, naming the parameter.
+
+        See Also
+        --------
+        shapiro_steps : the overdamped junction's edges, bisected to 1e-11 I_c.
+
+        Examples
+        --------
+        >>> import numpy as np, pendula
+        >>> j = pendula.Junction(1e-6, 18.0, 1e-12)
+        >>> f = j.plasma_frequency / (2 * 3.141592653589793)
+        >>> s = j.steps(np.linspace(0.0, 1.6e-6, 17), rf_current=1e-6, rf_frequency=f)
+        >>> s.order.values.tolist()[:2]
+        [0.0, 1.0]
+        """
+        from .junction_lab import plateaus
+        _checks.real(rf_current, "parameter 'rf_current'", 0.0, lo_open=True)
+        f = _checks.real(rf_frequency, "parameter 'rf_frequency'", 0.0, lo_open=True)
+        if not isinstance(direction, str) or direction not in ("up", "down"):
+            raise ValueError(f"parameter 'direction' must be 'up' or 'down'; got {direction!r}")
+        r = self.iv_curve(currents, rf_current, rf_frequency, direction, transient=transient, t_max=t_max)
+        b = r.sel(direction=direction)
+        attrs = {k: r.attrs[k] for k in ("critical_current", "resistance", "capacitance", "temperature",
+                                         "rf_current", "rf_frequency") if k in r.attrs}
+        attrs["direction"] = direction
+        return plateaus(r.current.values, b.step.values, b.status.values, f * FLUX_QUANTUM, attrs)
+
+    def sweep(self, over: dict[str, ArrayLike], *, bias: float = 0.0, rf_current: float = 0.0,
+              rf_frequency: float = 0.0, impedance: float | None = None, transient: float | None = None,
+              t_max: float | None = None, threads: int = 0, seed: int = 0) -> xarray.Dataset:
+        """The dc voltage over a grid of laboratory quantities, on threads (:func:`pendula.sweep`).
+
+        Axes: ``bias`` (A), ``rf_current`` (A) or ``rf_power`` (dBm at
+        ``impedance``, :func:`pendula.rf_current`), ``rf_frequency`` (Hz),
+        ``temperature`` (K); one to three of the first four, and temperature
+        beside them.  Each grid point starts from rest (theta = 0, v = 0): a
+        step map, not a ramp (hysteresis: :meth:`iv_curve`).  Locked points
+        report their step exactly, as in :meth:`iv_curve`.
+
+        Parameters
+        ----------
+        over : dict
+            {axis: values}.
+        bias, rf_current, rf_frequency : float
+            The values of the axes not swept (A, A, Hz).
+        impedance : float, optional
+            Ohm: the impedance a swept ``rf_power`` is delivered into.
+        transient, t_max : float, optional
+            Seconds skipped and averaged (default 200 and 400 inverse plasma
+            frequencies).
+        threads : int
+            OpenMP threads (0: all cores).
+        seed : int
+            The noise's seed (at a temperature > 0).
+
+        Returns
+        -------
+        xarray.Dataset
+            ``voltage`` and ``voltage_err`` (V), ``step``, ``status`` and the
+            reduced ``mean_velocity`` over the axes (coordinates in their
+            units, the pendulum's reduced fields beside them); CF units.
+
+        Raises
+        ------
+        ValueError
+            An unknown axis, bad values, ``rf_power`` without ``impedance``,
+            a negative temperature, or a drive without a frequency, naming the
+            parameter.
+
+        Examples
+        --------
+        >>> import numpy as np, pendula
+        >>> j = pendula.Junction(1e-6, 18.0, 1e-12)
+        >>> f = j.plasma_frequency / (2 * 3.141592653589793)
+        >>> m = j.sweep({"bias": [0.3e-6, 1.1e-6], "rf_current": [1e-6]}, rf_frequency=f)
+        >>> m.step.values.ravel().tolist(), m.voltage.attrs["units"]
+        ([0.0, 1.0], 'V')
+        """
+        from .junction_lab import junction_sweep
+        wp = self.plasma_frequency
+        tr = 200.0 if transient is None else _checks.real(transient, "parameter 'transient'", 0.0) * wp
+        tm = 400.0 if t_max is None else _checks.real(t_max, "parameter 't_max'", 0.0, lo_open=True) * wp
+        return junction_sweep(self, over, bias, rf_current, rf_frequency, impedance, tr, tm, threads,
+                              _checks.count(seed, "parameter 'seed'", 0, 2 ** 53), BOLTZMANN / self.josephson_energy)
 
     def escape_rate(self, bias: ArrayLike, regime: Literal["moderate", "underdamped"] = "moderate") -> np.ndarray:
         """The thermal escape rate out of the tilted well, 1 / s.
@@ -474,7 +595,8 @@ class Junction:
         if regime not in ("moderate", "underdamped"):
             raise ValueError(f"parameter 'regime' must be 'moderate' or 'underdamped', got {regime!r}")
         i = np.clip(_checks.as_float(bias, "bias") / self.critical_current, 0.0, 1.0)
-        return self.plasma_frequency * _escape_rate(i, self.damping, self.noise, regime)
+        from .junction_lab import escape_rate_reduced
+        return self.plasma_frequency * escape_rate_reduced(i, self.damping, self.noise, regime)
 
     def switching_density(self, currents: ArrayLike, ramp_rate: float,
                           regime: Literal["moderate", "underdamped"] = "moderate") -> np.ndarray:
@@ -706,72 +828,3 @@ class Junction:
         ic = self.critical_current
         return {"order": n.astype(int), "voltage": n * f * FLUX_QUANTUM, "lower": lo * ic, "upper": hi * ic,
                 "width": np.where(np.isfinite(lo), (hi - lo) * ic, 0.0)}
-
-    def _rsj_iv_curve(self, currents, rf_current, rf_frequency, direction, t_max):
-        """Junction.iv_curve at C = 0 (pendula.overdamped): the same dataset."""
-        from ._optional import require
-        from .overdamped import dc_velocity, mean_velocity
-        xr = require("xarray", "sweep", "pendula.Junction.iv_curve")
-        if self.temperature > 0:
-            raise NotImplementedError("field 'temperature' must be 0 at capacitance 0: thermal noise in the "
-                                      "overdamped junction (the Ambegaokar-Halperin phase-diffusion I-V) is not "
-                                      "implemented")
-        wc = self.characteristic_frequency
-        a = _checks.real(rf_current, "parameter 'rf_current'")
-        f = _checks.real(rf_frequency, "parameter 'rf_frequency'", 0.0)
-        if f > 0 and a == 0:
-            raise ValueError(f"parameter 'rf_current' is 0 but rf_frequency = {f!r} Hz: an rf drive needs a "
-                             "current (give rf_current, or no rf_frequency)")
-        if a != 0 and not f > 0:
-            raise ValueError(f"parameter 'rf_frequency' must be > 0 Hz with rf_current = {a!r} A (a current "
-                             "without a frequency is a dc bias: add it to the bias)")
-        i = currents / self.critical_current
-        if a == 0:
-            vm, err = dc_velocity(currents, self.critical_current), np.zeros_like(i)
-            step, st = np.full_like(i, np.nan), np.zeros(i.shape, dtype=np.int32)
-        else:
-            tm = 2000.0 / f if t_max is None else _checks.real(t_max, "parameter 't_max'", 0.0, lo_open=True)
-            vm, err, step, st = mean_velocity(i, a / self.critical_current, 2.0 * math.pi * f / wc,
-                                              max(1, round(tm * f)))
-        dirs = ["up", "down"] if direction == "both" else [direction]
-        volt = self.critical_current * self.resistance
-        dims = ("direction", "current")
-
-        def rows(x):
-            return np.stack([x] * len(dirs))
-        r = xr.Dataset(
-            {"voltage": (dims, rows(vm * volt), {"long_name": "dc voltage I_c R <phi'> / omega_c", "units": "V"}),
-             "voltage_err": (dims, rows(err * volt), {"long_name": "error bound of the dc voltage", "units": "V"}),
-             "step": (dims, rows(step), {"long_name": "Shapiro step n of a locked bias", "units": "1"}),
-             "status": (dims, rows(st), {"long_name": "0 decided, 6 locked (exactly n f Phi_0)"}),
-             "mean_velocity": (dims, rows(vm), {"long_name": "mean phase velocity <phi'> / omega_c (reduced "
-                                                             "voltage of the RSJ junction)", "units": "1"}),
-             "mean_velocity_err": (dims, rows(err), {"units": "1"})},
-            coords={"direction": ("direction", dirs, {"long_name": "branch of the ramp (the same curve: no "
-                                                                    "hysteresis at C = 0)"}),
-                    "current": ("current", currents, {"long_name": "bias current", "units": "A"}),
-                    "torque": ("current", i, {"long_name": "bias current / critical current", "units": "1"})},
-            attrs={"critical_current": self.critical_current, "resistance": self.resistance,
-                   "capacitance": 0.0, "temperature": self.temperature, "rf_current": a, "rf_frequency": f,
-                   "characteristic_frequency": wc, "model": "RSJ (overdamped): phi' = i + a cos(Omega t) - sin phi",
-                   "constants": "CODATA 2018 (exact): h = 6.62607015e-34 J s, e = 1.602176634e-19 C, "
-                                "k_B = 1.380649e-23 J/K"})
-        return r
-
-def _escape_rate(i, beta, temp, regime):
-    """The thermal escape rate of the tilted washboard (eps = 1, reduced
-    units) at bias i in [0, 1]: Kramers' moderate-damping prefactor, or
-    Buttiker-Harris-Landauer's underdamped one (Junction.escape_rate)."""
-    i = np.asarray(i, dtype=float)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        s = np.sqrt(1.0 - i * i)
-        wa = np.sqrt(s)
-        du = 2.0 * (s - i * np.arccos(i))
-        if regime == "moderate":
-            alpha = beta / (2.0 * wa)
-            pref = np.sqrt(1.0 + alpha * alpha) - alpha
-        else:
-            q = wa / beta
-            pref = 4.0 / (np.sqrt(1.0 + q * temp / (1.8 * du)) + 1.0) ** 2
-        g = wa / (2.0 * math.pi) * pref * np.exp(-du / temp)
-    return np.where(i >= 1.0, np.inf, g)

@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import json
 import math
+from fractions import Fraction
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -598,15 +599,17 @@ def basins(am: AttractorMap | xarray.Dataset, ax: matplotlib.axes.Axes | None = 
 
 
 def iv(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None) -> matplotlib.axes.Axes:
-    """An I-V curve: mean velocity against torque, up and down the ramp, the steps labelled.
+    """An I-V curve: mean velocity against torque, or volts against amperes, up and down, the steps labelled.
 
     Parameters
     ----------
     ds : xarray.Dataset
-        What :func:`pendula.iv_curve` returns: ``mean_velocity`` on
-        ``(direction, torque)``.  When it has a variable ``step`` (the Shapiro
-        step number where the junction is locked, NaN elsewhere), each step is
-        labelled n = ... at its plateau.
+        What :func:`pendula.iv_curve` returns (``mean_velocity`` on
+        ``(direction, torque)``, drawn in reduced units) or
+        :meth:`pendula.Junction.iv_curve` (``voltage`` on ``(direction,
+        current)``, drawn in µV against µA).  When it has a variable
+        ``step`` (the Shapiro step number where the junction is locked, NaN
+        elsewhere), each step is labelled n = ... at its plateau.
     ax : matplotlib.axes.Axes, optional
         Where to draw (default: a new figure).
 
@@ -617,7 +620,8 @@ def iv(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None) -> matplotlib
     Raises
     ------
     ValueError
-        When `ds` has no ``mean_velocity`` over ``torque``.
+        When `ds` has neither ``mean_velocity`` over ``torque`` nor
+        ``voltage`` over ``current``.
 
     Examples
     --------
@@ -626,43 +630,131 @@ def iv(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None) -> matplotlib
     >>> ax = pendula.plot.iv(r)
     >>> [t.get_text() for t in ax.get_legend().get_texts()]
     ['torque up', 'torque down']
+
+    A junction's curve in the laboratory's units:
+
+    >>> j = pendula.Junction(1e-6, 18.0, 1e-12)
+    >>> ax = pendula.plot.iv(j.iv_curve(np.linspace(0, 2e-6, 5)))
+    >>> ax.get_xlabel(), ax.get_ylabel()
+    ('bias current I (µA)', 'dc voltage V (µV)')
     """
     _dataset(ds, "ds")
-    if "mean_velocity" not in ds or "torque" not in ds.mean_velocity.dims:
-        raise ValueError("iv needs an I-V curve: 'mean_velocity' over 'torque' (pendula.iv_curve)")
+    if "voltage" in ds and "current" in ds.voltage.dims:
+        y, x, ys, xs = "voltage", "current", 1e6, 1e6
+        xlabel, ylabel, what = "bias current I (µA)", "dc voltage V (µV)", "current"
+    elif "mean_velocity" in ds and "torque" in ds.mean_velocity.dims:
+        y, x, ys, xs = "mean_velocity", "torque", 1.0, 1.0
+        xlabel, ylabel, what = "torque tau (bias current)", "<v> (voltage)", "torque"
+    else:
+        raise ValueError("iv needs an I-V curve: 'mean_velocity' over 'torque' (pendula.iv_curve) or 'voltage' "
+                         "over 'current' (pendula.Junction.iv_curve)")
     ax = _ax(ax)
-    dirs = list(ds["direction"].values) if "direction" in ds.mean_velocity.dims else [None]
-    style = {"up": ("C0", "-", ">", "torque up"), "down": ("C1", "--", "<", "torque down")}
-    tau = ds["torque"].values
+    dirs = list(ds["direction"].values) if "direction" in ds[y].dims else [None]
+    style = {"up": ("C0", "-", ">", f"{what} up"), "down": ("C1", "--", "<", f"{what} down")}
+    xv = ds[x].values * xs
     for d in dirs:
-        mv = ds.mean_velocity if d is None else ds.mean_velocity.sel(direction=d)
+        mv = ds[y] if d is None else ds[y].sel(direction=d)
         c, ls, mk, lab = style.get(str(d), ("C0", "-", ".", "mean velocity"))
-        ax.plot(tau, mv.values, color=c, ls=ls, marker=mk, ms=3, lw=1.0, label=lab)
+        ax.plot(xv, mv.values * ys, color=c, ls=ls, marker=mk, ms=3, lw=1.0, label=lab)
     if "step" in ds:
-        _label_steps(ax, ds, dirs)
-    ax.set_xlabel("torque tau (bias current)")
-    ax.set_ylabel("<v> (voltage)")
+        _label_steps(ax, ds, dirs, x, y, xs, ys)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8, loc="upper left")
     return ax
 
 
-def _label_steps(ax, ds, dirs) -> None:
+def _label_steps(ax, ds, dirs, x="torque", y="mean_velocity", xs=1.0, ys=1.0) -> None:
     """n = k at the middle of each plateau of the variable 'step' (one label per step and height)."""
     done = set()
-    tau = ds["torque"].values
+    tau = ds[x].values * xs
     for d in dirs:
         st = ds.step if d is None or "direction" not in ds.step.dims else ds.step.sel(direction=d)
-        mv = ds.mean_velocity if d is None else ds.mean_velocity.sel(direction=d)
-        st, mv = st.values, mv.values
+        mv = ds[y] if d is None else ds[y].sel(direction=d)
+        st, mv = st.values, mv.values * ys
         for k in np.unique(st[np.isfinite(st)]):
             where = np.flatnonzero(st == k)
             if k in done or where.size == 0:
                 continue
             done.add(k)
             mid = where[where.size // 2]
-            ax.annotate(f"n = {k:g}", (tau[mid], mv[mid]), xytext=(0, 6), textcoords="offset points",
-                        ha="center", fontsize=8)
+            ax.annotate(f"n = {Fraction(float(k)).limit_denominator(8)}", (tau[mid], mv[mid]), xytext=(0, 6),
+                        textcoords="offset points", ha="center", fontsize=8)
+
+
+def steps(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None, *, max_order: int = 8
+          ) -> matplotlib.axes.Axes:
+    """A step map: the Shapiro step over (dc bias, rf drive), each plateau coloured, its edges drawn.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        What :meth:`pendula.Junction.sweep` returns over ``bias`` and one of
+        ``rf_current`` (drawn in µA) or ``rf_power`` (dBm): ``step`` (NaN
+        where not locked) and ``status``.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw (default: a new figure).
+    max_order : int
+        Steps n = 0 ... max_order get a colour each (higher and fractional
+        steps one more, unlocked points white).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Raises
+    ------
+    ValueError
+        When `ds` is not a sweep over ``bias`` and ``rf_current`` or
+        ``rf_power`` with a ``step``.
+
+    Examples
+    --------
+    >>> import numpy as np, pendula, pendula.plot
+    >>> j = pendula.Junction(1e-6, 18.0, 1e-12)
+    >>> f = j.plasma_frequency / (2 * 3.141592653589793)
+    >>> m = j.sweep({"bias": np.linspace(0, 1.5e-6, 4), "rf_current": [0.5e-6, 1e-6]}, rf_frequency=f)
+    >>> ax = pendula.plot.steps(m)
+    >>> ax.get_xlabel()
+    'dc bias current I (µA)'
+    """
+    _dataset(ds, "ds")
+    max_order = _checks.count(max_order, "max_order", 0, 100)
+    rf = "rf_current" if "rf_current" in ds.dims else "rf_power" if "rf_power" in ds.dims else None
+    if "step" not in ds or "bias" not in ds.dims or rf is None:
+        raise ValueError("steps needs a step map: 'step' over 'bias' and 'rf_current' or 'rf_power' "
+                         "(pendula.Junction.sweep)")
+    plt = _plt()
+    from matplotlib.colors import BoundaryNorm, ListedColormap
+    ax = _ax(ax)
+    st = ds.step.transpose(rf, "bias").values
+    locked = np.isfinite(st)
+    whole = locked & (st == np.round(st)) & (st >= 0) & (st <= max_order)
+    code = np.full(st.shape, np.nan)
+    code[whole] = st[whole]
+    code[locked & ~whole] = max_order + 1
+    colours = [plt.get_cmap("tab10")(k % 10) for k in range(max_order + 1)] + [(0.5, 0.5, 0.5, 1.0)]
+    cmap = ListedColormap(colours).with_extremes(bad="white")
+    norm = BoundaryNorm(np.arange(-0.5, max_order + 1.6), cmap.N)
+    xb = ds["bias"].values * 1e6
+    yr = ds[rf].values * (1e6 if rf == "rf_current" else 1.0)
+    mesh = ax.pcolormesh(xb, yr, np.ma.masked_invalid(code), cmap=cmap, norm=norm, shading="nearest")
+    # the plateaus' edges: where the step changes between neighbouring biases
+    if xb.size > 1:
+        change = np.zeros(code.shape, bool)
+        change[:, 1:] = ~((code[:, 1:] == code[:, :-1]) | (np.isnan(code[:, 1:]) & np.isnan(code[:, :-1])))
+        xm = 0.5 * (xb[1:] + xb[:-1])
+        for i in range(code.shape[0]):
+            where = np.flatnonzero(change[i, 1:])
+            if where.size:
+                ax.plot(xm[where], np.full(where.size, yr[i]), "|", color="k", ms=4, mew=0.6)
+    bar = ax.figure.colorbar(mesh, ax=ax, ticks=np.arange(max_order + 2))
+    bar.ax.set_yticklabels([f"{k}" for k in range(max_order + 1)] + ["other"], fontsize=8)
+    bar.set_label("Shapiro step n (white: not locked)", fontsize=9)
+    ax.set_xlabel("dc bias current I (µA)")
+    ax.set_ylabel("rf current I_rf (µA)" if rf == "rf_current" else "rf power (dBm)")
+    return ax
 
 
 def fractions(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None) -> matplotlib.axes.Axes:
