@@ -349,10 +349,19 @@ contains
     lam_lo = centre * centre - spread * aq
     guess = centre * centre
     sl = real(2 * level + 1, dp)
-    if (aq > sl * sl) then
+    if (aq > 0.25_dp * sl * sl) then
       h = sqrt(aq)
       guess = -2.0_dp * aq + 2.0_dp * sl * h - (sl * sl + 1.0_dp) / 8.0_dp &
               - (sl ** 3 + 3.0_dp * sl) / (128.0_dp * h)
+    else if (fam == 1 .and. centre == 0.0_dp) then
+      ! small |q|: the power series of DLMF 28.6.1, 28.6.4-5 and 28.6.14
+      ! (the bracket and the Sturm counts decide, the guess only saves steps)
+      guess = -0.5_dp * q * q + (7.0_dp / 128.0_dp) * q ** 4
+    else if ((fam == 2 .or. fam == 3) .and. centre == 1.0_dp) then
+      guess = 1.0_dp + merge(q, -q, fam == 2) - 0.125_dp * q * q
+    else if (abs(centre * centre - 1.0_dp) >= 0.5_dp) then
+      h = q * q / (2.0_dp * (centre * centre - 1.0_dp))
+      guess = centre * centre + sign(min(abs(h), aq), h)
     end if
     ! the upper turning point: of the Weyl bound, or for large |q| of the
     ! ladder's estimate plus a generous margin (the bound checks it)
