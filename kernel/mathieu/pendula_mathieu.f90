@@ -138,18 +138,22 @@ contains
     integer, intent(in) :: n, j
     real(dp), intent(in) :: d(n), e2(n), x0, lo0, hi0, pivmin
     real(dp), intent(out) :: x, first, last, z(n)
-    real(dp) :: lo, hi, w, step, xn, del
+    real(dp) :: lo, hi, w, step, xn, del, emax
     integer :: it, cl, ch, c
     logical :: rq
     ! first, Rayleigh-quotient steps straight from the estimate x0: when
     ! they converge to the j-th eigenvalue (two counts certify it), done
+    ! the rounding level of a step: eps times the value and the couplings
+    ! (where |x| is below |q|, a step never gets below eps |x|; the polish
+    ! that follows takes the value to its own rounding)
+    emax = sqrt(maxval(e2))
     x = x0
     do it = 1, 8
       call twist(d, e2, n, x, pivmin, step, first, last, z)
       if (.not. abs(step) <= huge(1.0_dp)) exit
       xn = x + step
-      if (abs(step) <= 0.5_dp * eps_dp * abs(x)) then
-        del = 4.0_dp * eps_dp * abs(xn) + tiny(1.0_dp)
+      if (abs(step) <= 0.5_dp * eps_dp * (abs(x) + emax)) then
+        del = 4.0_dp * eps_dp * (abs(xn) + emax) + tiny(1.0_dp)
         if (sturm_count(d, e2, n, xn - del, pivmin) <= j) then
           if (sturm_count(d, e2, n, xn + del, pivmin) > j) then
             x = xn
@@ -196,9 +200,9 @@ contains
     do it = 1, 300
       call twist(d, e2, n, x, pivmin, step, first, last, z)
       xn = x + step
-      if (rq .and. abs(step) <= 0.5_dp * eps_dp * abs(x)) then
+      if (rq .and. abs(step) <= 0.5_dp * eps_dp * (abs(x) + emax)) then
         ! converged: certify that the j-th eigenvalue is within a few ulp
-        del = 4.0_dp * eps_dp * abs(xn) + tiny(1.0_dp)
+        del = 4.0_dp * eps_dp * (abs(xn) + emax) + tiny(1.0_dp)
         if (sturm_count(d, e2, n, xn - del, pivmin) <= j) then
           if (sturm_count(d, e2, n, xn + del, pivmin) > j) then
             x = xn
@@ -708,7 +712,7 @@ contains
       bound(nlev) = b
       status(nlev) = mathieu_ok
       ! the starting values come from the rows inside the top level's
-      ! turning points (s^2 <= its value + 2|q|) and 8 beyond on each side:
+      ! turning points (s^2 <= its value + 2|q|) and 3 beyond on each side:
       ! the lower eigenvectors have decayed there, so the block's
       ! eigenvalues are close to theirs (the steps below make them exact)
       t = x + 2.0_dp * aq
@@ -720,8 +724,8 @@ contains
       do while (i2 > i1 .and. d(i2) > t)
         i2 = i2 - 1
       end do
-      i1 = max(1, i1 - 8)
-      i2 = min(n, i2 + 8)
+      i1 = max(1, i1 - 3)
+      i2 = min(n, i2 + 3)
       if (i2 - i1 + 1 < nlev) then
         i1 = 1
         i2 = n
