@@ -131,6 +131,20 @@ subroutine gsl_kcomp_v(n, m, k, bad)
   bad = pendula_gsl_kcomp(n, m, k)
 end subroutine gsl_kcomp_v
 
+! GSL's Mathieu characteristic values a_n(q) (kind 1) or b_n(q) (kind 2),
+! one gsl_sf_mathieu_a_e/_b_e call per value: the peer of the benchmark.
+subroutine gsl_mathieu_v(n, kind, order, q, val, bad)
+  use pendula_gsl_iface, only: pendula_gsl_mathieu
+  implicit none
+  integer, intent(in) :: n, kind
+  integer, intent(in) :: order(n)
+  double precision, intent(in) :: q(n)
+  double precision, intent(out) :: val(n)
+  integer, intent(out) :: bad
+  !f2py intent(hide), depend(q) :: n = len(q)
+  bad = pendula_gsl_mathieu(kind, n, order, q, val)
+end subroutine gsl_mathieu_v
+
 ! Exact motion of the conservative pendulum at the times t (status: 0 ok,
 ! 1 bad eps, 2 bad theta0, 3 bad v0).
 subroutine exact_motion_v(n, theta0, v0, eps, t, theta, v, status)
@@ -1022,26 +1036,25 @@ subroutine mathieu_char_v(n, kind, nu, q, val, bound, status)
   !$omp end parallel do
 end subroutine mathieu_char_v
 
-! the m-th level of the bi-infinite Hill matrix of offset nu (the quantum
-! pendulum's spectrum in units of E_C with nu = 2 n_g, q = -E_J/(2 E_C))
-subroutine mathieu_level_v(n, nu, q, m, val, bound, status)
-  use pendula_mathieu, only: mathieu_level
+! the lowest nlev levels at each (nu, q) from one window each (the spectrum
+! of the quantum pendulum at many offset charges)
+subroutine mathieu_levels_v(n, nlev, nu, q, val, bound, status)
+  use pendula_mathieu, only: mathieu_levels
   use pendula_threads, only: thread_count
   implicit none
   !f2py threadsafe
-  integer, intent(in) :: n
+  integer, intent(in) :: n, nlev
   double precision, intent(in) :: nu(n), q(n)
-  integer, intent(in) :: m(n)
-  double precision, intent(out) :: val(n), bound(n)
-  integer, intent(out) :: status(n)
+  double precision, intent(out) :: val(nlev, n), bound(nlev, n)
+  integer, intent(out) :: status(nlev, n)
   !f2py intent(hide), depend(nu) :: n = len(nu)
   integer :: i
-  !$omp parallel do schedule(dynamic, 8) num_threads(thread_count(0)) if (n >= 64)
+  !$omp parallel do schedule(dynamic, 4) num_threads(thread_count(0)) if (n >= 8)
   do i = 1, n
-    call mathieu_level(nu(i), q(i), m(i), val(i), bound(i), status(i))
+    call mathieu_levels(nu(i), q(i), nlev, val(:, i), bound(:, i), status(:, i))
   end do
   !$omp end parallel do
-end subroutine mathieu_level_v
+end subroutine mathieu_levels_v
 
 ! the same levels to double-double precision (hi + lo)
 subroutine mathieu_level_dd_v(n, nu, q, m, vh, vl, bound, status)

@@ -8,6 +8,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_sf_elljac.h>
 #include <gsl/gsl_sf_ellint.h>
+#include <gsl/gsl_sf_mathieu.h>
 
 void pendula_gsl_init(void) { gsl_set_error_handler_off(); }
 
@@ -34,6 +35,24 @@ int pendula_gsl_kcomp(int n, const double *m, double *k) {
       ++bad;
     } else {
       k[i] = r.val;
+    }
+  }
+  return bad;
+}
+
+/* GSL's Mathieu characteristic value a_n(q) (kind 1) or b_n(q) (kind 2) of
+ * integer order n, one value per call of gsl_sf_mathieu_a_e/_b_e (Alhargan's
+ * algorithm); returns the number of failures (NaN there). */
+int pendula_gsl_mathieu(int kind, int n, const int *order, const double *q, double *val) {
+  int bad = 0;
+  gsl_sf_result r;
+  for (int i = 0; i < n; ++i) {
+    int st = kind == 1 ? gsl_sf_mathieu_a_e(order[i], q[i], &r) : gsl_sf_mathieu_b_e(order[i], q[i], &r);
+    if (st != GSL_SUCCESS) {
+      val[i] = NAN;
+      ++bad;
+    } else {
+      val[i] = r.val;
     }
   }
   return bad;

@@ -3,7 +3,8 @@ module pendula_gsl_iface
   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_long
   implicit none
   private
-  public :: pendula_gsl_init, pendula_gsl_elljac, pendula_gsl_kcomp, pendula_gsl_rk8pd, pendula_gsl_flow_monodromy, &
+  public :: pendula_gsl_init, pendula_gsl_elljac, pendula_gsl_kcomp, pendula_gsl_mathieu, &
+            pendula_gsl_rk8pd, pendula_gsl_flow_monodromy, &
             pendula_gsl_periodic_orbit
 
   interface
@@ -25,6 +26,15 @@ module pendula_gsl_iface
       real(c_double), intent(out) :: k(*)
       integer(c_int) :: bad
     end function pendula_gsl_kcomp
+
+    function pendula_gsl_mathieu(kind, n, order, q, val) bind(C, name="pendula_gsl_mathieu") result(bad)
+      import :: c_int, c_double
+      integer(c_int), value, intent(in) :: kind, n
+      integer(c_int), intent(in) :: order(*)
+      real(c_double), intent(in) :: q(*)
+      real(c_double), intent(out) :: val(*)
+      integer(c_int) :: bad
+    end function pendula_gsl_mathieu
 
     !> model: c_loc of the pendulum_model to integrate (pendula_capi reads it back)
     function pendula_gsl_rk8pd(model, theta0, v0, n, tout, rtol, atol, theta, v, stats) &

@@ -28,7 +28,7 @@ module pendula_mathieu
   use pendula_dd, only: two_sum, two_prod, dd_add, dd_div, dd_mul
   implicit none
   private
-  public :: mathieu_char, mathieu_level, mathieu_level_dd, mathieu_nu, mathieu_level_vector
+  public :: mathieu_char, mathieu_level, mathieu_levels, mathieu_level_dd, mathieu_nu, mathieu_level_vector
   public :: mathieu_function
   public :: mathieu_max_q, mathieu_max_order
   public :: mathieu_ok, mathieu_bad_input, mathieu_no_convergence
@@ -40,6 +40,8 @@ module pendula_mathieu
   !> the most rows of a window (|q| = 1e10 needs about 2e5)
   integer, parameter :: max_rows = 4000000
   real(dp), parameter :: sqrt2 = 1.4142135623730950488_dp
+  !> windows up to this many rows factorise in stack arrays
+  integer, parameter :: small_rows = 512
 
 contains
 
@@ -136,18 +138,22 @@ contains
     integer, intent(in) :: n, j
     real(dp), intent(in) :: d(n), e2(n), x0, lo0, hi0, pivmin
     real(dp), intent(out) :: x, first, last, z(n)
-    real(dp) :: lo, hi, w, step, xn, del
+    real(dp) :: lo, hi, w, step, xn, del, emax
     integer :: it, cl, ch, c
     logical :: rq
     ! first, Rayleigh-quotient steps straight from the estimate x0: when
     ! they converge to the j-th eigenvalue (two counts certify it), done
+    ! the rounding level of a step: eps times the value and the couplings
+    ! (where |x| is below |q|, a step never gets below eps |x|; the polish
+    ! that follows takes the value to its own rounding)
+    emax = sqrt(maxval(e2))
     x = x0
     do it = 1, 8
       call twist(d, e2, n, x, pivmin, step, first, last, z)
       if (.not. abs(step) <= huge(1.0_dp)) exit
       xn = x + step
-      if (abs(step) <= 0.5_dp * eps_dp * abs(x)) then
-        del = 4.0_dp * eps_dp * abs(xn) + tiny(1.0_dp)
+      if (abs(step) <= 0.5_dp * eps_dp * (abs(x) + emax)) then
+        del = 4.0_dp * eps_dp * (abs(xn) + emax) + tiny(1.0_dp)
         if (sturm_count(d, e2, n, xn - del, pivmin) <= j) then
           if (sturm_count(d, e2, n, xn + del, pivmin) > j) then
             x = xn
@@ -194,9 +200,9 @@ contains
     do it = 1, 300
       call twist(d, e2, n, x, pivmin, step, first, last, z)
       xn = x + step
-      if (rq .and. abs(step) <= 0.5_dp * eps_dp * abs(x)) then
+      if (rq .and. abs(step) <= 0.5_dp * eps_dp * (abs(x) + emax)) then
         ! converged: certify that the j-th eigenvalue is within a few ulp
-        del = 4.0_dp * eps_dp * abs(xn) + tiny(1.0_dp)
+        del = 4.0_dp * eps_dp * (abs(xn) + emax) + tiny(1.0_dp)
         if (sturm_count(d, e2, n, xn - del, pivmin) <= j) then
           if (sturm_count(d, e2, n, xn + del, pivmin) > j) then
             x = xn
@@ -231,8 +237,7 @@ contains
     real(dp), intent(in) :: d(n), e2(n), x, pivmin
     real(dp), intent(out) :: step, first, last, z(n)
     real(dp), allocatable :: dp_(:), dm(:)
-    real(dp) :: g, gbest, gr, nrm2, big
-    integer :: i, r, k
+    real(dp) :: bp(small_rows), bm(small_rows)
     if (n == 1) then
       step = d(1) - x
       first = 1.0_dp
@@ -240,7 +245,23 @@ contains
       z(1) = 1.0_dp
       return
     end if
-    allocate(dp_(n), dm(n))
+    ! the pivots of the usual small window live on the stack (no allocation)
+    if (n <= small_rows) then
+      call twist_pivots(d, e2, n, x, pivmin, step, first, last, z, bp, bm)
+    else
+      allocate(dp_(n), dm(n))
+      call twist_pivots(d, e2, n, x, pivmin, step, first, last, z, dp_, dm)
+    end if
+  end subroutine twist
+
+  !> twist with the caller's work arrays dp_ and dm (at least n long).
+  pure subroutine twist_pivots(d, e2, n, x, pivmin, step, first, last, z, dp_, dm)
+    integer, intent(in) :: n
+    real(dp), intent(in) :: d(n), e2(n), x, pivmin
+    real(dp), intent(out) :: step, first, last, z(n)
+    real(dp), intent(inout) :: dp_(:), dm(:)
+    real(dp) :: g, gbest, gr, nrm2, big, rbig
+    integer :: i, r, k
     dp_(1) = d(1) - x
     if (abs(dp_(1)) < pivmin) dp_(1) = -pivmin
     dm(n) = d(n) - x
@@ -275,16 +296,17 @@ contains
       z(i) = -(sqrt(e2(i - 1)) / dm(i)) * z(i - 1)
       big = max(big, abs(z(i)))
     end do
+    rbig = 1.0_dp / big
     nrm2 = 0.0_dp
     do i = 1, n
-      nrm2 = nrm2 + (z(i) / big) ** 2
+      z(i) = z(i) * rbig
+      nrm2 = nrm2 + z(i) * z(i)
     end do
-    step = (gr / big) / (nrm2 * big)
+    step = (gr * rbig) / (nrm2 * big)
     nrm2 = sqrt(nrm2)
-    first = abs(z(1) / big) / nrm2
-    last = abs(z(n) / big) / nrm2
-    z = z / big
-  end subroutine twist
+    first = abs(z(1)) / nrm2
+    last = abs(z(n)) / nrm2
+  end subroutine twist_pivots
 
   ! ------------------------------------------------------------------
   ! The solver: the eigenvalue of index mode, in the window, widened until
@@ -331,10 +353,19 @@ contains
     lam_lo = centre * centre - spread * aq
     guess = centre * centre
     sl = real(2 * level + 1, dp)
-    if (aq > sl * sl) then
+    if (aq > 0.25_dp * sl * sl) then
       h = sqrt(aq)
       guess = -2.0_dp * aq + 2.0_dp * sl * h - (sl * sl + 1.0_dp) / 8.0_dp &
               - (sl ** 3 + 3.0_dp * sl) / (128.0_dp * h)
+    else if (fam == 1 .and. centre == 0.0_dp) then
+      ! small |q|: the power series of DLMF 28.6.1, 28.6.4-5 and 28.6.14
+      ! (the bracket and the Sturm counts decide, the guess only saves steps)
+      guess = -0.5_dp * q * q + (7.0_dp / 128.0_dp) * q ** 4
+    else if ((fam == 2 .or. fam == 3) .and. centre == 1.0_dp) then
+      guess = 1.0_dp + merge(q, -q, fam == 2) - 0.125_dp * q * q
+    else if (abs(centre * centre - 1.0_dp) >= 0.5_dp) then
+      h = q * q / (2.0_dp * (centre * centre - 1.0_dp))
+      guess = centre * centre + sign(min(abs(h), aq), h)
     end if
     ! the upper turning point: of the Weyl bound, or for large |q| of the
     ! ladder's estimate plus a generous margin (the bound checks it)
@@ -409,14 +440,28 @@ contains
     real(dp), intent(in) :: nu, q, x, z(n)
     real(dp) :: sh, sl, dh, dl, uh, ul, rh, rl, th, tl, num, den, aq, e0, e0l, zl, zr
     real(dp), parameter :: sqrt2_lo = -9.6667966258595e-17_dp
-    integer :: i, r
+    integer :: i, r, i1, i2
+    real(dp) :: thr
     aq = abs(q)
     num = 0.0_dp
     den = 0.0_dp
+    ! rows whose component is below tau = 1e-10 of the largest are left out:
+    ! z is the eigenvector to rounding, so each one's term z_i ((T - x) z)_i
+    ! is below tau^2 eps times the matrix's scale there (s^2 + 2|q|), and
+    ! their sum is below 1e-20 of the quotient's rounding
+    thr = 1.0e-10_dp * maxval(abs(z))
+    i1 = 1
+    do while (i1 < n .and. abs(z(i1)) <= thr)
+      i1 = i1 + 1
+    end do
+    i2 = n
+    do while (i2 > i1 .and. abs(z(i2)) <= thr)
+      i2 = i2 - 1
+    end do
     ! the coupling of rows 0 and 1 of a_2m's matrix, sqrt(2)|q| in double-double
     call prod_dd(sqrt2, aq, e0, e0l)
     e0l = e0l + sqrt2_lo * aq
-    do i = 1, n
+    do i = i1, i2
       r = r0 + i - 1
       if (fam == 0) then
         call sum_exact(nu, 2.0_dp * real(r, dp), sh, sl)
@@ -623,6 +668,176 @@ contains
     call solve(0, nr, q, m, .false., level_order(nr, m), 2.0_dp, 0.25_dp * eps_dp, val, bound, &
                status, d, e2, j, r0, m)
   end subroutine mathieu_level
+
+  !> The lowest nlev levels m = 0 .. nlev - 1 of the bi-infinite matrix of
+  !> offset nu (as mathieu_level, each to the same tolerance and with its own
+  !> bound) from one window: the window of the top level holds every lower
+  !> one, whose eigenvectors are more confined.  The starting values are all
+  !> the window's eigenvalues by implicit QL (Bowdler, Martin, Reinsch and
+  !> Wilkinson), close enough that one or two Rayleigh-quotient steps converge
+  !> and two Sturm counts certify the index; each value is then polished as
+  !> in mathieu_level.  A level whose bound is not met in this window (or a
+  !> failed QL) is solved on its own by mathieu_level.
+  pure subroutine mathieu_levels(nu, q, nlev, val, bound, status)
+    real(dp), intent(in) :: nu, q
+    integer, intent(in) :: nlev
+    real(dp), intent(out) :: val(nlev), bound(nlev)
+    integer, intent(out) :: status(nlev)
+    real(dp), allocatable :: d(:), e2(:), ev(:), ee(:), z(:)
+    real(dp) :: nr, x, b, pivmin, f1, fn, w, aq, t
+    integer :: j, r0, n, k, i, st, i1, i2, nb
+    logical :: ok
+    val = nan_dp
+    bound = nan_dp
+    status = mathieu_bad_input
+    if (nlev < 1) return
+    if (.not. (abs(nu) <= mathieu_max_order) .or. nlev > 100000000) return
+    if (.not. (abs(q) <= mathieu_max_q)) return
+    nr = modulo(nu, 2.0_dp)
+    if (nr >= 2.0_dp) nr = 0.0_dp
+    aq = abs(q)
+    if (nlev == 1 .or. aq == 0.0_dp) then
+      do k = 0, nlev - 1
+        call mathieu_level(nu, q, k, val(k + 1), bound(k + 1), status(k + 1))
+      end do
+      return
+    end if
+    call solve(0, nr, q, nlev - 1, .false., level_order(nr, nlev - 1), 2.0_dp, 0.25_dp * eps_dp, x, b, &
+               st, d, e2, j, r0, nlev - 1)
+    n = 0
+    if (st == mathieu_ok) n = size(d)
+    ok = st == mathieu_ok .and. n >= nlev
+    if (ok) then
+      val(nlev) = x
+      bound(nlev) = b
+      status(nlev) = mathieu_ok
+      ! the starting values come from the rows inside the top level's
+      ! turning points (s^2 <= its value + 2|q|) and 3 beyond on each side:
+      ! the lower eigenvectors have decayed there, so the block's
+      ! eigenvalues are close to theirs (the steps below make them exact)
+      t = x + 2.0_dp * aq
+      i1 = 1
+      do while (i1 < n .and. d(i1) > t)
+        i1 = i1 + 1
+      end do
+      i2 = n
+      do while (i2 > i1 .and. d(i2) > t)
+        i2 = i2 - 1
+      end do
+      i1 = max(1, i1 - 3)
+      i2 = min(n, i2 + 3)
+      if (i2 - i1 + 1 < nlev) then
+        i1 = 1
+        i2 = n
+      end if
+      nb = i2 - i1 + 1
+      allocate(ev(nb), ee(nb), z(n))
+      ev = d(i1:i2)
+      ee(1:nb - 1) = sqrt(e2(i1:i2 - 1))
+      ee(nb) = 0.0_dp
+      call ql_values(nb, ev, ee, ok)
+    end if
+    if (.not. ok) then
+      do k = 0, nlev - 1
+        call mathieu_level(nu, q, k, val(k + 1), bound(k + 1), status(k + 1))
+      end do
+      return
+    end if
+    ! the lowest nlev - 1 of the QL values, in order (insertion sort of a
+    ! prefix: the window is short)
+    do i = 2, nb
+      t = ev(i)
+      k = i - 1
+      do while (k >= 1)
+        if (ev(k) <= t) exit
+        ev(k + 1) = ev(k)
+        k = k - 1
+      end do
+      ev(k + 1) = t
+    end do
+    pivmin = tiny(1.0_dp) * max(1.0_dp, maxval(e2))
+    do k = 0, nlev - 2
+      w = 1.0e-8_dp * max(1.0_dp, abs(ev(k + 1)), aq)
+      call eigenvalue(d, e2, n, k, ev(k + 1), ev(k + 1) - w, ev(k + 1) + w, pivmin, x, f1, fn, z)
+      x = polish(0, nr, q, r0, n, x, z)
+      ! the couplings the window cuts, below and above (as in solve)
+      b = sqrt((sqrt2 * aq * f1) ** 2 + (aq * fn) ** 2)
+      if (b <= 0.25_dp * eps_dp * max(1.0_dp, abs(x))) then
+        val(k + 1) = x
+        bound(k + 1) = b
+        status(k + 1) = mathieu_ok
+      else
+        call mathieu_level(nu, q, k, val(k + 1), bound(k + 1), status(k + 1))
+      end if
+    end do
+  end subroutine mathieu_levels
+
+  !> All eigenvalues of the symmetric tridiagonal matrix of diagonal d and
+  !> off-diagonal e (e(i) couples rows i and i + 1; e(n) unused) by the
+  !> implicit QL algorithm with Wilkinson's shift (Bowdler, Martin, Reinsch
+  !> and Wilkinson 1968; the tqli of Press et al., section 11.3): d is
+  !> overwritten by the eigenvalues (unordered), e is destroyed.  ok is
+  !> false when an eigenvalue takes more than 60 sweeps.
+  pure subroutine ql_values(n, d, e, ok)
+    integer, intent(in) :: n
+    real(dp), intent(inout) :: d(n), e(n)
+    logical, intent(out) :: ok
+    integer :: l, m, i, iter
+    real(dp) :: g, r, s, c, p, f, b, dd
+    logical :: split
+    ok = .true.
+    e(n) = 0.0_dp
+    do l = 1, n
+      iter = 0
+      do
+        m = n
+        do i = l, n - 1
+          dd = abs(d(i)) + abs(d(i + 1))
+          if (abs(e(i)) <= eps_dp * dd) then
+            m = i
+            exit
+          end if
+        end do
+        if (m == l) exit
+        iter = iter + 1
+        if (iter > 60) then
+          ok = .false.
+          return
+        end if
+        g = (d(l + 1) - d(l)) / (2.0_dp * e(l))
+        r = sqrt(g * g + 1.0_dp)
+        if (abs(g) > 1.0e150_dp) r = abs(g)
+        g = d(m) - d(l) + e(l) / (g + sign(r, g))
+        s = 1.0_dp
+        c = 1.0_dp
+        p = 0.0_dp
+        split = .false.
+        do i = m - 1, l, -1
+          f = s * e(i)
+          b = c * e(i)
+          r = sqrt(f * f + g * g)     ! no overflow: the window's entries are below 1e40
+          e(i + 1) = r
+          if (r == 0.0_dp) then
+            d(i + 1) = d(i + 1) - p
+            e(m) = 0.0_dp
+            split = .true.
+            exit
+          end if
+          s = f / r
+          c = g / r
+          g = d(i + 1) - p
+          r = (d(i) - g) * s + 2.0_dp * c * b
+          p = s * r
+          d(i + 1) = g + p
+          g = c * r - b
+        end do
+        if (split) cycle
+        d(l) = d(l) - p
+        e(l) = g
+        e(m) = 0.0_dp
+      end do
+    end do
+  end subroutine ql_values
 
   !> The m-th level of the bi-infinite matrix of offset nu (as
   !> mathieu_level) and its eigenvector c_k, k = kmin .. kmin + nk - 1, of

@@ -296,18 +296,19 @@ def mathieu_se(n: int, q: float, z: ArrayLike) -> tuple[NDArray[np.float64] | np
     return _function(2, "mathieu_se", n, q, z)
 
 
-def _levels(nu: np.ndarray, q: np.ndarray, m: np.ndarray, name: str) -> np.ndarray:
-    """Hill levels in units of E_C, broadcast over nu, q, m (float64 out)."""
-    b = np.broadcast_arrays(nu, q, m)
+def _spectrum(nu: np.ndarray, q: np.ndarray, n_levels: int, name: str) -> np.ndarray:
+    """The lowest n_levels Hill levels (units of E_C) at each broadcast (nu, q),
+    one kernel window per pair: shape ``broadcast shape + (n_levels,)``."""
+    b = np.broadcast_arrays(nu, q)
     shape = b[0].shape
     nf = np.ascontiguousarray(b[0], dtype=np.float64).reshape(-1)
     qf = np.ascontiguousarray(b[1], dtype=np.float64).reshape(-1)
-    mf = np.ascontiguousarray(b[2], dtype=np.int32).reshape(-1)
     if nf.size == 0:
-        return np.empty(shape)
-    val, _, status = _kernel.mathieu_level_v(nf, qf, mf)
-    _warn_status(name, np.where(np.isnan(nf) | np.isnan(qf), 0, status), stacklevel=4)
-    return val.reshape(shape)
+        return np.empty(shape + (n_levels,))
+    val, _, status = _kernel.mathieu_levels_v(n_levels, nf, qf)
+    bad = (np.isnan(nf) | np.isnan(qf))[None, :]
+    _warn_status(name, np.where(bad, 0, status), stacklevel=4)
+    return val.T.reshape(shape + (n_levels,))
 
 
 class Transmon:
@@ -433,8 +434,7 @@ class Transmon:
         """
         c = count(n_levels, "n_levels", 1, 10 ** 6)
         ng = self._ng(n_g)
-        m = np.arange(c, dtype=np.int32)
-        lam = _levels(2.0 * ng[..., None], np.float64(self.q), m, "Transmon.levels")
+        lam = _spectrum(2.0 * ng, np.float64(self.q), c, "Transmon.levels")
         return self.E_C * lam
 
     def transition(self, m: int = 1, n_g: ArrayLike | None = None) -> NDArray[np.float64] | np.float64:
@@ -634,8 +634,7 @@ class Transmon:
             raise ValueError("ratio (E_J / E_C) must be >= 0 and not NaN")
         c = count(n_levels, "n_levels", 1, 10 ** 6)
         ng = self.n_g if n_g is None else real(n_g, "n_g")
-        lam = _levels(np.float64(2.0 * ng), (-r / 2.0)[:, None], np.arange(c, dtype=np.int32),
-                      "Transmon.spectrum_vs_ratio")
+        lam = _spectrum(np.float64(2.0 * ng), -r / 2.0, c, "Transmon.spectrum_vs_ratio")
         return xr.DataArray(lam, dims=("EJ_over_EC", "level"),
                             coords={"EJ_over_EC": r, "level": np.arange(c)},
                             name="E_over_EC", attrs={"n_g": ng})
