@@ -20,6 +20,7 @@ from ..scene import Scene, SceneError
 from .continuation import _root
 from .equilibria import equilibria
 from .homoclinic import _splitting
+from .periodic import FlowError
 
 _RTOL = _ATOL = 1e-12
 
@@ -30,7 +31,10 @@ def _g(scene: Scene, p1: str, p2: str, a: float, b: float, w: int) -> float:
         sc = scene.replace(**{p1: float(a), p2: float(b)})
     except SceneError:
         return math.nan
-    d = _splitting(sc, w, _RTOL, _ATOL)
+    try:
+        d = _splitting(sc, w, _RTOL, _ATOL)
+    except FlowError:                     # a flow beyond the work limit: no decision here
+        return math.nan
     return -1.0 if d is None else float(d)
 
 
