@@ -668,7 +668,10 @@ def continue_bifurcation(point: Bifurcation, second_param: str, stop: float, *,
     if stop == p2_start:
         raise ValueError(f"stop: equals the scene's {p2} = {p2_start!r}; give the value to continue to")
     lo2, hi2 = _field_edge(scene, p2, p2_start)
-    if not lo2 < stop < hi2 if p2 in ("drive_amplitude", "drive_frequency") else not lo2 <= stop <= hi2:
+    # the drive's edges are open (at 0 the scene is not driven), another field's closed (damping = 0)
+    open_edges = p2 in ("drive_amplitude", "drive_frequency")
+    inside = (lo2 < stop < hi2) if open_edges else (lo2 <= stop <= hi2)
+    if not inside:
         raise ValueError(f"stop: {p2} = {stop!r} is outside the field's range on the scene's side "
                          f"({lo2!r}, {hi2!r})")
     try:
