@@ -571,7 +571,9 @@ def continue_bifurcation(point: Bifurcation, second_param: str, stop: float, *,
     ``second_param`` reaches ``stop``.  A curve that meets the end of a
     field's range (a drive's amplitude or frequency at 0, or a field that
     cannot be negative) or turns back to where it started ends there, exactly
-    on the edge, and is returned with the reason in ``end``.  On the way the
+    on the edge, and is returned with the reason in ``end``; so does a curve
+    of 5000 points (the work limit: a fold curve that winds through the
+    resonances of a slow drive can need more).  Ctrl-C stops the call.  On the way the
     codimension-two points are located where their test functions change
     sign (beyond the functions' error): a cusp, a generalized period
     doubling, fold-flip, 1:1 and 1:2 resonances (Kuznetsov, sections 8.7 and
