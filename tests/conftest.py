@@ -31,6 +31,7 @@ FULL = (
     "test_double_motion.py::test_energy_bounded_over_1e5_swings",
     "test_attractors_recurrence.py::test_coarse_to_fine_map_matches_the_long_transient_run_on_995_permille_of_stable_points",
     "test_attractors_recurrence.py::test_grid_of_levels_gives_the_same_labels_whatever_the_threads_chunking_or_resume",
+    "test_bifurcation_curves.py::test_retrapping_curve_against_scipy",
     "test_continuation.py::test_homoclinic_retrapping_torque_against_scipy_manifold",
     "test_continuation.py::test_liouville_det_along_every_branch",
     "test_continuation.py::test_stewart_mccumber_small_damping_limit",

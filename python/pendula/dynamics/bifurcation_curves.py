@@ -571,7 +571,9 @@ def continue_bifurcation(point: Bifurcation, second_param: str, stop: float, *,
     ``second_param`` reaches ``stop``.  A curve that meets the end of a
     field's range (a drive's amplitude or frequency at 0, or a field that
     cannot be negative) or turns back to where it started ends there, exactly
-    on the edge, and is returned with the reason in ``end``.  On the way the
+    on the edge, and is returned with the reason in ``end``; so does a curve
+    of 5000 points (the work limit: a fold curve that winds through the
+    resonances of a slow drive can need more).  Ctrl-C stops the call.  On the way the
     codimension-two points are located where their test functions change
     sign (beyond the functions' error): a cusp, a generalized period
     doubling, fold-flip, 1:1 and 1:2 resonances (Kuznetsov, sections 8.7 and
@@ -668,7 +670,10 @@ def continue_bifurcation(point: Bifurcation, second_param: str, stop: float, *,
     if stop == p2_start:
         raise ValueError(f"stop: equals the scene's {p2} = {p2_start!r}; give the value to continue to")
     lo2, hi2 = _field_edge(scene, p2, p2_start)
-    if not lo2 < stop < hi2 if p2 in ("drive_amplitude", "drive_frequency") else not lo2 <= stop <= hi2:
+    # the drive's edges are open (at 0 the scene is not driven), another field's closed (damping = 0)
+    open_edges = p2 in ("drive_amplitude", "drive_frequency")
+    inside = (lo2 < stop < hi2) if open_edges else (lo2 <= stop <= hi2)
+    if not inside:
         raise ValueError(f"stop: {p2} = {stop!r} is outside the field's range on the scene's side "
                          f"({lo2!r}, {hi2!r})")
     try:

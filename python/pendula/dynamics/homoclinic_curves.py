@@ -20,6 +20,7 @@ from ..scene import Scene, SceneError
 from .continuation import _root
 from .equilibria import equilibria
 from .homoclinic import _splitting
+from .periodic import FlowError
 
 _RTOL = _ATOL = 1e-12
 
@@ -30,13 +31,17 @@ def _g(scene: Scene, p1: str, p2: str, a: float, b: float, w: int) -> float:
         sc = scene.replace(**{p1: float(a), p2: float(b)})
     except SceneError:
         return math.nan
-    d = _splitting(sc, w, _RTOL, _ATOL)
+    try:
+        d = _splitting(sc, w, _RTOL, _ATOL)
+    except FlowError:                     # a flow beyond the work limit: no decision here
+        return math.nan
     return -1.0 if d is None else float(d)
 
 
 def _solve(scene, p1, p2, guess: float, b: float, w: int, width: float):
-    """The root in p1 of the splitting at p2 = b, bracketed around guess (widening 12 times); None if none."""
-    for _ in range(12):
+    """The root in p1 of the splitting at p2 = b, bracketed around guess (widening 6 times, to 64 times the
+    first width: the guess is a linear extrapolation a step long); None if none."""
+    for _ in range(6):
         lo, hi = guess - width, guess + width
         glo, ghi = _g(scene, p1, p2, lo, b, w), _g(scene, p1, p2, hi, b, w)
         if math.isfinite(glo) and math.isfinite(ghi) and (glo > 0) != (ghi > 0) and math.isfinite(glo * ghi):
