@@ -159,3 +159,21 @@ def test_child_that_cannot_go_on_keeps_what_it_traced(monkeypatch):
     for node in tree.walk():
         assert len(node.branch) >= 2           # the first point and the steps before the failure
     assert all(e == "stop" for k, e in ends if k == 1)
+
+
+def test_branch_points_keep_their_cycle_and_certificates(tree):
+    for node in tree.walk():
+        for bif in node.branch.bifurcations:
+            k = int(bif.period)
+            assert bif.cycle.shape == (k, 2)
+            assert (bif.cycle[0, 0], bif.cycle[0, 1]) == (bif.theta, bif.v)
+            # the k-cycle closes under scipy's stroboscopic map: its residual is Newton's (1e-11) plus the
+            # flows' error over a period (measured up to 1.3e-11 here); 1e-9 leaves a margin of 75
+            x = bif.cycle[-1]
+            y = strobe(x, bif.value)
+            assert abs(math.remainder(y[0] - bif.cycle[0, 0], 2 * math.pi)) < 1e-9
+            assert abs(y[1] - bif.cycle[0, 1]) < 1e-9
+            assert bif.det_residual < 1e-12 and math.isnan(bif.trivial_residual)
+    ds = tree.children[0].children[0].branch.to_xarray()
+    assert dict(ds.sizes)["cycle"] == 2
+    assert {"cycle_theta", "cycle_v", "det_residual", "certified"} <= set(ds.data_vars)
