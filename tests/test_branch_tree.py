@@ -134,3 +134,46 @@ def test_depth_out_of_range_is_named(depth, error):
 def test_bad_param_is_named_as_in_continue_orbit():
     with pytest.raises(ValueError, match="param"):
         pendula.bifurcation_tree(CASCADE, (0.1, 1.9), "colour", 1.01)
+
+
+def test_child_that_cannot_go_on_keeps_what_it_traced(monkeypatch):
+    # a corrector that fails on the period-2 orbit after its first steps stands for a child the steps cannot
+    # follow: that branch ends with the error and keeps its points; the rest of the tree is traced
+    from pendula.dynamics import continuation as C
+    from pendula.dynamics.periodic import NewtonError
+    real = C._Tracer.correct
+
+    def failing(self, prob, Upred, n, U0, maxit=C._MAXIT):
+        if prob.k == 2:          # counted per tracer: each period-2 branch takes a few steps, then fails
+            self.test_calls = getattr(self, "test_calls", 0) + 1
+            if self.test_calls > 6:
+                raise NewtonError("no convergence", maxit, 1.0, (Upred[:2], Upred[2]))
+        return real(self, prob, Upred, n, U0, maxit)
+    monkeypatch.setattr(C._Tracer, "correct", failing)
+    tree = pendula.bifurcation_tree(CASCADE, (0.1, 1.9), "drive_amplitude", 1.07, depth=2)
+    ends = [(int(b.period[0]), b.end) for b in tree.branches()]
+    assert [k for k, _ in ends] == [1, 1, 2, 1, 2]
+    failed = [(k, e) for k, e in ends if e.startswith("error")]
+    assert [k for k, _ in failed] == [2, 2]
+    assert all("drive_amplitude" in e for _, e in failed)
+    for node in tree.walk():
+        assert len(node.branch) >= 2           # the first point and the steps before the failure
+    assert all(e == "stop" for k, e in ends if k == 1)
+
+
+def test_branch_points_keep_their_cycle_and_certificates(tree):
+    for node in tree.walk():
+        for bif in node.branch.bifurcations:
+            k = int(bif.period)
+            assert bif.cycle.shape == (k, 2)
+            assert (bif.cycle[0, 0], bif.cycle[0, 1]) == (bif.theta, bif.v)
+            # the k-cycle closes under scipy's stroboscopic map: its residual is Newton's (1e-11) plus the
+            # flows' error over a period (measured up to 1.3e-11 here); 1e-9 leaves a margin of 75
+            x = bif.cycle[-1]
+            y = strobe(x, bif.value)
+            assert abs(math.remainder(y[0] - bif.cycle[0, 0], 2 * math.pi)) < 1e-9
+            assert abs(y[1] - bif.cycle[0, 1]) < 1e-9
+            assert bif.det_residual < 1e-12 and math.isnan(bif.trivial_residual)
+    ds = tree.children[0].children[0].branch.to_xarray()
+    assert dict(ds.sizes)["cycle"] == 2
+    assert {"cycle_theta", "cycle_v", "det_residual", "certified"} <= set(ds.data_vars)

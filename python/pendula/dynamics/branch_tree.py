@@ -19,6 +19,7 @@ import numpy as np
 from .. import _checks
 from ..scene import Scene
 from .branches import Bifurcation, Branch, ContinuationError, _bifurcation_list
+from ..systems.contract import time_scales
 from .continuation import _Tracer, start
 
 __all__ = ["BranchTree", "bifurcation_tree"]
@@ -113,12 +114,16 @@ class BranchTree:
     def __repr__(self) -> str:
         nodes = list(self.walk())
         br = self.branch
-        periods = sorted({int(p) for n in nodes for p in np.unique(n.branch.period)})
         nbif = sum(len(n.branch.bifurcations) for n in nodes)
         span = f" from {br.values[0]:.6g} to {br.values[-1]:.6g}" if len(br) else ""
-        return (f"BranchTree({br.param}{span}, {len(nodes)} branches in {max(n.generation for n in nodes) + 1} "
-                f"generations, periods {periods}, {nbif} bifurcations, {sum(len(n.missing) for n in nodes)} "
-                "not followed)")
+        if _driven(br):
+            periods = sorted({int(p) for n in nodes for p in np.unique(n.branch.period)})
+            what = f"periods {periods} (drive periods)"
+        else:
+            what = "a running orbit"
+        gens = max(n.generation for n in nodes) + 1
+        return (f"BranchTree({br.param}{span}, {_count(len(nodes), 'branch')} in {_count(gens, 'generation')}, "
+                f"{what}, {_count(nbif, 'bifurcation')}, {sum(len(n.missing) for n in nodes)} not followed)")
 
     def outline(self) -> str:
         """The tree as indented text, a line a branch: its period, points, stability and bifurcations.
@@ -143,10 +148,20 @@ class BranchTree:
             if not len(b):
                 continue
             bifs = _bifurcation_list(b.bifurcations, 3)
-            lines.append(f"{'  ' * node.generation}period {int(b.period[0])} from {b.values[0]:.6g} to "
+            what = f"period {int(b.period[0])}" if _driven(b) else "running orbit"
+            lines.append(f"{'  ' * node.generation}{what} from {b.values[0]:.6g} to "
                          f"{b.values[-1]:.6g}: {len(b)} points ({int(np.sum(b.stable))} stable)"
                          f"{', ' + bifs if bifs else ''}; end {b.end!r}")
         return "\n".join(lines)
+
+
+def _driven(branch: Branch) -> bool:
+    """A branch of a periodically forced scene (its periods are whole drive periods)."""
+    return time_scales(branch.scene).forcing_status != 1
+
+
+def _count(n: int, word: str) -> str:
+    return f"{n} {word}{'' if n == 1 else ('es' if word.endswith('ch') else 's')}"
 
 
 def _trace(tracer: _Tracer, prob, U, ev, t) -> Branch:

@@ -656,6 +656,8 @@ def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: f
     See Also
     --------
     periodic_orbit : one orbit by Newton's method.
+    bifurcation_tree : every branch born on this one (both children of a pitchfork, the child of a
+        period doubling), to a depth.
     continue_equilibria : the rest points against a parameter.
 
     Examples
@@ -669,7 +671,8 @@ def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: f
     [('pitchfork', 1.0, 1.00431948), ('period-doubling', 1.0, 1.06637286)]
     """
     if follow not in ("branch", "stable"):
-        raise ValueError(f"follow must be 'branch' or 'stable', got {follow!r:.40}")
+        raise ValueError(f"follow must be 'branch' or 'stable', got {follow!r:.40} (every branch met, to a "
+                         "depth: pendula.bifurcation_tree)")
     tracer, prob, U, ev, t = start(scene, guess, param, stop, k, winding, follow, step)
     while True:
         out = tracer.run_segment(prob, U, ev, t)
