@@ -311,7 +311,8 @@ class DoublePendulum:
         xarray.Dataset
             ``theta1``, ``theta2``, ``omega1``, ``omega2``, ``p1``, ``p2``,
             ``energy`` and ``energy_error`` (E(t) - E(0)) over ``time``;
-            attributes ``method``, ``dt`` (Gauss), ``steps``,
+            attributes ``method``, ``l1``, ``l2`` (for
+            :func:`pendula.plot.animate`), ``dt`` (Gauss), ``steps``,
             ``rhs_evaluations``, ``energy0`` and ``energy_error_max`` (the
             largest abs(E(t) - E(0)) over the larger of abs(E(0)) and the
             energy with both arms up: a relative error).
@@ -381,7 +382,8 @@ class DoublePendulum:
         err = en - e0
         scale = max(abs(e0), float(self.energy(math.pi, math.pi)))
         dims = ("time",)
-        attrs = {"method": method, "steps": int(stats[0]), "rhs_evaluations": int(stats[3]), "energy0": e0,
+        attrs = {"method": method, "l1": self.l1, "l2": self.l2, "steps": int(stats[0]),
+                 "rhs_evaluations": int(stats[3]), "energy0": e0,
                  "energy_error_max": float(np.max(np.abs(err)) / scale) if err.size else 0.0}
         if method != "dop853":
             attrs["dt"] = h
