@@ -433,8 +433,9 @@ class DoublePendulum:
         -----
         A flip is the first time abs(theta1) or abs(theta2) reaches pi (Heyl,
         "The double pendulum fractal", 2008).  The path is output on a grid
-        of 1/50 of the fast normal mode's period and the crossing found on the
-        cubic Hermite interpolant of the grid interval where it happens.
+        of 1/10 of the fast normal mode's period; the crossing is found on the
+        cubic Hermite interpolant of the grid interval where it happens, then
+        polished by Newton's method on the integrated path.
 
         Examples
         --------
@@ -457,7 +458,7 @@ class DoublePendulum:
         g1, g2 = np.meshgrid(a1, a2, indexing="ij")
         forbidden = flip_forbidden(g1, g2, self.m1, self.m2, self.l1, self.l2, self.rods)
         # damping only lowers the energy: the forbidden pixels stay forbidden
-        hg = float(self.modes().period[1]) / 50.0
+        hg = float(self.modes().period[1]) / 10.0
         cancel = _interrupt.cancel_flag()
         tf, tc, status = _interrupt.call(
             _kernel.double_flip_map_v, self._p, g1.ravel(), g2.ravel(), forbidden.ravel().astype(np.int32),
