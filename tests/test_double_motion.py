@@ -324,3 +324,18 @@ def test_empty_times_and_axes_are_refused_by_name():
     with pytest.raises(ValueError, match="t must hold"):
         pendula.FoucaultPendulum(latitude=10.0).simulate([], 0.1)
 
+
+def test_animation_of_the_double_pendulum_draws_both_arms(tmp_path):
+    PIL = pytest.importorskip("PIL.Image")
+    pytest.importorskip("matplotlib")
+    import pendula.plot
+    from pendula.animation import _double_arms
+    dp = pendula.DoublePendulum(l1=1.0, l2=0.5)
+    run = dp.simulate(np.linspace(0.0, 2.0, 9), theta1=1.0, theta2=-0.5)
+    x1, y1, x2, y2 = _double_arms(run)
+    assert np.allclose(np.hypot(x1, y1), 1.0) and np.allclose(np.hypot(x2 - x1, y2 - y1), 0.5)
+    with PIL.open(pendula.plot.animate(run, tmp_path / "double.gif", dpi=20)) as im:
+        assert im.n_frames == 9
+    with pytest.raises(TypeError, match="tr"):
+        pendula.plot.animate(run.drop_vars("theta2"), tmp_path / "x.gif")
+

@@ -89,6 +89,25 @@ def test_damped_swing_decays_at_half_the_drag_rate():
     assert abs(late / (0.01 * math.exp(-gamma * t[-1] / 2)) - 1) < 2e-3
 
 
+def test_anisotropic_support_splits_the_frequencies():
+    # no Earth rate: a small swing east has omega^2 = (g/l)(1 + ae), north (g/l)(1 + an); the period is
+    # read from the zero crossings of x (or y), checked to 1e-5 (the amplitude's shift is ~theta0^2/16 = 6e-7)
+    ae, an = 0.02, -0.01
+    fp = pendula.FoucaultPendulum(latitude=45.0, length=2.0, g=9.81, earth_rate=0.0, anisotropy=(ae, an))
+    for az, a, comp in [(0.0, ae, "x"), (math.pi / 2, an, "y")]:
+        w = math.sqrt(9.81 / 2.0 * (1 + a))
+        t = np.linspace(0.0, 20 * 2 * math.pi / w, 20001)
+        u = getattr(fp.simulate(t, 0.003, azimuth=az), comp).values
+        i = np.flatnonzero((u[:-1] > 0) & (u[1:] <= 0))
+        tz = t[i] - u[i] * (t[i + 1] - t[i]) / (u[i + 1] - u[i])
+        period = np.mean(np.diff(tz))
+        assert abs(period * w / (2 * math.pi) - 1) < 1e-5, (comp, period)
+    with pytest.raises(ValueError, match="anisotropy"):
+        pendula.FoucaultPendulum(latitude=10.0, anisotropy=(-1.0, 0.0))
+    with pytest.raises(ValueError, match="anisotropy"):
+        pendula.FoucaultPendulum(latitude=10.0, anisotropy=(0.1, 0.2, 0.3))
+
+
 def test_bad_input_names_the_field():
     for lat in (91.0, -90.5):
         with pytest.raises(ValueError, match="latitude"):

@@ -1397,7 +1397,7 @@ subroutine double_section_v(p, method, norb, y0s, tmax, hg, rtol, atol, maxpts, 
 end subroutine double_section_v
 ! ---------------------------------------------------------------- the Foucault pendulum
 ! The Foucault pendulum (kernel/models/pendula_foucault.f90): p = (g, l,
-! Omega_E, latitude in degrees, gamma); y = (r, v) in local axes (x east,
+! Omega_E, latitude in degrees, gamma, ae, an); y = (r, v) in local axes (x east,
 ! y north, z up), the path at tout by DOP853.  pstatus the parameters'
 ! status (pendula_foucault's fst_*), status the integrator's.
 subroutine foucault_simulate_v(p, y0, nout, tout, rtol, atol, cancel, yout, stats, pstatus, status)
@@ -1407,7 +1407,7 @@ subroutine foucault_simulate_v(p, y0, nout, tout, rtol, atol, cancel, yout, stat
   use pendula_foucault_run, only: foucault_simulate
   implicit none
   integer, intent(in) :: nout
-  double precision, intent(in) :: p(5), y0(6), tout(nout), rtol, atol
+  double precision, intent(in) :: p(7), y0(6), tout(nout), rtol, atol
   integer, intent(inout), volatile :: cancel(1)
   double precision, intent(out) :: yout(6, nout)
   integer(8), intent(out) :: stats(4)

@@ -84,17 +84,21 @@ contains
   !> the start y0 (angles in [-pi, pi]), by DOP853 at (rtol, atol), searched
   !> up to tmax: inf when neither flips by tmax.  The path is output on a
   !> grid of spacing hg (in chunks of flip_chunk points); the crossing is
-  !> the root of the cubic Hermite interpolant of theta_i (its rates w_i) on
-  !> the grid interval where abs(theta_i) first exceeds pi, by bisection.
+  !> first the root of the cubic Hermite interpolant of theta_i (its rates
+  !> w_i) on the grid interval where abs(theta_i) first exceeds pi, by
+  !> bisection, then polished by Newton's method on the integrated path (the
+  !> state integrated from the interval's start over the time found), so the
+  !> grid need only be fine enough not to miss a crossing.
   subroutine flip_time(sys, y0, tmax, hg, rtol, atol, tf, status, cancel)
     type(double_ode), intent(in) :: sys
     real(dp), intent(in) :: y0(4), tmax, hg, rtol, atol
     real(dp), intent(out) :: tf
     integer, intent(out) :: status
     integer, intent(inout), volatile :: cancel
-    real(dp) :: y(4), tout(flip_chunk), yout(4, flip_chunk), t0, ya(4), wa(2), wb(2), tc
+    real(dp) :: y(4), tout(flip_chunk), yout(4, flip_chunk), t0, ya(4), wa(2), wb(2), tc, s1, lev
+    real(dp) :: yc(4), wc(2), dt
     type(run_stats) :: st
-    integer :: k, j, arm, nk
+    integer :: k, j, arm, nk, it
     tf = inf_dp
     status = st_ok
     y = y0
@@ -115,13 +119,32 @@ contains
         if (abs(yout(1, k)) > pi .or. abs(yout(2, k)) > pi) then
           call double_velocities(sys%dpd, ya, wa)
           call double_velocities(sys%dpd, yout(:, k), wb)
+          tc = huge(1.0_dp)
+          arm = 1
           do j = 1, 2
             if (abs(yout(j, k)) > pi) then
-              arm = j
-              tc = crossing(ya(arm), wa(arm), yout(arm, k), wb(arm), sign(pi, yout(arm, k)))
-              tf = min(tf, tout(k) - hg + tc)
+              s1 = crossing(ya(j), wa(j), yout(j, k), wb(j), sign(pi, yout(j, k)))
+              if (s1 < tc) then
+                tc = s1
+                arm = j
+              end if
             end if
           end do
+          ! polish on the integrated path: Newton on abs(theta_arm) - pi in the time after ya
+          lev = sign(pi, yout(arm, k))
+          do it = 1, 3
+            call advance(ya, tc, yc)
+            if (status /= st_ok) then
+              tf = nan_dp
+              return
+            end if
+            call double_velocities(sys%dpd, yc, wc)
+            if (.not. (abs(wc(arm)) > 0.0_dp)) exit
+            dt = (yc(arm) - lev) / wc(arm)
+            tc = tc - dt
+            if (abs(dt) <= 1.0e-15_dp * (1.0_dp + tc)) exit
+          end do
+          tf = tout(k) - hg + tc
           if (tf > tmax) tf = inf_dp
           return
         end if
@@ -157,6 +180,18 @@ contains
       end do
       s = hi * hg
     end function crossing
+
+    !> the state a time tau after y1 by DOP853 at the search's tolerances
+    subroutine advance(y1, tau, y2)
+      real(dp), intent(in) :: y1(4), tau
+      real(dp), intent(out) :: y2(4)
+      real(dp) :: yy(4, 1)
+      type(run_stats) :: st1
+      y2 = y1
+      if (.not. (tau > 0.0_dp)) return
+      call ode_dop853(sys, 0.0_dp, y1, [tau], rtol, atol, yy, st1, status, cancel)
+      y2 = yy(:, 1)
+    end subroutine advance
 
   end subroutine flip_time
 

@@ -4,9 +4,12 @@
 !> Earth's rotation there is Omega = Omega_E (0, cos(lat), sin(lat)).  The
 !> bob's position r (abs(r) = l) and velocity v obey
 !>
-!>   r'' = -g z^ - 2 Omega x v - Omega x (Omega x r) - gamma v + lambda r,
+!>   r'' = -g z^ - 2 Omega x v - Omega x (Omega x r) - gamma v
+!>         - (g / l) (ae x, an y, 0) + lambda r,
 !>
-!> g the apparent gravity at the pivot, gamma >= 0 a viscous drag rate, and
+!> g the apparent gravity at the pivot, gamma >= 0 a viscous drag rate, ae
+!> and an an anisotropic support (a small swing east or north has omega^2 =
+!> (g / l) (1 + ae) or (g / l) (1 + an)), and
 !> lambda r the rod's tension, fixed by the constraint (r . r)'' = 0:
 !> lambda = -(v . v + r . F) / l^2, F the other forces (Landau and
 !> Lifshitz, "Mechanics", section 39).  Cartesian coordinates have no
@@ -18,17 +21,19 @@ module pendula_foucault
   public :: foucault, make_foucault, foucault_rhs
 
   !> the entries of the parameter vector of make_foucault
-  integer, parameter, public :: fp_g = 1, fp_l = 2, fp_rate = 3, fp_lat = 4, fp_gamma = 5, fp_size = 5
-  !> status: a latitude (degrees) outside [-90, 90]; g or l not positive; rate or gamma negative
-  integer, parameter, public :: fst_ok = 0, fst_latitude = 1, fst_gl = 2, fst_rate = 3
+  integer, parameter, public :: fp_g = 1, fp_l = 2, fp_rate = 3, fp_lat = 4, fp_gamma = 5, fp_ae = 6, fp_an = 7, &
+    fp_size = 7
+  !> status: a latitude (degrees) outside [-90, 90]; g or l not positive; rate or gamma negative;
+  !> an anisotropy not finite or at most -1 (no restoring force along its axis)
+  integer, parameter, public :: fst_ok = 0, fst_latitude = 1, fst_gl = 2, fst_rate = 3, fst_aniso = 4
 
   type :: foucault
-    real(dp) :: g = 1.0_dp, l = 1.0_dp, om(3) = 0.0_dp, gamma = 0.0_dp
+    real(dp) :: g = 1.0_dp, l = 1.0_dp, om(3) = 0.0_dp, gamma = 0.0_dp, ke = 0.0_dp, kn = 0.0_dp
   end type foucault
 
 contains
 
-  !> The pendulum of p = (g, l, Omega_E, latitude in degrees, gamma), status fst_*.
+  !> The pendulum of p = (g, l, Omega_E, latitude in degrees, gamma, ae, an), status fst_*.
   pure subroutine make_foucault(p, fc, status)
     real(dp), intent(in) :: p(fp_size)
     type(foucault), intent(out) :: fc
@@ -46,8 +51,13 @@ contains
                .and. p(fp_gamma) <= huge(1.0_dp))) then
       status = fst_rate; return
     end if
+    if (.not. (p(fp_ae) > -1.0_dp .and. p(fp_an) > -1.0_dp .and. p(fp_ae) <= huge(1.0_dp) &
+               .and. p(fp_an) <= huge(1.0_dp))) then
+      status = fst_aniso; return
+    end if
     lat = p(fp_lat) * (pi / 180.0_dp)
     fc%g = p(fp_g); fc%l = p(fp_l); fc%gamma = p(fp_gamma)
+    fc%ke = p(fp_ae) * p(fp_g) / p(fp_l); fc%kn = p(fp_an) * p(fp_g) / p(fp_l)
     fc%om = p(fp_rate) * [0.0_dp, cos(lat), sin(lat)]
     if (abs(p(fp_lat)) == 90.0_dp) fc%om(2) = 0.0_dp    ! cos(pi/2) is 6e-17 in doubles
   end subroutine make_foucault
@@ -66,6 +76,8 @@ contains
     real(dp) :: force(3), lam
     force = -2.0_dp * cross(fc%om, y(4:6)) - cross(fc%om, cross(fc%om, y(1:3))) - fc%gamma * y(4:6)
     force(3) = force(3) - fc%g
+    force(1) = force(1) - fc%ke * y(1)
+    force(2) = force(2) - fc%kn * y(2)
     lam = -(dot_product(y(4:6), y(4:6)) + dot_product(y(1:3), force)) / dot_product(y(1:3), y(1:3))
     f(1:3) = y(4:6)
     f(4:6) = force + lam * y(1:3)

@@ -21,6 +21,8 @@ from ._files import atomic_path, check_target
 from ._optional import require
 
 if TYPE_CHECKING:
+    import xarray
+
     from .trajectory import Trajectory
 
 __all__ = ["animate"]
@@ -31,19 +33,21 @@ _WRITERS = {".gif": ("pillow", "Pillow (installed with matplotlib)"),
                                "dnf install ffmpeg, brew install ffmpeg)")}
 
 
-def animate(tr: Trajectory, path: str | os.PathLike, *, fps: float = 25.0, max_frames: int = 500,
-            dpi: float = 80.0, trail: int = 0) -> pathlib.Path:
+def animate(tr: Trajectory | xarray.Dataset, path: str | os.PathLike, *, fps: float = 25.0,
+            max_frames: int = 500, dpi: float = 80.0, trail: int = 0) -> pathlib.Path:
     """Write the pendulum's swing as an animation: a ``.gif`` or an ``.mp4``.
 
     One frame per sample of the trajectory (every k-th when there are more
     than ``max_frames``): the rod from the pivot to the bob, the time in the
     corner.  For the flexible cord the bob is drawn where it flies (the cord
-    dashed while slack).
+    dashed while slack); for a double pendulum both arms, the trace following
+    the lower end.
 
     Parameters
     ----------
-    tr : Trajectory
-        What :func:`pendula.simulate` returns (or ``Pendulum.motion(t).trajectory``).
+    tr : Trajectory or xarray.Dataset
+        What :func:`pendula.simulate` returns (or ``Pendulum.motion(t).trajectory``),
+        or what :meth:`pendula.DoublePendulum.simulate` returns.
         Its times should be equally spaced: a frame is shown for 1 / fps s.
     path : str or os.PathLike
         The file to write; its suffix chooses the writer: ``.gif`` with
@@ -87,7 +91,9 @@ def animate(tr: Trajectory, path: str | os.PathLike, *, fps: float = 25.0, max_f
     """
     from .trajectory import Trajectory
 
-    _checks.instance(tr, "tr", Trajectory)
+    double = _double_arms(tr)
+    if double is None:
+        _checks.instance(tr, "tr", Trajectory, "a Trajectory or a DoublePendulum.simulate Dataset")
     fps = _checks.real(fps, "fps", 0.0, lo_open=True)
     dpi = _checks.real(dpi, "dpi", 0.0, lo_open=True)
     max_frames = _checks.count(max_frames, "max_frames", 1)
@@ -104,8 +110,13 @@ def animate(tr: Trajectory, path: str | os.PathLike, *, fps: float = 25.0, max_f
     if not animation.writers.is_available(writer_name):
         raise RuntimeError(f"writing {suffix} needs {needs}; a .gif needs nothing beyond matplotlib")
 
-    x, y = _bob(tr)
-    t = np.asarray(tr.t, dtype=float)
+    if double is None:
+        x, y = _bob(tr)
+        t = np.asarray(tr.t, dtype=float)
+        xm = ym = None
+    else:
+        xm, ym, x, y = double
+        t = np.asarray(tr["time"].values, dtype=float)
     step = max(1, -(-t.size // max_frames))
     frames = np.arange(0, t.size, step)
 
@@ -120,11 +131,14 @@ def animate(tr: Trajectory, path: str | os.PathLike, *, fps: float = 25.0, max_f
     trace, = ax.plot([], [], "-", color="C0", lw=0.8, alpha=0.5)
     bob, = ax.plot([], [], "o", color="C3", ms=12)
     clock = ax.text(0.02, 0.96, "", transform=ax.transAxes, fontsize=10, va="top")
-    slack = tr.r is not None
+    slack = double is None and tr.r is not None
 
     def frame(i):
         xi, yi = x[i], y[i]
-        rod.set_data([0.0, xi], [0.0, yi])
+        if xm is None:
+            rod.set_data([0.0, xi], [0.0, yi])
+        else:
+            rod.set_data([0.0, xm[i], xi], [0.0, ym[i], yi])
         if slack:
             rod.set_linestyle("--" if tr.r[i] < 1.0 - 1e-9 else "-")
         if trail:
@@ -153,3 +167,15 @@ def _bob(tr) -> tuple[np.ndarray, np.ndarray]:
         return np.asarray(tr.x, dtype=float), np.asarray(tr.y, dtype=float)
     th = np.asarray(tr.theta, dtype=float)
     return np.sin(th), -np.cos(th)
+
+
+def _double_arms(ds):
+    """The joint's and the lower end's positions (x1, y1, x2, y2) of a DoublePendulum.simulate Dataset,
+    or None for anything else."""
+    if not (hasattr(ds, "data_vars") and {"theta1", "theta2"} <= set(ds.data_vars) and "l1" in ds.attrs):
+        return None
+    l1, l2 = float(ds.attrs["l1"]), float(ds.attrs["l2"])
+    th1, th2 = np.asarray(ds.theta1.values, dtype=float), np.asarray(ds.theta2.values, dtype=float)
+    x1, y1 = l1 * np.sin(th1), -l1 * np.cos(th1)
+    return x1, y1, x1 + l2 * np.sin(th2), y1 - l2 * np.cos(th2)
+

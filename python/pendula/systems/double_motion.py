@@ -311,7 +311,8 @@ class DoublePendulum:
         xarray.Dataset
             ``theta1``, ``theta2``, ``omega1``, ``omega2``, ``p1``, ``p2``,
             ``energy`` and ``energy_error`` (E(t) - E(0)) over ``time``;
-            attributes ``method``, ``dt`` (Gauss), ``steps``,
+            attributes ``method``, ``l1``, ``l2`` (for
+            :func:`pendula.plot.animate`), ``dt`` (Gauss), ``steps``,
             ``rhs_evaluations``, ``energy0`` and ``energy_error_max`` (the
             largest abs(E(t) - E(0)) over the larger of abs(E(0)) and the
             energy with both arms up: a relative error).
@@ -381,7 +382,8 @@ class DoublePendulum:
         err = en - e0
         scale = max(abs(e0), float(self.energy(math.pi, math.pi)))
         dims = ("time",)
-        attrs = {"method": method, "steps": int(stats[0]), "rhs_evaluations": int(stats[3]), "energy0": e0,
+        attrs = {"method": method, "l1": self.l1, "l2": self.l2, "steps": int(stats[0]),
+                 "rhs_evaluations": int(stats[3]), "energy0": e0,
                  "energy_error_max": float(np.max(np.abs(err)) / scale) if err.size else 0.0}
         if method != "dop853":
             attrs["dt"] = h
@@ -431,8 +433,9 @@ class DoublePendulum:
         -----
         A flip is the first time abs(theta1) or abs(theta2) reaches pi (Heyl,
         "The double pendulum fractal", 2008).  The path is output on a grid
-        of 1/50 of the fast normal mode's period and the crossing found on the
-        cubic Hermite interpolant of the grid interval where it happens.
+        of 1/10 of the fast normal mode's period; the crossing is found on the
+        cubic Hermite interpolant of the grid interval where it happens, then
+        polished by Newton's method on the integrated path.
 
         Examples
         --------
@@ -455,7 +458,7 @@ class DoublePendulum:
         g1, g2 = np.meshgrid(a1, a2, indexing="ij")
         forbidden = flip_forbidden(g1, g2, self.m1, self.m2, self.l1, self.l2, self.rods)
         # damping only lowers the energy: the forbidden pixels stay forbidden
-        hg = float(self.modes().period[1]) / 50.0
+        hg = float(self.modes().period[1]) / 10.0
         cancel = _interrupt.cancel_flag()
         tf, tc, status = _interrupt.call(
             _kernel.double_flip_map_v, self._p, g1.ravel(), g2.ravel(), forbidden.ravel().astype(np.int32),

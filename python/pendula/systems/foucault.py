@@ -33,7 +33,8 @@ EARTH_RATE = 7.292115e-5
 
 _PSTATUS = {1: "latitude must lie in [-90, 90] degrees, got {latitude!r}",
             2: "g and length must be positive and finite, got g={g!r}, length={length!r}",
-            3: "earth_rate and damping must be finite and >= 0, got earth_rate={earth_rate!r}, damping={damping!r}"}
+            3: "earth_rate and damping must be finite and >= 0, got earth_rate={earth_rate!r}, damping={damping!r}",
+            4: "anisotropy must be two finite numbers > -1 (east, north), got {anisotropy!r}"}
 _STATUS = {2: "rtol must be > 0 and atol >= 0", 5: "step size underflow", 6: "the state became non-finite",
            7: "the run needs more steps than the work limit (1e8): shorten the span or loosen rtol",
            8: "interrupted", 20: "t must be ascending and >= 0"}
@@ -103,16 +104,22 @@ class FoucaultPendulum:
     g : float, optional
         The apparent gravity at the pivot (m/s^2; default 9.81).
     earth_rate : float, optional
-        Omega_E (rad/s; default :data:`EARTH_RATE`, the sidereal rate).
+        Omega_E (rad/s; default 7.292115e-5, the sidereal rate).
     damping : float, optional
         gamma >= 0, a viscous drag rate (1/s; default 0): the force -gamma v
         per unit mass.
+    anisotropy : tuple of float, optional
+        (ae, an), an anisotropic support: a horizontal restoring force
+        -(g / length) (ae x, an y) per unit mass besides gravity's, so that a
+        small swing east has omega^2 = (g / length) (1 + ae) and one north
+        (g / length) (1 + an) (default (0, 0)).  Its precession is not in the
+        Coriolis or Airy part: it shows in the residual.
 
     Raises
     ------
     ValueError
         Naming the field: a latitude outside [-90, 90], g or length not
-        positive, a negative earth_rate or damping.
+        positive, a negative earth_rate or damping, an anisotropy at most -1.
 
     See Also
     --------
@@ -128,18 +135,22 @@ class FoucaultPendulum:
     """
 
     def __init__(self, latitude: float, length: float = 67.0, g: float = 9.81, earth_rate: float = EARTH_RATE,
-                 damping: float = 0.0) -> None:
+                 damping: float = 0.0, anisotropy: ArrayLike = (0.0, 0.0)) -> None:
         self.latitude = _checks.real(latitude, "latitude")
         self.length = _checks.real(length, "length")
         self.g = _checks.real(g, "g")
         self.earth_rate = _checks.real(earth_rate, "earth_rate")
         self.damping = _checks.real(damping, "damping")
-        self._p = np.array([self.g, self.length, self.earth_rate, self.latitude, self.damping])
+        an = _checks.as_float(anisotropy, "anisotropy")
+        if an.shape != (2,):
+            raise ValueError(f"anisotropy must be two numbers (east, north), got shape {an.shape}")
+        self.anisotropy = (float(an[0]), float(an[1]))
+        self._p = np.array([self.g, self.length, self.earth_rate, self.latitude, self.damping, *self.anisotropy])
         self._run(np.zeros(6), np.zeros(1), 1e-10, 1e-10)   # the kernel checks the fields
 
     def __repr__(self) -> str:
         return (f"FoucaultPendulum(latitude={self.latitude:g}, length={self.length:g}, g={self.g:g}, "
-                f"earth_rate={self.earth_rate:g}, damping={self.damping:g})")
+                f"earth_rate={self.earth_rate:g}, damping={self.damping:g}, anisotropy={self.anisotropy})")
 
     def _run(self, y0, tt, rtol, atol):
         cancel = _interrupt.cancel_flag()
@@ -147,7 +158,8 @@ class FoucaultPendulum:
                                                        cancel, cancel=cancel, long=tt.size > 1)
         if pstatus:
             raise ValueError(_PSTATUS[int(pstatus)].format(latitude=self.latitude, g=self.g, length=self.length,
-                                                           earth_rate=self.earth_rate, damping=self.damping))
+                                                           earth_rate=self.earth_rate, damping=self.damping,
+                                                           anisotropy=self.anisotropy))
         if status:
             raise ValueError(f"FoucaultPendulum: {_STATUS.get(int(status), f'kernel status {status}')}")
         return yout, stats
