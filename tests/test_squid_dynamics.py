@@ -207,3 +207,28 @@ def test_shapiro_steps_of_the_squid_lock_at_multiples_of_f_times_the_flux_quantu
         assert abs(v - n * f * h_over_2e) <= e + 1e-10 * n * f * h_over_2e, (v / (f * h_over_2e), e)
     with pytest.raises(ValueError, match="rf_current"):
         sq.iv_curve(currents, rf_frequency=f)
+
+
+def test_bias_exactly_at_the_static_critical_current_is_a_hard_case():
+    """At I = Ic(Φ) the running state is born (a saddle-node on the cycle): the passage by the fold's
+    ghost takes forever: started from rest the SQUID creeps towards the fold, and the voltage is zero
+    within its error (no smaller than the creep's drift), finite, and below 1e-4 I₀R."""
+    sq = _squid(1.0, 0.5)
+    ic = sq.critical_current(0.3)
+    r = sq.iv_curve([ic], flux=0.3)
+    v, e = float(r.voltage[0, 0]), float(r.voltage_err[0, 0])
+    assert np.isfinite(v) and np.isfinite(e)
+    assert abs(v) <= e + 1e-12 * I0 * R
+    assert abs(v) < 1e-4 * I0 * R
+
+
+def test_noisy_shapiro_step_keeps_its_locked_voltage_at_low_temperature():
+    """At 0.1 K (kT/E_J = 4e-4) the first Shapiro step (2.6 I₀, as in the noiseless test) stays locked:
+    the paths' mean voltage is fΦ₀ within four standard errors plus 1e-3 (the step's noise-induced slips
+    are exponentially rare at this temperature; the default step resolves the drive)."""
+    sq = _squid(1.0, 0.5, temperature=0.1)
+    f = sq.characteristic_frequency / (2 * math.pi)
+    h_over_2e = 6.62607015e-34 / (2 * 1.602176634e-19)
+    r = sq.iv_curve([2.6 * I0], flux=0.25, rf_current=1.5 * I0, rf_frequency=f, paths=4, seed=1)
+    v, e = float(r.voltage[0, 0]), float(r.voltage_err[0, 0])
+    assert abs(v - f * h_over_2e) < 4 * e + 1e-3 * f * h_over_2e, (v / (f * h_over_2e), e)

@@ -360,7 +360,8 @@ class DCSquid:
         dt : float, optional
             The step (s) of the noisy paths (default 0.05 min(0.4, β_c,
             √(β_c/(1 + 2/(πβ_L))))/ω_c: the drift's error is of first order
-            in the step over β_c).
+            in the step over β_c; with an rf drive no more than a 64th of
+            its period).
         paths : int, optional
             Noisy paths at each current (>= 2; default 4).
         seed : int, optional
@@ -411,6 +412,8 @@ class DCSquid:
             raise ValueError(f"rf_current ({a!r} A) and rf_frequency ({f!r} Hz): an rf drive needs both, "
                              "or give neither")
         rf = (a / i0, _TWO_PI * f / self.characteristic_frequency)
+        if noise[0] > 0 and dt is None and rf[1] > 0:   # the noisy step resolves the drive too
+            noise = (noise[0], min(noise[1], _TWO_PI / (64 * rf[1])), *noise[2:])
         dirs = ["up", "down"] if direction == "both" else [direction]
         vel = np.full((len(dirs), cur.size), np.nan)
         err = np.full_like(vel, np.nan)

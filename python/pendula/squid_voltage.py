@@ -13,7 +13,9 @@ interpolation of s and s' sampled densely (64 samples a turn or more), and
 ⟨s'⟩ = 2π(k_b − k_a)/(t_b − t_a), exact for a periodic running state.  Its
 error estimate is half the difference of the means over the first and the
 second half of the turns (a transient left over, or a motion that is not
-periodic, shows there), and never below the integrator's rtol.  With noise
+periodic, shows there), and never below the integrator's rtol.  Fewer than
+two turns in the window (at rest, or creeping towards rest) give the drift
+over the window, its error no smaller than the drift itself.  With noise
 each path's mean is its drift over the window; the paths' standard error is
 the error.
 """
@@ -83,11 +85,12 @@ def mean_velocity(net: Network, phi0: np.ndarray, v0: np.ndarray, transient: flo
     k_b = math.floor(float(np.max(s)) / _TWO_PI)
     turns = k_b - k_a
     if turns < 2:
-        # at rest or slower than two turns over the window: the drift over the window, its error the size
-        # of the excursions of s about that drift
+        # at rest, creeping towards a rest point, or slower than two turns over the window: the drift over
+        # the window, its error the larger of the excursions of s about that drift and the drift itself
+        # (a creep that slows, as next to the fold at Ic, tends to no voltage at all)
         drift = (s[-1] - s[0]) / (t[-1] - t[0])
         dev = s - s[0] - drift * (t - t[0])
-        err = (float(np.max(dev) - np.min(dev)) + rtol) / (t[-1] - t[0])
+        err = max((float(np.max(dev) - np.min(dev)) + rtol) / (t[-1] - t[0]), abs(drift))
         return float(drift), err, phi[-1], v[-1]
     levels = _TWO_PI * np.arange(k_a, k_b + 1)
     hits = _first_hits(t, s, sv, levels)
