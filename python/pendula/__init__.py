@@ -65,6 +65,7 @@ from .spectrum import precompute_wisdom, wisdom_path  # noqa: E402
 from .laboratory import Pendulum, Swing  # noqa: E402
 # the quantum pendulum: Mathieu characteristic values and the transmon
 from .quantum import Transmon, mathieu_a, mathieu_b, mathieu_ce, mathieu_exponent, mathieu_se  # noqa: E402
+from .mathieu_floquet import mathieu_me  # noqa: E402
 # networks of pendula: coupled phases, chains, arrays of junctions
 from .systems.network import Network, NetworkEquilibrium, NormalModes  # noqa: E402
 from .squid import DCSquid  # noqa: E402
@@ -98,7 +99,7 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
 # the pendulum of the classroom in metres, seconds and degrees
 __all__ += ["Pendulum", "Swing"]
 # the quantum pendulum
-__all__ += ["mathieu_a", "mathieu_b", "mathieu_exponent", "mathieu_ce", "mathieu_se", "Transmon"]
+__all__ += ["mathieu_a", "mathieu_b", "mathieu_exponent", "mathieu_ce", "mathieu_se", "mathieu_me", "Transmon"]
 # networks of pendula
 __all__ += ["Network", "NetworkEquilibrium", "NormalModes", "DCSquid", "RFSquid"]
 # the spherical pendulum exactly; the double pendulum's exact parts (normal modes, the forbidden flip region)
