@@ -77,7 +77,7 @@ def test_period3_cycles_0_09_apart_label_passing_orbits_only_once_confirmed():
     assert agree >= 0.995, f"{agree:.4f} of {stable.sum()} stable points agree"
 
 
-@pytest.mark.parametrize("name", ["1.07"])
+@pytest.mark.parametrize("name", ["1.07", "1.15"])
 def test_default_map_agrees_with_scipy_long_runs_on_995_permille_of_stable_points(name):
     case = REF["cases"][name]
     n = REF["grid"]
