@@ -77,7 +77,7 @@ def test_period3_cycles_0_09_apart_label_passing_orbits_only_once_confirmed():
     assert agree >= 0.995, f"{agree:.4f} of {stable.sum()} stable points agree"
 
 
-@pytest.mark.parametrize("name", ["1.07"])
+@pytest.mark.parametrize("name", ["1.07", "1.15"])
 def test_default_map_agrees_with_scipy_long_runs_on_995_permille_of_stable_points(name):
     case = REF["cases"][name]
     n = REF["grid"]
@@ -95,3 +95,27 @@ def test_default_map_agrees_with_scipy_long_runs_on_995_permille_of_stable_point
     agree = (got == ref)[stable].mean()
     assert agree >= 0.995, f"A = {name}: {agree:.4f} of {stable.sum()} stable points agree"
     assert RECURRENCE_DEFAULTS["cell"] == m.dataset.attrs["cell"]
+
+
+def test_separated_attractors_keep_the_cell_rule_and_close_ones_get_a_radius():
+    # A = 1.35 (two period-1 rotations) and A = 1.07 (two period-2 cycles, SciPy's reference cycles): every
+    # pair more than four cells apart, so the cells alone label, exactly as without the radius (no extra cost
+    # where attractors are separated); A = 1.15: a quarter of the closest approach, 0.0234
+    sc = pendula.Scene(damping=0.5, drive_amplitude=1.35, drive_frequency=2 / 3)
+    am = pendula.attractor_map(sc, {"theta0": np.linspace(-2, 2, 5), "v0": np.linspace(-3, 3, 5)})
+    cases = {"1.35": [(a.period, a.theta, a.v) for a in am.attractors]}
+    for name in ("1.07", "1.15"):
+        cases[name] = [(c["period"], c["theta"], c["v"]) for c in REF["cases"][name]["cycles"]]
+    cell = RECURRENCE_DEFAULTS["cell"]
+    for name, cycles in cases.items():
+        found = AttractorSet(cell, 1e-3, 2, 10)
+        for k, th, v in cycles:
+            found.add_periodic(k, 0, th, v, np.eye(2))
+        radii = [found.confirm_radius(i) for i in range(len(found.items))]
+        sep = min(section_dist(a, b, c, d) for a, b in zip(*cycles[0][1:]) for c, d in zip(*cycles[1][1:]))
+        if name == "1.15":
+            assert radii == pytest.approx([sep / 4] * 2, rel=1e-12) and abs(sep - 0.0937) < 1e-3
+        else:
+            assert sep > 4 * cell and radii == [0.0, 0.0]
+        kcell, klab, need, cth, cv, catt, crad = found.table()
+        assert np.array_equal(crad, radii) and (catt.size == 6) == (name == "1.15")

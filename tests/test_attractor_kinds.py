@@ -80,3 +80,17 @@ def test_exponent_not_resolved_in_a_short_window_is_undecided():
     short = classify_aperiodic(sc, float(qp.theta[0]), float(qp.v[0]), 1e-10, 1e-12, periods=2)
     assert short["resolution"] >= math.log(1e3) / (2 * 2 * math.pi)
     assert short["kind"] is None
+
+
+def test_quasi_periodic_attractor_is_named_so_in_the_basin_figure():
+    matplotlib = pytest.importorskip("matplotlib")
+    matplotlib.use("agg")
+    import pendula.plot
+    from pendula.plot import _categories
+    sc = pendula.Scene(damping=0.2, torque=0.5, drive_amplitude=0.2, drive_frequency=1.0)
+    am = pendula.attractor_map(sc, {"theta0": [0.0, 1.0], "v0": [2.0, 2.5]})
+    names = [c["name"] for c in _categories(am)[2]]
+    assert any(n.endswith(": quasi-periodic") for n in names), names
+    ax = pendula.plot.basins(am)
+    assert ax is not None
+    matplotlib.pyplot.close("all")

@@ -11,7 +11,9 @@
 !>     consecutive samples, and, for an attractor given a confirmation radius
 !>     crad(j) > 0 (a periodic attractor close to another, whose cells cannot
 !>     tell the two apart at the cells' resolution), the last sample lies within
-!>     crad(j) of one of its cycle points (cth, cv with catt = j - 1);
+!>     crad(j) of one of its cycle points (cth, cv with catt = j - 1); a sample
+!>     within crad(j) of such a point counts as in attractor j's cells, whether
+!>     or not the cells (shared with the close neighbour) say so;
 !>  2. a new periodic attractor: the samples recur after k periods (k <= kmax)
 !>     to within `near` for `nconf` consecutive samples; the recurrence is then
 !>     refined by Newton on the stroboscopic map (GSL's hybrid Newton with the
@@ -184,7 +186,10 @@ contains
       end if
       ! 1. the cells of a known attractor
       if (size(kcell) > 0) then
-        lab = lookup(kcell, klab, at_cell_id(th, v, cell))
+        ! within the confirmation radius of a close attractor's cycle point: that attractor, whatever
+        ! the cells (which cannot tell it from its neighbour); else the cells' attractor
+        lab = near_cycle(th, v, cth, cv, catt, crad)
+        if (lab < 0) lab = lookup(kcell, klab, at_cell_id(th, v, cell))
         if (lab >= 0 .and. lab == prev) then
           cnt = cnt + 1
         else if (lab >= 0) then
@@ -397,6 +402,22 @@ contains
       end if
     end do
   end function confirmed
+
+  !> The attractor (0-based) one of whose cycle points lies within its confirmation radius of the
+  !> sample, or -1.
+  pure integer function near_cycle(th, v, cth, cv, catt, crad) result(lab)
+    real(dp), intent(in) :: th, v, cth(:), cv(:), crad(:)
+    integer, intent(in) :: catt(:)
+    integer :: j
+    lab = -1
+    do j = 1, size(catt)
+      if (catt(j) >= 0) then
+        if (crad(catt(j) + 1) > 0.0_dp .and. sdist(th, v, cth(j), cv(j)) < crad(catt(j) + 1)) then
+          lab = catt(j); return
+        end if
+      end if
+    end do
+  end function near_cycle
 
   !> The largest modulus of the eigenvalues of a row-major 2 x 2 matrix.
   pure real(dp) function max_multiplier(mono) result(r)

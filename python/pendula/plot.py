@@ -504,9 +504,10 @@ def _period_words(period) -> str:
 
 
 def _attractor_name(label: int, kind: str | None, period) -> str:
-    """'3: periodic, two drive periods', '5: chaotic'; without a kind, a period of 0 is 'no period found'."""
-    if kind == "chaotic":
-        return f"{label}: chaotic"
+    """'3: periodic, two drive periods', '5: chaotic', '6: quasi-periodic'; without a kind, a period of 0 is
+    'no period found'."""
+    if kind in ("chaotic", "quasi-periodic"):
+        return f"{label}: {kind}"
     if kind is None and not int(period):
         return f"{label}: no period found"
     return f"{label}: periodic, {_period_words(period)}"

@@ -63,7 +63,7 @@ class Attractor:
         Its label in the map (0, 1, ...).
     kind : str
         'periodic', 'quasi-periodic' or 'chaotic' (the recurrence method tells the last two apart by the
-        largest Lyapunov exponent, only where it is resolved: :func:`classify_aperiodic`).
+        largest Lyapunov exponent, only where it is resolved: ``classify_aperiodic``).
     period : int
         Drive periods of the cycle (0 for a chaotic attractor).
     theta, v : numpy.ndarray
@@ -86,7 +86,7 @@ class Attractor:
         A quasi-periodic or chaotic attractor's mean turns per drive period (NaN otherwise).
     dimension : float
         A chaotic attractor's Kaplan-Yorke dimension on the stroboscopic section, 1 + lambda_1 /
-        abs(lambda_2) (:func:`kaplan_yorke_dimension`; NaN otherwise).
+        abs(lambda_2) (``kaplan_yorke_dimension``; NaN otherwise).
     """
 
     label: int
@@ -617,7 +617,7 @@ class AttractorSet:
         return len(self.items) - 1
 
     def add_chaotic(self, cells, point: tuple[float, float] = (math.nan, math.nan)) -> int:
-        """A non-periodic attractor by its cells (kind 'chaotic' until :func:`classify_aperiodic` says
+        """A non-periodic attractor by its cells (kind 'chaotic' until ``classify_aperiodic`` says
         more) and a point of it on the section."""
         cells = np.unique(np.asarray(cells, dtype=np.int64))
         for idx, a in enumerate(self.items):
