@@ -436,12 +436,24 @@ contains
   !> Locked means found: a window that ends unlocked but whose mean is within
   !> its error bar of a step p Omega / q (q <= 8) with err <= Omega / (2 qmax^2)
   !> (the window cannot tell the orbit from a locked one: a slow convergence,
-  !> next to a period doubling or a saddle-node, not finished) is followed by
+  !> next to a period doubling or a saddle-node, not finished), or whose last
+  !> return to the state q periods back is closer than 1e-3 (1 + |v|) (a
+  !> chaotic transient that has settled onto a periodic orbit), is followed by
   !> a window twice as long from where it ended, the locking detection going
   !> on, until the map locks, the error bar falls below the distance to the
   !> nearest step (decided off the steps), or the windows reach 63 times the
   !> first (ext_windows; then the last window's mean and error bar, status
-  !> decided).  vm and err are the last window's.
+  !> decided); a mean within its error bar of a whole step n Omega with an
+  !> error bar up to Omega / 8 (a slow passage next to a step's edge), or an
+  !> error bar above Omega / 8 (a chaotic transient, or chaos: the error bar
+  !> falls below its target or the windows end), runs on the same way up to
+  !> 7 first windows.  vm and err are the last window's.  A window of 500 periods or
+  !> more whose stroboscopic phase theta_k - (p / q) Omega t_k stayed within a
+  !> band narrower than pi (a phase slip moves it by 2 pi) is locked to p / q
+  !> too (status 6, <v> = p Omega / q, err = 0): a bounded phase, a locked
+  !> orbit of period above 8 or phase-locked chaos; a saddle-node ghost
+  !> slipping less often than once per window could pass (within about
+  !> (pi / 500)^2 of the edge in the map's parameter).
   subroutine mean_velocity_driven(p, rtol, atol, t_tr, t_avg, th0, v0, vm, err, step, th, v, st, cancel, uf)
     real(dp), intent(in) :: p(np_params), rtol, atol, t_tr, t_avg, th0, v0
     real(dp), intent(out) :: vm, err, step, th, v
@@ -453,9 +465,13 @@ contains
     real(dp), parameter :: lock_tol = 1.0e-7_dp, max_periods = 1.0e9_dp
     !> the longest the windows may run, in first windows (1 + 2 + ... + 32)
     integer(int64), parameter :: ext_windows = 63
+    !> a window this long (periods) without a phase slip off a step's line is locked to it
+    integer(int64), parameter :: bound_periods = 500
+    !> a return to within this of the state q periods back at the window's end: the map is closing in
+    real(dp), parameter :: closing_tol = 1.0e-3_dp
     real(dp) :: tp, ts(1), ths(1), vs(1), sth(0:qmax), sv(0:qmax), dprev(qmax), rprev(qmax), d, dth, r, x, &
-                tha, thh, rs(0:nkeep), lo, hi
-    integer(int64) :: sw(0:qmax), w, wa, wh, k, n_tr, n_avg, stride, turns, n0, n_end, n_lim
+                tha, thh, rs(0:nkeep), lo, hi, y
+    integer(int64) :: sw(0:qmax), w, wa, wh, k, n_tr, n_avg, stride, turns, n0, n_end, n_lim, n_short
     integer :: q, j, nr
     vm = nan_dp; err = nan_dp; step = nan_dp
     th = th0; v = v0; st = ps_decided
@@ -476,6 +492,7 @@ contains
     end if
     ts(1) = tp
     n0 = n_tr; n_end = n_tr + n_avg; n_lim = min(n_tr + ext_windows * n_avg, int(max_periods, int64))
+    n_short = min(n_tr + 7_int64 * n_avg, n_lim)
     k = 0
     do
       k = k + 1
@@ -532,13 +549,50 @@ contains
         lo = min(lo, x); hi = max(hi, x)
       end do
       err = max(err, (hi - lo) / (real(n_avg, dp) * tp))
+      ! a window of bound_periods or more in which the phase kept within pi of the step's line: no slip
+      if (n_avg >= bound_periods .and. bounded_on_step(vm, err, p(5), y)) then
+        vm = y * p(5); step = y; err = 0.0_dp; st = ps_locked
+        return
+      end if
       ! not locked yet: a longer window from here while the mean may be on a step
-      if (.not. (near_step(vm, err, p(5)) .and. n_end + 2_int64 * n_avg <= n_lim)) exit
+      ! (or while the map is closing in on a periodic orbit: a chaotic transient that has settled);
+      ! a mean near an integer step with a coarser error bar (Omega / 8), or an error bar above Omega / 8
+      ! (a chaotic transient after the bias moved, or chaos), runs on up to 7 first windows
+      if (.not. (((near_step(vm, err, p(5)) .or. minval(dprev) <= closing_tol * (1.0_dp + abs(v))) .and. &
+                  n_end + 2_int64 * n_avg <= n_lim) .or. &
+                 ((near_whole_step(vm, err, p(5)) .or. .not. err <= 0.125_dp * p(5)) .and. &
+                  n_end + 2_int64 * n_avg <= n_short))) exit
       n0 = k; n_avg = 2_int64 * n_avg; n_end = k + n_avg
       stride = max(1_int64, (n_avg + nkeep - 1) / nkeep)
       wa = w; tha = th; rs(0) = 0.0_dp; nr = 0
     end do
   contains
+    !> Did the window's stroboscopic phase stay within a band narrower than pi about the line of the
+    !> step p / q that its mean is within its error bar of (q <= qmax, the smallest)?  y = p / q then.
+    logical function bounded_on_step(vm, err, omega, y)
+      real(dp), intent(in) :: vm, err, omega
+      real(dp), intent(out) :: y
+      real(dp) :: z, lo, hi, x
+      integer :: q, j
+      bounded_on_step = .false.; y = nan_dp
+      if (.not. near_step(vm, err, omega)) return
+      do q = 1, qmax
+        z = vm * real(q, dp) / omega
+        if (abs(z - anint(z)) * omega / real(q, dp) <= err) exit
+      end do
+      y = anint(z) / real(q, dp)
+      lo = 0.0_dp; hi = 0.0_dp
+      do j = 1, nr
+        x = rs(j) - y * omega * real(j, dp) * real(stride, dp) * tp
+        lo = min(lo, x); hi = max(hi, x)
+      end do
+      bounded_on_step = hi - lo < pi
+    end function bounded_on_step
+    !> Is the window's mean within its error bar of a whole step n Omega, with an error bar below Omega / 8?
+    pure logical function near_whole_step(vm, err, omega)
+      real(dp), intent(in) :: vm, err, omega
+      near_whole_step = err <= 0.125_dp * omega .and. abs(vm - anint(vm / omega) * omega) <= err
+    end function near_whole_step
     !> Is the window's mean within its error bar of a step p Omega / q (q <= qmax), with an error bar
     !> that resolves the steps of q <= qmax (err <= Omega / (2 qmax^2))?
     pure logical function near_step(vm, err, omega)

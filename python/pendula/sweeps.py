@@ -21,10 +21,12 @@ Measures
     stroboscopic map repeats after q periods with theta advanced by 2 pi p, it
     is phase-locked: <v> = p Omega / q exactly, ``step`` = p / q (the Shapiro
     step) and status 6 'locked'; ``step`` is NaN elsewhere.  A window that
-    ends unlocked but within its error bar of a step runs on for windows twice
-    as long (up to 63 times the first) until the map locks or the error bar
-    falls below the distance to the nearest step; the mean is the last
-    window's.  A scene with
+    ends unlocked but may be on a step (its mean within its error bar of one,
+    or the map closing in on a periodic orbit, or an error bar above Omega / 8)
+    runs on for windows twice as long (up to 63 or 7 first windows) until the
+    map locks or the error bar falls below the distance to the nearest step;
+    500 periods without a phase slip off a step's line also lock; the mean is
+    the last window's (docs/source/guide/josephson.md, How it works).  A scene with
     thermal ``noise`` runs the Langevin integrator (BAOAB, step ``dt`` or its
     default; a driven point over whole drive periods): grid point k (flat
     index, first axis slowest) draws its noise from the stream (``seed``, k),
