@@ -68,7 +68,7 @@ def mathieu_me(nu: float, q: float, z: ArrayLike
     ----------
     nu : float
         Order, not an integer, 0 < nu <= 1e4 (for a negative order,
-        me_-nu(z, q) = me_nu(-z, q)).
+        the solution of order -nu at z is this one at -z).
     q : float
         Parameter, any sign, abs(q) <= 1e10.
     z : array_like

@@ -312,7 +312,7 @@ class DoublePendulum:
             ``theta1``, ``theta2``, ``omega1``, ``omega2``, ``p1``, ``p2``,
             ``energy`` and ``energy_error`` (E(t) - E(0)) over ``time``;
             attributes ``method``, ``l1``, ``l2`` (for
-            :func:`pendula.plot.animate`), ``dt`` (Gauss), ``steps``,
+            ``pendula.plot.animate``), ``dt`` (Gauss), ``steps``,
             ``rhs_evaluations``, ``energy0`` and ``energy_error_max`` (the
             largest abs(E(t) - E(0)) over the larger of abs(E(0)) and the
             energy with both arms up: a relative error).
