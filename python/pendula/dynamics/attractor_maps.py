@@ -19,8 +19,8 @@ import numpy as np
 
 from .. import _checks, _interrupt
 from .._optional import require
-from .._sweep_engine import (AXIS_META, STATUS, Plan, check_driven, check_over, check_work, edge_mask, run,
-                             run_measure, status_attrs)
+from .._sweep_engine import (AXIS_META, PARAM_ORDER, STATUS, Plan, check_driven, check_over, check_work,
+                             edge_mask, run, run_measure, status_attrs)
 from ..scene import Scene
 from ..systems import contract
 from .attractors import AttractorMap
@@ -246,7 +246,9 @@ def _discover(plan: _AttractorPlan, p: np.ndarray, found, threads: int, rtol: fl
                 labels[g] = found.add_periodic(int(out[2, j]), int(out[3, j]), out[_AT_NFIXED:_AT_NFIXED + 2 * k:2, j],
                                                out[_AT_NFIXED + 1:_AT_NFIXED + 2 * k:2, j], out[5:9, j])
             else:
-                labels[g] = found.add_chaotic(cells[:ncell[j], j], (out[_AT_NFIXED, j], out[_AT_NFIXED + 1, j]))
+                fields = {n: float(p[PARAM_ORDER.index(n), g]) for n in plan.over if n not in ("theta0", "v0")}
+                labels[g] = found.add_chaotic(cells[:ncell[j], j], (out[_AT_NFIXED, j], out[_AT_NFIXED + 1, j]),
+                                              fields)
     return labels, status, periods
 
 
@@ -581,8 +583,9 @@ def _attractor_map_recurrence(scene, over, opts, threads, out, client, progress,
     #    else its points are undecided (status 1)
     for i, a in enumerate(found.items):
         if a["kind"] != "periodic" and counts[i] > 0:
-            a["classified"] = classify_aperiodic(scene, *a["point"], opts["recheck_rtol"], opts["recheck_atol"],
-                                                 threads)
+            # at the scene of the grid point that found it (a grid over scene fields holds many scenes)
+            a["classified"] = classify_aperiodic(scene.replace(**a.get("fields", {})), *a["point"],
+                                                 opts["recheck_rtol"], opts["recheck_atol"], threads)
             if a["classified"]["kind"] is None:
                 status[labels == i] = 1
                 labels[labels == i] = -1
