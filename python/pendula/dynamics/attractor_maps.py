@@ -692,8 +692,45 @@ def _attractor_map_samples(scene, over, *, transient, samples, tol, merge_tol, m
         st2 = ds.status.values.copy()
         st2[settling] = 1
         ds["status"] = (ds.status.dims, st2, ds.status.attrs)
+    labels, atts, unresolved = _classify_sample_attractors(scene, over, labels, atts, pc, rtol, atol, threads)
+    if unresolved.any():
+        st2 = ds.status.values.copy()
+        st2[unresolved] = 1
+        ds["status"] = (ds.status.dims, st2, ds.status.attrs)
     ds = ds.drop_vars([c for c in ds.coords if c not in dims])
     extra = {k: pc.attrs[k] for k in pc.attrs if k not in ("measure", "title")}
     extra.update({"method": "samples", "tol": tol, "merge_tol": merge_tol, "cell": cell,
                   "undecided": int((labels < 0).sum())})
     return _finish_map(ds, labels, atts, scene, extra)
+
+
+def _classify_sample_attractors(scene, over, labels, atts, pc, rtol, atol, threads):
+    """Each non-periodic attractor of a 'samples' map: chaotic or quasi-periodic by its resolved largest
+    Lyapunov exponent (from the last sample of its first point, at that point's scene), or undecided (its
+    points -1, status 1); the attractors renumbered in order.  Returns (labels, attractors, unresolved)."""
+    import dataclasses
+
+    from .attractors import classify_aperiodic
+    th = np.asarray(pc.theta.values)
+    vv = np.asarray(pc.v.values)
+    flat = labels.ravel()
+    keep, out = [], []
+    for a in atts:
+        if a.kind == "periodic":
+            keep.append(a)
+            continue
+        first = int(np.flatnonzero(flat == a.label)[0])
+        ix = np.unravel_index(first, labels.shape)
+        fields = {n: float(np.asarray(vals)[i]) for (n, vals), i in zip(over.items(), ix)
+                  if n not in ("theta0", "v0")}
+        info = classify_aperiodic(scene.replace(**fields), float(th[ix][-1]), float(vv[ix][-1]), rtol, atol,
+                                  threads)
+        if info["kind"] is not None:
+            keep.append(dataclasses.replace(a, kind=info["kind"], lyapunov=tuple(info["lyapunov"]),
+                                            rotation_number=info["rotation_number"], dimension=info["dimension"]))
+    remap = np.full(len(atts) + 1, -1, dtype=np.int64)
+    for new, a in enumerate(keep):
+        remap[a.label] = new
+        out.append(dataclasses.replace(a, label=new))
+    unresolved = (labels >= 0) & (remap[labels] < 0)
+    return remap[labels], out, unresolved
