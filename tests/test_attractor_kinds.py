@@ -94,3 +94,22 @@ def test_quasi_periodic_attractor_is_named_so_in_the_basin_figure():
     ax = pendula.plot.basins(am)
     assert ax is not None
     matplotlib.pyplot.close("all")
+
+
+def test_kind_is_decided_at_the_scene_of_the_grid_point_that_found_the_attractor():
+    # a grid over the drive amplitude: the chaotic set of A = 1.2 is classified at A = 1.2, not at the base
+    # scene's 1.35 (where the orbit from its point would settle on a rotation and leave it undecided)
+    sc = pendula.Scene(damping=0.5, drive_amplitude=1.35, drive_frequency=2 / 3)
+    am = pendula.attractor_map(sc, {"drive_amplitude": [1.2, 1.21], "v0": [0.0, 0.5]})
+    assert [a.kind for a in am.attractors] == ["chaotic"]
+    assert (am.dataset.attractor.values >= 0).all() and am.undecided == 0
+    chaotic = next(a for a in am.attractors if a.kind == "chaotic")
+    assert chaotic.lyapunov[0] > 0.05 and abs(sum(chaotic.lyapunov[:2]) + 0.5) < 1e-6
+
+
+def test_samples_method_names_the_quasi_periodic_state_too():
+    sc = pendula.Scene(damping=0.2, torque=0.5, drive_amplitude=0.2, drive_frequency=1.0)
+    am = pendula.attractor_map(sc, {"theta0": [0.0, 1.0], "v0": [2.5]}, method="samples", transient=300.0)
+    assert [a.kind for a in am.attractors] == ["quasi-periodic"]
+    assert (am.dataset.attractor.values == 0).all() and am.undecided == 0
+    assert abs(am.attractors[0].rotation_number - 2.4663) < 5e-4

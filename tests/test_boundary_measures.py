@@ -182,3 +182,11 @@ def test_wada_test_refuses_maps_it_cannot_test(wada_map):
             wada_test(wada_map, **kw)
     with pytest.raises(TypeError, match="max_steps"):
         wada_test(wada_map, max_steps=2.5)
+
+
+def test_wada_test_not_converged_within_its_steps_is_undecided(wada_map):
+    # one refinement moves W_3 by more than tol: no verdict is given (None), never a guess
+    w = wada_test(wada_map, max_steps=1)
+    assert w.fractions.shape == (2, 3)
+    assert abs(w.fractions[1, -1] - w.fractions[0, -1]) >= 0.01
+    assert w.wada is None

@@ -19,8 +19,8 @@ import numpy as np
 
 from .. import _checks, _interrupt
 from .._optional import require
-from .._sweep_engine import (AXIS_META, STATUS, Plan, check_driven, check_over, check_work, edge_mask, run,
-                             run_measure, status_attrs)
+from .._sweep_engine import (AXIS_META, PARAM_ORDER, STATUS, Plan, check_driven, check_over, check_work,
+                             edge_mask, run, run_measure, status_attrs)
 from ..scene import Scene
 from ..systems import contract
 from .attractors import AttractorMap
@@ -246,7 +246,9 @@ def _discover(plan: _AttractorPlan, p: np.ndarray, found, threads: int, rtol: fl
                 labels[g] = found.add_periodic(int(out[2, j]), int(out[3, j]), out[_AT_NFIXED:_AT_NFIXED + 2 * k:2, j],
                                                out[_AT_NFIXED + 1:_AT_NFIXED + 2 * k:2, j], out[5:9, j])
             else:
-                labels[g] = found.add_chaotic(cells[:ncell[j], j], (out[_AT_NFIXED, j], out[_AT_NFIXED + 1, j]))
+                fields = {n: float(p[PARAM_ORDER.index(n), g]) for n in plan.over if n not in ("theta0", "v0")}
+                labels[g] = found.add_chaotic(cells[:ncell[j], j], (out[_AT_NFIXED, j], out[_AT_NFIXED + 1, j]),
+                                              fields)
     return labels, status, periods
 
 
@@ -581,8 +583,9 @@ def _attractor_map_recurrence(scene, over, opts, threads, out, client, progress,
     #    else its points are undecided (status 1)
     for i, a in enumerate(found.items):
         if a["kind"] != "periodic" and counts[i] > 0:
-            a["classified"] = classify_aperiodic(scene, *a["point"], opts["recheck_rtol"], opts["recheck_atol"],
-                                                 threads)
+            # at the scene of the grid point that found it (a grid over scene fields holds many scenes)
+            a["classified"] = classify_aperiodic(scene.replace(**a.get("fields", {})), *a["point"],
+                                                 opts["recheck_rtol"], opts["recheck_atol"], threads)
             if a["classified"]["kind"] is None:
                 status[labels == i] = 1
                 labels[labels == i] = -1
@@ -689,8 +692,45 @@ def _attractor_map_samples(scene, over, *, transient, samples, tol, merge_tol, m
         st2 = ds.status.values.copy()
         st2[settling] = 1
         ds["status"] = (ds.status.dims, st2, ds.status.attrs)
+    labels, atts, unresolved = _classify_sample_attractors(scene, over, labels, atts, pc, rtol, atol, threads)
+    if unresolved.any():
+        st2 = ds.status.values.copy()
+        st2[unresolved] = 1
+        ds["status"] = (ds.status.dims, st2, ds.status.attrs)
     ds = ds.drop_vars([c for c in ds.coords if c not in dims])
     extra = {k: pc.attrs[k] for k in pc.attrs if k not in ("measure", "title")}
     extra.update({"method": "samples", "tol": tol, "merge_tol": merge_tol, "cell": cell,
                   "undecided": int((labels < 0).sum())})
     return _finish_map(ds, labels, atts, scene, extra)
+
+
+def _classify_sample_attractors(scene, over, labels, atts, pc, rtol, atol, threads):
+    """Each non-periodic attractor of a 'samples' map: chaotic or quasi-periodic by its resolved largest
+    Lyapunov exponent (from the last sample of its first point, at that point's scene), or undecided (its
+    points -1, status 1); the attractors renumbered in order.  Returns (labels, attractors, unresolved)."""
+    import dataclasses
+
+    from .attractors import classify_aperiodic
+    th = np.asarray(pc.theta.values)
+    vv = np.asarray(pc.v.values)
+    flat = labels.ravel()
+    keep, out = [], []
+    for a in atts:
+        if a.kind == "periodic":
+            keep.append(a)
+            continue
+        first = int(np.flatnonzero(flat == a.label)[0])
+        ix = np.unravel_index(first, labels.shape)
+        fields = {n: float(np.asarray(vals)[i]) for (n, vals), i in zip(over.items(), ix)
+                  if n not in ("theta0", "v0")}
+        info = classify_aperiodic(scene.replace(**fields), float(th[ix][-1]), float(vv[ix][-1]), rtol, atol,
+                                  threads)
+        if info["kind"] is not None:
+            keep.append(dataclasses.replace(a, kind=info["kind"], lyapunov=tuple(info["lyapunov"]),
+                                            rotation_number=info["rotation_number"], dimension=info["dimension"]))
+    remap = np.full(len(atts) + 1, -1, dtype=np.int64)
+    for new, a in enumerate(keep):
+        remap[a.label] = new
+        out.append(dataclasses.replace(a, label=new))
+    unresolved = (labels >= 0) & (remap[labels] < 0)
+    return remap[labels], out, unresolved

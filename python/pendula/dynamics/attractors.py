@@ -616,9 +616,10 @@ class AttractorSet:
                            "cells": np.unique(cell_ids(theta, v, self.cell))})
         return len(self.items) - 1
 
-    def add_chaotic(self, cells, point: tuple[float, float] = (math.nan, math.nan)) -> int:
+    def add_chaotic(self, cells, point: tuple[float, float] = (math.nan, math.nan),
+                    fields: dict | None = None) -> int:
         """A non-periodic attractor by its cells (kind 'chaotic' until ``classify_aperiodic`` says
-        more) and a point of it on the section."""
+        more), a point of it on the section and the scene fields of the grid point that found it."""
         cells = np.unique(np.asarray(cells, dtype=np.int64))
         for idx, a in enumerate(self.items):
             if a["kind"] != "periodic":
@@ -627,7 +628,7 @@ class AttractorSet:
                     a["cells"] = np.union1d(a["cells"], cells)
                     return idx
         self.items.append({"kind": "chaotic", "period": 0, "winding": 0, "cells": cells,
-                           "point": (float(point[0]), float(point[1]))})
+                           "point": (float(point[0]), float(point[1])), "fields": dict(fields or {})})
         return len(self.items) - 1
 
     def table(self, kinds: tuple = ("periodic", "chaotic")) -> tuple:
