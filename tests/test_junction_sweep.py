@@ -82,6 +82,18 @@ def test_sweep_over_temperature_sets_the_reduced_noise():
         assert m.mean_velocity.values[k, 0] == ref.mean_velocity.values[0]
 
 
+def test_sweep_into_a_zarr_store_gives_the_same_voltages(tmp_path):
+    pytest.importorskip("zarr")
+    j = Junction(1e-6, 18.0, 1e-12)
+    over = {"bias": [0.3e-6, 0.9e-6, 1.6e-6], "rf_current": [0.5e-6, 1e-6]}
+    mem = j.sweep(over, rf_frequency=8e9, threads=1)
+    disk = j.sweep(over, rf_frequency=8e9, threads=1, out=tmp_path / "map")
+    np.testing.assert_array_equal(disk.voltage.values, mem.voltage.values)
+    assert disk.voltage.attrs["units"] == "V" and disk.bias.attrs["units"] == "A"
+    with pytest.raises(ValueError, match="out"):
+        j.sweep({"bias": [0.5e-6], "temperature": [1.0]}, out=tmp_path / "hot")
+
+
 def test_sweep_bad_input_names_the_argument():
     j = Junction(1e-6, 18.0, 1e-12)
     with pytest.raises(ValueError, match="impedance"):

@@ -5,7 +5,7 @@ Shapiro steps in the lab: the I-V curve in µV and the step map
 The 10 µA, 1 pF, 30 Ω junction (β_c = 27, hysteretic) under 10 GHz
 microwaves, in the laboratory's units.  Left: its I-V curve up and down the
 bias ramp with 6 µA of rf (:meth:`pendula.Junction.iv_curve`, drawn by
-:func:`pendula.plot.iv`): the n = 4 step at 4 × 20.68 µV holds from 3.80 to
+:func:`pendula.plot.iv`): the n = 4 step at 4 × 20.68 µV holds from 3.75 to
 4.80 µA on this grid of 0.05 µA, every bias on it phase-locked and exact, with chaos below it.
 Right: the step map over dc bias and rf current
 (:meth:`pendula.Junction.sweep`, drawn by :func:`pendula.plot.steps`): the

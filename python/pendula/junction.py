@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import os
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Literal
 
@@ -31,7 +32,8 @@ from . import _checks, _interrupt
 from .dynamics.tongues import ShapiroTongue, shapiro_tongue
 from .scene import Scene
 
-if TYPE_CHECKING:   # xarray is optional: named in annotations only
+if TYPE_CHECKING:   # xarray and distributed are optional: named in annotations only
+    import distributed
     import xarray
 
 __all__ = ["Junction", "SwitchingCurrents", "PLANCK", "ELEMENTARY_CHARGE", "BOLTZMANN", "FLUX_QUANTUM"]
@@ -486,7 +488,9 @@ class Junction:
 
     def sweep(self, over: dict[str, ArrayLike], *, bias: float = 0.0, rf_current: float = 0.0,
               rf_frequency: float = 0.0, impedance: float | None = None, transient: float | None = None,
-              t_max: float | None = None, threads: int = 0, seed: int = 0) -> xarray.Dataset:
+              t_max: float | None = None, threads: int = 0, seed: int = 0,
+              out: str | os.PathLike[str] | None = None, client: distributed.Client | None = None
+              ) -> xarray.Dataset:
         """The dc voltage over a grid of laboratory quantities, on threads (:func:`pendula.sweep`).
 
         Axes: ``bias`` (A), ``rf_current`` (A) or ``rf_power`` (dBm at
@@ -511,6 +515,9 @@ class Junction:
             OpenMP threads (0: all cores).
         seed : int
             The noise's seed (at a temperature > 0).
+        out, client : optional
+            A Zarr store folder and a Dask client, as :func:`pendula.sweep`
+            (not with a temperature axis).
 
         Returns
         -------
@@ -540,7 +547,8 @@ class Junction:
         tr = 200.0 if transient is None else _checks.real(transient, "parameter 'transient'", 0.0) * wp
         tm = 400.0 if t_max is None else _checks.real(t_max, "parameter 't_max'", 0.0, lo_open=True) * wp
         return junction_sweep(self, over, bias, rf_current, rf_frequency, impedance, tr, tm, threads,
-                              _checks.count(seed, "parameter 'seed'", 0, 2 ** 53), BOLTZMANN / self.josephson_energy)
+                              _checks.count(seed, "parameter 'seed'", 0, 2 ** 53), BOLTZMANN / self.josephson_energy,
+                              out, client)
 
     def escape_rate(self, bias: ArrayLike, regime: Literal["moderate", "underdamped"] = "moderate") -> np.ndarray:
         """The thermal escape rate out of the tilted well, 1 / s.

@@ -142,7 +142,7 @@ LAB_AXES = {"bias": ("torque", "A", "dc bias current"),
 
 
 def junction_sweep(j, over, bias, rf_current, rf_frequency, impedance, transient, t_max, threads, seed,
-                   k_over_ej):
+                   k_over_ej, out=None, client=None):
     """Junction.sweep (j: the Junction; transient and t_max already in inverse plasma frequencies;
     k_over_ej: k_B / E_J, the reduced temperature of one kelvin)."""
     from .rf import rf_current as rf_amplitude
@@ -179,6 +179,9 @@ def junction_sweep(j, over, bias, rf_current, rf_frequency, impedance, transient
         raise ValueError("parameter 'rf_current' must be > 0 when sweeping 'rf_frequency' (no drive: nothing "
                          "depends on the frequency)")
     temps = axes.get("temperature", np.array([j.temperature]))
+    if "temperature" in axes and (out is not None or client is not None):
+        raise ValueError("parameters 'out' and 'client' do not take a temperature axis (one sweep per "
+                         "temperature): sweep each temperature on its own Junction")
     fields = {}
     for name, vals in axes.items():
         if name == "bias":
@@ -198,7 +201,7 @@ def junction_sweep(j, over, bias, rf_current, rf_frequency, impedance, transient
     for temp in temps:
         sc = base.replace(noise=float(temp) * k_over_ej)
         parts.append(sweep(sc, over=dict(fields), measure="mean_velocity", transient=transient, t_max=t_max,
-                           threads=threads))
+                           threads=threads, out=out, client=client))
     ds = parts[0] if "temperature" not in axes else xr.concat(parts, dim="temperature")
     volt = float(j.voltage(1.0))
     names = {LAB_AXES[n][0]: n for n in axes if n != "temperature"}
