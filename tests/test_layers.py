@@ -99,7 +99,7 @@ def test_lower_layers_do_not_import_the_user_facing_ones(low):
     top = {"pendula", "pendula.motion", "pendula.run", "pendula.cli", "pendula.plot", "pendula.studies", "pendula.studies.accuracy", "pendula.studies.bench", "pendula.studies.workprecision"}
     # the classroom pendulum and the animation writer sit beside pendula.motion and pendula.plot
     top |= {"pendula.laboratory", "pendula.animation", "pendula.studies.explained", "pendula.studies.workprecision_report",
-            "pendula.run_figures"}
+            "pendula.run_figures", "pendula._plot_common", "pendula._plot_systems"}
     g = _graph()
     seen, todo = set(), [low]
     while todo:

@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from ._files import save_figure  # the one writer: regular files only, whole or absent
-from .plot import _plt, _wrapped
+from ._plot_common import _plt, _wrapped
 
 
 def _axes(ax, n=None, figsize=(8, 4.5)):
