@@ -22,14 +22,15 @@ from __future__ import annotations
 import dataclasses
 import math
 import os
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from . import _checks, _interrupt
+from . import _checks
 from .dynamics.tongues import ShapiroTongue, shapiro_tongue
+from .junction_lab import rf_pair
+from .junction_switching import SwitchingCurrents
 from .scene import Scene
 
 if TYPE_CHECKING:   # xarray and distributed are optional: named in annotations only
@@ -46,64 +47,6 @@ ELEMENTARY_CHARGE = 1.602176634e-19
 BOLTZMANN = 1.380649e-23
 #: the magnetic flux quantum h / 2e, Wb
 FLUX_QUANTUM = PLANCK / (2.0 * ELEMENTARY_CHARGE)
-
-#: the largest number of Langevin steps one call of switching_currents may take (all ramps)
-_MAX_SWITCHING_STEPS = 2.0e10
-
-
-@dataclass(frozen=True)
-class SwitchingCurrents:
-    """Switching currents of a junction under a current ramp.
-
-    Attributes
-    ----------
-    samples : numpy.ndarray
-        The switching current of each ramp, in amperes (NaN for a ramp that
-        had not switched at 1.2 times the critical current: none in practice).
-    counts, edges : numpy.ndarray
-        Their histogram (numpy.histogram of the finite samples; edges in A).
-    ramp_rate : float
-        dI/dt of the ramps, A / s.
-    temperature : float
-        The junction's temperature, K.
-
-    See Also
-    --------
-    Junction.switching_currents : what makes them.
-    Junction.switching_density : their theory (Fulton and Dunkleberger).
-
-    Examples
-    --------
-    >>> import pendula
-    >>> j = pendula.Junction(1e-7, 100.0, 1e-12, temperature=0.05)
-    >>> s = j.switching_currents(ramp_rate=1e-3 * 1e-7 * j.plasma_frequency, n=10, seed=1)
-    >>> int(s.counts.sum()), s.samples.shape
-    (10, (10,))
-    """
-
-    samples: np.ndarray
-    counts: np.ndarray
-    edges: np.ndarray
-    ramp_rate: float
-    temperature: float
-
-    def __repr__(self) -> str:
-        n = np.size(self.samples)
-        ok = int(np.sum(np.isfinite(self.samples)))
-        stats = f", mean {self.mean:.6g} A, width {self.width:.3g} A" if ok >= 2 else ""
-        return (f"SwitchingCurrents({n} ramps ({ok} switched){stats}, {np.size(self.counts)} bins, "
-                f"ramp {self.ramp_rate:.3g} A/s, T = {self.temperature:g} K)")
-
-    @property
-    def mean(self) -> float:
-        """The mean switching current of the finite samples, A."""
-        return float(np.nanmean(self.samples))
-
-    @property
-    def width(self) -> float:
-        """The standard deviation (ddof = 1) of the finite samples, A."""
-        return float(np.nanstd(self.samples, ddof=1))
-
 
 class Junction:
     """A current-biased Josephson junction (RCSJ model) in SI units.
@@ -236,14 +179,7 @@ class Junction:
 
     # ------------------------------------------------------------- runs
     def _rf(self, rf_current, rf_frequency) -> tuple[float, float]:
-        a = _checks.real(rf_current, "parameter 'rf_current'")
-        f = _checks.real(rf_frequency, "parameter 'rf_frequency'", 0.0)
-        if f > 0 and a == 0:
-            raise ValueError(f"parameter 'rf_current' is 0 but rf_frequency = {f!r} Hz: an rf drive needs a "
-                             "current (give rf_current, or no rf_frequency)")
-        if a != 0 and not f > 0:
-            raise ValueError(f"parameter 'rf_frequency' must be > 0 Hz with rf_current = {a!r} A (a current "
-                             "without a frequency is a dc bias: add it to the bias)")
+        a, f = rf_pair(rf_current, rf_frequency)
         return a / self.critical_current, self.reduced_frequency(f)
 
     def scene(self, bias: float, rf_current: float = 0.0, rf_frequency: float = 0.0, *, seed: int = 0) -> Scene:
@@ -705,29 +641,8 @@ class Junction:
         >>> bool(0.5e-7 < s.mean < 1e-7)
         True
         """
-        from . import _kernel
-        rate = _checks.real(ramp_rate, "parameter 'ramp_rate'", 0.0, lo_open=True)
-        n = _checks.count(n, "parameter 'n'", 1, 10 ** 6)
-        seed = _checks.count(seed, "parameter 'seed'", 0, 2 ** 53)
-        threads = _checks.threads(threads)
-        if not self.temperature > 0:
-            raise ValueError("parameter 'temperature' must be > 0 for switching-current samples (without noise "
-                             "a ramp switches at the critical current exactly)")
-        h = 2.0 * math.pi / 100.0 if dt is None else _checks.real(dt, "parameter 'dt'", 0.0, lo_open=True)
-        r = rate / (self.critical_current * self.plasma_frequency)
-        i_max = 1.2
-        if n * i_max / (r * h) > _MAX_SWITCHING_STEPS:
-            raise ValueError(f"parameter 'ramp_rate': {n} ramps at {r:.3g} I_c per plasma period take "
-                             f"{n * i_max / (r * h):.2g} steps, more than the limit {_MAX_SWITCHING_STEPS:.0e}: "
-                             "a faster ramp, fewer ramps or a larger dt")
-        cancel = _interrupt.cancel_flag()
-        isw, status = _interrupt.call(_kernel.junction_switching_v, self.damping, self.noise, r, seed, h, i_max, n,
-                                      threads, cancel, cancel=cancel)
-        if cancel[0]:
-            raise KeyboardInterrupt
-        samples = np.asarray(isw) * self.critical_current
-        counts, edges = np.histogram(samples[np.isfinite(samples)], bins=bins)
-        return SwitchingCurrents(samples, counts, edges, rate, self.temperature)
+        from .junction_switching import switching_samples
+        return switching_samples(self, ramp_rate, n, seed, dt, bins, threads)
 
 
     # ------------------------------------------------------------- the overdamped (RSJ) junction, C = 0

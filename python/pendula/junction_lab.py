@@ -82,6 +82,19 @@ def plateaus(currents: np.ndarray, step: np.ndarray, status: np.ndarray, volt_pe
         attrs=attrs)
 
 
+def rf_pair(rf_current, rf_frequency) -> tuple[float, float]:
+    """An rf drive as the junction takes it, checked: (current in A, frequency in Hz), both or neither."""
+    a = _checks.real(rf_current, "parameter 'rf_current'")
+    f = _checks.real(rf_frequency, "parameter 'rf_frequency'", 0.0)
+    if f > 0 and a == 0:
+        raise ValueError(f"parameter 'rf_current' is 0 but rf_frequency = {f!r} Hz: an rf drive needs a "
+                         "current (give rf_current, or no rf_frequency)")
+    if a != 0 and not f > 0:
+        raise ValueError(f"parameter 'rf_frequency' must be > 0 Hz with rf_current = {a!r} A (a current "
+                         "without a frequency is a dc bias: add it to the bias)")
+    return a, f
+
+
 def rsj_iv_curve(j, currents, rf_current, rf_frequency, direction, t_max):
     """Junction.iv_curve at C = 0 (pendula.overdamped): the same dataset (j: the Junction)."""
     from .overdamped import dc_velocity, mean_velocity
@@ -91,14 +104,7 @@ def rsj_iv_curve(j, currents, rf_current, rf_frequency, direction, t_max):
                                   "overdamped junction (the Ambegaokar-Halperin phase-diffusion I-V) is not "
                                   "implemented")
     wc = j.characteristic_frequency
-    a = _checks.real(rf_current, "parameter 'rf_current'")
-    f = _checks.real(rf_frequency, "parameter 'rf_frequency'", 0.0)
-    if f > 0 and a == 0:
-        raise ValueError(f"parameter 'rf_current' is 0 but rf_frequency = {f!r} Hz: an rf drive needs a "
-                         "current (give rf_current, or no rf_frequency)")
-    if a != 0 and not f > 0:
-        raise ValueError(f"parameter 'rf_frequency' must be > 0 Hz with rf_current = {a!r} A (a current "
-                         "without a frequency is a dc bias: add it to the bias)")
+    a, f = rf_pair(rf_current, rf_frequency)
     i = currents / j.critical_current
     if a == 0:
         vm, err = dc_velocity(currents, j.critical_current), np.zeros_like(i)
