@@ -34,6 +34,8 @@ FULL = (
     "test_bifurcation_curves.py::test_retrapping_curve_against_scipy",
     "test_continuation.py::test_homoclinic_retrapping_torque_against_scipy_manifold",
     "test_continuation.py::test_liouville_det_along_every_branch",
+    "test_continuation.py::test_retrapping_beyond_critical_damping_ends_on_snic_at_torque_one",
+    "test_continuation.py::test_retrapping_just_below_critical_damping_is_a_homoclinic_within_1e8_of_one",
     "test_continuation.py::test_stewart_mccumber_small_damping_limit",
     "test_cycloid.py::test_damped_driven_against_mpmath_ode",
     "test_density.py::test_cdf_against_mpmath_time_integral",

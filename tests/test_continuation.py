@@ -24,6 +24,9 @@ import pendula
 from pendula import Scene
 
 REF = json.loads((Path(__file__).resolve().parents[1] / "data" / "continuation_reference.json").read_text())
+#: the retrapping torque near beta*, where it reaches 1 (data/gen_retrapping_reference.py)
+RETRAP = json.loads((Path(__file__).resolve().parents[1] / "data" / "retrapping_reference.json").read_text())
+EPS = np.finfo(np.float64).eps
 CASCADE = Scene(damping=0.5, drive_amplitude=1.0, drive_frequency=2 / 3)
 
 
@@ -99,7 +102,7 @@ def _retrapping_branch(beta):
     return pendula.continue_orbit(Scene(damping=beta, torque=1.5), (0.0, 5.0), "torque", 0.0)
 
 
-@pytest.mark.parametrize("entry", REF["retrapping"], ids=lambda e: f"damping={e['damping']}")
+@pytest.mark.parametrize("entry", REF["retrapping"] + RETRAP["retrapping"], ids=lambda e: f"damping={e['damping']}")
 def test_homoclinic_retrapping_torque_against_scipy_manifold(entry):
     # 1e-8: the reference bisects to 2e-15 on the outcome of the unstable manifold integrated at 1e-13;
     # ours solves the manifolds' splitting to 1e-14; both flows good to about 1e-12
@@ -110,6 +113,54 @@ def test_homoclinic_retrapping_torque_against_scipy_manifold(entry):
     assert br.end.startswith("homoclinic")
     # the period grows without bound as the branch nears it
     assert br.period[-1] > 3 * br.period[0]
+
+
+@pytest.mark.parametrize("entry", [e for e in RETRAP["retrapping"] if e["one_minus_torque"] < 1e-2],
+                         ids=lambda e: f"damping={e['damping']}")
+def test_manifold_splitting_sign_near_the_saddle_node_birth(entry):
+    # the sign of the manifolds' splitting either side of the reference's retrapping torque, down to
+    # 1 - tau = 1e-13 (a saddle nearly degenerate, lu ~ 4e-7): positive above tau_h (the running orbit
+    # exists), negative or None (the unstable manifold falls back) below it
+    from pendula.dynamics.homoclinic import _splitting
+    beta, d = entry["damping"], entry["one_minus_torque"]
+    for above in (1e-13, 0.5 * d):
+        assert _splitting(Scene(damping=beta, torque=1.0 - above), 1, 1e-12, 1e-12) > 0
+    below = _splitting(Scene(damping=beta, torque=1.0 - 1.5 * d), 1, 1e-12, 1e-12)
+    assert below is None or below < 0
+
+
+@pytest.mark.parametrize("beta", [1.2, 1.25, 2.0])
+def test_retrapping_beyond_critical_damping_ends_on_snic_at_torque_one(beta):
+    # beyond beta* the rest points are born on the running orbit at torque 1 (no homoclinic torque below
+    # 1: the reference generator's bisection of beta*); the branch ends there, at 1 to rounding, in a
+    # bounded number of points (not creeping towards it), its period growing without bound
+    assert beta > RETRAP["beta_star"]
+    br = _retrapping_branch(beta)
+    (b,) = br.bifurcations
+    assert b.kind == "snic" and b.period == math.inf
+    assert abs(b.value - 1.0) <= 4 * EPS
+    assert br.end.startswith("snic")
+    assert len(br) < 200 and br.values.min() > 1.0
+    assert br.period[-1] > 10 * br.period[0]
+    # just past the birth the saddle's unstable manifold falls back onto the next node, short of the next
+    # saddle (scipy's check, independent of pendula; the gap between the two is 2.8e-5)
+    from scipy.integrate import solve_ivp
+    tau = 1.0 - 1e-10
+    ths = math.pi - math.asin(tau)
+    lu = 0.5 * (-beta + math.sqrt(beta * beta + 4 * math.cos(math.asin(tau))))
+    ev = (lambda t, y: y[1]); ev.terminal, ev.direction = True, -1
+    s = solve_ivp(lambda t, y: [y[1], -beta * y[1] - math.sin(y[0]) + tau], (0, 1e4), [ths + 0.05, 0.05 * lu],
+                  method="Radau", rtol=1e-10, atol=1e-14, events=ev)
+    assert s.y[0, -1] < ths + 2 * math.pi - 1e-5 and abs(s.y[1, -1]) < 1e-6
+
+
+def test_retrapping_just_below_critical_damping_is_a_homoclinic_within_1e8_of_one():
+    # between 1.193 (1 - tau_h = 2.1e-9 in the reference) and beta* the retrapping torque lies in
+    # (1 - 2.1e-9, 1): the homoclinic, not the saddle-node, ends the branch, within 1e-8 of it
+    beta = 0.5 * (1.193 + RETRAP["beta_star"])
+    (b,) = _retrapping_branch(beta).bifurcations
+    assert b.kind == "homoclinic"
+    assert 1.0 - 2.2e-9 < b.value < 1.0
 
 
 def test_stewart_mccumber_small_damping_limit():

@@ -18,7 +18,8 @@ if TYPE_CHECKING:   # xarray is optional: named in annotations only
 __all__ = ["BIFURCATION_KINDS", "Bifurcation", "Branch", "ContinuationError"]
 
 #: The kinds of bifurcation a branch reports.
-BIFURCATION_KINDS = ("fold", "pitchfork", "period-doubling", "neimark-sacker", "homoclinic", "saddle-node")
+BIFURCATION_KINDS = ("fold", "pitchfork", "period-doubling", "neimark-sacker", "homoclinic", "snic",
+                     "saddle-node")
 
 
 class ContinuationError(ValueError):
@@ -59,12 +60,13 @@ class Bifurcation:
         ``'fold'`` (a multiplier through +1 where the branch turns), ``'pitchfork'`` (through +1 where
         the symmetric orbit's symmetry breaks: a branch point), ``'period-doubling'`` (through -1),
         ``'neimark-sacker'`` (a complex pair through the unit circle), ``'homoclinic'`` (the period
-        diverges: the orbit meets a saddle), ``'saddle-node'`` (two equilibria merge).
+        diverges: the orbit meets a saddle), ``'snic'`` (the period diverges: a saddle and a node are born on
+        the orbit, a saddle-node on an invariant circle), ``'saddle-node'`` (two equilibria merge).
     value : float
         The parameter at the bifurcation.
     period : float
         Drive periods k of a driven orbit, the time period of an autonomous one (``inf`` at a
-        homoclinic), 0 for an equilibrium.
+        homoclinic or a snic), 0 for an equilibrium.
     theta, v : float
         The orbit's state on its section (the saddle, for a homoclinic; the rest point, for a saddle-node).
     multipliers : numpy.ndarray

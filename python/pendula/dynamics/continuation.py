@@ -548,6 +548,8 @@ class _Tracer:
         sign = 1.0 if t[2] > 0 else -1.0
         p = float(U[2])
         d0 = _splitting(prob.scene(p), prob.winding, prob.rtol, prob.atol)
+        if d0 == math.inf and self.saddle_node_end(prob, U, ev, sign):
+            return True
         if not (d0 is not None and d0 > 0):
             return False
         q = p + sign * max(4 * dp, 1e-12 * max(1.0, abs(p)))
@@ -570,6 +572,105 @@ class _Tracer:
         self.bifs.append(Bifurcation("homoclinic", float(ph), math.inf, theta, 0.0, np.array([1.0, 0.0], dtype=complex),
                                      *self._where(prob, ph)))
         self.end = f"homoclinic at {self.param} = {float(ph)!r}: the period diverges"
+        return True
+
+
+    def saddle_node_end(self, prob, U, ev, sign) -> bool:
+        """The end of a running orbit on the rest points born on it (a saddle-node on an invariant circle,
+        SNIC: the period diverges like 1 / sqrt(distance)), met where the period grows and no rest point
+        exists yet; True (and the branch ended) when found.  Probed once per branch: the birth of the rest
+        points is searched ahead by doubling steps (an equilibria call costs about 0.2 ms) and bisected to
+        rounding; just past it the saddle's unstable manifold must fall back (no running orbit), else the
+        homoclinic torque lies past the birth and is solved there when it is within 1e-6 of it (beyond, the
+        branch goes on to it as usual).  The branch then approaches the end in steps dividing the distance
+        by 4 (each a corrected orbit at fixed parameter), not creeping in steps that shrink with the
+        distance."""
+        if getattr(self, "_snic_probed", False):
+            return False
+        self._snic_probed = True
+        p = float(U[2])
+        scale = max(1.0, abs(p))
+
+        def born(x):
+            try:
+                return len(equilibria(prob.scene(x))) > 0
+            except SceneError:
+                return None
+        lo, hi, step = p, None, 1e-3 * max(abs(p - self.p0), 1e-10 * scale)
+        while (hi is None) and (lo - self.stop) * sign < 0:
+            q = lo + sign * step
+            if (q - self.stop) * sign > 0:
+                q = self.stop
+            b = born(q)
+            if b is None:
+                return False
+            if b:
+                hi = q
+            else:
+                lo, step = q, 2 * step
+        if hi is None:
+            return False
+        while True:                          # bisect the birth to rounding
+            mid = 0.5 * (lo + hi)
+            if mid == lo or mid == hi:
+                break
+            if born(mid):
+                hi = mid
+            else:
+                lo = mid
+        pb = hi                             # the first value with rest points
+        d = _splitting(prob.scene(pb), prob.winding, prob.rtol, prob.atol)
+        if d == math.inf:                   # the saddle-node itself: its saddle just past it
+            pb2 = pb + sign * 1e-13 * scale
+            d = _splitting(prob.scene(pb2), prob.winding, prob.rtol, prob.atol)
+        if d is None:
+            return False                    # undecided (the manifolds not both graphs there)
+        if d <= 0:
+            kind, pe = "snic", pb
+        else:
+            # the running orbit outlives the birth: the homoclinic torque lies within 1e-6 past it, or the
+            # branch goes on to it
+            a, da, q, dq, width = pb, d, None, None, 1e-13 * scale
+            while width <= 1e-6 * scale:
+                x = pb + sign * width
+                dx = _splitting(prob.scene(x), prob.winding, prob.rtol, prob.atol)
+                if dx is None or dx <= 0:
+                    q, dq = x, (-1.0 if dx is None else dx)
+                    break
+                a, da, width = x, dx, 4 * width
+            if q is None:
+                return False
+
+            def g(x):
+                d = _splitting(prob.scene(x), prob.winding, prob.rtol, prob.atol)
+                return (-1.0 if d is None else d), None
+            pe, _, _, _ = _root(g, a, da, q, dq, xtol=1e-14 * scale)
+            kind = "homoclinic"
+        # approach the end: the distance divided by up to 4 at each point (less where Newton needs it),
+        # to 1e-6 of it
+        Uc, n, f = U.copy(), np.array([0.0, 0.0, 1.0]), 0.25
+        dist = abs(p - pe)
+        while dist > 1e-6 * scale and f < 0.95:
+            new = dist * f
+            Upred = Uc.copy()
+            Upred[1] = Uc[1] * math.sqrt(dist / new) if kind == "snic" else Uc[1] + math.log(dist / new)
+            Upred[2] = pe - sign * new
+            try:
+                Un, evn, _ = self.correct(prob, Upred, n, np.array([0.0, 0.0, Upred[2]]), maxit=20)
+            except (NewtonError, FlowError):
+                f = math.sqrt(f)
+                continue
+            self.record(prob, Un, evn)
+            Uc, dist, f = Un, new, max(0.25, f * f)
+        sc = prob.scene(pe)
+        eqs = [e for e in equilibria(sc) if e.kind in ("saddle", "saddle-node")]
+        theta = eqs[0].theta if eqs else math.nan
+        self.bifs.append(Bifurcation(kind, float(pe), math.inf, theta, 0.0, np.array([1.0, 0.0], dtype=complex)))
+        if kind == "snic":
+            self.end = (f"snic at {self.param} = {float(pe)!r}: the rest points are born on the running orbit "
+                        "(a saddle-node on an invariant circle); the period diverges")
+        else:
+            self.end = f"homoclinic at {self.param} = {float(pe)!r}: the period diverges"
         return True
 
 
@@ -599,7 +700,11 @@ def continue_orbit(scene: Scene, guess: tuple[float, float], param: str, stop: f
     * ``'period-doubling'``: through -1;
     * ``'neimark-sacker'``: a complex pair through the unit circle;
     * ``'homoclinic'``: the period of an autonomous running orbit diverges where
-      it meets the saddle (the retrapping torque of the damped pendulum).
+      it meets the saddle (the retrapping torque of the damped pendulum);
+    * ``'snic'``: the period of an autonomous running orbit diverges where a
+      saddle and a node are born on it (a saddle-node on an invariant circle:
+      the damped pendulum's torque 1 above the damping where the retrapping
+      torque reaches 1), located at the rest points' birth to rounding.
 
     With ``follow='stable'`` the attracting orbit is followed: at a pitchfork
     or a period doubling where the branch loses stability the call switches to
