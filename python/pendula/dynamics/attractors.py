@@ -382,14 +382,17 @@ def classify_aperiodic(scene: Scene, theta: float, v: float, rtol: float, atol: 
     mv, st2 = block(2, p, rtol, atol, 0.0, t, 3, threads)
     lam1, err, lam2 = (float(x) for x in ly[:, 0])
     res = max(3.0 * err, math.log(_GROWTH_RESOLVED) / t)
+    # the mean velocity is decided (0) or phase-locked to a step (6: a chaotic set whose phase stays bounded
+    # on a step's line, as the oscillating chaos of the driven pendulum, is locked to step 0)
+    mv_decided = st2[0] in (0, 6)
     kind = None
-    if st[0] == 0 and st2[0] == 0 and all(math.isfinite(x) for x in (lam1, err, lam2)):
+    if st[0] == 0 and mv_decided and all(math.isfinite(x) for x in (lam1, err, lam2)):
         if lam1 > res:
             kind = "chaotic"
         elif abs(lam1) <= res and lam2 < -res:
             kind = "quasi-periodic"
     return {"kind": kind, "lyapunov": (lam1, lam2, err), "resolution": res,
-            "rotation_number": float(mv[0, 0]) * tp / TWO_PI if st2[0] == 0 else math.nan,
+            "rotation_number": float(mv[0, 0]) * tp / TWO_PI if mv_decided else math.nan,
             "dimension": kaplan_yorke_dimension([lam1, lam2]) if kind == "chaotic" else math.nan}
 
 

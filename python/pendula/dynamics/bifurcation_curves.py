@@ -35,7 +35,6 @@ differences of the monodromy along the critical eigenvector.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -45,7 +44,8 @@ from .. import _checks
 from ..scene import Scene, SceneError
 from ..systems.contract import require, time_scales
 from .branches import Bifurcation, ContinuationError
-from .continuation import _param_value, _root
+from .branch_functions import _root
+from .continuation import _param_value
 from .homoclinic_curves import homoclinic_rows
 from .periodic import FlowError, drive_period, flow, multipliers_of, reduce_angle
 

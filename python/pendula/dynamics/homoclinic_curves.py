@@ -17,7 +17,7 @@ import math
 import numpy as np
 
 from ..scene import Scene, SceneError
-from .continuation import _root
+from .branch_functions import _root
 from .equilibria import equilibria
 from .homoclinic import _splitting
 from .periodic import FlowError
