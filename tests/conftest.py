@@ -27,6 +27,17 @@ def pytest_configure(config):
 #: loaded 2-core machine (the list and what each protects: docs/source/develop.md).  Named here rather
 #: than decorated in place so that the list is one place; tests/test_full_marker.py checks each exists.
 FULL = (
+    "test_junction_sweep.py::test_steps_edges_of_the_overdamped_junction_bracket_scipy_bisection",
+    "test_friction_hard_cases.py::test_friction_slow_starts_hunted",
+    "test_friction_hard_cases.py::test_friction_moving_start_first_turning_time",
+    "test_sweep_follow.py::test_retrapping_hysteresis_against_scipy_continuation_by_hand",
+    "test_sweep_follow.py::test_poincare_follow_keeps_one_asymmetric_orbit_against_scipy",
+    "test_junction_lab.py::test_rsj_every_bias_on_a_step_is_reported_locked",
+    "test_boundary_measures.py::test_forced_pendulum_at_1_66_has_three_attractors_and_wada_basins",
+    "test_squid_dynamics.py::test_v_phi_curve_at_large_bias_matches_scipy",
+    "test_squid_dynamics.py::test_noisy_overdamped_squid_matches_the_thermally_rounded_single_junction",
+    "test_squid_dynamics.py::test_transfer_function_matches_a_scipy_difference_quotient",
+    "test_squid_dynamics.py::test_overdamped_small_screening_squid_tends_to_the_single_junction_law",
     "test_attractor_agreement.py::test_default_map_agrees_with_scipy_long_runs_on_995_permille_of_stable_points",
     "test_double_motion.py::test_energy_bounded_over_1e5_swings",
     "test_attractors_recurrence.py::test_coarse_to_fine_map_matches_the_long_transient_run_on_995_permille_of_stable_points",
