@@ -39,7 +39,7 @@ def _finish(plt, fig, ax, title, path, legend_size=8):
     return path
 
 def _plt():
-    from ..plot import _plt as p
+    from .._plot_common import _plt as p
 
     return p()
 
