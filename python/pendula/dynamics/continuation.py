@@ -133,6 +133,7 @@ class _Tracer:
 
     def __init__(self, scene, param, p0, stop, follow, step):
         self.scene, self.param, self.p0, self.stop, self.follow = scene, param, p0, stop, follow
+        self.snic_probed = False      # the saddle-node end is searched once per branch
         span = abs(stop - p0)
         self.h0 = step if step is not None else min(0.05, span / 20)
         self.hmax = max(self.h0, span / 10) if step is None else step * 4
@@ -500,9 +501,9 @@ class _Tracer:
         branch goes on to it as usual).  The branch then approaches the end in steps dividing the distance
         by 4 (each a corrected orbit at fixed parameter), not creeping in steps that shrink with the
         distance."""
-        if getattr(self, "_snic_probed", False):
+        if self.snic_probed:
             return False
-        self._snic_probed = True
+        self.snic_probed = True
         p = float(U[2])
         scale = max(1.0, abs(p))
 
@@ -580,7 +581,8 @@ class _Tracer:
         sc = prob.scene(pe)
         eqs = [e for e in equilibria(sc) if e.kind in ("saddle", "saddle-node")]
         theta = eqs[0].theta if eqs else math.nan
-        self.bifs.append(Bifurcation(kind, float(pe), math.inf, theta, 0.0, np.array([1.0, 0.0], dtype=complex)))
+        self.bifs.append(Bifurcation(kind, float(pe), math.inf, theta, 0.0, np.array([1.0, 0.0], dtype=complex),
+                                     *self._where(prob, pe)))
         if kind == "snic":
             self.end = (f"snic at {self.param} = {float(pe)!r}: the rest points are born on the running orbit "
                         "(a saddle-node on an invariant circle); the period diverges")
