@@ -336,3 +336,29 @@ def test_bifurcation_of_an_adiabatic_sweep_draws_both_ways():
         np.testing.assert_array_equal(np.asarray(ln.get_ydata()), ds.theta.sel(direction=d).values.ravel())
     assert lines[0].get_color() != lines[1].get_color()
     assert ax.get_xlabel() == "drive_amplitude"
+
+
+def _smallest_text_pt(fig):
+    """The smallest font size (points) of any visible text in the figure, tick labels included."""
+    fig.canvas.draw()
+    sizes = [t.get_fontsize() for t in fig.findobj(matplotlib.text.Text) if t.get_visible() and t.get_text()]
+    return min(sizes)
+
+
+def test_text_drawn_by_pendula_plot_is_at_least_9_points(libration, attractor_map, iv_loop):
+    """The docs' rule (axis text at least 9 px at the column width) holds at full size only if the
+    figures' own text is no smaller than 9 pt: legends, colour-bar ticks and annotations included."""
+    from pendula import run_figures
+    f = np.array([[1.0, 0.0], [0.5, 0.5]])
+    ds = xr.Dataset({"fraction": (("drive_amplitude", "attractor"), f)},
+                    coords={"drive_amplitude": [1.0, 1.1], "attractor": [0, 1], "period": ("attractor", [1, 2])})
+    figures = {
+        "trajectory": pp.trajectory(libration).figure,
+        "phase": pp.phase(libration).figure,
+        "basins": pp.basins(attractor_map).figure,
+        "iv": pp.iv(iv_loop).figure,
+        "fractions": pp.fractions(ds).figure,
+        "run time series": run_figures.time_series(libration.scene, [(1.9, libration)]),
+    }
+    small = {name: _smallest_text_pt(fig) for name, fig in figures.items() if _smallest_text_pt(fig) < 9}
+    assert not small, f"text under 9 pt: {small}"

@@ -82,7 +82,7 @@ def iv(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None) -> matplotlib
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left")
+    ax.legend(fontsize=9, loc="upper left")
     return ax
 
 
@@ -101,7 +101,7 @@ def _label_steps(ax, ds, dirs, x="torque", y="mean_velocity", xs=1.0, ys=1.0) ->
             done.add(k)
             mid = where[where.size // 2]
             ax.annotate(f"n = {Fraction(float(k)).limit_denominator(8)}", (tau[mid], mv[mid]), xytext=(0, 6),
-                        textcoords="offset points", ha="center", fontsize=8)
+                        textcoords="offset points", ha="center", fontsize=9)
 
 
 def steps(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None, *, max_order: int = 8
@@ -171,7 +171,7 @@ def steps(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None, *, max_ord
             if where.size:
                 ax.plot(xm[where], np.full(where.size, yr[i]), "|", color="k", ms=4, mew=0.6)
     bar = ax.figure.colorbar(mesh, ax=ax, ticks=np.arange(max_order + 2))
-    bar.ax.set_yticklabels([f"{k}" for k in range(max_order + 1)] + ["other"], fontsize=8)
+    bar.ax.set_yticklabels([f"{k}" for k in range(max_order + 1)] + ["other"], fontsize=9)
     bar.set_label("Shapiro step n (white: not locked)", fontsize=9)
     ax.set_xlabel("dc bias current I (µA)")
     ax.set_ylabel("rf current I_rf (µA)" if rf == "rf_current" else "rf power (dBm)")

@@ -197,7 +197,7 @@ def spectrum(sp: Spectrum, ax: matplotlib.axes.Axes | None = None, *, harmonics:
         ax.set_ylim(top * 1e-32, top * 10)
     if math.isfinite(w0):
         ax.axvline(w0, color="C3", lw=0.7, ls=":", label=f"fundamental {w0:.6g}")
-        ax.legend(fontsize=8, loc="upper right")
+        ax.legend(fontsize=9, loc="upper right")
     ax.set_xlabel("omega (rad/s)")
     ax.set_ylabel("power |A|^2")
     ax.grid(True, alpha=0.3)
@@ -523,11 +523,11 @@ def basins(am: AttractorMap | xarray.Dataset, ax: matplotlib.axes.Axes | None = 
     if np.any(idx < 0):
         handles.append(Patch(color=grey, label="undecided"))
     if n <= 8:
-        ax.legend(handles=handles, fontsize=8, loc="upper right", framealpha=0.85)
+        ax.legend(handles=handles, fontsize=9, loc="upper right", framealpha=0.85)
     else:   # many wells: a colour bar of the categories, one tick (and name) per colour
         from matplotlib.cm import ScalarMappable
         bar = ax.figure.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=ax, ticks=np.arange(-1, n))
-        bar.ax.set_yticklabels(["undecided"] + [c["name"] for c in cats], fontsize=7)
+        bar.ax.set_yticklabels(["undecided"] + [c["name"] for c in cats], fontsize=9)
         ax.basins_colorbar = bar
     ax.set_xlabel(xd)
     ax.set_ylabel(yd)
@@ -591,5 +591,5 @@ def fractions(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None) -> mat
     ax.set_ylim(0.0, 1.0)
     ax.set_xlabel(p)
     ax.set_ylabel("fraction of initial states")
-    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    ax.legend(fontsize=9, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     return ax

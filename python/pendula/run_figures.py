@@ -47,7 +47,7 @@ def _finish(fig, ax, title, path, made_here):
     ax.set_title(title, fontsize=10)
     ax.grid(True, alpha=0.3)
     if ax.get_legend_handles_labels()[0]:
-        ax.legend(fontsize=7, loc="best")
+        ax.legend(fontsize=9, loc="best")
     if made_here:
         fig.tight_layout()
     return _save(fig, path, made_here)
@@ -116,7 +116,7 @@ def orbit_curves(scene, values, table, path=None, *, ax=None):
             ax.set_ylim(0, 3.5)
         ax.set_ylabel(c)
         ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=9)
     axes[-1].set_xlabel(scene.sweep)
     axes[0].set_title(scene.name or "orbits", fontsize=10)
     if made_here:
@@ -176,8 +176,8 @@ def spectra_figure(scene, specs, labels, path=None, *, ax=None):
         sel = s.omega <= wmax
         ax.semilogy(s.omega[sel], np.maximum(s.power[sel], 1e-32), lw=0.8)
         ax.set_ylim(1e-30, 10)
-        ax.set_ylabel("|A|^2", fontsize=8)
-        ax.text(0.99, 0.85, lab, transform=ax.transAxes, ha="right", fontsize=8)
+        ax.set_ylabel("|A|^2", fontsize=9)
+        ax.text(0.99, 0.85, lab, transform=ax.transAxes, ha="right", fontsize=9)
         ax.grid(True, alpha=0.3)
     axes[-1].set_xlabel("omega (rad/s)")
     axes[0].set_title(scene.name or "power spectra of theta(t)", fontsize=10)
