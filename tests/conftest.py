@@ -94,13 +94,28 @@ FULL = (
 )
 
 
+#: single parametrisations of a test moved to `make test-full` (its other cases stay in `make test`):
+#: the docs pages and docstrings whose examples compute the most (in a loaded run of the suite:
+#: 99 s, 33 s and 32 s, a quarter of `make test`'s time; each under 30 s on an idle machine)
+FULL_CASES = (
+    "test_docs.py::test_python_blocks_of_the_docs_pages_run[guide/josephson.md]",
+    "test_docs.py::test_python_blocks_of_the_docs_pages_run[guide/continuation.md]",
+    "test_docs.py::test_docstring_examples[pendula.dynamics.branch_tree]",
+)
+
+#: every test node collected in this session, "file::name[case]" (test_full_marker checks FULL_CASES
+#: against it)
+COLLECTED = set()
+
+
 def pytest_collection_modifyitems(config, items):
-    """Mark the tests of FULL (every parametrisation) with ``full``."""
-    full = set(FULL)
+    """Mark the tests of FULL (every parametrisation) and of FULL_CASES (one each) with ``full``."""
+    full, cases = set(FULL), set(FULL_CASES)
     for item in items:
         path = pathlib.Path(str(item.fspath)).name
         name = item.originalname if hasattr(item, "originalname") else item.name
-        if f"{path}::{name}" in full:
+        COLLECTED.add(f"{path}::{item.name}")
+        if f"{path}::{name}" in full or f"{path}::{item.name}" in cases:
             item.add_marker(pytest.mark.full)
 
 

@@ -27,6 +27,20 @@ def test_every_full_test_exists():
     assert len(set(conftest.FULL)) == len(conftest.FULL)
 
 
+def test_every_full_case_names_a_collected_parametrisation():
+    """A case of FULL_CASES names its function, and, when its file was collected in this run, one of
+    the parametrisations collected (a renamed page or module would otherwise move nothing)."""
+    collected_files = {name.split("::")[0] for name in conftest.COLLECTED}
+    for entry in conftest.FULL_CASES:
+        fname, case = entry.split("::")
+        func = case.split("[")[0]
+        tree = ast.parse((TESTS / fname).read_text())
+        assert func in {n.name for n in ast.walk(tree) if isinstance(n, ast.FunctionDef)}, entry
+        if fname in collected_files:
+            assert entry in conftest.COLLECTED, f"{entry} is not among the collected tests"
+    assert len(set(conftest.FULL_CASES)) == len(conftest.FULL_CASES)
+
+
 def test_make_test_deselects_full_and_test_full_runs_it():
     make = (ROOT / "Makefile").read_text()
     test = re.search(r"^test: .*\n\t(.*)$", make, re.M).group(1)
