@@ -322,7 +322,7 @@ end subroutine simulate_v
 
 ! The model registry, one model per line of `table` (fields separated by '|':
 ! name, selector, effects, exact_with, path, implemented, summary, state, parameters, and
-! 'scene' for a model a scene selects or 'class' for one built by its own class).
+! 'scene' for a model a scene selects or 'class' for one built by its own class, time scales).
 subroutine models_v(table)
   use pendula_system, only: registry, n_scene_models
   implicit none
@@ -334,7 +334,7 @@ subroutine models_v(table)
       trim(registry(i)%effects) // '|' // trim(registry(i)%exact_with) // '|' // trim(registry(i)%path) // &
       '|' // merge('yes', 'no ', registry(i)%implemented) // '|' // trim(registry(i)%summary) // '|' // &
       trim(registry(i)%state) // '|' // trim(registry(i)%parameters) // '|' // &
-      trim(merge('scene', 'class', i <= n_scene_models)) // new_line('a')
+      trim(merge('scene', 'class', i <= n_scene_models)) // '|' // trim(registry(i)%time_scales) // new_line('a')
   end do
 end subroutine models_v
 

@@ -54,6 +54,8 @@ module pendula_system
     character(len=160) :: parameters = ''
     !> which of its fields turns each effect on ('effect:field' pairs; blank: the scene's fields, effect_fields)
     character(len=80) :: effect_map = ''
+    !> the time scales its fields create (the scene's models: pendula_time_scales computes them)
+    character(len=96) :: time_scales = ''
   end type model_info_t
 
   integer, parameter, public :: mid_rigid = 1, mid_cord = 2, mid_cycloid = 3, mid_gravity = 4, &
@@ -62,37 +64,42 @@ module pendula_system
   integer, parameter, public :: n_scene_models = 4
   character(len=*), parameter :: state2 = '2: theta, dtheta/dt', &
     forced = 'damping torque drive_amplitude drive_frequency', &
-    smooth_fields = 'friction drag pivot_amplitude pivot_frequency'
+    smooth_fields = 'friction drag pivot_amplitude pivot_frequency', &
+    scene_scales = 'the scene''s (pendula.time_scales): oscillation, damping, drive, pivot, torque, ...'
   type(model_info_t), parameter :: registry(8) = [ &
     model_info_t('rigid', "cord='rigid' guide='none' gravity='uniform'", &
                  'damping torque drive friction drag pivot noise force', &
                  '(none)', 'exact', .true., 'rigid pendulum, Jacobi elliptic solution in every regime', &
-                 state2, 'eps theta0 v0 ' // forced // ' ' // smooth_fields // ' noise seed', ''), &
+                 state2, 'eps theta0 v0 ' // forced // ' ' // smooth_fields // ' noise seed', '', scene_scales), &
     model_info_t('cord', "cord='flexible'", 'damping torque drive', '(none)', 'hybrid', .true., &
                  'bob on a flexible cord (Garfinkel): circle, free flight, jerk', &
-                 '2 or 4: theta, dtheta/dt; x, y', 'cord eps theta0 v0 ' // forced, ''), &
+                 '2 or 4: theta, dtheta/dt; x, y', 'cord eps theta0 v0 ' // forced, '', scene_scales), &
     model_info_t('cycloid', "guide='cycloid'", 'damping torque drive', 'damping torque drive', 'exact', &
                  .true., 'cycloidal guide (Huygens): isochronous, closed form', state2, &
-                 'guide eps theta0 v0 ' // forced, ''), &
+                 'guide eps theta0 v0 ' // forced, '', scene_scales), &
     model_info_t('gravity', "gravity='inverse-square' or 'linear'", &
                  'damping torque drive friction drag pivot force', '(none)', &
                  'integrated', .true., 'non-uniform gravity: energy, quadrature period, integrators', &
                  state2, 'gravity gravity_distance gravity_gradient eps theta0 v0 ' // forced // ' ' // smooth_fields, &
-                 ''), &
+                 '', scene_scales), &
     model_info_t('network', 'pendula.Network(n, coupling or topology)', 'damping torque drive noise', '(none)', &
                  'integrated', .true., 'N phases coupled by springs (junction arrays, SQUIDs)', &
                  '2N: phi, dphi/dt', 'n eps damping mass bias drive_amplitude drive_frequency drive_phase ' // &
                  'coupling topology strength offset temperature', &
-                 'damping:damping torque:bias drive:drive_amplitude noise:temperature'), &
+                 'damping:damping torque:bias drive:drive_amplitude noise:temperature', &
+                 'sqrt(eps_i / C_i), sqrt(K_ij / C_i), beta_i / C_i, Omega_i, sqrt(abs(bias_i) / C_i)'), &
     model_info_t('double', 'pendula.DoublePendulum(m1, m2, l1, l2, g)', 'damping', '(none)', 'integrated', &
                  .true., 'double pendulum: chaos, flip-time map, Lyapunov spectrum', &
-                 '4: theta1, theta2, p1, p2', 'm1 m2 l1 l2 g rods damping', 'damping:damping'), &
+                 '4: theta1, theta2, p1, p2', 'm1 m2 l1 l2 g rods damping', 'damping:damping', &
+                 'the two normal modes'' frequencies, the damping rates k_i / (m l^2)'), &
     model_info_t('foucault', 'pendula.FoucaultPendulum(latitude, ...)', 'damping', '(none)', 'integrated', &
                  .true., 'spherical pendulum on the turning Earth: Coriolis and Airy precession', &
-                 '6: r, dr/dt (cartesian)', 'latitude length g earth_rate damping anisotropy', 'damping:damping'), &
+                 '6: r, dr/dt (cartesian)', 'latitude length g earth_rate damping anisotropy', 'damping:damping', &
+                 'sqrt(g / length), the Earth''s rate times sin(latitude), the damping rate'), &
     model_info_t('spherical', 'pendula.spherical_orbit(theta0, ...)', '(none)', '(none)', 'exact', .true., &
                  'spherical pendulum: Jacobi elliptic and Carlson R_J closed form', &
-                 '4: theta, phi and their rates', 'theta0 theta_dot0 phi_dot0 eps', '')]
+                 '4: theta, phi and their rates', 'theta0 theta_dot0 phi_dot0 eps', '', &
+                 'sqrt(eps): the polar period (closed form, any t at one cost)')]
 
   !> The effects, and the scene field that turns each on ('force' is a tool's argument).
   integer, parameter, public :: n_effects = 8

@@ -488,7 +488,7 @@ def _print_capabilities() -> None:
             if absent:
                 print(f"does not run the {m.name} model: {', '.join(absent)}")
         else:
-            print(f"{m.name}'s fields: {' '.join(m.parameters)}")
+            print(f"{m.name}'s fields: {' '.join(m.parameters)}\ntime scales: {m.time_scales}")
 
 
 def main(argv=None) -> int:

@@ -72,6 +72,9 @@ class ModelInfo:
     scene : bool
         True for a model a :class:`Scene` selects; False for one built by its
         own class or function.
+    time_scales : str
+        The time scales its fields create (for the models a Scene selects,
+        :func:`pendula.time_scales` computes them for a scene).
 
     See Also
     --------
@@ -96,6 +99,7 @@ class ModelInfo:
     state: str = ""
     parameters: tuple = ()
     scene: bool = True
+    time_scales: str = ""
 
 
 def models() -> list[ModelInfo]:
@@ -129,10 +133,10 @@ def models() -> list[ModelInfo]:
     text = table.decode() if isinstance(table, bytes) else str(table)
     out = []
     for line in text.strip().splitlines():
-        name, sel, eff, exact, path, impl, summary, state, params, door = (f.strip() for f in line.split("|"))
+        name, sel, eff, exact, path, impl, summary, state, params, door, scales = (f.strip() for f in line.split("|"))
         words = lambda s: tuple(w for w in s.split() if w != "(none)")  # noqa: E731
         out.append(ModelInfo(name, sel, words(eff), words(exact), path, impl == "yes", summary, state,
-                             tuple(params.split()), door == "scene"))
+                             tuple(params.split()), door == "scene", scales))
     return out
 
 
