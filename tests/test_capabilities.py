@@ -129,7 +129,9 @@ def _scene(system, base, extra, tool=None):
 
 
 def test_every_tool_of_the_table_is_walked():
-    assert {c.tool for c in pendula.capabilities()} == set(TOOLS)
+    assert {c.tool for c in pendula.capabilities() if c.system in SYSTEMS} == set(TOOLS)
+    assert {(c.system, c.tool) for c in pendula.capabilities() if c.system not in SYSTEMS} == set(CLASS_TOOLS)
+    assert {m.name for m in pendula.models()} == set(SYSTEMS) | set(CLASS_SYSTEMS)
     assert tuple(EFFECTS) == ("damping", "torque", "drive", "friction", "drag", "pivot", "noise", "force")
 
 
@@ -195,3 +197,83 @@ def test_tool_honours_or_refuses_every_effect(tool):
                     on_fields.append("force")
                 assert any(name in str(err.value) for name in on_fields), \
                     f"{where}: refused, but the message names no refused field: {err.value}"
+
+
+# ---------------------------------------------------------------- the systems built by their own class
+#: system -> (its class or function, base arguments, effect -> the fields that turn it on)
+CLASS_SYSTEMS = {
+    "network": (pendula.Network, dict(n=2, topology="pair", strength=0.3),
+                {"damping": dict(damping=0.2), "torque": dict(bias=0.1),
+                 "drive": dict(drive_amplitude=0.3, drive_frequency=0.7)}),
+    "double": (pendula.DoublePendulum, {}, {"damping": dict(damping=0.1)}),
+    "foucault": (pendula.FoucaultPendulum, dict(latitude=45.0, length=10.0), {"damping": dict(damping=0.02)}),
+    "spherical": (None, {}, {}),
+}
+_TH = np.linspace(-3.0, 3.0, 3)
+#: (system, tool) -> call(the system, the tool's extra arguments) returning an array
+CLASS_TOOLS = {
+    ("network", "simulate"): lambda s, kw: _arr(s.simulate(np.linspace(0, 5, 6), phi0=[0.3, 0.0], **kw).phi.values),
+    ("network", "equilibrium"): lambda s, kw: _arr((lambda e: np.r_[e.phi, e.eigenvalues.real, e.eigenvalues.imag])(
+        s.equilibrium([0.1, 0.0]))),
+    ("network", "normal_modes"): lambda s, kw: _arr(s.normal_modes().omega2),
+    ("double", "simulate"): lambda s, kw: _arr(s.simulate(np.linspace(0, 5, 6), theta1=1.0, theta2=0.5).theta1.values),
+    ("double", "flip_map"): lambda s, kw: _arr(s.flip_map(_TH, _TH, t_max=10.0).time),
+    ("double", "lyapunov"): lambda s, kw: _arr(s.lyapunov(1.0, 0.5, t=20.0).exponents),
+    ("double", "poincare"): lambda s, kw: _arr(s.poincare(1.0, [0.0], [0.0], t_max=50.0).theta2.values),
+    ("foucault", "simulate"): lambda s, kw: _arr(s.simulate(np.linspace(0, 30, 4), 0.1).x.values),
+    ("foucault", "precession"): lambda s, kw: _arr((lambda p: (p.measured, p.coriolis, p.airy))(
+        s.precession(0.05, swings=10))),
+    ("spherical", "spherical_orbit"): lambda s, kw: _arr((lambda o: (o.period, o.azimuth_advance))(
+        pendula.spherical_orbit(0.5, 0.0, 0.3))),
+}
+#: a tool's argument that turns an effect on (noise: the network's temperature, with damping)
+CLASS_ARGUMENTS = {("network", "simulate"): {"noise": (dict(damping=0.2), dict(temperature=0.1, dt=0.05, seed=1))}}
+
+
+def _build(system, extra):
+    cls, base, _ = CLASS_SYSTEMS[system]
+    return None if cls is None else cls(**{**base, **extra})
+
+
+@pytest.mark.parametrize("system, tool", sorted(CLASS_TOOLS))
+def test_class_system_tool_honours_or_refuses_every_effect(system, tool):
+    """The same walk for the systems built by their own class: every effect of the system either changes
+    the tool's answer (honoured by its row) or is refused with a ValueError naming the field."""
+    call = CLASS_TOOLS[(system, tool)]
+    row = ROWS[(tool, system)]
+    a0 = call(_build(system, {}), {})
+    effects = dict(CLASS_SYSTEMS[system][2])
+    assert set(effects) | set(CLASS_ARGUMENTS.get((system, tool), {})) >= set(row.honours), row
+    for effect, fields in effects.items():
+        s1 = _build(system, fields)
+        where = f"{tool} on the {system} model with {effect}"
+        if effect in row.honours:
+            a1 = call(s1, {})
+            assert a1.shape != a0.shape or not np.array_equal(a1, a0, equal_nan=True), \
+                f"{where}: honoured by the table, but the answer did not change"
+        else:
+            with pytest.raises(ValueError) as err:
+                call(s1, {})
+            assert any(f"'{name}'" in str(err.value) for name in fields), \
+                f"{where}: refused, but the message names no refused field: {err.value}"
+    for effect, (fields, args) in CLASS_ARGUMENTS.get((system, tool), {}).items():
+        assert effect in row.honours
+        s0 = _build(system, fields)
+        assert not np.array_equal(call(s0, args), call(s0, {**args, "temperature": 0.0}))
+
+
+def test_class_system_refusal_names_the_field():
+    net = pendula.Network(2, topology="pair", strength=0.3, damping=0.1)
+    with pytest.raises(ValueError, match="field 'damping': normal_modes does not honour damping on the network"):
+        net.normal_modes()
+    net = pendula.Network(2, topology="pair", strength=0.3, drive_amplitude=0.2, drive_frequency=1.0)
+    with pytest.raises(ValueError, match="field 'drive_amplitude'.*no rest points"):
+        net.equilibrium([0.0, 0.0])
+
+
+def test_contract_refuses_unknown_systems_tools_and_fields_as_bugs():
+    from pendula.systems.contract import require_fields
+    for args in (("pendulum", "simulate", []), ("network", "flip_map", []), ("network", "simulate", ["noise"])):
+        with pytest.raises(RuntimeError):
+            require_fields(*args)
+    require_fields("network", "simulate", ["eps", "temperature"])     # a parameter with no effect is no refusal

@@ -92,3 +92,14 @@ def test_the_checked_scene_the_kernel_keeps_rebuilds_the_same_scene(kw):
         got = getattr(s, name)
         assert got == value or (got != got and value != value), name
     assert np.array_equal(pendula.simulate(s, [0.0, 0.5]).theta, pendula.simulate(s.replace(), [0.0, 0.5]).theta)
+
+
+def test_every_model_declares_its_state_parameters_and_time_scales():
+    """The registry says, for every system, its state, its parameters and the time scales they create;
+    the parameters include every field the system's effects are turned on by (the refusals name them)."""
+    for m in pendula.models():
+        assert m.state and m.parameters and m.time_scales, m
+        assert m.state.split(":")[0].strip(), m
+    ms = {m.name: m for m in pendula.models()}
+    assert [n for n, m in ms.items() if m.scene] == ["rigid", "cord", "cycloid", "gravity"]
+    assert {"bias", "temperature", "damping", "drive_amplitude"} <= set(ms["network"].parameters)

@@ -321,9 +321,10 @@ subroutine simulate_v(x, words, nw, wlen, nout, ngrid, n, t, faddr, np, fparams,
 end subroutine simulate_v
 
 ! The model registry, one model per line of `table` (fields separated by '|':
-! name, selector, effects, exact_with, path, implemented, summary).
+! name, selector, effects, exact_with, path, implemented, summary, state, parameters, and
+! 'scene' for a model a scene selects or 'class' for one built by its own class, time scales).
 subroutine models_v(table)
-  use pendula_system, only: registry
+  use pendula_system, only: registry, n_scene_models
   implicit none
   character(len=8192), intent(out) :: table
   integer :: i
@@ -331,7 +332,9 @@ subroutine models_v(table)
   do i = 1, size(registry)
     table = trim(table) // trim(registry(i)%name) // '|' // trim(registry(i)%selector) // '|' // &
       trim(registry(i)%effects) // '|' // trim(registry(i)%exact_with) // '|' // trim(registry(i)%path) // &
-      '|' // merge('yes', 'no ', registry(i)%implemented) // '|' // trim(registry(i)%summary) // new_line('a')
+      '|' // merge('yes', 'no ', registry(i)%implemented) // '|' // trim(registry(i)%summary) // '|' // &
+      trim(registry(i)%state) // '|' // trim(registry(i)%parameters) // '|' // &
+      trim(merge('scene', 'class', i <= n_scene_models)) // '|' // trim(registry(i)%time_scales) // new_line('a')
   end do
 end subroutine models_v
 
@@ -368,6 +371,20 @@ subroutine capability_check_v(x, words, nw, wlen, nout, ngrid, tool, swept, forc
   end if
   call capability_check(sc, tool, swept, force /= 0, status, msg)
 end subroutine capability_check_v
+
+! Does `tool` honour every effect that the fields named in `fields` (blank-
+! separated: the fields of `system` that are on) turn on?  For the systems
+! built by their own class (pendula.Network, ...).  status 0; 2 refused, 3 not
+! implemented (msg names the field); 4 a system, tool or field the table does
+! not know.
+subroutine capability_check_fields_v(system, tool, fields, status, msg)
+  use pendula_system, only: capability_check_fields
+  implicit none
+  character(len=*), intent(in) :: system, tool, fields
+  integer, intent(out) :: status
+  character(len=512), intent(out) :: msg
+  call capability_check_fields(system, tool, fields, status, msg)
+end subroutine capability_check_fields_v
 
 ! The scene's time scales as rates (1 / time; pendula_time_scales, in the
 ! order of `names`, 12 characters each), the angular frequency of its

@@ -1,20 +1,21 @@
-!> The double pendulum (pendula_double) on the n-dimensional integrators
-!> (pendula_ode): its path by DOP853 or Gauss-Legendre, the flip-time map
+!> The double pendulum (pendula_double) on the n-dimensional driver
+!> (pendula_nd_run): its path by DOP853 or Gauss-Legendre, the flip-time map
 !> over initial angles (on OpenMP threads), and the Lyapunov spectrum from
 !> the variational equations with QR re-orthonormalisation (Benettin,
 !> Galgani, Giorgilli and Strelcyn, Meccanica 15 (1980) 9).
 module pendula_double_run
   use pendula_kinds, only: dp, i8, pi, two_pi, nan_dp, inf_dp
-  use pendula_threads, only: thread_count
-  use pendula_integrators, only: run_stats, st_ok, st_bad_method, st_bad_step, st_cancelled, st_nonfinite
-  use pendula_ode, only: ode_system, ode_dop853, ode_gauss, ode_gauss4, ode_gauss6
+  use pendula_integrators, only: run_stats, st_ok, st_bad_method, st_bad_step, st_nonfinite
+  use pendula_ode, only: ode_system, ode_dop853
+  use pendula_nd_run, only: nd_run, nd_runs_start, dm_dop853 => nd_dop853, dm_gauss4 => nd_gauss4, &
+    dm_gauss6 => nd_gauss6
   use pendula_double, only: double_pendulum, double_rhs, double_jacobian, double_velocities
   implicit none
   private
   public :: double_simulate, double_flip_map, double_lyapunov, double_section
 
-  !> the methods of double_simulate and double_lyapunov
-  integer, parameter, public :: dm_dop853 = 1, dm_gauss4 = 2, dm_gauss6 = 3
+  !> the methods of double_simulate and double_lyapunov: those of nd_run
+  public :: dm_dop853, dm_gauss4, dm_gauss6
 
   !> the double pendulum as an ode_system, y = (theta1, theta2, p1, p2)
   type, extends(ode_system) :: double_ode
@@ -64,20 +65,8 @@ contains
     type(run_stats), intent(out) :: stats
     integer, intent(out) :: status
     integer, intent(inout), volatile :: cancel
-    type(double_ode) :: sys
-    sys%n = 4
-    sys%dpd = dpd
-    select case (method)
-    case (dm_dop853)
-      call ode_dop853(sys, 0.0_dp, y0, tout, rtol, atol, yout, stats, status, cancel)
-    case (dm_gauss4)
-      call ode_gauss(sys, ode_gauss4, 0.0_dp, y0, dt, counts, yout, stats, status, cancel)
-    case (dm_gauss6)
-      call ode_gauss(sys, ode_gauss6, 0.0_dp, y0, dt, counts, yout, stats, status, cancel)
-    case default
-      yout = nan_dp
-      status = st_bad_method
-    end select
+    call nd_run(double_ode(n=4, dpd=dpd), method, 0.0_dp, y0, tout, counts, rtol, atol, dt, yout, stats, status, &
+                cancel)
   end subroutine double_simulate
 
   !> The first time either arm passes over the top (abs(theta_i) = pi) for
@@ -211,16 +200,12 @@ contains
     type(double_ode) :: sys
     real(dp) :: y0(4)
     integer :: k, nt, s2
-    sys%n = 4
-    sys%dpd = dpd
+    logical :: ok
+    sys = double_ode(n=4, dpd=dpd)
     tflip = nan_dp
     tcheck = nan_dp
-    status = st_cancelled
-    if (.not. (hg > 0.0_dp)) then
-      status = st_bad_step
-      return
-    end if
-    nt = thread_count(nthreads)
+    call nd_runs_start(hg, nthreads, status, nt, ok)
+    if (.not. ok) return
     !$omp parallel do schedule(dynamic, 1) default(none) num_threads(nt) private(y0, s2) &
     !$omp   shared(sys, th1, th2, skip, tmax, hg, rtol, atol, tflip, tcheck, status, cancel)
     do k = 1, size(th1)
@@ -261,8 +246,7 @@ contains
     real(dp) :: y(20), yo(20, 1), q(4, 4), sumlog(4), r, span, tt(1)
     integer(i8) :: cnt(1), it
     integer :: i, j
-    sys%n = 20
-    sys%dpd = dpd
+    sys = double_tangent_ode(n=20, dpd=dpd)
     lam = nan_dp
     yend = nan_dp
     status = st_ok
@@ -284,16 +268,7 @@ contains
     cnt(1) = every
     tt(1) = span
     do it = 1_i8, nren
-      select case (method)
-      case (dm_dop853)
-        call ode_dop853(sys, 0.0_dp, y, tt, rtol, atol, yo, st, status, cancel)
-      case (dm_gauss4)
-        call ode_gauss(sys, ode_gauss4, 0.0_dp, y, h, cnt, yo, st, status, cancel)
-      case (dm_gauss6)
-        call ode_gauss(sys, ode_gauss6, 0.0_dp, y, h, cnt, yo, st, status, cancel)
-      case default
-        status = st_bad_method
-      end select
+      call nd_run(sys, method, 0.0_dp, y, tt, cnt, rtol, atol, h, yo, st, status, cancel)
       if (status /= st_ok) return
       y = yo(:, 1)
       q = reshape(y(5:20), [4, 4])
@@ -343,16 +318,12 @@ contains
     integer, intent(inout), volatile :: cancel
     type(double_ode) :: sys
     integer :: k, nt
-    sys%n = 4
-    sys%dpd = dpd
+    logical :: ok
+    sys = double_ode(n=4, dpd=dpd)
     pts = nan_dp
     npts = 0
-    status = st_cancelled
-    if (.not. (hg > 0.0_dp)) then
-      status = st_bad_step
-      return
-    end if
-    nt = thread_count(nthreads)
+    call nd_runs_start(hg, nthreads, status, nt, ok)
+    if (.not. ok) return
     !$omp parallel do schedule(dynamic, 1) default(none) num_threads(nt) &
     !$omp   shared(sys, method, y0s, tmax, hg, rtol, atol, pts, npts, status, cancel)
     do k = 1, size(y0s, 2)
@@ -376,6 +347,10 @@ contains
     integer :: k, nk, it
     npts = 0
     status = st_ok
+    if (method /= dm_dop853 .and. method /= dm_gauss6) then
+      status = st_bad_method
+      return
+    end if
     y = y0
     t0 = 0.0_dp
     cnt = 1_i8
@@ -385,14 +360,7 @@ contains
       do k = 1, nk
         tout(k) = real(k, dp) * hg
       end do
-      select case (method)
-      case (dm_dop853)
-        call ode_dop853(sys, 0.0_dp, y, tout(1:nk), rtol, atol, yout(:, 1:nk), st, status, cancel)
-      case (dm_gauss6)
-        call ode_gauss(sys, ode_gauss6, 0.0_dp, y, hg, cnt(1:nk), yout(:, 1:nk), st, status, cancel)
-      case default
-        status = st_bad_method
-      end select
+      call nd_run(sys, method, 0.0_dp, y, tout(1:nk), cnt(1:nk), rtol, atol, hg, yout(:, 1:nk), st, status, cancel)
       if (status /= st_ok) return
       ya = y
       call double_rhs(sys%dpd, ya, fa)
@@ -448,11 +416,7 @@ contains
       if (tau <= 0.0_dp) return
       tt(1) = tau
       one(1) = 1_i8
-      if (method == dm_dop853) then
-        call ode_dop853(sys, 0.0_dp, y0, tt, rtol, atol, yy, st1, status, cancel)
-      else
-        call ode_gauss(sys, ode_gauss6, 0.0_dp, y0, tau, one, yy, st1, status, cancel)
-      end if
+      call nd_run(sys, method, 0.0_dp, y0, tt, one, rtol, atol, tau, yy, st1, status, cancel)
       y1 = yy(:, 1)
     end subroutine advance
 

@@ -1,9 +1,11 @@
-!> The Foucault pendulum (pendula_foucault) on the n-dimensional integrators:
-!> DOP853 with error control, the path output at the times asked for.
+!> The Foucault pendulum (pendula_foucault) on the n-dimensional driver
+!> (pendula_nd_run): DOP853 with error control, the path output at the times
+!> asked for.
 module pendula_foucault_run
-  use pendula_kinds, only: dp, nan_dp
+  use pendula_kinds, only: dp, i8, nan_dp
   use pendula_integrators, only: run_stats
-  use pendula_ode, only: ode_system, ode_dop853
+  use pendula_ode, only: ode_system
+  use pendula_nd_run, only: nd_run, nd_dop853
   use pendula_foucault, only: foucault, foucault_rhs
   implicit none
   private
@@ -32,11 +34,9 @@ contains
     type(run_stats), intent(out) :: stats
     integer, intent(out) :: status
     integer, intent(inout), volatile :: cancel
-    type(foucault_ode) :: sys
-    sys%n = 6
-    sys%fc = fc
     yout = nan_dp
-    call ode_dop853(sys, 0.0_dp, y0, tout, rtol, atol, yout, stats, status, cancel)
+    call nd_run(foucault_ode(n=6, fc=fc), nd_dop853, 0.0_dp, y0, tout, [integer(i8) ::], rtol, atol, 0.0_dp, &
+                yout, stats, status, cancel)
   end subroutine foucault_simulate
 
 end module pendula_foucault_run

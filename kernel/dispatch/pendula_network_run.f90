@@ -1,20 +1,21 @@
-!> A network of pendula (pendula_network) on the n-dimensional integrators
-!> (pendula_ode): the network as a mechanical system, y = (phi, phi'), its
-!> acceleration the force over each element's C, its friction beta / C.
-!> Simulation by DOP853 or Gauss-Legendre, Langevin paths by BAOAB (a set of
-!> paths on OpenMP threads, path k on the noise streams of point k).
+!> A network of pendula (pendula_network) on the n-dimensional driver
+!> (pendula_nd_run): the network as a mechanical system, y = (phi, phi'),
+!> its acceleration the force over each element's C, its friction beta / C.
+!> Simulation by DOP853 or Gauss-Legendre (nd_run), Langevin paths by BAOAB
+!> (a set of paths on OpenMP threads, path k on the noise streams of point k).
 module pendula_network_run
   use pendula_kinds, only: dp, i8
   use pendula_threads, only: thread_count
-  use pendula_integrators, only: run_stats, st_bad_method, st_cancelled
-  use pendula_ode, only: mechanical_system, ode_dop853, ode_gauss, ode_baoab, ode_gauss4, ode_gauss6
+  use pendula_integrators, only: run_stats, st_cancelled
+  use pendula_ode, only: mechanical_system, ode_baoab
+  use pendula_nd_run, only: nd_run, nd_dop853, nd_gauss4, nd_gauss6
   use pendula_network, only: network, network_force
   implicit none
   private
   public :: network_ode, make_network_ode, network_simulate, network_langevin
 
-  !> the methods of network_simulate
-  integer, parameter, public :: nm_dop853 = 1, nm_gauss4 = 2, nm_gauss6 = 3
+  !> the methods of network_simulate: those of nd_run
+  public :: nd_dop853, nd_gauss4, nd_gauss6
 
   type, extends(mechanical_system) :: network_ode
     type(network) :: net
@@ -54,18 +55,8 @@ contains
     type(run_stats), intent(out) :: stats
     integer, intent(out) :: status
     integer, intent(inout), volatile :: cancel
-    type(network_ode) :: sys
-    sys = make_network_ode(net)
-    select case (method)
-    case (nm_dop853)
-      call ode_dop853(sys, 0.0_dp, y0, tout, rtol, atol, yout, stats, status, cancel)
-    case (nm_gauss4)
-      call ode_gauss(sys, ode_gauss4, 0.0_dp, y0, dt, counts, yout, stats, status, cancel)
-    case (nm_gauss6)
-      call ode_gauss(sys, ode_gauss6, 0.0_dp, y0, dt, counts, yout, stats, status, cancel)
-    case default
-      status = st_bad_method
-    end select
+    call nd_run(make_network_ode(net), method, 0.0_dp, y0, tout, counts, rtol, atol, dt, yout, stats, status, &
+                cancel)
   end subroutine network_simulate
 
   !> npath Langevin paths of the network at the temperatures temp(nel)

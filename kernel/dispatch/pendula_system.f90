@@ -28,6 +28,7 @@ module pendula_system
   implicit none
   private
   public :: model_info_t, registry, select_model, capability_t, capabilities, capability_check, &
+    capability_check_fields, &
     capability_table, scene_forcing, scene_rates, scene_gravity, effect_names, effect_fields, scene_effect_on, &
     any_effect
 
@@ -47,20 +48,58 @@ module pendula_system
     character(len=12) :: path = ''
     logical :: implemented = .false.
     character(len=72) :: summary = ''
+    !> the state's size and what it holds
+    character(len=32) :: state = ''
+    !> the parameters (scene fields, or the arguments of the system's class)
+    character(len=160) :: parameters = ''
+    !> which of its fields turns each effect on ('effect:field' pairs; blank: the scene's fields, effect_fields)
+    character(len=80) :: effect_map = ''
+    !> the time scales its fields create (the scene's models: pendula_time_scales computes them)
+    character(len=96) :: time_scales = ''
   end type model_info_t
 
-  integer, parameter, public :: mid_rigid = 1, mid_cord = 2, mid_cycloid = 3, mid_gravity = 4
-  type(model_info_t), parameter :: registry(4) = [ &
+  integer, parameter, public :: mid_rigid = 1, mid_cord = 2, mid_cycloid = 3, mid_gravity = 4, &
+    mid_network = 5, mid_double = 6, mid_foucault = 7, mid_spherical = 8
+  !> the systems a Scene selects (the rest are built by their own class: pendula.Network, ...)
+  integer, parameter, public :: n_scene_models = 4
+  character(len=*), parameter :: state2 = '2: theta, dtheta/dt', &
+    forced = 'damping torque drive_amplitude drive_frequency', &
+    smooth_fields = 'friction drag pivot_amplitude pivot_frequency', &
+    scene_scales = 'the scene''s (pendula.time_scales): oscillation, damping, drive, pivot, torque, ...'
+  type(model_info_t), parameter :: registry(8) = [ &
     model_info_t('rigid', "cord='rigid' guide='none' gravity='uniform'", &
                  'damping torque drive friction drag pivot noise force', &
-                 '(none)', 'exact', .true., 'rigid pendulum, Jacobi elliptic solution in every regime'), &
+                 '(none)', 'exact', .true., 'rigid pendulum, Jacobi elliptic solution in every regime', &
+                 state2, 'eps theta0 v0 ' // forced // ' ' // smooth_fields // ' noise seed', '', scene_scales), &
     model_info_t('cord', "cord='flexible'", 'damping torque drive', '(none)', 'hybrid', .true., &
-                 'bob on a flexible cord (Garfinkel): circle, free flight, jerk'), &
+                 'bob on a flexible cord (Garfinkel): circle, free flight, jerk', &
+                 '2 or 4: theta, dtheta/dt; x, y', 'cord eps theta0 v0 ' // forced, '', scene_scales), &
     model_info_t('cycloid', "guide='cycloid'", 'damping torque drive', 'damping torque drive', 'exact', &
-                 .true., 'cycloidal guide (Huygens): isochronous, closed form'), &
+                 .true., 'cycloidal guide (Huygens): isochronous, closed form', state2, &
+                 'guide eps theta0 v0 ' // forced, '', scene_scales), &
     model_info_t('gravity', "gravity='inverse-square' or 'linear'", &
                  'damping torque drive friction drag pivot force', '(none)', &
-                 'integrated', .true., 'non-uniform gravity: energy, quadrature period, integrators')]
+                 'integrated', .true., 'non-uniform gravity: energy, quadrature period, integrators', &
+                 state2, 'gravity gravity_distance gravity_gradient eps theta0 v0 ' // forced // ' ' // smooth_fields, &
+                 '', scene_scales), &
+    model_info_t('network', 'pendula.Network(n, coupling or topology)', 'damping torque drive noise', '(none)', &
+                 'integrated', .true., 'N phases coupled by springs (junction arrays, SQUIDs)', &
+                 '2N: phi, dphi/dt', 'n eps damping mass bias drive_amplitude drive_frequency drive_phase ' // &
+                 'coupling topology strength offset temperature', &
+                 'damping:damping torque:bias drive:drive_amplitude noise:temperature', &
+                 'sqrt(eps_i / C_i), sqrt(K_ij / C_i), beta_i / C_i, Omega_i, sqrt(abs(bias_i) / C_i)'), &
+    model_info_t('double', 'pendula.DoublePendulum(m1, m2, l1, l2, g)', 'damping', '(none)', 'integrated', &
+                 .true., 'double pendulum: chaos, flip-time map, Lyapunov spectrum', &
+                 '4: theta1, theta2, p1, p2', 'm1 m2 l1 l2 g rods damping', 'damping:damping', &
+                 'the two normal modes'' frequencies, the damping rates k_i / (m l^2)'), &
+    model_info_t('foucault', 'pendula.FoucaultPendulum(latitude, ...)', 'damping', '(none)', 'integrated', &
+                 .true., 'spherical pendulum on the turning Earth: Coriolis and Airy precession', &
+                 '6: r, dr/dt (cartesian)', 'latitude length g earth_rate damping anisotropy', 'damping:damping', &
+                 'sqrt(g / length), the Earth''s rate times sin(latitude), the damping rate'), &
+    model_info_t('spherical', 'pendula.spherical_orbit(theta0, ...)', '(none)', '(none)', 'exact', .true., &
+                 'spherical pendulum: Jacobi elliptic and Carlson R_J closed form', &
+                 '4: theta, phi and their rates', 'theta0 theta_dot0 phi_dot0 eps', '', &
+                 'sqrt(eps): the polar period (closed form, any t at one cost)')]
 
   !> The effects, and the scene field that turns each on ('force' is a tool's argument).
   integer, parameter, public :: n_effects = 8
@@ -72,7 +111,7 @@ module pendula_system
   !> One row of the capability table: one tool on one system.
   type :: capability_t
     character(len=24) :: tool = ''
-    character(len=8) :: system = ''
+    character(len=12) :: system = ''
     !> the effects it honours, those planned (not implemented yet), those it needs (one of them on)
     character(len=56) :: honours = '', planned = '', needs = ''
     !> why the other effects are refused (completes "TOOL does not honour field 'F' (E) on the S model: ")
@@ -86,7 +125,7 @@ module pendula_system
     density_note = 'the density of the angle is a property of a periodic conservative orbit', &
     sweep_note = 'the measure asks a deterministic question of the flow (noise: measure ''mean_velocity'')'
 
-  integer, parameter :: n_rows = 43
+  integer, parameter :: n_rows = 53
   type(capability_t), parameter :: capabilities(n_rows) = [ &
     capability_t('simulate', 'rigid', all8, '', '', ''), &
     capability_t('simulate', 'cord', 'damping torque drive', '', '', 'the flexible cord takes damping, torque, drive'), &
@@ -144,7 +183,18 @@ module pendula_system
     capability_t('gravity_orbit', 'rigid', '', '', '', conservative), &
     capability_t('gravity_orbit', 'gravity', '', '', '', conservative), &
     capability_t('friction_turning_points', 'rigid', 'friction torque', '', 'friction', &
-                 'the exact energy balance holds for dry friction and a torque alone')]
+                 'the exact energy balance holds for dry friction and a torque alone'), &
+    capability_t('simulate', 'network', 'damping torque drive noise', '', '', ''), &
+    capability_t('equilibrium', 'network', 'damping torque', '', '', 'a driven network has no rest points'), &
+    capability_t('normal_modes', 'network', 'torque', '', '', &
+                 'normal modes are those of the undriven, undamped network (damped: equilibrium''s eigenvalues)'), &
+    capability_t('simulate', 'double', 'damping', '', '', ''), &
+    capability_t('flip_map', 'double', 'damping', '', '', ''), &
+    capability_t('lyapunov', 'double', 'damping', '', '', ''), &
+    capability_t('poincare', 'double', 'damping', '', '', ''), &
+    capability_t('simulate', 'foucault', 'damping', '', '', ''), &
+    capability_t('precession', 'foucault', 'damping', '', '', ''), &
+    capability_t('spherical_orbit', 'spherical', '', '', '', 'the closed form is of the conservative pendulum')]
 
 contains
 
@@ -219,9 +269,8 @@ contains
     integer, intent(out) :: status
     character(len=*), intent(out) :: msg
     integer :: id, r, k
-    logical :: known, any_need
+    logical :: known, on(n_effects)
     character(len=16) :: sys
-    type(capability_t) :: row
     msg = ''
     known = .false.
     do r = 1, n_rows
@@ -246,38 +295,154 @@ contains
             trim(runs_on(tool))
       return
     end if
+    do k = 1, n_effects
+      on(k) = scene_effect_on(sc, k, swept, force)
+    end do
+    call row_verdict(r, id, on, status, msg)
+  end subroutine capability_check
+
+  !> Does `tool` honour every effect that the fields named in `fields` (blank-separated: the system's
+  !> fields or arguments that are on, i.e. non-zero) turn on in `system`, a system built by its own class
+  !> (pendula.Network, ...)?  The system's effect_map says which field turns which effect on.  status
+  !> cap_ok, or cap_refused / cap_not_implemented with msg naming the field; cap_unknown_tool for a system,
+  !> tool or field the table does not know (a fault of the caller, not of the user).
+  subroutine capability_check_fields(system, tool, fields, status, msg)
+    character(len=*), intent(in) :: system, tool, fields
+    integer, intent(out) :: status
+    character(len=*), intent(out) :: msg
+    integer :: id, r, k, a, b
+    logical :: on(n_effects)
+    msg = ''
+    status = cap_unknown_tool
+    do id = 1, size(registry)
+      if (registry(id)%name == system) exit
+    end do
+    if (id > size(registry)) then
+      msg = 'the registry names no system ''' // trim(system) // ''''; return
+    end if
+    do r = 1, n_rows
+      if (capabilities(r)%tool == tool .and. capabilities(r)%system == system) exit
+    end do
+    if (r > n_rows) then
+      msg = 'the capability table has no row for ' // trim(tool) // ' on the ' // trim(system) // ' model'; return
+    end if
+    on = .false.
+    b = 0
+    do
+      call next_word(fields, b, a)
+      if (a == 0) exit
+      k = mapped_effect(id, fields(a:b))
+      if (k > 0) then
+        on(k) = .true.
+      else if (.not. has_word(registry(id)%parameters, fields(a:b))) then
+        msg = 'the ' // trim(system) // ' model has no field ''' // fields(a:b) // ''''; return
+      end if
+    end do
+    call row_verdict(r, id, on, status, msg)
+  end subroutine capability_check_fields
+
+  !> The verdict of row r (tool on system id) on the effects turned on (on).
+  subroutine row_verdict(r, id, on, status, msg)
+    integer, intent(in) :: r, id
+    logical, intent(in) :: on(n_effects)
+    integer, intent(out) :: status
+    character(len=*), intent(out) :: msg
+    type(capability_t) :: row
+    character(len=16) :: sys
+    character(len=24) :: tool
+    logical :: any_need
+    integer :: k
+    msg = ''
     row = capabilities(r)
-      any_need = len_trim(row%needs) == 0
-      do k = 1, n_effects
-        if (.not. scene_effect_on(sc, k, swept, force)) cycle
-        if (has_word(row%needs, trim(effect_names(k)))) any_need = .true.
-        if (has_word(row%honours, trim(effect_names(k)))) cycle
-        if (has_word(row%planned, trim(effect_names(k)))) then
-          status = cap_not_implemented
-          msg = trim(field_text(k)) // ': ' // trim(tool) // ' on the ' // trim(sys) // ' model with ' // &
-                trim(effect_names(k)) // ' is not implemented yet (' // trim(row%note) // ')'
-          return
-        end if
-        status = cap_refused
-        if (k == 7) then
-          msg = trim(field_text(k)) // ': ' // trim(tool) // ' does not honour thermal noise (noise = T > 0): ' // &
-                'it asks a deterministic question; set noise = 0 (noisy runs: pendula.simulate, ' // &
-                'sweep(measure=''mean_velocity''), iv_curve)'
-        else
-          msg = trim(field_text(k)) // ': ' // trim(tool) // ' does not honour ' // &
-                trim(merge('a user force', effect_names(k) // '    ', k == n_effects)) // &
-                ' on the ' // trim(sys) // ' model: ' // trim(row%note)
-        end if
-        return
-      end do
-      if (.not. any_need) then
-        status = cap_refused
-        msg = trim(needs_text(row%needs)) // ': ' // trim(tool) // ' needs ' // trim(needs_words(row%needs)) // &
-              '; the scene has none'
+    sys = row%system
+    tool = row%tool
+    any_need = len_trim(row%needs) == 0
+    do k = 1, n_effects
+      if (.not. on(k)) cycle
+      if (has_word(row%needs, trim(effect_names(k)))) any_need = .true.
+      if (has_word(row%honours, trim(effect_names(k)))) cycle
+      if (has_word(row%planned, trim(effect_names(k)))) then
+        status = cap_not_implemented
+        msg = trim(system_field_text(id, k)) // ': ' // trim(tool) // ' on the ' // trim(sys) // ' model with ' // &
+              trim(effect_names(k)) // ' is not implemented yet (' // trim(row%note) // ')'
         return
       end if
+      status = cap_refused
+      if (k == 7 .and. id <= n_scene_models) then
+        msg = trim(field_text(k)) // ': ' // trim(tool) // ' does not honour thermal noise (noise = T > 0): ' // &
+              'it asks a deterministic question; set noise = 0 (noisy runs: pendula.simulate, ' // &
+              'sweep(measure=''mean_velocity''), iv_curve)'
+      else
+        msg = trim(system_field_text(id, k)) // ': ' // trim(tool) // ' does not honour ' // &
+              trim(merge('a user force', effect_names(k) // '    ', k == n_effects)) // &
+              ' on the ' // trim(sys) // ' model: ' // trim(row%note)
+      end if
+      return
+    end do
+    if (.not. any_need) then
+      status = cap_refused
+      msg = trim(needs_text(row%needs)) // ': ' // trim(tool) // ' needs ' // trim(needs_words(row%needs)) // &
+            '; the scene has none'
+      return
+    end if
     status = cap_ok
-  end subroutine capability_check
+  end subroutine row_verdict
+
+  !> The field of system id that turns effect k on, as a message names it.
+  pure function system_field_text(id, k) result(s)
+    integer, intent(in) :: id, k
+    character(len=40) :: s
+    integer :: a, b, c
+    character(len=80) :: map
+    s = field_text(k)
+    map = registry(id)%effect_map
+    b = 0
+    do
+      call next_word(map, b, a)
+      if (a == 0) exit
+      c = a + index(map(a:b), ':') - 1
+      if (map(a:c - 1) == effect_names(k)) then
+        s = 'field ''' // map(c + 1:b) // ''''
+        return
+      end if
+    end do
+  end function system_field_text
+
+  !> The effect that field `f` of system id turns on (its effect_map), 0 for none.
+  pure integer function mapped_effect(id, f)
+    integer, intent(in) :: id
+    character(len=*), intent(in) :: f
+    integer :: a, b, c, k
+    character(len=80) :: map
+    mapped_effect = 0
+    map = registry(id)%effect_map
+    b = 0
+    do
+      call next_word(map, b, a)
+      if (a == 0) exit
+      c = a + index(map(a:b), ':') - 1
+      if (map(c + 1:b) /= f) cycle
+      do k = 1, n_effects
+        if (map(a:c - 1) == effect_names(k)) mapped_effect = k
+      end do
+      return
+    end do
+  end function mapped_effect
+
+  !> The next blank-separated word of `list` after position b: list(a:b); a = 0 when there is none.
+  pure subroutine next_word(list, b, a)
+    character(len=*), intent(in) :: list
+    integer, intent(inout) :: b
+    integer, intent(out) :: a
+    integer :: i
+    a = 0
+    do i = b + 1, len(list)
+      if (list(i:i) /= ' ') exit
+    end do
+    if (i > len(list)) return
+    a = i
+    b = index(list(a:) // ' ', ' ') + a - 2
+  end subroutine next_word
 
   !> The systems a tool runs, for its refusal.
   function runs_on(tool) result(s)

@@ -468,20 +468,27 @@ def _print_capabilities() -> None:
     caps = capabilities()
     print("\nWhat each tool honours, model by model (yes: changes the answer; -: refused, naming the field;"
           "\nlater: not implemented yet; need: one of these must be on; force: a user's force argument)")
-    for m in models():
-        rows = [("tool",) + tuple(EFFECTS)]
+    ms = models()
+    for m in ms:
+        # a model a Scene selects: every effect of the scene; one built by its class: its own effects
+        effects = tuple(EFFECTS) if m.scene else m.effects
+        rows = [("tool",) + effects]
         for c in caps:
             if c.system != m.name:
                 continue
             rows.append((c.tool,) + tuple("yes" if e in c.honours else "later" if e in c.planned else "-"
-                                          for e in EFFECTS))
+                                          for e in effects))
             if c.needs:
-                rows[-1] = tuple(x + "/need" if e in c.needs else x for x, e in zip(rows[-1], ("",) + tuple(EFFECTS)))
+                rows[-1] = tuple(x + "/need" if e in c.needs else x for x, e in zip(rows[-1], ("",) + effects))
         print(f"\n{m.name}: {m.summary}")
         _print_table(rows)
-        absent = sorted({c.tool for c in caps} - {r[0] for r in rows[1:]})
-        if absent:
-            print(f"does not run the {m.name} model: {', '.join(absent)}")
+        if m.scene:
+            scene_tools = {c.tool for c in caps for n in ms if n.scene and c.system == n.name}
+            absent = sorted(scene_tools - {r[0] for r in rows[1:]})
+            if absent:
+                print(f"does not run the {m.name} model: {', '.join(absent)}")
+        else:
+            print(f"{m.name}'s fields: {' '.join(m.parameters)}\ntime scales: {m.time_scales}")
 
 
 def main(argv=None) -> int:

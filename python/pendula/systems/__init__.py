@@ -64,6 +64,17 @@ class ModelInfo:
         False for a model the scene format names but pendula cannot run yet.
     summary : str
         One line about the model.
+    state : str
+        The size of its state and what the state holds.
+    parameters : tuple of str
+        Its parameters: the scene's fields for the models a :class:`Scene`
+        selects, the arguments of its class for the others (``pendula.Network``, ...).
+    scene : bool
+        True for a model a :class:`Scene` selects; False for one built by its
+        own class or function.
+    time_scales : str
+        The time scales its fields create (for the models a Scene selects,
+        :func:`pendula.time_scales` computes them for a scene).
 
     See Also
     --------
@@ -85,15 +96,22 @@ class ModelInfo:
     path: str
     implemented: bool
     summary: str
+    state: str = ""
+    parameters: tuple = ()
+    scene: bool = True
+    time_scales: str = ""
 
 
 def models() -> list[ModelInfo]:
     """The models pendula knows, from the kernel's registry.
 
-    The scene's ``cord``, ``guide`` and ``gravity`` fields select one model;
-    the dispatcher then answers by the model's exact path when the scene's
-    effects allow it and otherwise by an integrator.  ``pendula models``
-    prints the same table.
+    The scene's ``cord``, ``guide`` and ``gravity`` fields select one of the
+    first four models; the dispatcher then answers by the model's exact path
+    when the scene's effects allow it and otherwise by an integrator.  The
+    others are built by their own class or function (``pendula.Network``,
+    ``pendula.DoublePendulum``, ``pendula.FoucaultPendulum``,
+    ``pendula.spherical_orbit``), whose tools ask the same capability table.
+    ``pendula models`` prints the same table.
 
     Returns
     -------
@@ -109,15 +127,16 @@ def models() -> list[ModelInfo]:
     --------
     >>> import pendula
     >>> [m.name for m in pendula.models()]
-    ['rigid', 'cord', 'cycloid', 'gravity']
+    ['rigid', 'cord', 'cycloid', 'gravity', 'network', 'double', 'foucault', 'spherical']
     """
     table = _kernel.models_v()
     text = table.decode() if isinstance(table, bytes) else str(table)
     out = []
     for line in text.strip().splitlines():
-        name, sel, eff, exact, path, impl, summary = (f.strip() for f in line.split("|"))
+        name, sel, eff, exact, path, impl, summary, state, params, door, scales = (f.strip() for f in line.split("|"))
         words = lambda s: tuple(w for w in s.split() if w != "(none)")  # noqa: E731
-        out.append(ModelInfo(name, sel, words(eff), words(exact), path, impl == "yes", summary))
+        out.append(ModelInfo(name, sel, words(eff), words(exact), path, impl == "yes", summary, state,
+                             tuple(params.split()), door == "scene", scales))
     return out
 
 

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from .. import _kernel
 from ..scene import Scene, SceneError
 
-__all__ = ["Capability", "TimeScales", "capabilities", "require", "time_scales", "forcing_frequency",
+__all__ = ["Capability", "TimeScales", "capabilities", "require", "require_fields", "time_scales", "forcing_frequency",
            "expected_steps", "EFFECTS", "STEPS_PER_PERIOD", "MAX_POINT_STEPS"]
 
 #: the effects of the capability table, in its order, and the field that turns each on
@@ -36,7 +36,8 @@ class Capability:
     tool : str
         The tool ('simulate', 'periodic_orbit', 'sweep:mean_velocity', ...).
     system : str
-        The system (model) it runs: 'rigid', 'cord', 'cycloid' or 'gravity'.
+        The system (model) it runs: 'rigid', 'cord', 'cycloid', 'gravity' (the
+        models a Scene selects), or 'network', 'double', 'foucault', 'spherical'.
     honours : tuple of str
         The effects it honours: each changes its answer.
     planned : tuple of str
@@ -125,6 +126,26 @@ def require(scene: Scene, tool: str, over=(), force: bool = False) -> None:
         raise SceneError(f"the kernel refused the scene: {msg}")
     if status == _UNKNOWN_TOOL:
         raise RuntimeError(msg)      # a tool of pendula's own that the table lacks: a bug, said plainly
+    raise ValueError(msg)
+
+
+def require_fields(system: str, tool: str, on) -> None:
+    """Refuse, by the field's name, what ``tool`` does not honour in a system built by its own class.
+
+    ``system``: the registry's name ('network', 'double', 'foucault', 'spherical'); ``on``: the names
+    of the system's fields (or the tool's arguments) that are non-zero.  The kernel's registry says which
+    effect each field turns on, its capability table which effects the tool honours.  Raises ValueError
+    naming the field for a refused effect, NotImplementedError for a planned one.
+    """
+    fields = " ".join(str(k) for k in on)
+    status, msg = _kernel.capability_check_fields_v(system.encode(), tool.encode(), fields.encode() or b" ")
+    if status == 0:
+        return
+    msg = (msg.decode(errors="replace") if isinstance(msg, bytes) else str(msg)).strip()
+    if status == _NOT_IMPLEMENTED:
+        raise NotImplementedError(msg)
+    if status == _UNKNOWN_TOOL:
+        raise RuntimeError(msg)      # a system, tool or field of pendula's own that the table lacks: a bug
     raise ValueError(msg)
 
 

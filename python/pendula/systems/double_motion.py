@@ -21,6 +21,7 @@ from numpy.typing import ArrayLike
 
 from .. import _checks, _interrupt, _kernel
 from .._optional import require
+from .contract import require_fields
 from .double import DoublePendulumModes, _arms, double_pendulum_modes, flip_forbidden
 
 if TYPE_CHECKING:   # xarray is optional: named in annotations only
@@ -213,6 +214,10 @@ class DoublePendulum:
         return (f"DoublePendulum(m1={self.m1:g}, m2={self.m2:g}, l1={self.l1:g}, l2={self.l2:g}, g={self.g:g}, "
                 f"{kind}, damping={self.damping.tolist()})")
 
+    def _fields_on(self) -> list:
+        """The fields that are on (non-zero): the capability table decides what each tool does with them."""
+        return ["damping"] if np.any(self.damping) else []
+
     @property
     def conservative(self) -> bool:
         """True when there is no damping (the energy is conserved)."""
@@ -332,6 +337,7 @@ class DoublePendulum:
         ('dop853', True)
         """
         xr = require("xarray", "xarray", "DoublePendulum.simulate")
+        require_fields("double", "simulate", self._fields_on())
         tt = _checks.as_float(t, "t").ravel()
         if tt.size == 0:
             raise ValueError("t must hold at least one time")
@@ -445,6 +451,7 @@ class DoublePendulum:
         >>> fm.time.shape, int(fm.unresolved.sum()) <= 2
         ((7, 7), True)
         """
+        require_fields("double", "flip_map", self._fields_on())
         a1 = _checks.as_float(theta1, "theta1").ravel()
         a2 = _checks.as_float(theta2, "theta2").ravel()
         for arr, name in ((a1, "theta1"), (a2, "theta2")):
@@ -529,6 +536,7 @@ class DoublePendulum:
         >>> bool(abs(ls.exponents[0]) < 0.05)
         True
         """
+        require_fields("double", "lyapunov", self._fields_on())
         y0 = np.array([_checks.real(theta1, "theta1"), _checks.real(theta2, "theta2"),
                        _checks.real(omega1, "omega1"), _checks.real(omega2, "omega2")])
         y0[2], y0[3] = self._momenta(y0[0], y0[1], y0[2], y0[3])
@@ -610,6 +618,7 @@ class DoublePendulum:
         import warnings
 
         xr = require("xarray", "xarray", "DoublePendulum.poincare")
+        require_fields("double", "poincare", self._fields_on())
         e = _checks.real(energy, "energy")
         a2, b2 = np.broadcast_arrays(_checks.as_float(theta2, "theta2"), _checks.as_float(p2, "p2"))
         th2, q2 = a2.ravel().astype(float), b2.ravel().astype(float)

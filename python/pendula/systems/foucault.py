@@ -21,6 +21,7 @@ from numpy.typing import ArrayLike
 
 from .. import _checks, _interrupt, _kernel
 from .._optional import require
+from .contract import require_fields
 from .spherical import spherical_orbit
 
 if TYPE_CHECKING:   # xarray is optional: named in annotations only
@@ -225,6 +226,7 @@ class FoucaultPendulum:
         0.1
         """
         xr = require("xarray", "xarray", "FoucaultPendulum.simulate")
+        require_fields("foucault", "simulate", ["damping"] if self.damping else [])
         tt = _checks.as_float(t, "t").ravel()
         if tt.size == 0:
             raise ValueError("t must hold at least one time")
@@ -285,6 +287,7 @@ class FoucaultPendulum:
         >>> bool(pr.coriolis > 0), bool(abs(pr.residual) < 1e-3 * abs(pr.coriolis))
         (True, True)
         """
+        require_fields("foucault", "precession", ["damping"] if self.damping else [])
         y0, th, thd, phd = self._start(theta0, azimuth, theta_dot0, phi_dot0)
         if th == 0.0:
             raise ValueError("theta0 must be > 0: a pendulum at rest at the bottom has no swing to measure")

@@ -26,6 +26,7 @@ from numpy.typing import ArrayLike
 
 from .. import _checks, _interrupt, _kernel
 from .._optional import require
+from .contract import require_fields
 
 if TYPE_CHECKING:   # xarray is optional: named in annotations only
     import xarray
@@ -296,6 +297,10 @@ class Network:
         what = f"topology={self.topology!r}" if self.topology else f"{self.springs[0].size} springs"
         return f"Network(n={self.n}, {what})"
 
+    def _fields_on(self) -> list:
+        """The fields that are on (non-zero): the capability table decides what each tool does with them."""
+        return [f for f in ("damping", "bias", "drive_amplitude") if np.any(getattr(self, f))]
+
     @property
     def coupling(self) -> np.ndarray:
         """The spring constants K as a dense N x N matrix (built on request: for a small network)."""
@@ -469,6 +474,7 @@ class Network:
         tt = _checks.as_float(t, "t").ravel()
         method = _checks.choice(method, "method", METHODS)
         temp = _per_element(temperature, "temperature", self.n, 0.0)
+        require_fields("network", "simulate", self._fields_on() + (["temperature"] if np.any(temp) else []))
         noisy = bool(np.any(temp > 0))
         if noisy:
             method = "baoab"
@@ -570,8 +576,7 @@ class Network:
         >>> np.round(eq.phi, 12).tolist(), eq.stable
         ([3.14159265359, 3.14159265359], False)
         """
-        if np.any(self.drive_amplitude != 0):
-            raise ValueError("drive_amplitude: a driven network has no rest points")
+        require_fields("network", "equilibrium", self._fields_on())
         tol = _checks.real(tol, "tol", 0.0, lo_open=True)
         maxit = _checks.count(maxit, "maxit", 1)
         q = self._state(phi, "phi").copy()
@@ -634,6 +639,7 @@ class Network:
         >>> np.round(modes.omega2, 12).tolist()
         [1.0, 4.0, 4.0]
         """
+        require_fields("network", "normal_modes", self._fields_on())
         q = self.equilibrium(np.zeros(self.n)).phi if phi is None else self._state(phi, "phi")
         jac = self.jacobian(q)
         s = 1.0 / np.sqrt(self.mass)

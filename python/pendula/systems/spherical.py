@@ -20,6 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import _kernel
 from .._checks import as_float, real
+from .contract import require_fields
 
 __all__ = ["SphericalOrbit", "SphericalPath", "spherical_orbit"]
 
@@ -303,6 +304,7 @@ def spherical_orbit(theta0: float, theta_dot0: float, phi_dot0: float, eps: floa
     >>> round(o.period, 12), round(math.degrees(o.apsidal_angle), 10)
     (3.382971354162, 111.6835524236)
     """
+    require_fields("spherical", "spherical_orbit", [])
     args = {"theta0": _scalar(theta0, "theta0"), "theta_dot0": _scalar(theta_dot0, "theta_dot0"),
             "phi_dot0": _scalar(phi_dot0, "phi_dot0"), "eps": _scalar(eps, "eps")}
     f, status = _kernel.spherical_facts_v(args["theta0"], args["theta_dot0"], args["phi_dot0"], args["eps"])
