@@ -154,23 +154,31 @@ def pitchfork_point(A0, x0, omega, beta):
     return A, x, np.linalg.eigvals(DG @ DG)
 
 
-def pitchforks(beta, t0):
-    """The pitchfork curve from A = 1.004319 at omega = 2/3 (the symmetric orbit theta -1.07195, v 1.89723)."""
+def follow_in_omega(point, x0, A0, kept, beta, t0, label):
+    """A curve of `point` (pd_point or pitchfork_point) from (x0, A0) at omega = 2/3, in steps of 0.01/3
+    down to 0.6 and up to 0.7; each step's guess of A extrapolates the last two.  Returns the points at
+    the omegas in `kept`."""
     out = []
     for omegas in ([2 / 3] + [round(2 / 3 - i * 0.01 / 3, 12) for i in range(1, 21)],
                    [round(2 / 3 + i * 0.01 / 3, 12) for i in range(1, 11)]):
-        x, A = np.array([-1.07195, 1.89723]), 1.0043195
+        x, A = np.array(x0), A0
         last = []
         for omega in omegas:
             guess = A if len(last) < 2 else last[-1][1] + (omega - last[-1][0]) * (
                 (last[-1][1] - last[-2][1]) / (last[-1][0] - last[-2][0]))
-            A, x, mu = pitchfork_point(guess, x, omega, beta)
+            A, x, mu = point(guess, x, omega, beta)
             last.append((omega, A))
-            if min(abs(omega - w) for w in (2 / 3, 0.64, 0.6, 0.7)) < 1e-9:
+            if min(abs(omega - w) for w in kept) < 1e-9:
                 out.append({"omega": float(omega), "A": A, "theta": x[0], "v": x[1],
                             "multipliers": sorted(np.real(mu).tolist())})
-                print("pitchfork", omega, A, time.time() - t0)
+                print(label, omega, A, time.time() - t0)
     return out
+
+
+def pitchforks(beta, t0):
+    """The pitchfork curve from A = 1.004319 at omega = 2/3 (the symmetric orbit theta -1.07195, v 1.89723)."""
+    return follow_in_omega(pitchfork_point, [-1.07195, 1.89723], 1.0043195, (2 / 3, 0.64, 0.6, 0.7),
+                           beta, t0, "pitchfork")
 
 
 def branch_at(s, w, p, omega, beta, fixed, which, winding=0, c=(0.0, 0.0), e=(1.0, 0.0)):
@@ -257,21 +265,8 @@ def main():
     out = {"beta": beta, "rtol": RTOL, "method": "scipy DOP853 + Newton on the map + brentq (xtol 1e-14)"}
     # 1. period doubling of the asymmetric orbit, from A = 1.066373 at omega = 2/3 (theta -0.2215, v 1.9597);
     # the orbit is followed from omega to omega by reusing the last state
-    pd = []
-    for omegas in ([2 / 3] + [round(2 / 3 - i * 0.01 / 3, 12) for i in range(1, 21)],
-                   [round(2 / 3 + i * 0.01 / 3, 12) for i in range(1, 11)]):
-        x, A = np.array([-0.221475, 1.95966]), 1.0663729
-        last = []
-        for omega in omegas:
-            guess = A if len(last) < 2 else last[-1][1] + (omega - last[-1][0]) * (
-                (last[-1][1] - last[-2][1]) / (last[-1][0] - last[-2][0]))
-            A, x, mu = pd_point(guess, x, omega, beta)
-            last.append((omega, A))
-            if min(abs(omega - w) for w in (2 / 3, 0.64, 0.62, 0.6, 0.68, 0.7)) < 1e-9:
-                pd.append({"omega": float(omega), "A": A, "theta": x[0], "v": x[1],
-                           "multipliers": sorted(np.real(mu).tolist())})
-                print("pd", omega, A, time.time() - t0)
-    out["period_doubling"] = pd
+    out["period_doubling"] = follow_in_omega(pd_point, [-0.221475, 1.95966], 1.0663729,
+                                             (2 / 3, 0.64, 0.62, 0.6, 0.68, 0.7), beta, t0, "pd")
     # 2. the two folds of the period-1 oscillation at omega = 0.5 and up to 0.6 (the cusp is near 0.6129)
     fold = []
     # the critical eigenvectors at the start from the Jacobian of the map (not needed precisely: a

@@ -256,19 +256,24 @@ def add_density_rotation(rows, set_, cls, kind, par, eps, theta0, v0, theta):
     rows.add(set_, cls, "angle_cdf", [kind, par, eps, theta0, v0, theta], {"cdf": ref["cdf"]}, {"cdf": 1.0}, cond)
 
 
-def add_einc(rows, set_, cls, phi, mc):
-    digits = 40 + int(max(0, -math.log10(abs(mc)))) + int(math.log10(abs(phi) + 1))
-
+def incomplete_reference(phi, digits, m=None, mc=None):
+    """E(phi|m) and F(phi|m) by mpmath (checked by `twice`), m the exact double `m` or formed as
+    1 - `mc` at the working precision; None where they are not real or do not agree."""
     def f():
-        m = 1 - mp.mpf(mc)
-        out = {"ellipeinc": mp.ellipe(mp.mpf(phi), m), "ellipf": mp.ellipf(mp.mpf(phi), m)}
+        par = mp.mpf(m) if mc is None else 1 - mp.mpf(mc)
+        out = {"ellipeinc": mp.ellipe(mp.mpf(phi), par), "ellipf": mp.ellipf(mp.mpf(phi), par)}
         if any(mp.im(x) != 0 for x in out.values()):
             return None
         return {q: mp.re(x) for q, x in out.items()}
     with mp.workdps(digits):
         if f() is None:
-            return
-    ref = twice(f, digits)
+            return None
+    return twice(f, digits)
+
+
+def add_einc(rows, set_, cls, phi, mc):
+    digits = 40 + int(max(0, -math.log10(abs(mc)))) + int(math.log10(abs(phi) + 1))
+    ref = incomplete_reference(phi, digits, mc=mc)
     if ref is None:
         return
     rows.add(set_, cls, "ellip", [phi, mc], ref, {"ellipeinc": 1.0, "ellipf": 1.0})
@@ -277,16 +282,7 @@ def add_einc(rows, set_, cls, phi, mc):
 def add_ellip_m(rows, set_, cls, phi, m):
     """F(phi|m) and E(phi|m) at the exact doubles phi and m (given to pendula as m), relative."""
     digits = 40 + int(math.log10(abs(m) + 1)) // 4
-
-    def f():
-        out = {"ellipeinc": mp.ellipe(mp.mpf(phi), mp.mpf(m)), "ellipf": mp.ellipf(mp.mpf(phi), mp.mpf(m))}
-        if any(mp.im(x) != 0 for x in out.values()):
-            return None
-        return {q: mp.re(x) for q, x in out.items()}
-    with mp.workdps(digits):
-        if f() is None:
-            return
-    ref = twice(f, digits)
+    ref = incomplete_reference(phi, digits, m=m)
     if ref is None:
         return
     rows.add(set_, cls, "ellip_m", [phi, m], ref, {"ellipeinc": TINY, "ellipf": TINY})

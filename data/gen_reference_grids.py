@@ -226,22 +226,7 @@ def points(n, seed):
         # wrapped starts
         th0 = rng.choice([-1, 1]) * rng.uniform(math.pi, 1e3)
         out.append(("exact_wrapped", [th0, rng.uniform(-3, 3) * se, eps]))
-    rows = []
-    for cls, x in out:
-        if cls.startswith("exact"):
-            th0, v0, eps = x
-            with mp.workdps(30):
-                k2 = k2_of(th0, v0, eps)
-                if k2 == 1:
-                    continue
-                P = float(period(th0, v0, eps)[0])
-            for direction in (1, -1):
-                t = direction * loguni(rng, 1e-3, 1e4 * P)
-                rows.append((cls + ("_fwd" if direction > 0 else "_bwd"), [th0, v0, eps, t]))
-            rows.append(("period_" + ("libration" if k2 < 1 else "rotation"), [th0, v0, eps]))
-        else:
-            rows.append((cls, x))
-    return rows
+    return timed_rows(out, rng, 30, periods=True)
 
 
 def edge_points(n, seed):
@@ -315,11 +300,18 @@ def edge_points(n, seed):
         eps = loguni(rng, 1e-3, 1e3)
         th0 = sign() * loguni(rng, 1e3, 2.0**52)
         out.append(("exact_huge_theta0", [th0, rng.uniform(-3, 3) * math.sqrt(eps), eps]))
+    return timed_rows(out, rng, 60, periods=False)
+
+
+def timed_rows(out, rng, dps, periods):
+    """The rows of the points `out`: each exact-motion start (theta0, v0, eps) once forward and once
+    backward in time, to 1e4 of its periods (the period found at `dps` digits; a start on the
+    separatrix is dropped), with `periods` also a row for its period; the other points as they are."""
     rows = []
     for cls, x in out:
         if cls.startswith("exact"):
             th0, v0, eps = x
-            with mp.workdps(60):
+            with mp.workdps(dps):
                 k2 = k2_of(th0, v0, eps)
                 if k2 == 1:
                     continue
@@ -327,6 +319,8 @@ def edge_points(n, seed):
             for direction in (1, -1):
                 t = direction * loguni(rng, 1e-3, 1e4 * P)
                 rows.append((cls + ("_fwd" if direction > 0 else "_bwd"), [th0, v0, eps, t]))
+            if periods:
+                rows.append(("period_" + ("libration" if k2 < 1 else "rotation"), [th0, v0, eps]))
         else:
             rows.append((cls, x))
     return rows

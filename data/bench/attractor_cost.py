@@ -15,32 +15,22 @@ when measured again), with the machine and the date.
     python data/bench/attractor_cost.py [--n 150] [--repeat 3] [--threads 2] [--amplitudes 1.07,1.2,1.35]
 """
 
-import argparse
 import json
 import math
 import os
 import pathlib
-import time
 
 import numpy as np
 
 import pendula
 from pendula.studies.bench import machine_record
+from _bench_timing import cost_arguments, timed
 
 OUT = pathlib.Path(__file__).with_name("attractor_cost.json")
 
 
-def timed(fn):
-    t0, c0 = time.perf_counter(), time.process_time()
-    r = fn()
-    return r, time.perf_counter() - t0, time.process_time() - c0
-
-
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--n", type=int, default=150, help="points per axis")
-    ap.add_argument("--repeat", type=int, default=3, help="interleaved repetitions (best of)")
-    ap.add_argument("--threads", type=int, default=2, help="OpenMP threads")
+    ap = cost_arguments(__doc__, 150, "points per axis")
     ap.add_argument("--amplitudes", default="1.07,1.2,1.35")
     ap.add_argument("--samples-method", choices=("auto", "yes", "no"), default="auto",
                     help="time the former method once (auto: for n <= 150)")
@@ -53,11 +43,11 @@ def main():
     cpu = dict.fromkeys(best, math.inf)
     info = {}
     for _ in range(a.repeat):
-        _, w, c = timed(lambda: pendula.sweep(pendula.Scene(damping=0.5), grid, "final_well", threads=a.threads))
+        w, c, _ = timed(lambda: pendula.sweep(pendula.Scene(damping=0.5), grid, "final_well", threads=a.threads))
         best["final_well"], cpu["final_well"] = min(best["final_well"], w), min(cpu["final_well"], c)
         for A in amps:
             sc = pendula.Scene(damping=0.5, drive_amplitude=A, drive_frequency=2 / 3)
-            am, w, c = timed(lambda: pendula.attractor_map(sc, grid, threads=a.threads))
+            w, c, am = timed(lambda: pendula.attractor_map(sc, grid, threads=a.threads))
             k = f"attractor_{A}"
             best[k], cpu[k] = min(best[k], w), min(cpu[k], c)
             info[k] = {"attractors": [[x.kind, x.period, round(x.fraction, 6)] for x in am.attractors],
@@ -73,7 +63,7 @@ def main():
     if a.samples_method == "yes" or (a.samples_method == "auto" and n <= 150):
         for A in amps:
             sc = pendula.Scene(damping=0.5, drive_amplitude=A, drive_frequency=2 / 3)
-            am, w, c = timed(lambda: pendula.attractor_map(sc, grid, method="samples", threads=a.threads))
+            w, c, am = timed(lambda: pendula.attractor_map(sc, grid, method="samples", threads=a.threads))
             rows[f"samples_method_{A}"] = {
                 "wall_s_once": w, "process_cpu_s": c, "ratio_to_final_well": w / best["final_well"],
                 "attractors": [[x.kind, x.period, round(x.fraction, 6)] for x in am.attractors]}

@@ -14,7 +14,6 @@ pendula best of two, the peers once; wall and CPU seconds.  The target: the tree
     .venv/bin/python data/bench/branch_tree_cost.py     # writes data/bench/branch_tree_cost.json
 """
 
-import importlib.util
 import json
 import os
 import platform
@@ -24,16 +23,10 @@ from pathlib import Path
 import numpy as np
 
 import pendula
+from _bench_timing import reference_script, timed
 
 HERE = Path(__file__).resolve().parent
 STOP = 1.0828
-
-
-def _reference_module():
-    spec = importlib.util.spec_from_file_location("gen_ref", HERE.parent / "gen_continuation_reference.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
 
 
 def run_tree():
@@ -48,14 +41,8 @@ def run_sweep():
     return pendula.sweep(sc, {"drive_amplitude": A}, "poincare", transient=600.0, samples=32)
 
 
-def timed(fn):
-    t0, c0 = time.perf_counter(), time.process_time()
-    out = fn()
-    return time.perf_counter() - t0, time.process_time() - c0, out
-
-
 def main():
-    ref = _reference_module()
+    ref = reference_script("gen_continuation_reference.py", "gen_ref")
     tree_runs = [timed(run_tree) for _ in range(2)]
     bt = min(tree_runs, key=lambda r: r[0])
     tree = bt[2]

@@ -7,7 +7,6 @@ best of three, scipy best of two; wall and CPU seconds.  The target: the pendula
     .venv/bin/python data/bench/continuation_cost.py     # writes data/bench/continuation_cost.json
 """
 
-import importlib.util
 import json
 import os
 import platform
@@ -15,15 +14,9 @@ import time
 from pathlib import Path
 
 import pendula
+from _bench_timing import reference_script, timed
 
 HERE = Path(__file__).resolve().parent
-
-
-def _reference_module():
-    spec = importlib.util.spec_from_file_location("gen_ref", HERE.parent / "gen_continuation_reference.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
 
 
 def run_pendula():
@@ -34,14 +27,8 @@ def run_pendula():
     return [(b.kind, b.period, b.value) for b in br.bifurcations], len(br)
 
 
-def timed(fn):
-    t0, c0 = time.perf_counter(), time.process_time()
-    out = fn()
-    return time.perf_counter() - t0, time.process_time() - c0, out
-
-
 def main():
-    ref = _reference_module()
+    ref = reference_script("gen_continuation_reference.py", "gen_ref")
     pend, peer = [], []
     for i in range(3):
         pend.append(timed(run_pendula))

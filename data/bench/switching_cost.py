@@ -18,32 +18,22 @@ and the date.
     python data/bench/switching_cost.py [--n 1000] [--repeat 3] [--threads 2]
 """
 
-import argparse
 import json
 import math
 import os
 import pathlib
-import time
 
 import pendula
 from pendula.escape import switching_distribution
 from pendula.junction import BOLTZMANN, PLANCK, ELEMENTARY_CHARGE
 from pendula.studies.bench import machine_record
+from _bench_timing import cost_arguments, timed
 
 OUT = pathlib.Path(__file__).with_name("switching_cost.json")
 
 
-def timed(fn):
-    t0, c0 = time.perf_counter(), time.process_time()
-    r = fn()
-    return r, time.perf_counter() - t0, time.process_time() - c0
-
-
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--n", type=int, default=1000, help="Langevin ramps")
-    ap.add_argument("--repeat", type=int, default=3, help="interleaved repetitions (best of)")
-    ap.add_argument("--threads", type=int, default=2, help="OpenMP threads of the Langevin ramps")
+    ap = cost_arguments(__doc__, 1000, "Langevin ramps", "OpenMP threads of the Langevin ramps")
     a = ap.parse_args()
     load0 = os.getloadavg()
     lab = pendula.Junction(10e-6, 30.0, 1e-12)
@@ -60,14 +50,14 @@ def main():
     out = {}
     for _ in range(a.repeat):
         for t, r in labs:
-            d, w, cp = timed(lambda: switching_distribution(lab, r, temperature=t))
+            w, cp, d = timed(lambda: switching_distribution(lab, r, temperature=t))
             k = f"integral_{t}K_{r}Aps"
             best[k], cpu[k] = min(best[k], w), min(cpu[k], cp)
             out[k] = {"mean_A": d.mean, "width_A": d.width, "at_critical": d.at_critical}
-        d, w, cp = timed(lambda: switching_distribution(both, rate_both))
+        w, cp, d = timed(lambda: switching_distribution(both, rate_both))
         k = "integral_where_both_run"
         best[k], cpu[k] = min(best[k], w), min(cpu[k], cp)
-        s, w, cp = timed(lambda: both.switching_currents(rate_both, a.n, seed=7, dt=0.1, threads=a.threads))
+        w, cp, s = timed(lambda: both.switching_currents(rate_both, a.n, seed=7, dt=0.1, threads=a.threads))
         best["langevin"], cpu["langevin"] = min(best["langevin"], w), min(cpu["langevin"], cp)
     # Langevin steps taken: each ramp runs to its switch (about i_sw / (r dt) steps)
     steps = float(sum(x / ic for x in s.samples)) / (2e-4 * 0.1)

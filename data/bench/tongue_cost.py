@@ -8,31 +8,15 @@ Prints wall and CPU seconds and the ratio; nothing asserts a time.
     .venv/bin/python data/bench/tongue_cost.py     # writes data/bench/tongue_cost.json
 """
 
-import importlib.util
 import json
 import os
 import platform
-import sys
-import time
 from pathlib import Path
 
 import pendula
+from _bench_timing import reference_script, timed
 
 HERE = Path(__file__).resolve().parent
-
-
-def _reference_module():
-    sys.path.insert(0, str(HERE.parent))
-    spec = importlib.util.spec_from_file_location("gen_tongue_ref", HERE.parent / "gen_shapiro_tongue_reference.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
-
-
-def timed(fn):
-    t0, c0 = time.perf_counter(), time.process_time()
-    out = fn()
-    return time.perf_counter() - t0, time.process_time() - c0, out
 
 
 def run_pendula():
@@ -42,7 +26,7 @@ def run_pendula():
 
 
 def main():
-    ref = _reference_module()
+    ref = reference_script("gen_shapiro_tongue_reference.py", "gen_tongue_ref")
     wall, cpu, (nl, nu, el, eu) = timed(run_pendula)
     print(f"pendula.shapiro_tongue n = 1, rf amplitude 0.05 -> 4: {nl} + {nu} points, ends {el!r}, {eu!r}: "
           f"{wall:.2f} s wall, {cpu:.2f} s CPU ({wall / (nl + nu) * 1e3:.1f} ms per edge point)")

@@ -138,7 +138,7 @@ contains
     real(dp) :: vh(theta_blk), vl(theta_blk), ex(theta_blk), sg(theta_blk), jj(theta_blk), shf(theta_blk)
     real(dp) :: sa(theta_blk), sb(theta_blk), sc(theta_blk), sd(theta_blk)
     real(dp) :: j, g, pr, t, ah, al, bh, bl, kbh, kbl, e, s, rh, rl, wh, wl, f, ss
-    real(dp) :: q, sv, cv, v2, c2, a, b, c, d, inv, num_s, num_c, num_d, ya, yb, odd, h
+    real(dp) :: q, sv, cv, v2, c2, a, b, c, d, inv, num_s, num_c, num_d, ya, yb, h
     integer :: i
     q = p%q
     t = splitter * p%kh; kbh = t - (t - p%kh); kbl = p%kh - kbh
@@ -224,15 +224,7 @@ contains
         s = num_s * inv
         c = num_c * inv
         d = num_d
-        j = jj(i)
-        odd = merge(1.0_dp, 0.0_dp, ((0.5_dp * abs(j) + magic) - magic) /= 0.5_dp * abs(j))
-        sn(i) = sg(i) * s * (1.0_dp - 2.0_dp * odd)
-        cn(i) = c * (1.0_dp - 2.0_dp * odd)
-        dn(i) = d
-        am(i) = (j * pi + sg(i) * h) + j * pi_lo
-        if (.not. (abs(j) <= 2.0_dp**48)) then
-          sn(i) = nan_dp; cn(i) = nan_dp; dn(i) = nan_dp; am(i) = nan_dp
-        end if
+        call back_to_u(jj(i), sg(i), s, c, d, h, sn(i), cn(i), dn(i), am(i))
       end do
       return
     end if
@@ -254,18 +246,27 @@ contains
       s = num_s * inv
       c = num_c * inv
       d = num_d * inv
-      ! back to u: sn, cn change sign with j, dn does not; am = j pi + sg am(|r|)
-      j = jj(i)
-      odd = merge(1.0_dp, 0.0_dp, ((0.5_dp * abs(j) + magic) - magic) /= 0.5_dp * abs(j))
-      sn(i) = sg(i) * s * (1.0_dp - 2.0_dp * odd)
-      cn(i) = c * (1.0_dp - 2.0_dp * odd)
-      dn(i) = d
-      am(i) = (j * pi + sg(i) * h) + j * pi_lo
-      if (.not. (abs(j) <= 2.0_dp**48)) then
-        sn(i) = nan_dp; cn(i) = nan_dp; dn(i) = nan_dp; am(i) = nan_dp
-      end if
+      call back_to_u(jj(i), sg(i), s, c, d, h, sn(i), cn(i), dn(i), am(i))
     end do
   end subroutine theta_block
+
+  !> From the reduced argument |r| back to u = 2 j K + sg |r|: sn and cn change sign with j, dn does
+  !> not, am = j pi + sg am(|r|) (h = am(|r|)); NaN beyond 2^48 half periods.
+  elemental subroutine back_to_u(j, sg, s, c, d, h, sn, cn, dn, am)
+    real(dp), intent(in) :: j, sg, s, c, d, h
+    real(dp), intent(out) :: sn, cn, dn, am
+    !> (x + magic) - magic rounds |x| < 2^51 to an integer
+    real(dp), parameter :: magic = 6755399441055744.0_dp
+    real(dp) :: odd
+    odd = merge(1.0_dp, 0.0_dp, ((0.5_dp * abs(j) + magic) - magic) /= 0.5_dp * abs(j))
+    sn = sg * s * (1.0_dp - 2.0_dp * odd)
+    cn = c * (1.0_dp - 2.0_dp * odd)
+    dn = d
+    am = (j * pi + sg * h) + j * pi_lo
+    if (.not. (abs(j) <= 2.0_dp**48)) then
+      sn = nan_dp; cn = nan_dp; dn = nan_dp; am = nan_dp
+    end if
+  end subroutine back_to_u
 
   include 'pendula_atan.inc'
 

@@ -56,8 +56,7 @@ contains
     real(dp), intent(in) :: x
     character(len=40) :: s
     character(len=40) :: t, f
-    real(dp) :: y
-    integer :: d, ios, e, p
+    integer :: e, p
     if (x /= x) then
       s = 'nan'; return
     else if (x > huge(x)) then
@@ -65,23 +64,11 @@ contains
     else if (x < -huge(x)) then
       s = '-inf'; return
     end if
-    do d = 0, 16
-      write(f, '(a,i0,a)') '(es30.', d, 'e3)'
-      write(t, f) x
-      read(t, *, iostat=ios) y
-      if (ios == 0 .and. y == x) exit
-    end do
-    t = adjustl(t)
+    t = fewest_digits(x, '(es30.', 'e3)', 16)
     p = index(t, 'E')
     read(t(p + 1:), *) e
     if (e >= -4 .and. e < 16) then
-      do d = 0, 20
-        write(f, '(a,i0,a)') '(f40.', d, ')'
-        write(s, f) x
-        read(s, *, iostat=ios) y
-        if (ios == 0 .and. y == x) exit
-      end do
-      s = adjustl(s)
+      s = fewest_digits(x, '(f40.', ')', 20)
       if (s(1:1) == '.') s = '0' // s
       if (s(1:2) == '-.') s = '-0' // s(2:)
       if (s(len_trim(s):len_trim(s)) == '.') s = trim(s) // '0'
@@ -91,6 +78,25 @@ contains
       write(s, '(a,a,i0)') trim(f), 'e', e
     end if
   end function num_text
+
+  !> x written with the edit descriptor head // d // tail, d the fewest digits in 0..dmax that read
+  !> back to x (dmax when none do), left-adjusted.
+  function fewest_digits(x, head, tail, dmax) result(s)
+    real(dp), intent(in) :: x
+    character(len=*), intent(in) :: head, tail
+    integer, intent(in) :: dmax
+    character(len=40) :: s
+    character(len=40) :: f
+    real(dp) :: y
+    integer :: d, ios
+    do d = 0, dmax
+      write(f, '(a,i0,a)') head, d, tail
+      write(s, f) x
+      read(s, *, iostat=ios) y
+      if (ios == 0 .and. y == x) exit
+    end do
+    s = adjustl(s)
+  end function fewest_digits
 
   function int_text(i) result(s)
     integer, intent(in) :: i

@@ -310,6 +310,11 @@ def _newton_step(A, F, cap: float = 1.0):
     return d * (cap / big) if big > cap else d
 
 
+def _stepped(u, p, d, plane):
+    """The point (u, p) moved by the step d: d[2] moves the field p only on a pseudo-arclength plane."""
+    return u + d[:2], (p if plane is None else p + float(d[2]))
+
+
 def newton(problem: OrbitProblem, u, p, tol: float, maxit: int, plane=None):
     """Newton's iteration on F(u; p) = 0 in a trust region: the one corrector of the dynamics.
 
@@ -371,8 +376,7 @@ def newton(problem: OrbitProblem, u, p, tol: float, maxit: int, plane=None):
             size = float(np.linalg.norm(d * weights))
             if predicted <= 0.0 or size == 0.0:
                 break
-            ut = u + d[:2]
-            pt = p if plane is None else p + float(d[2])
+            ut, pt = _stepped(u, p, d, plane)
             evals += 1
             try:
                 evt = problem.evaluate(ut, pt)
@@ -401,8 +405,7 @@ def newton(problem: OrbitProblem, u, p, tol: float, maxit: int, plane=None):
             if d is None:
                 why = f"the Jacobian is singular at iteration {evals}"
                 break
-            ut = u + d[:2]
-            pt = p if plane is None else p + float(d[2])
+            ut, pt = _stepped(u, p, d, plane)
             evals += 1
             try:
                 evt = problem.evaluate(ut, pt)

@@ -132,8 +132,8 @@ def bench_integrators(n: int = 0, seed: int = 0) -> list[dict]:
     print(f"\nDOP853 on a damped scene: pendula {mine.stats['steps']} steps, "
           f"{mine.stats['rhs_evaluations']} rhs evaluations; scipy {ref.nfev} rhs evaluations; "
           f"max |theta difference| {np.abs(mine.theta - ref.y[0]).max():.1e}")
-    results += _report_whole("DOP853 against scipy.integrate.solve_ivp(method='DOP853')", rows,
-                             "pendula dop853 (damped, rtol 1e-10)")
+    results += _report_runs("DOP853 against scipy.integrate.solve_ivp(method='DOP853')", rows,
+                            "pendula dop853 (damped, rtol 1e-10)")
     # 2. DOP853 against GSL rk8pd at equal final error (conservative, exact reference)
     tt = np.array([0.0, 100.0])
     exact = exact_motion(0.0, 1.999, 1.0, tt)[0][-1]
@@ -176,13 +176,19 @@ def bench_integrators(n: int = 0, seed: int = 0) -> list[dict]:
     return results
 
 
-def _report_whole(title, rows, ref):
+def _report_runs(title, rows, ref, per_call=False):
+    """Print the rows (name, seconds) with their ratios to the row named `ref`; returns the bench
+    record's rows: whole runs in ms, or with `per_call` the cost of one call in us."""
     base = dict(rows)[ref]
     print(f"\n{title}")
     out = []
     for name, tsec in rows:
-        print(f"  {name:44s} {tsec * 1e3:9.3f} ms {tsec / base:10.1f}x")
-        out.append({"what": name, "ms": tsec * 1e3, "ratio": tsec / base})
+        if per_call:
+            print(f"  {name:50s} {tsec * 1e6:9.1f} us per call {tsec / base:8.2f}x")
+            out.append({"what": name, "us_per_call": tsec * 1e6, "ratio": tsec / base})
+        else:
+            print(f"  {name:44s} {tsec * 1e3:9.3f} ms {tsec / base:10.1f}x")
+            out.append({"what": name, "ms": tsec * 1e3, "ratio": tsec / base})
     return out
 
 
@@ -374,8 +380,8 @@ def bench_simulate(n: int = 0, seed: int = 0) -> list[dict]:
     conservative = Scene(v0=1.0, t_end=10.0, n_samples=11)
     rows = [("simulate, conservative scene, 11 samples", _per_call(lambda: simulate(conservative))),
             ("exact_motion on the same 11 times", _per_call(lambda: exact_motion(0.0, 1.0, 1.0, t)))]
-    out = _report_calls("simulate against the exact path on the same times (target: within 2x)", rows,
-                        "exact_motion on the same 11 times")
+    out = _report_runs("simulate against the exact path on the same times (target: within 2x)", rows,
+                       "exact_motion on the same 11 times", per_call=True)
     damped = Scene(v0=1.0, damping=0.1, t_end=10.0, n_samples=11, rtol=1e-10, atol=1e-12)
     fields = damped._kernel_fields      # the scene as the kernel checked it
     cancel = np.zeros(1, dtype=np.int32)
@@ -387,18 +393,8 @@ def bench_simulate(n: int = 0, seed: int = 0) -> list[dict]:
         raise RuntimeError("bench simulate: the two runs compared differ; they must be the same work")
     rows = [("simulate, damped scene, dop853, 11 samples", _per_call(lambda: simulate(damped))),
             ("the integrator's binding alone, same run", _per_call(kernel_alone))]
-    out += _report_calls("a short DOP853 run: simulate against the kernel's integration alone "
-                         "(target: within 1.5x)", rows, "the integrator's binding alone, same run")
-    return out
-
-
-def _report_calls(title, rows, ref):
-    base = dict(rows)[ref]
-    print(f"\n{title}")
-    out = []
-    for name, tsec in rows:
-        print(f"  {name:50s} {tsec * 1e6:9.1f} us per call {tsec / base:8.2f}x")
-        out.append({"what": name, "us_per_call": tsec * 1e6, "ratio": tsec / base})
+    out += _report_runs("a short DOP853 run: simulate against the kernel's integration alone "
+                        "(target: within 1.5x)", rows, "the integrator's binding alone, same run", per_call=True)
     return out
 
 
