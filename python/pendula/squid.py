@@ -13,7 +13,10 @@ section 2).  Its static critical current Ic(Φ) is the largest bias with a
 stable rest point: the fold of the branch of stable rest points continued in
 the bias, located by Newton on the extended system of Moore and Spence
 (F = 0, J v = 0, c·v = 1), over every flux state (the fluxoid branches that
-coexist at large β_L).
+coexist at large β_L).  An asymmetric SQUID (junctions of critical currents
+I₀(1 ∓ α_I), arms of inductance (1 ∓ η)L/2) is the same network with sine
+strengths 1 ∓ α_I and the bias split (1 ± η)/2 between the arms
+(squid_voltage.py derives the split from the fluxoid condition).
 """
 
 from __future__ import annotations
@@ -28,7 +31,7 @@ from typing import TYPE_CHECKING, Literal
 from . import _checks
 from ._optional import require
 from .junction import FLUX_QUANTUM, Junction
-from .squid_voltage import mean_velocity, noisy_mean_velocity, squid_network, wrap
+from .squid_voltage import arms, mean_velocity, noisy_mean_velocity, squid_network, wrap
 from .systems.network import Network
 
 if TYPE_CHECKING:   # xarray is optional: named in annotations only
@@ -39,16 +42,27 @@ __all__ = ["DCSquid", "squid_critical_current"]
 _TWO_PI = 2.0 * math.pi
 
 
-def _network(beta_l: float, flux: float, bias: float = 0.0, damping: float = 0.0) -> Network:
+def _asymmetry(x, name: str) -> float:
+    """An asymmetry parameter: a real strictly between -1 and 1 (at ±1 one arm has no junction or no
+    inductance)."""
+    v = _checks.real(x, name)
+    if not -1.0 < v < 1.0:
+        raise ValueError(f"{name} must lie strictly between -1 and 1 (a fraction of the mean), got {v!r}")
+    return v
+
+
+def _network(beta_l: float, flux: float, bias: float = 0.0, damping: float = 0.0,
+             asym: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> Network:
+    eps, cond, share = arms(*asym)
     off = np.array([[0.0, -2 * math.pi * flux], [2 * math.pi * flux, 0.0]])
     return Network(2, coupling=[[0.0, 1 / (math.pi * beta_l)], [1 / (math.pi * beta_l), 0.0]], offset=off,
-                   bias=bias / 2, damping=damping)
+                   eps=eps, mass=cond, bias=bias * share, damping=damping * cond)
 
 
-def _fold(net: Network, phi: np.ndarray, i0: float) -> tuple[float, np.ndarray]:
-    """Newton on the Moore-Spence system from (phi, i0) near the fold: (i, phi) at the fold."""
+def _fold(net: Network, phi: np.ndarray, i0: float, b: np.ndarray) -> tuple[float, np.ndarray]:
+    """Newton on the Moore-Spence system from (phi, i0) near the fold: (i, phi) at the fold (b: each
+    element's share of the bias)."""
     n = net.n
-    b = np.full(n, 0.5)
     jac = net.jacobian(phi)
     w, u = np.linalg.eigh(-jac)
     v = u[:, 0] / np.linalg.norm(u[:, 0])
@@ -80,34 +94,61 @@ def _fold(net: Network, phi: np.ndarray, i0: float) -> tuple[float, np.ndarray]:
     return float(z[-1]), z[:n]
 
 
-def _rest_points(beta_l: float, flux: float) -> list[np.ndarray]:
-    """The stable rest points at zero bias, one per flux state.  At zero bias sin φ₁ + sin φ₂ = 0, so
-    φ₁,₂ = s ± x/2 with s = 0 or π, and σ sin(x/2) = −K(x − 2πΦ/Φ₀) (σ = cos s): every root lies within
-    1/K = πβ_L of 2πΦ/Φ₀; each sign change on a fine grid there is polished by Newton on the network and
-    kept if stable."""
-    net = _network(beta_l, flux)
+def _stable_seeds(beta_l: float, flux: float, asym: tuple[float, float, float] = (0.0, 0.0, 0.0)
+                  ) -> list[tuple[float, np.ndarray]]:
+    """Stable rest points (bias, phases) from which every stable branch can be continued up to its fold.
+
+    A flux state of an asymmetric SQUID need not be stable at zero bias: a stable branch can be born at a
+    fold at a positive bias.  So the rest points are sought on a ladder of biases i from 0 to 2 (step
+    0.01).  At bias i junction 1's balance fixes the loop's phase x = φ₁ − φ₂ by φ₁ alone,
+    x = 2πΦ/Φ₀ + πβ_L(b₁i − ε₁ sin φ₁), and what is left is junction 2's, equivalently the total
+    supercurrent ε₁ sin φ₁ + ε₂ sin(φ₁ − x) = i: one periodic function of φ₁, whose sign changes on a fine
+    grid are every rest point of every flux state.  A root whose Hessian (diag(ε_k cos φ_k) plus the loop's
+    spring) is positive definite, and that has no neighbour on the rung below (a branch born between the
+    rungs), is polished by Newton on the network."""
+    (e1, e2), _, (b1, _) = arms(*asym)
     k, x0 = 1 / (math.pi * beta_l), 2 * math.pi * flux
-    xs = np.linspace(x0 - math.pi * beta_l - 0.1, x0 + math.pi * beta_l + 0.1, 4001)
-    found = []
-    for s, sigma in ((0.0, 1.0), (math.pi, -1.0)):
-        g = sigma * np.sin(xs / 2) + k * (xs - x0)
-        for j in np.flatnonzero(np.sign(g[:-1]) != np.sign(g[1:])):
-            x = xs[j] - g[j] * (xs[j + 1] - xs[j]) / (g[j + 1] - g[j])
+    th = np.linspace(0.0, _TWO_PI, 4001)[None, :]
+    rungs = np.linspace(0.0, 2.0, 201)[:, None]
+    x = x0 + math.pi * beta_l * (b1 * rungs - e1 * np.sin(th))
+    g = e1 * np.sin(th) + e2 * np.sin(th - x) - rungs
+    seeds: list[tuple[float, np.ndarray]] = []
+    below: list[float] = []
+    for m in range(rungs.shape[0]):
+        i, gm, xm = float(rungs[m, 0]), g[m], x[m]
+        here: list[float] = []
+        for j in np.flatnonzero(np.sign(gm[:-1]) != np.sign(gm[1:])):
+            u = gm[j] / (gm[j] - gm[j + 1])
+            q, xq = th[0, j] + u * (th[0, j + 1] - th[0, j]), xm[j] + u * (xm[j + 1] - xm[j])
+            h11, h22 = e1 * math.cos(q) + k, e2 * math.cos(q - xq) + k
+            if not (h11 > 0 and h11 * h22 > k * k):
+                continue
+            here.append(q)
+            if any(abs(math.remainder(q - y, _TWO_PI)) < 0.1 for y in below):
+                continue
             try:
-                eq = net.equilibrium([s + x / 2, s - x / 2])
+                eq = _network(beta_l, flux, i, asym=asym).equilibrium([q, q - xq])
             except ValueError:
                 continue
-            if eq.stable and not any(abs((eq.phi[0] - eq.phi[1]) - (p[0] - p[1])) < 1e-8 for p in found):
-                found.append(eq.phi)
-    return found
+            if eq.stable:
+                seeds.append((i, eq.phi))
+        below = here
+    return seeds
 
 
-def squid_critical_current(beta_l: float, flux: float) -> float:
-    """The static critical current of a symmetric dc SQUID over one junction's I₀.
+def squid_critical_current(beta_l: float, flux: float, *, current_asymmetry: float = 0.0,
+                           inductance_asymmetry: float = 0.0) -> float:
+    """The static critical current of a dc SQUID over its junctions' mean I₀.
 
-    The largest bias with a stable rest point, over all flux states: the fold
-    of each stable branch continued in the bias from zero, located by Newton
-    on the Moore-Spence system.  As β_L → 0 it tends to 2|cos(πΦ/Φ₀)|.
+    The largest positive bias with a stable rest point, over all flux
+    states: the fold of each stable branch continued in the bias from zero,
+    located by Newton on the Moore-Spence system.  The junctions' critical
+    currents are I₀(1 ∓ α_I), the arms' inductances (1 ∓ η)L/2 (Tesche and
+    Clarke 1977, section 2): the arm of the smaller inductance carries the
+    larger share (1 ± η)/2 of the bias.  As β_L → 0 it tends to
+    √((1 − α_I)² + (1 + α_I)² + 2(1 − α_I²) cos(2πΦ/Φ₀)), for equal
+    junctions 2|cos(πΦ/Φ₀)|; with both asymmetries the lobes shift and skew,
+    and the negative bias's critical current is this one at −Φ.
 
     Parameters
     ----------
@@ -115,6 +156,10 @@ def squid_critical_current(beta_l: float, flux: float) -> float:
         The screening parameter β_L = 2LI₀/Φ₀ > 0.
     flux : float
         The applied flux over the flux quantum, Φ/Φ₀.
+    current_asymmetry : float, optional
+        α_I, strictly between -1 and 1 (default 0: equal junctions).
+    inductance_asymmetry : float, optional
+        η, strictly between -1 and 1 (default 0: the loop split evenly).
 
     Returns
     -------
@@ -124,7 +169,8 @@ def squid_critical_current(beta_l: float, flux: float) -> float:
     Raises
     ------
     ValueError
-        For β_L <= 0 or a flux that is not finite.
+        For β_L <= 0, a flux that is not finite, or an asymmetry outside
+        (-1, 1), naming it.
 
     See Also
     --------
@@ -136,16 +182,21 @@ def squid_critical_current(beta_l: float, flux: float) -> float:
     1.41421
     >>> round(squid_critical_current(1.0, 0.0), 12)
     2.0
+    >>> round(squid_critical_current(1e-6, 0.5, current_asymmetry=0.2), 5)   # 2 α_I at half a quantum
+    0.4
     """
     beta_l = _checks.real(beta_l, "beta_l", 0.0, lo_open=True)
     flux = _checks.real(flux, "flux")
+    asym = (_asymmetry(current_asymmetry, "current_asymmetry"), 0.0,
+            _asymmetry(inductance_asymmetry, "inductance_asymmetry"))
+    share = arms(*asym)[2]
     best = -math.inf
-    for phi in _rest_points(beta_l, flux):
-        i, step = 0.0, 0.05
+    for i0, phi in _stable_seeds(beta_l, flux, asym):
+        i, step = i0, 0.05
         # near a fold at small bias (Ic ~ beta_L at half a flux quantum) the steps shrink further
-        while step > 1e-3 or (i == 0.0 and step > 1e-12):
+        while step > 1e-3 or (i == i0 and step > 1e-12):
             try:
-                eq = _network(beta_l, flux, i + step).equilibrium(phi)
+                eq = _network(beta_l, flux, i + step, asym=asym).equilibrium(phi)
                 ok = eq.stable
             except ValueError:
                 ok = False
@@ -153,11 +204,13 @@ def squid_critical_current(beta_l: float, flux: float) -> float:
                 i, phi = i + step, eq.phi
             else:
                 step /= 2
-        if i == 0.0:
-            # a flux state at the edge of its stability (its Hessian next to singular): no bias of 1e-12 keeps
-            # it at rest, so its critical current is below every other state's and it is passed over
+        if i == i0:
+            # a flux state at the edge of its stability (its Hessian next to singular): no bias of 1e-12 more
+            # keeps it at rest, so its fold is where it was found, below the other states' (if any)
+            if i0 > 0:
+                best = max(best, i0)
             continue
-        ic, _ = _fold(_network(beta_l, flux), phi, i)
+        ic, _ = _fold(_network(beta_l, flux, asym=asym), phi, i, share)
         if not i <= ic <= i + 4 * step:
             raise ArithmeticError(f"the fold of the stable branch was lost (bias {i!r}, fold at {ic!r})")
         best = max(best, ic)
@@ -167,26 +220,39 @@ def squid_critical_current(beta_l: float, flux: float) -> float:
 
 
 class DCSquid:
-    """A symmetric dc SQUID in laboratory units: two equal junctions in a loop of inductance L.
+    """A dc SQUID in laboratory units: two junctions in a loop of inductance L.
+
+    Equal junctions and an evenly split loop by default; the asymmetries
+    are fractions of the mean (Tesche and Clarke 1977, section 2): critical
+    currents I₀(1 ∓ α_I), shunt resistances R/(1 ∓ α_R) and capacitances
+    C(1 ∓ α_R) (junctions of unequal area: each one's RC stays RC), arm
+    inductances (1 ∓ η)L/2, junction 1 taking the upper signs.
 
     Parameters
     ----------
     critical_current : float
-        I₀ of each junction (A), > 0.
+        The junctions' mean critical current I₀ (A), > 0.
     resistance : float
-        The shunt resistance of each junction (Ω), > 0.
+        The mean shunt resistance R (Ω), > 0: junction k's is R/(1 ∓ α_R).
     capacitance : float
-        The capacitance of each junction (F), > 0.
+        The mean capacitance C (F), > 0: junction k's is C(1 ∓ α_R).
     inductance : float
         The loop's inductance L (H), > 0 (a negative inductance is refused).
     temperature : float, optional
         T (K), >= 0: the Johnson noise of each shunt in the dynamic curves
         (default 0).
+    current_asymmetry : float, optional
+        α_I, strictly between -1 and 1 (default 0).
+    resistance_asymmetry : float, optional
+        α_R, strictly between -1 and 1 (default 0).
+    inductance_asymmetry : float, optional
+        η, strictly between -1 and 1 (default 0).
 
     Raises
     ------
     ValueError
-        Naming the field, for a value that is not positive and finite.
+        Naming the field, for a value that is not positive and finite, or an
+        asymmetry outside (-1, 1).
 
     See Also
     --------
@@ -200,27 +266,40 @@ class DCSquid:
     1.0
     >>> round(sq.critical_current(0.0) / 10e-6, 9)
     2.0
+    >>> skew = DCSquid(10e-6, 2.0, 1e-13, 103.4e-12, current_asymmetry=0.2, inductance_asymmetry=0.3)
+    >>> skew.critical_current(-0.1) > skew.critical_current(0.1)     # the lobe shifted off zero flux
+    True
     """
 
     def __init__(self, critical_current: float, resistance: float, capacitance: float, inductance: float,
-                 temperature: float = 0.0) -> None:
+                 temperature: float = 0.0, *, current_asymmetry: float = 0.0, resistance_asymmetry: float = 0.0,
+                 inductance_asymmetry: float = 0.0) -> None:
         self.junction = Junction(critical_current, resistance, capacitance, temperature)
         if not self.junction.capacitance > 0:
             raise ValueError("parameter 'capacitance' must be > 0 (the SQUID's junctions are pendula with "
                              "inertia; a small capacitance gives the overdamped limit)")
         self.inductance = _checks.real(inductance, "inductance", 0.0, lo_open=True)
+        self.current_asymmetry = _asymmetry(current_asymmetry, "current_asymmetry")
+        self.resistance_asymmetry = _asymmetry(resistance_asymmetry, "resistance_asymmetry")
+        self.inductance_asymmetry = _asymmetry(inductance_asymmetry, "inductance_asymmetry")
 
     def __repr__(self) -> str:
-        return f"DCSquid(I0={self.junction.critical_current!r} A, beta_l={self.beta_l:.6g})"
+        a = self._asym
+        more = "" if a == (0.0, 0.0, 0.0) else f", alpha_i={a[0]:.6g}, alpha_r={a[1]:.6g}, eta={a[2]:.6g}"
+        return f"DCSquid(I0={self.junction.critical_current!r} A, beta_l={self.beta_l:.6g}{more})"
+
+    @property
+    def _asym(self) -> tuple[float, float, float]:
+        return (self.current_asymmetry, self.resistance_asymmetry, self.inductance_asymmetry)
 
     @property
     def beta_l(self) -> float:
-        """The screening parameter β_L = 2LI₀/Φ₀."""
+        """The screening parameter β_L = 2LI₀/Φ₀ (I₀ the junctions' mean)."""
         return 2 * self.inductance * self.junction.critical_current / FLUX_QUANTUM
 
     @property
     def beta_c(self) -> float:
-        """The Stewart-McCumber parameter β_c = 2πI₀R²C/Φ₀ of each junction."""
+        """The Stewart-McCumber parameter β_c = 2πI₀R²C/Φ₀ of the mean junction."""
         return self.junction.stewart_mccumber
 
     @property
@@ -247,7 +326,8 @@ class DCSquid:
         >>> round(sq.critical_current(0.5) / 1e-6, 4)
         0.0015
         """
-        return squid_critical_current(self.beta_l, flux) * self.junction.critical_current
+        return squid_critical_current(self.beta_l, flux, current_asymmetry=self.current_asymmetry,
+                                      inductance_asymmetry=self.inductance_asymmetry) * self.junction.critical_current
 
     def network(self, bias: float, flux: float) -> Network:
         """The SQUID as a :class:`~pendula.Network` in the junctions' reduced units.
@@ -262,7 +342,9 @@ class DCSquid:
         Returns
         -------
         Network
-            Two elements, damping 1/√β_c, spring 1/(π β_L), offset −2πΦ/Φ₀.
+            Two elements, damping (1 ∓ α_R)/√β_c, mass (1 ∓ α_R), sine
+            strength (1 ∓ α_I), bias (1 ± η)/2 of the total, spring
+            1/(π β_L), offset −2πΦ/Φ₀.
 
         Examples
         --------
@@ -272,7 +354,7 @@ class DCSquid:
         (2, 0.25)
         """
         b = _checks.real(bias, "bias") / self.junction.critical_current
-        return _network(self.beta_l, _checks.real(flux, "flux"), b, self.junction.damping)
+        return _network(self.beta_l, _checks.real(flux, "flux"), b, self.junction.damping, self._asym)
 
     # ------------------------------------------------------------------ the dynamic curves
     def _times(self, transient, t_max) -> tuple[float, float]:
@@ -289,14 +371,15 @@ class DCSquid:
         # the step resolves the velocity's relaxation time β_c (the drift's error is of first order in
         # dt/β_c) and the loop's oscillation (frequency √((1 + 2K)/β_c), K = 1/(πβ_L))
         bc, k = self.beta_c, 1 / (math.pi * self.beta_l)
-        h = 0.05 * min(0.4, bc, math.sqrt(bc / (1 + 2 * k))) if dt is None else \
+        m = 1 - abs(self.resistance_asymmetry)     # the lighter junction's share of the mass
+        h = 0.05 * min(0.4, bc, math.sqrt(bc * m / (1 + abs(self.current_asymmetry) + 2 * k))) if dt is None else \
             _checks.real(dt, "dt", 0.0, lo_open=True) * self.characteristic_frequency
         return (temp, h, _checks.count(paths, "paths", 2), _checks.count(seed, "seed", 0, 2**63 - 1),
                 _checks.threads(threads))
 
     def _velocity(self, bias: float, flux: float, phi, v, tr, tm, rtol, noise, rf=(0.0, 0.0)):
         """⟨s'⟩ (in ω_c), its error, each path's drift (noise) and the final state, at the reduced bias."""
-        net = squid_network(self.beta_l, self.beta_c, flux, bias, *rf)
+        net = squid_network(self.beta_l, self.beta_c, flux, bias, *rf, asym=self._asym)
         temp, h, paths, seed, threads = noise
         if temp == 0:
             vel, err, phi, v = mean_velocity(net, phi, v, tr, tm, rtol)
@@ -309,6 +392,8 @@ class DCSquid:
         a = {"critical_current": self.junction.critical_current, "resistance": self.junction.resistance,
              "capacitance": self.junction.capacitance, "inductance": self.inductance,
              "temperature": self.junction.temperature, "beta_l": self.beta_l, "beta_c": self.beta_c,
+             "current_asymmetry": self.current_asymmetry, "resistance_asymmetry": self.resistance_asymmetry,
+             "inductance_asymmetry": self.inductance_asymmetry,
              "characteristic_frequency": wc, "transient": tr / wc, "t_max": tm / wc,
              "constants": "CODATA 2018 (exact): h = 6.62607015e-34 J s, e = 1.602176634e-19 C, "
                           "k_B = 1.380649e-23 J/K"}

@@ -4,7 +4,13 @@ In the time unit 1/ω_c (ω_c = 2πI₀R/Φ₀, the characteristic frequency) ea
 junction of a symmetric dc SQUID obeys β_c φ_k'' + φ_k' + sin φ_k = i/2 ∓ j,
 j the circulating current over I₀ (Tesche and Clarke 1977, section 2): a
 :class:`~pendula.Network` of two elements with mass β_c, damping 1, the spring
-1/(πβ_L) and the offset −2πΦ/Φ₀.  The dc voltage is (Φ₀/2π) ω_c ⟨s'⟩, s the
+1/(πβ_L) and the offset −2πΦ/Φ₀.  An asymmetric SQUID has junctions of
+critical currents I₀(1 ∓ α_I), conductances and capacitances (1 ∓ α_R) times
+the mean's (the area's asymmetry), and arms of inductance (1 ∓ η)L/2.  The
+fluxoid condition φ₁ − φ₂ = 2πΦ/Φ₀ + (2π/Φ₀)(L₂I₂ − L₁I₁) with I₁ + I₂ = I
+gives the arm currents I(1 ± η)/2 ∓ J, J = (φ₁ − φ₂ − 2πΦ/Φ₀)I₀/(πβ_L): the
+inductance's asymmetry splits the bias unevenly and leaves the spring as it
+is.  The dc voltage is (Φ₀/2π) ω_c ⟨s'⟩, s the
 mean of the two phases.
 
 Without noise the mean velocity is measured over whole turns: the first times
@@ -31,14 +37,25 @@ from .systems.network import Network
 _TWO_PI = 2.0 * math.pi
 
 
+def arms(current_asymmetry: float = 0.0, resistance_asymmetry: float = 0.0,
+         inductance_asymmetry: float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The two junctions' factors on the mean: critical currents (1 ∓ α_I), conductances and capacitances
+    (1 ∓ α_R), and the share of the bias each arm carries, (1 ± η)/2 (the arm of the smaller inductance
+    (1 ∓ η)L/2 carries more)."""
+    a_i, a_r, eta = current_asymmetry, resistance_asymmetry, inductance_asymmetry
+    return (np.array([1.0 - a_i, 1.0 + a_i]), np.array([1.0 - a_r, 1.0 + a_r]),
+            np.array([(1.0 + eta) / 2, (1.0 - eta) / 2]))
+
+
 def squid_network(beta_l: float, beta_c: float, flux: float, bias: float, rf: float = 0.0,
-                  omega: float = 0.0) -> Network:
-    """The symmetric dc SQUID in the time unit 1/ω_c: mass β_c, damping 1, bias i/2 on each junction, and
-    an rf current rf cos(ω t) shared by the two."""
+                  omega: float = 0.0, asym: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> Network:
+    """The dc SQUID in the time unit 1/ω_c: mass β_c(1 ∓ α_R), damping (1 ∓ α_R), sine (1 ∓ α_I), the bias
+    and an rf current rf cos(ω t) split (1 ± η)/2 between the arms (asym = (α_I, α_R, η))."""
+    eps, cond, share = arms(*asym)
     k = 1.0 / (math.pi * beta_l)
     off = np.array([[0.0, -_TWO_PI * flux], [_TWO_PI * flux, 0.0]])
-    return Network(2, coupling=[[0.0, k], [k, 0.0]], offset=off, bias=bias / 2, damping=1.0, mass=beta_c,
-                   drive_amplitude=rf / 2, drive_frequency=omega)
+    return Network(2, coupling=[[0.0, k], [k, 0.0]], offset=off, eps=eps, bias=bias * share, damping=cond,
+                   mass=beta_c * cond, drive_amplitude=rf * share, drive_frequency=omega)
 
 
 def _first_hits(t: np.ndarray, s: np.ndarray, sv: np.ndarray, levels: np.ndarray) -> np.ndarray:
