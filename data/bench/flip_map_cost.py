@@ -1,24 +1,50 @@
-"""The cost of a flip-time map: pendula against SciPy on the same pixels, in one run.
+"""The cost of Heyl's flip-time map of the double pendulum: pendula against SciPy and a compiled numba
+peer on the same pixels, in one run.
 
-A benchmark, not a test (no time is asserted).  npix seeded random starts from
-rest that the energy allows to flip, equal point masses and lengths, searched
-up to t_max = 30: pendula's DoublePendulum.flip_map (one thread, each pixel
-at rtol and at rtol / 10, as the map does) against SciPy's solve_ivp (DOP853,
-terminal events abs(theta_i) = pi, a NumPy-free right-hand side) doing the
-same two runs per pixel.  Prints seconds per pixel, the ratio, and how far
-the two codes' flip times differ (the accuracy they share).
+A benchmark, not a test (no time is asserted).  The map: 1000 x 1000 pixels, theta1 and theta2 on
+linspace(-pi, pi, 1000), from rest, equal point masses and lengths (g = l = 1), searched up to
+t_max = 30, every pixel run at rtol and at rtol / 10 (as DoublePendulum.flip_map does, to mark the
+unresolved ones); pixels where the energy forbids a flip (2 cos theta1 + cos theta2 > 1, exact) are
+skipped by every code.  The whole map is too long for this shared 2-core machine, so whole rows of it
+(strips of 1000 pixels at seeded random theta1) are timed and the map's time is extrapolated as
+1000 times the mean strip (the rows' costs differ: the spread is printed).
 
-Run: python data/bench/flip_map_cost.py [npix]
+The peers, each doing the same two runs per pixel:
+  * pendula: DoublePendulum.flip_map on the strip, one thread;
+  * numba: numbalsoda's dop853 (Hairer's DOP853 in C++) called from a numba-compiled loop over the
+    pixels, the right-hand side a numba cfunc; the path is output on pendula's grid (a tenth of the
+    fast normal mode's period) in chunks of 16 grid steps, the first grid interval where abs(theta_i)
+    passes pi is located and the crossing polished by Newton's method on the integrated path (the
+    same scheme as pendula's: equal work, equal accuracy);
+  * SciPy: solve_ivp (DOP853, terminal events abs(theta_i) = pi, a NumPy-free right-hand side), on
+    a seeded random sample of each strip's pixels (its cost per pixel extrapolated).
+Equal accuracy: every code's flip times against SciPy's DOP853 at rtol 1e-13 with events (the reference)
+on the sampled pixels, as the median relative error over the pixels whose flip time is not chaotic
+(within 1e-3 of the reference).  pendula runs at rtol = atol = 1e-10; the peers at 1e-10, 1e-11 and
+1e-12 (their error at equal rtol is larger than pendula's), and each peer's time at pendula's error is
+interpolated in log-log between its runs.
+
+Run: .venv/bin/python data/bench/flip_map_cost.py [strips] [scipy_pixels_per_strip]
+     (`make bench-peers` installs numba and numbalsoda; writes data/bench/flip_map_cost.json)
 """
 
+import json
 import math
+import os
+import platform
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 from scipy.integrate import solve_ivp
 
 import pendula
+
+HERE = Path(__file__).resolve().parent
+SIDE = 1000
+T_MAX = 30.0
+RTOL = 1e-10
 
 
 def scipy_flip(th1, th2, t_max, rtol):
@@ -42,32 +68,159 @@ def scipy_flip(th1, th2, t_max, rtol):
     return min(hits) if hits else math.inf
 
 
-def main(npix: int = 40, t_max: float = 30.0, rtol: float = 1e-10) -> None:
-    rng = np.random.default_rng(11)
-    pts = []
-    while len(pts) < npix:
-        a, b = rng.uniform(-math.pi, math.pi, 2)
-        if not pendula.flip_forbidden(a, b):
-            pts.append((a, b))
-    pts = np.array(pts)
+def numba_peer():
+    """The compiled peer: a function (theta1, theta2s, t_max, rtol) -> flip times, all in numba."""
+    import numba as nb
+    from numbalsoda import dop853, lsoda_sig
+
+    @nb.cfunc(lsoda_sig)
+    def rhs(t, u_, du_, p_):
+        u = nb.carray(u_, (4,))
+        du = nb.carray(du_, (4,))
+        d = u[0] - u[1]
+        c, s = math.cos(d), math.sin(d)
+        r1 = -s * u[3] * u[3] - 2.0 * math.sin(u[0])
+        r2 = s * u[2] * u[2] - math.sin(u[1])
+        det = 2.0 - c * c
+        du[0] = u[2]
+        du[1] = u[3]
+        du[2] = (r1 - c * r2) / det
+        du[3] = (2.0 * r2 - c * r1) / det
+    ptr = rhs.address
+    h = 0.1 * 2 * math.pi / math.sqrt(2 + math.sqrt(2))   # a tenth of the fast mode's period
+    chunk = 16
+
+    @nb.njit
+    def flip_one(th1, th2, t_max, rtol, data):
+        u = np.array([th1, th2, 0.0, 0.0])
+        t = 0.0
+        while t < t_max:
+            m = chunk
+            if t + m * h > t_max:
+                m = int(math.ceil((t_max - t) / h))
+            te = np.empty(m + 1)
+            for k in range(m + 1):
+                te[k] = min(t + k * h, t_max)
+            us, ok = dop853(ptr, u, te, data, rtol, rtol)
+            if not ok:
+                return np.nan
+            for k in range(1, m + 1):
+                for j in range(2):
+                    if abs(us[k, j]) >= math.pi:
+                        # Newton on the path from the grid point before: abs(theta_j(t)) = pi
+                        a = us[k - 1, j]
+                        b = us[k, j]
+                        sg = 1.0 if b > 0 else -1.0
+                        ts = te[k - 1] + (math.pi - sg * a) / (sg * b - sg * a) * (te[k] - te[k - 1])
+                        for _ in range(12):
+                            if not ts > te[k - 1]:
+                                ts = te[k - 1] + 1e-3 * (te[k] - te[k - 1])
+                            tt = np.array([te[k - 1], ts])
+                            ys, ok = dop853(ptr, us[k - 1].copy(), tt, data, rtol, rtol)
+                            f = sg * ys[1, j] - math.pi
+                            step = f / (sg * ys[1, 2 + j])
+                            ts -= step
+                            if abs(step) <= 1e-15 * ts:
+                                break
+                        return ts
+            u = us[m].copy()
+            t = te[m]
+        return np.inf
+
+    @nb.njit
+    def strip(th1, th2s, t_max, rtol):
+        data = np.zeros(1)
+        out = np.full(th2s.size, np.inf)
+        for i in range(th2s.size):
+            if 2 * math.cos(th1) + math.cos(th2s[i]) > 1:     # the energy forbids a flip
+                continue
+            out[i] = flip_one(th1, th2s[i], t_max, rtol, data)
+            flip_one(th1, th2s[i], t_max, rtol / 10, data)    # the map's second run
+        return out
+    strip(1.0, np.array([2.0, 3.0]), 2.0, 1e-6)               # compile
+    return strip
+
+
+def equal_error_time(err, runs):
+    """A code's time at the error err, interpolated in log-log between its runs (flag: inside their range)."""
+    le = np.log([r[0] for r in runs])
+    lt = np.log([r[1] for r in runs])
+    o = np.argsort(le)
+    return float(np.exp(np.interp(np.log(err), le[o], lt[o]))), bool(le.min() <= np.log(err) <= le.max())
+
+
+def median_error(times, ref):
+    """The median relative error of flip times against the reference over the pixels that flip, at t > 0,
+    in both, and whose flip time is not chaotic (within 1e-3 of the reference)."""
+    ok = np.isfinite(ref) & np.isfinite(times) & (ref > 0)
+    e = np.abs(times[ok] - ref[ok]) / ref[ok]
+    e = e[e < 1e-3]
+    return float(np.median(e)) if e.size else float("nan")
+
+
+def main(strips: int = 3, n_scipy: int = 12) -> None:
+    grid = np.linspace(-math.pi, math.pi, SIDE)
+    rng = np.random.default_rng(20261204)
+    rows = rng.choice(SIDE, strips, replace=False)
     dp = pendula.DoublePendulum()
-    t0 = time.perf_counter()
-    tp = np.array([dp.flip_map([a], [b], t_max=t_max, rtol=rtol, atol=rtol, threads=1).time[0, 0] for a, b in pts])
-    t_pendula = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    ts = np.array([scipy_flip(a, b, t_max, rtol) for a, b in pts])
-    for a, b in pts:
-        scipy_flip(a, b, t_max, rtol / 10)
-    t_scipy = time.perf_counter() - t0
-    both = np.isfinite(tp) & np.isfinite(ts)
-    rel = np.abs(tp[both] - ts[both]) / ts[both]
-    print(f"{npix} pixels, t_max = {t_max:g}, rtol = {rtol:g} (each pixel twice: rtol and rtol/10)")
-    print(f"pendula  {t_pendula / npix * 1e3:9.2f} ms per pixel")
-    print(f"scipy    {t_scipy / npix * 1e3:9.2f} ms per pixel   ratio scipy / pendula = {t_scipy / t_pendula:.1f}")
-    print(f"flip times: {int(both.sum())} both finite, median relative difference {np.median(rel):.1e}, "
-          f"{int(np.sum(rel > 1e-3))} differ by more than 1e-3 (chaotic pixels), "
-          f"{int(np.sum(np.isfinite(tp) != np.isfinite(ts)))} flip in one code only")
+    peer = numba_peer()
+    dp.flip_map([1.0], [2.0, 3.0], t_max=2.0, threads=1)      # warm
+    peer_rtols = (RTOL, RTOL / 10, RTOL / 100)                # the peers' runs, to reach pendula's error
+    rec_rows = []
+    got = {"pendula": ([], [])} | {f"{c}@{r:.0e}": ([], []) for c in ("numba", "scipy") for r in peer_rtols}
+    cost = {k: 0.0 for k in got}
+    for r in rows:
+        th1 = float(grid[r])
+        allowed = np.flatnonzero(~(2 * np.cos(th1) + np.cos(grid) > 1))
+        sample = rng.choice(allowed, min(n_scipy, allowed.size), replace=False) if allowed.size else allowed
+        ref = np.array([scipy_flip(th1, grid[i], T_MAX, 1e-13) for i in sample])
+        row = {"theta1": th1, "allowed_pixels": int(allowed.size), "scipy_pixels_timed": int(sample.size)}
+        t0 = time.perf_counter()
+        tp = dp.flip_map([th1], grid, t_max=T_MAX, rtol=RTOL, atol=RTOL, threads=1).time[0]
+        row["pendula_s"] = time.perf_counter() - t0
+        got["pendula"][0].extend(np.asarray(tp)[sample]); got["pendula"][1].extend(ref)
+        for rt in peer_rtols:
+            t0 = time.perf_counter()
+            tn = peer(th1, grid, T_MAX, rt)
+            row[f"numba_s@{rt:.0e}"] = time.perf_counter() - t0
+            got[f"numba@{rt:.0e}"][0].extend(tn[sample]); got[f"numba@{rt:.0e}"][1].extend(ref)
+            t0 = time.perf_counter()
+            ts = np.array([scipy_flip(th1, grid[i], T_MAX, rt) for i in sample])
+            for i in sample:
+                scipy_flip(th1, grid[i], T_MAX, rt / 10)
+            row[f"scipy_s@{rt:.0e}"] = (time.perf_counter() - t0) / max(1, sample.size) * allowed.size
+            got[f"scipy@{rt:.0e}"][0].extend(ts); got[f"scipy@{rt:.0e}"][1].extend(ref)
+        rec_rows.append(row)
+        print(f"strip theta1 = {th1:+.4f} ({allowed.size} pixels may flip): pendula {row['pendula_s']:7.3f} s   "
+              + "   ".join(f"numba rtol {rt:.0e} {row[f'numba_s@{rt:.0e}']:7.3f} s" for rt in peer_rtols)
+              + f"   scipy rtol {RTOL:.0e} {row[f'scipy_s@{RTOL:.0e}']:8.2f} s (from {sample.size} pixels)",
+              flush=True)
+    err = {k: median_error(np.array(v[0]), np.array(v[1])) for k, v in got.items()}
+    mean = {k: float(np.mean([row[k] for row in rec_rows])) for k in rec_rows[0] if k.endswith("_s") or "_s@" in k}
+    summary = {"pendula": {"error": err["pendula"], "map_s": mean["pendula_s"] * SIDE}}
+    for c in ("numba", "scipy"):
+        runs = [(err[f"{c}@{rt:.0e}"], mean[f"{c}_s@{rt:.0e}"]) for rt in peer_rtols]
+        t_eq, inside = equal_error_time(err["pendula"], runs)
+        summary[c] = {"runs": [{"rtol": rt, "error": e, "map_s": t * SIDE} for rt, (e, t) in zip(peer_rtols, runs)],
+                      "map_s_at_pendula_error": t_eq * SIDE, "interpolated": inside,
+                      "ratio_peer_over_pendula": t_eq / mean["pendula_s"]}
+    print("median relative error of the flip times vs SciPy rtol 1e-13 (non-chaotic sampled pixels): "
+          + ", ".join(f"{k} {v:.1e}" for k, v in err.items()))
+    print(f"the 1000 x 1000 map, extrapolated from {strips} strips (one thread), at pendula's error "
+          f"{err['pendula']:.1e}: pendula {summary['pendula']['map_s'] / 60:.1f} min, "
+          f"numba {summary['numba']['map_s_at_pendula_error'] / 60:.1f} min, "
+          f"scipy {summary['scipy']['map_s_at_pendula_error'] / 3600:.1f} h;  ratios numba/pendula "
+          f"{summary['numba']['ratio_peer_over_pendula']:.2f}"
+          f"{'' if summary['numba']['interpolated'] else ' (extrapolated)'}, scipy/pendula "
+          f"{summary['scipy']['ratio_peer_over_pendula']:.1f}{'' if summary['scipy']['interpolated'] else ' (extrapolated)'}")
+    rec = {"date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
+           "machine": platform.processor() or platform.machine(), "cores": os.cpu_count(),
+           "load_average_at_end": os.getloadavg(), "pendula": pendula.__version__,
+           "task": f"flip-time map {SIDE}x{SIDE}, t_max {T_MAX}, pendula at rtol {RTOL} (and rtol/10 per pixel), "
+                   "the peers at rtol, rtol/10, rtol/100 (each pixel also at a tenth of that), one thread",
+           "strips": rec_rows, "median_relative_error": err, "summary": summary}
+    (HERE / "flip_map_cost.json").write_text(json.dumps(rec, indent=1) + "\n")
 
 
 if __name__ == "__main__":
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else 40)
+    main(*(int(a) for a in sys.argv[1:3]))

@@ -1,14 +1,24 @@
-"""What a chain of pendula costs: pendula.Network.simulate (DOP853) against SciPy's solve_ivp (DOP853,
-the right-hand side vectorised in numpy) on the Frenkel-Kontorova chain
+"""What a chain of pendula costs: pendula.Network.simulate (DOP853) against its peers in one run, on the
+Frenkel-Kontorova chain
 
     φ_i'' = −sin φ_i + K (φ_{i+1} − 2 φ_i + φ_{i−1}),  free ends, K = 1,
 
 N = 2, 16, 256, 4096, from a smooth wave φ_i(0) = 0.5 sin(2πi/N + 0.3), over t = 0 .. 10.
-Equal error: both run at rtol 1e-6, 1e-8, 1e-10 (atol rtol/100); each run's error is measured against
-SciPy's own DOP853 at rtol 1e-13 (the reference, not pendula's output); SciPy's time at pendula's error
-is interpolated in log-log between SciPy's two bracketing runs.  pendula and SciPy are interleaved, best
-of three each (best of one for SciPy at N = 4096, whose runs take seconds).  numbalsoda and diffrax are
-timed only when already installed.
+
+The peers: SciPy's solve_ivp (DOP853, the right-hand side vectorised in numpy); numbalsoda's dop853
+(Hairer's DOP853 in C++, the right-hand side a numba cfunc); diffrax's Dopri8 under jax.jit (float64,
+PID step control, only the end state saved; compile time excluded: the first call is a warm-up).  vmap
+is diffrax's answer to a batch; this task is one trajectory per N, so its cells use jit alone.
+
+Equal error: every code runs at several rtol (atol rtol/100); each run's error is the largest
+difference of the state at t = 10 from SciPy's DOP853 at rtol 1e-13 (the reference, not pendula's
+output); a peer's time at pendula's error is interpolated in log-log between the peer's two bracketing
+runs (flagged when pendula's error lies outside the peer's range).  Each timing is the best of several
+calls (fewer for the slow SciPy runs at N = 4096).  Where the time of pendula's call goes is
+recorded beside it: the kernel's own share (the private binding pendula._kernel.network_simulate_v
+called directly, a diagnostic, not a public path), the rest being the Python wrapper's checks and the
+xarray Dataset it builds (about 0.35 ms a call).  Peers that are not installed are listed as such
+(`make bench-peers` installs them).
 
     .venv/bin/python data/bench/network_cost.py     # writes data/bench/network_cost.json
 """
@@ -26,9 +36,11 @@ import pendula
 
 HERE = Path(__file__).resolve().parent
 SIZES = (2, 16, 256, 4096)
-RTOLS = (1e-6, 1e-8, 1e-10)
+RTOLS = (1e-6, 1e-8, 1e-10)                          # pendula's runs
+PEER_RTOLS = (1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11)  # the peers' runs, to bracket pendula's errors
 T_END = 10.0
 K = 1.0
+PEERS = ("scipy", "numbalsoda", "diffrax")
 
 
 def rhs_factory(n):
@@ -50,53 +62,141 @@ def timed(fn, repeat):
     return best, out
 
 
-def peers_installed():
-    found = []
-    for name in ("numbalsoda", "diffrax"):
-        try:
-            __import__(name)
-            found.append(name)
-        except ImportError:
-            pass
-    return found
+def installed(name):
+    try:
+        __import__(name)
+        return True
+    except ImportError:
+        return False
+
+
+def scipy_runner(n, y0):
+    f = rhs_factory(n)
+
+    def run(rtol):
+        return solve_ivp(f, (0, T_END), y0, method="DOP853", rtol=rtol, atol=rtol / 100).y[:, -1]
+    return run
+
+
+def numbalsoda_runner(n, y0):
+    import numba as nb
+    from numbalsoda import dop853, lsoda_sig
+
+    @nb.cfunc(lsoda_sig)
+    def rhs(t, u_, du_, p_):
+        u = nb.carray(u_, (2 * n,))
+        du = nb.carray(du_, (2 * n,))
+        for i in range(n):
+            du[i] = u[n + i]
+            lap = 0.0
+            if i > 0:
+                lap += u[i - 1] - u[i]
+            if i < n - 1:
+                lap += u[i + 1] - u[i]
+            du[n + i] = -np.sin(u[i]) + K * lap
+    ptr = rhs.address
+    teval = np.array([0.0, T_END])
+
+    def run(rtol):
+        usol, ok = dop853(ptr, y0, teval, rtol=rtol, atol=rtol / 100, mxstep=10**7)
+        if not ok:
+            raise RuntimeError("numbalsoda dop853 failed")
+        return usol[-1]
+    return run
+
+
+def diffrax_runner(n, y0):
+    import jax
+    jax.config.update("jax_enable_x64", True)
+    import diffrax
+    import jax.numpy as jnp
+
+    def f(t, y, args):
+        q, v = y[:n], y[n:]
+        lap = jnp.zeros(n).at[:-1].add(q[1:] - q[:-1]).at[1:].add(q[:-1] - q[1:])
+        return jnp.concatenate([v, -jnp.sin(q) + K * lap])
+
+    @jax.jit
+    def solve(y, rtol):
+        sol = diffrax.diffeqsolve(diffrax.ODETerm(f), diffrax.Dopri8(), 0.0, T_END, None, y,
+                                  stepsize_controller=diffrax.PIDController(rtol=rtol, atol=rtol / 100),
+                                  saveat=diffrax.SaveAt(t1=True), max_steps=10**6)
+        return sol.ys[-1]
+    yj = jnp.asarray(y0)
+
+    def run(rtol):
+        return np.asarray(solve(yj, rtol).block_until_ready())
+    run(1e-6)   # compile once (rtol is traced, so one compilation serves every tolerance)
+    return run
+
+
+def kernel_seconds(net, y0, rtol):
+    """The kernel's share of a simulate call: the binding called directly (a diagnostic)."""
+    from pendula import _kernel
+    from pendula.systems.network import _METHOD_CODE
+    edges = net._edges()
+    tt, counts = np.array([0.0, T_END]), np.zeros(2, dtype=np.int64)
+
+    def run():
+        out = _kernel.network_simulate_v(*edges, _METHOD_CODE["dop853"], y0, tt, counts, rtol, rtol / 100, 0.0,
+                                         np.zeros(1, dtype=np.int32))
+        if out[2] != 0:
+            raise RuntimeError(f"kernel status {out[2]}")
+    return timed(run, 5)[0]
+
+
+RUNNERS = {"scipy": scipy_runner, "numbalsoda": numbalsoda_runner, "diffrax": diffrax_runner}
 
 
 def main():
+    avail = [p for p in PEERS if installed(p)]
     rows = []
     for n in SIZES:
         phi0 = 0.5 * np.sin(2 * np.pi * np.arange(n) / n + 0.3)
         y0 = np.concatenate([phi0, np.zeros(n)])
-        f = rhs_factory(n)
-        ref = solve_ivp(f, (0, T_END), y0, method="DOP853", rtol=1e-13, atol=1e-15).y[:, -1]
+        ref = scipy_runner(n, y0)(1e-13) if n < 4096 else solve_ivp(
+            rhs_factory(n), (0, T_END), y0, method="DOP853", rtol=1e-13, atol=1e-15).y[:, -1]
         net = pendula.Network(n, topology="chain", strength=K)
-        reps_s = 1 if n >= 4096 else 3
-        pend, sci = [], []
+        runners = {p: RUNNERS[p](n, y0) for p in avail}
+        pend = []
         for rtol in RTOLS:
             tp, run = timed(lambda: net.simulate([0.0, T_END], phi0, 0.0, rtol=rtol, atol=rtol / 100), 5)
             yp = np.concatenate([run.phi.values[-1], run.v.values[-1]])
-            ts, sol = timed(lambda: solve_ivp(f, (0, T_END), y0, method="DOP853", rtol=rtol, atol=rtol / 100),
-                            reps_s)
-            pend.append((rtol, float(np.max(np.abs(yp - ref))), tp, int(run.attrs["steps"])))
-            sci.append((rtol, float(np.max(np.abs(sol.y[:, -1] - ref))), ts, int(sol.t.size - 1)))
-        # SciPy's time at pendula's error: log-log interpolation between SciPy's runs
-        le = np.log([s[1] for s in sci])
-        lt = np.log([s[2] for s in sci])
-        order = np.argsort(le)
-        for (rtol, err, tp, steps), s in zip(pend, sci):
-            ts_eq = float(np.exp(np.interp(np.log(err), le[order], lt[order])))
-            inside = le.min() <= np.log(err) <= le.max()
-            rows.append({"n": n, "rtol": rtol, "pendula_error": err, "pendula_s": tp, "pendula_steps": steps,
-                         "scipy_error": s[1], "scipy_s": s[2], "scipy_steps": s[3],
-                         "scipy_s_at_pendula_error": ts_eq, "interpolated": bool(inside),
-                         "ratio_scipy_over_pendula": ts_eq / tp})
-            print(f"N={n:5d} rtol={rtol:.0e}  pendula {tp * 1e3:9.3f} ms err {err:.1e}   "
-                  f"scipy {s[2] * 1e3:9.3f} ms err {s[1]:.1e}   scipy/pendula at equal error "
-                  f"{ts_eq / tp:8.1f}{'' if inside else ' (extrapolated)'}", flush=True)
+            pend.append((rtol, float(np.max(np.abs(yp - ref))), tp, int(run.attrs["steps"]),
+                         kernel_seconds(net, y0, rtol)))
+        peer_runs = {}
+        for p, run in runners.items():
+            reps = 1 if (p == "scipy" and n >= 4096) else (3 if p == "scipy" else 7)
+            rt = PEER_RTOLS if not (p == "scipy" and n >= 4096) else (1e-6, 1e-8, 1e-10, 1e-11)
+            peer_runs[p] = []
+            for rtol in rt:
+                tpeer, y = timed(lambda: run(rtol), reps)
+                peer_runs[p].append((rtol, float(np.max(np.abs(y - ref))), tpeer))
+        for rtol, err, tp, steps, tk in pend:
+            row = {"n": n, "rtol": rtol, "pendula_error": err, "pendula_s": tp, "pendula_steps": steps,
+                   "pendula_kernel_s": tk}
+            line = f"N={n:5d} rtol={rtol:.0e}  pendula {tp * 1e3:8.3f} ms (kernel {tk * 1e3:8.3f}) err {err:.1e} |"
+            for p, runs in peer_runs.items():
+                le = np.log([r[1] for r in runs])
+                lt = np.log([r[2] for r in runs])
+                order = np.argsort(le)
+                t_eq = float(np.exp(np.interp(np.log(err), le[order], lt[order])))
+                inside = bool(le.min() <= np.log(err) <= le.max())
+                row[p] = {"runs": [{"rtol": r[0], "error": r[1], "s": r[2]} for r in runs],
+                          "s_at_pendula_error": t_eq, "interpolated": inside, "ratio_peer_over_pendula": t_eq / tp}
+                line += f" {p} {t_eq * 1e3:8.3f} ms x{t_eq / tp:6.2f}{'' if inside else '*'}"
+            rows.append(row)
+            print(line, flush=True)
+    print("kernel: the share of pendula's call spent in the kernel; "
+          "x: the peer's time at pendula's error over pendula's time (> 1: pendula faster); "
+          "*: extrapolated beyond the peer's runs")
     rec = {"date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
            "machine": platform.processor() or platform.machine(), "cores": os.cpu_count(),
-           "load_average": os.getloadavg(), "pendula": pendula.__version__,
-           "task": f"FK chain, free ends, K={K}, t = 0..{T_END}, DOP853 both; error vs SciPy DOP853 rtol 1e-13",
-           "peers_not_installed": [p for p in ("numbalsoda", "diffrax") if p not in peers_installed()],
+           "load_average_at_end": os.getloadavg(), "pendula": pendula.__version__,
+           "peer_versions": {p: __import__(p).__version__ for p in avail if hasattr(__import__(p), "__version__")},
+           "task": f"FK chain, free ends, K={K}, t = 0..{T_END}; pendula DOP853, SciPy DOP853, numbalsoda "
+                   "dop853, diffrax Dopri8 (jit); error vs SciPy DOP853 rtol 1e-13",
+           "peers_not_installed": [p for p in PEERS if p not in avail],
            "rows": rows}
     (HERE / "network_cost.json").write_text(json.dumps(rec, indent=1) + "\n")
 
