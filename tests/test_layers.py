@@ -88,7 +88,7 @@ def test_no_import_circle():
 @pytest.mark.parametrize("low", ["pendula.elliptic", "pendula.series", "pendula.scene", "pendula.trajectory",
                                  "pendula.systems.rigid", "pendula._checks", "pendula._files",
                                  "pendula.quantum", "pendula.mathieu_floquet", "pendula.systems.network",
-                                 "pendula.systems.spherical", "pendula.systems.double", "pendula.systems.double_motion",
+                                 "pendula.systems.spherical", "pendula.systems.double", "pendula.systems.double_motion", "pendula.systems.double_sweep",
                                  "pendula.systems.foucault",
                                  # the junction's layer (with junction.py): escape, the RSJ junction, rf
                                  "pendula.escape", "pendula.overdamped", "pendula.rf",

@@ -312,3 +312,48 @@ def test_fuzz_any_floats_give_a_path_or_a_named_error(th0, td0, pd0, eps, t):
         # NaN only at t = 1: an infinite time or beyond 2**48 half periods, with a warning
         assert np.all(np.isfinite(values[:, 0])) and np.all(np.isnan(values[:, 1]))
         assert math.isnan(t) or any(x.category is RuntimeWarning for x in w)
+
+
+def test_plot_marks_the_published_apsidal_angle_between_a_lowest_and_the_next_highest_point(data_dir):
+    """pendula.plot.spherical on the orbit between 30 and 60 degrees: the rays of its view from above end at
+    the bob's horizontal distance sin 30 and sin 60 degrees (a lowest and a highest point), the angle between
+    them is the published apsidal angle 111.683552423557 degrees (mpmath quadrature), and so is the arc's."""
+    pytest.importorskip("matplotlib")
+    import matplotlib.pyplot as plt
+
+    import pendula.plot
+
+    dbl = [r for r in reference(data_dir, "fact") if r["case"] == "thirty_sixty_doubles"][0]
+    th0, td0, pd0, eps = _f(dbl, "theta0", "theta_dot0", "phi_dot0", "eps")
+    for sign in (1.0, -1.0):      # either sense of turning
+        o = pendula.spherical_orbit(th0, td0, sign * pd0, eps)
+        top, side = pendula.plot.spherical(o, periods=2.0, samples=400)
+        rays = [ln for ln in top.get_lines() if ln.get_label().startswith("to ")]
+        assert [ln.get_label() for ln in rays] == ["to a lowest point", "to the next highest point"]
+        ends = [(ln.get_xdata()[1], ln.get_ydata()[1]) for ln in rays]
+        # theta is quadratic in the time error at a turning point: the radii to 1e-12
+        assert math.hypot(*ends[0]) == pytest.approx(0.5, abs=1e-12)
+        assert math.hypot(*ends[1]) == pytest.approx(math.sqrt(3) / 2, abs=1e-12)
+        turn = math.atan2(ends[1][1], ends[1][0]) - math.atan2(ends[0][1], ends[0][0])
+        turn = (turn + math.pi) % (2 * math.pi) - math.pi
+        # the turning point found to ~1e-9 in time, the azimuth moving at most ~2 per unit time
+        assert math.degrees(sign * turn) % 360 == pytest.approx(111.683552423557, abs=1e-6)
+        arc = [ln for ln in top.get_lines() if ln.get_label() == "_apsidal angle"][0]
+        ang = np.unwrap(np.arctan2(arc.get_ydata(), arc.get_xdata()))
+        assert math.degrees(sign * (ang[-1] - ang[0])) == pytest.approx(111.683552423557, abs=1e-6)
+        heights = sorted(ln.get_ydata()[0] for ln in side.get_lines() if ln.get_linestyle() == "--")
+        assert heights == pytest.approx([-math.cos(math.pi / 6), -math.cos(math.pi / 3)], abs=1e-12)
+        plt.close("all")
+
+
+def test_plot_refuses_what_is_not_an_orbit_naming_it():
+    pytest.importorskip("matplotlib")
+    import pendula.plot
+
+    o = pendula.spherical_orbit(0.6, 0.0, 1.0)
+    with pytest.raises(TypeError, match="orbit"):
+        pendula.plot.spherical(o.path([0.0]))
+    with pytest.raises(ValueError, match="periods"):
+        pendula.plot.spherical(o, periods=0.0)
+    with pytest.raises(TypeError, match="axs"):
+        pendula.plot.spherical(o, axs="top")

@@ -1,10 +1,12 @@
 """The figures of the systems beside the one pendulum: a junction's I-V curve and step map, a
-transmon's levels, a double pendulum's flip-time map (public as :func:`pendula.plot.iv`,
-:func:`pendula.plot.steps`, :func:`pendula.plot.levels` and :func:`pendula.plot.flip_map`)."""
+transmon's levels, a double pendulum's flip-time map, a spherical pendulum's path (public as
+:func:`pendula.plot.iv`, :func:`pendula.plot.steps`, :func:`pendula.plot.levels`, :func:`pendula.plot.flip_map`
+and :func:`pendula.plot.spherical`)."""
 
 from __future__ import annotations
 
 from fractions import Fraction
+from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -17,6 +19,7 @@ if TYPE_CHECKING:   # matplotlib and xarray are optional: named in annotations o
     import xarray
 
     from .systems.double_motion import FlipMap
+    from .systems.spherical import SphericalOrbit
 
 
 def iv(ds: xarray.Dataset, ax: matplotlib.axes.Axes | None = None) -> matplotlib.axes.Axes:
@@ -281,3 +284,99 @@ def flip_map(fm: FlipMap, ax: matplotlib.axes.Axes | None = None, *,
     ax.set_ylabel("theta2 (rad)")
     ax.set_aspect("equal")
     return ax
+
+
+def _lowest_time(orbit) -> float:
+    """A time of the orbit's lowest point in [0, period]: the least theta^2 of a sampled period, then
+    bisection on the sign of its rate theta theta' (from - to +), to the last bit of the time."""
+    t = np.linspace(0.0, orbit.period, 257)
+    k = int(np.argmin(orbit.path(t).theta ** 2))
+    lo, hi = t[max(k - 1, 0)], t[min(k + 1, t.size - 1)]
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        if not lo < mid < hi:
+            break
+        p = orbit.path([mid])
+        if p.theta[0] * p.theta_dot[0] < 0:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def spherical(orbit: SphericalOrbit, axs: Sequence[matplotlib.axes.Axes] | None = None, *,
+              periods: float = 3.0, samples: int = 1500) -> tuple[matplotlib.axes.Axes, matplotlib.axes.Axes]:
+    """A spherical pendulum's path in two views, its apsidal angle marked.
+
+    Parameters
+    ----------
+    orbit : SphericalOrbit
+        What :func:`pendula.spherical_orbit` returns.
+    axs : pair of matplotlib.axes.Axes, optional
+        Where to draw the view from above and the view from the side
+        (default: a new figure with the two side by side).
+    periods : float, optional
+        How many polar periods of the path to draw (default 3), > 0.
+    samples : int, optional
+        Points of the exact path drawn (default 1500), >= 2.
+
+    Returns
+    -------
+    tuple of matplotlib.axes.Axes
+        The view from above (x, y: the rosette, with the rays to a lowest
+        point and to the next highest point and the arc of the apsidal angle
+        between them) and the view from the side (x, z, with the two turning
+        heights dashed).  Lengths in units of the rod's.
+
+    Raises
+    ------
+    TypeError
+        For an orbit that is not a SphericalOrbit.
+    ValueError
+        Naming periods or samples out of range.
+
+    See Also
+    --------
+    pendula.spherical_orbit : the orbit, exactly.
+
+    Examples
+    --------
+    >>> import pendula, pendula.plot
+    >>> o = pendula.spherical_orbit(0.6, 0.0, 1.0)
+    >>> top, side = pendula.plot.spherical(o)
+    >>> top.get_xlabel(), side.get_ylabel()
+    ('x / l', 'z / l')
+    """
+    from .systems.spherical import SphericalOrbit
+    orbit = _result(orbit, "orbit", SphericalOrbit, "a SphericalOrbit (pendula.spherical_orbit)")
+    periods = _checks.real(periods, "periods", 0.0, lo_open=True)
+    samples = _checks.count(samples, "samples", 2)
+    if axs is None:
+        fig, axs = _plt().subplots(1, 2, figsize=(8.0, 4.0), layout="constrained")
+    else:
+        if not isinstance(axs, (list, tuple, np.ndarray)) or len(axs) != 2:
+            raise TypeError("axs must be a pair of matplotlib Axes (above, side) or None")
+        axs = [_ax(a) for a in axs]
+    top, side = axs
+    x, y, z = orbit.path(np.linspace(0.0, periods * orbit.period, samples)).position()
+    top.plot(x, y, lw=0.8, color="C0")
+    top.plot([0.0], [0.0], "k+", ms=8)
+    # a lowest point and the next highest one, half a polar period on (theta's turning points)
+    t_low = _lowest_time(orbit)
+    (px, qx), (py, qy), _ = orbit.path([t_low, t_low + 0.5 * orbit.period]).position()
+    top.plot([0.0, px], [0.0, py], color="C1", lw=1.5, label="to a lowest point")
+    top.plot([0.0, qx], [0.0, qy], color="C2", lw=1.5, label="to the next highest point")
+    a0 = float(np.arctan2(py, px))
+    arc = a0 + np.linspace(0.0, orbit.apsidal_angle, 60)     # signed as L_z
+    rad = 0.3 * float(np.hypot(px, py)) if np.hypot(px, py) > 0 else 0.1
+    top.plot(rad * np.cos(arc), rad * np.sin(arc), color="k", lw=1, label="_apsidal angle")
+    top.set_title(f"apsidal angle {np.degrees(abs(orbit.apsidal_angle)):.4f}°", fontsize=10)
+    top.set(aspect="equal", xlabel="x / l", ylabel="y / l")
+    top.legend(fontsize=9, loc="lower left", framealpha=0.85)
+    side.plot(x, z, lw=0.8, color="C0")
+    side.plot([0.0], [0.0], "k+", ms=8)
+    for th, c in ((orbit.theta_min, "C1"), (orbit.theta_max, "C2")):
+        side.axhline(-np.cos(th), color=c, ls="--", lw=1)
+    side.set(aspect="equal", xlabel="x / l", ylabel="z / l")
+    side.set_title("from the side: the turning heights", fontsize=10)
+    return top, side

@@ -15,6 +15,7 @@ One function per result, each taking what the library returns and an optional
 - :func:`iv` -- an I-V curve, both directions, the Shapiro steps labelled;
 - :func:`fractions` -- basin fractions over a parameter, as stacked areas;
 - :func:`flip_map` -- a double pendulum's flip-time map, forbidden and unresolved pixels marked;
+- :func:`spherical` -- a spherical pendulum's path from above and from the side, its apsidal angle marked;
 - :func:`animate` -- the pendulum swinging, written as a GIF (Pillow's
   writer, nothing else needed) or an MP4 (FFmpeg's writer: ``ffmpeg`` on the PATH).
 
@@ -42,7 +43,7 @@ import numpy as np
 from . import _checks
 from ._plot_common import _ax, _categorical, _dataset, _result, _scene_label, _v_label, _wrapped
 # the figures of the junction, the transmon and the double pendulum (pendula.plot.iv, ...)
-from ._plot_systems import flip_map, iv, levels, steps  # noqa: F401
+from ._plot_systems import flip_map, iv, levels, spherical, steps  # noqa: F401
 from .animation import animate  # noqa: F401  (pendula.plot.animate: GIF or MP4 through matplotlib's writers)
 
 if TYPE_CHECKING:   # matplotlib and xarray are optional: named in annotations only

@@ -13,6 +13,7 @@ region that cannot flip) are in :mod:`pendula.systems.double`.
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -24,7 +25,8 @@ from .._optional import require
 from .contract import require_fields
 from .double import DoublePendulumModes, _arms, double_pendulum_modes, flip_forbidden
 
-if TYPE_CHECKING:   # xarray is optional: named in annotations only
+if TYPE_CHECKING:   # xarray and distributed are optional: named in annotations only
+    import distributed
     import xarray
 
 __all__ = ["DoublePendulum", "FlipMap", "LyapunovSpectrum", "DOUBLE_METHODS"]
@@ -42,6 +44,21 @@ _STATUS = {1: "the step dt must be positive and finite", 2: "rtol must be > 0 an
 
 def _fail(what: str, status: int) -> ValueError:
     return ValueError(f"{what}: {_STATUS.get(int(status), f'kernel status {status}')}")
+
+
+def _flip_args(theta1, theta2, t_max, rtol, atol, agree):
+    """The flip map's checked axes (1-D, in [-pi, pi]) and search parameters."""
+    a1 = _checks.as_float(theta1, "theta1").ravel()
+    a2 = _checks.as_float(theta2, "theta2").ravel()
+    for arr, name in ((a1, "theta1"), (a2, "theta2")):
+        if arr.size == 0:
+            raise ValueError(f"{name} must hold at least one angle")
+        if not np.all(np.abs(arr) <= math.pi):
+            raise ValueError(f"{name} must lie in [-pi, pi] (the map starts each arm below or at the top)")
+    t_max = _checks.real(t_max, "t_max", 0.0, lo_open=True)
+    rtol, atol = _checks.tolerances(rtol, atol)
+    agree = _checks.real(agree, "agree", 0.0, lo_open=True)
+    return a1, a2, t_max, rtol, atol, agree
 
 
 @dataclass(frozen=True)
@@ -452,32 +469,111 @@ class DoublePendulum:
         ((7, 7), True)
         """
         require_fields("double", "flip_map", self._fields_on())
-        a1 = _checks.as_float(theta1, "theta1").ravel()
-        a2 = _checks.as_float(theta2, "theta2").ravel()
-        for arr, name in ((a1, "theta1"), (a2, "theta2")):
-            if arr.size == 0:
-                raise ValueError(f"{name} must hold at least one angle")
-            if not np.all(np.abs(arr) <= math.pi):
-                raise ValueError(f"{name} must lie in [-pi, pi] (the map starts each arm below or at the top)")
-        t_max = _checks.real(t_max, "t_max", 0.0, lo_open=True)
-        rtol, atol = _checks.tolerances(rtol, atol)
-        agree = _checks.real(agree, "agree", 0.0, lo_open=True)
+        a1, a2, t_max, rtol, atol, agree = _flip_args(theta1, theta2, t_max, rtol, atol, agree)
         g1, g2 = np.meshgrid(a1, a2, indexing="ij")
+        tf, tc, forbidden, unresolved, _ = self._flip_pixels(g1, g2, t_max, rtol, atol, agree,
+                                                             _checks.threads(threads))
+        return FlipMap(a1, a2, tf, tc, forbidden, unresolved, t_max, rtol, agree)
+
+    def flip_sweep(self, theta1: ArrayLike, theta2: ArrayLike, *, t_max: float = 100.0, rtol: float = 1e-10,
+                   atol: float = 1e-10, agree: float = 1e-3, out: str | os.PathLike[str] | None = None,
+                   client: distributed.Client | None = None, threads: int = 0, chunk_points: int = 4096,
+                   progress: bool = True) -> xarray.Dataset:
+        """The flip-time map as a sweep: in chunks, into a resumable Zarr store or on a Dask cluster.
+
+        The same map as :meth:`flip_map`, for grids too large for one call:
+        computed in chunks of whole rows of theta1, each written to the store
+        under ``out`` as it finishes (a run stopped at any moment resumes where
+        it stopped), or sent to the workers of a Dask cluster.
+
+        Parameters
+        ----------
+        theta1, theta2 : array_like
+            The map's axes: initial angles in [-pi, pi] (1-D).
+        t_max, rtol, atol, agree : float, optional
+            As in :meth:`flip_map` (defaults 100, 1e-10, 1e-10, 1e-3).
+        out : str or path, optional
+            A folder for the resumable store (``out/sweep.zarr``, readable by
+            ``xarray.open_zarr``); None (default): in memory.
+        client : dask.distributed.Client, optional
+            Run the chunks on the cluster's workers (each with OpenMP
+            threads by the rule of :func:`pendula.sweep`).
+        threads : int, optional
+            OpenMP threads per chunk (0: all the cores).
+        chunk_points : int, optional
+            Pixels per chunk (default 4096; whole rows, at least one).
+        progress : bool, optional
+            A progress bar over the chunks (tqdm; drawn after two seconds).
+
+        Returns
+        -------
+        xarray.Dataset
+            Over (``theta1``, ``theta2``): ``time`` (inf: no flip by t_max),
+            ``check`` (at the tolerances tightened tenfold), ``forbidden`` and
+            ``unresolved`` (0 or 1, as the FlipMap's masks) and ``status``
+            (0: computed; otherwise the integrator's failure, the pixel's
+            times NaN); attributes the pendulum and the search.  Lazy (Dask
+            arrays) when stored.  Every pixel's numbers are the same whatever
+            the chunking, the threads, the cluster or the resumption.
+
+        Raises
+        ------
+        ValueError
+            Naming the field (as :meth:`flip_map`), or a store under ``out``
+            that holds another map.
+        TypeError
+            For a client that is not a dask.distributed.Client.
+
+        See Also
+        --------
+        flip_map : the same map in one call, as a FlipMap.
+        pendula.sweep : the sweeps of the single pendulum's measures.
+
+        Examples
+        --------
+        >>> import numpy as np, pendula
+        >>> th = np.linspace(-3.0, 3.0, 5)
+        >>> ds = pendula.DoublePendulum().flip_sweep(th, th, t_max=20.0, chunk_points=10, progress=False)
+        >>> ds.time.dims, int(ds.forbidden.sum()), bool(np.isinf(ds.time[2, 2]))
+        (('theta1', 'theta2'), 7, True)
+        """
+        from .double_sweep import FlipPlan, flip_sweep
+
+        require_fields("double", "flip_map", self._fields_on())
+        a1, a2, t_max, rtol, atol, agree = _flip_args(theta1, theta2, t_max, rtol, atol, agree)
+        threads = _checks.threads(threads)
+        chunk_points = _checks.count(chunk_points, "chunk_points", 1)
+        progress = _checks.flag(progress, "progress")
+        if out is not None:
+            out = _checks.path(out, "out")
+        if client is not None:
+            from .._cluster import check_client
+            check_client(client)
+        plan = FlipPlan(self, a1, a2, t_max, rtol, atol, agree, chunk_points)
+        return flip_sweep(plan, out, client, threads, progress)
+
+    def _flip_pixels(self, g1: np.ndarray, g2: np.ndarray, t_max: float, rtol: float, atol: float, agree: float,
+                     threads: int, raise_on_status: bool = True):
+        """The flip search from rest at the pixels (g1, g2) (checked): flip time, its check at a tenth of
+        the tolerances, forbidden, unresolved (each of g1's shape) and the kernel's status of each pixel
+        (raised as a ValueError when raise_on_status, else returned with the pixel's times NaN)."""
         forbidden = flip_forbidden(g1, g2, self.m1, self.m2, self.l1, self.l2, self.rods)
         # damping only lowers the energy: the forbidden pixels stay forbidden
         hg = float(self.modes().period[1]) / 10.0
         cancel = _interrupt.cancel_flag()
         tf, tc, status = _interrupt.call(
-            _kernel.double_flip_map_v, self._p, g1.ravel(), g2.ravel(), forbidden.ravel().astype(np.int32),
-            t_max, hg, rtol, atol, _checks.threads(threads), cancel, cancel=cancel, long=g1.size > 16)
+            _kernel.double_flip_map_v, self._p, np.ravel(g1), np.ravel(g2), forbidden.ravel().astype(np.int32),
+            t_max, hg, rtol, atol, int(threads), cancel, cancel=cancel, long=g1.size > 16)
+        if cancel[0]:
+            raise KeyboardInterrupt
         bad = status[status != 0]
-        if bad.size:
+        if bad.size and raise_on_status:
             raise _fail("flip_map", int(bad[0]))
-        tf, tc = tf.reshape(g1.shape), tc.reshape(g1.shape)
+        tf, tc, status = tf.reshape(g1.shape), tc.reshape(g1.shape), status.reshape(g1.shape)
         both = np.isfinite(tf) & np.isfinite(tc)
         with np.errstate(invalid="ignore"):
             moved = np.where(both, np.abs(tf - tc) > agree * np.maximum(tf, tc), np.isfinite(tf) != np.isfinite(tc))
-        return FlipMap(a1, a2, tf, tc, forbidden, moved & ~forbidden, t_max, rtol, agree)
+        return tf, tc, forbidden, moved & ~forbidden & (status == 0), status
 
     # ------------------------------------------------------------------ Lyapunov exponents
     def lyapunov(self, theta1: float, theta2: float, omega1: float = 0.0, omega2: float = 0.0, *,
