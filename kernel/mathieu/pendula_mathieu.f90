@@ -127,6 +127,32 @@ contains
     end do
   end function sturm_count
 
+  !> The Sturm counts at two points xa and xb in one loop (the same counts
+  !> as two calls of sturm_count; the two division chains overlap).
+  pure subroutine sturm_count_pair(d, e2, n, xa, xb, pivmin, ca, cb)
+    integer, intent(in) :: n
+    real(dp), intent(in) :: d(n), e2(n), xa, xb, pivmin
+    integer, intent(out) :: ca, cb
+    real(dp) :: ta, tb
+    integer :: i
+    ca = 0
+    cb = 0
+    ta = d(1) - xa
+    tb = d(1) - xb
+    if (abs(ta) < pivmin) ta = -pivmin
+    if (abs(tb) < pivmin) tb = -pivmin
+    if (ta < 0.0_dp) ca = 1
+    if (tb < 0.0_dp) cb = 1
+    do i = 2, n
+      ta = (d(i) - xa) - e2(i - 1) / ta
+      tb = (d(i) - xb) - e2(i - 1) / tb
+      if (abs(ta) < pivmin) ta = -pivmin
+      if (abs(tb) < pivmin) tb = -pivmin
+      if (ta < 0.0_dp) ca = ca + 1
+      if (tb < 0.0_dp) cb = cb + 1
+    end do
+  end subroutine sturm_count_pair
+
   !> The j-th (0-based) eigenvalue: Rayleigh-quotient steps from the
   !> twisted factorisation (cubic convergence), each checked by a Sturm
   !> count that keeps a bracket [lo, hi] with count(lo) <= j < count(hi);
@@ -154,11 +180,10 @@ contains
       xn = x + step
       if (abs(step) <= 0.5_dp * eps_dp * (abs(x) + emax)) then
         del = 4.0_dp * eps_dp * (abs(xn) + emax) + tiny(1.0_dp)
-        if (sturm_count(d, e2, n, xn - del, pivmin) <= j) then
-          if (sturm_count(d, e2, n, xn + del, pivmin) > j) then
-            x = xn
-            return
-          end if
+        call sturm_count_pair(d, e2, n, xn - del, xn + del, pivmin, cl, ch)
+        if (cl <= j .and. ch > j) then
+          x = xn
+          return
         end if
         exit
       end if
@@ -203,11 +228,10 @@ contains
       if (rq .and. abs(step) <= 0.5_dp * eps_dp * (abs(x) + emax)) then
         ! converged: certify that the j-th eigenvalue is within a few ulp
         del = 4.0_dp * eps_dp * (abs(xn) + emax) + tiny(1.0_dp)
-        if (sturm_count(d, e2, n, xn - del, pivmin) <= j) then
-          if (sturm_count(d, e2, n, xn + del, pivmin) > j) then
-            x = xn
-            return
-          end if
+        call sturm_count_pair(d, e2, n, xn - del, xn + del, pivmin, cl, ch)
+        if (cl <= j .and. ch > j) then
+          x = xn
+          return
         end if
         rq = .false.     ! converged to a neighbour: bisection from here
       end if
@@ -260,7 +284,7 @@ contains
     real(dp), intent(in) :: d(n), e2(n), x, pivmin
     real(dp), intent(out) :: step, first, last, z(n)
     real(dp), intent(inout) :: dp_(:), dm(:)
-    real(dp) :: g, gbest, gr, nrm2, big, rbig
+    real(dp) :: g, gbest, gr, nrm2, big, rbig, e2c, ec
     integer :: i, r, k
     dp_(1) = d(1) - x
     if (abs(dp_(1)) < pivmin) dp_(1) = -pivmin
@@ -286,14 +310,26 @@ contains
         r = i
       end if
     end do
+    ! the couplings sqrt(e2): all equal but the first of a_2m's matrix, so
+    ! the square root is taken only where the squared coupling changes
     z(r) = 1.0_dp
     big = 1.0_dp
+    e2c = -1.0_dp
+    ec = 0.0_dp
     do i = r - 1, 1, -1
-      z(i) = -(sqrt(e2(i)) / dp_(i)) * z(i + 1)
+      if (e2(i) /= e2c) then
+        e2c = e2(i)
+        ec = sqrt(e2c)
+      end if
+      z(i) = -(ec / dp_(i)) * z(i + 1)
       big = max(big, abs(z(i)))
     end do
     do i = r + 1, n
-      z(i) = -(sqrt(e2(i - 1)) / dm(i)) * z(i - 1)
+      if (e2(i - 1) /= e2c) then
+        e2c = e2(i - 1)
+        ec = sqrt(e2c)
+      end if
+      z(i) = -(ec / dm(i)) * z(i - 1)
       big = max(big, abs(z(i)))
     end do
     rbig = 1.0_dp / big
@@ -333,21 +369,23 @@ contains
   !> Eigenvalue of family fam: by_order (fam 0) the one continuing nu^2,
   !> else the m-th; centre^2 is the q = 0 value, the value lies within
   !> spread |q| of it (Weyl).  tol_rel: the truncation bound to meet,
-  !> relative to max(1, |value|).  Also returns the window (d, e2 left
-  !> allocated) so a refinement can reuse it.
+  !> relative to max(1, |value|).  Also returns the window when asked (d,
+  !> e2 present: left allocated) so a refinement can reuse it.  A window of
+  !> up to small_rows rows lives in stack arrays (no allocation per value).
   pure subroutine solve(fam, nu, q, m, by_order, centre, spread, tol_rel, x, bound, status, d, e2, j, r0, level)
     integer, intent(in) :: fam, m
     real(dp), intent(in) :: nu, q, centre, spread, tol_rel
     logical, intent(in) :: by_order
     real(dp), intent(out) :: x, bound
     integer, intent(out) :: status, j, r0
-    real(dp), allocatable, intent(out) :: d(:), e2(:)
-    real(dp) :: aq, lam_lo, lam_hi, p, rr, ehi, elo, slo, shi, pivmin, f1, fn, c1, cn
+    real(dp), allocatable, intent(out), optional :: d(:), e2(:)
+    real(dp) :: aq, lam_lo, lam_hi, p, rr, ehi, elo, slo, shi
     integer, intent(in) :: level
-    real(dp), allocatable :: z(:)
+    real(dp), allocatable :: dh(:), eh(:), zh(:)
+    real(dp) :: ds(small_rows), es(small_rows), zs(small_rows)
     real(dp) :: guess, sl, h
     integer :: r1, n, attempt
-    logical :: cut
+    logical :: cut, done
     aq = abs(q)
     lam_hi = centre * centre + spread * aq
     lam_lo = centre * centre - spread * aq
@@ -392,42 +430,77 @@ contains
       call window_rows(fam, nu, slo, shi, cut, r0, r1)
       n = r1 - r0 + 1
       if (n > max_rows) return
-      if (allocated(d)) deallocate(d, e2)
-      allocate(d(n), e2(n))
-      call build(fam, nu, q, r0, r1, d, e2)
-      j = window_index(fam, nu, m, by_order, r0)
-      if (j < 0 .or. j >= n) then
-        ehi = 2.0_dp * ehi + 4.0_dp
-        elo = 2.0_dp * elo + 4.0_dp
-        cycle
+      if (n <= small_rows) then
+        call try_window(fam, nu, q, m, by_order, tol_rel, guess, lam_lo, lam_hi, r0, n, &
+                        ds, es, zs, x, bound, j, status, done)
+        if (done .and. present(d)) then
+          allocate(d(n), e2(n))
+          d = ds(1:n)
+          e2 = es(1:n)
+        end if
+      else
+        if (allocated(dh)) deallocate(dh, eh, zh)
+        allocate(dh(n), eh(n), zh(n))
+        call try_window(fam, nu, q, m, by_order, tol_rel, guess, lam_lo, lam_hi, r0, n, &
+                        dh, eh, zh, x, bound, j, status, done)
+        if (done .and. present(d)) then
+          call move_alloc(dh, d)
+          call move_alloc(eh, e2)
+        end if
       end if
-      pivmin = tiny(1.0_dp) * max(1.0_dp, maxval(e2))
-      if (allocated(z)) deallocate(z)
-      allocate(z(n))
-      call eigenvalue(d, e2, n, j, guess, lam_lo - 1.0e-3_dp * abs(lam_lo) - 1.0_dp, &
-                      lam_hi + 1.0e-3_dp * abs(lam_hi) + 1.0_dp, pivmin, x, f1, fn, z)
-      if (aq > 0.0_dp) x = polish(fam, nu, q, r0, n, x, z)
-      if (aq == 0.0_dp) then   ! the diagonal itself: snap to its entry
-        x = d(minloc(abs(d - x), 1))
-        bound = 0.0_dp
-        status = mathieu_ok
-        return
-      end if
-      ! the couplings that the window cuts: below row r0 (none at row 0 of
-      ! a one-sided family) and above row r1
-      c1 = sqrt2 * aq
-      if (fam /= 0 .and. r0 == 0) c1 = 0.0_dp
-      cn = aq
-      bound = sqrt((c1 * f1) ** 2 + (cn * fn) ** 2)
-      if (n == 1 .and. aq > 0.0_dp) bound = (c1 + cn)   ! a single row says nothing
-      if (bound <= tol_rel * max(1.0_dp, abs(x))) then
-        status = mathieu_ok
-        return
-      end if
+      if (done) return
       ehi = 2.0_dp * ehi + 4.0_dp
       elo = 2.0_dp * elo + 4.0_dp
     end do
   end subroutine solve
+
+  !> One window of solve: rows r0 .. r0 + n - 1 built into d, e2 (the
+  !> caller's work arrays, z too), the eigenvalue of index j found and
+  !> polished, and its truncation bound.  done: the bound met the tolerance
+  !> (status ok) or q = 0; otherwise the caller widens the window.
+  pure subroutine try_window(fam, nu, q, m, by_order, tol_rel, guess, lam_lo, lam_hi, r0, n, &
+                             d, e2, z, x, bound, j, status, done)
+    integer, intent(in) :: fam, m, r0, n
+    real(dp), intent(in) :: nu, q, tol_rel, guess, lam_lo, lam_hi
+    logical, intent(in) :: by_order
+    real(dp), intent(inout) :: d(n), e2(n), z(n)
+    real(dp), intent(out) :: x, bound
+    integer, intent(out) :: j
+    integer, intent(inout) :: status
+    logical, intent(out) :: done
+    real(dp) :: aq, pivmin, f1, fn, c1, cn
+    done = .false.
+    aq = abs(q)
+    call build(fam, nu, q, r0, r0 + n - 1, d, e2)
+    j = window_index(fam, nu, m, by_order, r0)
+    if (j < 0 .or. j >= n) then
+      x = nan_dp
+      bound = nan_dp
+      return
+    end if
+    pivmin = tiny(1.0_dp) * max(1.0_dp, maxval(e2))
+    call eigenvalue(d, e2, n, j, guess, lam_lo - 1.0e-3_dp * abs(lam_lo) - 1.0_dp, &
+                    lam_hi + 1.0e-3_dp * abs(lam_hi) + 1.0_dp, pivmin, x, f1, fn, z)
+    if (aq > 0.0_dp) x = polish(fam, nu, q, r0, n, x, z)
+    if (aq == 0.0_dp) then   ! the diagonal itself: snap to its entry
+      x = d(minloc(abs(d - x), 1))
+      bound = 0.0_dp
+      status = mathieu_ok
+      done = .true.
+      return
+    end if
+    ! the couplings that the window cuts: below row r0 (none at row 0 of
+    ! a one-sided family) and above row r1
+    c1 = sqrt2 * aq
+    if (fam /= 0 .and. r0 == 0) c1 = 0.0_dp
+    cn = aq
+    bound = sqrt((c1 * f1) ** 2 + (cn * fn) ** 2)
+    if (n == 1 .and. aq > 0.0_dp) bound = (c1 + cn)   ! a single row says nothing
+    if (bound <= tol_rel * max(1.0_dp, abs(x))) then
+      status = mathieu_ok
+      done = .true.
+    end if
+  end subroutine try_window
 
   !> The Rayleigh quotient of the eigenvector z about x, with the residual
   !> (T - x) z in double-double and the matrix's entries exact ((nu + 2k)^2
@@ -582,7 +655,6 @@ contains
     real(dp), intent(in) :: nu, q
     real(dp), intent(out) :: val, bound
     integer, intent(out) :: status
-    real(dp), allocatable :: d(:), e2(:)
     integer :: n, fam, m, j, r0, lev
     val = nan_dp
     bound = nan_dp
@@ -590,8 +662,8 @@ contains
     if (.not. (nu >= 0.0_dp .and. nu <= mathieu_max_order)) return
     if (.not. (abs(q) <= mathieu_max_q)) return
     if (nu /= aint(nu)) then
-      call solve(0, nu, q, 0, .true., nu, 2.0_dp, 0.25_dp * eps_dp, val, bound, status, d, e2, j, r0, &
-                 int(nu))
+      call solve(0, nu, q, 0, .true., nu, 2.0_dp, 0.25_dp * eps_dp, val, bound, status, j=j, r0=r0, &
+                 level=int(nu))
       return
     end if
     n = int(nu)
@@ -618,7 +690,8 @@ contains
     lev = n
     if (kind == 2) lev = n - 1
     if (q < 0.0_dp .and. mod(n, 2) == 1) lev = n - 1 + 2 * (kind - 1)
-    call solve(fam, 0.0_dp, q, m, .false., nu, 3.0_dp, 0.25_dp * eps_dp, val, bound, status, d, e2, j, r0, lev)
+    call solve(fam, 0.0_dp, q, m, .false., nu, 3.0_dp, 0.25_dp * eps_dp, val, bound, status, j=j, r0=r0, &
+               level=lev)
   end subroutine mathieu_char
 
   !> q = 0 value of the m-th level of the bi-infinite matrix of offset nu
@@ -655,7 +728,6 @@ contains
     integer, intent(in) :: m
     real(dp), intent(out) :: val, bound
     integer, intent(out) :: status
-    real(dp), allocatable :: d(:), e2(:)
     real(dp) :: nr
     integer :: j, r0
     val = nan_dp
@@ -666,7 +738,7 @@ contains
     nr = modulo(nu, 2.0_dp)
     if (nr >= 2.0_dp) nr = 0.0_dp
     call solve(0, nr, q, m, .false., level_order(nr, m), 2.0_dp, 0.25_dp * eps_dp, val, bound, &
-               status, d, e2, j, r0, m)
+               status, j=j, r0=r0, level=m)
   end subroutine mathieu_level
 
   !> The lowest nlev levels m = 0 .. nlev - 1 of the bi-infinite matrix of
