@@ -511,13 +511,28 @@ contains
   pure real(dp) function polish(fam, nu, q, r0, n, x, z) result(xp)
     integer, intent(in) :: fam, r0, n
     real(dp), intent(in) :: nu, q, x, z(n)
-    real(dp) :: sh, sl, dh, dl, uh, ul, rh, rl, th, tl, num, den, aq, e0, e0l, zl, zr
+    real(dp) :: resid2
+    call polish_res(fam, nu, q, r0, n, x, z, xp, resid2)
+  end function polish
+
+  !> polish, and resid2: an upper bound on ||(T - xp) z||^2 / ||z||^2 (the
+  !> squared residual of the Rayleigh quotient xp, for Temple's bound): the
+  !> sum of the squared residual components of the rows kept, and for the
+  !> rows left out (z_i below tau of the largest; z satisfies their rows to
+  !> a few ulp of the row's scale) 8 eps times that scale times tau, squared.
+  pure subroutine polish_res(fam, nu, q, r0, n, x, z, xp, resid2)
+    integer, intent(in) :: fam, r0, n
+    real(dp), intent(in) :: nu, q, x, z(n)
+    real(dp), intent(out) :: xp, resid2
+    real(dp) :: sh, sl, dh, dl, uh, ul, rh, rl, th, tl, num, den, aq, e0, e0l, zl, zr, rr, smax
+    real(dp) :: qh, ql, zh, zt
     real(dp), parameter :: sqrt2_lo = -9.6667966258595e-17_dp
     integer :: i, r, i1, i2
     real(dp) :: thr
     aq = abs(q)
     num = 0.0_dp
     den = 0.0_dp
+    rr = 0.0_dp
     ! rows whose component is below tau = 1e-10 of the largest are left out:
     ! z is the eigenvector to rounding, so each one's term z_i ((T - x) z)_i
     ! is below tau^2 eps times the matrix's scale there (s^2 + 2|q|), and
@@ -531,9 +546,15 @@ contains
     do while (i2 > i1 .and. abs(z(i2)) <= thr)
       i2 = i2 - 1
     end do
+    ! and one row more each side: the rows left out then have all three
+    ! components below tau (their residual is rounding of tau's size)
+    i1 = max(1, i1 - 1)
+    i2 = min(n, i2 + 1)
     ! the coupling of rows 0 and 1 of a_2m's matrix, sqrt(2)|q| in double-double
     call prod_dd(sqrt2, aq, e0, e0l)
     e0l = e0l + sqrt2_lo * aq
+    ! |q| split once (Veltkamp) for the products with the neighbours' sum
+    call split(aq, qh, ql)
     do i = i1, i2
       r = r0 + i - 1
       if (fam == 0) then
@@ -571,16 +592,26 @@ contains
         call add_dd(rh, rl, th, tl)
         call prod_dd(aq, zr, th, tl)
       else
-        call prod_dd(aq, zl, th, tl)
-        call add_dd(rh, rl, th, tl)
-        call prod_dd(aq, zr, th, tl)
+        ! |q| (z_i-1 + z_i+1): the sum exact in two parts
+        call sum_exact(zl, zr, zh, zt)
+        call prod_split(aq, qh, ql, zh, th, tl)
+        tl = tl + aq * zt
       end if
       call add_dd(rh, rl, th, tl)
       num = num + z(i) * (rh + rl)
+      rr = rr + (rh + rl) ** 2
       den = den + z(i) * z(i)
     end do
     xp = x + num / den
-  end function polish
+    ! the rows left out: their scale |s^2 - x| + 2|q| is largest at the ends
+    smax = 0.0_dp
+    if (i1 > 1 .or. i2 < n) then
+      smax = max(abs(real(r0, dp)), abs(real(r0 + n - 1, dp)))
+      smax = (abs(nu) + real(fam_base(fam), dp) + 2.0_dp * smax) ** 2 + abs(x) + 3.0_dp * aq
+      smax = 8.0_dp * eps_dp * smax * thr
+    end if
+    resid2 = (rr + real(n, dp) * smax * smax) / den * (1.0_dp + real(2 * n + 8, dp) * eps_dp)
+  end subroutine polish_res
 
   ! Error-free transformations for polish, here so that the compiler
   ! inlines them into its loop (pendula_dd's are in another unit).
@@ -610,6 +641,30 @@ contains
     bl = b - bh
     e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
   end subroutine prod_dd
+
+  !> ah + al = a with each half of 26 bits (Veltkamp's splitting).
+  pure subroutine split(a, ah, al)
+    real(dp), intent(in) :: a
+    real(dp), intent(out) :: ah, al
+    real(dp), parameter :: splitter = 134217729.0_dp   ! 2**27 + 1
+    real(dp) :: t
+    t = splitter * a
+    ah = t - (t - a)
+    al = a - ah
+  end subroutine split
+
+  !> p + e = a * b exactly, a given split (ah + al) by split.
+  pure subroutine prod_split(a, ah, al, b, p, e)
+    real(dp), intent(in) :: a, ah, al, b
+    real(dp), intent(out) :: p, e
+    real(dp), parameter :: splitter = 134217729.0_dp
+    real(dp) :: t, bh, bl
+    p = a * b
+    t = splitter * b
+    bh = t - (t - b)
+    bl = b - bh
+    e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
+  end subroutine prod_split
 
   !> (rh + rl) += (th + tl), to double-double accuracy.
   pure subroutine add_dd(rh, rl, th, tl)
@@ -828,7 +883,9 @@ contains
       ev(k + 1) = t
     end do
     pivmin = tiny(1.0_dp) * max(1.0_dp, maxval(e2))
+    call levels_certified(nr, q, r0, n, d, e2, nlev, ev, pivmin, val, bound, status, z)
     do k = 0, nlev - 2
+      if (status(k + 1) == mathieu_ok) cycle
       w = 1.0e-8_dp * max(1.0_dp, abs(ev(k + 1)), aq)
       call eigenvalue(d, e2, n, k, ev(k + 1), ev(k + 1) - w, ev(k + 1) + w, pivmin, x, f1, fn, z)
       x = polish(0, nr, q, r0, n, x, z)
@@ -843,6 +900,93 @@ contains
       end if
     end do
   end subroutine mathieu_levels
+
+  !> The levels 0 .. nlev - 2 of the window (d, e2; rows r0 .. r0 + n - 1 of
+  !> offset nu, couplings |q|) certified together, level nlev - 1 (val,
+  !> status) being certified already.  Each level: a twist at its starting
+  !> value ev (and, where needed, one more at the result), its Rayleigh
+  !> quotient rho polished in double-double with the residual norm eps_r.
+  !> One Sturm count at each midpoint between consecutive rho (and one
+  !> below the lowest) proves that the interval (alpha, beta) around each
+  !> rho holds no other eigenvalue (up to the counts' backward error, a
+  !> few ulp of the couplings, and the rounding of the diagonal); then the
+  !> eigenvalue is within eps_r^2 / delta of rho, delta the distance from
+  !> rho to the interval's ends (Kato and Temple; Parlett, The Symmetric
+  !> Eigenvalue Problem, section 10.5).  A level whose bound and
+  !> truncation bound both meet eps/4 of max(1, |rho|) gets status ok with
+  !> bound their sum; the others keep status bad_input for the caller's
+  !> own path (so do all of them when a count disagrees).
+  pure subroutine levels_certified(nr, q, r0, n, d, e2, nlev, ev, pivmin, val, bound, status, z)
+    integer, intent(in) :: r0, n, nlev
+    real(dp), intent(in) :: nr, q, d(n), e2(n), ev(:), pivmin
+    real(dp), intent(inout) :: val(nlev), bound(nlev), z(n)
+    integer, intent(inout) :: status(nlev)
+    real(dp) :: rho(nlev), res2(nlev), tb(nlev), mid(0:nlev - 1)
+    real(dp) :: step, f1, fn, aq, emax, slack, delta, temple, tol, xs, dmax
+    integer :: k, it, ca, cb
+    logical :: good
+    if (nlev < 2) return
+    aq = abs(q)
+    emax = sqrt(maxval(e2))
+    dmax = maxval(abs(d))
+    rho(nlev) = val(nlev)
+    res2(nlev) = 0.0_dp
+    do k = 1, nlev - 1
+      xs = ev(k)
+      call twist(d, e2, n, xs, pivmin, step, f1, fn, z)
+      if (abs(step) > 1.0e-13_dp * (abs(xs) + emax)) then
+        ! a Rayleigh-quotient step first (cubic: the next vector is good)
+        xs = xs + step
+        call twist(d, e2, n, xs, pivmin, step, f1, fn, z)
+      end if
+      call polish_res(0, nr, q, r0, n, xs, z, rho(k), res2(k))
+      tb(k) = sqrt((sqrt2 * aq * f1) ** 2 + (aq * fn) ** 2)
+    end do
+    do k = 1, nlev - 1
+      if (.not. (rho(k) < rho(k + 1))) return
+    end do
+    ! the midpoints, and below the lowest its mirror image
+    do k = 1, nlev - 1
+      mid(k) = rho(k) + 0.5_dp * (rho(k + 1) - rho(k))
+    end do
+    mid(0) = rho(1) - (mid(1) - rho(1))
+    do k = 0, nlev - 1, 2
+      if (k + 1 <= nlev - 1) then
+        call sturm_count_pair(d, e2, n, mid(k), mid(k + 1), pivmin, ca, cb)
+        if (ca /= k .or. cb /= k + 1) return
+      else
+        if (sturm_count(d, e2, n, mid(k), pivmin) /= k) return
+      end if
+    end do
+    do k = 1, nlev - 1
+      good = .false.
+      do it = 1, 2
+        tol = 0.25_dp * eps_dp * max(1.0_dp, abs(rho(k)))
+        ! the counts' backward error: couplings a few ulp off (Kahan), and
+        ! the diagonal rounded to an ulp of its largest entry
+        slack = 8.0_dp * eps_dp * (max(abs(mid(k - 1)), abs(mid(k))) + emax) + eps_dp * dmax + tiny(1.0_dp)
+        delta = min(rho(k) - mid(k - 1), mid(k) - rho(k)) - slack
+        if (delta > 0.0_dp .and. res2(k) < delta * delta) then
+          temple = res2(k) / delta
+          if (temple <= tol .and. tb(k) <= tol) then
+            good = .true.
+            exit
+          end if
+        end if
+        if (it == 2) exit
+        ! one more twist, at rho: its vector is closer to the eigenvector
+        xs = rho(k)
+        call twist(d, e2, n, xs, pivmin, step, f1, fn, z)
+        call polish_res(0, nr, q, r0, n, xs, z, rho(k), res2(k))
+        tb(k) = sqrt((sqrt2 * aq * f1) ** 2 + (aq * fn) ** 2)
+      end do
+      if (good) then
+        val(k) = rho(k)
+        bound(k) = tb(k) + temple
+        status(k) = mathieu_ok
+      end if
+    end do
+  end subroutine levels_certified
 
   !> All eigenvalues of the symmetric tridiagonal matrix of diagonal d and
   !> off-diagonal e (e(i) couples rows i and i + 1; e(n) unused) by the
