@@ -127,6 +127,32 @@ contains
     end do
   end function sturm_count
 
+  !> The Sturm counts at two points xa and xb in one loop (the same counts
+  !> as two calls of sturm_count; the two division chains overlap).
+  pure subroutine sturm_count_pair(d, e2, n, xa, xb, pivmin, ca, cb)
+    integer, intent(in) :: n
+    real(dp), intent(in) :: d(n), e2(n), xa, xb, pivmin
+    integer, intent(out) :: ca, cb
+    real(dp) :: ta, tb
+    integer :: i
+    ca = 0
+    cb = 0
+    ta = d(1) - xa
+    tb = d(1) - xb
+    if (abs(ta) < pivmin) ta = -pivmin
+    if (abs(tb) < pivmin) tb = -pivmin
+    if (ta < 0.0_dp) ca = 1
+    if (tb < 0.0_dp) cb = 1
+    do i = 2, n
+      ta = (d(i) - xa) - e2(i - 1) / ta
+      tb = (d(i) - xb) - e2(i - 1) / tb
+      if (abs(ta) < pivmin) ta = -pivmin
+      if (abs(tb) < pivmin) tb = -pivmin
+      if (ta < 0.0_dp) ca = ca + 1
+      if (tb < 0.0_dp) cb = cb + 1
+    end do
+  end subroutine sturm_count_pair
+
   !> The j-th (0-based) eigenvalue: Rayleigh-quotient steps from the
   !> twisted factorisation (cubic convergence), each checked by a Sturm
   !> count that keeps a bracket [lo, hi] with count(lo) <= j < count(hi);
@@ -154,11 +180,10 @@ contains
       xn = x + step
       if (abs(step) <= 0.5_dp * eps_dp * (abs(x) + emax)) then
         del = 4.0_dp * eps_dp * (abs(xn) + emax) + tiny(1.0_dp)
-        if (sturm_count(d, e2, n, xn - del, pivmin) <= j) then
-          if (sturm_count(d, e2, n, xn + del, pivmin) > j) then
-            x = xn
-            return
-          end if
+        call sturm_count_pair(d, e2, n, xn - del, xn + del, pivmin, cl, ch)
+        if (cl <= j .and. ch > j) then
+          x = xn
+          return
         end if
         exit
       end if
@@ -203,11 +228,10 @@ contains
       if (rq .and. abs(step) <= 0.5_dp * eps_dp * (abs(x) + emax)) then
         ! converged: certify that the j-th eigenvalue is within a few ulp
         del = 4.0_dp * eps_dp * (abs(xn) + emax) + tiny(1.0_dp)
-        if (sturm_count(d, e2, n, xn - del, pivmin) <= j) then
-          if (sturm_count(d, e2, n, xn + del, pivmin) > j) then
-            x = xn
-            return
-          end if
+        call sturm_count_pair(d, e2, n, xn - del, xn + del, pivmin, cl, ch)
+        if (cl <= j .and. ch > j) then
+          x = xn
+          return
         end if
         rq = .false.     ! converged to a neighbour: bisection from here
       end if
@@ -260,7 +284,7 @@ contains
     real(dp), intent(in) :: d(n), e2(n), x, pivmin
     real(dp), intent(out) :: step, first, last, z(n)
     real(dp), intent(inout) :: dp_(:), dm(:)
-    real(dp) :: g, gbest, gr, nrm2, big, rbig
+    real(dp) :: g, gbest, gr, nrm2, big, rbig, e2c, ec
     integer :: i, r, k
     dp_(1) = d(1) - x
     if (abs(dp_(1)) < pivmin) dp_(1) = -pivmin
@@ -286,14 +310,26 @@ contains
         r = i
       end if
     end do
+    ! the couplings sqrt(e2): all equal but the first of a_2m's matrix, so
+    ! the square root is taken only where the squared coupling changes
     z(r) = 1.0_dp
     big = 1.0_dp
+    e2c = -1.0_dp
+    ec = 0.0_dp
     do i = r - 1, 1, -1
-      z(i) = -(sqrt(e2(i)) / dp_(i)) * z(i + 1)
+      if (e2(i) /= e2c) then
+        e2c = e2(i)
+        ec = sqrt(e2c)
+      end if
+      z(i) = -(ec / dp_(i)) * z(i + 1)
       big = max(big, abs(z(i)))
     end do
     do i = r + 1, n
-      z(i) = -(sqrt(e2(i - 1)) / dm(i)) * z(i - 1)
+      if (e2(i - 1) /= e2c) then
+        e2c = e2(i - 1)
+        ec = sqrt(e2c)
+      end if
+      z(i) = -(ec / dm(i)) * z(i - 1)
       big = max(big, abs(z(i)))
     end do
     rbig = 1.0_dp / big
@@ -333,21 +369,23 @@ contains
   !> Eigenvalue of family fam: by_order (fam 0) the one continuing nu^2,
   !> else the m-th; centre^2 is the q = 0 value, the value lies within
   !> spread |q| of it (Weyl).  tol_rel: the truncation bound to meet,
-  !> relative to max(1, |value|).  Also returns the window (d, e2 left
-  !> allocated) so a refinement can reuse it.
+  !> relative to max(1, |value|).  Also returns the window when asked (d,
+  !> e2 present: left allocated) so a refinement can reuse it.  A window of
+  !> up to small_rows rows lives in stack arrays (no allocation per value).
   pure subroutine solve(fam, nu, q, m, by_order, centre, spread, tol_rel, x, bound, status, d, e2, j, r0, level)
     integer, intent(in) :: fam, m
     real(dp), intent(in) :: nu, q, centre, spread, tol_rel
     logical, intent(in) :: by_order
     real(dp), intent(out) :: x, bound
     integer, intent(out) :: status, j, r0
-    real(dp), allocatable, intent(out) :: d(:), e2(:)
-    real(dp) :: aq, lam_lo, lam_hi, p, rr, ehi, elo, slo, shi, pivmin, f1, fn, c1, cn
+    real(dp), allocatable, intent(out), optional :: d(:), e2(:)
+    real(dp) :: aq, lam_lo, lam_hi, p, rr, ehi, elo, slo, shi
     integer, intent(in) :: level
-    real(dp), allocatable :: z(:)
+    real(dp), allocatable :: dh(:), eh(:), zh(:)
+    real(dp) :: ds(small_rows), es(small_rows), zs(small_rows)
     real(dp) :: guess, sl, h
     integer :: r1, n, attempt
-    logical :: cut
+    logical :: cut, done
     aq = abs(q)
     lam_hi = centre * centre + spread * aq
     lam_lo = centre * centre - spread * aq
@@ -392,42 +430,77 @@ contains
       call window_rows(fam, nu, slo, shi, cut, r0, r1)
       n = r1 - r0 + 1
       if (n > max_rows) return
-      if (allocated(d)) deallocate(d, e2)
-      allocate(d(n), e2(n))
-      call build(fam, nu, q, r0, r1, d, e2)
-      j = window_index(fam, nu, m, by_order, r0)
-      if (j < 0 .or. j >= n) then
-        ehi = 2.0_dp * ehi + 4.0_dp
-        elo = 2.0_dp * elo + 4.0_dp
-        cycle
+      if (n <= small_rows) then
+        call try_window(fam, nu, q, m, by_order, tol_rel, guess, lam_lo, lam_hi, r0, n, &
+                        ds, es, zs, x, bound, j, status, done)
+        if (done .and. present(d)) then
+          allocate(d(n), e2(n))
+          d = ds(1:n)
+          e2 = es(1:n)
+        end if
+      else
+        if (allocated(dh)) deallocate(dh, eh, zh)
+        allocate(dh(n), eh(n), zh(n))
+        call try_window(fam, nu, q, m, by_order, tol_rel, guess, lam_lo, lam_hi, r0, n, &
+                        dh, eh, zh, x, bound, j, status, done)
+        if (done .and. present(d)) then
+          call move_alloc(dh, d)
+          call move_alloc(eh, e2)
+        end if
       end if
-      pivmin = tiny(1.0_dp) * max(1.0_dp, maxval(e2))
-      if (allocated(z)) deallocate(z)
-      allocate(z(n))
-      call eigenvalue(d, e2, n, j, guess, lam_lo - 1.0e-3_dp * abs(lam_lo) - 1.0_dp, &
-                      lam_hi + 1.0e-3_dp * abs(lam_hi) + 1.0_dp, pivmin, x, f1, fn, z)
-      if (aq > 0.0_dp) x = polish(fam, nu, q, r0, n, x, z)
-      if (aq == 0.0_dp) then   ! the diagonal itself: snap to its entry
-        x = d(minloc(abs(d - x), 1))
-        bound = 0.0_dp
-        status = mathieu_ok
-        return
-      end if
-      ! the couplings that the window cuts: below row r0 (none at row 0 of
-      ! a one-sided family) and above row r1
-      c1 = sqrt2 * aq
-      if (fam /= 0 .and. r0 == 0) c1 = 0.0_dp
-      cn = aq
-      bound = sqrt((c1 * f1) ** 2 + (cn * fn) ** 2)
-      if (n == 1 .and. aq > 0.0_dp) bound = (c1 + cn)   ! a single row says nothing
-      if (bound <= tol_rel * max(1.0_dp, abs(x))) then
-        status = mathieu_ok
-        return
-      end if
+      if (done) return
       ehi = 2.0_dp * ehi + 4.0_dp
       elo = 2.0_dp * elo + 4.0_dp
     end do
   end subroutine solve
+
+  !> One window of solve: rows r0 .. r0 + n - 1 built into d, e2 (the
+  !> caller's work arrays, z too), the eigenvalue of index j found and
+  !> polished, and its truncation bound.  done: the bound met the tolerance
+  !> (status ok) or q = 0; otherwise the caller widens the window.
+  pure subroutine try_window(fam, nu, q, m, by_order, tol_rel, guess, lam_lo, lam_hi, r0, n, &
+                             d, e2, z, x, bound, j, status, done)
+    integer, intent(in) :: fam, m, r0, n
+    real(dp), intent(in) :: nu, q, tol_rel, guess, lam_lo, lam_hi
+    logical, intent(in) :: by_order
+    real(dp), intent(inout) :: d(n), e2(n), z(n)
+    real(dp), intent(out) :: x, bound
+    integer, intent(out) :: j
+    integer, intent(inout) :: status
+    logical, intent(out) :: done
+    real(dp) :: aq, pivmin, f1, fn, c1, cn
+    done = .false.
+    aq = abs(q)
+    call build(fam, nu, q, r0, r0 + n - 1, d, e2)
+    j = window_index(fam, nu, m, by_order, r0)
+    if (j < 0 .or. j >= n) then
+      x = nan_dp
+      bound = nan_dp
+      return
+    end if
+    pivmin = tiny(1.0_dp) * max(1.0_dp, maxval(e2))
+    call eigenvalue(d, e2, n, j, guess, lam_lo - 1.0e-3_dp * abs(lam_lo) - 1.0_dp, &
+                    lam_hi + 1.0e-3_dp * abs(lam_hi) + 1.0_dp, pivmin, x, f1, fn, z)
+    if (aq > 0.0_dp) x = polish(fam, nu, q, r0, n, x, z)
+    if (aq == 0.0_dp) then   ! the diagonal itself: snap to its entry
+      x = d(minloc(abs(d - x), 1))
+      bound = 0.0_dp
+      status = mathieu_ok
+      done = .true.
+      return
+    end if
+    ! the couplings that the window cuts: below row r0 (none at row 0 of
+    ! a one-sided family) and above row r1
+    c1 = sqrt2 * aq
+    if (fam /= 0 .and. r0 == 0) c1 = 0.0_dp
+    cn = aq
+    bound = sqrt((c1 * f1) ** 2 + (cn * fn) ** 2)
+    if (n == 1 .and. aq > 0.0_dp) bound = (c1 + cn)   ! a single row says nothing
+    if (bound <= tol_rel * max(1.0_dp, abs(x))) then
+      status = mathieu_ok
+      done = .true.
+    end if
+  end subroutine try_window
 
   !> The Rayleigh quotient of the eigenvector z about x, with the residual
   !> (T - x) z in double-double and the matrix's entries exact ((nu + 2k)^2
@@ -438,13 +511,28 @@ contains
   pure real(dp) function polish(fam, nu, q, r0, n, x, z) result(xp)
     integer, intent(in) :: fam, r0, n
     real(dp), intent(in) :: nu, q, x, z(n)
-    real(dp) :: sh, sl, dh, dl, uh, ul, rh, rl, th, tl, num, den, aq, e0, e0l, zl, zr
+    real(dp) :: resid2
+    call polish_res(fam, nu, q, r0, n, x, z, xp, resid2)
+  end function polish
+
+  !> polish, and resid2: an upper bound on ||(T - xp) z||^2 / ||z||^2 (the
+  !> squared residual of the Rayleigh quotient xp, for Temple's bound): the
+  !> sum of the squared residual components of the rows kept, and for the
+  !> rows left out (z_i below tau of the largest; z satisfies their rows to
+  !> a few ulp of the row's scale) 8 eps times that scale times tau, squared.
+  pure subroutine polish_res(fam, nu, q, r0, n, x, z, xp, resid2)
+    integer, intent(in) :: fam, r0, n
+    real(dp), intent(in) :: nu, q, x, z(n)
+    real(dp), intent(out) :: xp, resid2
+    real(dp) :: sh, sl, dh, dl, uh, ul, rh, rl, th, tl, num, den, aq, e0, e0l, zl, zr, rr, smax
+    real(dp) :: qh, ql, zh, zt
     real(dp), parameter :: sqrt2_lo = -9.6667966258595e-17_dp
     integer :: i, r, i1, i2
     real(dp) :: thr
     aq = abs(q)
     num = 0.0_dp
     den = 0.0_dp
+    rr = 0.0_dp
     ! rows whose component is below tau = 1e-10 of the largest are left out:
     ! z is the eigenvector to rounding, so each one's term z_i ((T - x) z)_i
     ! is below tau^2 eps times the matrix's scale there (s^2 + 2|q|), and
@@ -458,9 +546,15 @@ contains
     do while (i2 > i1 .and. abs(z(i2)) <= thr)
       i2 = i2 - 1
     end do
+    ! and one row more each side: the rows left out then have all three
+    ! components below tau (their residual is rounding of tau's size)
+    i1 = max(1, i1 - 1)
+    i2 = min(n, i2 + 1)
     ! the coupling of rows 0 and 1 of a_2m's matrix, sqrt(2)|q| in double-double
     call prod_dd(sqrt2, aq, e0, e0l)
     e0l = e0l + sqrt2_lo * aq
+    ! |q| split once (Veltkamp) for the products with the neighbours' sum
+    call split(aq, qh, ql)
     do i = i1, i2
       r = r0 + i - 1
       if (fam == 0) then
@@ -498,16 +592,26 @@ contains
         call add_dd(rh, rl, th, tl)
         call prod_dd(aq, zr, th, tl)
       else
-        call prod_dd(aq, zl, th, tl)
-        call add_dd(rh, rl, th, tl)
-        call prod_dd(aq, zr, th, tl)
+        ! |q| (z_i-1 + z_i+1): the sum exact in two parts
+        call sum_exact(zl, zr, zh, zt)
+        call prod_split(aq, qh, ql, zh, th, tl)
+        tl = tl + aq * zt
       end if
       call add_dd(rh, rl, th, tl)
       num = num + z(i) * (rh + rl)
+      rr = rr + (rh + rl) ** 2
       den = den + z(i) * z(i)
     end do
     xp = x + num / den
-  end function polish
+    ! the rows left out: their scale |s^2 - x| + 2|q| is largest at the ends
+    smax = 0.0_dp
+    if (i1 > 1 .or. i2 < n) then
+      smax = max(abs(real(r0, dp)), abs(real(r0 + n - 1, dp)))
+      smax = (abs(nu) + real(fam_base(fam), dp) + 2.0_dp * smax) ** 2 + abs(x) + 3.0_dp * aq
+      smax = 8.0_dp * eps_dp * smax * thr
+    end if
+    resid2 = (rr + real(n, dp) * smax * smax) / den * (1.0_dp + real(2 * n + 8, dp) * eps_dp)
+  end subroutine polish_res
 
   ! Error-free transformations for polish, here so that the compiler
   ! inlines them into its loop (pendula_dd's are in another unit).
@@ -537,6 +641,30 @@ contains
     bl = b - bh
     e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
   end subroutine prod_dd
+
+  !> ah + al = a with each half of 26 bits (Veltkamp's splitting).
+  pure subroutine split(a, ah, al)
+    real(dp), intent(in) :: a
+    real(dp), intent(out) :: ah, al
+    real(dp), parameter :: splitter = 134217729.0_dp   ! 2**27 + 1
+    real(dp) :: t
+    t = splitter * a
+    ah = t - (t - a)
+    al = a - ah
+  end subroutine split
+
+  !> p + e = a * b exactly, a given split (ah + al) by split.
+  pure subroutine prod_split(a, ah, al, b, p, e)
+    real(dp), intent(in) :: a, ah, al, b
+    real(dp), intent(out) :: p, e
+    real(dp), parameter :: splitter = 134217729.0_dp
+    real(dp) :: t, bh, bl
+    p = a * b
+    t = splitter * b
+    bh = t - (t - b)
+    bl = b - bh
+    e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
+  end subroutine prod_split
 
   !> (rh + rl) += (th + tl), to double-double accuracy.
   pure subroutine add_dd(rh, rl, th, tl)
@@ -582,7 +710,6 @@ contains
     real(dp), intent(in) :: nu, q
     real(dp), intent(out) :: val, bound
     integer, intent(out) :: status
-    real(dp), allocatable :: d(:), e2(:)
     integer :: n, fam, m, j, r0, lev
     val = nan_dp
     bound = nan_dp
@@ -590,8 +717,8 @@ contains
     if (.not. (nu >= 0.0_dp .and. nu <= mathieu_max_order)) return
     if (.not. (abs(q) <= mathieu_max_q)) return
     if (nu /= aint(nu)) then
-      call solve(0, nu, q, 0, .true., nu, 2.0_dp, 0.25_dp * eps_dp, val, bound, status, d, e2, j, r0, &
-                 int(nu))
+      call solve(0, nu, q, 0, .true., nu, 2.0_dp, 0.25_dp * eps_dp, val, bound, status, j=j, r0=r0, &
+                 level=int(nu))
       return
     end if
     n = int(nu)
@@ -618,7 +745,8 @@ contains
     lev = n
     if (kind == 2) lev = n - 1
     if (q < 0.0_dp .and. mod(n, 2) == 1) lev = n - 1 + 2 * (kind - 1)
-    call solve(fam, 0.0_dp, q, m, .false., nu, 3.0_dp, 0.25_dp * eps_dp, val, bound, status, d, e2, j, r0, lev)
+    call solve(fam, 0.0_dp, q, m, .false., nu, 3.0_dp, 0.25_dp * eps_dp, val, bound, status, j=j, r0=r0, &
+               level=lev)
   end subroutine mathieu_char
 
   !> q = 0 value of the m-th level of the bi-infinite matrix of offset nu
@@ -655,7 +783,6 @@ contains
     integer, intent(in) :: m
     real(dp), intent(out) :: val, bound
     integer, intent(out) :: status
-    real(dp), allocatable :: d(:), e2(:)
     real(dp) :: nr
     integer :: j, r0
     val = nan_dp
@@ -666,7 +793,7 @@ contains
     nr = modulo(nu, 2.0_dp)
     if (nr >= 2.0_dp) nr = 0.0_dp
     call solve(0, nr, q, m, .false., level_order(nr, m), 2.0_dp, 0.25_dp * eps_dp, val, bound, &
-               status, d, e2, j, r0, m)
+               status, j=j, r0=r0, level=m)
   end subroutine mathieu_level
 
   !> The lowest nlev levels m = 0 .. nlev - 1 of the bi-infinite matrix of
@@ -756,7 +883,9 @@ contains
       ev(k + 1) = t
     end do
     pivmin = tiny(1.0_dp) * max(1.0_dp, maxval(e2))
+    call levels_certified(nr, q, r0, n, d, e2, nlev, ev, pivmin, val, bound, status, z)
     do k = 0, nlev - 2
+      if (status(k + 1) == mathieu_ok) cycle
       w = 1.0e-8_dp * max(1.0_dp, abs(ev(k + 1)), aq)
       call eigenvalue(d, e2, n, k, ev(k + 1), ev(k + 1) - w, ev(k + 1) + w, pivmin, x, f1, fn, z)
       x = polish(0, nr, q, r0, n, x, z)
@@ -771,6 +900,93 @@ contains
       end if
     end do
   end subroutine mathieu_levels
+
+  !> The levels 0 .. nlev - 2 of the window (d, e2; rows r0 .. r0 + n - 1 of
+  !> offset nu, couplings |q|) certified together, level nlev - 1 (val,
+  !> status) being certified already.  Each level: a twist at its starting
+  !> value ev (and, where needed, one more at the result), its Rayleigh
+  !> quotient rho polished in double-double with the residual norm eps_r.
+  !> One Sturm count at each midpoint between consecutive rho (and one
+  !> below the lowest) proves that the interval (alpha, beta) around each
+  !> rho holds no other eigenvalue (up to the counts' backward error, a
+  !> few ulp of the couplings, and the rounding of the diagonal); then the
+  !> eigenvalue is within eps_r^2 / delta of rho, delta the distance from
+  !> rho to the interval's ends (Kato and Temple; Parlett, The Symmetric
+  !> Eigenvalue Problem, section 10.5).  A level whose bound and
+  !> truncation bound both meet eps/4 of max(1, |rho|) gets status ok with
+  !> bound their sum; the others keep status bad_input for the caller's
+  !> own path (so do all of them when a count disagrees).
+  pure subroutine levels_certified(nr, q, r0, n, d, e2, nlev, ev, pivmin, val, bound, status, z)
+    integer, intent(in) :: r0, n, nlev
+    real(dp), intent(in) :: nr, q, d(n), e2(n), ev(:), pivmin
+    real(dp), intent(inout) :: val(nlev), bound(nlev), z(n)
+    integer, intent(inout) :: status(nlev)
+    real(dp) :: rho(nlev), res2(nlev), tb(nlev), mid(0:nlev - 1)
+    real(dp) :: step, f1, fn, aq, emax, slack, delta, temple, tol, xs, dmax
+    integer :: k, it, ca, cb
+    logical :: good
+    if (nlev < 2) return
+    aq = abs(q)
+    emax = sqrt(maxval(e2))
+    dmax = maxval(abs(d))
+    rho(nlev) = val(nlev)
+    res2(nlev) = 0.0_dp
+    do k = 1, nlev - 1
+      xs = ev(k)
+      call twist(d, e2, n, xs, pivmin, step, f1, fn, z)
+      if (abs(step) > 1.0e-13_dp * (abs(xs) + emax)) then
+        ! a Rayleigh-quotient step first (cubic: the next vector is good)
+        xs = xs + step
+        call twist(d, e2, n, xs, pivmin, step, f1, fn, z)
+      end if
+      call polish_res(0, nr, q, r0, n, xs, z, rho(k), res2(k))
+      tb(k) = sqrt((sqrt2 * aq * f1) ** 2 + (aq * fn) ** 2)
+    end do
+    do k = 1, nlev - 1
+      if (.not. (rho(k) < rho(k + 1))) return
+    end do
+    ! the midpoints, and below the lowest its mirror image
+    do k = 1, nlev - 1
+      mid(k) = rho(k) + 0.5_dp * (rho(k + 1) - rho(k))
+    end do
+    mid(0) = rho(1) - (mid(1) - rho(1))
+    do k = 0, nlev - 1, 2
+      if (k + 1 <= nlev - 1) then
+        call sturm_count_pair(d, e2, n, mid(k), mid(k + 1), pivmin, ca, cb)
+        if (ca /= k .or. cb /= k + 1) return
+      else
+        if (sturm_count(d, e2, n, mid(k), pivmin) /= k) return
+      end if
+    end do
+    do k = 1, nlev - 1
+      good = .false.
+      do it = 1, 2
+        tol = 0.25_dp * eps_dp * max(1.0_dp, abs(rho(k)))
+        ! the counts' backward error: couplings a few ulp off (Kahan), and
+        ! the diagonal rounded to an ulp of its largest entry
+        slack = 8.0_dp * eps_dp * (max(abs(mid(k - 1)), abs(mid(k))) + emax) + eps_dp * dmax + tiny(1.0_dp)
+        delta = min(rho(k) - mid(k - 1), mid(k) - rho(k)) - slack
+        if (delta > 0.0_dp .and. res2(k) < delta * delta) then
+          temple = res2(k) / delta
+          if (temple <= tol .and. tb(k) <= tol) then
+            good = .true.
+            exit
+          end if
+        end if
+        if (it == 2) exit
+        ! one more twist, at rho: its vector is closer to the eigenvector
+        xs = rho(k)
+        call twist(d, e2, n, xs, pivmin, step, f1, fn, z)
+        call polish_res(0, nr, q, r0, n, xs, z, rho(k), res2(k))
+        tb(k) = sqrt((sqrt2 * aq * f1) ** 2 + (aq * fn) ** 2)
+      end do
+      if (good) then
+        val(k) = rho(k)
+        bound(k) = tb(k) + temple
+        status(k) = mathieu_ok
+      end if
+    end do
+  end subroutine levels_certified
 
   !> All eigenvalues of the symmetric tridiagonal matrix of diagonal d and
   !> off-diagonal e (e(i) couples rows i and i + 1; e(n) unused) by the
