@@ -2,6 +2,9 @@
 !>
 !> Usage: pendula-run SCENE.nml [-o OUT.csv] [--check]
 !> (--check: read and check the scene only; exit 0 or 2.)
+!> A file whose group is &double (not &scene) is a double pendulum's scene
+!> (pendula_double_scene): its path as t, theta1, theta2, omega1, omega2,
+!> energy.
 !> The trajectory table (t, theta, v, energy; with a first column for the swept
 !> value when the scene sweeps a field) goes to OUT (standard output when -o
 !> is absent).  When the scene asks for period, omega or theta_max, the orbit
@@ -78,6 +81,11 @@ program pendula_run
   end do
   if (len(path) == 0) call fail('usage: pendula-run SCENE.nml [-o OUT.csv] [--check]')
 
+  ! a file whose namelist group is a system built by its own class: that system's reader and run
+  if (scene_group(path) == 'double') then
+    call run_double_file()
+    stop, quiet=.true.
+  end if
   call read_scene(path, sc, status, msg)
   if (status /= 0) call fail(trim(msg))
   ! quiet: no gfortran note on the IEEE flags a literal such as 1e-400 raised (it reads as 0, by the rule)
@@ -337,6 +345,66 @@ contains
       call out_line(f, '# effects = none (conservative rigid pendulum: exact solution)')
     end if
   end subroutine header
+
+  !> The name of the first namelist group of the file (lower case; blank when none or unreadable).
+  function scene_group(file) result(name)
+    character(len=*), intent(in) :: file
+    character(len=32) :: name
+    character(len=512) :: ln
+    integer :: u, ios, a, b, k
+    name = ''
+    open(newunit=u, file=file, status='old', action='read', iostat=ios)
+    if (ios /= 0) return
+    do
+      read(u, '(a)', iostat=ios) ln
+      if (ios /= 0) exit
+      ln = adjustl(ln)
+      if (ln(1:1) /= '&') cycle
+      a = 2
+      b = scan(ln(a:), ' ,/') + a - 2
+      if (b < a) b = len_trim(ln)
+      name = ln(a:b)
+      do k = 1, len_trim(name)
+        if (name(k:k) >= 'A' .and. name(k:k) <= 'Z') name(k:k) = achar(iachar(name(k:k)) + 32)
+      end do
+      exit
+    end do
+    close(u)
+  end function scene_group
+
+  !> A double pendulum's scene (&double, pendula_double_scene): t, theta1, theta2, omega1, omega2, energy.
+  subroutine run_double_file()
+    use pendula_double_scene, only: double_scene_t, read_double_scene, run_double_scene
+    type(double_scene_t) :: ds
+    real(dp), allocatable :: tt(:), th(:, :), w(:, :), en(:)
+    integer :: st, k, cancel
+    call read_double_scene(path, ds, st, msg)
+    if (st /= 0) call fail(trim(msg))
+    if (check_only) stop, quiet=.true.
+    allocate(tt(ds%n_samples), th(2, ds%n_samples), w(2, ds%n_samples), en(ds%n_samples), stat=st)
+    if (st /= 0) call fail_memory(ds%n_samples)
+    cancel = 0
+    call run_double_scene(ds, tt, th, w, en, st, cancel)
+    if (st /= 0) then
+      write(line, '(a, i0, a)') ': the double pendulum''s run failed (integrator status ', st, &
+        '): loosen rtol or shorten t_end'
+      call fail(path // trim(line), 4)
+    end if
+    if (len(out) == 0) out = '-'
+    call out_open(f_out, out, st)
+    if (st /= 0) call fail_io('cannot write "' // out // '"', st)
+    call out_line(f_out, '# pendula-run ' // path)
+    call out_line(f_out, '# double pendulum, method ' // trim(ds%method))
+    call out_line(f_out, 't,theta1,theta2,omega1,omega2,energy')
+    do k = 1, size(tt)
+      call out_line(f_out, out_reals([tt(k), th(1, k), th(2, k), w(1, k), w(2, k), en(k)]))
+    end do
+    call out_close(f_out, st)
+    if (st /= 0) then
+      if (out == '-') call fail_io('cannot write to standard output', st)
+      call fail_io('cannot write "' // out // '"', st)
+    end if
+  end subroutine run_double_file
 
   !> Too little memory for the arrays of n samples: the computation failed (exit 4).
   subroutine fail_memory(n)
