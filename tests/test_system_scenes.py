@@ -63,7 +63,8 @@ def test_double_pendulum_scene_is_the_class_path_to_the_bit(tmp_path):
     ("m1 = -1.0", "m1"), ("l2 = 0.0", "l2"), ("g = -9.8", "g"), ("damping = -0.1, 0.0", "damping"),
     ("t_end = -1.0", "t_end"), ("n_samples = 0", "n_samples"), ("method = 'rk4'", "method"),
     ("method = 'gauss6', dt = 0.03, t_end = 1.0, n_samples = 11", "dt"), ("rtol = 0.0", "rtol"),
-    ("mass = 1.0", "mass"),
+    ("mass = 1.0", "mass"), ("theta1 = abc", "theta1"), ("n_samples = 1.5", "n_samples"), ("rods = 3", "rods"),
+    ("g = 1.0, theta2 = 'x'", "theta2"),
 ])
 def test_double_pendulum_scene_refuses_a_malformed_field_by_name(tmp_path, body, field):
     f = tmp_path / "bad.nml"
