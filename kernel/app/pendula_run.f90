@@ -31,6 +31,7 @@ program pendula_run
     auto_method, method_name
   use pendula_sweep, only: sweep_scene_csv
   use pendula_text, only: command_arg
+  use pendula_group_file, only: scene_group
   implicit none
   character(len=:), allocatable :: path, out, arg, orbit_out
   character(len=512) :: argmsg
@@ -345,32 +346,6 @@ contains
       call out_line(f, '# effects = none (conservative rigid pendulum: exact solution)')
     end if
   end subroutine header
-
-  !> The name of the first namelist group of the file (lower case; blank when none or unreadable).
-  function scene_group(file) result(name)
-    character(len=*), intent(in) :: file
-    character(len=32) :: name
-    character(len=512) :: ln
-    integer :: u, ios, a, b, k
-    name = ''
-    open(newunit=u, file=file, status='old', action='read', iostat=ios)
-    if (ios /= 0) return
-    do
-      read(u, '(a)', iostat=ios) ln
-      if (ios /= 0) exit
-      ln = adjustl(ln)
-      if (ln(1:1) /= '&') cycle
-      a = 2
-      b = scan(ln(a:), ' ,/') + a - 2
-      if (b < a) b = len_trim(ln)
-      name = ln(a:b)
-      do k = 1, len_trim(name)
-        if (name(k:k) >= 'A' .and. name(k:k) <= 'Z') name(k:k) = achar(iachar(name(k:k)) + 32)
-      end do
-      exit
-    end do
-    close(u)
-  end function scene_group
 
   !> A double pendulum's scene (&double, pendula_double_scene): t, theta1, theta2, omega1, omega2, energy.
   subroutine run_double_file()

@@ -18,6 +18,7 @@ module pendula_double_scene
   use pendula_integrators, only: run_stats
   use pendula_double, only: double_pendulum, make_double, double_energy, double_velocities, dpp_size
   use pendula_double_run, only: double_simulate, dm_dop853, dm_gauss4, dm_gauss6
+  use pendula_group_file, only: name_bad_line
   implicit none
   private
   public :: double_scene_t, read_double_scene, run_double_scene
@@ -63,7 +64,7 @@ contains
     close(u)
     if (ios /= 0) then
       msg = path // ': &double: ' // trim(iom)
-      call name_bad_line()
+      call name_bad_line(path, 'double', read_line, msg)
       return
     end if
     ds = double_scene_t(m1, m2, l1, l2, g, damping, rods, theta1, theta2, omega1, omega2, t_end, dt, rtol, &
@@ -76,65 +77,17 @@ contains
 
   contains
 
-    !> The line of the group that does not read, its fields named (the namelist reader's own message
-    !> names none for a value of the wrong kind): each line read alone as '&double LINE /'.
-    subroutine name_bad_line()
-      character(len=1024) :: ln, buf, names
-      integer :: v, st, nline, k, a
-      logical :: inside
-      open(newunit=v, file=path, status='old', action='read', iostat=st)
-      if (st /= 0) return
-      inside = .false.
-      nline = 0
-      do
-        read(v, '(a)', iostat=st) ln
-        if (st /= 0) exit
-        nline = nline + 1
-        k = index(ln, '!')
-        if (k > 0) ln(k:) = ''
-        ln = adjustl(ln)
-        if (.not. inside) then
-          if (ln(1:1) /= '&') cycle
-          inside = .true.
-          ln = adjustl(ln(8:))
-        end if
-        if (ln(1:1) == '/') exit
-        k = index(ln, '/', back=.true.)
-        if (k > 0) ln(k:) = ''
-        if (len_trim(ln) == 0) cycle
-        buf = '&double ' // trim(ln) // ' /'
-        read(buf, nml=double, iostat=st, iomsg=iom)
-        if (st == 0) cycle
-        ! the names before each '=' on the line
-        names = ''
-        a = 1
-        do
-          k = index(ln(a:), '=')
-          if (k == 0) exit
-          k = a + k - 1
-          if (len_trim(names) > 0) names = trim(names) // ','
-          names = trim(names) // ' ''' // trim(last_word(ln(1:k - 1))) // ''''
-          a = k + 1
-        end do
-        write(buf, '(i0)') nline
-        msg = path // ': &double, line ' // trim(buf) // ': ' // trim(merge('fields', 'field ', index(names, ',') > 0)) // &
-              trim(names) // ': cannot read its value (' // trim(iom) // ')'
-        exit
-      end do
-      close(v)
-    end subroutine name_bad_line
+    subroutine read_line(text, ios, iom)
+      character(len=*), intent(in) :: text
+      integer, intent(out) :: ios
+      character(len=*), intent(inout) :: iom
+      character(len=len(text) + 12) :: buf
+      buf = '&double ' // text // ' /'
+      read(buf, nml=double, iostat=ios, iomsg=iom)
+    end subroutine read_line
 
   end subroutine read_double_scene
 
-  !> The last blank- or comma-separated word of s.
-  pure function last_word(s) result(w)
-    character(len=*), intent(in) :: s
-    character(len=len(s)) :: w
-    integer :: b, a
-    b = len_trim(s)
-    a = scan(s(1:b), ' ,', back=.true.)
-    w = s(a + 1:b)
-  end function last_word
 
   !> The first field of ds that is out of its domain, as "field 'NAME' ...", or blank.
   pure subroutine check_double_scene(ds, msg)
