@@ -1,10 +1,11 @@
 """Scene files of the systems built by their own class, through pendula-run.
 
-A file whose namelist group is ``&double`` is a double pendulum's scene: its
+A file whose namelist group is ``&double`` or ``&foucault`` is that system's scene: its
 fields are read and checked beside the system in the kernel
-(kernel/dispatch/pendula_double_scene.f90), a malformed field gives exit 2
-naming the field, and the run goes through the same n-dimensional driver as
-``pendula.DoublePendulum``.
+(kernel/dispatch/pendula_double_scene.f90, pendula_foucault_scene.f90), a
+malformed field gives exit 2 naming the field, and the run goes through the
+same n-dimensional driver as ``pendula.DoublePendulum`` and
+``pendula.FoucaultPendulum``.
 """
 
 import math
@@ -75,3 +76,33 @@ def test_double_pendulum_scene_refuses_a_malformed_field_by_name(tmp_path, body,
         assert p.returncode == 2, (body, p.stdout)
         assert field in p.stderr and "&double" in p.stderr, p.stderr
     assert not out.exists()
+
+
+def test_foucault_scene_runs_on_its_sphere_and_is_the_class_path_to_the_bit(tmp_path):
+    """The example scene (Paris, 67 m): the bob stays on the sphere of radius length (a closed-form
+    invariant, to 1e-9 relative at rtol 1e-12), and the numbers are those of pendula.FoucaultPendulum."""
+    out = tmp_path / "f.csv"
+    p = _run(DATA / "scenes" / "systems" / "foucault_paris.nml", "-o", out)
+    assert p.returncode == 0, p.stderr
+    text = out.read_text()
+    assert "t,x,y,z,vx,vy,vz" in text
+    d = _table(text)
+    assert d.shape == (601, 7)
+    assert np.max(np.abs(np.sqrt(d[:, 1] ** 2 + d[:, 2] ** 2 + d[:, 3] ** 2) / 67.0 - 1.0)) < 1e-9
+    run = pendula.FoucaultPendulum(latitude=48.85, length=67.0, g=9.81).simulate(np.linspace(0, 600, 601), 0.05,
+                                                                                 rtol=1e-12)
+    for k, name in enumerate(("x", "y", "z", "vx", "vy", "vz"), start=1):
+        np.testing.assert_array_equal(d[:, k], run[name].values, err_msg=name)
+
+
+@pytest.mark.parametrize("body, field", [
+    ("latitude = 100.0", "latitude"), ("length = -1.0", "length"), ("damping = -0.1", "damping"),
+    ("anisotropy = -2.0, 0.0", "anisotropy"), ("theta0 = 2.0", "theta0"), ("theta0 = 0.0, phi_dot0 = 0.1", "phi_dot0"),
+    ("t_end = 0.0", "t_end"), ("n_samples = 0", "n_samples"), ("rtol = 0.0", "rtol"), ("lat = 45.0", "lat"),
+    ("theta0 = x", "theta0"),
+])
+def test_foucault_scene_refuses_a_malformed_field_by_name(tmp_path, body, field):
+    f = tmp_path / "bad.nml"
+    f.write_text(f"&foucault\n latitude = 45.0\n {body}\n/\n")
+    p = _run(f, "--check")
+    assert p.returncode == 2 and f"'{field}'" in p.stderr and "&foucault" in p.stderr, p.stderr

@@ -2,9 +2,9 @@
 !>
 !> Usage: pendula-run SCENE.nml [-o OUT.csv] [--check]
 !> (--check: read and check the scene only; exit 0 or 2.)
-!> A file whose group is &double (not &scene) is a double pendulum's scene
-!> (pendula_double_scene): its path as t, theta1, theta2, omega1, omega2,
-!> energy.
+!> A file whose group is &double or &foucault (not &scene) is the scene of
+!> that system (pendula_double_scene, pendula_foucault_scene): its path as
+!> t, theta1, theta2, omega1, omega2, energy, or t, x, y, z, vx, vy, vz.
 !> The trajectory table (t, theta, v, energy; with a first column for the swept
 !> value when the scene sweeps a field) goes to OUT (standard output when -o
 !> is absent).  When the scene asks for period, omega or theta_max, the orbit
@@ -83,10 +83,14 @@ program pendula_run
   if (len(path) == 0) call fail('usage: pendula-run SCENE.nml [-o OUT.csv] [--check]')
 
   ! a file whose namelist group is a system built by its own class: that system's reader and run
-  if (scene_group(path) == 'double') then
+  select case (scene_group(path))
+  case ('double')
     call run_double_file()
     stop, quiet=.true.
-  end if
+  case ('foucault')
+    call run_foucault_file()
+    stop, quiet=.true.
+  end select
   call read_scene(path, sc, status, msg)
   if (status /= 0) call fail(trim(msg))
   ! quiet: no gfortran note on the IEEE flags a literal such as 1e-400 raised (it reads as 0, by the rule)
@@ -352,7 +356,7 @@ contains
     use pendula_double_scene, only: double_scene_t, read_double_scene, run_double_scene
     type(double_scene_t) :: ds
     real(dp), allocatable :: tt(:), th(:, :), w(:, :), en(:)
-    integer :: st, k, cancel
+    integer :: st, cancel
     call read_double_scene(path, ds, st, msg)
     if (st /= 0) call fail(trim(msg))
     if (check_only) stop, quiet=.true.
@@ -360,8 +364,35 @@ contains
     if (st /= 0) call fail_memory(ds%n_samples)
     cancel = 0
     call run_double_scene(ds, tt, th, w, en, st, cancel)
-    if (st /= 0) then
-      write(line, '(a, i0, a)') ': the double pendulum''s run failed (integrator status ', st, &
+    call system_table('double pendulum, method ' // trim(ds%method), 't,theta1,theta2,omega1,omega2,energy', &
+                      reshape([tt, th(1, :), th(2, :), w(1, :), w(2, :), en], [size(tt), 6]), st)
+  end subroutine run_double_file
+
+  !> A Foucault pendulum's scene (&foucault, pendula_foucault_scene): t, x, y, z, vx, vy, vz.
+  subroutine run_foucault_file()
+    use pendula_foucault_scene, only: foucault_scene_t, read_foucault_scene, run_foucault_scene
+    type(foucault_scene_t) :: fs
+    real(dp), allocatable :: tt(:), y(:, :)
+    integer :: st, cancel
+    call read_foucault_scene(path, fs, st, msg)
+    if (st /= 0) call fail(trim(msg))
+    if (check_only) stop, quiet=.true.
+    allocate(tt(fs%n_samples), y(6, fs%n_samples), stat=st)
+    if (st /= 0) call fail_memory(fs%n_samples)
+    cancel = 0
+    call run_foucault_scene(fs, tt, y, st, cancel)
+    call system_table('Foucault pendulum, DOP853', 't,x,y,z,vx,vy,vz', reshape([tt, transpose(y)], [size(tt), 7]), &
+                      st)
+  end subroutine run_foucault_file
+
+  !> The table of a system's run (its columns in cols(:, k)) to OUT, or the run's failure (status /= 0: exit 4).
+  subroutine system_table(title, heads, cols, run_status)
+    character(len=*), intent(in) :: title, heads
+    real(dp), intent(in) :: cols(:, :)
+    integer, intent(in) :: run_status
+    integer :: st, k
+    if (run_status /= 0) then
+      write(line, '(a, i0, a)') ': the ' // title // ' run failed (integrator status ', run_status, &
         '): loosen rtol or shorten t_end'
       call fail(path // trim(line), 4)
     end if
@@ -369,17 +400,17 @@ contains
     call out_open(f_out, out, st)
     if (st /= 0) call fail_io('cannot write "' // out // '"', st)
     call out_line(f_out, '# pendula-run ' // path)
-    call out_line(f_out, '# double pendulum, method ' // trim(ds%method))
-    call out_line(f_out, 't,theta1,theta2,omega1,omega2,energy')
-    do k = 1, size(tt)
-      call out_line(f_out, out_reals([tt(k), th(1, k), th(2, k), w(1, k), w(2, k), en(k)]))
+    call out_line(f_out, '# ' // title)
+    call out_line(f_out, heads)
+    do k = 1, size(cols, 1)
+      call out_line(f_out, out_reals(cols(k, :)))
     end do
     call out_close(f_out, st)
     if (st /= 0) then
       if (out == '-') call fail_io('cannot write to standard output', st)
       call fail_io('cannot write "' // out // '"', st)
     end if
-  end subroutine run_double_file
+  end subroutine system_table
 
   !> Too little memory for the arrays of n samples: the computation failed (exit 4).
   subroutine fail_memory(n)

@@ -19,6 +19,7 @@ module pendula_double_scene
   use pendula_double, only: double_pendulum, make_double, double_energy, double_velocities, dpp_size
   use pendula_double_run, only: double_simulate, dm_dop853, dm_gauss4, dm_gauss6
   use pendula_group_file, only: name_bad_line
+  use pendula_nd_run, only: nd_output_times
   implicit none
   private
   public :: double_scene_t, read_double_scene, run_double_scene
@@ -164,11 +165,7 @@ contains
     n = size(t)
     p = [ds%m1, ds%m2, ds%l1, ds%l2, ds%g, merge(1.0_dp, 0.0_dp, ds%rods), ds%damping(1), ds%damping(2)]
     dpd = make_double(p)
-    ! the times as numpy.linspace(0, t_end, n) spaces them (the step times the index, the end exact)
-    do j = 1, n
-      t(j) = real(j - 1, dp) * (ds%t_end / real(max(n - 1, 1), dp))
-    end do
-    if (n > 1) t(n) = ds%t_end
+    call nd_output_times(ds%t_end, t)
     ! the canonical momenta p = M(theta1 - theta2) w
     cd = cos(ds%theta1 - ds%theta2)
     y0 = [ds%theta1, ds%theta2, dpd%a * ds%omega1 + dpd%b * cd * ds%omega2, dpd%b * cd * ds%omega1 + dpd%c * ds%omega2]
