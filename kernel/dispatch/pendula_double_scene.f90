@@ -18,7 +18,7 @@ module pendula_double_scene
   use pendula_integrators, only: run_stats
   use pendula_double, only: double_pendulum, make_double, double_energy, double_velocities, dpp_size
   use pendula_double_run, only: double_simulate, dm_dop853, dm_gauss4, dm_gauss6
-  use pendula_group_file, only: name_bad_line
+  use pendula_group_file, only: read_group_file
   use pendula_nd_run, only: nd_output_times
   implicit none
   private
@@ -47,27 +47,16 @@ contains
     character(len=*), intent(out) :: msg
     real(dp) :: m1, m2, l1, l2, g, damping(2), theta1, theta2, omega1, omega2, t_end, dt, rtol, atol
     logical :: rods
-    integer :: n_samples, u, ios
+    integer :: n_samples
     character(len=16) :: method
-    character(len=256) :: iom
     namelist /double/ m1, m2, l1, l2, g, rods, damping, theta1, theta2, omega1, omega2, t_end, n_samples, &
       method, dt, rtol, atol
     m1 = ds%m1; m2 = ds%m2; l1 = ds%l1; l2 = ds%l2; g = ds%g; rods = ds%rods; damping = ds%damping
     theta1 = ds%theta1; theta2 = ds%theta2; omega1 = ds%omega1; omega2 = ds%omega2
     t_end = ds%t_end; n_samples = ds%n_samples; method = ds%method; dt = ds%dt; rtol = ds%rtol; atol = ds%atol
     status = 2
-    msg = ''
-    open(newunit=u, file=path, status='old', action='read', iostat=ios, iomsg=iom)
-    if (ios /= 0) then
-      msg = 'cannot read "' // path // '": ' // trim(iom); return
-    end if
-    read(u, nml=double, iostat=ios, iomsg=iom)
-    close(u)
-    if (ios /= 0) then
-      msg = path // ': &double: ' // trim(iom)
-      call name_bad_line(path, 'double', read_line, msg)
-      return
-    end if
+    call read_group_file(path, 'double', read_unit, read_line, msg)
+    if (len_trim(msg) > 0) return
     ds = double_scene_t(m1, m2, l1, l2, g, damping, rods, theta1, theta2, omega1, omega2, t_end, dt, rtol, &
                         atol, n_samples, method)
     call check_double_scene(ds, msg)
@@ -77,6 +66,13 @@ contains
     status = 0
 
   contains
+
+    subroutine read_unit(u, ios, iom)
+      integer, intent(in) :: u
+      integer, intent(out) :: ios
+      character(len=*), intent(inout) :: iom
+      read(u, nml=double, iostat=ios, iomsg=iom)
+    end subroutine read_unit
 
     subroutine read_line(text, ios, iom)
       character(len=*), intent(in) :: text

@@ -18,7 +18,7 @@ module pendula_foucault_scene
   use pendula_integrators, only: run_stats
   use pendula_foucault, only: foucault, make_foucault, fp_size, fst_ok, fst_latitude, fst_gl, fst_rate
   use pendula_foucault_run, only: foucault_simulate
-  use pendula_group_file, only: name_bad_line
+  use pendula_group_file, only: read_group_file
   use pendula_nd_run, only: nd_output_times
   implicit none
   private
@@ -44,26 +44,15 @@ contains
     character(len=*), intent(out) :: msg
     real(dp) :: latitude, length, g, earth_rate, damping, anisotropy(2), theta0, azimuth, theta_dot0, phi_dot0, &
       t_end, rtol
-    integer :: n_samples, u, ios
-    character(len=256) :: iom
+    integer :: n_samples
     namelist /foucault/ latitude, length, g, earth_rate, damping, anisotropy, theta0, azimuth, theta_dot0, &
       phi_dot0, t_end, n_samples, rtol
     latitude = fs%latitude; length = fs%length; g = fs%g; earth_rate = fs%earth_rate; damping = fs%damping
     anisotropy = fs%anisotropy; theta0 = fs%theta0; azimuth = fs%azimuth; theta_dot0 = fs%theta_dot0
     phi_dot0 = fs%phi_dot0; t_end = fs%t_end; n_samples = fs%n_samples; rtol = fs%rtol
     status = 2
-    msg = ''
-    open(newunit=u, file=path, status='old', action='read', iostat=ios, iomsg=iom)
-    if (ios /= 0) then
-      msg = 'cannot read "' // path // '": ' // trim(iom); return
-    end if
-    read(u, nml=foucault, iostat=ios, iomsg=iom)
-    close(u)
-    if (ios /= 0) then
-      msg = path // ': &foucault: ' // trim(iom)
-      call name_bad_line(path, 'foucault', read_line, msg)
-      return
-    end if
+    call read_group_file(path, 'foucault', read_unit, read_line, msg)
+    if (len_trim(msg) > 0) return
     fs = foucault_scene_t(latitude, length, g, earth_rate, damping, anisotropy, theta0, azimuth, theta_dot0, &
                           phi_dot0, t_end, rtol, n_samples)
     call check_foucault_scene(fs, msg)
@@ -73,6 +62,13 @@ contains
     status = 0
 
   contains
+
+    subroutine read_unit(u, ios, iom)
+      integer, intent(in) :: u
+      integer, intent(out) :: ios
+      character(len=*), intent(inout) :: iom
+      read(u, nml=foucault, iostat=ios, iomsg=iom)
+    end subroutine read_unit
 
     subroutine read_line(text, ios, iom)
       character(len=*), intent(in) :: text

@@ -7,7 +7,7 @@
 module pendula_group_file
   implicit none
   private
-  public :: scene_group, name_bad_line, line_reader
+  public :: scene_group, read_group_file, name_bad_line, line_reader, unit_reader
 
   abstract interface
     !> Read '&GROUP ' // text // ' /' into the system's namelist group: ios 0 or the error, iom its message.
@@ -16,6 +16,12 @@ module pendula_group_file
       integer, intent(out) :: ios
       character(len=*), intent(inout) :: iom
     end subroutine line_reader
+    !> Read the system's namelist group from the unit u: ios 0 or the error, iom its message.
+    subroutine unit_reader(u, ios, iom)
+      integer, intent(in) :: u
+      integer, intent(out) :: ios
+      character(len=*), intent(inout) :: iom
+    end subroutine unit_reader
   end interface
 
 contains
@@ -44,6 +50,29 @@ contains
     end do
     close(u)
   end function scene_group
+
+  !> Read the group &group of the file through read_unit (the system's namelist read): msg blank, or
+  !> why it does not read, the line and its fields named (name_bad_line, each line through read_line).
+  subroutine read_group_file(path, group, read_unit, read_line, msg)
+    character(len=*), intent(in) :: path, group
+    procedure(unit_reader) :: read_unit
+    procedure(line_reader) :: read_line
+    character(len=*), intent(out) :: msg
+    character(len=256) :: iom
+    integer :: u, ios
+    msg = ''
+    open(newunit=u, file=path, status='old', action='read', iostat=ios, iomsg=iom)
+    if (ios /= 0) then
+      msg = 'cannot read "' // path // '": ' // trim(iom); return
+    end if
+    iom = ''
+    call read_unit(u, ios, iom)
+    close(u)
+    if (ios /= 0) then
+      msg = path // ': &' // group // ': ' // trim(iom)
+      call name_bad_line(path, group, read_line, msg)
+    end if
+  end subroutine read_group_file
 
   !> The first line of the group &group in the file that does not read alone (read_line), as
   !> "PATH: &GROUP, line N: field 'NAME': cannot read its value (...)" in msg; msg unchanged when
