@@ -1,11 +1,12 @@
 """Scene files of the systems built by their own class, through pendula-run.
 
-A file whose namelist group is ``&double`` or ``&foucault`` is that system's scene: its
-fields are read and checked beside the system in the kernel
-(kernel/dispatch/pendula_double_scene.f90, pendula_foucault_scene.f90), a
-malformed field gives exit 2 naming the field, and the run goes through the
-same n-dimensional driver as ``pendula.DoublePendulum`` and
-``pendula.FoucaultPendulum``.
+A file whose namelist group is ``&double``, ``&foucault`` or ``&network`` is
+that system's scene: its fields are read and checked beside the system in the
+kernel (kernel/dispatch/pendula_double_scene.f90, pendula_foucault_scene.f90,
+pendula_network_scene.f90), a malformed field gives exit 2 naming the field,
+and the run goes through the same n-dimensional driver as
+``pendula.DoublePendulum``, ``pendula.FoucaultPendulum`` and
+``pendula.Network``: the same numbers to the bit.
 """
 
 import math
@@ -106,3 +107,43 @@ def test_foucault_scene_refuses_a_malformed_field_by_name(tmp_path, body, field)
     f.write_text(f"&foucault\n latitude = 45.0\n {body}\n/\n")
     p = _run(f, "--check")
     assert p.returncode == 2 and f"'{field}'" in p.stderr and "&foucault" in p.stderr, p.stderr
+
+
+def test_network_scene_is_the_class_path_to_the_bit_and_conserves_energy(tmp_path):
+    """The example chain of four: the numbers of pendula.Network on the same times; and without damping
+    the energy (closed form: sum of C v^2 / 2 + eps (1 - cos phi) + K (dphi)^2 / 2) stays at its start,
+    E0 = 1 - cos 0.5 + 0.5 * 0.5^2 / 2, to 1e-9 relative at rtol 1e-10 (DOP853's error per unit time)."""
+    out = tmp_path / "n.csv"
+    p = _run(DATA / "scenes" / "systems" / "network_chain.nml", "-o", out)
+    assert p.returncode == 0, p.stderr
+    d = _table(out.read_text())
+    assert d.shape == (401, 9)
+    net = pendula.Network(4, topology="chain", strength=0.5, damping=0.02)
+    run = net.simulate(np.linspace(0, 40, 401), phi0=[0.5, 0.0, 0.0, 0.0], rtol=1e-10, atol=1e-12)
+    np.testing.assert_array_equal(d[:, 1:5], run.phi.values)
+    np.testing.assert_array_equal(d[:, 5:9], run.v.values)
+    f = tmp_path / "ring.nml"
+    f.write_text("&network\n n = 5, topology = 'ring', strength = 0.3, phi0 = 0.8, 0.0, 0.0, 0.0, -0.4\n"
+                 " t_end = 20.0, n_samples = 21, method = 'gauss6', dt = 0.01\n/\n")
+    p = _run(f)
+    assert p.returncode == 0, p.stderr
+    d = _table(p.stdout)
+    phi, v = d[:, 1:6], d[:, 6:11]
+    dphi = np.roll(phi, -1, axis=1) - phi           # the ring's five springs, each once
+    en = (0.5 * v ** 2 + (1 - np.cos(phi))).sum(axis=1) + 0.5 * 0.3 * (dphi ** 2).sum(axis=1)
+    e0 = (1 - math.cos(0.8)) + (1 - math.cos(-0.4)) + 0.5 * 0.3 * (0.8 ** 2 + 0.4 ** 2 + 1.2 ** 2)
+    assert abs(en[0] - e0) <= 4 * np.finfo(float).eps * e0
+    assert np.max(np.abs(en - e0)) / e0 < 1e-9
+
+
+@pytest.mark.parametrize("body, field", [
+    ("n = 0", "n"), ("n = 3, mass = 1.0, 2.0", "mass"), ("mass = 0.0", "mass"), ("damping = -1.0", "damping"),
+    ("topology = 'star'", "topology"), ("n = 3, topology = 'pair'", "topology"), ("strength = -1.0", "strength"),
+    ("method = 'rk4'", "method"), ("method = 'gauss6', dt = 0.03, t_end = 1.0, n_samples = 11", "dt"),
+    ("phi0 = x", "phi0"), ("coupling = 1.0", "coupling"), ("t_end = -1.0", "t_end"),
+])
+def test_network_scene_refuses_a_malformed_field_by_name(tmp_path, body, field):
+    f = tmp_path / "bad.nml"
+    f.write_text(f"&network\n {body}\n/\n")
+    p = _run(f, "--check")
+    assert p.returncode == 2 and f"'{field}'" in p.stderr and "&network" in p.stderr, p.stderr

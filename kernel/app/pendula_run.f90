@@ -2,9 +2,10 @@
 !>
 !> Usage: pendula-run SCENE.nml [-o OUT.csv] [--check]
 !> (--check: read and check the scene only; exit 0 or 2.)
-!> A file whose group is &double or &foucault (not &scene) is the scene of
-!> that system (pendula_double_scene, pendula_foucault_scene): its path as
-!> t, theta1, theta2, omega1, omega2, energy, or t, x, y, z, vx, vy, vz.
+!> A file whose group is &double, &foucault or &network (not &scene) is the
+!> scene of that system (pendula_double_scene, pendula_foucault_scene,
+!> pendula_network_scene): its path as t, theta1, theta2, omega1, omega2,
+!> energy; t, x, y, z, vx, vy, vz; or t, phi_1..phi_n, v_1..v_n.
 !> The trajectory table (t, theta, v, energy; with a first column for the swept
 !> value when the scene sweeps a field) goes to OUT (standard output when -o
 !> is absent).  When the scene asks for period, omega or theta_max, the orbit
@@ -89,6 +90,9 @@ program pendula_run
     stop, quiet=.true.
   case ('foucault')
     call run_foucault_file()
+    stop, quiet=.true.
+  case ('network')
+    call run_network_file()
     stop, quiet=.true.
   end select
   call read_scene(path, sc, status, msg)
@@ -384,6 +388,30 @@ contains
     call system_table('Foucault pendulum, DOP853', 't,x,y,z,vx,vy,vz', reshape([tt, transpose(y)], [size(tt), 7]), &
                       st)
   end subroutine run_foucault_file
+
+  !> A network's scene (&network, pendula_network_scene): t, then phi_1 ... phi_n, v_1 ... v_n.
+  subroutine run_network_file()
+    use pendula_network_scene, only: network_scene_t, read_network_scene, run_network_scene
+    type(network_scene_t) :: ns
+    real(dp), allocatable :: tt(:), y(:, :)
+    character(len=:), allocatable :: heads
+    character(len=16) :: num
+    integer :: st, cancel, k
+    call read_network_scene(path, ns, st, msg)
+    if (st /= 0) call fail(trim(msg))
+    if (check_only) stop, quiet=.true.
+    allocate(tt(ns%n_samples), y(2 * ns%n, ns%n_samples), stat=st)
+    if (st /= 0) call fail_memory(ns%n_samples)
+    cancel = 0
+    call run_network_scene(ns, tt, y, st, cancel)
+    heads = 't'
+    do k = 1, 2 * ns%n
+      write(num, '(i0)') mod(k - 1, ns%n) + 1
+      heads = heads // ',' // trim(merge('phi_', 'v_  ', k <= ns%n)) // trim(num)
+    end do
+    call system_table('network of ' // trim(adjustl(num)) // ' elements, ' // trim(ns%topology) // ', method ' // &
+                      trim(ns%method), heads, reshape([tt, transpose(y)], [size(tt), 2 * ns%n + 1]), st)
+  end subroutine run_network_file
 
   !> The table of a system's run (its columns in cols(:, k)) to OUT, or the run's failure (status /= 0: exit 4).
   subroutine system_table(title, heads, cols, run_status)
