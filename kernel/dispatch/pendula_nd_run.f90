@@ -14,7 +14,7 @@ module pendula_nd_run
   use pendula_ode, only: ode_system, ode_dop853, ode_gauss, ode_gauss4, ode_gauss6
   implicit none
   private
-  public :: nd_run, nd_runs_start
+  public :: nd_run, nd_runs_start, nd_output_times
 
   !> the methods of nd_run (the codes the Python layer passes)
   integer, parameter, public :: nd_dop853 = 1, nd_gauss4 = 2, nd_gauss6 = 3
@@ -61,5 +61,18 @@ contains
     status = merge(st_cancelled, st_bad_step, ok)
     nt = thread_count(nthreads)
   end subroutine nd_runs_start
+
+  !> The n output times from 0 to t_end as numpy.linspace spaces them (the step times the index, the
+  !> end exact), so that a scene file's run and the Python class's on linspace(0, t_end, n) agree.
+  pure subroutine nd_output_times(t_end, t)
+    real(dp), intent(in) :: t_end
+    real(dp), intent(out) :: t(:)
+    integer :: j, n
+    n = size(t)
+    do j = 1, n
+      t(j) = real(j - 1, dp) * (t_end / real(max(n - 1, 1), dp))
+    end do
+    if (n > 1) t(n) = t_end
+  end subroutine nd_output_times
 
 end module pendula_nd_run
