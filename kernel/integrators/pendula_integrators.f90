@@ -44,7 +44,7 @@ module pendula_integrators
   use pendula_time_scales, only: n_scales, time_rates, fastest_rate
   implicit none
   private
-  public :: pendulum_model, make_model, add_effects, model_rates, kahan_add, step_guard, user_force_fn, free_accel, &
+  public :: pendulum_model, make_model, add_effects, model_rates, kahan_add, step_guard, cancel_polled, user_force_fn, free_accel, &
     event_spec, run_stats, integrate, accel, accel_jacobian, &
     dop853_error_norm, dop853_step_2, dop853_step_6, system_rhs, verner_one_step_dense, &
     start_step_euler, start_step_refined
@@ -367,6 +367,15 @@ contains
     end if
   end function step_guard
 
+  !> The fixed-step drivers' poll of the cancel flag: whether another thread has set it, read at the
+  !> steps istep that are multiples of poll_every (0 included).
+  pure logical function cancel_polled(istep, cancel)
+    integer(i8), intent(in) :: istep
+    integer, intent(in) :: cancel
+    cancel_polled = .false.
+    if (mod(istep, poll_every) == 0) cancel_polled = cancel /= 0
+  end function cancel_polled
+
   !> Hairer's starting step, its first part (Hairer, Norsett & Wanner, Solving ODEs I, section II.4):
   !> 0.01 sqrt(dny / dnf) from the squared scaled norms of the state (dny) and of its slope (dnf),
   !> 1e-6 when either is negligible; at most hmax.
@@ -621,10 +630,8 @@ contains
         kout = kout + 1
       end do
       if (kout > size(ts)) exit
-      if (mod(istep, poll_every) == 0) then
-        if (cancel /= 0) then
-          status = st_cancelled; return
-        end if
+      if (cancel_polled(istep, cancel)) then
+        status = st_cancelled; return
       end if
       call fixed_step(m, method, t, h, th, the, v, ve, stats)
       stats%nsteps = stats%nsteps + 1

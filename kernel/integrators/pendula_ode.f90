@@ -35,7 +35,7 @@ module pendula_ode
   use, intrinsic :: iso_c_binding, only: c_int64_t, c_int32_t, c_double
   use pendula_rng_iface, only: pendula_rng_key, pendula_rng_normals
   use pendula_kinds, only: dp, i8, nan_dp
-  use pendula_integrators, only: kahan_add, step_guard, run_stats, dop853_error_norm, max_steps, max_fixed_steps, &
+  use pendula_integrators, only: kahan_add, step_guard, cancel_polled, run_stats, dop853_error_norm, max_steps, max_fixed_steps, &
     st_ok, st_bad_step, st_bad_tol, st_bad_method, st_step_underflow, st_nonfinite, st_too_many_steps, &
     st_cancelled, start_step_euler, start_step_refined
   use pendula_rk_coefficients, only: d8_a, d8_b, d8_c, d8_d, d8_e3, d8_e5, g2_mu, g2_b, g2_c, g3_mu, g3_b, g3_c
@@ -52,8 +52,6 @@ module pendula_ode
   integer, parameter, public :: ode_st_undamped_noise = 21
   !> the methods of ode_gauss: stages 2 (order 4) or 3 (order 6)
   integer, parameter, public :: ode_gauss4 = 2, ode_gauss6 = 3
-  !> how often the cancel flag is read (steps)
-  integer(i8), parameter :: poll_every = 4096_i8
   !> DOP853's PI term, as the one-phase integrator's (pendula_integrators: dop853_beta)
   real(dp), parameter :: pi_beta = 0.06_dp
 
@@ -149,6 +147,19 @@ contains
       end if
     end do
   end function times_ok
+
+  !> The fixed-step drivers' check of their grid: st_bad_step unless 0 < h < inf, ode_st_bad_times
+  !> for a negative count of steps, else st_ok.
+  pure integer function fixed_grid_status(h, counts) result(st)
+    real(dp), intent(in) :: h
+    integer(i8), intent(in) :: counts(:)
+    st = st_ok
+    if (.not. (h > 0.0_dp .and. h <= huge(h))) then
+      st = st_bad_step
+    else if (any(counts < 0_i8)) then
+      st = ode_st_bad_times
+    end if
+  end function fixed_grid_status
 
   ! ====================================================================
   ! DOP853 with dense output
@@ -347,12 +358,8 @@ contains
     case default
       status = st_bad_method; return
     end select
-    if (.not. (h > 0.0_dp .and. h <= huge(h))) then
-      status = st_bad_step; return
-    end if
-    if (any(counts < 0_i8)) then
-      status = ode_st_bad_times; return
-    end if
+    status = fixed_grid_status(h, counts)
+    if (status /= st_ok) return
     if (sum(real(counts, dp)) > real(max_fixed_steps, dp)) then
       status = st_too_many_steps; return
     end if
@@ -361,10 +368,8 @@ contains
     istep = 0
     do kout = 1, size(counts)
       do j = 1, counts(kout)
-        if (mod(istep, poll_every) == 0) then
-          if (cancel /= 0) then
-            status = st_cancelled; return
-          end if
+        if (cancel_polled(istep, cancel)) then
+          status = st_cancelled; return
         end if
         t = t0 + real(istep, dp) * h
         el = 0.0_dp
@@ -430,12 +435,8 @@ contains
     m = sys%n / 2
     yout = nan_dp
     status = st_ok
-    if (.not. (h > 0.0_dp .and. h <= huge(h))) then
-      status = st_bad_step; return
-    end if
-    if (any(counts < 0_i8)) then
-      status = ode_st_bad_times; return
-    end if
+    status = fixed_grid_status(h, counts)
+    if (status /= st_ok) return
     if (any(s2 > 0.0_dp .and. .not. (sys%gamma > 0.0_dp))) then
       status = ode_st_undamped_noise; return
     end if
@@ -456,10 +457,8 @@ contains
     pos = nbuf + 1
     do kout = 1, size(counts)
       do j = 1, counts(kout)
-        if (mod(istep, poll_every) == 0) then
-          if (cancel /= 0) then
-            status = st_cancelled; return
-          end if
+        if (cancel_polled(istep, cancel)) then
+          status = st_cancelled; return
         end if
         if (pos > nbuf) then
           do i = 1, m
