@@ -81,27 +81,36 @@ def orbit(x, A, omega, beta, tau=0.0, winding=0):
     return x, M
 
 
-def pd_point(A0, x0, omega, beta):
-    """A on the period-doubling curve at omega: brentq on 1 + tr M + det M of the orbit at A."""
+def minus_one_point(solve, A0, x0, omega, beta, warm):
+    """The A near A0 where the matrix X of the orbit solve(x, A, omega, beta) -> (x, X) has the eigenvalue -1:
+    brentq on 1 + tr X + det X in a bracket around A0, widened until it changes sign (with `warm` the orbit
+    is found at A0 first, the start of the bracket's ends).  Returns (A, x, X)."""
     state = {"x": np.array(x0, dtype=float)}
 
     def g(A):
-        x, M = orbit(state["x"], A, omega, beta)
+        x, X = solve(state["x"], A, omega, beta)
         state["x"] = x
-        return 1.0 + np.trace(M) + np.linalg.det(M)
+        return 1.0 + np.trace(X) + np.linalg.det(X)
     width = 0.005
     for _ in range(8):                      # a bracket around the guess A0, widened until g changes sign
         state["x"] = np.array(x0, dtype=float)
-        g(A0)
+        if warm:
+            g(A0)
         lo, hi = A0 - width, A0 + width
         glo, ghi = g(lo), g(hi)
         if glo * ghi < 0:
             break
         width *= 2
     else:
-        raise RuntimeError(f"no sign change of 1 + tr M + det M near A = {A0} at omega = {omega}")
+        raise RuntimeError(f"no sign change of 1 + tr X + det X near A = {A0} at omega = {omega}")
     A = brentq(g, lo, hi, xtol=1e-14, rtol=4 * np.finfo(float).eps, maxiter=200)
-    x, M = orbit(state["x"], A, omega, beta)
+    x, X = solve(state["x"], A, omega, beta)
+    return A, x, X
+
+
+def pd_point(A0, x0, omega, beta):
+    """A on the period-doubling curve at omega: the monodromy M of the orbit has the multiplier -1."""
+    A, x, M = minus_one_point(orbit, A0, x0, omega, beta, warm=True)
     return A, x, np.linalg.eigvals(M)
 
 
@@ -132,25 +141,8 @@ def half_orbit(x, A, omega, beta):
 
 
 def pitchfork_point(A0, x0, omega, beta):
-    """A on the pitchfork curve at omega: brentq on 1 + tr DG + det DG (DG's eigenvalue -1, M = DG^2's +1)."""
-    state = {"x": np.array(x0, dtype=float)}
-
-    def g(A):
-        x, DG = half_orbit(state["x"], A, omega, beta)
-        state["x"] = x
-        return 1.0 + np.trace(DG) + np.linalg.det(DG)
-    width = 0.005
-    for _ in range(8):
-        state["x"] = np.array(x0, dtype=float)
-        lo, hi = A0 - width, A0 + width
-        glo, ghi = g(lo), g(hi)
-        if glo * ghi < 0:
-            break
-        width *= 2
-    else:
-        raise RuntimeError(f"no sign change of 1 + tr DG + det DG near A = {A0} at omega = {omega}")
-    A = brentq(g, lo, hi, xtol=1e-14, rtol=4 * np.finfo(float).eps, maxiter=200)
-    x, DG = half_orbit(state["x"], A, omega, beta)
+    """A on the pitchfork curve at omega: the half-period map's DG has the eigenvalue -1 (M = DG^2's +1)."""
+    A, x, DG = minus_one_point(half_orbit, A0, x0, omega, beta, warm=False)
     return A, x, np.linalg.eigvals(DG @ DG)
 
 
