@@ -65,6 +65,13 @@ def flow(x, A, omega, beta, tau, k=1, which="A"):
     return y[:2], np.array([[y[2], y[4]], [y[3], y[5]]]), y[6:8]
 
 
+def converged(step, x, r):
+    """Newton has converged: a step at the flow's noise (1e-13 relative), or a residual at it with a step
+    that no longer shrinks (the Jacobian's conditioning turns the noise into steps of about 1e-12)."""
+    return np.max(np.abs(step)) < 1e-13 * (1 + np.max(np.abs(x))) or (
+        np.max(np.abs(r)) < 1e-12 and np.max(np.abs(step)) < 1e-10)
+
+
 def orbit(x, A, omega, beta, tau=0.0, winding=0):
     """Newton in (theta, v) at fixed A: a fixed point of the map (advancing `winding` turns)."""
     x = np.array(x, dtype=float)
@@ -132,8 +139,7 @@ def half_orbit(x, A, omega, beta):
         r = np.array([2 * math.pi * m - y[0] - x[0], -y[1] - x[1]])
         dx = np.linalg.solve(DG - np.eye(2), -r)
         x = x + dx
-        if np.max(np.abs(dx)) < 1e-13 * (1 + np.max(np.abs(x))) or (
-                np.max(np.abs(r)) < 1e-12 and np.max(np.abs(dx)) < 1e-10):
+        if converged(dx, x, r):
             break
     else:
         raise RuntimeError("Newton did not converge")
@@ -191,10 +197,7 @@ def branch_at(s, w, p, omega, beta, fixed, which, winding=0, c=(0.0, 0.0), e=(1.
         if big > 0.05:                 # a damped step far from the root (the map is strongly nonlinear)
             dz = dz * (0.05 / big)
         z = z + dz
-        # converged: a step at the flow's noise (1e-13 relative), or a residual at it with a step that no
-        # longer shrinks (the Jacobian's conditioning turns the noise into steps of about 1e-12)
-        if np.max(np.abs(dz)) < 1e-13 * (1 + np.max(np.abs(z))) or (
-                np.max(np.abs(r)) < 1e-12 and np.max(np.abs(dz)) < 1e-10):
+        if converged(dz, z, r):
             break
     else:
         raise RuntimeError("Newton did not converge")
