@@ -44,7 +44,8 @@ module pendula_integrators
   use pendula_time_scales, only: n_scales, time_rates, fastest_rate
   implicit none
   private
-  public :: pendulum_model, make_model, add_effects, model_rates, kahan_add, step_guard, cancel_polled, user_force_fn, free_accel, &
+  public :: pendulum_model, make_model, add_effects, model_rates, kahan_add, step_guard, cancel_polled, user_force_fn, &
+    free_accel, pi_controller, pi_step_factor, &
     event_spec, run_stats, integrate, accel, accel_jacobian, &
     dop853_error_norm, dop853_step_2, dop853_step_6, system_rhs, verner_one_step_dense, &
     start_step_euler, start_step_refined
@@ -348,6 +349,18 @@ contains
       facc1 = 5.0_dp; facc2 = 0.1_dp; safe = 0.9_dp
     end select
   end subroutine pi_controller
+
+  !> The step-size factor of that control after a step with error norm err (facold: the last accepted
+  !> step's, see pi_controller): fac11 = err^expo and fac = fac11 / facold^beta / safe kept in
+  !> [facc2, facc1].  The next step is h / fac after an acceptance, h / min(facc1, fac11 / safe) after a
+  !> rejection.
+  pure subroutine pi_step_factor(err, expo, beta, facold, safe, facc1, facc2, fac11, fac)
+    real(dp), intent(in) :: err, expo, beta, facold, safe, facc1, facc2
+    real(dp), intent(out) :: fac11, fac
+    fac11 = err**expo
+    fac = fac11 / facold**beta
+    fac = max(facc2, min(facc1, fac / safe))
+  end subroutine pi_step_factor
 
   !> The adaptive drivers' guard before each step, one rule for all of them: st_step_underflow when the
   !> step no longer moves t (Hairer's test, relative to t, so that a span of 1e-15 from t = 0 is not an
@@ -777,11 +790,12 @@ contains
     type(run_stats), intent(inout) :: stats
     integer, intent(inout) :: status
     real(dp) :: t, th, v, f(0:5), qs, th1, v1, eth, ev, err, h, hnew, hs, fac, fac11, sk1, sk2, target
-    real(dp), parameter :: safe = 0.9_dp, expo = 0.2_dp, facc1 = 5.0_dp, facc2 = 0.1_dp
+    real(dp) :: safe, expo, beta, facc1, facc2
     integer :: kout, i
     logical :: reject, hit
 
     if (size(ts) == 0) return
+    call pi_controller(m_dopri5, 0.0_dp, expo, beta, facc1, facc2, safe)   ! DOPRI5's, without the PI term
     t = 0.0_dp; th = theta0; v = v0
     kout = 1
     call outputs_at(t, th, v, ts, kout, ths, vs)
@@ -816,8 +830,7 @@ contains
       if (.not. (err == err) .or. .not. (abs(th1) <= huge(1.0_dp) .and. abs(v1) <= huge(1.0_dp))) then
         status = st_nonfinite; return
       end if
-      fac11 = err**expo
-      fac = max(facc2, min(facc1, fac11 / safe))
+      call pi_step_factor(err, expo, beta, 1.0_dp, safe, facc1, facc2, fac11, fac)
       hnew = hs / fac
       if (err <= 1.0_dp) then
         stats%naccept = stats%naccept + 1
@@ -974,8 +987,7 @@ contains
       if (.not. (err == err) .or. .not. all(abs(ynew) <= huge(1.0_dp))) then
         status = st_nonfinite; return
       end if
-      fac11 = err**expo
-      fac = max(facc2, min(facc1, fac11 / facold**beta / safe))
+      call pi_step_factor(err, expo, beta, facold, safe, facc1, facc2, fac11, fac)
       hnew = hs / fac
       if (err <= 1.0_dp) then
         facold = max(err, 1.0e-4_dp)
@@ -1087,9 +1099,7 @@ contains
       if (.not. (err == err) .or. .not. all(abs(ynew) <= huge(1.0_dp))) then
         status = st_nonfinite; return
       end if
-      fac11 = err**expo1
-      fac = fac11 / facold**beta
-      fac = max(facc2, min(facc1, fac / safe))
+      call pi_step_factor(err, expo1, beta, facold, safe, facc1, facc2, fac11, fac)
       hnew = h / fac
       if (err <= 1.0_dp) then
         facold = max(err, 1.0e-4_dp)

@@ -35,7 +35,8 @@ module pendula_ode
   use, intrinsic :: iso_c_binding, only: c_int64_t, c_int32_t, c_double
   use pendula_rng_iface, only: pendula_rng_key, pendula_rng_normals
   use pendula_kinds, only: dp, i8, nan_dp
-  use pendula_integrators, only: kahan_add, step_guard, cancel_polled, run_stats, dop853_error_norm, max_steps, max_fixed_steps, &
+  use pendula_integrators, only: kahan_add, step_guard, cancel_polled, run_stats, dop853_error_norm, max_steps, &
+    max_fixed_steps, pi_controller, pi_step_factor, m_dop853, &
     st_ok, st_bad_step, st_bad_tol, st_bad_method, st_step_underflow, st_nonfinite, st_too_many_steps, &
     st_cancelled, start_step_euler, start_step_refined
   use pendula_rk_coefficients, only: d8_a, d8_b, d8_c, d8_d, d8_e3, d8_e5, g2_mu, g2_b, g2_c, g3_mu, g3_b, g3_c
@@ -52,8 +53,6 @@ module pendula_ode
   integer, parameter, public :: ode_st_undamped_noise = 21
   !> the methods of ode_gauss: stages 2 (order 4) or 3 (order 6)
   integer, parameter, public :: ode_gauss4 = 2, ode_gauss6 = 3
-  !> DOP853's PI term, as the one-phase integrator's (pendula_integrators: dop853_beta)
-  real(dp), parameter :: pi_beta = 0.06_dp
 
   !> A system y' = f(t, y) of n equations.
   type, abstract :: ode_system
@@ -179,7 +178,7 @@ contains
     integer, intent(out) :: status
     integer, intent(inout), volatile :: cancel
     real(dp), allocatable :: k(:, :), y(:), ynew(:), f0(:), fnew(:), ys(:), e3(:), e5(:), sk(:), cont(:, :)
-    real(dp) :: t, tnew, h, err, hnew, fac, fac11, facold, tend, expo1, facc1, facc2, safe, x
+    real(dp) :: t, tnew, h, err, hnew, fac, fac11, facold, tend, expo1, beta, facc1, facc2, safe, x
     integer :: n, kout, s
     logical :: last, reject
 
@@ -194,8 +193,7 @@ contains
     end if
     if (size(tout) == 0) return
     allocate(k(n, 0:15), y(n), ynew(n), f0(n), fnew(n), ys(n), e3(n), e5(n), sk(n), cont(n, 0:6))
-    expo1 = 1.0_dp / 8.0_dp - 0.2_dp * pi_beta
-    facc1 = 1.0_dp / 0.333_dp; facc2 = 1.0_dp / 6.0_dp; safe = 0.9_dp
+    call pi_controller(m_dop853, -1.0_dp, expo1, beta, facc1, facc2, safe)   ! the one-phase DOP853's
     facold = 1.0e-4_dp
     tend = tout(size(tout))
     t = t0
@@ -225,9 +223,7 @@ contains
       if (.not. (err == err) .or. .not. all(abs(ynew) <= huge(1.0_dp))) then
         status = st_nonfinite; exit
       end if
-      fac11 = err**expo1
-      fac = fac11 / facold**pi_beta
-      fac = max(facc2, min(facc1, fac / safe))
+      call pi_step_factor(err, expo1, beta, facold, safe, facc1, facc2, fac11, fac)
       hnew = h / fac
       if (err <= 1.0_dp) then
         facold = max(err, 1.0e-4_dp)
