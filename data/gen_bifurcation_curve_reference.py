@@ -65,6 +65,13 @@ def flow(x, A, omega, beta, tau, k=1, which="A"):
     return y[:2], np.array([[y[2], y[4]], [y[3], y[5]]]), y[6:8]
 
 
+def converged(step, x, r):
+    """Newton has converged: a step at the flow's noise (1e-13 relative), or a residual at it with a step
+    that no longer shrinks (the Jacobian's conditioning turns the noise into steps of about 1e-12)."""
+    return np.max(np.abs(step)) < 1e-13 * (1 + np.max(np.abs(x))) or (
+        np.max(np.abs(r)) < 1e-12 and np.max(np.abs(step)) < 1e-10)
+
+
 def orbit(x, A, omega, beta, tau=0.0, winding=0):
     """Newton in (theta, v) at fixed A: a fixed point of the map (advancing `winding` turns)."""
     x = np.array(x, dtype=float)
@@ -81,27 +88,36 @@ def orbit(x, A, omega, beta, tau=0.0, winding=0):
     return x, M
 
 
-def pd_point(A0, x0, omega, beta):
-    """A on the period-doubling curve at omega: brentq on 1 + tr M + det M of the orbit at A."""
+def minus_one_point(solve, A0, x0, omega, beta, warm):
+    """The A near A0 where the matrix X of the orbit solve(x, A, omega, beta) -> (x, X) has the eigenvalue -1:
+    brentq on 1 + tr X + det X in a bracket around A0, widened until it changes sign (with `warm` the orbit
+    is found at A0 first, the start of the bracket's ends).  Returns (A, x, X)."""
     state = {"x": np.array(x0, dtype=float)}
 
     def g(A):
-        x, M = orbit(state["x"], A, omega, beta)
+        x, X = solve(state["x"], A, omega, beta)
         state["x"] = x
-        return 1.0 + np.trace(M) + np.linalg.det(M)
+        return 1.0 + np.trace(X) + np.linalg.det(X)
     width = 0.005
     for _ in range(8):                      # a bracket around the guess A0, widened until g changes sign
         state["x"] = np.array(x0, dtype=float)
-        g(A0)
+        if warm:
+            g(A0)
         lo, hi = A0 - width, A0 + width
         glo, ghi = g(lo), g(hi)
         if glo * ghi < 0:
             break
         width *= 2
     else:
-        raise RuntimeError(f"no sign change of 1 + tr M + det M near A = {A0} at omega = {omega}")
+        raise RuntimeError(f"no sign change of 1 + tr X + det X near A = {A0} at omega = {omega}")
     A = brentq(g, lo, hi, xtol=1e-14, rtol=4 * np.finfo(float).eps, maxiter=200)
-    x, M = orbit(state["x"], A, omega, beta)
+    x, X = solve(state["x"], A, omega, beta)
+    return A, x, X
+
+
+def pd_point(A0, x0, omega, beta):
+    """A on the period-doubling curve at omega: the monodromy M of the orbit has the multiplier -1."""
+    A, x, M = minus_one_point(orbit, A0, x0, omega, beta, warm=True)
     return A, x, np.linalg.eigvals(M)
 
 
@@ -123,8 +139,7 @@ def half_orbit(x, A, omega, beta):
         r = np.array([2 * math.pi * m - y[0] - x[0], -y[1] - x[1]])
         dx = np.linalg.solve(DG - np.eye(2), -r)
         x = x + dx
-        if np.max(np.abs(dx)) < 1e-13 * (1 + np.max(np.abs(x))) or (
-                np.max(np.abs(r)) < 1e-12 and np.max(np.abs(dx)) < 1e-10):
+        if converged(dx, x, r):
             break
     else:
         raise RuntimeError("Newton did not converge")
@@ -132,25 +147,8 @@ def half_orbit(x, A, omega, beta):
 
 
 def pitchfork_point(A0, x0, omega, beta):
-    """A on the pitchfork curve at omega: brentq on 1 + tr DG + det DG (DG's eigenvalue -1, M = DG^2's +1)."""
-    state = {"x": np.array(x0, dtype=float)}
-
-    def g(A):
-        x, DG = half_orbit(state["x"], A, omega, beta)
-        state["x"] = x
-        return 1.0 + np.trace(DG) + np.linalg.det(DG)
-    width = 0.005
-    for _ in range(8):
-        state["x"] = np.array(x0, dtype=float)
-        lo, hi = A0 - width, A0 + width
-        glo, ghi = g(lo), g(hi)
-        if glo * ghi < 0:
-            break
-        width *= 2
-    else:
-        raise RuntimeError(f"no sign change of 1 + tr DG + det DG near A = {A0} at omega = {omega}")
-    A = brentq(g, lo, hi, xtol=1e-14, rtol=4 * np.finfo(float).eps, maxiter=200)
-    x, DG = half_orbit(state["x"], A, omega, beta)
+    """A on the pitchfork curve at omega: the half-period map's DG has the eigenvalue -1 (M = DG^2's +1)."""
+    A, x, DG = minus_one_point(half_orbit, A0, x0, omega, beta, warm=False)
     return A, x, np.linalg.eigvals(DG @ DG)
 
 
@@ -199,10 +197,7 @@ def branch_at(s, w, p, omega, beta, fixed, which, winding=0, c=(0.0, 0.0), e=(1.
         if big > 0.05:                 # a damped step far from the root (the map is strongly nonlinear)
             dz = dz * (0.05 / big)
         z = z + dz
-        # converged: a step at the flow's noise (1e-13 relative), or a residual at it with a step that no
-        # longer shrinks (the Jacobian's conditioning turns the noise into steps of about 1e-12)
-        if np.max(np.abs(dz)) < 1e-13 * (1 + np.max(np.abs(z))) or (
-                np.max(np.abs(r)) < 1e-12 and np.max(np.abs(dz)) < 1e-10):
+        if converged(dz, z, r):
             break
     else:
         raise RuntimeError("Newton did not converge")

@@ -5,7 +5,6 @@ import math
 import signal
 import subprocess
 import sys
-import time
 import warnings
 
 import mpmath as mp
@@ -15,6 +14,7 @@ import pytest
 import pendula
 from conftest import run_threads
 from pendula import Scene
+from test_reliability_sweeps import _stops_on_sigint
 
 EPS = np.finfo(float).eps
 
@@ -51,20 +51,8 @@ def test_numerical_period_refuses_an_absurd_number_of_periods():
 
 
 def test_long_call_stops_on_sigint():
-    code = ("import pendula\n"
-            "print('start', flush=True)\n"
-            "pendula.simulate(pendula.Scene(v0=1.0, damping=0.5, drive_amplitude=1.2,\n"
-            "                               drive_frequency=2 / 3), [3e6])\n")
-    p = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    assert p.stdout.readline().strip() == "start"
-    time.sleep(0.5)
-    p.send_signal(signal.SIGINT)
-    try:
-        _, err = p.communicate(timeout=30)   # a hang fails here
-    except subprocess.TimeoutExpired:
-        p.kill()
-        pytest.fail("the call did not stop on SIGINT")
-    assert p.returncode != 0 and "KeyboardInterrupt" in err
+    _stops_on_sigint("pendula.simulate(pendula.Scene(v0=1.0, damping=0.5, drive_amplitude=1.2,\n"
+                     "                               drive_frequency=2 / 3), [3e6])", wait=0.5)
 
 
 # ------------------------------------------------------------ extreme parameters: right values, or NaN + warning

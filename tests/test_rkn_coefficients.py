@@ -11,24 +11,11 @@ condition up to order 6 holds, the local error of the 6th-order weights falls as
 drops the observed order to below 6.
 """
 
-import pathlib
-import re
-
 import mpmath as mp
 import numpy as np
 import pytest
 
-TABLE = pathlib.Path(__file__).resolve().parents[1] / "kernel" / "integrators" / "pendula_rk_tables.inc"
-
-
-def stored(name):
-    text = TABLE.read_text()
-    m = re.search(rf"real\(dp\), parameter :: {name}\((0:\d+)(?:, (0:\d+))?\) = (?:reshape\()?\[(.*?)\]", text, re.S)
-    assert m, name
-    vals = [float(v.replace("_dp", "")) for v in re.findall(r"-?[0-9.]+(?:[eE][-+]?\d+)?_dp", m.group(3))]
-    n = int(m.group(1).split(":")[1]) + 1
-    a = np.array(vals)
-    return a.reshape((n, n), order="F") if m.group(2) else a
+from test_verner_coefficients import stored     # a table of the kernel's pendula_rk_tables.inc as doubles
 
 
 def f(t, q):

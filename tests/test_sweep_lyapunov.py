@@ -7,14 +7,13 @@ chaotic amplitudes (data/lyapunov/gen_reference.py)."""
 import json
 import math
 import pathlib
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 
 import pendula
 from pendula import Scene
+from test_sweep import _pendula_run     # the batch program pendula-run beside this Python
 
 xr = pytest.importorskip("xarray")
 solve_ivp = pytest.importorskip("scipy.integrate").solve_ivp
@@ -195,11 +194,6 @@ def test_lyapunov_drive_frequency_axis_rounds_per_point():
     ds = lyap(s, {"drive_frequency": [0.5, 2.0 / 3.0]}, **kw)
     one = lyap(s.replace(drive_frequency=0.5), {"drive_amplitude": [1.2]}, **kw)
     assert ds.lyapunov.values[0] == one.lyapunov.values[0]
-
-
-def _pendula_run(*args):
-    exe = pathlib.Path(sys.executable).parent / "pendula-run"
-    return subprocess.run([str(exe), *map(str, args)], capture_output=True, text=True)
 
 
 def test_pendula_run_lyapunov_scene_matches_python(tmp_path):

@@ -44,7 +44,8 @@ module pendula_integrators
   use pendula_time_scales, only: n_scales, time_rates, fastest_rate
   implicit none
   private
-  public :: pendulum_model, make_model, add_effects, model_rates, kahan_add, step_guard, user_force_fn, free_accel, &
+  public :: pendulum_model, make_model, add_effects, model_rates, kahan_add, step_guard, cancel_polled, user_force_fn, &
+    free_accel, pi_controller, pi_step_factor, &
     event_spec, run_stats, integrate, accel, accel_jacobian, &
     dop853_error_norm, dop853_step_2, dop853_step_6, system_rhs, verner_one_step_dense, &
     start_step_euler, start_step_refined
@@ -349,6 +350,18 @@ contains
     end select
   end subroutine pi_controller
 
+  !> The step-size factor of that control after a step with error norm err (facold: the last accepted
+  !> step's, see pi_controller): fac11 = err^expo and fac = fac11 / facold^beta / safe kept in
+  !> [facc2, facc1].  The next step is h / fac after an acceptance, h / min(facc1, fac11 / safe) after a
+  !> rejection.
+  pure subroutine pi_step_factor(err, expo, beta, facold, safe, facc1, facc2, fac11, fac)
+    real(dp), intent(in) :: err, expo, beta, facold, safe, facc1, facc2
+    real(dp), intent(out) :: fac11, fac
+    fac11 = err**expo
+    fac = fac11 / facold**beta
+    fac = max(facc2, min(facc1, fac / safe))
+  end subroutine pi_step_factor
+
   !> The adaptive drivers' guard before each step, one rule for all of them: st_step_underflow when the
   !> step no longer moves t (Hairer's test, relative to t, so that a span of 1e-15 from t = 0 is not an
   !> underflow), st_too_many_steps at the work limit, st_cancelled when another thread set the cancel flag
@@ -366,6 +379,15 @@ contains
       if (cancel /= 0) st = st_cancelled
     end if
   end function step_guard
+
+  !> The fixed-step drivers' poll of the cancel flag: whether another thread has set it, read at the
+  !> steps istep that are multiples of poll_every (0 included).
+  pure logical function cancel_polled(istep, cancel)
+    integer(i8), intent(in) :: istep
+    integer, intent(in) :: cancel
+    cancel_polled = .false.
+    if (mod(istep, poll_every) == 0) cancel_polled = cancel /= 0
+  end function cancel_polled
 
   !> Hairer's starting step, its first part (Hairer, Norsett & Wanner, Solving ODEs I, section II.4):
   !> 0.01 sqrt(dny / dnf) from the squared scaled norms of the state (dny) and of its slope (dnf),
@@ -621,10 +643,8 @@ contains
         kout = kout + 1
       end do
       if (kout > size(ts)) exit
-      if (mod(istep, poll_every) == 0) then
-        if (cancel /= 0) then
-          status = st_cancelled; return
-        end if
+      if (cancel_polled(istep, cancel)) then
+        status = st_cancelled; return
       end if
       call fixed_step(m, method, t, h, th, the, v, ve, stats)
       stats%nsteps = stats%nsteps + 1
@@ -770,11 +790,12 @@ contains
     type(run_stats), intent(inout) :: stats
     integer, intent(inout) :: status
     real(dp) :: t, th, v, f(0:5), qs, th1, v1, eth, ev, err, h, hnew, hs, fac, fac11, sk1, sk2, target
-    real(dp), parameter :: safe = 0.9_dp, expo = 0.2_dp, facc1 = 5.0_dp, facc2 = 0.1_dp
+    real(dp) :: safe, expo, beta, facc1, facc2
     integer :: kout, i
     logical :: reject, hit
 
     if (size(ts) == 0) return
+    call pi_controller(m_dopri5, 0.0_dp, expo, beta, facc1, facc2, safe)   ! DOPRI5's, without the PI term
     t = 0.0_dp; th = theta0; v = v0
     kout = 1
     call outputs_at(t, th, v, ts, kout, ths, vs)
@@ -809,8 +830,7 @@ contains
       if (.not. (err == err) .or. .not. (abs(th1) <= huge(1.0_dp) .and. abs(v1) <= huge(1.0_dp))) then
         status = st_nonfinite; return
       end if
-      fac11 = err**expo
-      fac = max(facc2, min(facc1, fac11 / safe))
+      call pi_step_factor(err, expo, beta, 1.0_dp, safe, facc1, facc2, fac11, fac)
       hnew = hs / fac
       if (err <= 1.0_dp) then
         stats%naccept = stats%naccept + 1
@@ -967,8 +987,7 @@ contains
       if (.not. (err == err) .or. .not. all(abs(ynew) <= huge(1.0_dp))) then
         status = st_nonfinite; return
       end if
-      fac11 = err**expo
-      fac = max(facc2, min(facc1, fac11 / facold**beta / safe))
+      call pi_step_factor(err, expo, beta, facold, safe, facc1, facc2, fac11, fac)
       hnew = hs / fac
       if (err <= 1.0_dp) then
         facold = max(err, 1.0e-4_dp)
@@ -1080,9 +1099,7 @@ contains
       if (.not. (err == err) .or. .not. all(abs(ynew) <= huge(1.0_dp))) then
         status = st_nonfinite; return
       end if
-      fac11 = err**expo1
-      fac = fac11 / facold**beta
-      fac = max(facc2, min(facc1, fac / safe))
+      call pi_step_factor(err, expo1, beta, facold, safe, facc1, facc2, fac11, fac)
       hnew = h / fac
       if (err <= 1.0_dp) then
         facold = max(err, 1.0e-4_dp)

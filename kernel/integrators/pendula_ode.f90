@@ -35,7 +35,8 @@ module pendula_ode
   use, intrinsic :: iso_c_binding, only: c_int64_t, c_int32_t, c_double
   use pendula_rng_iface, only: pendula_rng_key, pendula_rng_normals
   use pendula_kinds, only: dp, i8, nan_dp
-  use pendula_integrators, only: kahan_add, step_guard, run_stats, dop853_error_norm, max_steps, max_fixed_steps, &
+  use pendula_integrators, only: kahan_add, step_guard, cancel_polled, run_stats, dop853_error_norm, max_steps, &
+    max_fixed_steps, pi_controller, pi_step_factor, m_dop853, &
     st_ok, st_bad_step, st_bad_tol, st_bad_method, st_step_underflow, st_nonfinite, st_too_many_steps, &
     st_cancelled, start_step_euler, start_step_refined
   use pendula_rk_coefficients, only: d8_a, d8_b, d8_c, d8_d, d8_e3, d8_e5, g2_mu, g2_b, g2_c, g3_mu, g3_b, g3_c
@@ -52,10 +53,6 @@ module pendula_ode
   integer, parameter, public :: ode_st_undamped_noise = 21
   !> the methods of ode_gauss: stages 2 (order 4) or 3 (order 6)
   integer, parameter, public :: ode_gauss4 = 2, ode_gauss6 = 3
-  !> how often the cancel flag is read (steps)
-  integer(i8), parameter :: poll_every = 4096_i8
-  !> DOP853's PI term, as the one-phase integrator's (pendula_integrators: dop853_beta)
-  real(dp), parameter :: pi_beta = 0.06_dp
 
   !> A system y' = f(t, y) of n equations.
   type, abstract :: ode_system
@@ -150,6 +147,19 @@ contains
     end do
   end function times_ok
 
+  !> The fixed-step drivers' check of their grid: st_bad_step unless 0 < h < inf, ode_st_bad_times
+  !> for a negative count of steps, else st_ok.
+  pure integer function fixed_grid_status(h, counts) result(st)
+    real(dp), intent(in) :: h
+    integer(i8), intent(in) :: counts(:)
+    st = st_ok
+    if (.not. (h > 0.0_dp .and. h <= huge(h))) then
+      st = st_bad_step
+    else if (any(counts < 0_i8)) then
+      st = ode_st_bad_times
+    end if
+  end function fixed_grid_status
+
   ! ====================================================================
   ! DOP853 with dense output
   ! ====================================================================
@@ -168,7 +178,7 @@ contains
     integer, intent(out) :: status
     integer, intent(inout), volatile :: cancel
     real(dp), allocatable :: k(:, :), y(:), ynew(:), f0(:), fnew(:), ys(:), e3(:), e5(:), sk(:), cont(:, :)
-    real(dp) :: t, tnew, h, err, hnew, fac, fac11, facold, tend, expo1, facc1, facc2, safe, x
+    real(dp) :: t, tnew, h, err, hnew, fac, fac11, facold, tend, expo1, beta, facc1, facc2, safe, x
     integer :: n, kout, s
     logical :: last, reject
 
@@ -183,8 +193,7 @@ contains
     end if
     if (size(tout) == 0) return
     allocate(k(n, 0:15), y(n), ynew(n), f0(n), fnew(n), ys(n), e3(n), e5(n), sk(n), cont(n, 0:6))
-    expo1 = 1.0_dp / 8.0_dp - 0.2_dp * pi_beta
-    facc1 = 1.0_dp / 0.333_dp; facc2 = 1.0_dp / 6.0_dp; safe = 0.9_dp
+    call pi_controller(m_dop853, -1.0_dp, expo1, beta, facc1, facc2, safe)   ! the one-phase DOP853's
     facold = 1.0e-4_dp
     tend = tout(size(tout))
     t = t0
@@ -214,9 +223,7 @@ contains
       if (.not. (err == err) .or. .not. all(abs(ynew) <= huge(1.0_dp))) then
         status = st_nonfinite; exit
       end if
-      fac11 = err**expo1
-      fac = fac11 / facold**pi_beta
-      fac = max(facc2, min(facc1, fac / safe))
+      call pi_step_factor(err, expo1, beta, facold, safe, facc1, facc2, fac11, fac)
       hnew = h / fac
       if (err <= 1.0_dp) then
         facold = max(err, 1.0e-4_dp)
@@ -347,12 +354,8 @@ contains
     case default
       status = st_bad_method; return
     end select
-    if (.not. (h > 0.0_dp .and. h <= huge(h))) then
-      status = st_bad_step; return
-    end if
-    if (any(counts < 0_i8)) then
-      status = ode_st_bad_times; return
-    end if
+    status = fixed_grid_status(h, counts)
+    if (status /= st_ok) return
     if (sum(real(counts, dp)) > real(max_fixed_steps, dp)) then
       status = st_too_many_steps; return
     end if
@@ -361,10 +364,8 @@ contains
     istep = 0
     do kout = 1, size(counts)
       do j = 1, counts(kout)
-        if (mod(istep, poll_every) == 0) then
-          if (cancel /= 0) then
-            status = st_cancelled; return
-          end if
+        if (cancel_polled(istep, cancel)) then
+          status = st_cancelled; return
         end if
         t = t0 + real(istep, dp) * h
         el = 0.0_dp
@@ -430,12 +431,8 @@ contains
     m = sys%n / 2
     yout = nan_dp
     status = st_ok
-    if (.not. (h > 0.0_dp .and. h <= huge(h))) then
-      status = st_bad_step; return
-    end if
-    if (any(counts < 0_i8)) then
-      status = ode_st_bad_times; return
-    end if
+    status = fixed_grid_status(h, counts)
+    if (status /= st_ok) return
     if (any(s2 > 0.0_dp .and. .not. (sys%gamma > 0.0_dp))) then
       status = ode_st_undamped_noise; return
     end if
@@ -456,10 +453,8 @@ contains
     pos = nbuf + 1
     do kout = 1, size(counts)
       do j = 1, counts(kout)
-        if (mod(istep, poll_every) == 0) then
-          if (cancel /= 0) then
-            status = st_cancelled; return
-          end if
+        if (cancel_polled(istep, cancel)) then
+          status = st_cancelled; return
         end if
         if (pos > nbuf) then
           do i = 1, m

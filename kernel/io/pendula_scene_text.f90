@@ -239,18 +239,15 @@ contains
       select case (s(i:i))
       case (' ', ',', achar(9), achar(10), achar(13))
         i = i + 1
-      case ('''', '"')
-        e = quoted_end(s, i)
-        if (e > n) then
-          at = i; return
+      case ('''', '"', '.')
+        ! a quoted string, or after a dot a logical or a number; e = 0: none that ends
+        if (s(i:i) == '.') then
+          e = logical_end(i)
+          if (e == 0) e = number_end(i)
+        else
+          e = quoted_end(s, i)
+          if (e > n) e = 0
         end if
-        i = e + 1
-        if (.not. separated(i)) then
-          at = i; return
-        end if
-      case ('.')
-        e = logical_end(i)
-        if (e == 0) e = number_end(i)
         if (e == 0) then
           at = i; return
         end if

@@ -29,7 +29,7 @@ from numpy.typing import ArrayLike
 
 from . import _checks
 from .dynamics.tongues import ShapiroTongue, shapiro_tongue
-from .junction_lab import rf_pair
+from .junction_lab import rf_pair, with_voltage
 from .junction_switching import SwitchingCurrents
 from .scene import Scene
 
@@ -345,13 +345,8 @@ class Junction:
         r = r.assign_coords(current=("current", currents, {"long_name": "bias current", "units": "A"}),
                             torque=("current", currents / self.critical_current,
                                     {"long_name": "bias current / critical current", "units": "1"}))
-        r["voltage"] = r.mean_velocity * volt
-        r["voltage"].attrs = {"long_name": "dc voltage (hbar / 2e) omega_p <theta'>", "units": "V"}
-        r["voltage_err"] = r.mean_velocity_err * volt
-        r["voltage_err"].attrs = {"long_name": "error bar of the dc voltage", "units": "V"}
-        r["mean_velocity"].attrs["units"] = "1"
+        with_voltage(r, volt)
         r["mean_velocity"].attrs["long_name"] = "mean phase velocity <theta'> / omega_p (reduced voltage)"
-        r["mean_velocity_err"].attrs["units"] = "1"
         r.attrs.update({"critical_current": self.critical_current, "resistance": self.resistance,
                         "capacitance": self.capacitance, "temperature": self.temperature,
                         "rf_current": float(rf_current), "rf_frequency": float(rf_frequency),

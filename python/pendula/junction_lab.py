@@ -218,12 +218,7 @@ def junction_sweep(j, over, bias, rf_current, rf_frequency, impedance, transient
         if name != "temperature":
             ds = ds.assign_coords({field: (name, fields[field], {"long_name": f"{field} of the pendulum "
                                                                                "(reduced)", "units": "1"})})
-    ds["voltage"] = ds.mean_velocity * volt
-    ds["voltage"].attrs = {"long_name": "dc voltage (h / 2e) omega_p <theta'> / 2 pi", "units": "V"}
-    ds["voltage_err"] = ds.mean_velocity_err * volt
-    ds["voltage_err"].attrs = {"long_name": "error bar of the dc voltage", "units": "V"}
-    ds["mean_velocity"].attrs["units"] = "1"
-    ds["mean_velocity_err"].attrs["units"] = "1"
+    with_voltage(ds, volt)
     ds.attrs.update({"critical_current": ic, "resistance": j.resistance, "capacitance": j.capacitance,
                      "temperature": j.temperature, "bias": float(bias), "rf_current": float(rf_current),
                      "rf_frequency": f, "impedance": float("nan") if impedance is None else float(impedance),
@@ -231,6 +226,17 @@ def junction_sweep(j, over, bias, rf_current, rf_frequency, impedance, transient
                      "start": "every grid point from rest (theta = 0, v = 0): not a ramp (Junction.iv_curve)"})
     return ds
 
+
+
+def with_voltage(ds, volt: float) -> None:
+    """Add the dc voltage and its error bar, in V, to a dataset of the measure mean_velocity (reduced,
+    units 1): V = (hbar / 2e) omega_p <theta'>, `volt` = (hbar / 2e) omega_p."""
+    ds["voltage"] = ds.mean_velocity * volt
+    ds["voltage"].attrs = {"long_name": "dc voltage (hbar / 2e) omega_p <theta'>", "units": "V"}
+    ds["voltage_err"] = ds.mean_velocity_err * volt
+    ds["voltage_err"].attrs = {"long_name": "error bar of the dc voltage", "units": "V"}
+    ds["mean_velocity"].attrs["units"] = "1"
+    ds["mean_velocity_err"].attrs["units"] = "1"
 
 def escape_rate_reduced(i, beta, temp, regime):
     """The thermal escape rate of the tilted washboard (eps = 1, reduced
