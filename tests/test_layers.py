@@ -93,7 +93,7 @@ def test_no_import_circle():
                                  # the junction's layer (with junction.py): escape, the RSJ junction, rf
                                  "pendula.escape", "pendula.overdamped", "pendula.rf",
                                  # the SQUIDs on the network and the junction
-                                 "pendula.squid", "pendula.squid_voltage", "pendula.rf_squid",
+                                 "pendula.squid", "pendula.squid_voltage", "pendula.squid_sweep", "pendula.rf_squid", "pendula.long_junction",
                                  "pendula.junction_lab", "pendula.junction_switching"])
 def test_lower_layers_do_not_import_the_user_facing_ones(low):
     top = {"pendula", "pendula.motion", "pendula.run", "pendula.cli", "pendula.plot", "pendula.studies", "pendula.studies.accuracy", "pendula.studies.bench", "pendula.studies.workprecision"}

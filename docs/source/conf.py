@@ -197,7 +197,7 @@ API_GROUPS = [
     ("The Josephson junction", ["Junction", "SwitchingCurrents"]),
     ("The quantum pendulum", ["Transmon", "mathieu_a", "mathieu_b", "mathieu_exponent", "mathieu_ce", "mathieu_se",
                               "mathieu_me"]),
-    ("Circuits and chains", ["Network", "NetworkEquilibrium", "NormalModes", "DCSquid", "RFSquid"]),
+    ("Circuits and chains", ["Network", "NetworkEquilibrium", "NormalModes", "DCSquid", "RFSquid", "fluxon_velocity"]),
     ("The spherical and the double pendulum", ["spherical_orbit", "SphericalOrbit", "SphericalPath",
                                                "double_pendulum_modes", "DoublePendulumModes", "flip_forbidden",
                                                "DoublePendulum", "FlipMap", "LyapunovSpectrum",

@@ -69,6 +69,7 @@ from .mathieu_floquet import mathieu_me  # noqa: E402
 # networks of pendula: coupled phases, chains, arrays of junctions
 from .systems.network import Network, NetworkEquilibrium, NormalModes  # noqa: E402
 from .squid import DCSquid  # noqa: E402
+from .long_junction import fluxon_velocity  # noqa: E402
 from .rf_squid import RFSquid  # noqa: E402
 
 # the junction in the laboratory: escape and switching at any ramp rate, rf as the source states it
@@ -101,7 +102,7 @@ __all__ += ["Pendulum", "Swing"]
 # the quantum pendulum
 __all__ += ["mathieu_a", "mathieu_b", "mathieu_exponent", "mathieu_ce", "mathieu_se", "mathieu_me", "Transmon"]
 # networks of pendula
-__all__ += ["Network", "NetworkEquilibrium", "NormalModes", "DCSquid", "RFSquid"]
+__all__ += ["Network", "NetworkEquilibrium", "NormalModes", "DCSquid", "RFSquid", "fluxon_velocity"]
 # the spherical pendulum exactly; the double pendulum's exact parts (normal modes, the forbidden flip region)
 from .systems.spherical import SphericalOrbit, SphericalPath, spherical_orbit  # noqa: E402
 from .systems.double import DoublePendulumModes, double_pendulum_modes, flip_forbidden  # noqa: E402

@@ -22,6 +22,7 @@ strengths 1 ∓ α_I and the bias split (1 ± η)/2 between the arms
 from __future__ import annotations
 
 import math
+import os
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -521,14 +522,19 @@ class DCSquid:
             attrs=self._attrs(noise, rtol, tr, tm) | {"flux": flux, "rf_current": a, "rf_frequency": f})
         return ds
 
-    def v_phi_curve(self, current: float, fluxes: ArrayLike, *, transient: float | None = None,
+    def v_phi_curve(self, current: float, fluxes: ArrayLike,
+                    direction: Literal["up", "down", "both"] = "up", *, transient: float | None = None,
                     t_max: float | None = None, rtol: float = 1e-10, dt: float | None = None, paths: int = 4,
                     seed: int = 0, threads: int = 0) -> xarray.Dataset:
         """The SQUID's V-Φ curve: the dc voltage at a fixed bias current over the applied flux.
 
         The flux is swept through ``fluxes`` in the order given (each flux
         starts from the state the previous one ended in), as in the
-        laboratory; the voltage is measured as in :meth:`iv_curve`.
+        laboratory; the voltage is measured as in :meth:`iv_curve`.  A
+        hysteretic SQUID (β_c > 1, or β_L large enough for several flux
+        states) shows two branches: ``direction='down'`` sweeps the fluxes
+        in reverse order, ``'both'`` forwards and then back from where the
+        forward sweep ended.
 
         Parameters
         ----------
@@ -536,6 +542,9 @@ class DCSquid:
             The bias current (A).
         fluxes : array_like
             Φ/Φ₀, swept in this order.
+        direction : {'up', 'down', 'both'}, optional
+            The order given, the reverse, or both one after the other
+            (default 'up').
         transient, t_max, rtol, dt, paths, seed, threads
             As in :meth:`iv_curve`.
 
@@ -543,7 +552,8 @@ class DCSquid:
         -------
         xarray.Dataset
             Over ``flux`` (units ``Phi0``): ``voltage``, ``voltage_err`` (V)
-            and ``mean_velocity``.
+            and ``mean_velocity``; ``direction`` a coordinate, and with
+            ``'both'`` a dimension (``'up'`` then ``'down'``).
 
         Raises
         ------
@@ -560,28 +570,105 @@ class DCSquid:
         >>> r = sq.v_phi_curve(20e-6, [0.0, 0.5])
         >>> bool(r.voltage[0] < r.voltage[1]), r.flux.attrs["units"]
         (True, 'Phi0')
+        >>> h = sq.v_phi_curve(20e-6, [0.0, 0.5], direction="both")
+        >>> h.voltage.dims, h.direction.values.tolist()
+        (('direction', 'flux'), ['up', 'down'])
         """
         xr = require("xarray", "xarray", "DCSquid.v_phi_curve")
         cur = _checks.real(current, "current")
         fl = _checks.as_float(fluxes, "fluxes").ravel()
         if not np.all(np.isfinite(fl)):
             raise ValueError("fluxes must be finite")
+        direction = _checks.choice(direction, "direction", ("up", "down", "both"))
         rtol = _checks.real(rtol, "rtol", 0.0, lo_open=True)
         tr, tm = self._times(transient, t_max)
         noise = self._noise(dt, paths, seed, threads)
         i0 = self.junction.critical_current
-        vel, err = np.full(fl.size, np.nan), np.full(fl.size, np.nan)
-        phi = np.array([math.pi * fl[0], -math.pi * fl[0]]) if fl.size else np.zeros(2)
+        dirs = ["up", "down"] if direction == "both" else [direction]
+        vel, err = np.full((len(dirs), fl.size), np.nan), np.full((len(dirs), fl.size), np.nan)
+        start = fl[0] if direction != "down" else fl[-1]
+        phi = np.array([math.pi * start, -math.pi * start]) if fl.size else np.zeros(2)
         v = np.zeros(2)
-        for j, f in enumerate(fl):
-            vel[j], err[j], _, phi, v = self._velocity(cur / i0, float(f), phi, v, tr, tm, rtol, noise)
+        for d, name in enumerate(dirs):
+            for j in (range(fl.size) if name == "up" else range(fl.size - 1, -1, -1)):
+                vel[d, j], err[d, j], _, phi, v = self._velocity(cur / i0, float(fl[j]), phi, v, tr, tm, rtol,
+                                                                 noise)
         volt = i0 * self.junction.resistance
-        return xr.Dataset(
-            {"voltage": ("flux", vel * volt, {"long_name": "dc voltage", "units": "V"}),
-             "voltage_err": ("flux", err * volt, {"long_name": "error of the dc voltage", "units": "V"}),
-             "mean_velocity": ("flux", vel, {"long_name": "mean phase velocity / omega_c", "units": "1"})},
-            coords={"flux": ("flux", fl, {"long_name": "applied flux / flux quantum", "units": "Phi0"})},
+        ds = xr.Dataset(
+            {"voltage": (("direction", "flux"), vel * volt, {"long_name": "dc voltage", "units": "V"}),
+             "voltage_err": (("direction", "flux"), err * volt,
+                             {"long_name": "error of the dc voltage", "units": "V"}),
+             "mean_velocity": (("direction", "flux"), vel,
+                               {"long_name": "mean phase velocity / omega_c", "units": "1"})},
+            coords={"direction": dirs,
+                    "flux": ("flux", fl, {"long_name": "applied flux / flux quantum", "units": "Phi0"})},
             attrs=self._attrs(noise, rtol, tr, tm) | {"current": cur})
+        return ds if direction == "both" else ds.isel(direction=0)
+
+    def sweep(self, fluxes: ArrayLike, currents: ArrayLike, *, transient: float | None = None,
+              t_max: float | None = None, rtol: float = 1e-10, dt: float | None = None, paths: int = 4,
+              seed: int = 0, threads: int = 0, progress: bool = False,
+              out: str | os.PathLike[str] | None = None) -> xarray.Dataset:
+        """The dc voltage over a grid of applied flux and bias current, on threads.
+
+        Every grid point starts from rest: a map of the voltage, not a ramp
+        (the ramps, with their hysteresis, are :meth:`iv_curve` and
+        :meth:`v_phi_curve`).  The voltage at each point is measured as in
+        :meth:`iv_curve`.  The points of one flux run on ``threads``
+        threads; with noise, grid point p (row-major) draws the noise
+        streams p·paths to p·paths + paths − 1 of ``seed``: the same numbers
+        on any thread count, and after a resume.
+
+        Parameters
+        ----------
+        fluxes : array_like
+            Φ/Φ₀, the first axis.
+        currents : array_like
+            Bias currents (A), the second axis.
+        transient, t_max, rtol, dt, paths, seed
+            As in :meth:`iv_curve`.
+        threads : int, optional
+            Threads over the points of a flux (0: every core).
+        progress : bool, optional
+            A progress bar over the fluxes (default False).
+        out : str or os.PathLike, optional
+            A folder for the resumable Zarr store of :func:`pendula.sweep`
+            (one flux a chunk): a sweep stopped half way resumes where it
+            stopped.
+
+        Returns
+        -------
+        xarray.Dataset
+            Over (``flux``, ``current``): ``voltage``, ``voltage_err`` (V)
+            and ``mean_velocity`` (⟨s'⟩/ω_c); coordinates ``flux`` (Phi0),
+            ``current`` (A) and ``bias`` (I/I₀); the SQUID's constants in the
+            attributes.
+
+        Raises
+        ------
+        ValueError
+            Empty or non-finite axes, a bad time, rtol or dt, or an ``out``
+            that holds something else, naming it.
+
+        See Also
+        --------
+        iv_curve, v_phi_curve
+
+        Examples
+        --------
+        >>> sq = DCSquid(10e-6, 10.0, 1.6e-13, 51.7e-12)
+        >>> m = sq.sweep([0.0, 0.5], [10e-6, 25e-6])
+        >>> m.voltage.dims, m.voltage.attrs["units"]
+        (('flux', 'current'), 'V')
+        >>> v = m.voltage.values * 1e6                                   # µV
+        >>> bool(abs(v[0, 0]) < 1e-6), bool(v[1, 0] > 1)    # at rest at Φ = 0, running at Φ₀/2
+        (True, True)
+        """
+        from .squid_sweep import squid_sweep
+        rtol = _checks.real(rtol, "rtol", 0.0, lo_open=True)
+        tr, tm = self._times(transient, t_max)
+        noise = self._noise(dt, paths, seed, threads)
+        return squid_sweep(self, fluxes, currents, tr, tm, rtol, noise, progress, out)
 
     def transfer_function(self, current: float, fluxes: ArrayLike, *, step: float | None = None,
                           transient: float | None = None, t_max: float | None = None, rtol: float = 1e-10,

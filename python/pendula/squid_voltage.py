@@ -121,12 +121,14 @@ def mean_velocity(net: Network, phi0: np.ndarray, v0: np.ndarray, transient: flo
 
 def noisy_mean_velocity(net: Network, phi0: np.ndarray, v0: np.ndarray, transient: float, window: float,
                         temperature: float, dt: float, paths: int, seed: int,
-                        threads: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Each path's drift ⟨s'⟩ over the window, and the first path's final state."""
+                        threads: int, first_path: int = 0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Each path's drift ⟨s'⟩ over the window, and the first path's final state (the paths draw the noise
+    streams first_path, first_path + 1, ...)."""
     n_tr = int(math.ceil(transient / dt))
     n_w = max(1, int(math.ceil(window / dt)))
     t = dt * np.array([n_tr, n_tr + n_w], dtype=float)
-    run = net.simulate(t, phi0, v0, dt=dt, temperature=temperature, paths=paths, seed=seed, threads=threads)
+    run = net.simulate(t, phi0, v0, dt=dt, temperature=temperature, paths=paths, seed=seed,
+                       first_path=first_path, threads=threads)
     s = run.phi.values.mean(axis=2)            # (path, time)
     drift = (s[:, 1] - s[:, 0]) / (t[1] - t[0])
     return drift, run.phi.values[0, -1], run.v.values[0, -1]
