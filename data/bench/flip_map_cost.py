@@ -212,7 +212,8 @@ def main(strips: int = 3, n_scipy: int = 12) -> None:
           f"scipy {summary['scipy']['map_s_at_pendula_error'] / 3600:.1f} h;  ratios numba/pendula "
           f"{summary['numba']['ratio_peer_over_pendula']:.2f}"
           f"{'' if summary['numba']['interpolated'] else ' (extrapolated)'}, scipy/pendula "
-          f"{summary['scipy']['ratio_peer_over_pendula']:.1f}{'' if summary['scipy']['interpolated'] else ' (extrapolated)'}")
+          f"{summary['scipy']['ratio_peer_over_pendula']:.1f}"
+          f"{'' if summary['scipy']['interpolated'] else ' (extrapolated)'}")
     rec = {"date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
            "machine": platform.processor() or platform.machine(), "cores": os.cpu_count(),
            "load_average_at_end": os.getloadavg(), "pendula": pendula.__version__,
