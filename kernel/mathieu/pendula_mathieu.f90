@@ -26,6 +26,7 @@
 module pendula_mathieu
   use pendula_kinds, only: dp, nan_dp, eps_dp
   use pendula_dd, only: two_sum, two_prod, dd_add, dd_div, dd_mul
+  use, intrinsic :: iso_c_binding, only: c_int, c_double
   implicit none
   private
   public :: mathieu_char, mathieu_level, mathieu_levels, mathieu_level_dd, mathieu_nu, mathieu_level_vector
@@ -42,6 +43,20 @@ module pendula_mathieu
   real(dp), parameter :: sqrt2 = 1.4142135623730950488_dp
   !> windows up to this many rows factorise in stack arrays
   integer, parameter :: small_rows = 512
+
+  interface
+    !> The polish's rows (kernel/mathieu/pendula_mathieu_polish.c): z'r,
+    !> z'z and r'r of the double-double residual r = (T - x) z on rows
+    !> i1..i2 of the window (rows r0 .. r0 + n - 1 of family fam).
+    pure subroutine c_polish_rows(fam, nu, q, aq, e0, e0l, r0, n, i1, i2, x, z, num, den, rr) &
+        bind(C, name='pendula_mathieu_polish_rows')
+      import :: c_int, c_double
+      integer(c_int), value, intent(in) :: fam, r0, n, i1, i2
+      real(c_double), value, intent(in) :: nu, q, aq, e0, e0l, x
+      real(c_double), intent(in) :: z(*)
+      real(c_double), intent(out) :: num, den, rr
+    end subroutine c_polish_rows
+  end interface
 
 contains
 
@@ -524,15 +539,11 @@ contains
     integer, intent(in) :: fam, r0, n
     real(dp), intent(in) :: nu, q, x, z(n)
     real(dp), intent(out) :: xp, resid2
-    real(dp) :: sh, sl, dh, dl, uh, ul, rh, rl, th, tl, num, den, aq, e0, e0l, zl, zr, rr, smax
-    real(dp) :: qh, ql, zh, zt
+    real(dp) :: num, den, aq, e0, e0l, rr, smax
     real(dp), parameter :: sqrt2_lo = -9.6667966258595e-17_dp
-    integer :: i, r, i1, i2
+    integer :: i1, i2
     real(dp) :: thr
     aq = abs(q)
-    num = 0.0_dp
-    den = 0.0_dp
-    rr = 0.0_dp
     ! rows whose component is below tau = 1e-10 of the largest are left out:
     ! z is the eigenvector to rounding, so each one's term z_i ((T - x) z)_i
     ! is below tau^2 eps times the matrix's scale there (s^2 + 2|q|), and
@@ -553,55 +564,10 @@ contains
     ! the coupling of rows 0 and 1 of a_2m's matrix, sqrt(2)|q| in double-double
     call prod_dd(sqrt2, aq, e0, e0l)
     e0l = e0l + sqrt2_lo * aq
-    ! |q| split once (Veltkamp) for the products with the neighbours' sum
-    call split(aq, qh, ql)
-    do i = i1, i2
-      r = r0 + i - 1
-      if (fam == 0) then
-        call sum_exact(nu, 2.0_dp * real(r, dp), sh, sl)
-      else
-        sh = real(fam_base(fam) + 2 * r, dp)
-        sl = 0.0_dp
-      end if
-      ! d = s^2 (Dekker's product, the low part's cross term)
-      call prod_dd(sh, sh, dh, dl)
-      dl = dl + 2.0_dp * sh * sl
-      if (r == 0 .and. fam == 2) then
-        call sum_exact(1.0_dp, q, dh, dl)
-      else if (r == 0 .and. fam == 3) then
-        call sum_exact(1.0_dp, -q, dh, dl)
-      end if
-      ! (d - x) z_i
-      call sum_exact(dh, -x, uh, ul)
-      ul = ul + dl
-      call prod_dd(uh, z(i), rh, rl)
-      rl = rl + ul * z(i)
-      ! + the couplings to the neighbours
-      zl = 0.0_dp
-      zr = 0.0_dp
-      if (i > 1) zl = z(i - 1)
-      if (i < n) zr = z(i + 1)
-      if (fam == 1 .and. r == 0) then
-        call prod_dd(e0, zr, th, tl)
-        tl = tl + e0l * zr
-        call add_dd(rh, rl, th, tl)
-        call prod_dd(aq, zl, th, tl)
-      else if (fam == 1 .and. r == 1) then
-        call prod_dd(e0, zl, th, tl)
-        tl = tl + e0l * zl
-        call add_dd(rh, rl, th, tl)
-        call prod_dd(aq, zr, th, tl)
-      else
-        ! |q| (z_i-1 + z_i+1): the sum exact in two parts
-        call sum_exact(zl, zr, zh, zt)
-        call prod_split(aq, qh, ql, zh, th, tl)
-        tl = tl + aq * zt
-      end if
-      call add_dd(rh, rl, th, tl)
-      num = num + z(i) * (rh + rl)
-      rr = rr + (rh + rl) ** 2
-      den = den + z(i) * z(i)
-    end do
+    ! the rows' residuals, summed (kernel/mathieu/pendula_mathieu_polish.c:
+    ! fused multiply-adds for the exact products where the CPU has them)
+    call c_polish_rows(int(fam, c_int), nu, q, aq, e0, e0l, int(r0, c_int), int(n, c_int), &
+                       int(i1, c_int), int(i2, c_int), x, z, num, den, rr)
     xp = x + num / den
     ! the rows left out: their scale |s^2 - x| + 2|q| is largest at the ends
     smax = 0.0_dp
@@ -612,19 +578,6 @@ contains
     end if
     resid2 = (rr + real(n, dp) * smax * smax) / den * (1.0_dp + real(2 * n + 8, dp) * eps_dp)
   end subroutine polish_res
-
-  ! Error-free transformations for polish, here so that the compiler
-  ! inlines them into its loop (pendula_dd's are in another unit).
-
-  !> s + e = a + b exactly (Knuth).
-  pure subroutine sum_exact(a, b, s, e)
-    real(dp), intent(in) :: a, b
-    real(dp), intent(out) :: s, e
-    real(dp) :: bb
-    s = a + b
-    bb = s - a
-    e = (a - (s - bb)) + (b - bb)
-  end subroutine sum_exact
 
   !> p + e = a * b exactly (Dekker's product with Veltkamp's splitting).
   pure subroutine prod_dd(a, b, p, e)
@@ -642,40 +595,6 @@ contains
     e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
   end subroutine prod_dd
 
-  !> ah + al = a with each half of 26 bits (Veltkamp's splitting).
-  pure subroutine split(a, ah, al)
-    real(dp), intent(in) :: a
-    real(dp), intent(out) :: ah, al
-    real(dp), parameter :: splitter = 134217729.0_dp   ! 2**27 + 1
-    real(dp) :: t
-    t = splitter * a
-    ah = t - (t - a)
-    al = a - ah
-  end subroutine split
-
-  !> p + e = a * b exactly, a given split (ah + al) by split.
-  pure subroutine prod_split(a, ah, al, b, p, e)
-    real(dp), intent(in) :: a, ah, al, b
-    real(dp), intent(out) :: p, e
-    real(dp), parameter :: splitter = 134217729.0_dp
-    real(dp) :: t, bh, bl
-    p = a * b
-    t = splitter * b
-    bh = t - (t - b)
-    bl = b - bh
-    e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
-  end subroutine prod_split
-
-  !> (rh + rl) += (th + tl), to double-double accuracy.
-  pure subroutine add_dd(rh, rl, th, tl)
-    real(dp), intent(inout) :: rh, rl
-    real(dp), intent(in) :: th, tl
-    real(dp) :: s, e
-    call sum_exact(rh, th, s, e)
-    e = e + (rl + tl)
-    rh = s + e
-    rl = e - (rh - s)
-  end subroutine add_dd
 
   !> How far (in orders s) past the turning point s0 the window must reach
   !> for the tail's decay to fall below tol_rel / |q| (dir +1: upwards from
