@@ -329,6 +329,7 @@ contains
     ! the square root is taken only where the squared coupling changes
     z(r) = 1.0_dp
     big = 1.0_dp
+    nrm2 = 1.0_dp
     e2c = -1.0_dp
     ec = 0.0_dp
     do i = r - 1, 1, -1
@@ -338,6 +339,7 @@ contains
       end if
       z(i) = -(ec / dp_(i)) * z(i + 1)
       big = max(big, abs(z(i)))
+      nrm2 = nrm2 + z(i) * z(i)
     end do
     do i = r + 1, n
       if (e2(i - 1) /= e2c) then
@@ -346,14 +348,21 @@ contains
       end if
       z(i) = -(ec / dm(i)) * z(i - 1)
       big = max(big, abs(z(i)))
-    end do
-    rbig = 1.0_dp / big
-    nrm2 = 0.0_dp
-    do i = 1, n
-      z(i) = z(i) * rbig
       nrm2 = nrm2 + z(i) * z(i)
     end do
-    step = (gr * rbig) / (nrm2 * big)
+    ! z is left unnormalised (z_r = 1; every caller scales it); only where
+    ! its square could overflow is it scaled by its largest component
+    if (big > 1.0e150_dp) then
+      rbig = 1.0_dp / big
+      nrm2 = 0.0_dp
+      do i = 1, n
+        z(i) = z(i) * rbig
+        nrm2 = nrm2 + z(i) * z(i)
+      end do
+      step = (gr * rbig) / (nrm2 * big)
+    else
+      step = gr / nrm2
+    end if
     nrm2 = sqrt(nrm2)
     first = abs(z(1)) / nrm2
     last = abs(z(n)) / nrm2
