@@ -175,10 +175,15 @@ contains
   !> iteration stops only when the bracket holds the j-th eigenvalue alone
   !> and the step is below an ulp.  Returns the eigenvector's normalised
   !> components at the two ends too.
-  pure subroutine eigenvalue(d, e2, n, j, x0, lo0, hi0, pivmin, x, first, last, z)
+  !> With loose present, the Rayleigh-quotient steps may also stop once a
+  !> step is below 1e-12 of the scale: loose is then true, x is the shift
+  !> of the twist that gave z (not certified: the caller certifies the
+  !> Rayleigh quotient of z by Temple's bound, or calls again without loose).
+  pure subroutine eigenvalue(d, e2, n, j, x0, lo0, hi0, pivmin, x, first, last, z, loose)
     integer, intent(in) :: n, j
     real(dp), intent(in) :: d(n), e2(n), x0, lo0, hi0, pivmin
     real(dp), intent(out) :: x, first, last, z(n)
+    logical, intent(out), optional :: loose
     real(dp) :: lo, hi, w, step, xn, del, emax
     integer :: it, cl, ch, c
     logical :: rq
@@ -188,6 +193,7 @@ contains
     ! (where |x| is below |q|, a step never gets below eps |x|; the polish
     ! that follows takes the value to its own rounding)
     emax = sqrt(maxval(e2))
+    if (present(loose)) loose = .false.
     x = x0
     do it = 1, 8
       call twist(d, e2, n, x, pivmin, step, first, last, z)
@@ -201,6 +207,12 @@ contains
           return
         end if
         exit
+      end if
+      if (present(loose)) then
+        if (abs(step) <= 1.0e-12_dp * (abs(x) + emax)) then
+          loose = .true.
+          return
+        end if
       end if
       x = xn
     end do
@@ -492,7 +504,9 @@ contains
     integer, intent(out) :: j
     integer, intent(inout) :: status
     logical, intent(out) :: done
-    real(dp) :: aq, pivmin, f1, fn, c1, cn
+    real(dp) :: aq, pivmin, f1, fn, c1, cn, lo, hi, rho, res2, g, delta, temple
+    integer :: cl, ch
+    logical :: loose, good
     done = .false.
     aq = abs(q)
     call build(fam, nu, q, r0, r0 + n - 1, d, e2)
@@ -503,10 +517,10 @@ contains
       return
     end if
     pivmin = tiny(1.0_dp) * max(1.0_dp, maxval(e2))
-    call eigenvalue(d, e2, n, j, guess, lam_lo - 1.0e-3_dp * abs(lam_lo) - 1.0_dp, &
-                    lam_hi + 1.0e-3_dp * abs(lam_hi) + 1.0_dp, pivmin, x, f1, fn, z)
-    if (aq > 0.0_dp) x = polish(fam, nu, q, r0, n, x, z)
+    lo = lam_lo - 1.0e-3_dp * abs(lam_lo) - 1.0_dp
+    hi = lam_hi + 1.0e-3_dp * abs(lam_hi) + 1.0_dp
     if (aq == 0.0_dp) then   ! the diagonal itself: snap to its entry
+      call eigenvalue(d, e2, n, j, guess, lo, hi, pivmin, x, f1, fn, z)
       x = d(minloc(abs(d - x), 1))
       bound = 0.0_dp
       status = mathieu_ok
@@ -518,8 +532,37 @@ contains
     c1 = sqrt2 * aq
     if (fam /= 0 .and. r0 == 0) c1 = 0.0_dp
     cn = aq
-    bound = sqrt((c1 * f1) ** 2 + (cn * fn) ** 2)
-    if (n == 1 .and. aq > 0.0_dp) bound = (c1 + cn)   ! a single row says nothing
+    call eigenvalue(d, e2, n, j, guess, lo, hi, pivmin, x, f1, fn, z, loose)
+    temple = 0.0_dp
+    if (loose) then
+      ! the Rayleigh quotient of z certified by Temple's bound: one count
+      ! each side, g away, proves the j-th eigenvalue alone within g - slack
+      ! of rho (slack: the counts' backward error, couplings a few ulp off,
+      ! and the diagonal's rounding), and then it is within eps_r^2 / delta
+      call polish_res(fam, nu, q, r0, n, x, z, rho, res2)
+      g = 1.0e-4_dp * (abs(rho) + aq)
+      call sturm_count_pair(d, e2, n, rho - g, rho + g, pivmin, cl, ch)
+      delta = g - (8.0_dp * eps_dp * (abs(rho) + g + 2.0_dp * aq) + eps_dp * maxval(abs(d)) + tiny(1.0_dp))
+      bound = sqrt((c1 * f1) ** 2 + (cn * fn) ** 2)
+      if (n == 1) bound = (c1 + cn)
+      good = cl == j .and. ch == j + 1 .and. delta > 0.0_dp
+      if (good) good = res2 < delta * delta
+      if (good) then
+        temple = res2 / delta
+        good = bound + temple <= tol_rel * max(1.0_dp, abs(rho))
+      end if
+      if (good) then
+        x = rho
+      else
+        temple = 0.0_dp
+        call eigenvalue(d, e2, n, j, guess, lo, hi, pivmin, x, f1, fn, z)
+        x = polish(fam, nu, q, r0, n, x, z)
+      end if
+    else
+      x = polish(fam, nu, q, r0, n, x, z)
+    end if
+    bound = sqrt((c1 * f1) ** 2 + (cn * fn) ** 2) + temple
+    if (n == 1) bound = (c1 + cn)   ! a single row says nothing
     if (bound <= tol_rel * max(1.0_dp, abs(x))) then
       status = mathieu_ok
       done = .true.
