@@ -883,9 +883,9 @@ contains
   !> few ulp of the couplings, and the rounding of the diagonal); then the
   !> eigenvalue is within eps_r^2 / delta of rho, delta the distance from
   !> rho to the interval's ends (Kato and Temple; Parlett, The Symmetric
-  !> Eigenvalue Problem, section 10.5).  A level whose bound and
-  !> truncation bound both meet eps/4 of max(1, |rho|) gets status ok with
-  !> bound their sum; the others keep status bad_input for the caller's
+  !> Eigenvalue Problem, section 10.5).  A level whose bound plus its
+  !> truncation bound meets eps/4 of max(1, |rho|) gets status ok with that
+  !> sum as its bound; the others keep status bad_input for the caller's
   !> own path (so do all of them when a count disagrees).
   pure subroutine levels_certified(nr, q, r0, n, d, e2, nlev, ev, pivmin, val, bound, status, z)
     integer, intent(in) :: r0, n, nlev
@@ -939,7 +939,7 @@ contains
         delta = min(rho(k) - mid(k - 1), mid(k) - rho(k)) - slack
         if (delta > 0.0_dp .and. res2(k) < delta * delta) then
           temple = res2(k) / delta
-          if (temple <= tol .and. tb(k) <= tol) then
+          if (temple + tb(k) <= tol) then
             good = .true.
             exit
           end if
