@@ -26,6 +26,7 @@
 module pendula_mathieu
   use pendula_kinds, only: dp, nan_dp, eps_dp
   use pendula_dd, only: two_sum, two_prod, dd_add, dd_div, dd_mul
+  use, intrinsic :: iso_c_binding, only: c_int, c_double
   implicit none
   private
   public :: mathieu_char, mathieu_level, mathieu_levels, mathieu_level_dd, mathieu_nu, mathieu_level_vector
@@ -42,6 +43,20 @@ module pendula_mathieu
   real(dp), parameter :: sqrt2 = 1.4142135623730950488_dp
   !> windows up to this many rows factorise in stack arrays
   integer, parameter :: small_rows = 512
+
+  interface
+    !> The polish's rows (kernel/mathieu/pendula_mathieu_polish.c): z'r,
+    !> z'z and r'r of the double-double residual r = (T - x) z on rows
+    !> i1..i2 of the window (rows r0 .. r0 + n - 1 of family fam).
+    pure subroutine c_polish_rows(fam, nu, q, aq, e0, e0l, r0, n, i1, i2, x, z, num, den, rr) &
+        bind(C, name='pendula_mathieu_polish_rows')
+      import :: c_int, c_double
+      integer(c_int), value, intent(in) :: fam, r0, n, i1, i2
+      real(c_double), value, intent(in) :: nu, q, aq, e0, e0l, x
+      real(c_double), intent(in) :: z(*)
+      real(c_double), intent(out) :: num, den, rr
+    end subroutine c_polish_rows
+  end interface
 
 contains
 
@@ -160,10 +175,15 @@ contains
   !> iteration stops only when the bracket holds the j-th eigenvalue alone
   !> and the step is below an ulp.  Returns the eigenvector's normalised
   !> components at the two ends too.
-  pure subroutine eigenvalue(d, e2, n, j, x0, lo0, hi0, pivmin, x, first, last, z)
+  !> With loose present, the Rayleigh-quotient steps may also stop once a
+  !> step is below 1e-12 of the scale: loose is then true, x is the shift
+  !> of the twist that gave z (not certified: the caller certifies the
+  !> Rayleigh quotient of z by Temple's bound, or calls again without loose).
+  pure subroutine eigenvalue(d, e2, n, j, x0, lo0, hi0, pivmin, x, first, last, z, loose)
     integer, intent(in) :: n, j
     real(dp), intent(in) :: d(n), e2(n), x0, lo0, hi0, pivmin
     real(dp), intent(out) :: x, first, last, z(n)
+    logical, intent(out), optional :: loose
     real(dp) :: lo, hi, w, step, xn, del, emax
     integer :: it, cl, ch, c
     logical :: rq
@@ -173,6 +193,7 @@ contains
     ! (where |x| is below |q|, a step never gets below eps |x|; the polish
     ! that follows takes the value to its own rounding)
     emax = sqrt(maxval(e2))
+    if (present(loose)) loose = .false.
     x = x0
     do it = 1, 8
       call twist(d, e2, n, x, pivmin, step, first, last, z)
@@ -186,6 +207,12 @@ contains
           return
         end if
         exit
+      end if
+      if (present(loose)) then
+        if (abs(step) <= 1.0e-12_dp * (abs(x) + emax)) then
+          loose = .true.
+          return
+        end if
       end if
       x = xn
     end do
@@ -314,6 +341,7 @@ contains
     ! the square root is taken only where the squared coupling changes
     z(r) = 1.0_dp
     big = 1.0_dp
+    nrm2 = 1.0_dp
     e2c = -1.0_dp
     ec = 0.0_dp
     do i = r - 1, 1, -1
@@ -323,6 +351,7 @@ contains
       end if
       z(i) = -(ec / dp_(i)) * z(i + 1)
       big = max(big, abs(z(i)))
+      nrm2 = nrm2 + z(i) * z(i)
     end do
     do i = r + 1, n
       if (e2(i - 1) /= e2c) then
@@ -331,14 +360,21 @@ contains
       end if
       z(i) = -(ec / dm(i)) * z(i - 1)
       big = max(big, abs(z(i)))
-    end do
-    rbig = 1.0_dp / big
-    nrm2 = 0.0_dp
-    do i = 1, n
-      z(i) = z(i) * rbig
       nrm2 = nrm2 + z(i) * z(i)
     end do
-    step = (gr * rbig) / (nrm2 * big)
+    ! z is left unnormalised (z_r = 1; every caller scales it); only where
+    ! its square could overflow is it scaled by its largest component
+    if (big > 1.0e150_dp) then
+      rbig = 1.0_dp / big
+      nrm2 = 0.0_dp
+      do i = 1, n
+        z(i) = z(i) * rbig
+        nrm2 = nrm2 + z(i) * z(i)
+      end do
+      step = (gr * rbig) / (nrm2 * big)
+    else
+      step = gr / nrm2
+    end if
     nrm2 = sqrt(nrm2)
     first = abs(z(1)) / nrm2
     last = abs(z(n)) / nrm2
@@ -468,7 +504,9 @@ contains
     integer, intent(out) :: j
     integer, intent(inout) :: status
     logical, intent(out) :: done
-    real(dp) :: aq, pivmin, f1, fn, c1, cn
+    real(dp) :: aq, pivmin, f1, fn, c1, cn, lo, hi, rho, res2, g, delta, temple
+    integer :: cl, ch
+    logical :: loose, good
     done = .false.
     aq = abs(q)
     call build(fam, nu, q, r0, r0 + n - 1, d, e2)
@@ -479,10 +517,10 @@ contains
       return
     end if
     pivmin = tiny(1.0_dp) * max(1.0_dp, maxval(e2))
-    call eigenvalue(d, e2, n, j, guess, lam_lo - 1.0e-3_dp * abs(lam_lo) - 1.0_dp, &
-                    lam_hi + 1.0e-3_dp * abs(lam_hi) + 1.0_dp, pivmin, x, f1, fn, z)
-    if (aq > 0.0_dp) x = polish(fam, nu, q, r0, n, x, z)
+    lo = lam_lo - 1.0e-3_dp * abs(lam_lo) - 1.0_dp
+    hi = lam_hi + 1.0e-3_dp * abs(lam_hi) + 1.0_dp
     if (aq == 0.0_dp) then   ! the diagonal itself: snap to its entry
+      call eigenvalue(d, e2, n, j, guess, lo, hi, pivmin, x, f1, fn, z)
       x = d(minloc(abs(d - x), 1))
       bound = 0.0_dp
       status = mathieu_ok
@@ -494,8 +532,37 @@ contains
     c1 = sqrt2 * aq
     if (fam /= 0 .and. r0 == 0) c1 = 0.0_dp
     cn = aq
-    bound = sqrt((c1 * f1) ** 2 + (cn * fn) ** 2)
-    if (n == 1 .and. aq > 0.0_dp) bound = (c1 + cn)   ! a single row says nothing
+    call eigenvalue(d, e2, n, j, guess, lo, hi, pivmin, x, f1, fn, z, loose)
+    temple = 0.0_dp
+    if (loose) then
+      ! the Rayleigh quotient of z certified by Temple's bound: one count
+      ! each side, g away, proves the j-th eigenvalue alone within g - slack
+      ! of rho (slack: the counts' backward error, couplings a few ulp off,
+      ! and the diagonal's rounding), and then it is within eps_r^2 / delta
+      call polish_res(fam, nu, q, r0, n, x, z, rho, res2)
+      g = 1.0e-4_dp * (abs(rho) + aq)
+      call sturm_count_pair(d, e2, n, rho - g, rho + g, pivmin, cl, ch)
+      delta = g - (8.0_dp * eps_dp * (abs(rho) + g + 2.0_dp * aq) + eps_dp * maxval(abs(d)) + tiny(1.0_dp))
+      bound = sqrt((c1 * f1) ** 2 + (cn * fn) ** 2)
+      if (n == 1) bound = (c1 + cn)
+      good = cl == j .and. ch == j + 1 .and. delta > 0.0_dp
+      if (good) good = res2 < delta * delta
+      if (good) then
+        temple = res2 / delta
+        good = bound + temple <= tol_rel * max(1.0_dp, abs(rho))
+      end if
+      if (good) then
+        x = rho
+      else
+        temple = 0.0_dp
+        call eigenvalue(d, e2, n, j, guess, lo, hi, pivmin, x, f1, fn, z)
+        x = polish(fam, nu, q, r0, n, x, z)
+      end if
+    else
+      x = polish(fam, nu, q, r0, n, x, z)
+    end if
+    bound = sqrt((c1 * f1) ** 2 + (cn * fn) ** 2) + temple
+    if (n == 1) bound = (c1 + cn)   ! a single row says nothing
     if (bound <= tol_rel * max(1.0_dp, abs(x))) then
       status = mathieu_ok
       done = .true.
@@ -524,15 +591,11 @@ contains
     integer, intent(in) :: fam, r0, n
     real(dp), intent(in) :: nu, q, x, z(n)
     real(dp), intent(out) :: xp, resid2
-    real(dp) :: sh, sl, dh, dl, uh, ul, rh, rl, th, tl, num, den, aq, e0, e0l, zl, zr, rr, smax
-    real(dp) :: qh, ql, zh, zt
+    real(dp) :: num, den, aq, e0, e0l, rr, smax
     real(dp), parameter :: sqrt2_lo = -9.6667966258595e-17_dp
-    integer :: i, r, i1, i2
+    integer :: i1, i2
     real(dp) :: thr
     aq = abs(q)
-    num = 0.0_dp
-    den = 0.0_dp
-    rr = 0.0_dp
     ! rows whose component is below tau = 1e-10 of the largest are left out:
     ! z is the eigenvector to rounding, so each one's term z_i ((T - x) z)_i
     ! is below tau^2 eps times the matrix's scale there (s^2 + 2|q|), and
@@ -553,55 +616,10 @@ contains
     ! the coupling of rows 0 and 1 of a_2m's matrix, sqrt(2)|q| in double-double
     call prod_dd(sqrt2, aq, e0, e0l)
     e0l = e0l + sqrt2_lo * aq
-    ! |q| split once (Veltkamp) for the products with the neighbours' sum
-    call split(aq, qh, ql)
-    do i = i1, i2
-      r = r0 + i - 1
-      if (fam == 0) then
-        call sum_exact(nu, 2.0_dp * real(r, dp), sh, sl)
-      else
-        sh = real(fam_base(fam) + 2 * r, dp)
-        sl = 0.0_dp
-      end if
-      ! d = s^2 (Dekker's product, the low part's cross term)
-      call prod_dd(sh, sh, dh, dl)
-      dl = dl + 2.0_dp * sh * sl
-      if (r == 0 .and. fam == 2) then
-        call sum_exact(1.0_dp, q, dh, dl)
-      else if (r == 0 .and. fam == 3) then
-        call sum_exact(1.0_dp, -q, dh, dl)
-      end if
-      ! (d - x) z_i
-      call sum_exact(dh, -x, uh, ul)
-      ul = ul + dl
-      call prod_dd(uh, z(i), rh, rl)
-      rl = rl + ul * z(i)
-      ! + the couplings to the neighbours
-      zl = 0.0_dp
-      zr = 0.0_dp
-      if (i > 1) zl = z(i - 1)
-      if (i < n) zr = z(i + 1)
-      if (fam == 1 .and. r == 0) then
-        call prod_dd(e0, zr, th, tl)
-        tl = tl + e0l * zr
-        call add_dd(rh, rl, th, tl)
-        call prod_dd(aq, zl, th, tl)
-      else if (fam == 1 .and. r == 1) then
-        call prod_dd(e0, zl, th, tl)
-        tl = tl + e0l * zl
-        call add_dd(rh, rl, th, tl)
-        call prod_dd(aq, zr, th, tl)
-      else
-        ! |q| (z_i-1 + z_i+1): the sum exact in two parts
-        call sum_exact(zl, zr, zh, zt)
-        call prod_split(aq, qh, ql, zh, th, tl)
-        tl = tl + aq * zt
-      end if
-      call add_dd(rh, rl, th, tl)
-      num = num + z(i) * (rh + rl)
-      rr = rr + (rh + rl) ** 2
-      den = den + z(i) * z(i)
-    end do
+    ! the rows' residuals, summed (kernel/mathieu/pendula_mathieu_polish.c:
+    ! fused multiply-adds for the exact products where the CPU has them)
+    call c_polish_rows(int(fam, c_int), nu, q, aq, e0, e0l, int(r0, c_int), int(n, c_int), &
+                       int(i1, c_int), int(i2, c_int), x, z, num, den, rr)
     xp = x + num / den
     ! the rows left out: their scale |s^2 - x| + 2|q| is largest at the ends
     smax = 0.0_dp
@@ -612,19 +630,6 @@ contains
     end if
     resid2 = (rr + real(n, dp) * smax * smax) / den * (1.0_dp + real(2 * n + 8, dp) * eps_dp)
   end subroutine polish_res
-
-  ! Error-free transformations for polish, here so that the compiler
-  ! inlines them into its loop (pendula_dd's are in another unit).
-
-  !> s + e = a + b exactly (Knuth).
-  pure subroutine sum_exact(a, b, s, e)
-    real(dp), intent(in) :: a, b
-    real(dp), intent(out) :: s, e
-    real(dp) :: bb
-    s = a + b
-    bb = s - a
-    e = (a - (s - bb)) + (b - bb)
-  end subroutine sum_exact
 
   !> p + e = a * b exactly (Dekker's product with Veltkamp's splitting).
   pure subroutine prod_dd(a, b, p, e)
@@ -642,40 +647,6 @@ contains
     e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
   end subroutine prod_dd
 
-  !> ah + al = a with each half of 26 bits (Veltkamp's splitting).
-  pure subroutine split(a, ah, al)
-    real(dp), intent(in) :: a
-    real(dp), intent(out) :: ah, al
-    real(dp), parameter :: splitter = 134217729.0_dp   ! 2**27 + 1
-    real(dp) :: t
-    t = splitter * a
-    ah = t - (t - a)
-    al = a - ah
-  end subroutine split
-
-  !> p + e = a * b exactly, a given split (ah + al) by split.
-  pure subroutine prod_split(a, ah, al, b, p, e)
-    real(dp), intent(in) :: a, ah, al, b
-    real(dp), intent(out) :: p, e
-    real(dp), parameter :: splitter = 134217729.0_dp
-    real(dp) :: t, bh, bl
-    p = a * b
-    t = splitter * b
-    bh = t - (t - b)
-    bl = b - bh
-    e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
-  end subroutine prod_split
-
-  !> (rh + rl) += (th + tl), to double-double accuracy.
-  pure subroutine add_dd(rh, rl, th, tl)
-    real(dp), intent(inout) :: rh, rl
-    real(dp), intent(in) :: th, tl
-    real(dp) :: s, e
-    call sum_exact(rh, th, s, e)
-    e = e + (rl + tl)
-    rh = s + e
-    rl = e - (rh - s)
-  end subroutine add_dd
 
   !> How far (in orders s) past the turning point s0 the window must reach
   !> for the tail's decay to fall below tol_rel / |q| (dir +1: upwards from
@@ -912,9 +883,9 @@ contains
   !> few ulp of the couplings, and the rounding of the diagonal); then the
   !> eigenvalue is within eps_r^2 / delta of rho, delta the distance from
   !> rho to the interval's ends (Kato and Temple; Parlett, The Symmetric
-  !> Eigenvalue Problem, section 10.5).  A level whose bound and
-  !> truncation bound both meet eps/4 of max(1, |rho|) gets status ok with
-  !> bound their sum; the others keep status bad_input for the caller's
+  !> Eigenvalue Problem, section 10.5).  A level whose bound plus its
+  !> truncation bound meets eps/4 of max(1, |rho|) gets status ok with that
+  !> sum as its bound; the others keep status bad_input for the caller's
   !> own path (so do all of them when a count disagrees).
   pure subroutine levels_certified(nr, q, r0, n, d, e2, nlev, ev, pivmin, val, bound, status, z)
     integer, intent(in) :: r0, n, nlev
@@ -968,7 +939,7 @@ contains
         delta = min(rho(k) - mid(k - 1), mid(k) - rho(k)) - slack
         if (delta > 0.0_dp .and. res2(k) < delta * delta) then
           temple = res2(k) / delta
-          if (temple <= tol .and. tb(k) <= tol) then
+          if (temple + tb(k) <= tol) then
             good = .true.
             exit
           end if

@@ -17,8 +17,10 @@ ff="-O3 -ffp-contract=off -fno-fast-math -fno-trapping-math -fimplicit-none -fre
 cd "$w"
 gfortran $ff -c "$root/kernel/base/pendula_kinds.f90" "$root/kernel/base/pendula_dd.f90"
 gfortran $ff -c "$root/kernel/mathieu/pendula_mathieu.f90"
-gfortran $ff "$here/pendula_values.f90" pendula_kinds.o pendula_dd.o pendula_mathieu.o -o values
-gfortran $ff "$here/pendula_transmon.f90" pendula_kinds.o pendula_dd.o pendula_mathieu.o -o transmon
+gcc -O3 -ffp-contract=off -fno-math-errno -c "$root/kernel/mathieu/pendula_mathieu_polish.c"
+obj="pendula_kinds.o pendula_dd.o pendula_mathieu.o pendula_mathieu_polish.o"
+gfortran $ff "$here/pendula_values.f90" $obj -o values
+gfortran $ff "$here/pendula_transmon.f90" $obj -o transmon
 gcc -O2 "$here/gsl_values.c" -o gsl_values -lgsl -lgslcblas -lm
 "$py" "$here/points.py" "$w"
 count() { valgrind --tool=callgrind --callgrind-out-file=/dev/null "$@" 2>&1 | awk '/Collected/ {print $4}'; }
