@@ -314,10 +314,7 @@ def write_functions():
             out.append({"kind": kind, "n": n, "q": repr(q), "z": repr(z),
                         "value": mp.nstr(v, 28), "derivative": mp.nstr(dv, 28)})
         print("function", kind, n, q, flush=True)
-    with open(HERE / "mathieu_function_reference.csv", "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(out[0]))
-        w.writeheader()
-        w.writerows(out)
+    write_csv("mathieu_function_reference.csv", out)
 
 
 def write_mathieu():
@@ -328,20 +325,22 @@ def write_mathieu():
         rows_out.append({"kind": kind, "nu": repr(float(nu)), "q": repr(float(q)), "source": source,
                          "value": mp.nstr(val, 45), "printed": printed, "rows": n})
         print(kind, nu, q, mp.nstr(val, 20), n, flush=True)
-    with open(HERE / "mathieu_reference.csv", "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows_out[0]))
-        w.writeheader()
-        w.writerows(rows_out)
+    write_csv("mathieu_reference.csv", rows_out)
 
 
 def write_transmon():
     mp.mp.dps = 40
     tr = transmon_rows()
-    with open(HERE / "transmon_reference.csv", "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(tr[0]))
-        w.writeheader()
-        w.writerows(tr)
+    write_csv("transmon_reference.csv", tr)
 
+
+
+def write_csv(name, rows):
+    """The rows (dicts with the same keys, in order) as data/NAME, a header line first."""
+    with open(HERE / name, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
 
 if __name__ == "__main__":
     import sys
