@@ -5,6 +5,7 @@
 !> scene module (kernel/dispatch/pendula_*_scene.f90) keeps its fields and
 !> their checks.
 module pendula_group_file
+  use, intrinsic :: iso_c_binding, only: c_null_char, c_long_long
   implicit none
   private
   public :: scene_group, read_group_file, name_bad_line, line_reader, unit_reader
@@ -24,15 +25,32 @@ module pendula_group_file
     end subroutine unit_reader
   end interface
 
+  interface
+    !> kernel/glue/pendula_os.c: 0 for a regular file (its size), else -errno (-10001: not a regular file)
+    function c_read_kind(path, size) bind(C, name='pendula_read_kind') result(k)
+      use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long_long
+      character(kind=c_char), intent(in) :: path(*)
+      integer(c_long_long), intent(out) :: size
+      integer(c_int) :: k
+    end function c_read_kind
+  end interface
+
+  !> the largest file read as a scene (as pendula_scene's)
+  integer(c_long_long), parameter :: max_file_bytes = 16_c_long_long * 1024 * 1024
+
 contains
 
-  !> The name of the first namelist group of the file (lower case; blank when none or unreadable).
+  !> The name of the first namelist group of the file (lower case; blank when none, or when the file is
+  !> not a regular file of at most 16 MiB: a FIFO or a device is never read; read_scene says why).
   function scene_group(path) result(name)
     character(len=*), intent(in) :: path
     character(len=32) :: name
     character(len=512) :: ln
     integer :: u, ios, b, k
+    integer(c_long_long) :: bytes
     name = ''
+    if (c_read_kind(path // c_null_char, bytes) /= 0) return
+    if (bytes > max_file_bytes) return
     open(newunit=u, file=path, status='old', action='read', iostat=ios)
     if (ios /= 0) return
     do
