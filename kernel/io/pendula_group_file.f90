@@ -6,6 +6,8 @@
 !> their checks.
 module pendula_group_file
   use, intrinsic :: iso_c_binding, only: c_null_char, c_long_long
+  use pendula_scene, only: c_read_kind
+  use pendula_scene_type, only: max_scene_bytes
   implicit none
   private
   public :: scene_group, read_group_file, name_bad_line, line_reader, unit_reader
@@ -25,19 +27,6 @@ module pendula_group_file
     end subroutine unit_reader
   end interface
 
-  interface
-    !> kernel/glue/pendula_os.c: 0 for a regular file (its size), else -errno (-10001: not a regular file)
-    function c_read_kind(path, size) bind(C, name='pendula_read_kind') result(k)
-      use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long_long
-      character(kind=c_char), intent(in) :: path(*)
-      integer(c_long_long), intent(out) :: size
-      integer(c_int) :: k
-    end function c_read_kind
-  end interface
-
-  !> the largest file read as a scene (as pendula_scene's)
-  integer(c_long_long), parameter :: max_file_bytes = 16_c_long_long * 1024 * 1024
-
 contains
 
   !> The name of the first namelist group of the file (lower case; blank when none, or when the file is
@@ -50,7 +39,7 @@ contains
     integer(c_long_long) :: bytes
     name = ''
     if (c_read_kind(path // c_null_char, bytes) /= 0) return
-    if (bytes > max_file_bytes) return
+    if (bytes > max_scene_bytes) return
     open(newunit=u, file=path, status='old', action='read', iostat=ios)
     if (ios /= 0) return
     do
