@@ -17,15 +17,12 @@ module pendula_double_scene
   use pendula_kinds, only: dp, i8
   use pendula_integrators, only: run_stats
   use pendula_double, only: double_pendulum, make_double, double_energy, double_velocities, dpp_size
-  use pendula_double_run, only: double_simulate, dm_dop853, dm_gauss4, dm_gauss6
+  use pendula_double_run, only: double_simulate
   use pendula_group_file, only: read_group_file
-  use pendula_nd_run, only: nd_output_times
+  use pendula_nd_run, only: nd_output_times, nd_method_code, nd_check_run, nd_output_counts
   implicit none
   private
   public :: double_scene_t, read_double_scene, run_double_scene
-
-  !> the most output samples of a scene
-  integer, parameter :: max_samples = 10000000
 
   !> The fields of &double (defaults as pendula.DoublePendulum's).
   type :: double_scene_t
@@ -90,7 +87,6 @@ contains
   pure subroutine check_double_scene(ds, msg)
     type(double_scene_t), intent(in) :: ds
     character(len=*), intent(out) :: msg
-    real(dp) :: spacing, k
     msg = ''
     if (.not. positive(ds%m1)) then
       msg = 'field ''m1'' must be positive and finite'
@@ -106,26 +102,8 @@ contains
       msg = 'field ''damping'' must be two finite numbers >= 0'
     else if (.not. all(abs([ds%theta1, ds%theta2, ds%omega1, ds%omega2]) <= huge(1.0_dp))) then
       msg = 'fields ''theta1'', ''theta2'', ''omega1'', ''omega2'' must be finite'
-    else if (.not. positive(ds%t_end)) then
-      msg = 'field ''t_end'' must be positive and finite'
-    else if (ds%n_samples < 1 .or. ds%n_samples > max_samples) then
-      msg = 'field ''n_samples'' must lie in [1, 1e7]'
-    else if (method_code(ds%method) == 0) then
-      msg = 'field ''method'' must be ''dop853'', ''gauss6'' or ''gauss4'', got ''' // trim(ds%method) // ''''
-    else if (.not. (ds%rtol > 0.0_dp .and. ds%atol >= 0.0_dp .and. ds%rtol < 1.0_dp .and. &
-                    ds%atol <= huge(1.0_dp))) then
-      msg = 'fields ''rtol'', ''atol'' must satisfy 0 < rtol < 1 and atol >= 0'
-    else if (method_code(ds%method) /= dm_dop853) then
-      spacing = ds%t_end / real(max(ds%n_samples - 1, 1), dp)
-      k = spacing / ds%dt
-      if (.not. positive(ds%dt)) then
-        msg = 'field ''dt'' must be positive and finite'
-      else if (.not. (k * real(ds%n_samples, dp) <= 2.0e9_dp)) then
-        msg = 'field ''dt'': the run needs more than 2e9 steps; give a larger dt or a shorter t_end'
-      else if (abs(k - anint(k)) > 1.0e-9_dp * max(1.0_dp, k) .or. anint(k) < 1.0_dp) then
-        msg = 'field ''dt'' must divide the output spacing t_end / (n_samples - 1) (Gauss-Legendre steps ' // &
-              'land on the outputs)'
-      end if
+    else
+      call nd_check_run(ds%method, ds%t_end, ds%n_samples, ds%dt, ds%rtol, ds%atol, msg)
     end if
   end subroutine check_double_scene
 
@@ -133,17 +111,6 @@ contains
     real(dp), intent(in) :: x
     positive = x > 0.0_dp .and. x <= huge(1.0_dp)
   end function positive
-
-  !> nd_run's code of a method name, 0 for none.
-  pure integer function method_code(name)
-    character(len=*), intent(in) :: name
-    select case (trim(name))
-    case ('dop853'); method_code = dm_dop853
-    case ('gauss6'); method_code = dm_gauss6
-    case ('gauss4'); method_code = dm_gauss4
-    case default; method_code = 0
-    end select
-  end function method_code
 
   !> The path of a checked scene at its n_samples times t: the rates w(2, :) and the energy;
   !> status as pendula_ode's.
@@ -166,9 +133,8 @@ contains
     cd = cos(ds%theta1 - ds%theta2)
     y0 = [ds%theta1, ds%theta2, dpd%a * ds%omega1 + dpd%b * cd * ds%omega2, dpd%b * cd * ds%omega1 + dpd%c * ds%omega2]
     allocate(yout(4, n), counts(n))
-    counts = int(anint((ds%t_end / real(max(n - 1, 1), dp)) / ds%dt), i8)
-    counts(1) = 0_i8
-    call double_simulate(dpd, method_code(ds%method), y0, t, counts, ds%rtol, ds%atol, ds%dt, yout, st, status, &
+    call nd_output_counts(ds%method, ds%t_end, ds%dt, counts)
+    call double_simulate(dpd, nd_method_code(ds%method), y0, t, counts, ds%rtol, ds%atol, ds%dt, yout, st, status, &
                          cancel)
     theta = yout(1:2, :)
     do j = 1, n

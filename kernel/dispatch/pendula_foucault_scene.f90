@@ -19,12 +19,10 @@ module pendula_foucault_scene
   use pendula_foucault, only: foucault, make_foucault, fp_size, fst_ok, fst_latitude, fst_gl, fst_rate
   use pendula_foucault_run, only: foucault_simulate
   use pendula_group_file, only: read_group_file
-  use pendula_nd_run, only: nd_output_times
+  use pendula_nd_run, only: nd_output_times, nd_check_run
   implicit none
   private
   public :: foucault_scene_t, read_foucault_scene, run_foucault_scene
-
-  integer, parameter :: max_samples = 10000000
 
   !> The fields of &foucault (defaults as pendula.FoucaultPendulum's).
   type :: foucault_scene_t
@@ -111,12 +109,8 @@ contains
       msg = 'fields ''azimuth'', ''theta_dot0'', ''phi_dot0'' must be finite'
     else if (fs%theta0 == 0.0_dp .and. fs%phi_dot0 /= 0.0_dp) then
       msg = 'field ''phi_dot0'' must be 0 at the bottom theta0 = 0: the azimuth is undefined there'
-    else if (.not. (fs%t_end > 0.0_dp .and. fs%t_end <= huge(1.0_dp))) then
-      msg = 'field ''t_end'' must be positive and finite'
-    else if (fs%n_samples < 1 .or. fs%n_samples > max_samples) then
-      msg = 'field ''n_samples'' must lie in [1, 1e7]'
-    else if (.not. (fs%rtol > 0.0_dp .and. fs%rtol < 1.0_dp)) then
-      msg = 'field ''rtol'' must lie in (0, 1)'
+    else
+      call nd_check_run('dop853', fs%t_end, fs%n_samples, 0.0_dp, fs%rtol, fs%rtol * fs%length, msg)
     end if
   end subroutine check_foucault_scene
 

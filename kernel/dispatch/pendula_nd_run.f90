@@ -14,10 +14,12 @@ module pendula_nd_run
   use pendula_ode, only: ode_system, ode_dop853, ode_gauss, ode_gauss4, ode_gauss6
   implicit none
   private
-  public :: nd_run, nd_runs_start, nd_output_times
+  public :: nd_run, nd_runs_start, nd_output_times, nd_method_code, nd_check_run, nd_output_counts
 
   !> the methods of nd_run (the codes the Python layer passes)
   integer, parameter, public :: nd_dop853 = 1, nd_gauss4 = 2, nd_gauss6 = 3
+  !> the most output samples of a scene file's run
+  integer, parameter, public :: nd_max_samples = 10000000
 
 contains
 
@@ -74,5 +76,58 @@ contains
     end do
     if (n > 1) t(n) = t_end
   end subroutine nd_output_times
+
+  !> nd_run's code of a method name ('dop853', 'gauss6', 'gauss4'), 0 for none.
+  pure integer function nd_method_code(name)
+    character(len=*), intent(in) :: name
+    select case (trim(name))
+    case ('dop853'); nd_method_code = nd_dop853
+    case ('gauss6'); nd_method_code = nd_gauss6
+    case ('gauss4'); nd_method_code = nd_gauss4
+    case default; nd_method_code = 0
+    end select
+  end function nd_method_code
+
+  !> The checks of a scene file's run fields (the systems' scene modules share them): msg blank, or the
+  !> first field out of its domain, named.  Gauss-Legendre's step dt must divide the output spacing.
+  pure subroutine nd_check_run(method, t_end, n_samples, dt, rtol, atol, msg)
+    character(len=*), intent(in) :: method
+    real(dp), intent(in) :: t_end, dt, rtol, atol
+    integer, intent(in) :: n_samples
+    character(len=*), intent(out) :: msg
+    real(dp) :: k
+    msg = ''
+    if (.not. (t_end > 0.0_dp .and. t_end <= huge(1.0_dp))) then
+      msg = 'field ''t_end'' must be positive and finite'
+    else if (n_samples < 1 .or. n_samples > nd_max_samples) then
+      msg = 'field ''n_samples'' must lie in [1, 1e7]'
+    else if (nd_method_code(method) == 0) then
+      msg = 'field ''method'' must be ''dop853'', ''gauss6'' or ''gauss4'', got ''' // trim(method) // ''''
+    else if (.not. (rtol > 0.0_dp .and. atol >= 0.0_dp .and. rtol < 1.0_dp .and. atol <= huge(1.0_dp))) then
+      msg = 'fields ''rtol'', ''atol'' must satisfy 0 < rtol < 1 and atol >= 0'
+    else if (nd_method_code(method) /= nd_dop853) then
+      k = (t_end / real(max(n_samples - 1, 1), dp)) / dt
+      if (.not. (dt > 0.0_dp .and. dt <= huge(1.0_dp))) then
+        msg = 'field ''dt'' must be positive and finite'
+      else if (.not. (k * real(n_samples, dp) <= 2.0e9_dp)) then
+        msg = 'field ''dt'': the run needs more than 2e9 steps; give a larger dt or a shorter t_end'
+      else if (abs(k - anint(k)) > 1.0e-9_dp * max(1.0_dp, k) .or. anint(k) < 1.0_dp) then
+        msg = 'field ''dt'' must divide the output spacing t_end / (n_samples - 1) (Gauss-Legendre steps ' // &
+              'land on the outputs)'
+      end if
+    end if
+  end subroutine nd_check_run
+
+  !> Gauss-Legendre's steps between the outputs of nd_output_times (counts(1) = 0: the start), or all 0
+  !> for DOP853 (which outputs at the times themselves).
+  pure subroutine nd_output_counts(method, t_end, dt, counts)
+    character(len=*), intent(in) :: method
+    real(dp), intent(in) :: t_end, dt
+    integer(i8), intent(out) :: counts(:)
+    counts = 0_i8
+    if (nd_method_code(method) == nd_dop853 .or. size(counts) == 0) return
+    counts = int(anint((t_end / real(max(size(counts) - 1, 1), dp)) / dt), i8)
+    counts(1) = 0_i8
+  end subroutine nd_output_counts
 
 end module pendula_nd_run

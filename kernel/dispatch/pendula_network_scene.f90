@@ -19,15 +19,15 @@ module pendula_network_scene
   use pendula_kinds, only: dp, i8, nan_dp
   use pendula_integrators, only: run_stats
   use pendula_network, only: network, make_network, np_rows
-  use pendula_network_run, only: network_simulate, nd_dop853, nd_gauss4, nd_gauss6
+  use pendula_network_run, only: network_simulate, nd_dop853
   use pendula_group_file, only: read_group_file
-  use pendula_nd_run, only: nd_output_times
+  use pendula_nd_run, only: nd_output_times, nd_method_code, nd_check_run, nd_output_counts
   implicit none
   private
   public :: network_scene_t, read_network_scene, run_network_scene, max_elements
 
   !> the most elements a scene file names (larger networks: pendula.Network)
-  integer, parameter :: max_elements = 1000, max_samples = 10000000
+  integer, parameter :: max_elements = 1000
   integer, parameter :: n_per_element = 9
   character(len=16), parameter :: per_element_names(n_per_element) = [character(len=16) :: 'mass', 'damping', &
     'eps', 'bias', 'drive_amplitude', 'drive_frequency', 'drive_phase', 'phi0', 'v0']
@@ -129,7 +129,6 @@ contains
   pure subroutine check_network_scene(ns, msg)
     type(network_scene_t), intent(in) :: ns
     character(len=*), intent(out) :: msg
-    real(dp) :: spacing, k
     integer :: j
     msg = ''
     do j = 1, n_per_element
@@ -152,39 +151,10 @@ contains
       msg = 'field ''topology'': ''ladder'' needs an even n >= 4 (two rails)'
     else if (.not. (ns%strength >= 0.0_dp .and. ns%strength <= huge(1.0_dp))) then
       msg = 'field ''strength'' must be finite and >= 0'
-    else if (.not. (ns%t_end > 0.0_dp .and. ns%t_end <= huge(1.0_dp))) then
-      msg = 'field ''t_end'' must be positive and finite'
-    else if (ns%n_samples < 1 .or. ns%n_samples > max_samples) then
-      msg = 'field ''n_samples'' must lie in [1, 1e7]'
-    else if (method_code(ns%method) == 0) then
-      msg = 'field ''method'' must be ''dop853'', ''gauss6'' or ''gauss4'', got ''' // trim(ns%method) // ''''
-    else if (.not. (ns%rtol > 0.0_dp .and. ns%atol >= 0.0_dp .and. ns%rtol < 1.0_dp .and. &
-                    ns%atol <= huge(1.0_dp))) then
-      msg = 'fields ''rtol'', ''atol'' must satisfy 0 < rtol < 1 and atol >= 0'
-    else if (method_code(ns%method) /= nd_dop853) then
-      spacing = ns%t_end / real(max(ns%n_samples - 1, 1), dp)
-      k = spacing / ns%dt
-      if (.not. (ns%dt > 0.0_dp .and. ns%dt <= huge(1.0_dp))) then
-        msg = 'field ''dt'' must be positive and finite'
-      else if (.not. (k * real(ns%n_samples, dp) <= 2.0e9_dp)) then
-        msg = 'field ''dt'': the run needs more than 2e9 steps; give a larger dt or a shorter t_end'
-      else if (abs(k - anint(k)) > 1.0e-9_dp * max(1.0_dp, k) .or. anint(k) < 1.0_dp) then
-        msg = 'field ''dt'' must divide the output spacing t_end / (n_samples - 1) (Gauss-Legendre steps ' // &
-              'land on the outputs)'
-      end if
+    else
+      call nd_check_run(ns%method, ns%t_end, ns%n_samples, ns%dt, ns%rtol, ns%atol, msg)
     end if
   end subroutine check_network_scene
-
-  !> nd_run's code of a method name, 0 for none.
-  pure integer function method_code(name)
-    character(len=*), intent(in) :: name
-    select case (trim(name))
-    case ('dop853'); method_code = nd_dop853
-    case ('gauss6'); method_code = nd_gauss6
-    case ('gauss4'); method_code = nd_gauss4
-    case default; method_code = 0
-    end select
-  end function method_code
 
   !> The springs (ei < ej, 1-based) of a named topology on n elements, in pendula.Network's order.
   pure subroutine topology_springs(name, n, ei, ej)
@@ -220,15 +190,10 @@ contains
     call topology_springs(ns%topology, ns%n, ei, ej)
     p = transpose(ns%per(:, 1:np_rows))
     allocate(counts(size(t)))
-    h = 0.0_dp
-    counts = 0_i8
-    if (method_code(ns%method) /= nd_dop853) then
-      h = ns%dt
-      counts = int(anint((ns%t_end / real(max(size(t) - 1, 1), dp)) / h), i8)
-      counts(1) = 0_i8
-    end if
+    call nd_output_counts(ns%method, ns%t_end, ns%dt, counts)
+    h = merge(0.0_dp, ns%dt, nd_method_code(ns%method) == nd_dop853)
     call network_simulate(make_network(p, ei, ej, spread(ns%strength, 1, size(ei)), spread(0.0_dp, 1, size(ei))), &
-                          method_code(ns%method), [ns%per(:, 8), ns%per(:, 9)], t, counts, ns%rtol, ns%atol, h, &
+                          nd_method_code(ns%method), [ns%per(:, 8), ns%per(:, 9)], t, counts, ns%rtol, ns%atol, h, &
                           yout, st, status, cancel)
   end subroutine run_network_scene
 

@@ -5,6 +5,9 @@
 !> scene module (kernel/dispatch/pendula_*_scene.f90) keeps its fields and
 !> their checks.
 module pendula_group_file
+  use, intrinsic :: iso_c_binding, only: c_null_char, c_long_long
+  use pendula_scene, only: c_read_kind
+  use pendula_scene_type, only: max_scene_bytes
   implicit none
   private
   public :: scene_group, read_group_file, name_bad_line, line_reader, unit_reader
@@ -26,13 +29,17 @@ module pendula_group_file
 
 contains
 
-  !> The name of the first namelist group of the file (lower case; blank when none or unreadable).
+  !> The name of the first namelist group of the file (lower case; blank when none, or when the file is
+  !> not a regular file of at most 16 MiB: a FIFO or a device is never read; read_scene says why).
   function scene_group(path) result(name)
     character(len=*), intent(in) :: path
     character(len=32) :: name
     character(len=512) :: ln
     integer :: u, ios, b, k
+    integer(c_long_long) :: bytes
     name = ''
+    if (c_read_kind(path // c_null_char, bytes) /= 0) return
+    if (bytes > max_scene_bytes) return
     open(newunit=u, file=path, status='old', action='read', iostat=ios)
     if (ios /= 0) return
     do

@@ -27,7 +27,7 @@ module pendula_scene
   public :: scene_t, read_scene, parse_scene, scene_from_fields, scene_to_fields, scene_lists, check_scene, &
             scene_member, &
             scene_effects, scene_has_orbit_facts, scene_summary, max_sweep, max_outputs, number_fields, &
-            n_number_fields, n_word_fields, max_words
+            n_number_fields, n_word_fields, max_words, c_read_kind
 
   interface
     !> kernel/glue/pendula_os.c: 0 for a regular file (its size), else -errno (-10001: not a regular file)

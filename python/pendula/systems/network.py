@@ -632,6 +632,13 @@ class Network:
         NormalModes
             ω² ascending and the mode shapes: −J x = ω² C x.
 
+        Raises
+        ------
+        ValueError
+            Naming the field, for a damped or driven network (the capability
+            table: its modes are the undamped, undriven network's; a damped
+            network's rates are :meth:`equilibrium`'s eigenvalues).
+
         Examples
         --------
         >>> import numpy as np, pendula
