@@ -8,7 +8,7 @@ SQUID stays at rest, against the two-junction interference law
 2I₀ abs(cos πΦ/Φ₀) of a loop without inductance; screening lifts its minimum.
 Beside them an asymmetric SQUID (junctions of 8 and 12 µA, α_I = 0.2, the
 loop split 35:65, η = 0.3): its lobe shifts and skews, reaching the full
-2I₀ at Φ = −β_L/4 (here 3/4 Φ₀), where the arms' shares of the bias match
+2I₀ at Φ = −β_L(α_I + η)/2 (here 3/4 Φ₀), where the arms' shares of the bias match
 the junctions' critical currents.
 Right: the dc voltage over the applied flux at four bias currents (the
 SQUID as a flux-to-voltage converter), and at 18 µA also at 4.2 K, the
