@@ -83,6 +83,8 @@ def test_fluxon_velocity_bad_arguments_are_named():
         pendula.fluxon_velocity([0.1], 0.1, fluxons=0)
     with pytest.raises(ValueError, match="sites"):
         pendula.fluxon_velocity([0.1], 0.1, length=1.0, spacing=0.25)
+    with pytest.raises(ValueError, match="sites, more than"):
+        pendula.fluxon_velocity([0.1], 0.1, length=1e6)
     with pytest.raises(ValueError, match="biases"):
         pendula.fluxon_velocity([np.nan], 0.1)
 

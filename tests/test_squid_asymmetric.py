@@ -208,3 +208,13 @@ def test_asymmetric_iv_curve_matches_scipy_on_its_running_branch():
         v, err = float(r.voltage[0, j]), float(r.voltage_err[0, j])
         ref = I0 * R * _reference_mean_velocity(0.5, 2.0, -0.2, i, 0.3, -0.2, 0.4, t_skip=800.0)
         assert abs(v - ref) <= err + 1e-10 * ref, (i, v, ref, err)
+
+
+@pytest.mark.parametrize("a_i, eta, beta_l", [(0.1, 0.2, 1.0), (0.3, -0.1, 0.5), (-0.2, 0.4, 2.0)])
+def test_full_critical_current_where_the_arms_shares_match_the_junctions(a_i, eta, beta_l):
+    """Closed form: at Φ = −β_L(α_I + η)/2 Φ₀ a circulating current (α_I + η)I₀ with both phases at π/2
+    satisfies the fluxoid condition, and the arms then carry (1 ± η)I₀ ∓ (α_I + η)I₀ = I₀(1 ∓ α_I), each
+    junction's critical current: Ic is the largest possible, 2I₀ (to rounding)."""
+    flux = -beta_l * (a_i + eta) / 2
+    ic = squid_critical_current(beta_l, flux, current_asymmetry=a_i, inductance_asymmetry=eta)
+    assert abs(ic - 2.0) < 4e-15

@@ -29,7 +29,7 @@ off[n - 1, 0], off[0, n - 1] = -2 * np.pi, 2 * np.pi
 ring = pendula.Network(n, topology="ring", strength=1 / a**2, offset=off,
                        damping=alpha, bias=gamma)
 x = a * np.arange(n)
-t = np.linspace(0, 90, 91)
+t = np.linspace(0, 90, 61)
 run = ring.simulate(t, phi0=4 * np.arctan(np.exp(x - x[-1] / 2)),
                     rtol=1e-8, atol=1e-10)
 phi, v = run.phi.values, run.v.values
@@ -46,7 +46,7 @@ bobs = axp.plot([], [], "o", color="tab:blue", ms=3)[0]
 axv.set(xlim=(x[0], x[-1]), ylim=(-0.2, 1.2 * max(1e-3, v.max())),
         xlabel="position along the junction (λ_J)", ylabel="voltage φ_t")
 pulse = axv.plot([], [], color="tab:red", lw=1.5)[0]
-stamp = axv.text(0.02, 0.85, "", transform=axv.transAxes, fontsize=10)
+stamp = axv.text(0.02, 0.85, "", transform=axv.transAxes)
 fig.tight_layout()
 
 

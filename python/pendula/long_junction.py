@@ -31,6 +31,9 @@ if TYPE_CHECKING:   # xarray is optional: named in annotations only
 
 __all__ = ["fluxon_velocity"]
 
+#: the most sites of the ring (its offset matrix is N x N: 32 MB at this size)
+_MAX_SITES = 2048
+
 
 def _power_balance(alpha: float, gamma: np.ndarray) -> np.ndarray:
     g = np.abs(gamma)
@@ -89,7 +92,8 @@ def fluxon_velocity(biases: ArrayLike, damping: float, *, length: float = 40.0, 
     ------
     ValueError
         A damping, spacing, length or window that is not positive, fewer
-        than 8 sites a fluxon, or a bias that is not finite, naming it.
+        than 8 sites a fluxon or more than 2048 in all, or a bias that is not
+        finite, naming it.
 
     See Also
     --------
@@ -114,6 +118,9 @@ def fluxon_velocity(biases: ArrayLike, damping: float, *, length: float = 40.0, 
     n = int(round(length / a))
     if n < 8 * m:
         raise ValueError(f"length / spacing gives {n} sites: at least 8 a fluxon are needed (fluxons={m})")
+    if n > _MAX_SITES:
+        raise ValueError(f"length / spacing gives {n} sites, more than {_MAX_SITES} (the closing spring's twist "
+                         "is given to the ring as an N x N offset matrix): a shorter ring or a coarser spacing")
     k = 1.0 / (a * a)
     off = np.zeros((n, n))
     off[n - 1, 0], off[0, n - 1] = -2 * math.pi * m, 2 * math.pi * m

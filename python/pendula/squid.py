@@ -142,14 +142,17 @@ def squid_critical_current(beta_l: float, flux: float, *, current_asymmetry: flo
     """The static critical current of a dc SQUID over its junctions' mean I₀.
 
     The largest positive bias with a stable rest point, over all flux
-    states: the fold of each stable branch continued in the bias from zero,
-    located by Newton on the Moore-Spence system.  The junctions' critical
+    states: the fold of each stable branch (sought on a ladder of biases
+    from 0 to 2I₀, as a flux state of an asymmetric SQUID can be born under
+    a bias) continued in the bias, located by Newton on the Moore-Spence
+    system.  The junctions' critical
     currents are I₀(1 ∓ α_I), the arms' inductances (1 ∓ η)L/2 (Tesche and
     Clarke 1977, section 2): the arm of the smaller inductance carries the
     larger share (1 ± η)/2 of the bias.  As β_L → 0 it tends to
     √((1 − α_I)² + (1 + α_I)² + 2(1 − α_I²) cos(2πΦ/Φ₀)), for equal
-    junctions 2|cos(πΦ/Φ₀)|; with both asymmetries the lobes shift and skew,
-    and the negative bias's critical current is this one at −Φ.
+    junctions 2 abs(cos(πΦ/Φ₀)); at β_L > 0 either asymmetry shifts and
+    skews the lobes, and the negative bias's critical current is this one
+    at −Φ.
 
     Parameters
     ----------
