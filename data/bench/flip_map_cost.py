@@ -16,6 +16,9 @@ The peers, each doing the same two runs per pixel:
     fast normal mode's period) in chunks of 16 grid steps, the first grid interval where abs(theta_i)
     passes pi is located and the crossing polished by Newton's method on the integrated path (the
     same scheme as pendula's: equal work, equal accuracy);
+  * diffrax: Dopri8 under jax.jit and jax.vmap over the strip's pixels that may flip (float64), the
+    flip a diffrax Event (max(abs(theta1), abs(theta2)) = pi, its root by Newton); compile time
+    excluded (one warm-up call per strip size);
   * SciPy: solve_ivp (DOP853, terminal events abs(theta_i) = pi, a NumPy-free right-hand side), on
     a seeded random sample of each strip's pixels (its cost per pixel extrapolated).
 Equal accuracy: every code's flip times against SciPy's DOP853 at rtol 1e-13 with events (the reference)
@@ -25,7 +28,7 @@ on the sampled pixels, as the median relative error over the pixels whose flip t
 interpolated in log-log between its runs.
 
 Run: .venv/bin/python data/bench/flip_map_cost.py [strips] [scipy_pixels_per_strip]
-     (`make bench-peers` installs numba and numbalsoda; writes data/bench/flip_map_cost.json)
+     (`make bench-peers` installs numba, numbalsoda, diffrax and jax; writes data/bench/flip_map_cost.json)
 """
 
 import json
@@ -158,16 +161,65 @@ def median_error(times, ref):
     return float(np.median(e)) if e.size else float("nan")
 
 
+def diffrax_peer():
+    """diffrax's Dopri8 under jax.jit and jax.vmap over a strip's pixels, the flip as a diffrax Event
+    (max(abs(theta1), abs(theta2)) - pi, its root by optimistix's Newton): (theta1, theta2s, t_max, rtol)
+    -> flip times, each pixel also run at rtol / 10 as the map does."""
+    import jax
+    jax.config.update("jax_enable_x64", True)
+    import diffrax
+    import jax.numpy as jnp
+    import optimistix as optx
+
+    def f(t, y, args):
+        d = y[0] - y[1]
+        c, s = jnp.cos(d), jnp.sin(d)
+        r1 = -s * y[3] * y[3] - 2.0 * jnp.sin(y[0])
+        r2 = s * y[2] * y[2] - jnp.sin(y[1])
+        det = 2.0 - c * c
+        return jnp.stack([y[2], y[3], (r1 - c * r2) / det, (2.0 * r2 - c * r1) / det])
+
+    def cond(t, y, args, **kwargs):
+        return jnp.maximum(jnp.abs(y[0]), jnp.abs(y[1])) - jnp.pi
+
+    def flip(y0, rtol, t_max):
+        sol = diffrax.diffeqsolve(diffrax.ODETerm(f), diffrax.Dopri8(), 0.0, t_max, None, y0,
+                                  stepsize_controller=diffrax.PIDController(rtol=rtol, atol=rtol),
+                                  event=diffrax.Event(cond, root_finder=optx.Newton(rtol=1e-13, atol=1e-13)),
+                                  saveat=diffrax.SaveAt(t1=True), max_steps=10**6, throw=False)
+        # a pixel on the top (abs(theta) = pi at t = 0) ends at once: its event time is 0
+        return jnp.where(sol.event_mask, sol.ts[-1], jnp.inf)
+    batch = jax.jit(jax.vmap(flip, in_axes=(0, None, None)), static_argnums=(2,))
+
+    def strip(th1, th2s, t_max, rtol):
+        out = np.full(th2s.size, np.inf)
+        allowed = np.flatnonzero(~(2 * np.cos(th1) + np.cos(th2s) > 1))
+        if allowed.size:
+            y0 = jnp.asarray(np.stack([np.full(allowed.size, th1), th2s[allowed], np.zeros(allowed.size),
+                                       np.zeros(allowed.size)], 1))
+            out[allowed] = np.asarray(batch(y0, rtol, t_max))
+            batch(y0, rtol / 10, t_max).block_until_ready()      # the map's second run
+        return out
+
+    def warm(th1, th2s, t_max):   # compile for this strip's batch size (rtol is traced: one compilation)
+        allowed = np.flatnonzero(~(2 * np.cos(th1) + np.cos(th2s) > 1))
+        if allowed.size:
+            batch(jnp.zeros((allowed.size, 4)), 1e-6, t_max).block_until_ready()
+    return strip, warm
+
+
 def main(strips: int = 3, n_scipy: int = 12) -> None:
     grid = np.linspace(-math.pi, math.pi, SIDE)
     rng = np.random.default_rng(20261204)
     rows = rng.choice(SIDE, strips, replace=False)
     dp = pendula.DoublePendulum()
     peer = numba_peer()
+    dfx, dfx_warm = diffrax_peer()
     dp.flip_map([1.0], [2.0, 3.0], t_max=2.0, threads=1)      # warm
     peer_rtols = (RTOL, RTOL / 10, RTOL / 100)                # the peers' runs, to reach pendula's error
     rec_rows = []
-    got = {"pendula": ([], [])} | {f"{c}@{r:.0e}": ([], []) for c in ("numba", "scipy") for r in peer_rtols}
+    got = {"pendula": ([], [])} | {f"{c}@{r:.0e}": ([], []) for c in ("numba", "diffrax", "scipy")
+                                        for r in peer_rtols}
     cost = {k: 0.0 for k in got}
     for r in rows:
         th1 = float(grid[r])
@@ -179,7 +231,12 @@ def main(strips: int = 3, n_scipy: int = 12) -> None:
         tp = dp.flip_map([th1], grid, t_max=T_MAX, rtol=RTOL, atol=RTOL, threads=1).time[0]
         row["pendula_s"] = time.perf_counter() - t0
         got["pendula"][0].extend(np.asarray(tp)[sample]); got["pendula"][1].extend(ref)
+        dfx_warm(th1, grid, T_MAX)
         for rt in peer_rtols:
+            t0 = time.perf_counter()
+            td = dfx(th1, grid, T_MAX, rt)
+            row[f"diffrax_s@{rt:.0e}"] = time.perf_counter() - t0
+            got[f"diffrax@{rt:.0e}"][0].extend(td[sample]); got[f"diffrax@{rt:.0e}"][1].extend(ref)
             t0 = time.perf_counter()
             tn = peer(th1, grid, T_MAX, rt)
             row[f"numba_s@{rt:.0e}"] = time.perf_counter() - t0
@@ -193,12 +250,13 @@ def main(strips: int = 3, n_scipy: int = 12) -> None:
         rec_rows.append(row)
         print(f"strip theta1 = {th1:+.4f} ({allowed.size} pixels may flip): pendula {row['pendula_s']:7.3f} s   "
               + "   ".join(f"numba rtol {rt:.0e} {row[f'numba_s@{rt:.0e}']:7.3f} s" for rt in peer_rtols)
+              + "   " + "   ".join(f"diffrax rtol {rt:.0e} {row[f'diffrax_s@{rt:.0e}']:7.3f} s" for rt in peer_rtols)
               + f"   scipy rtol {RTOL:.0e} {row[f'scipy_s@{RTOL:.0e}']:8.2f} s (from {sample.size} pixels)",
               flush=True)
     err = {k: median_error(np.array(v[0]), np.array(v[1])) for k, v in got.items()}
     mean = {k: float(np.mean([row[k] for row in rec_rows])) for k in rec_rows[0] if k.endswith("_s") or "_s@" in k}
     summary = {"pendula": {"error": err["pendula"], "map_s": mean["pendula_s"] * SIDE}}
-    for c in ("numba", "scipy"):
+    for c in ("numba", "diffrax", "scipy"):
         runs = [(err[f"{c}@{rt:.0e}"], mean[f"{c}_s@{rt:.0e}"]) for rt in peer_rtols]
         t_eq, inside = equal_error_time(err["pendula"], runs)
         summary[c] = {"runs": [{"rtol": rt, "error": e, "map_s": t * SIDE} for rt, (e, t) in zip(peer_rtols, runs)],
@@ -209,9 +267,12 @@ def main(strips: int = 3, n_scipy: int = 12) -> None:
     print(f"the 1000 x 1000 map, extrapolated from {strips} strips (one thread), at pendula's error "
           f"{err['pendula']:.1e}: pendula {summary['pendula']['map_s'] / 60:.1f} min, "
           f"numba {summary['numba']['map_s_at_pendula_error'] / 60:.1f} min, "
+          f"diffrax {summary['diffrax']['map_s_at_pendula_error'] / 60:.1f} min, "
           f"scipy {summary['scipy']['map_s_at_pendula_error'] / 3600:.1f} h;  ratios numba/pendula "
           f"{summary['numba']['ratio_peer_over_pendula']:.2f}"
-          f"{'' if summary['numba']['interpolated'] else ' (extrapolated)'}, scipy/pendula "
+          f"{'' if summary['numba']['interpolated'] else ' (extrapolated)'}, diffrax/pendula "
+          f"{summary['diffrax']['ratio_peer_over_pendula']:.2f}"
+          f"{'' if summary['diffrax']['interpolated'] else ' (extrapolated)'}, scipy/pendula "
           f"{summary['scipy']['ratio_peer_over_pendula']:.1f}"
           f"{'' if summary['scipy']['interpolated'] else ' (extrapolated)'}")
     rec = {"date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),

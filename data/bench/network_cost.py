@@ -8,7 +8,9 @@ N = 2, 16, 256, 4096, from a smooth wave φ_i(0) = 0.5 sin(2πi/N + 0.3), over t
 The peers: SciPy's solve_ivp (DOP853, the right-hand side vectorised in numpy); numbalsoda's dop853
 (Hairer's DOP853 in C++, the right-hand side a numba cfunc); diffrax's Dopri8 under jax.jit (float64,
 PID step control, only the end state saved; compile time excluded: the first call is a warm-up).  vmap
-is diffrax's answer to a batch; this task is one trajectory per N, so its cells use jit alone.
+is diffrax's answer to a batch: the main cells are one trajectory each (jit alone), and a batch cell
+(64 chains of 16 from seeded random phases) maps diffrax's solve over the batch with jax.vmap while
+pendula and numbalsoda loop over it.
 
 Equal error: every code runs at several rtol (atol rtol/100); each run's error is the largest
 difference of the state at t = 10 from SciPy's DOP853 at rtol 1e-13 (the reference, not pendula's
@@ -102,6 +104,7 @@ def numbalsoda_runner(n, y0):
         if not ok:
             raise RuntimeError("numbalsoda dop853 failed")
         return usol[-1]
+    run.ptr = ptr
     return run
 
 
@@ -147,6 +150,90 @@ def kernel_seconds(net, y0, rtol):
 
 RUNNERS = {"scipy": scipy_runner, "numbalsoda": numbalsoda_runner, "diffrax": diffrax_runner}
 
+BATCH_N, BATCH = 16, 64     # the batch task: 64 chains of 16 from seeded random phases
+
+
+def batch_cell(avail):
+    """The batch task (where vmap applies): BATCH chains of BATCH_N from seeded random initial phases, each
+    to t = 10.  pendula and numbalsoda loop over the chains (pendula has no batched DOP853 call);
+    diffrax maps one jit-compiled solve over the batch with jax.vmap.  Error: the largest over the batch
+    against SciPy at rtol 1e-13; times at equal error as in the main table."""
+    n = BATCH_N
+    rng = np.random.default_rng(20261204)
+    phis = rng.uniform(-1.0, 1.0, (BATCH, n))
+    y0s = np.concatenate([phis, np.zeros((BATCH, n))], axis=1)
+    ref = np.array([scipy_runner(n, y)(1e-13) for y in y0s])
+    net = pendula.Network(n, topology="chain", strength=K)
+
+    def pend(rtol):
+        out = []
+        for p in phis:
+            run = net.simulate([0.0, T_END], p, 0.0, rtol=rtol, atol=rtol / 100)
+            out.append(np.concatenate([run.phi.values[-1], run.v.values[-1]]))
+        return np.array(out)
+    runners = {}
+    if "numbalsoda" in avail:
+        one = numbalsoda_runner(n, y0s[0])
+        from numbalsoda import dop853
+
+        def nbs(rtol, ptr=one.ptr):
+            return np.array([dop853(ptr, y, np.array([0.0, T_END]), rtol=rtol, atol=rtol / 100,
+                                    mxstep=10**7)[0][-1] for y in y0s])
+        runners["numbalsoda"] = nbs
+    if "diffrax" in avail:
+        runners["diffrax"] = diffrax_batch_runner(n, y0s)
+    rows = []
+    pruns = []
+    for rtol in RTOLS:
+        tp, y = timed(lambda: pend(rtol), 3)
+        pruns.append((rtol, float(np.max(np.abs(y - ref))), tp))
+    peer = {}
+    for name, run in runners.items():
+        peer[name] = []
+        for rtol in PEER_RTOLS:
+            t, y = timed(lambda: run(rtol), 3)
+            peer[name].append((rtol, float(np.max(np.abs(y - ref))), t))
+    for rtol, err, tp in pruns:
+        row = {"n": n, "batch": BATCH, "rtol": rtol, "pendula_error": err, "pendula_s": tp}
+        line = f"batch {BATCH} x N={n} rtol={rtol:.0e}  pendula {tp * 1e3:8.3f} ms err {err:.1e} |"
+        for name, runs in peer.items():
+            le = np.log([r[1] for r in runs])
+            lt = np.log([r[2] for r in runs])
+            o = np.argsort(le)
+            t_eq = float(np.exp(np.interp(np.log(err), le[o], lt[o])))
+            inside = bool(le.min() <= np.log(err) <= le.max())
+            row[name] = {"runs": [{"rtol": r[0], "error": r[1], "s": r[2]} for r in runs],
+                         "s_at_pendula_error": t_eq, "interpolated": inside, "ratio_peer_over_pendula": t_eq / tp}
+            line += f" {name} {t_eq * 1e3:8.3f} ms x{t_eq / tp:6.2f}{'' if inside else '*'}"
+        rows.append(row)
+        print(line, flush=True)
+    return rows
+
+
+def diffrax_batch_runner(n, y0s):
+    import jax
+    jax.config.update("jax_enable_x64", True)
+    import diffrax
+    import jax.numpy as jnp
+
+    def f(t, y, args):
+        q, v = y[:n], y[n:]
+        lap = jnp.zeros(n).at[:-1].add(q[1:] - q[:-1]).at[1:].add(q[:-1] - q[1:])
+        return jnp.concatenate([v, -jnp.sin(q) + K * lap])
+
+    def solve(y, rtol):
+        sol = diffrax.diffeqsolve(diffrax.ODETerm(f), diffrax.Dopri8(), 0.0, T_END, None, y,
+                                  stepsize_controller=diffrax.PIDController(rtol=rtol, atol=rtol / 100),
+                                  saveat=diffrax.SaveAt(t1=True), max_steps=10**6)
+        return sol.ys[-1]
+    batch = jax.jit(jax.vmap(solve, in_axes=(0, None)))
+    yj = jnp.asarray(y0s)
+
+    def run(rtol):
+        return np.asarray(batch(yj, rtol).block_until_ready())
+    run(1e-6)   # compile once
+    return run
+
 
 def main():
     avail = [p for p in PEERS if installed(p)]
@@ -187,6 +274,7 @@ def main():
                 line += f" {p} {t_eq * 1e3:8.3f} ms x{t_eq / tp:6.2f}{'' if inside else '*'}"
             rows.append(row)
             print(line, flush=True)
+    batch_rows = batch_cell(avail)
     print("kernel: the share of pendula's call spent in the kernel; "
           "x: the peer's time at pendula's error over pendula's time (> 1: pendula faster); "
           "*: extrapolated beyond the peer's runs")
@@ -197,7 +285,7 @@ def main():
            "task": f"FK chain, free ends, K={K}, t = 0..{T_END}; pendula DOP853, SciPy DOP853, numbalsoda "
                    "dop853, diffrax Dopri8 (jit); error vs SciPy DOP853 rtol 1e-13",
            "peers_not_installed": [p for p in PEERS if p not in avail],
-           "rows": rows}
+           "rows": rows, "batch_rows": batch_rows}
     (HERE / "network_cost.json").write_text(json.dumps(rec, indent=1) + "\n")
 
 
