@@ -519,7 +519,7 @@ class DoublePendulum:
 
         See Also
         --------
-        flip_map : the same map in one call, as a FlipMap.
+        DoublePendulum.flip_map : the same map in one call, as a FlipMap.
         pendula.sweep : the sweeps of the single pendulum's measures.
 
         Examples
