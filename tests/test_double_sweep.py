@@ -117,3 +117,12 @@ def test_flip_sweep_on_worker_processes_into_a_store_equals_flip_map(tmp_path, r
         ds = pendula.DoublePendulum().flip_sweep(TH1, TH2, out=tmp_path / "flip", client=client, chunk_points=6,
                                                  progress=False, **KW)
         check_equal(ds.load(), reference)
+
+
+def test_flip_map_to_xarray_is_the_sweeps_dataset(reference):
+    ds = pendula.DoublePendulum().flip_sweep(TH1, TH2, progress=False, **KW)
+    fx = reference.to_xarray()
+    for name in ("time", "check", "forbidden", "unresolved", "status", "theta1", "theta2"):
+        assert same(fx[name].values, ds[name].values), name
+        assert fx[name].attrs.keys() == ds[name].attrs.keys()
+    assert {k: fx.attrs[k] for k in ("t_max", "rtol", "agree")} == {k: ds.attrs[k] for k in ("t_max", "rtol", "agree")}
