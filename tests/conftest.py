@@ -47,6 +47,7 @@ FULL = (
     "test_squid_sweep.py::test_v_phi_running_branch_of_a_hysteretic_squid_matches_scipy",
     "test_attractor_agreement.py::test_default_map_agrees_with_scipy_long_runs_on_995_permille_of_stable_points",
     "test_double_motion.py::test_energy_bounded_over_1e5_swings",
+    "test_double_sweep.py::test_flip_sweep_on_worker_processes_into_a_store_equals_flip_map",
     "test_attractors_recurrence.py::test_coarse_to_fine_map_matches_the_long_transient_run_on_995_permille_of_stable_points",
     "test_attractors_recurrence.py::test_grid_of_levels_gives_the_same_labels_whatever_the_threads_chunking_or_resume",
     "test_bifurcation_curves.py::test_retrapping_curve_against_scipy",

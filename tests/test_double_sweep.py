@@ -88,3 +88,41 @@ def test_flip_sweep_bad_arguments_named(kw, match):
     args.update(kw)
     with pytest.raises((ValueError, TypeError), match=match):
         pendula.DoublePendulum().flip_sweep(args.pop("theta1"), args.pop("theta2"), **args)
+
+
+def test_flip_sweep_dataset_draws_the_same_figure_as_the_flip_map(reference):
+    pytest.importorskip("matplotlib")
+    import matplotlib.pyplot as plt
+
+    import pendula.plot
+
+    ds = pendula.DoublePendulum().flip_sweep(TH1, TH2, progress=False, **KW)
+    a, b = pendula.plot.flip_map(ds), pendula.plot.flip_map(reference)
+    for ma, mb in zip(a.collections, b.collections):
+        assert same(np.ma.filled(ma.get_array(), -7.0), np.ma.filled(mb.get_array(), -7.0))
+    assert [t.get_text() for t in a.get_legend().get_texts()] == [t.get_text() for t in b.get_legend().get_texts()]
+    plt.close("all")
+
+
+def test_flip_sweep_on_worker_processes_into_a_store_equals_flip_map(tmp_path, reference):
+    """Two worker processes (the plan pickled to them, the chunks computed there and written by this
+    process): the stored map equals the one-piece map bit for bit."""
+    import logging
+
+    distributed = pytest.importorskip("dask.distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
+                                  dashboard_address=None, silence_logs=logging.CRITICAL) as cluster, \
+            distributed.Client(cluster, timeout=60) as client:
+        client.wait_for_workers(2, timeout=60)
+        ds = pendula.DoublePendulum().flip_sweep(TH1, TH2, out=tmp_path / "flip", client=client, chunk_points=6,
+                                                 progress=False, **KW)
+        check_equal(ds.load(), reference)
+
+
+def test_flip_map_to_xarray_is_the_sweeps_dataset(reference):
+    ds = pendula.DoublePendulum().flip_sweep(TH1, TH2, progress=False, **KW)
+    fx = reference.to_xarray()
+    for name in ("time", "check", "forbidden", "unresolved", "status", "theta1", "theta2"):
+        assert same(fx[name].values, ds[name].values), name
+        assert fx[name].attrs.keys() == ds[name].attrs.keys()
+    assert {k: fx.attrs[k] for k in ("t_max", "rtol", "agree")} == {k: ds.attrs[k] for k in ("t_max", "rtol", "agree")}

@@ -227,14 +227,15 @@ def levels(transmon, ax: matplotlib.axes.Axes | None = None, *, count: int = 5,
     return ax
 
 
-def flip_map(fm: FlipMap, ax: matplotlib.axes.Axes | None = None, *,
+def flip_map(fm: FlipMap | xarray.Dataset, ax: matplotlib.axes.Axes | None = None, *,
              colorbar: bool = True) -> matplotlib.axes.Axes:
     """A double pendulum's flip-time map: log10 of the flip time over the initial angles.
 
     Parameters
     ----------
-    fm : FlipMap
-        What :meth:`pendula.DoublePendulum.flip_map` returns.
+    fm : FlipMap or xarray.Dataset
+        What :meth:`pendula.DoublePendulum.flip_map` returns, or the Dataset
+        of :meth:`pendula.DoublePendulum.flip_sweep`.
     ax : matplotlib.axes.Axes, optional
         Where to draw (default: a new figure).
     colorbar : bool
@@ -259,7 +260,12 @@ def flip_map(fm: FlipMap, ax: matplotlib.axes.Axes | None = None, *,
     from matplotlib.patches import Patch
 
     from .systems.double_motion import FlipMap
-    fm = _result(fm, "fm", FlipMap, "a FlipMap (DoublePendulum.flip_map)")
+    if hasattr(fm, "data_vars") and {"time", "check", "forbidden", "unresolved"} <= set(fm.data_vars):
+        # a flip_sweep's Dataset (loaded here: a figure holds the whole map anyway)
+        fm = FlipMap(fm.theta1.values, fm.theta2.values, fm.time.values, fm.check.values,
+                     fm.forbidden.values.astype(bool), fm.unresolved.values.astype(bool), float(fm.attrs["t_max"]),
+                     float(fm.attrs["rtol"]), float(fm.attrs["agree"]))
+    fm = _result(fm, "fm", FlipMap, "a FlipMap (DoublePendulum.flip_map) or a DoublePendulum.flip_sweep Dataset")
     colorbar = _checks.flag(colorbar, "colorbar")
     ax = _ax(ax, figsize=(6.0, 5.0))
     with np.errstate(divide="ignore"):

@@ -109,6 +109,27 @@ class FlipMap:
     rtol: float
     agree: float
 
+    def to_xarray(self) -> xarray.Dataset:
+        """The map as an xarray Dataset over (theta1, theta2), with CF attributes.
+
+        Returns
+        -------
+        xarray.Dataset
+            ``time``, ``check``, ``forbidden`` and ``unresolved`` (0 or 1) and
+            ``status`` (0), as :meth:`DoublePendulum.flip_sweep` gives them;
+            attributes ``t_max``, ``rtol`` and ``agree``.
+
+        Examples
+        --------
+        >>> import numpy as np, pendula
+        >>> th = np.linspace(-3.0, 3.0, 5)
+        >>> ds = pendula.DoublePendulum().flip_map(th, th, t_max=20.0).to_xarray()
+        >>> ds.time.dims, int(ds.forbidden.sum())
+        (('theta1', 'theta2'), 7)
+        """
+        from .double_sweep import flip_dataset
+        return flip_dataset(self)
+
     def __repr__(self) -> str:
         n = self.time.size
         flipped = int(np.sum(np.isfinite(self.time)))
@@ -526,7 +547,7 @@ class DoublePendulum:
 
         See Also
         --------
-        flip_map : the same map in one call, as a FlipMap.
+        DoublePendulum.flip_map : the same map in one call, as a FlipMap.
         pendula.sweep : the sweeps of the single pendulum's measures.
 
         Examples

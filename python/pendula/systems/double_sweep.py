@@ -62,15 +62,15 @@ def flip_vars(plan: FlipPlan, out: np.ndarray, st: np.ndarray) -> dict:
             "unresolved": out[..., 3].astype(np.int8), "status": st.astype(np.int32)}
 
 
-def flip_layout(plan: FlipPlan):
-    """The map's dataset apart from its values: axes, variables with CF attributes, identity."""
-    from .._store import Layout, Variable
+def _meta(theta1: np.ndarray, theta2: np.ndarray):
+    """The map's coordinates and variables (dims, dtype, CF attributes, the store's fill value)."""
+    from .._store import Variable
 
     dims = ("theta1", "theta2")
-    coords = {"theta1": (plan.over["theta1"], {"long_name": "initial angle of the first arm from the downward "
-                                                            "vertical, at rest", "units": "rad"}),
-              "theta2": (plan.over["theta2"], {"long_name": "initial angle of the second arm from the downward "
-                                                            "vertical, at rest", "units": "rad"})}
+    coords = {"theta1": (theta1, {"long_name": "initial angle of the first arm from the downward vertical, at rest",
+                                  "units": "rad"}),
+              "theta2": (theta2, {"long_name": "initial angle of the second arm from the downward vertical, at rest",
+                                  "units": "rad"})}
     variables = {
         "time": Variable(dims, np.dtype(np.float64), {
             "long_name": "first time either arm passes over the top (abs(theta) = pi); inf: no flip by t_max",
@@ -87,13 +87,38 @@ def flip_layout(plan: FlipPlan):
             "flag_meanings": " ".join(FLIP_STATUS[k].replace(" ", "_") for k in sorted(FLIP_STATUS)),
             "comment": "-1 (the store's fill value) only in a store whose map has not finished: not computed yet"},
             -1)}
+    return coords, variables
+
+
+def _attrs(t_max: float, rtol: float, agree: float) -> dict:
+    return {"Conventions": "CF-1.10", "title": "pendula flip-time map of the double pendulum", "t_max": t_max,
+            "rtol": rtol, "agree": agree, "status_codes": json.dumps(FLIP_STATUS)}
+
+
+def flip_layout(plan: FlipPlan):
+    """The map's dataset apart from its values: axes, variables with CF attributes, identity."""
+    from .._store import Layout
+
+    coords, variables = _meta(plan.over["theta1"], plan.over["theta2"])
     p = plan.pendulum
-    attrs = {"Conventions": "CF-1.10", "title": "pendula flip-time map of the double pendulum",
+    attrs = {**_attrs(plan.t_max, plan.rtol, plan.agree), "atol": plan.atol,
              "m1": p.m1, "m2": p.m2, "l1": p.l1, "l2": p.l2, "g": p.g, "rods": int(p.rods),
-             "damping": [float(x) for x in p.damping], "t_max": plan.t_max, "rtol": plan.rtol, "atol": plan.atol,
-             "agree": plan.agree, "status_codes": json.dumps(FLIP_STATUS)}
+             "damping": [float(x) for x in p.damping]}
     return Layout(axes=dict(plan.over), coords=coords, variables=variables, rows=plan.rows,
                   identity=json.dumps(plan.key(), sort_keys=True), attrs=attrs)
+
+
+def flip_dataset(fm):
+    """A FlipMap as the Dataset flip_sweep gives (its variables and their attributes; status 0)."""
+    from .._optional import require
+    xr = require("xarray", "xarray", "FlipMap.to_xarray")
+
+    coords, variables = _meta(fm.theta1, fm.theta2)
+    vals = {"time": fm.time, "check": fm.check, "forbidden": fm.forbidden.astype(np.int8),
+            "unresolved": fm.unresolved.astype(np.int8), "status": np.zeros(fm.time.shape, dtype=np.int32)}
+    data = {n: (v.dims, np.asarray(vals[n], dtype=v.dtype), dict(v.attrs)) for n, v in variables.items()}
+    return xr.Dataset(data, coords={n: (n, c, dict(a)) for n, (c, a) in coords.items()},
+                      attrs=_attrs(fm.t_max, fm.rtol, fm.agree))
 
 
 def flip_sweep(plan: FlipPlan, out, client, threads: int, progress: bool):
