@@ -87,13 +87,17 @@ contains
     real(dp) :: y(4), tout(flip_chunk), yout(4, flip_chunk), t0, ya(4), wa(2), wb(2), tc, s1, lev
     real(dp) :: yc(4), wc(2), dt
     type(run_stats) :: st
-    integer :: k, j, arm, nk, it
+    integer :: k, j, arm, nk, it, nchunk
     tf = inf_dp
     status = st_ok
     y = y0
     t0 = 0.0_dp
+    ! the first chunk short and each one twice the last (up to flip_chunk grid points): a pixel that flips
+    ! early stops soon after its flip instead of integrating a whole long chunk past it
+    nchunk = 16
     do while (t0 < tmax)
-      nk = int(min(real(flip_chunk, dp), real(ceiling((tmax - t0) / hg), dp)))
+      nk = int(min(real(nchunk, dp), real(ceiling((tmax - t0) / hg), dp)))
+      nchunk = min(2 * nchunk, flip_chunk)
       nk = max(nk, 1)
       do k = 1, nk
         tout(k) = t0 + real(k, dp) * hg
