@@ -126,6 +126,19 @@ def test_public_name_has_the_numpydoc_sections(name):
 DOCS = ROOT / "docs" / "source"
 
 
+def test_every_figure_function_is_in_the_api_reference_with_its_numpydoc_sections():
+    """pendula.plot's public functions (its __all__, each defined) are listed on the API page and
+    carry Parameters, Returns and a runnable example, as the package's own names do."""
+    import pendula.plot as pp
+
+    listed = set(re.findall(r"^   (\w+)$", (DOCS / "api.rst").read_text().split(".. currentmodule:: pendula.plot")[1],
+                            re.M))
+    assert set(pp.__all__) <= listed, sorted(set(pp.__all__) - listed)
+    for name in pp.__all__:
+        doc = inspect.getdoc(getattr(pp, name)) or ""
+        assert {"Parameters", "Returns"} <= _sections(doc) and ">>> " in doc, f"pendula.plot.{name}"
+
+
 def _page_blocks(path):
     """The Python code blocks of a page: Markdown fences and reST code-block directives."""
     text = path.read_text()

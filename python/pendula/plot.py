@@ -46,6 +46,9 @@ from ._plot_common import _ax, _categorical, _dataset, _result, _scene_label, _v
 from ._plot_systems import flip_map, iv, levels, spherical, steps  # noqa: F401
 from .animation import animate  # noqa: F401  (pendula.plot.animate: GIF or MP4 through matplotlib's writers)
 
+__all__ = ["trajectory", "phase", "spectrum", "bifurcation", "branches", "basins", "iv", "steps", "fractions",
+           "flip_map", "spherical", "levels", "animate"]
+
 if TYPE_CHECKING:   # matplotlib and xarray are optional: named in annotations only
     import matplotlib.axes
     import xarray
