@@ -1245,6 +1245,33 @@ subroutine network_energy_v(nel, ne, p, ei, ej, ek, eoff, ns, y, en)
     en(k) = network_energy(net, y(1:nel, k), y(nel + 1:2 * nel, k))
   end do
 end subroutine network_energy_v
+
+! The network's time scales as rates (1 / time; pendula_time_scales's
+! network_time_rates, in the order of `names`, 12 characters each) with the
+! elements' starting speeds v0 (the springs' offsets create none), and the default steps of its fixed-step
+! methods: dts = (Gauss-Legendre 4, Gauss-Legendre 6, BAOAB).
+subroutine network_time_scales_v(nel, ne, p, ei, ej, ek, v0, rates, names, dts)
+  use pendula_network, only: np_c, np_beta, np_eps, np_tau, np_amp, np_omega
+  use pendula_time_scales, only: network_time_rates, network_default_dt, network_scale_names, &
+    n_network_scales, nm_gauss4, nm_gauss6, nm_baoab
+  implicit none
+  integer, intent(in) :: nel, ne
+  double precision, intent(in) :: p(7, nel), ek(ne), v0(nel)
+  integer, intent(in) :: ei(ne), ej(ne)
+  double precision, intent(out) :: rates(9), dts(3)
+  character(len=108), intent(out) :: names
+  !f2py intent(hide), depend(p) :: nel = shape(p, 1)
+  !f2py intent(hide), depend(ei) :: ne = len(ei)
+  integer :: i
+  names = ''
+  do i = 1, n_network_scales
+    names(12 * (i - 1) + 1:12 * i) = network_scale_names(i)
+  end do
+  rates = network_time_rates(p(np_c, :), p(np_beta, :), p(np_eps, :), p(np_tau, :), p(np_amp, :), &
+                             p(np_omega, :), ei, ej, ek, v0)
+  dts = [network_default_dt(rates, nm_gauss4), network_default_dt(rates, nm_gauss6), &
+         network_default_dt(rates, nm_baoab)]
+end subroutine network_time_scales_v
 ! ---------------------------------------------------------------- the spherical pendulum
 ! The exact path of the spherical pendulum (pendula_spherical) from the state
 ! (theta0, theta_dot0, phi_dot0) and azimuth phi0 at t = 0, g / l = eps: theta,
