@@ -1364,6 +1364,27 @@ subroutine double_simulate_v(p, method, y0, nout, tout, counts, rtol, atol, dt, 
   stats = [st%nsteps, st%naccept, st%nreject, st%nfev]
 end subroutine double_simulate_v
 
+! The double pendulum's time scales as rates (pendula_double's
+! double_time_rates, names 12 characters each) at the canonical state y0 =
+! (theta1, theta2, p1, p2), and its default Gauss-Legendre step.
+subroutine double_time_scales_v(p, y0, rates, names, dt)
+  use pendula_double, only: double_pendulum, make_double, double_time_rates, double_default_dt, &
+    double_scale_names, n_double_scales
+  implicit none
+  double precision, intent(in) :: p(8), y0(4)
+  double precision, intent(out) :: rates(3), dt
+  character(len=36), intent(out) :: names
+  type(double_pendulum) :: dpd
+  integer :: i
+  names = ''
+  do i = 1, n_double_scales
+    names(12 * (i - 1) + 1:12 * i) = double_scale_names(i)
+  end do
+  dpd = make_double(p)
+  rates = double_time_rates(dpd, y0)
+  dt = double_default_dt(rates)
+end subroutine double_time_scales_v
+
 ! For ns states y(:, k): the energy, the angular velocities w(:, k) and the
 ! right-hand side f(:, k); jac the Jacobian of the right-hand side at y(:, 1).
 subroutine double_state_v(p, ns, y, en, w, f, jac)
