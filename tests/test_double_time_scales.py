@@ -68,3 +68,15 @@ def test_default_step_shrinks_with_the_energy_of_the_start():
         steps.append(dp._default_dt(y))
     assert math.isclose(steps[0], float(dp.modes().period[1]) / 100, rel_tol=1e-13)
     assert steps[0] > steps[1] > steps[2] > steps[3]
+
+
+def test_section_default_step_follows_the_energy():
+    """The Poincaré section's default step is the one simulate takes from a state of the section's
+    energy (the whirl's above the flip energy, the modes' at a low energy)."""
+    dp = pendula.DoublePendulum()
+    low = dp.poincare(0.05, [0.0], [0.0], t_max=50.0)
+    high = dp.poincare(20.0, [0.0], [0.0], t_max=50.0)
+    h_modes = float(dp.modes().period[1]) / 100
+    assert math.isclose(low.attrs["dt"], h_modes, rel_tol=1e-13)
+    lmin = (3 - math.sqrt(5)) / 2    # the smaller eigenvalue of M = [[2, 1], [1, 1]]
+    assert math.isclose(high.attrs["dt"], 2 * math.pi / math.sqrt(2 * 20.0 / lmin) / 100, rel_tol=1e-12)

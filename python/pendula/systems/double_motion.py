@@ -676,7 +676,8 @@ class DoublePendulum:
             How long each orbit runs (default 2000).
         dt : float, optional
             The output spacing, and Gauss-Legendre's step (default 1/100 of
-            the fast normal mode's period).
+            the period of the fastest time scale at the energy, as in
+            :meth:`simulate`).
         points : int, optional
             The most crossings kept per orbit (default 1000).
         method : {'gauss6', 'dop853'}, optional
@@ -726,7 +727,11 @@ class DoublePendulum:
         if not (np.all(np.isfinite(th2)) and np.all(np.isfinite(q2))):
             raise ValueError("theta2 and p2 must be finite")
         t_max = _checks.real(t_max, "t_max", 0.0, lo_open=True)
-        h = self._default_dt() if dt is None else _checks.real(dt, "dt", 0.0, lo_open=True)
+        if dt is None:   # a state of this energy: at the bottom, the first arm turning alone
+            w = math.sqrt(2 * max(e, 0.0) / self._a)
+            h = self._default_dt(np.array([0.0, 0.0, self._a * w, self._b * w]))
+        else:
+            h = _checks.real(dt, "dt", 0.0, lo_open=True)
         points = _checks.count(points, "points", 1)
         method = _checks.choice(method, "method", ("gauss6", "dop853"))
         rtol, atol = _checks.tolerances(rtol, atol)
