@@ -170,3 +170,20 @@ def test_interruptible_run_chosen_by_the_networks_fastest_scale(monkeypatch):
     pendula.Network(2, topology="pair", strength=0.5).simulate(t, phi0=[0.1, 0.0])
     pendula.Network(2, topology="pair", strength=1e4).simulate(t, phi0=[0.1, 0.0], rtol=1e-6, atol=1e-9)
     assert seen == [False, True]
+
+
+def test_squid_noisy_default_step_is_the_network_rules():
+    """A DC SQUID (β_L = 1, β_c = 0.5) at 4.2 K biased up to 2.5 I₀ is a Network in the time unit 1/ω_c
+    whose fastest scale is the velocity's relaxation 1/β_c = 2 (above the loop's mode √((1 + 2/π)/β_c) =
+    1.81, the torque's √(1.25/β_c) = 1.58 and the running speed 1.25): its noisy default step is
+    2π β_c / 100 in 1/ω_c."""
+    from pendula.junction import FLUX_QUANTUM
+    from pendula.squid import DCSquid
+
+    i0 = 10e-6
+    sq = DCSquid(i0, 10.0, 0.5 * FLUX_QUANTUM / (2 * math.pi * i0 * 10.0 ** 2), FLUX_QUANTUM / (2 * i0),
+                 temperature=4.2)
+    assert sq.beta_c == pytest.approx(0.5, rel=1e-12) and sq.beta_l == pytest.approx(1.0, rel=1e-12)
+    r = sq.iv_curve([1.0 * i0, 2.5 * i0], flux=0.25, paths=2, t_max=50 / sq.characteristic_frequency,
+                    transient=10 / sq.characteristic_frequency)
+    assert r.attrs["dt"] * sq.characteristic_frequency == pytest.approx(2 * math.pi * 0.5 / 100, rel=1e-12)
