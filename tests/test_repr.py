@@ -76,6 +76,7 @@ CASES = {
     "FoucaultPendulum": lambda: pendula.FoucaultPendulum(latitude=48.85),
     "FoucaultPrecession": lambda: pendula.FoucaultPendulum(latitude=48.85).precession(0.05, swings=20),
     "TimeScales": lambda: pendula.time_scales(pendula.Scene(damping=0.1, pivot_amplitude=0.1, pivot_frequency=9.0)),
+    "NetworkTimeScales": lambda: pendula.Network(3, topology="chain", strength=1e4, damping=0.1).time_scales(),
     "CycloidGeometry": lambda: pendula.cycloid_geometry(0.25),
     "FrictionTurningPoints": lambda: pendula.friction_turning_points(pendula.Scene(theta0=3.0, friction=0.01)),
     "Equilibrium": lambda: pendula.equilibria(pendula.Scene(damping=0.2, torque=0.5))[0],

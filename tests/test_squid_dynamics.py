@@ -167,8 +167,8 @@ def test_noisy_overdamped_squid_matches_the_thermally_rounded_single_junction():
     above Ic = 1.62 I₀, where the noise rounds the curve most) pendula's 16 paths of 2000/ω_c agree within
     four standard errors (seeded; a fresh seed fails with probability 6e-5) plus 5e-3 relative (the
     drift's step error, first order in dt/β_c: measured +5 % at dt = 0.5 β_c, +2.5 % at 0.25 β_c; the
-    default step is 0.05 β_c; the deterministic corrections of order β² are 5e-5).  Measured: -0.2 %,
-    0.2 standard errors."""
+    default step, the network rule's, is 2π β_c / 100 = 0.063 β_c; the deterministic corrections of order
+    β² are 5e-5).  Measured: +1.8 %, 1.3 standard errors (at the former step 0.05 β_c: -0.2 %, 0.2)."""
     sq = _squid(0.02, 0.02, temperature=20.0)
     ref = _stratonovich_mean_velocity(1.7 / 2, math.cos(math.pi * 0.2), sq.junction.noise / 2)
     r = sq.v_phi_curve(1.7 * I0, [0.2], paths=16, seed=3, t_max=2000 / sq.characteristic_frequency)

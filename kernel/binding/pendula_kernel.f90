@@ -1245,6 +1245,33 @@ subroutine network_energy_v(nel, ne, p, ei, ej, ek, eoff, ns, y, en)
     en(k) = network_energy(net, y(1:nel, k), y(nel + 1:2 * nel, k))
   end do
 end subroutine network_energy_v
+
+! The network's time scales as rates (1 / time; pendula_time_scales's
+! network_time_rates, in the order of `names`, 12 characters each) with the
+! elements' starting speeds v0 (the springs' offsets create none), and the default steps of its fixed-step
+! methods: dts = (Gauss-Legendre 4, Gauss-Legendre 6, BAOAB).
+subroutine network_time_scales_v(nel, ne, p, ei, ej, ek, v0, rates, names, dts)
+  use pendula_network, only: np_c, np_beta, np_eps, np_tau, np_amp, np_omega
+  use pendula_time_scales, only: network_time_rates, network_default_dt, network_scale_names, &
+    n_network_scales, nm_gauss4, nm_gauss6, nm_baoab
+  implicit none
+  integer, intent(in) :: nel, ne
+  double precision, intent(in) :: p(7, nel), ek(ne), v0(nel)
+  integer, intent(in) :: ei(ne), ej(ne)
+  double precision, intent(out) :: rates(9), dts(3)
+  character(len=108), intent(out) :: names
+  !f2py intent(hide), depend(p) :: nel = shape(p, 1)
+  !f2py intent(hide), depend(ei) :: ne = len(ei)
+  integer :: i
+  names = ''
+  do i = 1, n_network_scales
+    names(12 * (i - 1) + 1:12 * i) = network_scale_names(i)
+  end do
+  rates = network_time_rates(p(np_c, :), p(np_beta, :), p(np_eps, :), p(np_tau, :), p(np_amp, :), &
+                             p(np_omega, :), ei, ej, ek, v0)
+  dts = [network_default_dt(rates, nm_gauss4), network_default_dt(rates, nm_gauss6), &
+         network_default_dt(rates, nm_baoab)]
+end subroutine network_time_scales_v
 ! ---------------------------------------------------------------- the spherical pendulum
 ! The exact path of the spherical pendulum (pendula_spherical) from the state
 ! (theta0, theta_dot0, phi_dot0) and azimuth phi0 at t = 0, g / l = eps: theta,
@@ -1336,6 +1363,27 @@ subroutine double_simulate_v(p, method, y0, nout, tout, counts, rtol, atol, dt, 
   call double_simulate(make_double(p), method, y0, tout, counts, rtol, atol, dt, yout, st, status, cancel(1))
   stats = [st%nsteps, st%naccept, st%nreject, st%nfev]
 end subroutine double_simulate_v
+
+! The double pendulum's time scales as rates (pendula_double's
+! double_time_rates, names 12 characters each) at the canonical state y0 =
+! (theta1, theta2, p1, p2), and its default Gauss-Legendre step.
+subroutine double_time_scales_v(p, y0, rates, names, dt)
+  use pendula_double, only: double_pendulum, make_double, double_time_rates, double_default_dt, &
+    double_scale_names, n_double_scales
+  implicit none
+  double precision, intent(in) :: p(8), y0(4)
+  double precision, intent(out) :: rates(3), dt
+  character(len=36), intent(out) :: names
+  type(double_pendulum) :: dpd
+  integer :: i
+  names = ''
+  do i = 1, n_double_scales
+    names(12 * (i - 1) + 1:12 * i) = double_scale_names(i)
+  end do
+  dpd = make_double(p)
+  rates = double_time_rates(dpd, y0)
+  dt = double_default_dt(rates)
+end subroutine double_time_scales_v
 
 ! For ns states y(:, k): the energy, the angular velocities w(:, k) and the
 ! right-hand side f(:, k); jac the Jacobian of the right-hand side at y(:, 1).

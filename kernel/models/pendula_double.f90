@@ -22,10 +22,18 @@
 !>   p1' = -b sin(d) w1 w2 - g A sin theta1 - k1 w1,
 !>   p2' = +b sin(d) w1 w2 - g B sin theta2 - k2 w2.
 module pendula_double
-  use pendula_kinds, only: dp
+  use pendula_kinds, only: dp, two_pi
   implicit none
   private
   public :: double_pendulum, make_double, double_rhs, double_jacobian, double_energy, double_velocities
+  public :: double_time_rates, double_default_dt
+
+  !> the double pendulum's time scales (double_time_rates), and the Gauss-Legendre steps per period
+  !> of the fastest (its default step)
+  integer, parameter, public :: n_double_scales = 3, dts_modes = 1, dts_damping = 2, dts_rotation = 3
+  character(len=12), parameter, public :: double_scale_names(n_double_scales) = [character(len=12) :: &
+    'modes', 'damping', 'rotation']
+  real(dp), parameter :: double_steps_per_period = 100.0_dp
 
   !> the entries of the parameter vector of make_double
   integer, parameter, public :: dpp_m1 = 1, dpp_m2 = 2, dpp_l1 = 3, dpp_l2 = 4, dpp_g = 5, dpp_rods = 6, &
@@ -133,5 +141,31 @@ contains
     en = 0.5_dp * (y(3) * w(1) + y(4) * w(2)) &
          + 2.0_dp * (dpd%ga * sin(0.5_dp * y(1))**2 + dpd%gb * sin(0.5_dp * y(2))**2)
   end function double_energy
+
+  !> The double pendulum's time scales as rates (1 / time): 'modes' the fast
+  !> normal mode's angular frequency at the bottom, the larger root of
+  !> D0 w^4 - (gA c + gB a) w^2 + gA gB = 0; 'damping' max(k1, k2) / lmin, lmin
+  !> = the smallest eigenvalue of M(0), which bounds M(d)'s from below; and
+  !> 'rotation' sqrt(2 H / lmin) at the state y, the largest angular speed the
+  !> energy H allows (V >= 0 and T >= lmin |w|^2 / 2): the whirl of a high
+  !> energy, which the modes no longer describe.
+  pure function double_time_rates(dpd, y) result(r)
+    type(double_pendulum), intent(in) :: dpd
+    real(dp), intent(in) :: y(4)
+    real(dp) :: r(n_double_scales), s, lmin
+    s = dpd%ga * dpd%c + dpd%gb * dpd%a
+    r(dts_modes) = sqrt((s + sqrt(max(s * s - 4.0_dp * dpd%d0 * dpd%ga * dpd%gb, 0.0_dp))) / (2.0_dp * dpd%d0))
+    ! lmin = D0 / lmax: the product of M(0)'s eigenvalues is D0, so no cancellation
+    lmin = dpd%d0 / (0.5_dp * (dpd%a + dpd%c) + sqrt(0.25_dp * (dpd%a - dpd%c)**2 + dpd%b**2))
+    r(dts_damping) = max(abs(dpd%k1), abs(dpd%k2)) / lmin
+    r(dts_rotation) = sqrt(2.0_dp * max(double_energy(dpd, y), 0.0_dp) / lmin)
+  end function double_time_rates
+
+  !> The default Gauss-Legendre step: 2 pi over the fastest rate over
+  !> double_steps_per_period (1/100 of the fast mode's period at low energy).
+  pure real(dp) function double_default_dt(r)
+    real(dp), intent(in) :: r(n_double_scales)
+    double_default_dt = two_pi / max(r(dts_modes), r(dts_damping), r(dts_rotation)) / double_steps_per_period
+  end function double_default_dt
 
 end module pendula_double

@@ -43,7 +43,7 @@ from .motion import Orbit, Trajectory, energy, exact_motion, orbit, period, simu
 from .scene import Scene, SceneError  # noqa: E402
 from .series import period_from_series, period_series, poincare_lindstedt  # noqa: E402
 from .systems import ModelInfo, models  # noqa: E402
-from .systems.contract import Capability, TimeScales, capabilities, time_scales  # noqa: E402
+from .systems.contract import Capability, NetworkTimeScales, TimeScales, capabilities, time_scales  # noqa: E402
 from .spectrum import FourierSeries, Spectrum, fourier_series, odd_harmonics_above, spectra, spectrum  # noqa: E402
 
 # Huygens' cycloidal pendulum, non-uniform gravity, the density of the angle
@@ -67,7 +67,7 @@ from .laboratory import Pendulum, Swing  # noqa: E402
 from .quantum import Transmon, mathieu_a, mathieu_b, mathieu_ce, mathieu_exponent, mathieu_se  # noqa: E402
 from .mathieu_floquet import mathieu_me  # noqa: E402
 # networks of pendula: coupled phases, chains, arrays of junctions
-from .systems.network import Network, NetworkEquilibrium, NormalModes  # noqa: E402
+from .systems.network import Network, NetworkEquilibrium, NormalModes, network_time_scales  # noqa: E402
 from .squid import DCSquid  # noqa: E402
 from .long_junction import fluxon_velocity  # noqa: E402
 from .rf_squid import RFSquid  # noqa: E402
@@ -85,7 +85,7 @@ __all__ = ["ellipk", "ellipe", "ellipf", "ellipeinc", "ellipj", "nome",
            "Orbit", "Trajectory", "period_series", "period_from_series", "poincare_lindstedt",
            "find_events", "numerical_period", "Events",
            "spectrum", "spectra", "Spectrum", "fourier_series", "FourierSeries", "odd_harmonics_above",
-           "models", "ModelInfo", "capabilities", "Capability", "time_scales", "TimeScales", "cycloid_geometry", "cycloid_period", "CycloidGeometry", "gravity_orbit",
+           "models", "ModelInfo", "capabilities", "Capability", "time_scales", "TimeScales", "network_time_scales", "NetworkTimeScales", "cycloid_geometry", "cycloid_period", "CycloidGeometry", "gravity_orbit",
            "angle_density", "angle_cdf", "arcsine_density", "flip_map", "cord_state", "flip_sequence",
            "sweep", "iv_curve",
            "precompute_wisdom", "wisdom_path",

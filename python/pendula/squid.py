@@ -368,15 +368,16 @@ class DCSquid:
         tm = 1000.0 if t_max is None else _checks.real(t_max, "t_max", 0.0, lo_open=True) * wc
         return tr, tm
 
-    def _noise(self, dt, paths, seed, threads) -> tuple[float, float, int, int, int]:
+    def _noise(self, dt, paths, seed, threads, bias: float = 0.0,
+               rf: tuple[float, float] = (0.0, 0.0)) -> tuple[float, float, int, int, int]:
         temp = self.junction.noise
         if temp == 0:
             return 0.0, 0.0, 1, 0, 0
-        # the step resolves the velocity's relaxation time β_c (the drift's error is of first order in
-        # dt/β_c) and the loop's oscillation (frequency √((1 + 2K)/β_c), K = 1/(πβ_L))
-        bc, k = self.beta_c, 1 / (math.pi * self.beta_l)
-        m = 1 - abs(self.resistance_asymmetry)     # the lighter junction's share of the mass
-        h = 0.05 * min(0.4, bc, math.sqrt(bc * m / (1 + abs(self.current_asymmetry) + 2 * k))) if dt is None else \
+        # the default step: the network rule's (the kernel's) for the SQUID at the largest reduced bias
+        # and the rf drive: the velocity's relaxation 1/β_c, the loop's fastest mode, the running speed,
+        # the drive
+        h = squid_network(self.beta_l, self.beta_c, 0.0, bias, *rf, asym=self._asym).time_scales() \
+            .default_dt["baoab"] if dt is None else \
             _checks.real(dt, "dt", 0.0, lo_open=True) * self.characteristic_frequency
         return (temp, h, _checks.count(paths, "paths", 2), _checks.count(seed, "seed", 0, 2**63 - 1),
                 _checks.threads(threads))
@@ -447,10 +448,11 @@ class DCSquid:
         rtol : float, optional
             The integrator's relative tolerance without noise (default 1e-10).
         dt : float, optional
-            The step (s) of the noisy paths (default 0.05 min(0.4, β_c,
-            √(β_c/(1 + 2/(πβ_L))))/ω_c: the drift's error is of first order
-            in the step over β_c; with an rf drive no more than a 64th of
-            its period).
+            The step (s) of the noisy paths (default: the network rule's
+            BAOAB step for the SQUID at the largest current and the rf drive,
+            :meth:`Network.time_scales <pendula.Network.time_scales>`: 2π/100
+            over the fastest of 1/β_c, the loop's fastest mode, the running
+            speed and the drive, in the time unit 1/ω_c).
         paths : int, optional
             Noisy paths at each current (>= 2; default 4).
         seed : int, optional
@@ -494,7 +496,6 @@ class DCSquid:
         flux = _checks.real(flux, "flux")
         rtol = _checks.real(rtol, "rtol", 0.0, lo_open=True)
         tr, tm = self._times(transient, t_max)
-        noise = self._noise(dt, paths, seed, threads)
         i0 = self.junction.critical_current
         a = _checks.real(rf_current, "rf_current")
         f = _checks.real(rf_frequency, "rf_frequency", 0.0)
@@ -502,8 +503,7 @@ class DCSquid:
             raise ValueError(f"rf_current ({a!r} A) and rf_frequency ({f!r} Hz): an rf drive needs both, "
                              "or give neither")
         rf = (a / i0, _TWO_PI * f / self.characteristic_frequency)
-        if noise[0] > 0 and dt is None and rf[1] > 0:   # the noisy step resolves the drive too
-            noise = (noise[0], min(noise[1], _TWO_PI / (64 * rf[1])), *noise[2:])
+        noise = self._noise(dt, paths, seed, threads, float(np.max(np.abs(cur))) / i0 if cur.size else 0.0, rf)
         dirs = ["up", "down"] if direction == "both" else [direction]
         vel = np.full((len(dirs), cur.size), np.nan)
         err = np.full_like(vel, np.nan)
@@ -585,7 +585,7 @@ class DCSquid:
         direction = _checks.choice(direction, "direction", ("up", "down", "both"))
         rtol = _checks.real(rtol, "rtol", 0.0, lo_open=True)
         tr, tm = self._times(transient, t_max)
-        noise = self._noise(dt, paths, seed, threads)
+        noise = self._noise(dt, paths, seed, threads, cur / self.junction.critical_current)
         i0 = self.junction.critical_current
         dirs = ["up", "down"] if direction == "both" else [direction]
         vel, err = np.full((len(dirs), fl.size), np.nan), np.full((len(dirs), fl.size), np.nan)
@@ -728,7 +728,7 @@ class DCSquid:
             raise ValueError("fluxes must be finite")
         rtol = _checks.real(rtol, "rtol", 0.0, lo_open=True)
         tr, tm = self._times(transient, t_max)
-        noise = self._noise(dt, paths, seed, threads)
+        noise = self._noise(dt, paths, seed, threads, cur / self.junction.critical_current)
         noisy = noise[0] > 0
         h = (0.02 if noisy else 1e-3) if step is None else _checks.real(step, "step", 0.0, lo_open=True)
         i0 = self.junction.critical_current

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from .. import _kernel
 from ..scene import Scene, SceneError
 
-__all__ = ["Capability", "TimeScales", "capabilities", "require", "require_fields", "time_scales", "forcing_frequency",
+__all__ = ["Capability", "TimeScales", "NetworkTimeScales", "capabilities", "require", "require_fields", "time_scales", "forcing_frequency",
            "expected_steps", "EFFECTS", "STEPS_PER_PERIOD", "MAX_POINT_STEPS"]
 
 #: the effects of the capability table, in its order, and the field that turns each on
@@ -233,6 +233,60 @@ def time_scales(scene: Scene) -> TimeScales:
     ts = TimeScales(r, max(r.values()), float(omega), float(ldt), int(fstatus))
     object.__setattr__(scene, "_time_scales", ts)
     return ts
+
+
+@dataclass(frozen=True)
+class NetworkTimeScales:
+    """The time scales of a network of pendula (the kernel's one rule for networks).
+
+    Attributes
+    ----------
+    rates : dict
+        Each scale's rate (1 / time, the fastest over the elements, 0 where the
+        field is absent): 'oscillation' sqrt(abs(eps_i) / C_i), 'coupling'
+        sqrt(2 k_i / C_i) with k_i the sum of element i's springs (Gershgorin's
+        bound of the springs' fastest normal mode), 'modes' sqrt((abs(eps_i) +
+        2 k_i) / C_i) (the bound of the linearised network's fastest mode),
+        'damping' beta_i / C_i, 'drive' Omega_i, 'drive_force' sqrt(abs(A_i) / C_i),
+        'torque' sqrt(abs(tau_i) / C_i), 'running' (abs(tau_i) + abs(A_i)) / beta_i
+        (a damped element driven over the top), 'rotation' (the starting speed).
+    fastest : float
+        The fastest rate: it bounds every method's step.
+    default_dt : dict
+        The default step of each fixed-step method of :meth:`Network.simulate
+        <pendula.Network.simulate>` ('gauss4', 'gauss6', 'baoab'): 2 pi over the
+        fastest rate divided by the method's steps per period (100 each).
+
+    See Also
+    --------
+    pendula.network_time_scales : computes them.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> ts = pendula.Network(2, topology="pair", strength=4.0).time_scales()
+    >>> ts.rates["coupling"], ts.fastest
+    (2.8284271247461903, 3.0)
+    """
+
+    rates: dict
+    fastest: float
+    default_dt: dict
+
+    def __repr__(self) -> str:
+        on = ", ".join(f"{k} {v:.3g}" for k, v in self.rates.items() if v)
+        steps = ", ".join(f"{k} {v:.3g}" for k, v in self.default_dt.items())
+        return f"NetworkTimeScales(rates: {on or 'none'}; fastest {self.fastest:.3g}; default dt: {steps})"
+
+
+def network_rates(p, ei, ej, ek, v0) -> NetworkTimeScales:
+    """The time scales of a network from its kernel data (the parameter block, the springs 1-based and
+    the starting speeds): the kernel's rule read, as :func:`pendula.network_time_scales` shows it."""
+    rates, names, dts = _kernel.network_time_scales_v(p, ei, ej, ek, v0)
+    names = names.decode() if isinstance(names, bytes) else str(names)
+    keys = [names[12 * i:12 * (i + 1)].strip() for i in range(len(rates))]
+    r = {k: float(x) for k, x in zip(keys, rates)}
+    return NetworkTimeScales(r, max(r.values()), dict(zip(("gauss4", "gauss6", "baoab"), map(float, dts))))
 
 
 #: the work a sweep point may be asked for before any work is done (expected integration steps: about

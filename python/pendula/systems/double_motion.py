@@ -318,9 +318,12 @@ class DoublePendulum:
         return en.reshape(arrs[0].shape)
 
     # ------------------------------------------------------------------ the path
-    def _default_dt(self) -> float:
-        """A Gauss-Legendre step: 1/100 of the fast normal mode's period."""
-        return float(self.modes().period[1]) / 100.0
+    def _default_dt(self, y0: np.ndarray | None = None) -> float:
+        """A Gauss-Legendre step from the kernel's time scales at the canonical state y0 (at rest at the
+        bottom when None): 1/100 of the period of the fastest of the fast normal mode, the damping and the
+        whirl the state's energy allows."""
+        _, _, dt = _kernel.double_time_scales_v(self._p, np.zeros(4) if y0 is None else y0)
+        return float(dt)
 
     def simulate(self, t: ArrayLike, theta1: float = 0.0, theta2: float = 0.0, omega1: float = 0.0,
                  omega2: float = 0.0, *, method: str = "auto", dt: float | None = None, rtol: float = 1e-12,
@@ -343,9 +346,11 @@ class DoublePendulum:
             from 0 (the step then divides the grid's spacing), otherwise
             dop853.
         dt : float, optional
-            The Gauss-Legendre step (default: 1/100 of the fast normal
-            mode's period, shortened to divide the output spacing).  The
-            times must be multiples of it.
+            The Gauss-Legendre step (default: 1/100 of the period of the
+            fastest time scale, the fast normal mode or, at high energy, the
+            whirl the starting energy H allows, sqrt(2 H / lambda_min) with
+            lambda_min the smallest eigenvalue of the mass matrix; shortened
+            to divide the output spacing).  The times must be multiples of it.
         rtol, atol : float, optional
             DOP853's tolerances on (theta1, theta2, p1, p2) (default 1e-12).
 
@@ -399,10 +404,10 @@ class DoublePendulum:
                 if np.all(np.abs(k - np.rint(k)) <= 1e-9 * np.maximum(1.0, k)):
                     method = "gauss6"
                     if dt is None:
-                        dt = base / math.ceil(base / self._default_dt())
+                        dt = base / math.ceil(base / self._default_dt(y0))
         if method != "dop853":
             if dt is None:
-                dt = self._default_dt()
+                dt = self._default_dt(y0)
             h = _checks.real(dt, "dt", 0.0, lo_open=True)
             steps = tt / h
             if steps.size and not steps[-1] <= 2e9:
@@ -415,7 +420,7 @@ class DoublePendulum:
             rtol, atol = _checks.tolerances(rtol, atol)
         cancel = _interrupt.cancel_flag()
         span = float(tt[-1]) if tt.size else 0.0
-        long = span / max(h, self._default_dt()) > 1e5
+        long = span / max(h, self._default_dt(y0)) > 1e5
         yout, stats, status = _interrupt.call(
             _kernel.double_simulate_v, self._p, _METHOD_CODE[method], y0, tt, counts, float(rtol), float(atol),
             h, cancel, cancel=cancel, long=long)
@@ -609,9 +614,9 @@ class DoublePendulum:
         t : float, optional
             The span averaged over (default 1000).
         dt : float, optional
-            The Gauss-Legendre step (default 1/100 of the fast normal mode's
-            period), or the span between re-orthonormalisations over every for
-            DOP853.
+            The Gauss-Legendre step (default 1/100 of the period of the
+            fastest time scale at the start, as in :meth:`simulate`), or the
+            span between re-orthonormalisations over every for DOP853.
         every : int, optional
             Steps between re-orthonormalisations (default 10).
         method : {'auto', 'gauss6', 'gauss4', 'dop853'}, optional
@@ -662,7 +667,7 @@ class DoublePendulum:
         method = _checks.choice(method, "method", DOUBLE_METHODS)
         if method == "auto":
             method = "gauss6" if self.conservative else "dop853"
-        h = self._default_dt() if dt is None else _checks.real(dt, "dt", 0.0, lo_open=True)
+        h = self._default_dt(y0) if dt is None else _checks.real(dt, "dt", 0.0, lo_open=True)
         rtol, atol = _checks.tolerances(rtol, atol)
         nren = max(1, int(round(t / (h * every))))
         cancel = _interrupt.cancel_flag()
@@ -692,7 +697,8 @@ class DoublePendulum:
             How long each orbit runs (default 2000).
         dt : float, optional
             The output spacing, and Gauss-Legendre's step (default 1/100 of
-            the fast normal mode's period).
+            the period of the fastest time scale at the energy, as in
+            :meth:`simulate`).
         points : int, optional
             The most crossings kept per orbit (default 1000).
         method : {'gauss6', 'dop853'}, optional
@@ -742,7 +748,11 @@ class DoublePendulum:
         if not (np.all(np.isfinite(th2)) and np.all(np.isfinite(q2))):
             raise ValueError("theta2 and p2 must be finite")
         t_max = _checks.real(t_max, "t_max", 0.0, lo_open=True)
-        h = self._default_dt() if dt is None else _checks.real(dt, "dt", 0.0, lo_open=True)
+        if dt is None:   # a state of this energy: at the bottom, the first arm turning alone
+            w = math.sqrt(2 * max(e, 0.0) / self._a)
+            h = self._default_dt(np.array([0.0, 0.0, self._a * w, self._b * w]))
+        else:
+            h = _checks.real(dt, "dt", 0.0, lo_open=True)
         points = _checks.count(points, "points", 1)
         method = _checks.choice(method, "method", ("gauss6", "dop853"))
         rtol, atol = _checks.tolerances(rtol, atol)

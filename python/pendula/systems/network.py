@@ -26,12 +26,13 @@ from numpy.typing import ArrayLike
 
 from .. import _checks, _interrupt, _kernel
 from .._optional import require
-from .contract import require_fields
+from .contract import STEPS_PER_PERIOD, NetworkTimeScales, network_rates, require_fields
 
 if TYPE_CHECKING:   # xarray is optional: named in annotations only
     import xarray
 
-__all__ = ["Network", "NetworkEquilibrium", "NormalModes", "TOPOLOGIES", "METHODS", "beat_period"]
+__all__ = ["Network", "NetworkEquilibrium", "NormalModes", "TOPOLOGIES", "METHODS", "beat_period",
+           "network_time_scales"]
 
 #: the named topologies of :class:`Network`
 TOPOLOGIES = ("pair", "chain", "ring", "ladder")
@@ -409,6 +410,30 @@ class Network:
         return en.reshape(q.shape[:-1]) if q.ndim > 1 else float(en[0])
 
     # ------------------------------------------------------------------ time evolution
+    def time_scales(self, v0: ArrayLike = 0.0) -> NetworkTimeScales:
+        """The network's time scales and its methods' default steps (the kernel's one rule).
+
+        Parameters
+        ----------
+        v0 : float or array_like, optional
+            The elements' starting speeds (default 0).
+
+        Returns
+        -------
+        NetworkTimeScales
+
+        See Also
+        --------
+        pendula.network_time_scales : the same, as a function.
+
+        Examples
+        --------
+        >>> import pendula
+        >>> pendula.Network(2, topology="pair", strength=4.0, damping=0.5).time_scales().fastest
+        3.0
+        """
+        return network_time_scales(self, v0)
+
     def simulate(self, t: ArrayLike, phi0: ArrayLike = 0.0, v0: ArrayLike = 0.0, *, method: str = "dop853",
                  rtol: float = 1e-10, atol: float = 1e-12, dt: float | None = None, temperature: ArrayLike = 0.0,
                  seed: int = 0, paths: int = 1, first_path: int = 0, threads: int = 0) -> xarray.Dataset:
@@ -430,7 +455,11 @@ class Network:
         rtol, atol : float, optional
             DOP853's tolerances (default 1e-10, 1e-12).
         dt : float, optional
-            The step of the fixed-step methods (needed by them).
+            The step of the fixed-step methods.  Default: from the network's
+            fastest time scale (:meth:`time_scales`: 2 pi over the fastest rate
+            over 100 steps), shortened to
+            divide the spacing of the times, which must then lie on a grid of
+            equal steps from 0.
         temperature : float or array_like, optional
             T_i >= 0 of each element, in the energy units of ε and K: noise of
             strength √(2 β_i T_i) (fluctuation-dissipation), so that each
@@ -451,14 +480,15 @@ class Network:
         xarray.Dataset
             ``phi`` and ``v`` over (``time``, ``element``) (with ``path`` first
             for BAOAB), ``energy`` over ``time`` (and ``path``); attributes
-            ``method`` and, for the deterministic methods, ``steps`` and
-            ``rhs_evaluations``.
+            ``method``, ``dt`` for the fixed-step methods and, for the
+            deterministic methods, ``steps`` and ``rhs_evaluations``.
 
         Raises
         ------
         ValueError
-            Naming the field (times not ascending or off the step grid, dt
-            missing, noise on an undamped element), or the kernel's failure
+            Naming the field (times not ascending or off the step grid, no
+            dt given for times off every grid of equal steps, noise on an
+            undamped element), or the kernel's failure
             (a state that left the doubles, the work limit).
 
         Examples
@@ -484,12 +514,11 @@ class Network:
                                  "damping has no equilibrium (fluctuation-dissipation); give it damping > 0")
         y0 = np.concatenate([self._state(phi0, "phi0"), self._state(v0, "v0")])
         counts = None
+        scales = self.time_scales(v0)
         if method != "dop853":
-            if dt is None:
-                raise ValueError(f"dt: method {method!r} takes a fixed step; give dt")
-            h = _checks.real(dt, "dt", 0.0, lo_open=True)
             if tt.size and not (np.all(np.diff(tt) >= 0) and tt[0] >= 0):
                 raise ValueError("t must be ascending and >= 0")
+            h = _grid_step(tt, scales.default_dt[method]) if dt is None else _checks.real(dt, "dt", 0.0, lo_open=True)
             steps = tt / h
             if steps.size and not steps[-1] <= 2e9:   # the kernel's fixed-step work limit (max_fixed_steps)
                 raise ValueError(f"t, dt: {_STATUS[7]}")
@@ -501,12 +530,9 @@ class Network:
         span = float(tt[-1]) if tt.size else 0.0
         npath = _checks.count(paths, "paths", 1) if method == "baoab" else 1
         if method == "dop853":
-            # a rough count of element-evaluations: short runs skip the interruptible thread's start
-            ei, ej, ek, _ = self.springs
-            ksum = np.bincount(ei, ek, self.n) + np.bincount(ej, ek, self.n)
-            rate = max(1.0, float(np.max(np.sqrt(np.abs(self.eps) + 4 * ksum) / self.mass)),
-                       float(np.max(np.abs(self.drive_frequency))))
-            long = self.n * span * rate * 100 > 1e6
+            # a rough count of element-evaluations (12 per step) from the fastest time scale: short runs skip
+            # the interruptible thread's start
+            long = self.n * span * scales.fastest / (2 * math.pi) * STEPS_PER_PERIOD * 12 > 1e6
         else:
             long = self.n * span / h * (npath if method == "baoab" else 10) > 1e6
         if method == "baoab":
@@ -541,7 +567,8 @@ class Network:
         dims = ("time", "element")
         return xr.Dataset({"phi": (dims, phi), "v": (dims, v), "energy": (("time",), self.energy(phi, v))},
                           coords={"time": tt, "element": np.arange(self.n)},
-                          attrs={"method": method, "steps": int(stats[0]), "rhs_evaluations": int(stats[3])})
+                          attrs={"method": method, "steps": int(stats[0]), "rhs_evaluations": int(stats[3]),
+                                 **({"dt": h} if method != "dop853" else {})})
 
     # ------------------------------------------------------------------ rest points and modes
     def equilibrium(self, phi: ArrayLike, *, tol: float = 1e-14, maxit: int = 50) -> NetworkEquilibrium:
@@ -652,6 +679,53 @@ class Network:
         s = 1.0 / np.sqrt(self.mass)
         w2, u = np.linalg.eigh(-(s[:, None] * jac * s[None, :]))
         return NormalModes(w2, s[:, None] * u)
+
+
+def network_time_scales(network: Network, v0: ArrayLike = 0.0) -> NetworkTimeScales:
+    """The time scales of a network of pendula, from the kernel's one time-scale rule.
+
+    Parameters
+    ----------
+    network : Network
+        Any :class:`~pendula.Network`.
+    v0 : float or array_like, optional
+        The elements' starting speeds (one number or N; default 0): a fast
+        rotation is a time scale too.
+
+    Returns
+    -------
+    NetworkTimeScales
+        The rates of every scale, the fastest, and the default steps of the
+        fixed-step methods.
+
+    See Also
+    --------
+    pendula.time_scales : the same rule for a scene.
+    Network.time_scales : the same, as a method.
+
+    Examples
+    --------
+    >>> import pendula
+    >>> net = pendula.Network(3, topology="chain", strength=1e4)
+    >>> ts = pendula.network_time_scales(net)
+    >>> round(ts.fastest, 4), round(ts.default_dt["gauss6"], 9)
+    (200.0025, 0.000314155)
+    """
+    p, ei, ej, ek, _ = network._edges()
+    return network_rates(p, ei, ej, ek, network._state(v0, "v0"))
+
+
+def _grid_step(t: np.ndarray, h0: float) -> float:
+    """The largest step <= h0 that divides the spacing of the times t, which lie on a grid of equal steps from 0."""
+    grid = np.unique(np.concatenate([[0.0], t]))
+    if grid.size < 2:
+        return h0
+    base = float(np.min(np.diff(grid)))
+    k = grid / base
+    if np.any(np.abs(k - np.rint(k)) > 1e-9 * np.maximum(1.0, k)):
+        raise ValueError("dt: the times t are not on a grid of equal steps from 0, so no default step "
+                         "divides them; give dt")
+    return base / math.ceil(base / h0)
 
 
 def beat_period(strength: float, eps: float = 1.0, mass: float = 1.0) -> float:
