@@ -311,8 +311,7 @@ contains
     real(dp), intent(in) :: d(n), e2(n), x, pivmin
     real(dp), intent(out) :: step, first, last, z(n)
     real(dp), intent(inout) :: dp_(:), dm(:)
-    real(dp) :: g, gbest, gr, nrm2, big, rbig, e2c, ec
-    integer :: i, r, k
+    integer :: i, k
     dp_(1) = d(1) - x
     if (abs(dp_(1)) < pivmin) dp_(1) = -pivmin
     dm(n) = d(n) - x
@@ -326,6 +325,53 @@ contains
       dm(k) = (d(k) - x) - e2(k) / dm(k + 1)
       if (abs(dm(k)) < pivmin) dm(k) = -pivmin
     end do
+    call twist_vector(d, e2, n, x, dp_, dm, step, first, last, z)
+  end subroutine twist_pivots
+
+  !> Two twists at the shifts xa and xb (as two calls of twist): the four
+  !> factorisations in one loop, their division chains overlapped.
+  pure subroutine twist_pair(d, e2, n, xa, xb, pivmin, stepa, firsta, lasta, za, stepb, firstb, lastb, zb)
+    integer, intent(in) :: n
+    real(dp), intent(in) :: d(n), e2(n), xa, xb, pivmin
+    real(dp), intent(out) :: stepa, firsta, lasta, za(n), stepb, firstb, lastb, zb(n)
+    real(dp) :: pa(small_rows), ma(small_rows), pb(small_rows), mb(small_rows)
+    integer :: i, k
+    if (n == 1 .or. n > small_rows) then
+      call twist(d, e2, n, xa, pivmin, stepa, firsta, lasta, za)
+      call twist(d, e2, n, xb, pivmin, stepb, firstb, lastb, zb)
+      return
+    end if
+    pa(1) = d(1) - xa
+    pb(1) = d(1) - xb
+    ma(n) = d(n) - xa
+    mb(n) = d(n) - xb
+    if (abs(pa(1)) < pivmin) pa(1) = -pivmin
+    if (abs(pb(1)) < pivmin) pb(1) = -pivmin
+    if (abs(ma(n)) < pivmin) ma(n) = -pivmin
+    if (abs(mb(n)) < pivmin) mb(n) = -pivmin
+    do i = 2, n
+      k = n + 1 - i
+      pa(i) = (d(i) - xa) - e2(i - 1) / pa(i - 1)
+      pb(i) = (d(i) - xb) - e2(i - 1) / pb(i - 1)
+      ma(k) = (d(k) - xa) - e2(k) / ma(k + 1)
+      mb(k) = (d(k) - xb) - e2(k) / mb(k + 1)
+      if (abs(pa(i)) < pivmin) pa(i) = -pivmin
+      if (abs(pb(i)) < pivmin) pb(i) = -pivmin
+      if (abs(ma(k)) < pivmin) ma(k) = -pivmin
+      if (abs(mb(k)) < pivmin) mb(k) = -pivmin
+    end do
+    call twist_vector(d, e2, n, xa, pa, ma, stepa, firsta, lasta, za)
+    call twist_vector(d, e2, n, xb, pb, mb, stepb, firstb, lastb, zb)
+  end subroutine twist_pair
+
+  !> The rest of twist from the pivots dp_ (top down) and dm (bottom up) of
+  !> T - x: the twist row, the Rayleigh-quotient step, the vector.
+  pure subroutine twist_vector(d, e2, n, x, dp_, dm, step, first, last, z)
+    integer, intent(in) :: n
+    real(dp), intent(in) :: d(n), e2(n), x, dp_(:), dm(:)
+    real(dp), intent(out) :: step, first, last, z(n)
+    real(dp) :: g, gbest, gr, nrm2, big, rbig, e2c, ec
+    integer :: i, r
     r = 1
     gbest = huge(1.0_dp)
     gr = 0.0_dp
@@ -378,7 +424,7 @@ contains
     nrm2 = sqrt(nrm2)
     first = abs(z(1)) / nrm2
     last = abs(z(n)) / nrm2
-  end subroutine twist_pivots
+  end subroutine twist_vector
 
   ! ------------------------------------------------------------------
   ! The solver: the eigenvalue of index mode, in the window, widened until
@@ -976,8 +1022,9 @@ contains
     integer, intent(inout) :: status(nlev)
     real(dp) :: rho(nlev), res2(nlev), tb(nlev), mid(0:nlev)
     real(dp) :: step, f1, fn, aq, emax, slack, delta, temple, tol, xs, dmax
+    real(dp) :: xa, xb, stepb, f1b, fnb, zb(n)
     integer :: k, it, ca, cb, kmax
-    logical :: good
+    logical :: good, moved, movedb
     if (nlev < 2) return
     aq = abs(q)
     emax = sqrt(maxval(e2))
@@ -986,16 +1033,39 @@ contains
       rho(nlev) = val(nlev)
       res2(nlev) = 0.0_dp
     end if
-    do k = 1, ncomp
-      xs = ev(k)
-      call twist(d, e2, n, xs, pivmin, step, f1, fn, z)
-      if (abs(step) > 1.0e-13_dp * (abs(xs) + emax)) then
-        ! a Rayleigh-quotient step first (cubic: the next vector is good)
-        xs = xs + step
+    ! two levels at a time (their factorisations overlap): a Rayleigh-
+    ! quotient step from the starting value where it is not already within
+    ! 1e-13 of the scale (cubic: the next vector is good), then the polish
+    do k = 1, ncomp, 2
+      if (k + 1 <= ncomp) then
+        xa = ev(k)
+        xb = ev(k + 1)
+        call twist_pair(d, e2, n, xa, xb, pivmin, step, f1, fn, z, stepb, f1b, fnb, zb)
+        moved = abs(step) > 1.0e-13_dp * (abs(xa) + emax)
+        movedb = abs(stepb) > 1.0e-13_dp * (abs(xb) + emax)
+        if (moved) xa = xa + step
+        if (movedb) xb = xb + stepb
+        if (moved .and. movedb) then
+          call twist_pair(d, e2, n, xa, xb, pivmin, step, f1, fn, z, stepb, f1b, fnb, zb)
+        else if (moved) then
+          call twist(d, e2, n, xa, pivmin, step, f1, fn, z)
+        else if (movedb) then
+          call twist(d, e2, n, xb, pivmin, stepb, f1b, fnb, zb)
+        end if
+        call polish_res(0, nr, q, r0, n, xa, z, rho(k), res2(k))
+        tb(k) = sqrt((sqrt2 * aq * f1) ** 2 + (aq * fn) ** 2)
+        call polish_res(0, nr, q, r0, n, xb, zb, rho(k + 1), res2(k + 1))
+        tb(k + 1) = sqrt((sqrt2 * aq * f1b) ** 2 + (aq * fnb) ** 2)
+      else
+        xs = ev(k)
         call twist(d, e2, n, xs, pivmin, step, f1, fn, z)
+        if (abs(step) > 1.0e-13_dp * (abs(xs) + emax)) then
+          xs = xs + step
+          call twist(d, e2, n, xs, pivmin, step, f1, fn, z)
+        end if
+        call polish_res(0, nr, q, r0, n, xs, z, rho(k), res2(k))
+        tb(k) = sqrt((sqrt2 * aq * f1) ** 2 + (aq * fn) ** 2)
       end if
-      call polish_res(0, nr, q, r0, n, xs, z, rho(k), res2(k))
-      tb(k) = sqrt((sqrt2 * aq * f1) ** 2 + (aq * fn) ** 2)
     end do
     do k = 1, nlev - 1
       if (.not. (rho(k) < rho(k + 1))) return
