@@ -1020,12 +1020,15 @@ contains
     real(dp), intent(in) :: nr, q, d(n), e2(n), above, ev(:), pivmin
     real(dp), intent(inout) :: val(nlev), bound(nlev), z(n)
     integer, intent(inout) :: status(nlev)
-    real(dp) :: rho(nlev), res2(nlev), tb(nlev), mid(0:nlev)
+    ! work arrays on the heap: nlev and n can be large (a spectrum of many
+    ! levels), beyond what a thread's stack holds
+    real(dp), allocatable :: rho(:), res2(:), tb(:), mid(:), zb(:)
     real(dp) :: step, f1, fn, aq, emax, slack, delta, temple, tol, xs, dmax
-    real(dp) :: xa, xb, stepb, f1b, fnb, zb(n)
+    real(dp) :: xa, xb, stepb, f1b, fnb
     integer :: k, it, ca, cb, kmax
     logical :: good, moved, movedb
     if (nlev < 2) return
+    allocate(rho(nlev), res2(nlev), tb(nlev), mid(0:nlev), zb(n))
     aq = abs(q)
     emax = sqrt(maxval(e2))
     dmax = maxval(abs(d))
