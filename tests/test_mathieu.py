@@ -124,6 +124,33 @@ def test_transmon_spectrum_in_one_call_to_four_eps():
     assert worst <= 4.0, worst
 
 
+def _charge_basis_levels(ratio, ng, count, ncut=12, dps=40):
+    """The lowest levels of 4 (n - n_g)^2 - (E_J/E_C)/2 (|n><n+1| + h.c.), n = -ncut..ncut,
+    by mpmath's symmetric eigensolver at dps digits (E_C = 1)."""
+    with mpmath.workdps(dps):
+        size = 2 * ncut + 1
+        h = mpmath.zeros(size, size)
+        for i in range(size):
+            h[i, i] = 4 * (i - ncut - mpmath.mpf(ng)) ** 2
+            if i + 1 < size:
+                h[i, i + 1] = h[i + 1, i] = -mpmath.mpf(ratio) / 2
+        ev = sorted(mpmath.eigsy(h, eigvals_only=True))
+        return ev[:count]
+
+
+@pytest.mark.parametrize("ng", [0.5, 0.5 - 1e-9, 0.0])
+def test_transmon_nearly_degenerate_pairs_in_one_call(ng):
+    """E_J/E_C = 1e-3: at n_g = 1/2 the levels come in pairs split by (E_J/E_C)^k, the
+    upper pairs closer than an ulp, where the shared certification of the spectrum
+    cannot separate them and each level takes its own path.  Ten levels in one call
+    against a 40-digit charge-basis diagonalisation (25 charge states: the cut-off
+    coupling is 1e-3 against levels 400 apart), to 4 eps (relative above 1)."""
+    ours = pendula.Transmon(1e-3, 1.0).levels(10, [ng])[0]
+    ref = _charge_basis_levels("0.001", ng, 10)
+    worst = max(float(abs(mpmath.mpf(o) - r) / max(1, abs(r))) / EPS for o, r in zip(ours, ref))
+    assert worst <= 4.0, worst
+
+
 def test_transmon_charge_dispersion_to_1e10():
     import mpmath as mp
     worst = 0.0

@@ -163,9 +163,10 @@ def test_binaries_resolve_every_library_inside_the_wheel(venv):
         assert want <= used, f"{binary.name}: {sorted(used)}"
 
 
-# functions compiled for AVX2 on purpose and called only after the CPU was asked
-# (__builtin_cpu_supports in kernel/elliptic/pendula_agm.c): allowed in a portable build
-DISPATCHED = {"agm_k_fma"}
+# functions compiled for AVX2 or FMA on purpose and called only after the CPU was
+# asked (__builtin_cpu_supports in kernel/elliptic/pendula_agm.c and
+# kernel/mathieu/pendula_mathieu_polish.c): allowed in a portable build
+DISPATCHED = {"agm_k_fma", "polish_rows_fma"}
 
 
 def avx_functions(path: pathlib.Path) -> dict[str, int]:

@@ -311,8 +311,7 @@ contains
     real(dp), intent(in) :: d(n), e2(n), x, pivmin
     real(dp), intent(out) :: step, first, last, z(n)
     real(dp), intent(inout) :: dp_(:), dm(:)
-    real(dp) :: g, gbest, gr, nrm2, big, rbig, e2c, ec
-    integer :: i, r, k
+    integer :: i, k
     dp_(1) = d(1) - x
     if (abs(dp_(1)) < pivmin) dp_(1) = -pivmin
     dm(n) = d(n) - x
@@ -326,6 +325,53 @@ contains
       dm(k) = (d(k) - x) - e2(k) / dm(k + 1)
       if (abs(dm(k)) < pivmin) dm(k) = -pivmin
     end do
+    call twist_vector(d, e2, n, x, dp_, dm, step, first, last, z)
+  end subroutine twist_pivots
+
+  !> Two twists at the shifts xa and xb (as two calls of twist): the four
+  !> factorisations in one loop, their division chains overlapped.
+  pure subroutine twist_pair(d, e2, n, xa, xb, pivmin, stepa, firsta, lasta, za, stepb, firstb, lastb, zb)
+    integer, intent(in) :: n
+    real(dp), intent(in) :: d(n), e2(n), xa, xb, pivmin
+    real(dp), intent(out) :: stepa, firsta, lasta, za(n), stepb, firstb, lastb, zb(n)
+    real(dp) :: pa(small_rows), ma(small_rows), pb(small_rows), mb(small_rows)
+    integer :: i, k
+    if (n == 1 .or. n > small_rows) then
+      call twist(d, e2, n, xa, pivmin, stepa, firsta, lasta, za)
+      call twist(d, e2, n, xb, pivmin, stepb, firstb, lastb, zb)
+      return
+    end if
+    pa(1) = d(1) - xa
+    pb(1) = d(1) - xb
+    ma(n) = d(n) - xa
+    mb(n) = d(n) - xb
+    if (abs(pa(1)) < pivmin) pa(1) = -pivmin
+    if (abs(pb(1)) < pivmin) pb(1) = -pivmin
+    if (abs(ma(n)) < pivmin) ma(n) = -pivmin
+    if (abs(mb(n)) < pivmin) mb(n) = -pivmin
+    do i = 2, n
+      k = n + 1 - i
+      pa(i) = (d(i) - xa) - e2(i - 1) / pa(i - 1)
+      pb(i) = (d(i) - xb) - e2(i - 1) / pb(i - 1)
+      ma(k) = (d(k) - xa) - e2(k) / ma(k + 1)
+      mb(k) = (d(k) - xb) - e2(k) / mb(k + 1)
+      if (abs(pa(i)) < pivmin) pa(i) = -pivmin
+      if (abs(pb(i)) < pivmin) pb(i) = -pivmin
+      if (abs(ma(k)) < pivmin) ma(k) = -pivmin
+      if (abs(mb(k)) < pivmin) mb(k) = -pivmin
+    end do
+    call twist_vector(d, e2, n, xa, pa, ma, stepa, firsta, lasta, za)
+    call twist_vector(d, e2, n, xb, pb, mb, stepb, firstb, lastb, zb)
+  end subroutine twist_pair
+
+  !> The rest of twist from the pivots dp_ (top down) and dm (bottom up) of
+  !> T - x: the twist row, the Rayleigh-quotient step, the vector.
+  pure subroutine twist_vector(d, e2, n, x, dp_, dm, step, first, last, z)
+    integer, intent(in) :: n
+    real(dp), intent(in) :: d(n), e2(n), x, dp_(:), dm(:)
+    real(dp), intent(out) :: step, first, last, z(n)
+    real(dp) :: g, gbest, gr, nrm2, big, rbig, e2c, ec
+    integer :: i, r
     r = 1
     gbest = huge(1.0_dp)
     gr = 0.0_dp
@@ -378,7 +424,7 @@ contains
     nrm2 = sqrt(nrm2)
     first = abs(z(1)) / nrm2
     last = abs(z(n)) / nrm2
-  end subroutine twist_pivots
+  end subroutine twist_vector
 
   ! ------------------------------------------------------------------
   ! The solver: the eigenvalue of index mode, in the window, widened until
@@ -419,38 +465,11 @@ contains
     integer, intent(in) :: level
     real(dp), allocatable :: dh(:), eh(:), zh(:)
     real(dp) :: ds(small_rows), es(small_rows), zs(small_rows)
-    real(dp) :: guess, sl, h
+    real(dp) :: guess
     integer :: r1, n, attempt
     logical :: cut, done
     aq = abs(q)
-    lam_hi = centre * centre + spread * aq
-    lam_lo = centre * centre - spread * aq
-    guess = centre * centre
-    sl = real(2 * level + 1, dp)
-    if (aq > 0.25_dp * sl * sl) then
-      h = sqrt(aq)
-      guess = -2.0_dp * aq + 2.0_dp * sl * h - (sl * sl + 1.0_dp) / 8.0_dp &
-              - (sl ** 3 + 3.0_dp * sl) / (128.0_dp * h)
-    else if (fam == 1 .and. centre == 0.0_dp) then
-      ! small |q|: the power series of DLMF 28.6.1, 28.6.4-5 and 28.6.14
-      ! (the bracket and the Sturm counts decide, the guess only saves steps)
-      guess = -0.5_dp * q * q + (7.0_dp / 128.0_dp) * q ** 4
-    else if ((fam == 2 .or. fam == 3) .and. centre == 1.0_dp) then
-      guess = 1.0_dp + merge(q, -q, fam == 2) - 0.125_dp * q * q
-    else if (abs(centre * centre - 1.0_dp) >= 0.5_dp) then
-      h = q * q / (2.0_dp * (centre * centre - 1.0_dp))
-      guess = centre * centre + sign(min(abs(h), aq), h)
-    end if
-    ! the upper turning point: of the Weyl bound, or for large |q| of the
-    ! ladder's estimate plus a generous margin (the bound checks it)
-    p = sqrt(max(lam_hi + 2.0_dp * aq, 0.0_dp))
-    if (aq > sl * sl) p = sqrt(max(guess + 4.0_dp * sl * h + 2.0_dp * aq, 0.0_dp))
-    rr = sqrt(max(lam_lo - 2.0_dp * aq, 0.0_dp))
-    ! the tails: beyond the turning points the Fourier coefficients fall by
-    ! at most |q| / (s^2 - lambda) a row (two orders); rows are added until
-    ! that product is below the tolerance over |q|
-    call tail(aq, p, lam_hi, 1.0_dp, tol_rel, ehi)
-    call tail(aq, rr, lam_lo, -1.0_dp, tol_rel, elo)
+    call window_plan(fam, q, centre, spread, tol_rel, level, guess, lam_lo, lam_hi, p, rr, ehi, elo)
     ! the starting estimate: q = 0's value, or for large |q| the harmonic
     ! ladder of the level's band, -2|q| + 2 s sqrt|q| - (s^2 + 1)/8 - ...
     ! with s = 2 level + 1 (DLMF 28.8.1)
@@ -489,6 +508,48 @@ contains
       elo = 2.0_dp * elo + 4.0_dp
     end do
   end subroutine solve
+
+  !> The first window of solve: the starting estimate guess of the level
+  !> (the q = 0 value centre^2, a power series for small |q|, the harmonic
+  !> ladder for large |q|), the Weyl interval [lam_lo, lam_hi] of spread
+  !> |q| about centre^2, the turning points p (upper) and rr (lower), and the
+  !> tails ehi, elo beyond them (in orders s) for the tolerance tol_rel.
+  pure subroutine window_plan(fam, q, centre, spread, tol_rel, level, guess, lam_lo, lam_hi, p, rr, ehi, elo)
+    integer, intent(in) :: fam, level
+    real(dp), intent(in) :: q, centre, spread, tol_rel
+    real(dp), intent(out) :: guess, lam_lo, lam_hi, p, rr, ehi, elo
+    real(dp) :: aq, sl, h
+    h = 0.0_dp
+    aq = abs(q)
+    lam_hi = centre * centre + spread * aq
+    lam_lo = centre * centre - spread * aq
+    guess = centre * centre
+    sl = real(2 * level + 1, dp)
+    if (aq > 0.25_dp * sl * sl) then
+      h = sqrt(aq)
+      guess = -2.0_dp * aq + 2.0_dp * sl * h - (sl * sl + 1.0_dp) / 8.0_dp &
+              - (sl ** 3 + 3.0_dp * sl) / (128.0_dp * h)
+    else if (fam == 1 .and. centre == 0.0_dp) then
+      ! small |q|: the power series of DLMF 28.6.1, 28.6.4-5 and 28.6.14
+      ! (the bracket and the Sturm counts decide, the guess only saves steps)
+      guess = -0.5_dp * q * q + (7.0_dp / 128.0_dp) * q ** 4
+    else if ((fam == 2 .or. fam == 3) .and. centre == 1.0_dp) then
+      guess = 1.0_dp + merge(q, -q, fam == 2) - 0.125_dp * q * q
+    else if (abs(centre * centre - 1.0_dp) >= 0.5_dp) then
+      h = q * q / (2.0_dp * (centre * centre - 1.0_dp))
+      guess = centre * centre + sign(min(abs(h), aq), h)
+    end if
+    ! the upper turning point: of the Weyl bound, or for large |q| of the
+    ! ladder's estimate plus a generous margin (the bound checks it)
+    p = sqrt(max(lam_hi + 2.0_dp * aq, 0.0_dp))
+    if (aq > sl * sl) p = sqrt(max(guess + 4.0_dp * sl * h + 2.0_dp * aq, 0.0_dp))
+    rr = sqrt(max(lam_lo - 2.0_dp * aq, 0.0_dp))
+    ! the tails: beyond the turning points the Fourier coefficients fall by
+    ! at most |q| / (s^2 - lambda) a row (two orders); rows are added until
+    ! that product is below the tolerance over |q|
+    call tail(aq, p, lam_hi, 1.0_dp, tol_rel, ehi)
+    call tail(aq, rr, lam_lo, -1.0_dp, tol_rel, elo)
+  end subroutine window_plan
 
   !> One window of solve: rows r0 .. r0 + n - 1 built into d, e2 (the
   !> caller's work arrays, z too), the eigenvalue of index j found and
@@ -800,6 +861,14 @@ contains
       end do
       return
     end if
+    ! first every level, the top one too, certified together in solve's
+    ! first window of the top level; then, where that fails, the top level
+    ! solved on its own and the rest certified in its window
+    call levels_one_window(nr, q, nlev, val, bound, status, ok)
+    if (ok) return
+    val = nan_dp
+    bound = nan_dp
+    status = mathieu_bad_input
     call solve(0, nr, q, nlev - 1, .false., level_order(nr, nlev - 1), 2.0_dp, 0.25_dp * eps_dp, x, b, &
                st, d, e2, j, r0, nlev - 1)
     n = 0
@@ -854,7 +923,7 @@ contains
       ev(k + 1) = t
     end do
     pivmin = tiny(1.0_dp) * max(1.0_dp, maxval(e2))
-    call levels_certified(nr, q, r0, n, d, e2, nlev, ev, pivmin, val, bound, status, z)
+    call levels_certified(nr, q, r0, n, d, e2, nlev, nlev - 1, 0.0_dp, ev, pivmin, val, bound, status, z)
     do k = 0, nlev - 2
       if (status(k + 1) == mathieu_ok) cycle
       w = 1.0e-8_dp * max(1.0_dp, abs(ev(k + 1)), aq)
@@ -872,9 +941,68 @@ contains
     end do
   end subroutine mathieu_levels
 
-  !> The levels 0 .. nlev - 2 of the window (d, e2; rows r0 .. r0 + n - 1 of
-  !> offset nu, couplings |q|) certified together, level nlev - 1 (val,
-  !> status) being certified already.  Each level: a twist at its starting
+  !> All nlev levels of offset nr (reduced to [0, 2)) in the first window
+  !> that solve would take for the top one (window_plan), with no level
+  !> solved on its own: starting values by QL on the window's central rows,
+  !> then levels_certified for all of them (the top level's gap above from
+  !> the next QL value).  ok only when every level is certified, its
+  !> truncation bound included; otherwise the caller takes its own path.
+  pure subroutine levels_one_window(nr, q, nlev, val, bound, status, ok)
+    real(dp), intent(in) :: nr, q
+    integer, intent(in) :: nlev
+    real(dp), intent(inout) :: val(nlev), bound(nlev)
+    integer, intent(inout) :: status(nlev)
+    logical, intent(out) :: ok
+    real(dp) :: d(small_rows), e2(small_rows), z(small_rows), ev(small_rows), ee(small_rows)
+    real(dp) :: guess, lam_lo, lam_hi, p, rr, ehi, elo, t, aq, pivmin
+    integer :: r0, r1, n, i1, i2, nb, i, k
+    ok = .false.
+    aq = abs(q)
+    call window_plan(0, q, level_order(nr, nlev - 1), 2.0_dp, 0.25_dp * eps_dp, nlev - 1, guess, &
+                     lam_lo, lam_hi, p, rr, ehi, elo)
+    call window_rows(0, nr, rr - elo, p + ehi, .false., r0, r1)
+    n = r1 - r0 + 1
+    if (n > small_rows .or. n < nlev + 1) return
+    call build(0, nr, q, r0, r1, d, e2)
+    ! the central rows (as in mathieu_levels, about the top level's estimate)
+    t = guess + 2.0_dp * aq
+    i1 = 1
+    do while (i1 < n .and. d(i1) > t)
+      i1 = i1 + 1
+    end do
+    i2 = n
+    do while (i2 > i1 .and. d(i2) > t)
+      i2 = i2 - 1
+    end do
+    i1 = max(1, i1 - 3)
+    i2 = min(n, i2 + 3)
+    nb = i2 - i1 + 1
+    if (nb < nlev + 1) return
+    ev(1:nb) = d(i1:i2)
+    ee(1:nb - 1) = sqrt(e2(i1:i2 - 1))
+    ee(nb) = 0.0_dp
+    call ql_values(nb, ev(1:nb), ee(1:nb), ok)
+    if (.not. ok) return
+    do i = 2, nb     ! in order
+      t = ev(i)
+      k = i - 1
+      do while (k >= 1)
+        if (ev(k) <= t) exit
+        ev(k + 1) = ev(k)
+        k = k - 1
+      end do
+      ev(k + 1) = t
+    end do
+    pivmin = tiny(1.0_dp) * max(1.0_dp, maxval(e2(1:n)))
+    call levels_certified(nr, q, r0, n, d(1:n), e2(1:n), nlev, nlev, ev(nlev + 1), ev(1:nb), pivmin, &
+                          val, bound, status, z(1:n))
+    ok = all(status == mathieu_ok)
+  end subroutine levels_one_window
+
+  !> The levels 0 .. ncomp - 1 of the window (d, e2; rows r0 .. r0 + n - 1 of
+  !> offset nu, couplings |q|) certified together: ncomp = nlev - 1 with
+  !> level nlev - 1 (val) certified already, or ncomp = nlev with above a
+  !> value between the top level and the next eigenvalue.  Each level: a twist at its starting
   !> value ev (and, where needed, one more at the result), its Rayleigh
   !> quotient rho polished in double-double with the residual norm eps_r.
   !> One Sturm count at each midpoint between consecutive rho (and one
@@ -887,49 +1015,85 @@ contains
   !> truncation bound meets eps/4 of max(1, |rho|) gets status ok with that
   !> sum as its bound; the others keep status bad_input for the caller's
   !> own path (so do all of them when a count disagrees).
-  pure subroutine levels_certified(nr, q, r0, n, d, e2, nlev, ev, pivmin, val, bound, status, z)
-    integer, intent(in) :: r0, n, nlev
-    real(dp), intent(in) :: nr, q, d(n), e2(n), ev(:), pivmin
+  pure subroutine levels_certified(nr, q, r0, n, d, e2, nlev, ncomp, above, ev, pivmin, val, bound, status, z)
+    integer, intent(in) :: r0, n, nlev, ncomp
+    real(dp), intent(in) :: nr, q, d(n), e2(n), above, ev(:), pivmin
     real(dp), intent(inout) :: val(nlev), bound(nlev), z(n)
     integer, intent(inout) :: status(nlev)
-    real(dp) :: rho(nlev), res2(nlev), tb(nlev), mid(0:nlev - 1)
+    ! work arrays on the heap: nlev and n can be large (a spectrum of many
+    ! levels), beyond what a thread's stack holds
+    real(dp), allocatable :: rho(:), res2(:), tb(:), mid(:), zb(:)
     real(dp) :: step, f1, fn, aq, emax, slack, delta, temple, tol, xs, dmax
-    integer :: k, it, ca, cb
-    logical :: good
+    real(dp) :: xa, xb, stepb, f1b, fnb
+    integer :: k, it, ca, cb, kmax
+    logical :: good, moved, movedb
     if (nlev < 2) return
+    allocate(rho(nlev), res2(nlev), tb(nlev), mid(0:nlev), zb(n))
     aq = abs(q)
     emax = sqrt(maxval(e2))
     dmax = maxval(abs(d))
-    rho(nlev) = val(nlev)
-    res2(nlev) = 0.0_dp
-    do k = 1, nlev - 1
-      xs = ev(k)
-      call twist(d, e2, n, xs, pivmin, step, f1, fn, z)
-      if (abs(step) > 1.0e-13_dp * (abs(xs) + emax)) then
-        ! a Rayleigh-quotient step first (cubic: the next vector is good)
-        xs = xs + step
+    if (ncomp < nlev) then
+      rho(nlev) = val(nlev)
+      res2(nlev) = 0.0_dp
+    end if
+    ! two levels at a time (their factorisations overlap): a Rayleigh-
+    ! quotient step from the starting value where it is not already within
+    ! 1e-13 of the scale (cubic: the next vector is good), then the polish
+    do k = 1, ncomp, 2
+      if (k + 1 <= ncomp) then
+        xa = ev(k)
+        xb = ev(k + 1)
+        call twist_pair(d, e2, n, xa, xb, pivmin, step, f1, fn, z, stepb, f1b, fnb, zb)
+        moved = abs(step) > 1.0e-13_dp * (abs(xa) + emax)
+        movedb = abs(stepb) > 1.0e-13_dp * (abs(xb) + emax)
+        if (moved) xa = xa + step
+        if (movedb) xb = xb + stepb
+        if (moved .and. movedb) then
+          call twist_pair(d, e2, n, xa, xb, pivmin, step, f1, fn, z, stepb, f1b, fnb, zb)
+        else if (moved) then
+          call twist(d, e2, n, xa, pivmin, step, f1, fn, z)
+        else if (movedb) then
+          call twist(d, e2, n, xb, pivmin, stepb, f1b, fnb, zb)
+        end if
+        call polish_res(0, nr, q, r0, n, xa, z, rho(k), res2(k))
+        tb(k) = sqrt((sqrt2 * aq * f1) ** 2 + (aq * fn) ** 2)
+        call polish_res(0, nr, q, r0, n, xb, zb, rho(k + 1), res2(k + 1))
+        tb(k + 1) = sqrt((sqrt2 * aq * f1b) ** 2 + (aq * fnb) ** 2)
+      else
+        xs = ev(k)
         call twist(d, e2, n, xs, pivmin, step, f1, fn, z)
+        if (abs(step) > 1.0e-13_dp * (abs(xs) + emax)) then
+          xs = xs + step
+          call twist(d, e2, n, xs, pivmin, step, f1, fn, z)
+        end if
+        call polish_res(0, nr, q, r0, n, xs, z, rho(k), res2(k))
+        tb(k) = sqrt((sqrt2 * aq * f1) ** 2 + (aq * fn) ** 2)
       end if
-      call polish_res(0, nr, q, r0, n, xs, z, rho(k), res2(k))
-      tb(k) = sqrt((sqrt2 * aq * f1) ** 2 + (aq * fn) ** 2)
     end do
     do k = 1, nlev - 1
       if (.not. (rho(k) < rho(k + 1))) return
     end do
-    ! the midpoints, and below the lowest its mirror image
+    ! the midpoints, below the lowest its mirror image, and (when the top
+    ! level is computed here too) one between it and the value above
     do k = 1, nlev - 1
       mid(k) = rho(k) + 0.5_dp * (rho(k + 1) - rho(k))
     end do
     mid(0) = rho(1) - (mid(1) - rho(1))
-    do k = 0, nlev - 1, 2
-      if (k + 1 <= nlev - 1) then
+    kmax = nlev - 1
+    if (ncomp == nlev) then
+      if (.not. (above > rho(nlev))) return
+      mid(nlev) = rho(nlev) + 0.5_dp * (above - rho(nlev))
+      kmax = nlev
+    end if
+    do k = 0, kmax, 2
+      if (k + 1 <= kmax) then
         call sturm_count_pair(d, e2, n, mid(k), mid(k + 1), pivmin, ca, cb)
         if (ca /= k .or. cb /= k + 1) return
       else
         if (sturm_count(d, e2, n, mid(k), pivmin) /= k) return
       end if
     end do
-    do k = 1, nlev - 1
+    do k = 1, ncomp
       good = .false.
       do it = 1, 2
         tol = 0.25_dp * eps_dp * max(1.0_dp, abs(rho(k)))
