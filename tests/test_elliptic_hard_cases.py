@@ -320,3 +320,45 @@ def test_ellipj_dn_m_far_below_zero_does_not_grow_with_u():
     assert rel_eps(pendula.ellipj(u, m)[2], ref) <= 4
     assert_hard_cases("jacobi_m_far_below_zero", "reproducer")
     assert_hard_cases("jacobi_m_far_below_zero", "hunt")
+
+
+@pytest.mark.parametrize("m", [1.3e300, 1.3393857490036326e300, 1.5e300, 1e305, 1.7e308])
+def test_ellipj_huge_parameter_above_the_split_overflow_is_finite_and_right(m):
+    """m above 1.3e300 (= huge / (2^27 + 1)): the reciprocal-modulus complement's double-double division
+    split m and overflowed, giving NaN inside the domain.  Reference: mpmath at 40 digits through the
+    same transformation sn(u|m) = sn(k u|1/m)/k, cn = dn(k u|1/m), dn = cn(k u|1/m), k = sqrt(m)
+    (mpmath's own ellipfun at m > 1 returns complex values); u random within the real period too."""
+    mp = pytest.importorskip("mpmath")
+    rng = np.random.default_rng(20261204)
+    k = math.sqrt(m)
+    us = [0.0, 1e-160] + list(rng.uniform(0.0, 4.0 / k, 4))
+    with mp.workdps(40):
+        for u in us:
+            got = pendula.ellipj(u, m)[:3]
+            km = mp.sqrt(mp.mpf(m))
+            x, mm = km * mp.mpf(u), 1 / mp.mpf(m)
+            ref = [mp.ellipfun("sn", x, m=mm) / km, mp.ellipfun("dn", x, m=mm), mp.ellipfun("cn", x, m=mm)]
+            for g, r in zip(got, ref):
+                assert abs(g - float(r)) <= 8 * EPS * abs(float(r)) + 1e-300, (u, g, float(r))
+
+
+@pytest.mark.parametrize("mc", [1.3e300, 1.3393857490036326e300, 1e305, 1.7e308])
+def test_ellipj_huge_complement_above_the_split_overflow_is_finite_and_right(mc):
+    """m = 1 - mc below -1.3e300 given by its complement: the core's complement 1/mc, a double-double
+    division, split mc and overflowed (NaN inside the domain).  Reference: mpmath at 40 digits through
+    the imaginary-modulus transformation sn(u|m) = sd(nu u|mu)/nu, cn = cd, dn = nd, mu = -m/mc,
+    nu = sqrt(mc); u random where nu u stays below 4."""
+    mp = pytest.importorskip("mpmath")
+    rng = np.random.default_rng(4122026)
+    nu = math.sqrt(mc)
+    us = [0.0, 1e-160] + list(rng.uniform(0.0, 4.0 / nu, 4))
+    with mp.workdps(40):
+        for u in us:
+            got = pendula.ellipj(u, None, mc=mc)[:3]
+            mcm = mp.mpf(mc)
+            mu, num = (mcm - 1) / mcm, mp.sqrt(mcm)
+            x = num * mp.mpf(u)
+            sn, cn, dn = (mp.ellipfun(f, x, m=mu) for f in ("sn", "cn", "dn"))
+            ref = [sn / dn / num, cn / dn, 1 / dn]
+            for g, r in zip(got, ref):
+                assert abs(g - float(r)) <= 8 * EPS * abs(float(r)) + 1e-300, (u, g, float(r))

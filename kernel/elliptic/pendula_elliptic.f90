@@ -768,7 +768,11 @@ contains
       ! the core's complement 1/mc and the scale sqrt(mc) from mc + mcl
       p%regime = 2
       cm = -m / mc
-      call dd_div(1.0_dp, 0.0_dp, mc, mcl, cmc, cmcl)
+      if (mc > 2.0_dp**900) then    ! scaled as for m > 1 below: the division's split of mc overflowed
+        call dd_div(scale(1.0_dp, -600), 0.0_dp, scale(mc, -600), scale(mcl, -600), cmc, cmcl)
+      else
+        call dd_div(1.0_dp, 0.0_dp, mc, mcl, cmc, cmcl)
+      end if
       call dd_sqrt(mc, mcl, p%sh, p%sl)
       p%mo = mc; p%mol = mcl
       p%theta = cmc <= theta_mc_max
@@ -779,7 +783,13 @@ contains
       mlow = 0.0_dp
       if (present(ml)) mlow = ml
       cm = 1.0_dp / m
-      call dd_div(-mc, -mcl, m, mlow, cmc, cmcl)
+      ! -mc / m with both scaled by 2^-600 (exactly) where m is huge: Dekker's split inside the
+      ! division multiplies by 2^27 + 1, which overflowed above m = 1.3e300 (NaN inside the domain)
+      if (m > 2.0_dp**900) then
+        call dd_div(scale(-mc, -600), scale(-mcl, -600), scale(m, -600), scale(mlow, -600), cmc, cmcl)
+      else
+        call dd_div(-mc, -mcl, m, mlow, cmc, cmcl)
+      end if
       call dd_sqrt(m, mlow, p%sh, p%sl)
     end if
     p%mc = cmc
