@@ -87,11 +87,11 @@ module pendula_system
                  '2N: phi, dphi/dt', 'n eps damping mass bias drive_amplitude drive_frequency drive_phase ' // &
                  'coupling topology strength offset temperature', &
                  'damping:damping torque:bias drive:drive_amplitude noise:temperature', &
-                 'sqrt(eps_i / C_i), sqrt(K_ij / C_i), beta_i / C_i, Omega_i, sqrt(abs(bias_i) / C_i)'), &
+                 'network_time_rates: sqrt(eps/C), sqrt((eps+2k)/C), beta/C, Omega, sqrt(A/C), sqrt(tau/C), v'), &
     model_info_t('double', 'pendula.DoublePendulum(m1, m2, l1, l2, g)', 'damping', '(none)', 'integrated', &
                  .true., 'double pendulum: chaos, flip-time map, Lyapunov spectrum', &
                  '4: theta1, theta2, p1, p2', 'm1 m2 l1 l2 g rods damping', 'damping:damping', &
-                 'the two normal modes'' frequencies, the damping rates k_i / (m l^2)'), &
+                 'double_time_rates: the fast normal mode, the damping rate, the whirl sqrt(2H / lambda_min)'), &
     model_info_t('foucault', 'pendula.FoucaultPendulum(latitude, ...)', 'damping', '(none)', 'integrated', &
                  .true., 'spherical pendulum on the turning Earth: Coriolis and Airy precession', &
                  '6: r, dr/dt (cartesian)', 'latitude length g earth_rate damping anisotropy', 'damping:damping', &
