@@ -50,6 +50,8 @@ _FIELDS = ("mass", "damping", "eps", "bias", "drive_amplitude", "drive_frequency
 
 
 def _per_element(x, name: str, n: int, lo: float | None = None, lo_open: bool = False) -> np.ndarray:
+    if type(x) is float and math.isfinite(x) and (lo is None or x > lo or (x == lo and not lo_open)):
+        return np.full(n, x)    # one plain number in range: what the checks below would give, cheaply
     a = _checks.as_float(x, name)
     if a.ndim == 0:
         a = np.full(n, float(a))
@@ -63,6 +65,37 @@ def _per_element(x, name: str, n: int, lo: float | None = None, lo_open: bool = 
             rel = ">" if lo_open else ">="
             raise ValueError(f"{name} must be {rel} {lo:g}: element {bad[0]} is {a[bad[0]]!r}")
     return a
+
+
+_FIELDS_ALLOWED: set = set()     # the field sets the capability table allowed for Network.simulate
+
+
+def _require_simulate_fields(on: list) -> None:
+    """The capability table's check of Network.simulate's fields, remembered when it passes."""
+    key = tuple(on)
+    if key not in _FIELDS_ALLOWED:
+        require_fields("network", "simulate", on)
+        _FIELDS_ALLOWED.add(key)
+
+
+def _dataset(xr, data: dict, coords: dict, attrs: dict):
+    """xarray.Dataset(data, coords, attrs) for data of (dims, array) and 1-D coords named for their
+    dimensions, built directly from its variables when this xarray allows (a fifth of the cost of the
+    public constructor, whose alignment and merging are needless here), else by the constructor."""
+    build = getattr(xr.Dataset, "_construct_direct", None)
+    if build is not None:
+        try:
+            from xarray.core.indexes import PandasIndex
+            import pandas as pd
+            variables = {k: xr.Variable(d, a) for k, (d, a) in data.items()}
+            indexes = {k: PandasIndex(pd.Index(a, copy=False), k) for k, a in coords.items()}
+            for index in indexes.values():
+                variables.update(index.create_variables())
+            return build(variables=variables, coord_names=set(coords),
+                         dims={k: len(a) for k, a in coords.items()}, indexes=indexes, attrs=attrs)
+        except (ImportError, TypeError):   # another xarray's internals: the public way below
+            pass
+    return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
 def _topology(name: str, n: int) -> tuple[np.ndarray, np.ndarray]:
@@ -292,6 +325,11 @@ class Network:
         self._eoff = np.ascontiguousarray(eoff, dtype=np.float64)
         self._p = np.asfortranarray(np.stack([self.mass, self.damping, self.eps, self.bias,
                                               self.drive_amplitude, self.drive_frequency, self.drive_phase]))
+        # the fastest rate of the network (a rough count of its work for simulate's interruptible thread)
+        ksum = np.bincount(ei, ek, n) + np.bincount(ej, ek, n)
+        self._rate = max(1.0, float(np.max(np.sqrt(np.abs(self.eps) + 4 * ksum) / self.mass)),
+                         float(np.max(np.abs(self.drive_frequency))))
+        self._on = [f for f in ("damping", "bias", "drive_amplitude") if np.any(getattr(self, f))]
 
     def __repr__(self) -> str:
         what = f"topology={self.topology!r}" if self.topology else f"{self.springs[0].size} springs"
@@ -299,7 +337,7 @@ class Network:
 
     def _fields_on(self) -> list:
         """The fields that are on (non-zero): the capability table decides what each tool does with them."""
-        return [f for f in ("damping", "bias", "drive_amplitude") if np.any(getattr(self, f))]
+        return list(self._on)
 
     @property
     def coupling(self) -> np.ndarray:
@@ -474,8 +512,8 @@ class Network:
         tt = _checks.as_float(t, "t").ravel()
         method = _checks.choice(method, "method", METHODS)
         temp = _per_element(temperature, "temperature", self.n, 0.0)
-        require_fields("network", "simulate", self._fields_on() + (["temperature"] if np.any(temp) else []))
         noisy = bool(np.any(temp > 0))
+        _require_simulate_fields(self._on + (["temperature"] if noisy else []))
         if noisy:
             method = "baoab"
             bad = np.flatnonzero((temp > 0) & (self.damping == 0))
@@ -502,11 +540,7 @@ class Network:
         npath = _checks.count(paths, "paths", 1) if method == "baoab" else 1
         if method == "dop853":
             # a rough count of element-evaluations: short runs skip the interruptible thread's start
-            ei, ej, ek, _ = self.springs
-            ksum = np.bincount(ei, ek, self.n) + np.bincount(ej, ek, self.n)
-            rate = max(1.0, float(np.max(np.sqrt(np.abs(self.eps) + 4 * ksum) / self.mass)),
-                       float(np.max(np.abs(self.drive_frequency))))
-            long = self.n * span * rate * 100 > 1e6
+            long = self.n * span * self._rate * 100 > 1e6
         else:
             long = self.n * span / h * (npath if method == "baoab" else 10) > 1e6
         if method == "baoab":
@@ -523,11 +557,9 @@ class Network:
             v = np.transpose(yout[self.n:], (2, 1, 0))
             en = self.energy(phi, v)
             dims = ("path", "time", "element")
-            ds = xr.Dataset({"phi": (dims, phi), "v": (dims, v), "energy": (dims[:2], en)},
-                            coords={"path": np.arange(first, first + npath), "time": tt,
-                                    "element": np.arange(self.n)},
-                            attrs={"method": "baoab", "seed": seed, "dt": h})
-            return ds
+            return _dataset(xr, {"phi": (dims, phi), "v": (dims, v), "energy": (dims[:2], en)},
+                            {"path": np.arange(first, first + npath), "time": tt, "element": np.arange(self.n)},
+                            {"method": "baoab", "seed": seed, "dt": h})
         if method == "dop853":
             rtol, atol = _checks.tolerances(rtol, atol)
             counts = np.zeros(tt.size, dtype=np.int64)
@@ -539,9 +571,10 @@ class Network:
             raise ValueError(f"{method}: {_STATUS.get(int(status), f'kernel status {status}')}")
         phi, v = yout[:self.n].T, yout[self.n:].T
         dims = ("time", "element")
-        return xr.Dataset({"phi": (dims, phi), "v": (dims, v), "energy": (("time",), self.energy(phi, v))},
-                          coords={"time": tt, "element": np.arange(self.n)},
-                          attrs={"method": method, "steps": int(stats[0]), "rhs_evaluations": int(stats[3])})
+        en = _kernel.network_energy_v(*self._edges(), yout)
+        return _dataset(xr, {"phi": (dims, phi), "v": (dims, v), "energy": (("time",), en)},
+                        {"time": tt, "element": np.arange(self.n)},
+                        {"method": method, "steps": int(stats[0]), "rhs_evaluations": int(stats[3])})
 
     # ------------------------------------------------------------------ rest points and modes
     def equilibrium(self, phi: ArrayLike, *, tol: float = 1e-14, maxit: int = 50) -> NetworkEquilibrium:
