@@ -459,6 +459,9 @@ class Network:
             fixed-step methods they must lie on the step grid (multiples of dt).
         phi0, v0 : float or array_like, optional
             The initial phases and velocities (one number for all, or N).
+            A batch of B initial states: phi0 of shape (B, N) (v0 one number,
+            N, or B x N); the B runs go in one kernel call on OpenMP threads,
+            each run's result the same as its own call's, on any thread count.
         method : {'dop853', 'gauss6', 'gauss4', 'baoab'}, optional
             DOP853 with dense output (adaptive: rtol, atol); Gauss-Legendre of
             order 6 or 4 (fixed step dt; symplectic: the energy of a
@@ -482,15 +485,16 @@ class Network:
         first_path : int, optional
             The index of the first path's stream (to continue a set of paths).
         threads : int, optional
-            OpenMP threads for the paths (0: OpenMP's default).
+            OpenMP threads for the paths or the batch (0: OpenMP's default).
 
         Returns
         -------
         xarray.Dataset
             ``phi`` and ``v`` over (``time``, ``element``) (with ``path`` first
-            for BAOAB), ``energy`` over ``time`` (and ``path``); attributes
-            ``method`` and, for the deterministic methods, ``steps`` and
-            ``rhs_evaluations``.
+            for BAOAB, ``run`` first for a batch), ``energy`` over ``time``
+            (and ``path`` or ``run``); attributes ``method`` and, for the
+            deterministic methods, ``steps`` and ``rhs_evaluations`` (of each
+            run, an array, for a batch).
 
         Raises
         ------
@@ -520,7 +524,7 @@ class Network:
             if bad.size:
                 raise ValueError(f"temperature: element {bad[0]} has no damping, and noise without "
                                  "damping has no equilibrium (fluctuation-dissipation); give it damping > 0")
-        y0 = np.concatenate([self._state(phi0, "phi0"), self._state(v0, "v0")])
+        y0, batch = self._initial_states(phi0, v0)
         counts = None
         if method != "dop853":
             if dt is None:
@@ -538,15 +542,20 @@ class Network:
         cancel = _interrupt.cancel_flag()
         span = float(tt[-1]) if tt.size else 0.0
         npath = _checks.count(paths, "paths", 1) if method == "baoab" else 1
+        if batch and method == "baoab":
+            if npath not in (1, y0.shape[1]):
+                raise ValueError(f"paths: {npath} paths but {y0.shape[1]} initial states (phi0's rows)")
+            npath = y0.shape[1]
+        nrun = y0.shape[1] if batch else 1
         if method == "dop853":
             # a rough count of element-evaluations: short runs skip the interruptible thread's start
-            long = self.n * span * self._rate * 100 > 1e6
+            long = self.n * nrun * span * self._rate * 100 > 1e6
         else:
-            long = self.n * span / h * (npath if method == "baoab" else 10) > 1e6
+            long = self.n * span / h * (npath if method == "baoab" else 10 * nrun) > 1e6
         if method == "baoab":
             seed = _checks.count(seed, "seed", 0, 2**63 - 1)
             first = _checks.count(first_path, "first_path", 0, 2**63 - 1)
-            y0s = np.asfortranarray(np.repeat(y0[:, None], npath, axis=1))
+            y0s = y0 if batch else np.asfortranarray(np.repeat(y0[:, None], npath, axis=1))
             yout, status = _interrupt.call(_kernel.network_langevin_v, *self._edges(), temp, seed, first, h,
                                            y0s, counts, _checks.threads(threads), cancel, cancel=cancel,
                                            long=long)
@@ -564,6 +573,8 @@ class Network:
             rtol, atol = _checks.tolerances(rtol, atol)
             counts = np.zeros(tt.size, dtype=np.int64)
             h = 0.0
+        if batch:
+            return self._simulate_batch(xr, method, y0, tt, counts, rtol, atol, h, threads, cancel, long)
         yout, stats, status = _interrupt.call(
             _kernel.network_simulate_v, *self._edges(), _METHOD_CODE[method], y0, tt, counts,
             float(rtol), float(atol), h, cancel, cancel=cancel, long=long)
@@ -575,6 +586,41 @@ class Network:
         return _dataset(xr, {"phi": (dims, phi), "v": (dims, v), "energy": (("time",), en)},
                         {"time": tt, "element": np.arange(self.n)},
                         {"method": method, "steps": int(stats[0]), "rhs_evaluations": int(stats[3])})
+
+    def _initial_states(self, phi0, v0) -> tuple[np.ndarray, bool]:
+        """The initial state y0 = (phi0, v0), or for phi0 of B rows the 2N x B states (Fortran order)."""
+        q = phi0 if type(phi0) is float else _checks.as_float(phi0, "phi0")
+        if np.ndim(q) < 2:
+            return np.concatenate([self._state(q, "phi0"), self._state(v0, "v0")]), False
+        if q.ndim != 2 or q.shape[1] != self.n or q.shape[0] == 0:
+            raise ValueError(f"phi0 must be one number, {self.n} numbers, or B x {self.n} (a batch), "
+                             f"got shape {q.shape}")
+        w = _checks.as_float(v0, "v0")
+        if w.shape not in ((), (self.n,), q.shape):
+            raise ValueError(f"v0 must be one number, {self.n} numbers or {q.shape[0]} x {self.n} "
+                             f"(one row per initial state), got shape {w.shape}")
+        for name, a in (("phi0", q), ("v0", w)):
+            if not np.all(np.isfinite(a)):
+                raise ValueError(f"{name} must be finite")
+        return np.asfortranarray(np.concatenate([q, np.broadcast_to(w, q.shape)], axis=1).T), True
+
+    def _simulate_batch(self, xr, method, y0, tt, counts, rtol, atol, h, threads, cancel, long):
+        """simulate's deterministic runs from the columns of y0, in one kernel call."""
+        yout, stats, status = _interrupt.call(
+            _kernel.network_simulate_batch_v, *self._edges(), _METHOD_CODE[method], y0, tt, counts,
+            float(rtol), float(atol), h, _checks.threads(threads), cancel, cancel=cancel, long=long)
+        bad = np.flatnonzero(status != 0)
+        if bad.size:
+            code = int(status[bad[0]])
+            raise ValueError(f"{method}: run {bad[0]}: {_STATUS.get(code, f'kernel status {code}')}")
+        nout, nrun = tt.size, y0.shape[1]
+        en = _kernel.network_energy_v(*self._edges(), yout.reshape(2 * self.n, nout * nrun, order="F"))
+        dims = ("run", "time", "element")
+        return _dataset(xr, {"phi": (dims, np.transpose(yout[:self.n], (2, 1, 0))),
+                             "v": (dims, np.transpose(yout[self.n:], (2, 1, 0))),
+                             "energy": (dims[:2], en.reshape((nout, nrun), order="F").T)},
+                        {"run": np.arange(nrun), "time": tt, "element": np.arange(self.n)},
+                        {"method": method, "steps": stats[0].copy(), "rhs_evaluations": stats[3].copy()})
 
     # ------------------------------------------------------------------ rest points and modes
     def equilibrium(self, phi: ArrayLike, *, tol: float = 1e-14, maxit: int = 50) -> NetworkEquilibrium:
