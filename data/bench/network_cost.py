@@ -9,8 +9,8 @@ The peers: SciPy's solve_ivp (DOP853, the right-hand side vectorised in numpy); 
 (Hairer's DOP853 in C++, the right-hand side a numba cfunc); diffrax's Dopri8 under jax.jit (float64,
 PID step control, only the end state saved; compile time excluded: the first call is a warm-up).  vmap
 is diffrax's answer to a batch: the main cells are one trajectory each (jit alone), and a batch cell
-(64 chains of 16 from seeded random phases) maps diffrax's solve over the batch with jax.vmap while
-pendula and numbalsoda loop over it.
+(64 chains of 16 from seeded random phases) maps diffrax's solve over the batch with jax.vmap,
+pendula runs it in one call (phi0 of 64 rows, OpenMP threads: the machine's cores) and numbalsoda loops.
 
 Equal error: every code runs at several rtol (atol rtol/100); each run's error is the largest
 difference of the state at t = 10 from SciPy's DOP853 at rtol 1e-13 (the reference, not pendula's
@@ -19,7 +19,7 @@ runs (flagged when pendula's error lies outside the peer's range).  Each timing 
 calls (fewer for the slow SciPy runs at N = 4096).  Where the time of pendula's call goes is
 recorded beside it: the kernel's own share (the private binding pendula._kernel.network_simulate_v
 called directly, a diagnostic, not a public path), the rest being the Python wrapper's checks and the
-xarray Dataset it builds (about 0.35 ms a call).  Peers that are not installed are listed as such
+xarray Dataset it builds.  Peers that are not installed are listed as such
 (`make bench-peers` installs them).
 
     .venv/bin/python data/bench/network_cost.py     # writes data/bench/network_cost.json
@@ -155,7 +155,8 @@ BATCH_N, BATCH = 16, 64     # the batch task: 64 chains of 16 from seeded random
 
 def batch_cell(avail):
     """The batch task (where vmap applies): BATCH chains of BATCH_N from seeded random initial phases, each
-    to t = 10.  pendula and numbalsoda loop over the chains (pendula has no batched DOP853 call);
+    to t = 10.  pendula runs the batch in one call (Network.simulate with phi0 of B x N rows, on OpenMP
+    threads); numbalsoda loops over the chains;
     diffrax maps one jit-compiled solve over the batch with jax.vmap.  Error: the largest over the batch
     against SciPy at rtol 1e-13; times at equal error as in the main table."""
     n = BATCH_N
@@ -165,12 +166,9 @@ def batch_cell(avail):
     ref = np.array([scipy_runner(n, y)(1e-13) for y in y0s])
     net = pendula.Network(n, topology="chain", strength=K)
 
-    def pend(rtol):
-        out = []
-        for p in phis:
-            run = net.simulate([0.0, T_END], p, 0.0, rtol=rtol, atol=rtol / 100)
-            out.append(np.concatenate([run.phi.values[-1], run.v.values[-1]]))
-        return np.array(out)
+    def pend(rtol):     # the whole batch in one call (phi0 of BATCH x n rows), on OpenMP's threads
+        run = net.simulate([0.0, T_END], phis, 0.0, rtol=rtol, atol=rtol / 100)
+        return np.concatenate([run.phi.values[:, -1], run.v.values[:, -1]], axis=1)
     runners = {}
     if "numbalsoda" in avail:
         one = numbalsoda_runner(n, y0s[0])

@@ -1178,6 +1178,32 @@ subroutine network_simulate_v(nel, ne, p, ei, ej, ek, eoff, method, y0, nout, to
   stats = [st%nsteps, st%naccept, st%nreject, st%nfev]
 end subroutine network_simulate_v
 
+! A batch of nrun deterministic runs of the network from y0(:, k) (network_simulate_v per run) on
+! nthreads OpenMP threads: yout(:, :, k), stats(:, k), status(k) run k's results.
+subroutine network_simulate_batch_v(nel, ne, p, ei, ej, ek, eoff, method, nrun, y0, nout, tout, counts, &
+                                    rtol, atol, dt, nthreads, cancel, yout, stats, status)
+  use pendula_network, only: network, make_network
+  use pendula_network_run, only: network_simulate_batch
+  implicit none
+  integer, intent(in) :: nel, ne, method, nrun, nout, nthreads
+  double precision, intent(in) :: p(7, nel), ek(ne), eoff(ne), y0(2 * nel, nrun), tout(nout), rtol, atol, dt
+  integer, intent(in) :: ei(ne), ej(ne)
+  integer(8), intent(in) :: counts(nout)
+  integer, intent(inout), volatile :: cancel(1)
+  double precision, intent(out) :: yout(2 * nel, nout, nrun)
+  integer(8), intent(out) :: stats(4, nrun)
+  integer, intent(out) :: status(nrun)
+  !f2py threadsafe
+  !f2py intent(hide), depend(p) :: nel = shape(p, 1)
+  !f2py intent(hide), depend(ei) :: ne = len(ei)
+  !f2py intent(hide), depend(y0) :: nrun = shape(y0, 1)
+  !f2py intent(hide), depend(tout) :: nout = len(tout)
+  type(network) :: net
+  net = make_network(p, ei, ej, ek, eoff)
+  call network_simulate_batch(net, method, y0, tout, counts, rtol, atol, dt, nthreads, yout, stats, status, &
+                              cancel(1))
+end subroutine network_simulate_batch_v
+
 ! npath Langevin paths (BAOAB, step h) of the network at temperatures temp;
 ! path k from y0(:, k) on the noise streams of point first + k - 1 of seed;
 ! yout(:, j, k) after counts(j) more steps; status(k) each path's status.

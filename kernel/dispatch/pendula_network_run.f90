@@ -12,7 +12,7 @@ module pendula_network_run
   use pendula_network, only: network, network_force
   implicit none
   private
-  public :: network_ode, make_network_ode, network_simulate, network_langevin
+  public :: network_ode, make_network_ode, network_simulate, network_simulate_batch, network_langevin
 
   !> the methods of network_simulate: those of nd_run
   public :: nd_dop853, nd_gauss4, nd_gauss6
@@ -58,6 +58,39 @@ contains
     call nd_run(make_network_ode(net), method, 0.0_dp, y0, tout, counts, rtol, atol, dt, yout, stats, status, &
                 cancel)
   end subroutine network_simulate
+
+  !> A batch of deterministic runs of one network (network_simulate's methods): run k from y0(:, k) to the
+  !> same output times, yout(:, :, k), stats(:, k) = (steps, accepted, rejected, rhs evaluations) and
+  !> status(k) its results.  The runs share nothing but the network, so each one's result is the same
+  !> whatever the thread count nthreads (0: OpenMP's default).
+  subroutine network_simulate_batch(net, method, y0, tout, counts, rtol, atol, dt, nthreads, yout, stats, &
+                                    status, cancel)
+    type(network), intent(in) :: net
+    integer, intent(in) :: method, nthreads
+    real(dp), intent(in) :: y0(:, :), tout(:), rtol, atol, dt
+    integer(i8), intent(in) :: counts(:)
+    real(dp), intent(out) :: yout(:, :, :)
+    integer(i8), intent(out) :: stats(:, :)
+    integer, intent(out) :: status(:)
+    integer, intent(inout), volatile :: cancel
+    type(network_ode) :: sys
+    type(run_stats) :: st
+    integer :: k, nt
+    sys = make_network_ode(net)
+    status = st_cancelled
+    stats = 0_i8
+    nt = thread_count(nthreads)
+    !$omp parallel do schedule(dynamic, 1) default(none) num_threads(nt) private(st) &
+    !$omp   shared(sys, method, y0, tout, counts, rtol, atol, dt, yout, stats, status, cancel)
+    do k = 1, size(y0, 2)
+      if (cancel == 0) then
+        call nd_run(sys, method, 0.0_dp, y0(:, k), tout, counts, rtol, atol, dt, yout(:, :, k), st, &
+                    status(k), cancel)
+        stats(:, k) = [st%nsteps, st%naccept, st%nreject, st%nfev]
+      end if
+    end do
+    !$omp end parallel do
+  end subroutine network_simulate_batch
 
   !> npath Langevin paths of the network at the temperatures temp(nel)
   !> (energy units of the couplings and eps): path k starts from y0(:, k),

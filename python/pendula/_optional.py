@@ -102,6 +102,9 @@ def require(module: str, extra: str, feature: str):
     pendula._optional.MissingExtraError: pendula.sweep needs no_such_package_xyz, which is not installed: \
 pip install 'pendula[sweep]'
     """
+    loaded = sys.modules.get(module)
+    if loaded is not None:      # imported already: the common case, kept cheap for per-call checks
+        return loaded
     before = set(sys.modules)
     try:
         return importlib.import_module(module)

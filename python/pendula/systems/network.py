@@ -51,6 +51,8 @@ _FIELDS = ("mass", "damping", "eps", "bias", "drive_amplitude", "drive_frequency
 
 
 def _per_element(x, name: str, n: int, lo: float | None = None, lo_open: bool = False) -> np.ndarray:
+    if type(x) is float and math.isfinite(x) and (lo is None or x > lo or (x == lo and not lo_open)):
+        return np.full(n, x)    # one plain number in range: what the checks below would give, cheaply
     a = _checks.as_float(x, name)
     if a.ndim == 0:
         a = np.full(n, float(a))
@@ -64,6 +66,37 @@ def _per_element(x, name: str, n: int, lo: float | None = None, lo_open: bool = 
             rel = ">" if lo_open else ">="
             raise ValueError(f"{name} must be {rel} {lo:g}: element {bad[0]} is {a[bad[0]]!r}")
     return a
+
+
+_FIELDS_ALLOWED: set = set()     # the field sets the capability table allowed for Network.simulate
+
+
+def _require_simulate_fields(on: list) -> None:
+    """The capability table's check of Network.simulate's fields, remembered when it passes."""
+    key = tuple(on)
+    if key not in _FIELDS_ALLOWED:
+        require_fields("network", "simulate", on)
+        _FIELDS_ALLOWED.add(key)
+
+
+def _dataset(xr, data: dict, coords: dict, attrs: dict):
+    """xarray.Dataset(data, coords, attrs) for data of (dims, array) and 1-D coords named for their
+    dimensions, built directly from its variables when this xarray allows (a fifth of the cost of the
+    public constructor, whose alignment and merging are needless here), else by the constructor."""
+    build = getattr(xr.Dataset, "_construct_direct", None)
+    if build is not None:
+        try:
+            from xarray.core.indexes import PandasIndex
+            import pandas as pd
+            variables = {k: xr.Variable(d, a) for k, (d, a) in data.items()}
+            indexes = {k: PandasIndex(pd.Index(a, copy=False), k) for k, a in coords.items()}
+            for index in indexes.values():
+                variables.update(index.create_variables())
+            return build(variables=variables, coord_names=set(coords),
+                         dims={k: len(a) for k, a in coords.items()}, indexes=indexes, attrs=attrs)
+        except (ImportError, TypeError):   # another xarray's internals: the public way below
+            pass
+    return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
 def _topology(name: str, n: int) -> tuple[np.ndarray, np.ndarray]:
@@ -293,6 +326,7 @@ class Network:
         self._eoff = np.ascontiguousarray(eoff, dtype=np.float64)
         self._p = np.asfortranarray(np.stack([self.mass, self.damping, self.eps, self.bias,
                                               self.drive_amplitude, self.drive_frequency, self.drive_phase]))
+        self._on = [f for f in ("damping", "bias", "drive_amplitude") if np.any(getattr(self, f))]
 
     def __repr__(self) -> str:
         what = f"topology={self.topology!r}" if self.topology else f"{self.springs[0].size} springs"
@@ -300,7 +334,7 @@ class Network:
 
     def _fields_on(self) -> list:
         """The fields that are on (non-zero): the capability table decides what each tool does with them."""
-        return [f for f in ("damping", "bias", "drive_amplitude") if np.any(getattr(self, f))]
+        return list(self._on)
 
     @property
     def coupling(self) -> np.ndarray:
@@ -446,6 +480,9 @@ class Network:
             fixed-step methods they must lie on the step grid (multiples of dt).
         phi0, v0 : float or array_like, optional
             The initial phases and velocities (one number for all, or N).
+            A batch of B initial states: phi0 of shape (B, N) (v0 one number,
+            N, or B x N); the B runs go in one kernel call on OpenMP threads,
+            each run's result the same as its own call's, on any thread count.
         method : {'dop853', 'gauss6', 'gauss4', 'baoab'}, optional
             DOP853 with dense output (adaptive: rtol, atol); Gauss-Legendre of
             order 6 or 4 (fixed step dt; symplectic: the energy of a
@@ -473,15 +510,16 @@ class Network:
         first_path : int, optional
             The index of the first path's stream (to continue a set of paths).
         threads : int, optional
-            OpenMP threads for the paths (0: OpenMP's default).
+            OpenMP threads for the paths or the batch (0: OpenMP's default).
 
         Returns
         -------
         xarray.Dataset
             ``phi`` and ``v`` over (``time``, ``element``) (with ``path`` first
-            for BAOAB), ``energy`` over ``time`` (and ``path``); attributes
-            ``method``, ``dt`` for the fixed-step methods and, for the
-            deterministic methods, ``steps`` and ``rhs_evaluations``.
+            for BAOAB, ``run`` first for a batch), ``energy`` over ``time``
+            (and ``path`` or ``run``); attributes ``method``, ``dt`` for the
+            fixed-step methods and, for the deterministic methods, ``steps``
+            and ``rhs_evaluations`` (of each run, an array, for a batch).
 
         Raises
         ------
@@ -504,17 +542,18 @@ class Network:
         tt = _checks.as_float(t, "t").ravel()
         method = _checks.choice(method, "method", METHODS)
         temp = _per_element(temperature, "temperature", self.n, 0.0)
-        require_fields("network", "simulate", self._fields_on() + (["temperature"] if np.any(temp) else []))
         noisy = bool(np.any(temp > 0))
+        _require_simulate_fields(self._on + (["temperature"] if noisy else []))
         if noisy:
             method = "baoab"
             bad = np.flatnonzero((temp > 0) & (self.damping == 0))
             if bad.size:
                 raise ValueError(f"temperature: element {bad[0]} has no damping, and noise without "
                                  "damping has no equilibrium (fluctuation-dissipation); give it damping > 0")
-        y0 = np.concatenate([self._state(phi0, "phi0"), self._state(v0, "v0")])
+        y0, batch = self._initial_states(phi0, v0)
         counts = None
-        scales = self.time_scales(v0)
+        # the starting speeds the time scales see: of each element, the largest over a batch's runs
+        scales = self.time_scales(np.abs(y0[self.n:]).max(axis=1) if batch else y0[self.n:])
         if method != "dop853":
             if tt.size and not (np.all(np.diff(tt) >= 0) and tt[0] >= 0):
                 raise ValueError("t must be ascending and >= 0")
@@ -529,16 +568,21 @@ class Network:
         cancel = _interrupt.cancel_flag()
         span = float(tt[-1]) if tt.size else 0.0
         npath = _checks.count(paths, "paths", 1) if method == "baoab" else 1
+        if batch and method == "baoab":
+            if npath not in (1, y0.shape[1]):
+                raise ValueError(f"paths: {npath} paths but {y0.shape[1]} initial states (phi0's rows)")
+            npath = y0.shape[1]
+        nrun = y0.shape[1] if batch else 1
         if method == "dop853":
             # a rough count of element-evaluations (12 per step) from the fastest time scale: short runs skip
             # the interruptible thread's start
-            long = self.n * span * scales.fastest / (2 * math.pi) * STEPS_PER_PERIOD * 12 > 1e6
+            long = self.n * nrun * span * scales.fastest / (2 * math.pi) * STEPS_PER_PERIOD * 12 > 1e6
         else:
-            long = self.n * span / h * (npath if method == "baoab" else 10) > 1e6
+            long = self.n * span / h * (npath if method == "baoab" else 10 * nrun) > 1e6
         if method == "baoab":
             seed = _checks.count(seed, "seed", 0, 2**63 - 1)
             first = _checks.count(first_path, "first_path", 0, 2**63 - 1)
-            y0s = np.asfortranarray(np.repeat(y0[:, None], npath, axis=1))
+            y0s = y0 if batch else np.asfortranarray(np.repeat(y0[:, None], npath, axis=1))
             yout, status = _interrupt.call(_kernel.network_langevin_v, *self._edges(), temp, seed, first, h,
                                            y0s, counts, _checks.threads(threads), cancel, cancel=cancel,
                                            long=long)
@@ -549,15 +593,15 @@ class Network:
             v = np.transpose(yout[self.n:], (2, 1, 0))
             en = self.energy(phi, v)
             dims = ("path", "time", "element")
-            ds = xr.Dataset({"phi": (dims, phi), "v": (dims, v), "energy": (dims[:2], en)},
-                            coords={"path": np.arange(first, first + npath), "time": tt,
-                                    "element": np.arange(self.n)},
-                            attrs={"method": "baoab", "seed": seed, "dt": h})
-            return ds
+            return _dataset(xr, {"phi": (dims, phi), "v": (dims, v), "energy": (dims[:2], en)},
+                            {"path": np.arange(first, first + npath), "time": tt, "element": np.arange(self.n)},
+                            {"method": "baoab", "seed": seed, "dt": h})
         if method == "dop853":
             rtol, atol = _checks.tolerances(rtol, atol)
             counts = np.zeros(tt.size, dtype=np.int64)
             h = 0.0
+        if batch:
+            return self._simulate_batch(xr, method, y0, tt, counts, rtol, atol, h, threads, cancel, long)
         yout, stats, status = _interrupt.call(
             _kernel.network_simulate_v, *self._edges(), _METHOD_CODE[method], y0, tt, counts,
             float(rtol), float(atol), h, cancel, cancel=cancel, long=long)
@@ -565,10 +609,47 @@ class Network:
             raise ValueError(f"{method}: {_STATUS.get(int(status), f'kernel status {status}')}")
         phi, v = yout[:self.n].T, yout[self.n:].T
         dims = ("time", "element")
-        return xr.Dataset({"phi": (dims, phi), "v": (dims, v), "energy": (("time",), self.energy(phi, v))},
-                          coords={"time": tt, "element": np.arange(self.n)},
-                          attrs={"method": method, "steps": int(stats[0]), "rhs_evaluations": int(stats[3]),
-                                 **({"dt": h} if method != "dop853" else {})})
+        en = _kernel.network_energy_v(*self._edges(), yout)
+        return _dataset(xr, {"phi": (dims, phi), "v": (dims, v), "energy": (("time",), en)},
+                        {"time": tt, "element": np.arange(self.n)},
+                        {"method": method, "steps": int(stats[0]), "rhs_evaluations": int(stats[3]),
+                         **({"dt": h} if method != "dop853" else {})})
+
+    def _initial_states(self, phi0, v0) -> tuple[np.ndarray, bool]:
+        """The initial state y0 = (phi0, v0), or for phi0 of B rows the 2N x B states (Fortran order)."""
+        q = phi0 if type(phi0) is float else _checks.as_float(phi0, "phi0")
+        if np.ndim(q) < 2:
+            return np.concatenate([self._state(q, "phi0"), self._state(v0, "v0")]), False
+        if q.ndim != 2 or q.shape[1] != self.n or q.shape[0] == 0:
+            raise ValueError(f"phi0 must be one number, {self.n} numbers, or B x {self.n} (a batch), "
+                             f"got shape {q.shape}")
+        w = _checks.as_float(v0, "v0")
+        if w.shape not in ((), (self.n,), q.shape):
+            raise ValueError(f"v0 must be one number, {self.n} numbers or {q.shape[0]} x {self.n} "
+                             f"(one row per initial state), got shape {w.shape}")
+        for name, a in (("phi0", q), ("v0", w)):
+            if not np.all(np.isfinite(a)):
+                raise ValueError(f"{name} must be finite")
+        return np.asfortranarray(np.concatenate([q, np.broadcast_to(w, q.shape)], axis=1).T), True
+
+    def _simulate_batch(self, xr, method, y0, tt, counts, rtol, atol, h, threads, cancel, long):
+        """simulate's deterministic runs from the columns of y0, in one kernel call."""
+        yout, stats, status = _interrupt.call(
+            _kernel.network_simulate_batch_v, *self._edges(), _METHOD_CODE[method], y0, tt, counts,
+            float(rtol), float(atol), h, _checks.threads(threads), cancel, cancel=cancel, long=long)
+        bad = np.flatnonzero(status != 0)
+        if bad.size:
+            code = int(status[bad[0]])
+            raise ValueError(f"{method}: run {bad[0]}: {_STATUS.get(code, f'kernel status {code}')}")
+        nout, nrun = tt.size, y0.shape[1]
+        en = _kernel.network_energy_v(*self._edges(), yout.reshape(2 * self.n, nout * nrun, order="F"))
+        dims = ("run", "time", "element")
+        return _dataset(xr, {"phi": (dims, np.transpose(yout[:self.n], (2, 1, 0))),
+                             "v": (dims, np.transpose(yout[self.n:], (2, 1, 0))),
+                             "energy": (dims[:2], en.reshape((nout, nrun), order="F").T)},
+                        {"run": np.arange(nrun), "time": tt, "element": np.arange(self.n)},
+                        {"method": method, "steps": stats[0].copy(), "rhs_evaluations": stats[3].copy(),
+                         **({"dt": h} if method != "dop853" else {})})
 
     # ------------------------------------------------------------------ rest points and modes
     def equilibrium(self, phi: ArrayLike, *, tol: float = 1e-14, maxit: int = 50) -> NetworkEquilibrium:
