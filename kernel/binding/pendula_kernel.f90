@@ -1515,3 +1515,31 @@ subroutine foucault_simulate_v(p, y0, nout, tout, rtol, atol, cancel, yout, stat
   call foucault_simulate(fc, y0, tout, rtol, atol, yout, st, status, cancel(1))
   stats = [st%nsteps, st%naccept, st%nreject, st%nfev]
 end subroutine foucault_simulate_v
+
+! The scene file of a system built by its own class (&double, &foucault, &network), read and checked as
+! pendula-run reads it: its group (blank: none of them, status 1), the rows and columns of its table;
+! status 0, or 2 with msg naming the field.
+subroutine system_scene_size_v(path, group, nrows, ncols, status, msg)
+  use pendula_system_scenes, only: system_scene_size
+  implicit none
+  character(len=*), intent(in) :: path
+  character(len=16), intent(out) :: group
+  integer, intent(out) :: nrows, ncols, status
+  character(len=1024), intent(out) :: msg
+  call system_scene_size(path, group, nrows, ncols, status, msg)
+end subroutine system_scene_size_v
+
+! That file's table (nrows x ncols from system_scene_size_v), its column names (comma-separated) and
+! title, as pendula-run writes them: status 0, 1 no system's group, 2 bad scene, 4 the run failed (msg).
+subroutine system_scene_table_v(path, nrows, ncols, table, heads, title, status, msg)
+  use pendula_system_scenes, only: system_scene_table
+  implicit none
+  character(len=*), intent(in) :: path
+  integer, intent(in) :: nrows, ncols
+  double precision, intent(out) :: table(nrows, ncols)
+  character(len=24000), intent(out) :: heads
+  character(len=256), intent(out) :: title
+  integer, intent(out) :: status
+  character(len=1024), intent(out) :: msg
+  call system_scene_table(path, table, heads, title, status, msg)
+end subroutine system_scene_table_v

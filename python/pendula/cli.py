@@ -152,6 +152,10 @@ def _run_file(args, command: str, outputs: tuple | None = None) -> int:
     from .run import run_scene
     from .scene import Scene, SceneError
 
+    if outputs is None:
+        system = _run_system_file(args, command)   # &double, &foucault, &network: the kernel's reader and run
+        if system is not None:
+            return system
     try:
         scene = Scene.from_file(args.scene)
         if outputs:
@@ -189,6 +193,44 @@ def _run_file(args, command: str, outputs: tuple | None = None) -> int:
         print(f)
     skipped = [w for w in caught if issubclass(w.category, FiguresNotDrawn)]
     if skipped:      # the tables are written; the figures need the plot extra: say so, exit 6
+        print(f"pendula {command}: {skipped[0].message}", file=sys.stderr)
+        return EXIT_MISSING_EXTRA
+    return 0
+
+
+def _run_system_file(args, command: str) -> int | None:
+    """Run the scene file of a system built by its own class (&double, &foucault, &network) as
+    pendula-run does (the same table, the same exit codes: 2 bad scene, 4 the run failed, 5 a write
+    error), plus its figure; None when the file is not one (the &scene reader takes it)."""
+    import warnings
+
+    from ._system_scenes import SystemRunError, run_system_scene, system_group
+    from .run import FiguresNotDrawn
+    from .scene import SceneError
+
+    try:
+        if not system_group(args.scene):
+            return None
+    except SceneError as exc:
+        print(f"pendula {command}: {exc}", file=sys.stderr)
+        return 2
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", FiguresNotDrawn)
+            files = run_system_scene(args.scene, args.output)
+    except SceneError as exc:
+        print(f"pendula {command}: {exc}", file=sys.stderr)
+        return 2
+    except (SystemRunError, MemoryError) as exc:
+        print(f"pendula {command}: {exc or 'not enough memory'}", file=sys.stderr)
+        return 4
+    except OSError as exc:
+        print(f"pendula {command}: cannot write into {args.output!r}: {exc.strerror or exc}", file=sys.stderr)
+        return 5
+    for f in files:
+        print(f)
+    skipped = [w for w in caught if issubclass(w.category, FiguresNotDrawn)]
+    if skipped:
         print(f"pendula {command}: {skipped[0].message}", file=sys.stderr)
         return EXIT_MISSING_EXTRA
     return 0
@@ -504,7 +546,7 @@ def main(argv=None) -> int:
     p.add_argument("-v", "--verbose", action="store_true", help="every table in full (default: one screen)")
     p.set_defaults(func=cmd_demo)
     p = sub.add_parser("run", help="run one scene file: CSV tables and PNG figures")
-    p.add_argument("scene", help="scene file (namelist group &scene)")
+    p.add_argument("scene", help="scene file (namelist group &scene, or &double, &foucault, &network)")
     p.add_argument("-o", "--output", default="out", help="output folder (default: out)")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bars")
     p.set_defaults(func=cmd_run)

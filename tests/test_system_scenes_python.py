@@ -1,0 +1,95 @@
+"""Scene files of the systems built by their own class (&double, &foucault, &network) through
+Python: ``pendula run FILE`` reads, checks and runs them through the kernel's one reader and run
+(kernel/dispatch/pendula_system_scenes.f90), so pendula-run (the independent route here: the
+Fortran program's own text output) and the Python CLI give every file the same verdict, the same
+message and exit status, and the same table to the bit.
+"""
+
+import subprocess
+
+import numpy as np
+import pytest
+
+from pendula import cli
+from pendula._system_scenes import system_group, system_table
+from pendula.scene import SceneError
+
+from conftest import DATA, venv_bin
+
+EXAMPLES = sorted((DATA / "scenes" / "systems").glob("*.nml"))
+
+
+def _fortran(path):
+    return subprocess.run([venv_bin("pendula-run"), str(path)], capture_output=True, text=True)
+
+
+def _python(path, outdir, capsys):
+    code = cli.main(["run", str(path), "-o", str(outdir), "-q"])
+    return code, capsys.readouterr()
+
+
+def _rows(text):
+    """The column line and the data lines of a table (comment lines dropped)."""
+    lines = [ln for ln in text.splitlines() if ln and not ln.startswith("#")]
+    return lines[0], lines[1:]
+
+
+def test_every_example_is_one_of_the_three_systems():
+    assert [system_group(p) for p in EXAMPLES] == ["double", "foucault", "network"]
+
+
+@pytest.mark.parametrize("path", EXAMPLES, ids=[p.stem for p in EXAMPLES])
+def test_python_cli_writes_the_table_of_pendula_run_to_the_bit(tmp_path, capsys, path):
+    ref = _fortran(path)
+    assert ref.returncode == 0, ref.stderr
+    code, out = _python(path, tmp_path, capsys)
+    assert code == 0, out.err
+    csv = tmp_path / f"{path.stem}.csv"
+    png = tmp_path / f"{path.stem}.png"
+    assert out.out.split() == [str(csv), str(png)]
+    assert png.stat().st_size > 0
+    heads_f, rows_f = _rows(ref.stdout)
+    heads_p, rows_p = _rows(csv.read_text())
+    assert heads_p == heads_f
+    assert len(rows_p) == len(rows_f) > 1
+    a = np.array([[float(x) for x in r.split(",")] for r in rows_f])
+    b = np.array([[float(x) for x in r.split(",")] for r in rows_p])
+    np.testing.assert_array_equal(b, a)         # the same doubles
+    assert rows_p == rows_f                     # and the same text (17 significant digits)
+
+
+MALFORMED = [
+    ("double", "m1 = -1.0"), ("double", "theta1 = abc"), ("double", "mass = 1.0"),
+    ("double", "method = 'gauss6', dt = 0.03, t_end = 1.0, n_samples = 11"), ("double", "rods = 3"),
+    ("foucault", "latitude = 91.0"), ("foucault", "theta0 = 2.0"), ("foucault", "length = 'x'"),
+    ("foucault", "theta0 = 0.0, phi_dot0 = 1.0"), ("foucault", "n_samples = 0"),
+    ("network", "n = 0"), ("network", "n = 3, topology = 'ring', mass = 1.0, 2.0"),
+    ("network", "n = 3, topology = 'ladder'"), ("network", "strength = -1.0"), ("network", "topology = 5"),
+    ("network", "n = 2, method = 'rk4'"),
+]
+
+
+@pytest.mark.parametrize("group, body", MALFORMED, ids=[f"{g}:{b}" for g, b in MALFORMED])
+def test_a_malformed_file_gets_the_verdict_of_pendula_run(tmp_path, capsys, group, body):
+    f = tmp_path / "bad.nml"
+    f.write_text(f"! a comment line\n&{group}\n  {body}\n/\n")
+    ref = _fortran(f)
+    assert ref.returncode == 2
+    code, out = _python(f, tmp_path / "out", capsys)
+    assert code == ref.returncode
+    assert out.err.strip().removeprefix("pendula run: ") == ref.stderr.strip().removeprefix("pendula-run: ")
+    assert f"&{group}" in out.err
+    assert not (tmp_path / "out" / "bad.csv").exists()
+    with pytest.raises(SceneError, match=f"&{group}"):
+        system_table(f)
+
+
+def test_a_file_of_no_group_is_refused_as_pendula_run_refuses_it(tmp_path, capsys):
+    f = tmp_path / "empty.nml"
+    f.write_text("! no group here\n")
+    ref = _fortran(f)
+    code, out = _python(f, tmp_path / "out", capsys)
+    assert system_group(f) == ""
+    assert code == ref.returncode == 2
+    assert "&scene" in out.err and "&scene" in ref.stderr
+
