@@ -144,3 +144,20 @@ def test_system_from_namelist_refuses_a_text_of_no_system(text):
 
     with pytest.raises(SceneError, match="&double, &foucault or &network"):
         system_from_namelist(text)
+
+
+def test_a_run_that_fails_is_exit_4_with_the_message_of_pendula_run(tmp_path, capsys):
+    """Damping 1e12 makes the double pendulum stiff: DOP853 stops (integrator status 6) at once.
+    The computation failing is exit 4 in both programs, with the same message and no file left."""
+    from pendula._system_scenes import SystemRunError
+
+    f = tmp_path / "stiff.nml"
+    f.write_text("&double\n theta1 = 2.0, damping = 1e12, 1e12, t_end = 10.0, n_samples = 2\n/\n")
+    ref = _fortran(f)
+    assert ref.returncode == 4, ref.stderr
+    code, out = _python(f, tmp_path / "out", capsys)
+    assert code == 4
+    assert out.err.strip().removeprefix("pendula run: ") == ref.stderr.strip().removeprefix("pendula-run: ")
+    assert not (tmp_path / "out" / "stiff.csv").exists()
+    with pytest.raises(SystemRunError, match="integrator status"):
+        system_table(f)
