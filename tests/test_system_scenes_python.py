@@ -161,3 +161,13 @@ def test_a_run_that_fails_is_exit_4_with_the_message_of_pendula_run(tmp_path, ca
     assert not (tmp_path / "out" / "stiff.csv").exists()
     with pytest.raises(SystemRunError, match="integrator status"):
         system_table(f)
+
+
+def test_an_output_folder_that_is_a_file_is_exit_5(tmp_path, capsys):
+    """The table cannot be written (a file where the output folder should be): exit 5, as pendula-run's
+    write errors, and the file is left as it was."""
+    blocker = tmp_path / "out"
+    blocker.write_text("not a folder\n")
+    code, out = _python(EXAMPLES[0], blocker, capsys)
+    assert code == 5 and "cannot write" in out.err
+    assert blocker.read_text() == "not a folder\n"
