@@ -93,3 +93,81 @@ def test_a_file_of_no_group_is_refused_as_pendula_run_refuses_it(tmp_path, capsy
     assert code == ref.returncode == 2
     assert "&scene" in out.err and "&scene" in ref.stderr
 
+
+
+# ---------------------------------------------------------------- the text as a system and its run request
+
+SIMULATED = {"double": ("theta1", "theta2", "omega1", "omega2", "energy"),
+             "foucault": ("x", "y", "z", "vx", "vy", "vz")}
+
+
+@pytest.mark.parametrize("path", EXAMPLES, ids=[p.stem for p in EXAMPLES])
+def test_system_from_namelist_runs_as_pendula_run_runs_the_file(path):
+    """The system and its run request read from the text, run by the class's own simulate: the numbers of
+    pendula-run's table to the bit (the class and the scene share the n-dimensional driver)."""
+    from pendula import system_from_namelist
+
+    ref = _fortran(path)
+    assert ref.returncode == 0, ref.stderr
+    heads, rows = _rows(ref.stdout)
+    table = np.array([[float(x) for x in r.split(",")] for r in rows])
+    system, run = system_from_namelist(path.read_text(), source=str(path))
+    ds = system.simulate(**run)
+    np.testing.assert_array_equal(run["t"], table[:, 0])
+    group = system_group(path)
+    if group == "network":
+        n = system.n
+        np.testing.assert_array_equal(ds["phi"].values, table[:, 1:n + 1])
+        np.testing.assert_array_equal(ds["v"].values, table[:, n + 1:])
+    else:
+        for k, name in enumerate(SIMULATED[group], start=1):
+            np.testing.assert_array_equal(ds[name].values, table[:, k], err_msg=name)
+
+
+@pytest.mark.parametrize("group, body", MALFORMED, ids=[f"{g}:{b}" for g, b in MALFORMED])
+def test_system_from_namelist_refuses_with_the_message_of_pendula_run(tmp_path, group, body):
+    from pendula import system_from_namelist
+
+    text = f"! a comment line\n&{group}\n  {body}\n/\n"
+    f = tmp_path / "bad.nml"
+    f.write_text(text)
+    ref = _fortran(f)
+    assert ref.returncode == 2
+    with pytest.raises(SceneError) as err:
+        system_from_namelist(text, source=str(f))
+    assert str(err.value) == ref.stderr.strip().removeprefix("pendula-run: ")
+
+
+@pytest.mark.parametrize("text", ["", "&scene eps = 1.0 /", "no group at all"])
+def test_system_from_namelist_refuses_a_text_of_no_system(text):
+    from pendula import system_from_namelist
+
+    with pytest.raises(SceneError, match="&double, &foucault or &network"):
+        system_from_namelist(text)
+
+
+def test_a_run_that_fails_is_exit_4_with_the_message_of_pendula_run(tmp_path, capsys):
+    """Damping 1e12 makes the double pendulum stiff: DOP853 stops (integrator status 6) at once.
+    The computation failing is exit 4 in both programs, with the same message and no file left."""
+    from pendula._system_scenes import SystemRunError
+
+    f = tmp_path / "stiff.nml"
+    f.write_text("&double\n theta1 = 2.0, damping = 1e12, 1e12, t_end = 10.0, n_samples = 2\n/\n")
+    ref = _fortran(f)
+    assert ref.returncode == 4, ref.stderr
+    code, out = _python(f, tmp_path / "out", capsys)
+    assert code == 4
+    assert out.err.strip().removeprefix("pendula run: ") == ref.stderr.strip().removeprefix("pendula-run: ")
+    assert not (tmp_path / "out" / "stiff.csv").exists()
+    with pytest.raises(SystemRunError, match="integrator status"):
+        system_table(f)
+
+
+def test_an_output_folder_that_is_a_file_is_exit_5(tmp_path, capsys):
+    """The table cannot be written (a file where the output folder should be): exit 5, as pendula-run's
+    write errors, and the file is left as it was."""
+    blocker = tmp_path / "out"
+    blocker.write_text("not a folder\n")
+    code, out = _python(EXAMPLES[0], blocker, capsys)
+    assert code == 5 and "cannot write" in out.err
+    assert blocker.read_text() == "not a folder\n"

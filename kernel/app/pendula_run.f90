@@ -85,14 +85,8 @@ program pendula_run
 
   ! a file whose namelist group is a system built by its own class: that system's reader and run
   select case (scene_group(path))
-  case ('double')
-    call run_double_file()
-    stop, quiet=.true.
-  case ('foucault')
-    call run_foucault_file()
-    stop, quiet=.true.
-  case ('network')
-    call run_network_file()
+  case ('double', 'foucault', 'network')
+    call run_system_file()
     stop, quiet=.true.
   end select
   call read_scene(path, sc, status, msg)
@@ -355,90 +349,39 @@ contains
     end if
   end subroutine header
 
-  !> A double pendulum's scene (&double, pendula_double_scene): t, theta1, theta2, omega1, omega2, energy.
-  subroutine run_double_file()
-    use pendula_double_scene, only: double_scene_t, read_double_scene, run_double_scene
-    type(double_scene_t) :: ds
-    real(dp), allocatable :: tt(:), th(:, :), w(:, :), en(:)
-    integer :: st, cancel
-    call read_double_scene(path, ds, st, msg)
+  !> A scene of a system built by its own class (&double, &foucault, &network; pendula_system_scenes, the
+  !> Python layer's reader and run too): its table t, theta1, theta2, omega1, omega2, energy; t, x, y, z,
+  !> vx, vy, vz; or t, phi_1 ... phi_n, v_1 ... v_n.  A bad scene is exit 2, a failed run exit 4.
+  subroutine run_system_file()
+    use pendula_system_scenes, only: system_scene_size, system_scene_table
+    real(dp), allocatable :: table(:, :)
+    character(len=16) :: group
+    character(len=24000) :: heads
+    character(len=256) :: title
+    integer :: st, nrows, ncols, k
+    call system_scene_size(path, group, nrows, ncols, st, msg)
     if (st /= 0) call fail(trim(msg))
     if (check_only) stop, quiet=.true.
-    allocate(tt(ds%n_samples), th(2, ds%n_samples), w(2, ds%n_samples), en(ds%n_samples), stat=st)
-    if (st /= 0) call fail_memory(ds%n_samples)
-    cancel = 0
-    call run_double_scene(ds, tt, th, w, en, st, cancel)
-    call system_table('double pendulum, method ' // trim(ds%method), 't,theta1,theta2,omega1,omega2,energy', &
-                      reshape([tt, th(1, :), th(2, :), w(1, :), w(2, :), en], [size(tt), 6]), st)
-  end subroutine run_double_file
-
-  !> A Foucault pendulum's scene (&foucault, pendula_foucault_scene): t, x, y, z, vx, vy, vz.
-  subroutine run_foucault_file()
-    use pendula_foucault_scene, only: foucault_scene_t, read_foucault_scene, run_foucault_scene
-    type(foucault_scene_t) :: fs
-    real(dp), allocatable :: tt(:), y(:, :)
-    integer :: st, cancel
-    call read_foucault_scene(path, fs, st, msg)
+    allocate(table(nrows, ncols), stat=st)
+    if (st /= 0) call fail_memory(nrows)
+    call system_scene_table(path, table, heads, title, st, msg)
+    if (st == 4) call fail(trim(msg), 4)
     if (st /= 0) call fail(trim(msg))
-    if (check_only) stop, quiet=.true.
-    allocate(tt(fs%n_samples), y(6, fs%n_samples), stat=st)
-    if (st /= 0) call fail_memory(fs%n_samples)
-    cancel = 0
-    call run_foucault_scene(fs, tt, y, st, cancel)
-    call system_table('Foucault pendulum, DOP853', 't,x,y,z,vx,vy,vz', reshape([tt, transpose(y)], [size(tt), 7]), &
-                      st)
-  end subroutine run_foucault_file
-
-  !> A network's scene (&network, pendula_network_scene): t, then phi_1 ... phi_n, v_1 ... v_n.
-  subroutine run_network_file()
-    use pendula_network_scene, only: network_scene_t, read_network_scene, run_network_scene
-    type(network_scene_t) :: ns
-    real(dp), allocatable :: tt(:), y(:, :)
-    character(len=:), allocatable :: heads
-    character(len=16) :: num
-    integer :: st, cancel, k
-    call read_network_scene(path, ns, st, msg)
-    if (st /= 0) call fail(trim(msg))
-    if (check_only) stop, quiet=.true.
-    allocate(tt(ns%n_samples), y(2 * ns%n, ns%n_samples), stat=st)
-    if (st /= 0) call fail_memory(ns%n_samples)
-    cancel = 0
-    call run_network_scene(ns, tt, y, st, cancel)
-    heads = 't'
-    do k = 1, 2 * ns%n
-      write(num, '(i0)') mod(k - 1, ns%n) + 1
-      heads = heads // ',' // trim(merge('phi_', 'v_  ', k <= ns%n)) // trim(num)
-    end do
-    call system_table('network of ' // trim(adjustl(num)) // ' elements, ' // trim(ns%topology) // ', method ' // &
-                      trim(ns%method), heads, reshape([tt, transpose(y)], [size(tt), 2 * ns%n + 1]), st)
-  end subroutine run_network_file
-
-  !> The table of a system's run (its columns in cols(:, k)) to OUT, or the run's failure (status /= 0: exit 4).
-  subroutine system_table(title, heads, cols, run_status)
-    character(len=*), intent(in) :: title, heads
-    real(dp), intent(in) :: cols(:, :)
-    integer, intent(in) :: run_status
-    integer :: st, k
-    if (run_status /= 0) then
-      write(line, '(a, i0, a)') ': the ' // title // ' run failed (integrator status ', run_status, &
-        '): loosen rtol or shorten t_end'
-      call fail(path // trim(line), 4)
-    end if
     if (len(out) == 0) out = '-'
     call out_open(f_out, out, st)
     if (st /= 0) call fail_io('cannot write "' // out // '"', st)
     call out_line(f_out, '# pendula-run ' // path)
-    call out_line(f_out, '# ' // title)
-    call out_line(f_out, heads)
-    do k = 1, size(cols, 1)
-      call out_line(f_out, out_reals(cols(k, :)))
+    call out_line(f_out, '# ' // trim(title))
+    call out_line(f_out, trim(heads))
+    do k = 1, nrows
+      call out_line(f_out, out_reals(table(k, :)))
     end do
     call out_close(f_out, st)
     if (st /= 0) then
       if (out == '-') call fail_io('cannot write to standard output', st)
       call fail_io('cannot write "' // out // '"', st)
     end if
-  end subroutine system_table
+  end subroutine run_system_file
 
   !> Too little memory for the arrays of n samples: the computation failed (exit 4).
   subroutine fail_memory(n)

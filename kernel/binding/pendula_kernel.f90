@@ -1543,3 +1543,63 @@ subroutine system_scene_table_v(path, nrows, ncols, table, heads, title, status,
   character(len=1024), intent(out) :: msg
   call system_scene_table(path, table, heads, title, status, msg)
 end subroutine system_scene_table_v
+
+! The fields of a &double scene file, read and checked as pendula-run reads them: x = m1, m2, l1, l2, g,
+! rods (1 or 0), damping(2), theta1, theta2, omega1, omega2, t_end, dt, rtol, atol, n_samples; status 0,
+! or 2 with msg naming the field.
+subroutine double_scene_fields_v(path, x, method, status, msg)
+  use pendula_double_scene, only: double_scene_t, read_double_scene
+  implicit none
+  character(len=*), intent(in) :: path
+  double precision, intent(out) :: x(17)
+  character(len=16), intent(out) :: method
+  integer, intent(out) :: status
+  character(len=1024), intent(out) :: msg
+  type(double_scene_t) :: ds
+  call read_double_scene(path, ds, status, msg)
+  x = [ds%m1, ds%m2, ds%l1, ds%l2, ds%g, merge(1.0d0, 0.0d0, ds%rods), ds%damping, ds%theta1, ds%theta2, &
+       ds%omega1, ds%omega2, ds%t_end, ds%dt, ds%rtol, ds%atol, dble(ds%n_samples)]
+  method = ds%method
+end subroutine double_scene_fields_v
+
+! The fields of a &foucault scene file: x = latitude, length, g, earth_rate, damping, anisotropy(2), theta0,
+! azimuth, theta_dot0, phi_dot0, t_end, rtol, n_samples; status 0, or 2 with msg naming the field.
+subroutine foucault_scene_fields_v(path, x, status, msg)
+  use pendula_foucault_scene, only: foucault_scene_t, read_foucault_scene
+  implicit none
+  character(len=*), intent(in) :: path
+  double precision, intent(out) :: x(14)
+  integer, intent(out) :: status
+  character(len=1024), intent(out) :: msg
+  type(foucault_scene_t) :: fs
+  call read_foucault_scene(path, fs, status, msg)
+  x = [fs%latitude, fs%length, fs%g, fs%earth_rate, fs%damping, fs%anisotropy, fs%theta0, fs%azimuth, &
+       fs%theta_dot0, fs%phi_dot0, fs%t_end, fs%rtol, dble(fs%n_samples)]
+end subroutine foucault_scene_fields_v
+
+! The fields of a &network scene file: n, x = strength, t_end, dt, rtol, atol, n_samples, per(1:n, k) the
+! per-element fields mass, damping, eps, bias, drive_amplitude, drive_frequency, drive_phase, phi0, v0
+! (nmax >= n rows); status 0, or 2 with msg naming the field.
+subroutine network_scene_fields_v(path, nmax, n, x, per, topology, method, status, msg)
+  use pendula_network_scene, only: network_scene_t, read_network_scene
+  implicit none
+  character(len=*), intent(in) :: path
+  integer, intent(in) :: nmax
+  integer, intent(out) :: n
+  double precision, intent(out) :: x(6), per(nmax, 9)
+  character(len=16), intent(out) :: topology, method
+  integer, intent(out) :: status
+  character(len=1024), intent(out) :: msg
+  type(network_scene_t) :: ns
+  call read_network_scene(path, ns, status, msg)
+  n = 0; x = 0; per = 0; topology = ''; method = ''
+  if (status /= 0) return
+  if (ns%n > nmax) then
+    status = 2; msg = path // ': &network: more elements than nmax'; return
+  end if
+  n = ns%n
+  x = [ns%strength, ns%t_end, ns%dt, ns%rtol, ns%atol, dble(ns%n_samples)]
+  per(1:n, :) = ns%per
+  topology = ns%topology
+  method = ns%method
+end subroutine network_scene_fields_v

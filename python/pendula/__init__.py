@@ -110,9 +110,12 @@ from .systems.double import DoublePendulumModes, double_pendulum_modes, flip_for
 from .systems.double_motion import DoublePendulum, FlipMap, LyapunovSpectrum  # noqa: E402
 # the Foucault pendulum: the spherical pendulum in the Earth's frame, its precession split
 from .systems.foucault import FoucaultPendulum, FoucaultPrecession  # noqa: E402
+# the scene files of those systems (&double, &foucault, &network), read by the kernel as pendula-run reads them
+from .systems.scene_files import system_from_namelist  # noqa: E402
 
 __all__ += ["spherical_orbit", "SphericalOrbit", "SphericalPath",
             "double_pendulum_modes", "DoublePendulumModes", "flip_forbidden",
-            "DoublePendulum", "FlipMap", "LyapunovSpectrum", "FoucaultPendulum", "FoucaultPrecession"]
+            "DoublePendulum", "FlipMap", "LyapunovSpectrum", "FoucaultPendulum", "FoucaultPrecession",
+            "system_from_namelist"]
 __all__ += ["thermal_rate", "quantum_rate", "escape_rate", "crossover_temperature", "switching_distribution",
             "SwitchingDistribution", "rf_current"]

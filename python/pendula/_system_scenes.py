@@ -7,6 +7,7 @@ seen from above, the network's phases).
 
 from __future__ import annotations
 
+import errno
 import os
 import pathlib
 import warnings
@@ -123,7 +124,7 @@ def run_system_scene(path, outdir, stem: str | None = None) -> list[pathlib.Path
     table = system_table(path)
     outdir = pathlib.Path(outdir)
     if outdir.exists() and not outdir.is_dir():
-        raise NotADirectoryError(20, "is not a folder (the output folder of a run)", str(outdir))
+        raise NotADirectoryError(errno.ENOTDIR, "is not a folder (the output folder of a run)", str(outdir))
     outdir.mkdir(parents=True, exist_ok=True)
     stem = stem or pathlib.Path(os.fspath(path)).stem
     with staging(outdir) as stage:
