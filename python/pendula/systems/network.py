@@ -511,6 +511,8 @@ class Network:
         ...                    paths=2, seed=3)
         >>> run.phi.dims, run.attrs["method"]
         (('path', 'time', 'element'), 'baoab')
+        >>> net.simulate([0.0, 1.0], np.zeros((3, 4)), 0.1).phi.dims   # a batch of 3 initial states
+        ('run', 'time', 'element')
         """
         xr = require("xarray", "xarray", "Network.simulate")
         tt = _checks.as_float(t, "t").ravel()
