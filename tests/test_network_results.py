@@ -101,3 +101,14 @@ def test_batch_of_the_wrong_shape_or_not_finite_is_refused_naming_the_field(phi0
     net, _, _ = _batch_case()
     with pytest.raises(ValueError, match=field):
         net.simulate([0.0, 1.0], phi0, v0)
+
+
+def test_a_set_cancel_flag_stops_every_run_of_a_batch():
+    """Set before the call, the cancel flag stops or skips every run: status cancelled (8), outputs NaN."""
+    from pendula import _kernel
+    net = pendula.Network(3, topology="chain", damping=0.5)
+    y0 = np.asfortranarray(np.tile([[0.1], [0.2], [0.3], [0.0], [0.0], [0.0]], (1, 5)))
+    for method, counts in ((1, np.zeros(2, np.int64)), (3, np.array([0, 10], np.int64))):
+        yout, stats, status = _kernel.network_simulate_batch_v(*net._edges(), method, y0, np.array([0.0, 1.0]),
+                                                               counts, 1e-8, 1e-10, 0.1, 2, np.ones(1, np.int32))
+        assert np.all(status == 8) and np.all(np.isnan(yout[:, -1, :]))
