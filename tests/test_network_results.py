@@ -112,3 +112,11 @@ def test_a_set_cancel_flag_stops_every_run_of_a_batch():
         yout, stats, status = _kernel.network_simulate_batch_v(*net._edges(), method, y0, np.array([0.0, 1.0]),
                                                                counts, 1e-8, 1e-10, 0.1, 2, np.ones(1, np.int32))
         assert np.all(status == 8) and np.all(np.isnan(yout[:, -1, :]))
+
+
+def test_results_of_one_network_do_not_share_their_coordinates_attributes():
+    net = pendula.Network(3, topology="chain")
+    first, second = net.simulate([0.0, 1.0]), net.simulate([0.0, 1.0])
+    first.element.attrs["units"] = "site"
+    first["element"].attrs["long_name"] = "element index"
+    assert second.element.attrs == {} and net.simulate([0.0, 1.0]).element.attrs == {}

@@ -78,17 +78,20 @@ def _require_simulate_fields(on: list) -> None:
         _FIELDS_ALLOWED.add(key)
 
 
-def _dataset(xr, data: dict, coords: dict, attrs: dict):
+def _dataset(xr, data: dict, coords: dict, attrs: dict, made: dict | None = None):
     """xarray.Dataset(data, coords, attrs) for data of (dims, array) and 1-D coords named for their
     dimensions, built directly from its variables when this xarray allows (a fifth of the cost of the
-    public constructor, whose alignment and merging are needless here), else by the constructor."""
+    public constructor, whose alignment and merging are needless here), else by the constructor.  made:
+    indexes built before (xarray PandasIndex, immutable) for some of the coords, shared, not rebuilt."""
     build = getattr(xr.Dataset, "_construct_direct", None)
     if build is not None:
         try:
             from xarray.core.indexes import PandasIndex
             import pandas as pd
             variables = {k: xr.Variable(d, a) for k, (d, a) in data.items()}
-            indexes = {k: PandasIndex(pd.Index(a, copy=False), k) for k, a in coords.items()}
+            made = made or {}
+            indexes = {k: made[k] if k in made else PandasIndex(pd.Index(a, copy=False), k)
+                       for k, a in coords.items()}
             for index in indexes.values():
                 variables.update(index.create_variables())
             return build(variables=variables, coord_names=set(coords),
@@ -587,7 +590,21 @@ class Network:
         en = _kernel.network_energy_v(*self._edges(), yout)
         return _dataset(xr, {"phi": (dims, phi), "v": (dims, v), "energy": (("time",), en)},
                         {"time": tt, "element": np.arange(self.n)},
-                        {"method": method, "steps": int(stats[0]), "rhs_evaluations": int(stats[3])})
+                        {"method": method, "steps": int(stats[0]), "rhs_evaluations": int(stats[3])},
+                        self._element_index())
+
+    def _element_index(self) -> dict:
+        """The element coordinate's xarray index, built once (every result of this network shares it)."""
+        made = getattr(self, "_element_made", None)
+        if made is None:
+            try:
+                from xarray.core.indexes import PandasIndex
+                import pandas as pd
+                made = {"element": PandasIndex(pd.Index(np.arange(self.n)), "element")}
+            except ImportError:     # another xarray's internals: built each time by _dataset
+                made = {}
+            self._element_made = made
+        return made
 
     def _initial_states(self, phi0, v0) -> tuple[np.ndarray, bool]:
         """The initial state y0 = (phi0, v0), or for phi0 of B rows the 2N x B states (Fortran order)."""
@@ -622,7 +639,8 @@ class Network:
                              "v": (dims, np.transpose(yout[self.n:], (2, 1, 0))),
                              "energy": (dims[:2], en.reshape((nout, nrun), order="F").T)},
                         {"run": np.arange(nrun), "time": tt, "element": np.arange(self.n)},
-                        {"method": method, "steps": stats[0].copy(), "rhs_evaluations": stats[3].copy()})
+                        {"method": method, "steps": stats[0].copy(), "rhs_evaluations": stats[3].copy()},
+                        self._element_index())
 
     # ------------------------------------------------------------------ rest points and modes
     def equilibrium(self, phi: ArrayLike, *, tol: float = 1e-14, maxit: int = 50) -> NetworkEquilibrium:
