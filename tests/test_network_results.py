@@ -120,3 +120,12 @@ def test_results_of_one_network_do_not_share_their_coordinates_attributes():
     first.element.attrs["units"] = "site"
     first["element"].attrs["long_name"] = "element index"
     assert second.element.attrs == {} and net.simulate([0.0, 1.0]).element.attrs == {}
+
+
+def test_a_set_cancel_flag_leaves_every_langevin_path_nan():
+    from pendula import _kernel
+    net = pendula.Network(3, topology="chain", damping=0.5)
+    y0 = np.asfortranarray(np.tile([[0.1], [0.2], [0.3], [0.0], [0.0], [0.0]], (1, 6)))
+    yout, status = _kernel.network_langevin_v(*net._edges(), np.full(3, 0.1), 1, 0, 0.1, y0,
+                                              np.array([0, 10], np.int64), 2, np.ones(1, np.int32))
+    assert np.all(status == 8) and np.all(np.isnan(yout[:, -1, :]))

@@ -114,6 +114,7 @@ contains
     sys = make_network_ode(net)
     s2 = temp * sys%inv_c
     status = st_cancelled
+    yout = nan_dp     ! a path skipped on cancellation reports NaN, not stale memory
     nt = thread_count(nthreads)
     !$omp parallel do schedule(dynamic, 1) default(none) num_threads(nt) &
     !$omp   shared(sys, s2, seed, first, h, y0, counts, yout, status, cancel)
