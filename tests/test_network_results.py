@@ -129,3 +129,11 @@ def test_a_set_cancel_flag_leaves_every_langevin_path_nan():
     yout, status = _kernel.network_langevin_v(*net._edges(), np.full(3, 0.1), 1, 0, 0.1, y0,
                                               np.array([0, 10], np.int64), 2, np.ones(1, np.int32))
     assert np.all(status == 8) and np.all(np.isnan(yout[:, -1, :]))
+
+
+def test_dataset_without_xarrays_direct_constructor_is_the_same(monkeypatch):
+    """Should xarray drop its internal direct constructor, the public one builds the same result."""
+    net, phi0, v0 = _batch_case()
+    fast = net.simulate([0.0, 1.0], phi0[2], v0[2])
+    monkeypatch.delattr(xr.Dataset, "_construct_direct")
+    assert net.simulate([0.0, 1.0], phi0[2], v0[2]).identical(fast)
