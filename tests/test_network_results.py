@@ -101,3 +101,43 @@ def test_batch_of_the_wrong_shape_or_not_finite_is_refused_naming_the_field(phi0
     net, _, _ = _batch_case()
     with pytest.raises(ValueError, match=field):
         net.simulate([0.0, 1.0], phi0, v0)
+
+
+def test_a_set_cancel_flag_stops_every_run_of_a_batch():
+    """Set before the call, the cancel flag stops or skips every run: status cancelled (8), outputs NaN."""
+    from pendula import _kernel
+    net = pendula.Network(3, topology="chain", damping=0.5)
+    y0 = np.asfortranarray(np.tile([[0.1], [0.2], [0.3], [0.0], [0.0], [0.0]], (1, 5)))
+    for method, counts in ((1, np.zeros(2, np.int64)), (3, np.array([0, 10], np.int64))):
+        yout, stats, status = _kernel.network_simulate_batch_v(*net._edges(), method, y0, np.array([0.0, 1.0]),
+                                                               counts, 1e-8, 1e-10, 0.1, 2, np.ones(1, np.int32))
+        assert np.all(status == 8) and np.all(np.isnan(yout[:, -1, :]))
+
+
+def test_results_of_one_network_do_not_share_their_coordinates_attributes():
+    net = pendula.Network(3, topology="chain")
+    first, second = net.simulate([0.0, 1.0]), net.simulate([0.0, 1.0])
+    first.element.attrs["units"] = "site"
+    first["element"].attrs["long_name"] = "element index"
+    assert second.element.attrs == {} and net.simulate([0.0, 1.0]).element.attrs == {}
+
+
+def test_a_set_cancel_flag_leaves_every_langevin_path_nan():
+    from pendula import _kernel
+    net = pendula.Network(3, topology="chain", damping=0.5)
+    y0 = np.asfortranarray(np.tile([[0.1], [0.2], [0.3], [0.0], [0.0], [0.0]], (1, 6)))
+    yout, status = _kernel.network_langevin_v(*net._edges(), np.full(3, 0.1), 1, 0, 0.1, y0,
+                                              np.array([0, 10], np.int64), 2, np.ones(1, np.int32))
+    assert np.all(status == 8) and np.all(np.isnan(yout[:, -1, :]))
+
+
+def test_dataset_without_xarrays_direct_constructor_is_the_same():
+    """Should xarray drop its internal direct constructor, the public one builds the same result."""
+    import types
+    from pendula.systems.network import _dataset
+    net, phi0, v0 = _batch_case()
+    run = net.simulate([0.0, 0.5, 1.0], phi0, v0)
+    data = {k: (run[k].dims, run[k].values) for k in ("phi", "v", "energy")}
+    coords = {k: run[k].values for k in run.dims}
+    public_only = types.SimpleNamespace(Dataset=lambda *a, **k: xr.Dataset(*a, **k))
+    assert _dataset(public_only, data, coords, dict(run.attrs)).identical(run)

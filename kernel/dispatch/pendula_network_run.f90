@@ -4,7 +4,7 @@
 !> Simulation by DOP853 or Gauss-Legendre (nd_run), Langevin paths by BAOAB
 !> (a set of paths on OpenMP threads, path k on the noise streams of point k).
 module pendula_network_run
-  use pendula_kinds, only: dp, i8
+  use pendula_kinds, only: dp, i8, nan_dp
   use pendula_threads, only: thread_count
   use pendula_integrators, only: run_stats, st_cancelled
   use pendula_ode, only: mechanical_system, ode_baoab
@@ -61,7 +61,7 @@ contains
 
   !> A batch of deterministic runs of one network (network_simulate's methods): run k from y0(:, k) to the
   !> same output times, yout(:, :, k), stats(:, k) = (steps, accepted, rejected, rhs evaluations) and
-  !> status(k) its results.  The runs share nothing but the network, so each one's result is the same
+  !> status(k) its results (NaN and st_cancelled for a run the cancel flag skipped).  The runs share nothing but the network, so each one's result is the same
   !> whatever the thread count nthreads (0: OpenMP's default).
   subroutine network_simulate_batch(net, method, y0, tout, counts, rtol, atol, dt, nthreads, yout, stats, &
                                     status, cancel)
@@ -79,6 +79,7 @@ contains
     sys = make_network_ode(net)
     status = st_cancelled
     stats = 0_i8
+    yout = nan_dp     ! a run skipped on cancellation reports NaN, not stale memory
     nt = thread_count(nthreads)
     !$omp parallel do schedule(dynamic, 1) default(none) num_threads(nt) private(st) &
     !$omp   shared(sys, method, y0, tout, counts, rtol, atol, dt, yout, stats, status, cancel)
@@ -113,6 +114,7 @@ contains
     sys = make_network_ode(net)
     s2 = temp * sys%inv_c
     status = st_cancelled
+    yout = nan_dp     ! a path skipped on cancellation reports NaN, not stale memory
     nt = thread_count(nthreads)
     !$omp parallel do schedule(dynamic, 1) default(none) num_threads(nt) &
     !$omp   shared(sys, s2, seed, first, h, y0, counts, yout, status, cancel)

@@ -79,17 +79,20 @@ def _require_simulate_fields(on: list) -> None:
         _FIELDS_ALLOWED.add(key)
 
 
-def _dataset(xr, data: dict, coords: dict, attrs: dict):
+def _dataset(xr, data: dict, coords: dict, attrs: dict, made: dict | None = None):
     """xarray.Dataset(data, coords, attrs) for data of (dims, array) and 1-D coords named for their
     dimensions, built directly from its variables when this xarray allows (a fifth of the cost of the
-    public constructor, whose alignment and merging are needless here), else by the constructor."""
+    public constructor, whose alignment and merging are needless here), else by the constructor.  made:
+    indexes built before (xarray PandasIndex, immutable) for some of the coords, shared, not rebuilt."""
     build = getattr(xr.Dataset, "_construct_direct", None)
     if build is not None:
         try:
             from xarray.core.indexes import PandasIndex
             import pandas as pd
             variables = {k: xr.Variable(d, a) for k, (d, a) in data.items()}
-            indexes = {k: PandasIndex(pd.Index(a, copy=False), k) for k, a in coords.items()}
+            made = made or {}
+            indexes = {k: made[k] if k in made else PandasIndex(pd.Index(a, copy=False), k)
+                       for k, a in coords.items()}
             for index in indexes.values():
                 variables.update(index.create_variables())
             return build(variables=variables, coord_names=set(coords),
@@ -327,6 +330,7 @@ class Network:
         self._p = np.asfortranarray(np.stack([self.mass, self.damping, self.eps, self.bias,
                                               self.drive_amplitude, self.drive_frequency, self.drive_phase]))
         self._on = [f for f in ("damping", "bias", "drive_amplitude") if np.any(getattr(self, f))]
+        self._element_made: dict | None = None   # the element coordinate's index, built at the first result
 
     def __repr__(self) -> str:
         what = f"topology={self.topology!r}" if self.topology else f"{self.springs[0].size} springs"
@@ -537,6 +541,8 @@ class Network:
         ...                    paths=2, seed=3)
         >>> run.phi.dims, run.attrs["method"]
         (('path', 'time', 'element'), 'baoab')
+        >>> net.simulate([0.0, 1.0], np.zeros((3, 4)), 0.1).phi.dims   # a batch of 3 initial states
+        ('run', 'time', 'element')
         """
         xr = require("xarray", "xarray", "Network.simulate")
         tt = _checks.as_float(t, "t").ravel()
@@ -613,7 +619,21 @@ class Network:
         return _dataset(xr, {"phi": (dims, phi), "v": (dims, v), "energy": (("time",), en)},
                         {"time": tt, "element": np.arange(self.n)},
                         {"method": method, "steps": int(stats[0]), "rhs_evaluations": int(stats[3]),
-                         **({"dt": h} if method != "dop853" else {})})
+                         **({"dt": h} if method != "dop853" else {})},
+                        self._element_index())
+
+    def _element_index(self) -> dict:
+        """The element coordinate's xarray index, built once (every result of this network shares it)."""
+        made = self._element_made
+        if made is None:
+            try:
+                from xarray.core.indexes import PandasIndex
+                import pandas as pd
+                made = {"element": PandasIndex(pd.Index(np.arange(self.n)), "element")}
+            except ImportError:     # another xarray's internals: built each time by _dataset
+                made = {}
+            self._element_made = made
+        return made
 
     def _initial_states(self, phi0, v0) -> tuple[np.ndarray, bool]:
         """The initial state y0 = (phi0, v0), or for phi0 of B rows the 2N x B states (Fortran order)."""
@@ -649,7 +669,8 @@ class Network:
                              "energy": (dims[:2], en.reshape((nout, nrun), order="F").T)},
                         {"run": np.arange(nrun), "time": tt, "element": np.arange(self.n)},
                         {"method": method, "steps": stats[0].copy(), "rhs_evaluations": stats[3].copy(),
-                         **({"dt": h} if method != "dop853" else {})})
+                         **({"dt": h} if method != "dop853" else {})},
+                        self._element_index())
 
     # ------------------------------------------------------------------ rest points and modes
     def equilibrium(self, phi: ArrayLike, *, tol: float = 1e-14, maxit: int = 50) -> NetworkEquilibrium:
