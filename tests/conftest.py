@@ -27,6 +27,7 @@ def pytest_configure(config):
 #: loaded 2-core machine (the list and what each protects: docs/source/develop.md).  Named here rather
 #: than decorated in place so that the list is one place; tests/test_full_marker.py checks each exists.
 FULL = (
+    "test_network.py::test_conservative_chain_energy_is_bounded_over_a_million_periods",
     "test_demo_run.py::test_the_whole_demo_runs_and_writes_its_figures",
     "test_junction_sweep.py::test_steps_edges_of_the_overdamped_junction_bracket_scipy_bisection",
     "test_friction_hard_cases.py::test_friction_slow_starts_hunted",

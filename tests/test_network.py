@@ -151,6 +151,22 @@ def test_conservative_chain_energy_is_bounded_over_ten_thousand_periods():
     assert err[-tenth:].max() <= 2 * err[:tenth].max() + 1e-13
 
 
+def test_conservative_chain_energy_is_bounded_over_a_million_periods():
+    """The same chain and step over 1e6 small-oscillation periods (2.5e7 Gauss-Legendre 6 steps, about
+    two minutes: make test-full): the energy error stays where it was after 1e4 periods (measured
+    6.4e-9 at most), the last tenth no larger than twice the first tenth (no drift)."""
+    n = 4
+    net = pendula.Network(n, topology="chain", strength=0.5)
+    h = 2 * math.pi / 25
+    steps = np.arange(0, 25 * 1_000_000 + 1, 12_500)
+    run = net.simulate(steps * h, 0.6 * np.sin(np.arange(1, n + 1)), 0.0, method="gauss6", dt=h)
+    e = run.energy.values
+    err = np.abs(e - e[0]) / e[0]
+    tenth = len(err) // 10
+    assert err.max() < 1e-7
+    assert err[-tenth:].max() <= 2 * err[:tenth].max() + 1e-13
+
+
 # ---------------------------------------------------------------- Peierls-Nabarro barrier
 
 def _ring_energy(q, k):

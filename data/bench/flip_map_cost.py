@@ -29,6 +29,10 @@ interpolated in log-log between its runs.
 
 Run: .venv/bin/python data/bench/flip_map_cost.py [strips] [scipy_pixels_per_strip]
      (`make bench-peers` installs numba, numbalsoda, diffrax and jax; writes data/bench/flip_map_cost.json)
+     .venv/bin/python data/bench/flip_map_cost.py --whole [numba_rtol]
+     the whole 1000 x 1000 map, not extrapolated: pendula (rtol 1e-10) and the numba peer (default rtol
+     1e-11, its rtol nearest pendula's error in the strips), one thread each, one after the other; the
+     two maps' flip times compared pixel by pixel (writes data/bench/flip_map_whole.json)
 """
 
 import json
@@ -284,5 +288,40 @@ def main(strips: int = 3, n_scipy: int = 12) -> None:
     (HERE / "flip_map_cost.json").write_text(json.dumps(rec, indent=1) + "\n")
 
 
+def whole(numba_rtol: float = 1e-11) -> None:
+    """The whole map by pendula and by the numba peer, each timed over all its rows."""
+    grid = np.linspace(-math.pi, math.pi, SIDE)
+    dp = pendula.DoublePendulum()
+    peer = numba_peer()
+    dp.flip_map([1.0], [2.0, 3.0], t_max=2.0, threads=1)      # warm
+    t0 = time.perf_counter()
+    fm = dp.flip_map(grid, grid, t_max=T_MAX, rtol=RTOL, atol=RTOL, threads=1)
+    t_pendula = time.perf_counter() - t0
+    print(f"pendula: the whole map in {t_pendula / 60:.2f} min (one thread)", flush=True)
+    t0 = time.perf_counter()
+    tn = np.stack([peer(float(a), grid, T_MAX, numba_rtol) for a in grid])
+    t_numba = time.perf_counter() - t0
+    print(f"numba peer at rtol {numba_rtol:.0e}: the whole map in {t_numba / 60:.2f} min (one thread)", flush=True)
+    tp = np.asarray(fm.time)
+    both = np.isfinite(tp) & np.isfinite(tn)
+    rel = np.abs(tp[both] - tn[both]) / tn[both]
+    same_verdict = float(np.mean(np.isfinite(tp) == np.isfinite(tn)))
+    print(f"ratio numba / pendula {t_numba / t_pendula:.2f}; flip times of the two maps: median relative "
+          f"difference {np.median(rel):.1e} over {both.sum()} pixels that flip in both; the same verdict "
+          f"(flips by t_max or not) on {100 * same_verdict:.2f} % of pixels")
+    rec = {"date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
+           "machine": platform.processor() or platform.machine(), "cores": os.cpu_count(),
+           "load_average_at_end": os.getloadavg(), "pendula": pendula.__version__,
+           "task": f"the whole flip-time map {SIDE}x{SIDE}, t_max {T_MAX}, pendula at rtol {RTOL}, numba peer at "
+                   f"rtol {numba_rtol} (each pixel also at a tenth of its rtol), one thread each, in turn",
+           "pendula_s": t_pendula, "numba_s": t_numba, "ratio_numba_over_pendula": t_numba / t_pendula,
+           "median_relative_difference": float(np.median(rel)), "pixels_flipping_in_both": int(both.sum()),
+           "same_verdict_fraction": same_verdict, "unresolved_pendula": int(np.sum(fm.unresolved))}
+    (HERE / "flip_map_whole.json").write_text(json.dumps(rec, indent=1) + "\n")
+
+
 if __name__ == "__main__":
-    main(*(int(a) for a in sys.argv[1:3]))
+    if sys.argv[1:2] == ["--whole"]:
+        whole(*(float(a) for a in sys.argv[2:3]))
+    else:
+        main(*(int(a) for a in sys.argv[1:3]))
